@@ -1,0 +1,27 @@
+"""Write files atomically: to a temporary name in the same folder, renamed at the end, so
+that an error or an interrupt never leaves a half-written output behind."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+
+
+@contextlib.contextmanager
+def atomic_write(path, mode: str = "wb"):
+    """Yield a file object; on success it replaces ``path``, on failure it is deleted."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent or ".")
+    try:
+        with os.fdopen(fd, mode) as f:
+            yield f
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
+        os.replace(tmp, path)
+    except BaseException:  # interrupted or failed: remove the partial file, then re-raise
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise

@@ -1,0 +1,7 @@
+"""Pure-numpy geometry: polygons, meshes, primitives. Never imports a GL module."""
+
+from .mesh import Mesh, concatenate
+from .polygon import newell_normal, polygon_area
+from . import primitives
+
+__all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives"]

@@ -1,0 +1,475 @@
+"""Polygon meshes with n-gons kept, and their face and vertex normals.
+
+Faces are stored compactly as one flat index array plus offsets (CSR layout): face ``f``
+is ``indices[offsets[f]:offsets[f + 1]]``. Work that depends on the polygon size is done
+per distinct size (a handful of groups), never per face.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import GeometryError
+from .polygon import convex_mask, ear_clip, newell_normal, unit_normals
+from .tolerance import tol
+
+__all__ = ["Mesh", "concatenate"]
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
+def _faces_to_csr(faces) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Accept an (F, k) array or a sequence of index sequences; return (indices, offsets)."""
+    if isinstance(faces, np.ndarray) or (
+        isinstance(faces, Sequence) and faces and not isinstance(faces[0], (Sequence, np.ndarray))
+    ):
+        arr = np.asarray(faces)
+        if arr.ndim != 2:
+            raise GeometryError(
+                f"faces must be an (F, k) array or a list of index sequences, got shape {arr.shape}"
+            )
+        if arr.size and not np.issubdtype(arr.dtype, np.integer):
+            if not np.all(np.mod(arr, 1) == 0):
+                raise GeometryError(f"face indices must be integers, got dtype {arr.dtype}")
+        f, k = arr.shape
+        return arr.astype(np.int64).ravel(), np.arange(f + 1, dtype=np.int64) * k
+    faces = list(faces)
+    sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
+    offsets = np.zeros(len(faces) + 1, dtype=np.int64)
+    np.cumsum(sizes, out=offsets[1:])
+    try:
+        flat = np.fromiter(
+            (i for f in faces for i in f), dtype=np.int64, count=int(offsets[-1])
+        )
+    except (TypeError, ValueError) as exc:
+        raise GeometryError(f"face indices must be integers: {exc}") from None
+    return flat, offsets
+
+
+class Mesh:
+    """A polygon mesh: vertices ``(V, 3)`` float64 and faces of any size n >= 3.
+
+    Parameters
+    ----------
+    vertices : (V, 3) array_like
+        Vertex positions.
+    faces : (F, k) int array_like or sequence of index sequences
+        Polygons, counter-clockwise seen from outside; convex or concave.
+    normals : (V, 3) array_like, optional
+        Vertex normals read from a file; used by smooth shading instead of computed ones.
+    groups : mapping of name to face indices, optional
+        Named parts (OBJ objects, the Cornell box's walls ...).
+
+    Raises
+    ------
+    GeometryError
+        Wrong shapes, non-finite coordinates, a face with fewer than 3 vertices or an index
+        out of range; the message names the face or vertex.
+    """
+
+    def __init__(
+        self,
+        vertices: ArrayLike,
+        faces,
+        *,
+        normals: ArrayLike | None = None,
+        groups: Mapping[str, ArrayLike] | None = None,
+        name: str | None = None,
+    ):
+        v = np.array(vertices, dtype=np.float64)
+        if v.ndim != 2 or v.shape[1] != 3:
+            if v.size == 0:
+                v = v.reshape(0, 3)
+            else:
+                raise GeometryError(f"vertices must have shape (n, 3), got {v.shape}")
+        bad = ~np.isfinite(v).all(axis=1)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise GeometryError(
+                f"vertex {i} has a non-finite coordinate {v[i].tolist()} "
+                f"({int(bad.sum())} such vertices)"
+            )
+        if isinstance(faces, tuple) and len(faces) == 2 and all(
+            isinstance(x, np.ndarray) for x in faces
+        ):
+            indices, offsets = (np.asarray(faces[0], np.int64), np.asarray(faces[1], np.int64))
+        else:
+            indices, offsets = _faces_to_csr(faces)
+        self._init_arrays(v, indices, offsets)
+        self.normals_from_file = None
+        if normals is not None:
+            n = np.array(normals, dtype=np.float64)
+            if n.shape != v.shape:
+                raise GeometryError(
+                    f"normals must have the shape of vertices {v.shape}, got {n.shape}"
+                )
+            self.normals_from_file = _readonly(unit_normals(n)[0])
+        self.groups = {
+            str(k): _readonly(np.asarray(g, dtype=np.int64)) for k, g in (groups or {}).items()
+        }
+        self.name = name
+
+    def _init_arrays(self, v, indices, offsets) -> None:
+        sizes = np.diff(offsets)
+        small = sizes < 3
+        if small.any():
+            f = int(np.flatnonzero(small)[0])
+            raise GeometryError(
+                f"face {f} has {int(sizes[f])} vertices; a polygon needs at least 3 "
+                f"({int(small.sum())} such faces)"
+            )
+        out = (indices < 0) | (indices >= len(v))
+        if out.any():
+            c = int(np.flatnonzero(out)[0])
+            f = int(np.searchsorted(offsets, c, side="right") - 1)
+            raise GeometryError(
+                f"face {f} refers to vertex {int(indices[c])}, but there are {len(v)} vertices "
+                f"(valid indices 0..{len(v) - 1}; {int(out.sum())} bad indices in all)"
+            )
+        self.vertices: NDArray[np.float64] = _readonly(v)
+        self.face_indices: NDArray[np.int64] = _readonly(indices)
+        self.face_offsets: NDArray[np.int64] = _readonly(offsets)
+        self.face_sizes: NDArray[np.int64] = _readonly(sizes)
+
+    # ------------------------------------------------------------------ basics
+    @classmethod
+    def from_csr(cls, vertices, indices, offsets, **kwargs) -> Mesh:
+        """Build from the flat layout directly (no per-face Python objects)."""
+        return cls(vertices, (np.asarray(indices), np.asarray(offsets)), **kwargs)
+
+    @property
+    def n_vertices(self) -> int:
+        return len(self.vertices)
+
+    @property
+    def n_faces(self) -> int:
+        return len(self.face_sizes)
+
+    @cached_property
+    def n_edges(self) -> int:
+        return len(self.edges)
+
+    def face(self, f: int) -> NDArray[np.int64]:
+        """Vertex indices of face ``f``."""
+        return self.face_indices[self.face_offsets[f] : self.face_offsets[f + 1]]
+
+    @property
+    def faces(self) -> list[NDArray[np.int64]]:
+        """Faces as a list of index arrays (convenient; slow for big meshes)."""
+        return np.split(self.face_indices, self.face_offsets[1:-1])
+
+    def __repr__(self) -> str:
+        name = f" {self.name!r}" if self.name else ""
+        return f"<Mesh{name}: {self.n_vertices} vertices, {self.n_faces} faces>"
+
+    @cached_property
+    def size_groups(self) -> dict[int, tuple[NDArray[np.int64], NDArray[np.int64]]]:
+        """``{k: (face_ids (n,), indices (n, k))}`` for every polygon size k present."""
+        groups = {}
+        for k in np.unique(self.face_sizes).tolist():
+            ids = np.flatnonzero(self.face_sizes == k)
+            idx = self.face_indices[self.face_offsets[ids][:, None] + np.arange(k)]
+            groups[int(k)] = (ids, idx)
+        return groups
+
+    @cached_property
+    def corner_face(self) -> NDArray[np.int64]:
+        """Face of each corner ``(C,)``; a corner is one entry of ``face_indices``."""
+        return _readonly(np.repeat(np.arange(self.n_faces), self.face_sizes))
+
+    @cached_property
+    def corner_next(self) -> NDArray[np.int64]:
+        """Index of the next corner around the same face ``(C,)``."""
+        nxt = np.arange(1, len(self.face_indices) + 1, dtype=np.int64)
+        nxt[self.face_offsets[1:] - 1] = self.face_offsets[:-1]
+        return _readonly(nxt)
+
+    @cached_property
+    def corner_prev(self) -> NDArray[np.int64]:
+        """Index of the previous corner around the same face ``(C,)``."""
+        prv = np.arange(-1, len(self.face_indices) - 1, dtype=np.int64)
+        prv[self.face_offsets[:-1]] = self.face_offsets[1:] - 1
+        return _readonly(prv)
+
+    @cached_property
+    def half_edges(self) -> NDArray[np.int64]:
+        """Directed edges ``(C, 2)`` (from, to), one per corner, in face order."""
+        return _readonly(
+            np.stack([self.face_indices, self.face_indices[self.corner_next]], axis=1)
+        )
+
+    @cached_property
+    def edges(self) -> NDArray[np.int64]:
+        """Unique undirected edges ``(E, 2)``, smaller index first."""
+        h = np.sort(self.half_edges, axis=1)
+        key = h[:, 0] * max(self.n_vertices, 1) + h[:, 1]
+        _, first = np.unique(key, return_index=True)
+        return _readonly(h[first])
+
+    @cached_property
+    def bounds(self) -> NDArray[np.float64]:
+        """``(2, 3)``: minimum and maximum corner of the bounding box."""
+        if self.n_vertices == 0:
+            return np.zeros((2, 3))
+        return _readonly(np.stack([self.vertices.min(axis=0), self.vertices.max(axis=0)]))
+
+    @cached_property
+    def _area_scale(self) -> float:
+        extent = float(np.ptp(self.bounds, axis=0).max()) if self.n_vertices else 0.0
+        return max(extent, 1e-300) ** 2
+
+    # ----------------------------------------------------------------- normals
+    @cached_property
+    def newell_normals(self) -> NDArray[np.float64]:
+        """Unnormalised Newell normal of each face ``(F, 3)``; length = 2 * area."""
+        out = np.zeros((self.n_faces, 3))
+        for ids, idx in self.size_groups.values():
+            out[ids] = newell_normal(self.vertices[idx])
+        return _readonly(out)
+
+    @cached_property
+    def _unit_face_normals(self):
+        return unit_normals(self.newell_normals, self._area_scale)
+
+    @property
+    def face_normals(self) -> NDArray[np.float64]:
+        """Unit Newell normal of each face ``(F, 3)``; zero for a degenerate face."""
+        return _readonly(self._unit_face_normals[0])
+
+    @property
+    def degenerate_faces(self) -> NDArray[np.int64]:
+        """Indices of faces with (numerically) zero area, whose normal is zero."""
+        return np.flatnonzero(~self._unit_face_normals[1])
+
+    @cached_property
+    def face_areas(self) -> NDArray[np.float64]:
+        """Area of each face ``(F,)`` (exact for planar polygons, concave included)."""
+        return _readonly(0.5 * np.linalg.norm(self.newell_normals, axis=1))
+
+    @cached_property
+    def face_centroids(self) -> NDArray[np.float64]:
+        """Mean of each face's vertices ``(F, 3)``."""
+        sums = np.stack(
+            [np.bincount(self.corner_face, self.vertices[self.face_indices, j], self.n_faces)
+             for j in range(3)],
+            axis=1,
+        )
+        return _readonly(sums / self.face_sizes[:, None])
+
+    def _scatter_to_vertices(self, per_corner: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.stack(
+            [np.bincount(self.face_indices, per_corner[:, j], self.n_vertices) for j in range(3)],
+            axis=1,
+        )
+
+    @cached_property
+    def vertex_normals(self) -> NDArray[np.float64]:
+        """Unit vertex normals ``(V, 3)``: normalised sum of the unit normals of the faces
+        around each vertex (the notes' formula). Zero for a vertex in no valid face."""
+        summed = self._scatter_to_vertices(self.face_normals[self.corner_face])
+        return _readonly(unit_normals(summed, 1e-24)[0])
+
+    @cached_property
+    def corner_angles(self) -> NDArray[np.float64]:
+        """Interior angle of the polygon at each corner ``(C,)``, radians."""
+        p = self.vertices[self.face_indices]
+        a = self.vertices[self.face_indices[self.corner_prev]] - p
+        b = self.vertices[self.face_indices[self.corner_next]] - p
+        cross = np.linalg.norm(np.cross(a, b), axis=1)
+        return _readonly(np.arctan2(cross, np.einsum("ij,ij->i", a, b)))
+
+    def vertex_normals_weighted(self, by: str = "area") -> NDArray[np.float64]:
+        """Vertex normals with each face's unit normal weighted ``by`` "area", "angle" or
+        "unit" (equal weights, the same as :attr:`vertex_normals`)."""
+        if by == "unit":
+            return self.vertex_normals
+        if by == "area":
+            w = self.face_areas[self.corner_face]
+        elif by == "angle":
+            w = self.corner_angles
+        else:
+            raise GeometryError(f"by must be one of 'area', 'angle', 'unit'; got {by!r}")
+        summed = self._scatter_to_vertices(self.face_normals[self.corner_face] * w[:, None])
+        return unit_normals(summed, 1e-24)[0]
+
+    # ------------------------------------------------------------- operations
+    def triangulate(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """Triangles for drawing, and the polygon each came from.
+
+        Convex polygons are fanned from their first vertex in bulk; concave ones are ear
+        clipped one by one (they are rare, and only they pay for it).
+
+        Returns
+        -------
+        triangles : (T, 3) int64
+            Vertex indices, wound like their polygon.
+        face_index : (T,) int64
+            The source polygon of each triangle, non-decreasing.
+        """
+        tris, owner = [], []
+        for k, (ids, idx) in self.size_groups.items():
+            if k == 3:
+                tris.append(idx)
+                owner.append(ids)
+                continue
+            convex = convex_mask(self.vertices[idx], self.newell_normals[ids])
+            j = np.arange(1, k - 1)
+            fan = np.stack([np.zeros_like(j), j, j + 1], axis=1)  # (k-2, 3) local
+            cidx = idx[convex]
+            tris.append(cidx[:, fan].reshape(-1, 3))
+            owner.append(np.repeat(ids[convex], k - 2))
+            for f, face in zip(ids[~convex], idx[~convex]):
+                local = ear_clip(self.vertices[face], self.newell_normals[f])
+                tris.append(face[local])
+                owner.append(np.full(len(local), f))
+        if not tris:
+            return np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+        tri = np.concatenate(tris)
+        own = np.concatenate(owner)
+        order = np.argsort(own, kind="stable")
+        return tri[order], own[order]
+
+    @cached_property
+    def triangles(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """Cached :meth:`triangulate`."""
+        return self.triangulate()
+
+    def signed_volume(self) -> float:
+        """Signed volume enclosed (divergence theorem); positive for outward orientation of
+        a closed mesh."""
+        tri, _ = self.triangles
+        p = self.vertices[tri]
+        return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+
+    @property
+    def total_area(self) -> float:
+        return float(self.face_areas.sum())
+
+    def transformed(self, matrix: ArrayLike) -> Mesh:
+        """A copy with vertices mapped by a 4x4 (or 3x3) matrix for column vectors."""
+        m = np.asarray(matrix, dtype=np.float64)
+        if m.shape == (3, 3):
+            v = self.vertices @ m.T
+        elif m.shape == (4, 4):
+            h = np.c_[self.vertices, np.ones(self.n_vertices)] @ m.T
+            v = h[:, :3] / h[:, 3:]
+        else:
+            raise GeometryError(f"matrix must have shape (4, 4) or (3, 3), got {m.shape}")
+        flip = np.linalg.det(m[:3, :3]) < 0
+        return self._replace(v, flip=flip)
+
+    def flipped(self) -> Mesh:
+        """The same mesh with every face's orientation reversed."""
+        return self._replace(self.vertices, flip=True)
+
+    def _replace(self, vertices, flip: bool = False) -> Mesh:
+        idx = self.face_indices
+        if flip:
+            # reverse each face's order, keeping its first vertex first
+            start = np.repeat(self.face_offsets[:-1], self.face_sizes)
+            local = np.arange(len(idx)) - start
+            rev = np.where(local == 0, 0, np.repeat(self.face_sizes, self.face_sizes) - local)
+            idx = idx[start + rev]
+        return Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(),
+                             groups=self.groups, name=self.name)
+
+    def split_creases(self, angle_deg: float = 30.0) -> Mesh:
+        """Duplicate vertices along sharp edges, so smooth shading keeps creases.
+
+        Two faces sharing an edge stay smooth across it when their normals differ by less
+        than ``angle_deg``; corners of a vertex joined by smooth edges share one copy of it.
+        """
+        if not 0 <= angle_deg <= 180:
+            raise GeometryError(f"angle_deg must be in [0, 180], got {angle_deg}")
+        c = len(self.face_indices)
+        he = self.half_edges
+        nv = max(self.n_vertices, 1)
+        # Match each half-edge (a, b) with a twin (b, a) -- or (a, b) when orientation is
+        # inconsistent -- through the undirected key.
+        lo, hi = np.minimum(he[:, 0], he[:, 1]), np.maximum(he[:, 0], he[:, 1])
+        key = lo * nv + hi
+        order = np.argsort(key, kind="stable")
+        ks = key[order]
+        pair = ks[1:] == ks[:-1]
+        c0, c1 = order[:-1][pair], order[1:][pair]
+        f0, f1 = self.corner_face[c0], self.corner_face[c1]
+        cos = np.einsum("ij,ij->i", self.face_normals[f0], self.face_normals[f1])
+        smooth = cos >= np.cos(np.radians(angle_deg)) - 1e-12
+        c0, c1 = c0[smooth], c1[smooth]
+        # corners at the same vertex on both sides of the shared edge
+        n0, n1 = self.corner_next[c0], self.corner_next[c1]
+        same_dir = self.face_indices[c0] == self.face_indices[c1]
+        a = np.concatenate([c0, n0])
+        b = np.concatenate([np.where(same_dir, c1, n1), np.where(same_dir, n1, c1)])
+        labels = np.arange(c)
+        while True:  # label propagation: as many rounds as faces around the busiest vertex
+            m = np.minimum(labels[a], labels[b])
+            new = labels.copy()
+            np.minimum.at(new, a, m)
+            np.minimum.at(new, b, m)
+            new = new[new]
+            if np.array_equal(new, labels):
+                break
+            labels = new
+        uniq, corner_vertex = np.unique(labels, return_inverse=True)
+        vertices = self.vertices[self.face_indices[uniq]]
+        return Mesh.from_csr(vertices, corner_vertex.astype(np.int64),
+                             self.face_offsets.copy(), groups=self.groups, name=self.name)
+
+    def weld(self, tolerance: float | None = None) -> Mesh:
+        """Merge vertices closer than ``tolerance`` (default: relative to the bounding box)
+        and drop those no face uses; faces that collapse below 3 corners are removed."""
+        if tolerance is None:
+            tolerance = tol.merge * max(np.sqrt(self._area_scale), 1e-300)
+        q = np.round(self.vertices / tolerance).astype(np.int64)
+        _, first, inverse = np.unique(q, axis=0, return_index=True, return_inverse=True)
+        inverse = inverse.ravel()
+        idx = inverse[self.face_indices]
+        # drop repeated consecutive corners (pole collapse), then faces with < 3 corners
+        keep = idx != idx[self.corner_next]
+        keep_count = np.bincount(self.corner_face[keep], minlength=self.n_faces)
+        ok_face = keep_count >= 3
+        keep &= ok_face[self.corner_face]
+        offsets = np.zeros(int(ok_face.sum()) + 1, np.int64)
+        np.cumsum(keep_count[ok_face], out=offsets[1:])
+        vertices = self.vertices[first]
+        used = np.zeros(len(vertices), bool)
+        used[idx[keep]] = True
+        remap = np.cumsum(used) - 1
+        return Mesh.from_csr(vertices[used], remap[idx[keep]], offsets, name=self.name)
+
+
+def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
+    """Join meshes into one; with ``names`` each input becomes a named group of faces."""
+    meshes = list(meshes)
+    names = list(names) if names is not None else [None] * len(meshes)
+    if len(names) != len(meshes):
+        raise GeometryError(f"got {len(meshes)} meshes but {len(names)} names")
+    vert, idx, sizes, groups = [], [], [], {}
+    v0 = f0 = 0
+    for m, name in zip(meshes, names):
+        vert.append(m.vertices)
+        idx.append(m.face_indices + v0)
+        sizes.append(m.face_sizes)
+        if name is not None:
+            groups[name] = np.arange(f0, f0 + m.n_faces)
+        for gname, g in m.groups.items():
+            groups[f"{name}/{gname}" if name else gname] = g + f0
+        v0 += m.n_vertices
+        f0 += m.n_faces
+    size = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
+    offsets = np.zeros(len(size) + 1, np.int64)
+    np.cumsum(size, out=offsets[1:])
+    return Mesh.from_csr(
+        np.concatenate(vert) if vert else np.zeros((0, 3)),
+        np.concatenate(idx) if idx else np.zeros(0, np.int64),
+        offsets,
+        groups=groups,
+    )

@@ -1,0 +1,259 @@
+"""Primitive meshes, each with consistent outward orientation (counter-clockwise seen from
+outside) and y up. Polygons are kept: a cube is six quads, a cylinder's caps are n-gons.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError
+from .mesh import Mesh, concatenate
+
+__all__ = [
+    "cube", "box", "uv_sphere", "icosphere", "torus", "cylinder", "plane", "cornell_box",
+    "teapot", "CORNELL_COLORS", "PRIMITIVES", "from_spec",
+]
+
+
+def _check_int(name: str, value, minimum: int) -> int:
+    if int(value) != value or value < minimum:
+        raise GeometryError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def box(size=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0)) -> Mesh:
+    """An axis-aligned box of six quads."""
+    s = np.asarray(size, float) / 2
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
+    quads = [
+        [0, 1, 3, 2],  # -x
+        [4, 6, 7, 5],  # +x
+        [0, 4, 5, 1],  # -y
+        [2, 3, 7, 6],  # +y
+        [0, 2, 6, 4],  # -z
+        [1, 5, 7, 3],  # +z
+    ]
+    return Mesh(corners * s + np.asarray(center, float), quads, name="box")
+
+
+def cube() -> Mesh:
+    """The unit cube ``[-0.5, 0.5]^3``: 8 vertices, 6 quads, volume 1."""
+    m = box()
+    m.name = "cube"
+    return m
+
+
+def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
+    """A latitude/longitude sphere: quads, with triangle fans at the poles (y axis)."""
+    stacks = _check_int("stacks", stacks, 2)
+    slices = _check_int("slices", slices, 3)
+    theta = np.pi * np.arange(1, stacks) / stacks  # polar angle of the inner rings
+    phi = 2 * np.pi * np.arange(slices) / slices
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    ring = np.stack([np.sin(t) * np.sin(p), np.cos(t), np.sin(t) * np.cos(p)], -1).reshape(-1, 3)
+    v = np.vstack([[0, 1, 0], ring, [0, -1, 0]]) * radius
+    south = len(v) - 1
+    r = np.arange(stacks - 2)[:, None]
+    s = np.arange(slices)[None, :]
+    s1 = (s + 1) % slices
+    a = 1 + r * slices + s
+    b = 1 + r * slices + s1
+    quads = np.stack([a, a + slices, b + slices, b], -1).reshape(-1, 4)
+    top = np.stack([np.zeros(slices, int), 1 + s[0], 1 + s1[0]], -1)
+    last = 1 + (stacks - 2) * slices
+    bottom = np.stack([np.full(slices, south), last + s1[0], last + s[0]], -1)
+    faces = [*top.tolist(), *quads.tolist(), *bottom.tolist()]
+    return Mesh(v, faces, name="uv_sphere")
+
+
+_ICO_T = (1 + 5**0.5) / 2
+_ICO_V = np.array([
+    [-1, _ICO_T, 0], [1, _ICO_T, 0], [-1, -_ICO_T, 0], [1, -_ICO_T, 0],
+    [0, -1, _ICO_T], [0, 1, _ICO_T], [0, -1, -_ICO_T], [0, 1, -_ICO_T],
+    [_ICO_T, 0, -1], [_ICO_T, 0, 1], [-_ICO_T, 0, -1], [-_ICO_T, 0, 1],
+])
+_ICO_F = np.array([
+    [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
+    [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
+    [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
+    [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+])
+
+
+def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
+    """A sphere of triangles from a subdivided icosahedron; every vertex lies on the sphere.
+
+    Level k has ``20 * 4**k`` triangles.
+    """
+    subdivisions = _check_int("subdivisions", subdivisions, 0)
+    v = _ICO_V / np.linalg.norm(_ICO_V, axis=1, keepdims=True)
+    f = _ICO_F.copy()
+    for _ in range(subdivisions):
+        e = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], 1).reshape(-1, 2), 1)
+        key = e[:, 0] * len(v) + e[:, 1]
+        uniq, first, inv = np.unique(key, return_index=True, return_inverse=True)
+        mid = v[e[first, 0]] + v[e[first, 1]]
+        mid /= np.linalg.norm(mid, axis=1, keepdims=True)
+        m = (len(v) + inv).reshape(-1, 3)  # midpoints of edges (01, 12, 20) per face
+        v = np.vstack([v, mid])
+        a, b, c = f.T
+        ab, bc, ca = m.T
+        f = np.stack([
+            np.stack([a, ab, ca], 1), np.stack([b, bc, ab], 1),
+            np.stack([c, ca, bc], 1), np.stack([ab, bc, ca], 1),
+        ], 1).reshape(-1, 3)
+    return Mesh(v * radius, f, name="icosphere")
+
+
+def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
+    """A ring torus of quads around the y axis: ``n`` segments around, ``m`` across."""
+    n = _check_int("n", n, 3)
+    m = _check_int("m", m, 3)
+    if not 0 < r < R:
+        raise GeometryError(f"need 0 < r < R for a ring torus, got R={R}, r={r}")
+    u = 2 * np.pi * np.arange(n) / n
+    w = 2 * np.pi * np.arange(m) / m
+    uu, ww = np.meshgrid(u, w, indexing="ij")
+    rho = R + r * np.cos(ww)
+    v = np.stack([rho * np.cos(uu), r * np.sin(ww), -rho * np.sin(uu)], -1).reshape(-1, 3)
+    i = np.arange(n)[:, None]
+    j = np.arange(m)[None, :]
+    i1, j1 = (i + 1) % n, (j + 1) % m
+    quads = np.stack([i * m + j, i1 * m + j, i1 * m + j1, i * m + j1], -1).reshape(-1, 4)
+    return Mesh(v, quads, name="torus")
+
+
+def cylinder(n: int = 32, radius: float = 1.0, height: float = 2.0) -> Mesh:
+    """A closed cylinder along y: ``n`` side quads and two n-gon caps."""
+    n = _check_int("n", n, 3)
+    a = 2 * np.pi * np.arange(n) / n
+    ring = np.stack([radius * np.sin(a), np.zeros(n), radius * np.cos(a)], 1)
+    h = height / 2
+    v = np.vstack([ring + [0, -h, 0], ring + [0, h, 0]])
+    i = np.arange(n)
+    i1 = (i + 1) % n
+    sides = np.stack([i, i1, n + i1, n + i], 1).tolist()
+    top = (n + i).tolist()
+    bottom = i[::-1].tolist()
+    return Mesh(v, [*sides, top, bottom], name="cylinder")
+
+
+def plane(size: float = 2.0) -> Mesh:
+    """One square quad in the xy plane, centred at the origin, facing +z."""
+    s = size / 2
+    return Mesh([[-s, -s, 0], [s, -s, 0], [s, s, 0], [-s, s, 0]], [[0, 1, 2, 3]], name="plane")
+
+
+#: Diffuse colours of the Cornell box's parts (linear RGB).
+CORNELL_COLORS = {
+    "floor": (0.73, 0.73, 0.73), "ceiling": (0.73, 0.73, 0.73),
+    "back_wall": (0.73, 0.73, 0.73), "left_wall": (0.63, 0.065, 0.05),
+    "right_wall": (0.14, 0.45, 0.091), "light": (1.0, 1.0, 1.0),
+    "short_box": (0.73, 0.73, 0.73), "tall_box": (0.73, 0.73, 0.73),
+}
+
+
+def _quad(points) -> Mesh:
+    return Mesh(points, [[0, 1, 2, 3]])
+
+
+def _rotated_box(size, center, angle_deg) -> Mesh:
+    b = box(size)
+    c, s = np.cos(np.radians(angle_deg)), np.sin(np.radians(angle_deg))
+    rot = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    return Mesh(b.vertices @ rot.T + center, b.face_indices.reshape(-1, 4), name="box")
+
+
+def cornell_box() -> Mesh:
+    """The Cornell box as quads in ``[0, 1]^3``, open towards +z (the camera).
+
+    Walls face into the room; the two boxes are closed and face outward. Each part is a
+    named group (see :data:`CORNELL_COLORS`).
+    """
+    parts = {
+        "floor": _quad([[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]),
+        "ceiling": _quad([[0, 1, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1]]),
+        "back_wall": _quad([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
+        "left_wall": _quad([[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]]),
+        "right_wall": _quad([[1, 0, 0], [1, 0, 1], [1, 1, 1], [1, 1, 0]]),
+        "light": _quad([[0.4, 0.999, 0.4], [0.6, 0.999, 0.4], [0.6, 0.999, 0.6],
+                        [0.4, 0.999, 0.6]]),
+        "short_box": _rotated_box((0.3, 0.3, 0.3), (0.65, 0.15, 0.62), -17),
+        "tall_box": _rotated_box((0.3, 0.6, 0.3), (0.33, 0.3, 0.35), 17),
+    }
+    m = concatenate(parts.values(), parts.keys())
+    m.name = "cornell_box"
+    return m
+
+
+def _bernstein(t: np.ndarray) -> np.ndarray:
+    """Cubic Bernstein basis ``(len(t), 4)``."""
+    s = 1 - t
+    return np.stack([s**3, 3 * t * s**2, 3 * t**2 * s, t**3], 1)
+
+
+def teapot(tessellation: int = 8) -> Mesh:
+    """The Utah teapot from Newell's 32 Bezier patches, ``tessellation`` quads per patch
+    side, welded along patch seams; y up, resting on y = 0."""
+    from ._teapot_data import PATCHES, VERTICES
+
+    k = _check_int("tessellation", tessellation, 1)
+    cp = np.array([p.split() for line in VERTICES.strip().splitlines()
+                   for p in line.split(";")], float)
+    patches = np.array(PATCHES.split(), int).reshape(-1, 4, 4)
+    b = _bernstein(np.linspace(0, 1, k + 1))  # (k+1, 4)
+    # surface points of every patch at once: (32, k+1, k+1, 3)
+    pts = np.einsum("ui,vj,pijc->puvc", b, b, cp[patches])
+    n_per = (k + 1) ** 2
+    i = np.arange(k)[:, None]
+    j = np.arange(k)[None, :]
+    local = np.stack([i * (k + 1) + j, (i + 1) * (k + 1) + j,
+                      (i + 1) * (k + 1) + j + 1, i * (k + 1) + j + 1], -1).reshape(-1, 4)
+    quads = (local[None] + n_per * np.arange(len(patches))[:, None, None]).reshape(-1, 4)
+    # z-up to y-up, keeping handedness: (x, y, z) -> (x, z, -y)
+    v = pts.reshape(-1, 3)[:, [0, 2, 1]] * [1, 1, -1]
+    m = Mesh(v, quads)
+    # The patch data winds the body one way and the rest the other: take each patch's
+    # orientation from its agreement with the outward direction of its points.
+    per_patch = k * k
+    normal = m.face_normals.reshape(len(patches), per_patch, 3)
+    out = (m.face_centroids - [0, 1.2, 0]).reshape(len(patches), per_patch, 3)
+    agree = np.einsum("pfc,pfc->p", normal, out)
+    q = quads.reshape(len(patches), per_patch, 4)
+    q = np.where((agree < 0)[:, None, None], q[..., ::-1], q).reshape(-1, 4)
+    welded = Mesh(v, q).weld(1e-6)
+    welded.name = "teapot"
+    return welded
+
+
+PRIMITIVES = {
+    "cube": cube, "box": box, "uv_sphere": uv_sphere, "icosphere": icosphere,
+    "torus": torus, "cylinder": cylinder, "plane": plane, "cornell_box": cornell_box,
+    "teapot": teapot,
+}
+
+
+def from_spec(spec: str) -> Mesh:
+    """Build a primitive from text: ``"icosphere"``, ``"icosphere:3"``, ``"torus:1,0.3"``.
+
+    A leading ``primitive:`` is accepted. Arguments are numbers, comma-separated.
+    """
+    text = spec.removeprefix("primitive:")
+    name, _, args = text.partition(":")
+    if name not in PRIMITIVES:
+        raise GeometryError(
+            f"unknown primitive {name!r}; choose one of {', '.join(sorted(PRIMITIVES))}"
+        )
+    values = []
+    for a in filter(None, args.split(",")):
+        try:
+            values.append(int(a) if a.strip().lstrip("-").isdigit() else float(a))
+        except ValueError:
+            raise GeometryError(
+                f"primitive argument {a!r} in {spec!r} is not a number "
+                f"(example: primitive:icosphere:3)"
+            ) from None
+    try:
+        return PRIMITIVES[name](*values)
+    except TypeError as exc:
+        raise GeometryError(f"bad arguments for primitive {name!r}: {exc}") from None

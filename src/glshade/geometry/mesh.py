@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
-from .polygon import convex_mask, ear_clip, newell_normal, unit_normals
+from .polygon import convex_mask, ear_clip, newell_of_indexed, unit_normals
 from .tolerance import tol
 
 __all__ = ["Mesh", "concatenate"]
@@ -172,8 +172,12 @@ class Mesh:
     @cached_property
     def size_groups(self) -> dict[int, tuple[NDArray[np.int64], NDArray[np.int64]]]:
         """``{k: (face_ids (n,), indices (n, k))}`` for every polygon size k present."""
+        sizes = self.face_sizes
+        if len(sizes) and sizes.min() == sizes.max():  # one size: a reshape, no gather
+            k = int(sizes[0])
+            return {k: (np.arange(len(sizes)), self.face_indices.reshape(-1, k))}
         groups = {}
-        for k in np.unique(self.face_sizes).tolist():
+        for k in np.unique(sizes).tolist():
             ids = np.flatnonzero(self.face_sizes == k)
             idx = self.face_indices[self.face_offsets[ids][:, None] + np.arange(k)]
             groups[int(k)] = (ids, idx)
@@ -229,9 +233,12 @@ class Mesh:
     @cached_property
     def newell_normals(self) -> NDArray[np.float64]:
         """Unnormalised Newell normal of each face ``(F, 3)``; length = 2 * area."""
+        groups = list(self.size_groups.values())
+        if len(groups) == 1:
+            return _readonly(newell_of_indexed(self.vertices, groups[0][1]))
         out = np.zeros((self.n_faces, 3))
-        for ids, idx in self.size_groups.values():
-            out[ids] = newell_normal(self.vertices[idx])
+        for ids, idx in groups:
+            out[ids] = newell_of_indexed(self.vertices, idx)
         return _readonly(out)
 
     @cached_property

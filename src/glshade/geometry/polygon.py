@@ -17,6 +17,30 @@ from .tolerance import tol
 __all__ = ["newell_normal", "unit_normals", "polygon_area", "convex_mask", "ear_clip"]
 
 
+def cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``np.cross`` for ``(..., 3)`` arrays, written out: several times faster for big batches."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b))
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    np.subtract(a1 * b2, a2 * b1, out=out[..., 0])
+    np.subtract(a2 * b0, a0 * b2, out=out[..., 1])
+    np.subtract(a0 * b1, a1 * b0, out=out[..., 2])
+    return out
+
+
+def newell_of_indexed(vertices: NDArray[np.float64], faces: NDArray[np.int64]):
+    """Newell normals of polygons given by indices ``(n, K)`` into ``vertices`` ``(V, 3)``,
+    without materialising ``(n, K, 3)`` for triangles and quads."""
+    k = faces.shape[1]
+    if k == 3:
+        p0 = vertices[faces[:, 0]]
+        return cross(vertices[faces[:, 1]] - p0, vertices[faces[:, 2]] - p0)
+    if k == 4:
+        return cross(vertices[faces[:, 2]] - vertices[faces[:, 0]],
+                     vertices[faces[:, 3]] - vertices[faces[:, 1]])
+    return newell_normal(vertices[faces])
+
+
 def newell_normal(points: ArrayLike) -> NDArray[np.float64]:
     """Unnormalised Newell normal of polygons.
 
@@ -36,14 +60,14 @@ def newell_normal(points: ArrayLike) -> NDArray[np.float64]:
         raise GeometryError(f"points must have shape (..., K, 3) with K >= 3, got {p.shape}")
     if p.shape[-2] == 3:
         # For a triangle Newell's sum equals one cross product of two edges.
-        return np.cross(p[..., 1, :] - p[..., 0, :], p[..., 2, :] - p[..., 0, :])
+        return cross(p[..., 1, :] - p[..., 0, :], p[..., 2, :] - p[..., 0, :])
     if p.shape[-2] == 4:
         # For a quad it equals the cross product of the diagonals.
-        return np.cross(p[..., 2, :] - p[..., 0, :], p[..., 3, :] - p[..., 1, :])
+        return cross(p[..., 2, :] - p[..., 0, :], p[..., 3, :] - p[..., 1, :])
     # Shift by the first vertex: the sum is translation invariant, and this keeps
     # far-from-origin polygons accurate.
     q = p - p[..., :1, :]
-    return np.cross(q, np.roll(q, -1, axis=-2)).sum(axis=-2)
+    return cross(q, np.roll(q, -1, axis=-2)).sum(axis=-2)
 
 
 def unit_normals(
@@ -59,10 +83,10 @@ def unit_normals(
     unit : (n, 3) float64
     valid : (n,) bool
     """
-    length = np.linalg.norm(normals, axis=-1)
+    length = np.sqrt(np.einsum("...i,...i->...", normals, normals))
     valid = length > tol.zero_length * scale
-    safe = np.where(valid, length, 1.0)
-    return np.where(valid[..., None], normals / safe[..., None], 0.0), valid
+    inverse = np.divide(1.0, length, out=np.zeros_like(length), where=valid)
+    return normals * inverse[..., None], valid
 
 
 def polygon_area(points: ArrayLike) -> NDArray[np.float64]:

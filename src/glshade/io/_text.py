@@ -18,7 +18,7 @@ _SPACE_NL = re.compile(rb" ?\n ?")
 
 def parse_numbers(blob: bytes, dtype=np.float64) -> np.ndarray | None:
     """All whitespace-separated numbers in ``blob``, or None if any token is not one."""
-    if not blob.strip():
+    if not blob or blob.isspace():
         return np.zeros(0, dtype)
     with warnings.catch_warnings():
         warnings.simplefilter("error", DeprecationWarning)
@@ -26,6 +26,34 @@ def parse_numbers(blob: bytes, dtype=np.float64) -> np.ndarray | None:
             return np.fromstring(blob, dtype=dtype, sep=" ")
         except (ValueError, DeprecationWarning):
             return None
+
+
+_NOT_PLAIN_DECIMAL = (b"e", b"E", b"n", b"N", b"i", b"I", b"x", b"X", b"\t", b"\r")
+
+
+def parse_decimals(blob: bytes) -> np.ndarray | None:
+    """Floats written as plain decimals (``-12.345600``, what most exporters write), parsed
+    as integers and divided by a power of ten: a correctly rounded division, so the result
+    equals strtod's for up to 15 significant digits, at about three times the speed.
+
+    Returns None when the text is not of that form; the caller then uses parse_numbers.
+    """
+    if any(c in blob for c in _NOT_PLAIN_DECIMAL):
+        return None
+    arr = np.frombuffer(blob, np.uint8)
+    ws = (arr == 32) | (arr == 10)
+    starts = np.flatnonzero(~ws & np.concatenate([[True], ws[:-1]]))
+    ends = np.flatnonzero(~ws & np.concatenate([ws[1:], [True]])) + 1
+    dots = np.flatnonzero(arr == 46)
+    if len(dots) != len(starts) or len(starts) == 0:
+        return None
+    if not ((dots > starts) & (dots < ends - 1)).all() or (ends - starts).max() > 16:
+        return None  # a token without its own dot, or too many digits to be exact
+    mantissa = parse_numbers(blob.replace(b".", b""), np.int64)
+    if mantissa is None or len(mantissa) != len(starts):
+        return None
+    decimals = ends - dots - 1
+    return mantissa / np.power(10.0, decimals)
 
 
 def normalize_whitespace(blob: bytes) -> bytes:

@@ -17,7 +17,9 @@ import numpy as np
 from .._atomic import atomic_write
 from ..errors import GeometryError, MeshFormatError
 from ..geometry.mesh import Mesh
-from ._text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
+from ._text import (
+    line_starts, normalize_whitespace, parse_decimals, parse_numbers, ragged_take, token_counts,
+)
 
 __all__ = ["load_mesh", "save_mesh", "FORMATS"]
 
@@ -205,6 +207,12 @@ def _read_obj(path, data: bytes) -> Mesh:
     lead = data[:1] in (b" ", b"\t")
     if lead or b"\r" in data or b"\t" in data or b"\n " in data:
         data = normalize_whitespace(data)
+    if b"#" in data:
+        arr = np.frombuffer(data, np.uint8)
+        hashes = np.flatnonzero(arr == ord("#"))
+        inline = hashes[hashes > 0]
+        if (arr[inline - 1] != 10).any():  # a comment after data: cut it off
+            data = normalize_whitespace(_COMMENT.sub(b"", data))
     starts, ends = line_starts(data)
     arr = np.frombuffer(data, np.uint8)
     b0 = arr[starts]
@@ -230,7 +238,10 @@ def _read_obj(path, data: bytes) -> Mesh:
     v_lines = np.flatnonzero(is_v)
     f_lines = np.flatnonzero(is_f)
     vblob = _join_lines(data, starts, ends, v_lines)
-    values = parse_numbers(_blank_keyword(vblob, b"v")) if len(v_lines) else np.zeros(0)
+    numbers = _blank_keyword(vblob, b"v") if len(v_lines) else b""
+    values = parse_decimals(numbers)
+    if values is None:
+        values = parse_numbers(numbers)
     if values is None:
         _obj_diagnose(path, data)
         raise MeshFormatError(path, "malformed vertex data")
@@ -247,7 +258,7 @@ def _read_obj(path, data: bytes) -> Mesh:
 
     if len(f_lines) == 0:
         raise MeshFormatError(path, "the file has no faces ('f' lines)")
-    fblob = normalize_whitespace(_join_lines(data, starts, ends, f_lines))
+    fblob = _join_lines(data, starts, ends, f_lines)  # data is normalized already
     sizes = token_counts(fblob, len(f_lines)) - 1
     body = _blank_keyword(fblob, b"f")
     if b"/" in body:
@@ -256,13 +267,19 @@ def _read_obj(path, data: bytes) -> Mesh:
     if idx is None or len(idx) != sizes.sum() or (idx == 0).any():
         _obj_diagnose(path, data)
         raise MeshFormatError(path, "malformed face data")
-    neg = idx < 0
-    if neg.any():
-        # negative indices count back from the vertices defined so far
-        v_before = np.searchsorted(v_lines, f_lines)
-        idx = np.where(neg, idx + np.repeat(v_before, sizes), idx - 1)
+    written = idx
+    if idx.min() < 0:
+        # negative indices count back from the vertices defined before their line
+        v_before = np.repeat(np.searchsorted(v_lines, f_lines), sizes)
+        idx = np.where(idx < 0, idx + v_before, idx - 1)
     else:
         idx = idx - 1
+    bad = (idx < 0) | (idx >= len(vertices))
+    if bad.any():
+        c = int(np.flatnonzero(bad)[0])
+        f = int(np.searchsorted(_offsets(sizes), c, side="right") - 1)
+        raise MeshFormatError(path, f"face index {int(written[c])} is out of range: the file "
+                              f"defines {len(vertices)} vertices", line=int(f_lines[f]) + 1)
 
     groups = {}
     if group_lines:
@@ -363,14 +380,14 @@ def _read_off(path, data: bytes) -> Mesh:
                   line_of_vertex=lambda i: int(vl[i]) + 1)
 
 
-def _numeric_diagnose(path, text, starts, ends, lines, what: str):
+def _numeric_diagnose(path, text, starts, ends, lines, what: str, first_line: int = 1):
     for i in lines.tolist():
         for token in text[starts[i]:ends[i]].split():
             try:
                 float(token)
             except ValueError:
                 raise MeshFormatError(path, f"{what} data: {token.decode(errors='replace')!r} "
-                                      "is not a number", line=i + 1) from None
+                                      "is not a number", line=i + first_line) from None
     raise MeshFormatError(path, f"malformed {what} data")
 
 
@@ -430,7 +447,7 @@ def _ply_header(path, data: bytes):
     names = [e[0] for e in elements]
     if "vertex" not in names or "face" not in names:
         raise MeshFormatError(path, f"a mesh needs 'vertex' and 'face' elements, found {names}")
-    return fmt, elements, body_start, len(lines) + 1
+    return fmt, elements, body_start, len(lines) + 2
 
 
 def _vertex_columns(path, props):
@@ -567,7 +584,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
         vals = parse_numbers(blob)
         counts = token_counts(blob, count)
         if vals is None or len(vals) != counts.sum():
-            _numeric_diagnose(path, text, starts, ends, lines + first_line - 1, name)
+            _numeric_diagnose(path, text, starts, ends, lines, name, first_line)
         if name == "vertex":
             cols, ncols = _vertex_columns(path, props)
             bad = counts != len(props)

@@ -1,0 +1,28 @@
+"""Shared timing helpers: series run interleaved in one process, medians reported."""
+
+from __future__ import annotations
+
+import statistics
+import time
+
+
+def interleaved(series: dict, repeats: int = 5) -> dict[str, float]:
+    """Median seconds of each callable; one call of each per round, so drift in the
+    machine's speed hits every series alike."""
+    times: dict[str, list[float]] = {name: [] for name in series}
+    for _ in range(repeats):
+        for name, fn in series.items():
+            t = time.perf_counter()
+            fn()
+            times[name].append(time.perf_counter() - t)
+    return {name: statistics.median(ts) for name, ts in times.items()}
+
+
+def table(rows: list[tuple], headers: tuple) -> str:
+    text = [[str(c) for c in row] for row in [headers, *rows]]
+    widths = [max(len(r[i]) for r in text) for i in range(len(headers))]
+    line = "  ".join("-" * w for w in widths)
+    out = ["  ".join(c.ljust(w) for c, w in zip(text[0], widths)), line]
+    out += ["  ".join(c.rjust(w) if i else c.ljust(w) for i, (c, w) in
+                      enumerate(zip(r, widths))) for r in text[1:]]
+    return "\n".join(out)

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Create or reuse .venv and install glshade with its test extras; as root, also the Debian
+# packages the headless and window tests need (xvfb, libosmesa6). Safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+VENV=${VENV:-.venv}
+PYTHON=${PYTHON:-python3}
+
+need_apt=()
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+    command -v Xvfb >/dev/null || need_apt+=(xvfb)
+    ldconfig -p 2>/dev/null | grep -q 'libOSMesa.so' || need_apt+=(libosmesa6)
+    ldconfig -p 2>/dev/null | grep -q 'libEGL_mesa.so' || need_apt+=(libegl-mesa0 libgl1-mesa-dri)
+    if [ ${#need_apt[@]} -gt 0 ]; then
+        echo "setup: installing ${need_apt[*]}" >&2
+        (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+            --no-install-recommends "${need_apt[@]}") >/dev/null \
+            || echo "setup: warning: could not install ${need_apt[*]}" >&2
+    fi
+fi
+
+if [ ! -x "$VENV/bin/python" ]; then
+    "$PYTHON" -m venv "$VENV"
+fi
+stamp="$VENV/.glshade-installed"
+if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]"
+    touch "$stamp"
+fi

@@ -1,0 +1,56 @@
+"""``glshade info``: the numbers, the JSON, and one-line errors with exit status 2."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ASSETS = Path(__file__).resolve().parents[2] / "assets"
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "glshade", *args], capture_output=True,
+                          text=True)
+
+
+def test_info_json_cube():
+    out = run("info", "primitive:cube", "--json")
+    assert out.returncode == 0, out.stderr
+    info = json.loads(out.stdout)
+    assert (info["vertices"], info["edges"], info["faces"]) == (8, 12, 6)
+    assert info["polygon_sizes"] == {"4": 6}
+    assert info["total_area"] == pytest.approx(6.0)
+    assert info["bounds"] == {"min": [-0.5] * 3, "max": [0.5] * 3}
+    assert info["euler_characteristic"] == 2
+
+
+def test_info_table_on_bundled_asset():
+    out = run("info", str(ASSETS / "lprism.obj"))
+    assert out.returncode == 0, out.stderr
+    assert "6-gon" in out.stdout and "4-gon" in out.stdout
+    assert "total area        14" in out.stdout
+
+
+@pytest.mark.parametrize("args, message", [
+    (("info", "missing.obj"), "missing.obj: no such file"),
+    (("info", "primitive:sphere"), "unknown primitive 'sphere'"),
+    (("info",), "required: MESH"),
+    (("frobnicate",), "invalid choice: 'frobnicate'"),
+])
+def test_bad_input_exits_2_with_one_line(args, message):
+    out = run(*args)
+    assert out.returncode == 2
+    assert message in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1, out.stderr
+    assert "Traceback" not in out.stderr
+
+
+def test_malformed_file_exits_2_naming_the_line(tmp_path):
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+    out = run("info", str(bad))
+    assert out.returncode == 2
+    assert f"{bad}:4: face index 9" in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1

@@ -8,11 +8,22 @@ from ._version import __version__
 from .errors import (
     ContextError, GeometryError, GlshadeError, MeshFormatError, ShaderError, TopologyError,
 )
-from .geometry import Mesh, concatenate, newell_normal, polygon_area, primitives
+import sys as _sys
+
+from .camera import Camera
+from .geometry import Mesh, concatenate, masspoint, newell_normal, polygon_area, primitives
+from .geometry import quaternion
+from .geometry.masspoint import MassPoint, centroid
 from .io import load_mesh, save_mesh
+from .keyframes import CameraPath, Keyframe
+
+# ``import glshade.quaternion`` and ``glshade.masspoint`` name the geometry modules
+_sys.modules[__name__ + ".quaternion"] = quaternion
+_sys.modules[__name__ + ".masspoint"] = masspoint
 
 __all__ = [
     "__version__", "Mesh", "concatenate", "newell_normal", "polygon_area", "primitives",
+    "quaternion", "masspoint", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
     "load_mesh", "save_mesh", "GlshadeError", "GeometryError", "MeshFormatError",
     "TopologyError", "ContextError", "ShaderError",
 ]

@@ -2,6 +2,6 @@
 
 from .mesh import Mesh, concatenate
 from .polygon import newell_normal, polygon_area
-from . import primitives
+from . import masspoint, primitives, quaternion
 
-__all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives"]
+__all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives", "quaternion", "masspoint"]

@@ -355,6 +355,22 @@ class Mesh:
         p = self.vertices[tri]
         return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
 
+    def center_of_mass(self, kind: str = "solid") -> NDArray[np.float64]:
+        """Centre of mass ``(3,)`` of the solid a closed mesh bounds (``kind="solid"``, the
+        tetrahedra from the origin to each triangle, with signed volumes as masses) or of
+        its surface (``"surface"``, triangle centroids weighted by area)."""
+        from .masspoint import centroid
+
+        tri, _ = self.triangles
+        p = self.vertices[tri]
+        if kind == "solid":
+            mass = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])) / 6.0
+            return centroid(p.sum(axis=1) / 4.0, mass)  # the origin is the 4th corner
+        if kind == "surface":
+            mass = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+            return centroid(p.mean(axis=1), mass)
+        raise GeometryError(f"kind must be 'solid' or 'surface', got {kind!r}")
+
     @property
     def total_area(self) -> float:
         return float(self.face_areas.sum())

@@ -1,0 +1,97 @@
+"""Matrices for cameras and models, and the conventions every part of glshade follows.
+
+- Right-handed world; a camera looks down its local -z with +y up (OpenGL).
+- Column vectors: ``p2 = M @ p``. Matrices are row-major numpy arrays, so a mat4 goes to
+  GLSL transposed; :func:`gl_bytes` is the one place that does it.
+- pyrr builds matrices for ROW vectors (``p2 = p @ M``); :func:`perspective` and
+  :func:`orthographic` transpose its output, here and nowhere else.
+- Quaternions are scalar-last ``[x, y, z, w]``; radians everywhere, except a camera's
+  ``fov_y`` in degrees.
+- Front faces are counter-clockwise seen from outside.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyrr
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import GeometryError
+
+__all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "translation",
+           "compose_transform", "gl_bytes"]
+
+Array = NDArray[np.float64]
+
+
+def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Array:
+    """World-to-view matrix ``(4, 4)`` of a camera at ``eye`` looking at ``target``."""
+    eye, target, up = (np.asarray(a, dtype=np.float64) for a in (eye, target, up))
+    forward = target - eye
+    if np.linalg.norm(forward) == 0:
+        raise GeometryError("look_at: eye and target are the same point")
+    f = forward / np.linalg.norm(forward)
+    s = np.cross(f, up)
+    if np.linalg.norm(s) < 1e-12:
+        raise GeometryError(f"look_at: up {up.tolist()} is parallel to the view direction")
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ eye
+    return m
+
+
+def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> Array:
+    """OpenGL perspective projection for column vectors (pyrr's, transposed)."""
+    if not (0 < fov_y_deg < 180):
+        raise GeometryError(f"fov_y must be in (0, 180) degrees, got {fov_y_deg}")
+    if not (0 < near < far):
+        raise GeometryError(f"need 0 < near < far, got near={near}, far={far}")
+    if aspect <= 0:
+        raise GeometryError(f"aspect must be positive, got {aspect}")
+    return pyrr.matrix44.create_perspective_projection(
+        fov_y_deg, aspect, near, far, dtype=np.float64).T
+
+
+def orthographic(height: float, aspect: float, near: float, far: float) -> Array:
+    """OpenGL orthographic projection of a view ``height`` world units tall (pyrr's,
+    transposed)."""
+    if height <= 0 or aspect <= 0:
+        raise GeometryError(f"height and aspect must be positive, got {height}, {aspect}")
+    if not near < far:
+        raise GeometryError(f"need near < far, got near={near}, far={far}")
+    h, w = height / 2, height * aspect / 2
+    return pyrr.matrix44.create_orthogonal_projection(-w, w, -h, h, near, far,
+                                                      dtype=np.float64).T
+
+
+def normal_matrix(model_view: ArrayLike) -> Array:
+    """Inverse transpose of the upper 3x3: maps normals so they stay perpendicular to
+    surfaces under non-uniform scaling."""
+    m = np.asarray(model_view, dtype=np.float64)[:3, :3]
+    return np.linalg.inv(m).T
+
+
+def translation(offset: ArrayLike) -> Array:
+    m = np.eye(4)
+    m[:3, 3] = offset
+    return m
+
+
+def compose_transform(rotation: ArrayLike | None = None, translation_: ArrayLike = (0, 0, 0),
+                      scale: ArrayLike = 1.0) -> Array:
+    """``T @ R @ S`` as a 4x4 matrix from a quaternion, a translation and a (per-axis)
+    scale."""
+    from .quaternion import to_matrix
+
+    m = np.eye(4)
+    r = np.eye(3) if rotation is None else to_matrix(rotation)
+    m[:3, :3] = r * np.broadcast_to(np.asarray(scale, dtype=np.float64), (3,))
+    m[:3, 3] = translation_
+    return m
+
+
+def gl_bytes(matrix: ArrayLike) -> bytes:
+    """A matrix as GLSL wants it: float32, column-major (the transpose of numpy's rows)."""
+    return np.ascontiguousarray(np.asarray(matrix, dtype=np.float32).T).tobytes()

@@ -266,29 +266,43 @@ def angle_between(p: ArrayLike, q: ArrayLike) -> Array:
     return 4.0 * np.arctan2(np.linalg.norm(p - q, axis=-1), np.linalg.norm(p + q, axis=-1))
 
 
+def _sin_ratio(a: Array, phi: Array, sin_phi: Array) -> Array:
+    """``sin(a phi) / sin(phi)``, by its series where ``phi`` is tiny (no division by a
+    tiny number; the series' error is below 1e-18 there)."""
+    small = phi < 1e-3
+    safe = np.where(small, 1.0, sin_phi)
+    exact = np.sin(a * phi) / safe
+    if not small.any():
+        return exact
+    a2, p2 = a * a, phi * phi
+    series = a * (1.0 + (1.0 - a2) * p2 / 6.0 + (1.0 - a2) * (7.0 - 3.0 * a2) * p2 * p2 / 360.0)
+    return np.where(small, series, exact)
+
+
 def slerp(q0: ArrayLike, q1: ArrayLike, t: ArrayLike) -> Array:
     """Spherical linear interpolation, the notes' formula::
 
         q(t) = sin((1 - t) phi) / sin(phi) q0 + sin(t phi) / sin(phi) q1
 
     along the shorter arc (``q1`` is negated when ``q0 . q1 < 0``). ``t = 0`` gives ``q0``
-    exactly; ``t = 1`` gives ``q1`` or ``-q1`` (the same rotation). The angle is computed as
-    ``2 atan2(|q0 - q1|, |q0 + q1|)`` and the ratios with ``sinc``, so nearly equal and equal
-    keys stay accurate and unit length (no division by a tiny ``sin(phi)``). ``t`` outside
-    ``[0, 1]`` extrapolates along the same great circle at the same angular speed.
+    exactly; ``t = 1`` gives ``q1`` or ``-q1`` (the same rotation). Where the keys are nearly
+    or exactly equal the ratios come from their series, so the result stays accurate and
+    unit length (no division by a tiny ``sin(phi)``). ``t`` outside ``[0, 1]`` extrapolates
+    along the same great circle at the same angular speed.
 
     ``q0, q1 : (..., 4)`` unit quaternions; ``t`` broadcasts against their leading shape, so
     one key pair can be sampled at many times or many pairs at once.
     """
     q0, q1 = _q(q0, "q0"), _q(q1, "q1")
     t = np.asarray(t, dtype=np.float64)
-    q1 = np.where((dot(q0, q1) < 0)[..., None], -q1, q1)
-    phi = 2.0 * np.arctan2(np.linalg.norm(q0 - q1, axis=-1), np.linalg.norm(q0 + q1, axis=-1))
-    x = phi / np.pi
-    # sin(a phi) / sin(phi) = a sinc(a x) / sinc(x); np.sinc(y) = sin(pi y) / (pi y)
-    sinc_phi = np.sinc(x)
-    c0 = (1.0 - t) * np.sinc((1.0 - t) * x) / sinc_phi
-    c1 = t * np.sinc(t * x) / sinc_phi
+    d = np.einsum("...i,...i->...", q0, q1)
+    sign = np.where(d < 0, -1.0, 1.0)
+    # An error in phi only enters through phi^2 terms when phi is small, so arccos of the
+    # dot product is accurate enough everywhere it matters.
+    phi = np.arccos(np.minimum(np.abs(d), 1.0))
+    sin_phi = np.sin(phi)
+    c0 = _sin_ratio(1.0 - t, phi, sin_phi)
+    c1 = _sin_ratio(t, phi, sin_phi) * sign
     return c0[..., None] * q0 + c1[..., None] * q1
 
 

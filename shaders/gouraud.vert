@@ -1,0 +1,27 @@
+#version 330 core
+// Gouraud shading: the lighting formula is evaluated at the vertices; the rasterizer
+// interpolates the intensities linearly across each triangle. Both sides are lit, and the
+// fragment stage picks the one facing the viewer.
+#include "transforms.glsl"
+#include "lighting.glsl"
+
+uniform bool u_orthographic;
+
+in vec3 in_position;
+in vec3 in_normal;
+
+out vec3 v_color_front;
+out vec3 v_color_back;
+out vec3 v_position_view;
+out vec3 v_normal_world;
+
+void main() {
+    vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
+    vec3 n = normalize(u_normal_view * in_normal);
+    vec3 v = u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-p_view.xyz);
+    v_color_front = light_intensity(p_view.xyz, n, v);
+    v_color_back = light_intensity(p_view.xyz, -n, v);
+    v_position_view = p_view.xyz;
+    v_normal_world = u_normal_world * in_normal;
+    gl_Position = u_proj * p_view;
+}

@@ -1,0 +1,12 @@
+#version 330 core
+// Debug view: the world-space normal as colour, (n + 1) / 2.
+#include "outputs.glsl"
+
+in vec3 v_position_view;
+in vec3 v_normal_view;
+in vec3 v_normal_world;
+
+void main() {
+    vec3 n_world = normalize(gl_FrontFacing ? v_normal_world : -v_normal_world);
+    write_outputs(0.5 * n_world + 0.5, n_world, -v_position_view.z);
+}

@@ -1,0 +1,19 @@
+#version 330 core
+// Vertex stage of the per-pixel programs (phong, normals, depth): passes view-space
+// position and normal on to be interpolated.
+#include "transforms.glsl"
+
+in vec3 in_position;
+in vec3 in_normal;
+
+out vec3 v_position_view;
+out vec3 v_normal_view;
+out vec3 v_normal_world;
+
+void main() {
+    vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
+    v_position_view = p_view.xyz;
+    v_normal_view = u_normal_view * in_normal;
+    v_normal_world = u_normal_world * in_normal;
+    gl_Position = u_proj * p_view;
+}

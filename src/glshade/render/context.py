@@ -1,0 +1,281 @@
+"""OpenGL contexts: a ladder of headless backends, each one moderngl context.
+
+1. ``egl``: moderngl's standalone EGL context. With a GPU this is the vendor's driver
+   (``device=`` or ``GLSHADE_EGL_DEVICE`` picks one of several); without one it is Mesa's
+   llvmpipe through EGL, surfaceless: no display needed. The default, and what CI uses.
+2. ``osmesa``: Mesa's off-screen library (Debian ``libosmesa6``) through ctypes, for systems
+   without EGL. Mesa 25.1 dropped OSMesa, so this is a fallback, never the default.
+
+``auto`` walks the ladder (``GLSHADE_BACKEND`` overrides it, read when a context is made,
+never at import). One backend per process is the simple rule: after an OSMesa context has
+been current, an EGL context made later in the same process can silently draw nothing.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import enum
+import os
+import re
+
+from ..errors import ContextError
+
+__all__ = ["Backend", "RenderContext", "create_context", "probe_backends"]
+
+REQUIRE = 330
+
+
+class Backend(enum.Enum):
+    """Where the GL context comes from."""
+
+    AUTO = "auto"
+    EGL = "egl"
+    OSMESA = "osmesa"
+    WINDOW = "window"
+
+    @classmethod
+    def parse(cls, value) -> Backend:
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            choices = ", ".join(b.value for b in cls if b is not cls.WINDOW)
+            raise ContextError(f"unknown backend {value!r}; choose one of {choices}") from None
+
+
+_EGL_ERRORS = {
+    0x3000: "EGL_SUCCESS", 0x3001: "EGL_NOT_INITIALIZED (no usable EGL driver)",
+    0x3002: "EGL_BAD_ACCESS", 0x3003: "EGL_BAD_ALLOC (out of memory)",
+    0x3004: "EGL_BAD_ATTRIBUTE", 0x3005: "EGL_BAD_CONFIG (no matching framebuffer config)",
+    0x3006: "EGL_BAD_CONTEXT", 0x3007: "EGL_BAD_CURRENT_SURFACE",
+    0x3008: "EGL_BAD_DISPLAY (the device or display cannot be opened)",
+    0x3009: "EGL_BAD_MATCH (the driver cannot make this context)",
+    0x300A: "EGL_BAD_NATIVE_PIXMAP", 0x300B: "EGL_BAD_NATIVE_WINDOW",
+    0x300C: "EGL_BAD_PARAMETER", 0x300D: "EGL_BAD_SURFACE",
+    0x300E: "EGL_CONTEXT_LOST",
+}
+
+_EGL_HINT = ("install Mesa's EGL (Debian/Ubuntu: apt-get install libegl1 libegl-mesa0 "
+             "libgl1-mesa-dri; Fedora: mesa-libEGL mesa-dri-drivers), or a GPU driver with EGL")
+_OSMESA_HINT = "install Mesa's OSMesa (Debian/Ubuntu: apt-get install libosmesa6)"
+
+
+def _explain_egl(exc: BaseException) -> str:
+    text = str(exc).strip() or type(exc).__name__
+
+    def word(m):
+        code = int(m.group(0), 16)
+        return f"{m.group(0)} = {_EGL_ERRORS.get(code, 'unknown EGL error')}"
+
+    return re.sub(r"0x3[0-9a-fA-F]{3}", word, text)
+
+
+# ------------------------------------------------------------------------------ OSMesa
+
+_OSMESA_RGBA = 0x1908
+_OSMESA_FORMAT, _OSMESA_DEPTH_BITS, _OSMESA_STENCIL_BITS = 0x22, 0x30, 0x31
+_OSMESA_PROFILE, _OSMESA_CORE_PROFILE = 0x33, 0x34
+_OSMESA_MAJOR, _OSMESA_MINOR = 0x36, 0x37
+_GL_UNSIGNED_BYTE = 0x1401
+
+
+def _find_osmesa() -> str:
+    override = os.environ.get("GLSHADE_OSMESA_LIBRARY")
+    if override:
+        return override
+    return ctypes.util.find_library("OSMesa") or "libOSMesa.so.8"
+
+
+class OSMesaLoader:
+    """An OSMesa context made current on a small private buffer, in the shape moderngl
+    wants for a custom context: ``load_opengl_function(name)`` and ``release()``."""
+
+    def __init__(self):
+        name = _find_osmesa()
+        try:
+            lib = ctypes.CDLL(name)
+        except OSError as exc:
+            raise ContextError(f"cannot load {name}: {exc}") from None
+        for fn in ("OSMesaCreateContextAttribs", "OSMesaMakeCurrent", "OSMesaGetProcAddress",
+                   "OSMesaDestroyContext"):
+            if not hasattr(lib, fn):
+                raise ContextError(f"{name} lacks {fn} (Mesa too old for core profiles)")
+        lib.OSMesaCreateContextAttribs.restype = ctypes.c_void_p
+        lib.OSMesaCreateContextAttribs.argtypes = [ctypes.POINTER(ctypes.c_int), ctypes.c_void_p]
+        lib.OSMesaMakeCurrent.restype = ctypes.c_int
+        lib.OSMesaMakeCurrent.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int,
+                                          ctypes.c_int, ctypes.c_int]
+        lib.OSMesaGetProcAddress.restype = ctypes.c_void_p
+        lib.OSMesaGetProcAddress.argtypes = [ctypes.c_char_p]
+        lib.OSMesaDestroyContext.argtypes = [ctypes.c_void_p]
+        attribs = (ctypes.c_int * 13)(
+            _OSMESA_FORMAT, _OSMESA_RGBA, _OSMESA_DEPTH_BITS, 24, _OSMESA_STENCIL_BITS, 8,
+            _OSMESA_PROFILE, _OSMESA_CORE_PROFILE, _OSMESA_MAJOR, 3, _OSMESA_MINOR, 3, 0)
+        handle = lib.OSMesaCreateContextAttribs(attribs, None)
+        if not handle:
+            raise ContextError(f"{name}: OSMesaCreateContextAttribs failed to make a 3.3 core "
+                               "context")
+        self._buffer = (ctypes.c_ubyte * (4 * 4 * 4))()
+        if not lib.OSMesaMakeCurrent(handle, self._buffer, _GL_UNSIGNED_BYTE, 4, 4):
+            lib.OSMesaDestroyContext(handle)
+            raise ContextError(f"{name}: OSMesaMakeCurrent failed")
+        self._lib, self._handle, self.library = lib, handle, name
+
+    def load_opengl_function(self, name: str) -> int:
+        return self._lib.OSMesaGetProcAddress(name.encode()) or 0
+
+    def release(self) -> None:
+        if self._handle:
+            self._lib.OSMesaDestroyContext(self._handle)
+            self._handle = None
+
+
+# -------------------------------------------------------------------------- contexts
+
+class RenderContext:
+    """Owns one moderngl context and every GL object made through it.
+
+    Children register with :meth:`track`; :meth:`release` frees them in reverse creation
+    order, then the context. Usable with ``with``; a second release does nothing.
+    """
+
+    def __init__(self, ctx, backend: Backend, detail: str = "", loader=None):
+        self.ctx = ctx
+        self.backend = backend
+        self.detail = detail
+        self._loader = loader
+        self._children: list = []
+        self.released = False
+
+    def track(self, obj):
+        self._children.append(obj)
+        return obj
+
+    def untrack(self, obj) -> None:
+        try:
+            self._children.remove(obj)
+        except ValueError:
+            pass
+
+    @property
+    def info(self) -> dict:
+        self.check()
+        i = self.ctx.info
+        return {
+            "backend": self.backend.value,
+            "vendor": i.get("GL_VENDOR"), "renderer": i.get("GL_RENDERER"),
+            "version": i.get("GL_VERSION"), "glsl": i.get("GL_SHADING_LANGUAGE_VERSION"),
+            "max_samples": self.ctx.max_samples,
+            "max_texture_size": i.get("GL_MAX_TEXTURE_SIZE"),
+            "detail": self.detail,
+        }
+
+    def check(self) -> None:
+        if self.released:
+            raise ContextError("this RenderContext was released; make a new one")
+
+    def release(self) -> None:
+        if self.released:
+            return
+        for child in reversed(self._children):
+            child.release()
+        self._children.clear()
+        self.ctx.release()
+        if self._loader is not None:
+            self._loader.release()
+        self.released = True
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.release()
+
+    def __repr__(self) -> str:
+        state = "released" if self.released else self.detail
+        return f"<RenderContext {self.backend.value}: {state}>"
+
+
+def _make_egl(device: int | None) -> RenderContext:
+    import moderngl
+
+    settings = {"backend": "egl"}
+    dev = device if device is not None else os.environ.get("GLSHADE_EGL_DEVICE")
+    if dev not in (None, ""):
+        settings["device_index"] = int(dev)
+    try:
+        ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
+    except Exception as exc:  # moderngl/glcontext raise bare Exceptions with EGL text
+        raise ContextError(_explain_egl(exc)) from None
+    return RenderContext(ctx, Backend.EGL, ctx.info.get("GL_RENDERER", ""))
+
+
+def _make_osmesa() -> RenderContext:
+    import moderngl
+
+    loader = OSMesaLoader()
+    try:
+        ctx = moderngl.create_context(standalone=True, require=REQUIRE, context=loader)
+    except Exception as exc:
+        loader.release()
+        raise ContextError(f"moderngl could not use the OSMesa context: {exc}") from None
+    return RenderContext(ctx, Backend.OSMESA, ctx.info.get("GL_RENDERER", ""), loader)
+
+
+_MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT), Backend.OSMESA: (lambda d: _make_osmesa(),
+                                                                 _OSMESA_HINT)}
+
+
+def create_context(backend="auto", device: int | None = None) -> RenderContext:
+    """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for.
+
+    Raises
+    ------
+    ContextError
+        Naming every backend tried, why each failed (EGL errors in words) and what to
+        install.
+    """
+    choice = Backend.parse(backend)
+    if choice is Backend.AUTO:
+        env = os.environ.get("GLSHADE_BACKEND", "").strip()
+        choice = Backend.parse(env) if env else Backend.AUTO
+    if choice is Backend.WINDOW:
+        raise ContextError("the window backend belongs to the viewer (glshade view); "
+                           "headless rendering uses egl or osmesa")
+    ladder = [Backend.EGL, Backend.OSMESA] if choice is Backend.AUTO else [choice]
+    failures = []
+    for b in ladder:
+        make, hint = _MAKERS[b]
+        try:
+            return make(device)
+        except ContextError as exc:
+            failures.append(f"  {b.value}: {exc}\n    fix: {hint}")
+        except ImportError as exc:
+            failures.append(f"  {b.value}: cannot import moderngl ({exc})\n"
+                            "    fix: pip install moderngl")
+    tried = ", ".join(b.value for b in ladder)
+    raise ContextError(f"no OpenGL {REQUIRE // 100}.{REQUIRE % 100 // 10} context could be "
+                       f"made (tried {tried}):\n" + "\n".join(failures))
+
+
+def probe_backends() -> dict[str, str]:
+    """Try each backend in a fresh subprocess (one backend per process) and say whether it
+    works: ``{"egl": "ok: llvmpipe ...", "osmesa": "failed: ..."}``."""
+    import subprocess
+    import sys
+
+    out = {}
+    for b in (Backend.EGL, Backend.OSMESA):
+        code = ("import sys\nfrom glshade.render.context import create_context\n"
+                f"c = create_context({b.value!r})\nprint(c.info['renderer'], '|', "
+                "c.info['version'])\nc.release()\n")
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           timeout=60)
+        if r.returncode == 0:
+            out[b.value] = "ok: " + r.stdout.strip()
+        else:
+            last = [line for line in r.stderr.strip().splitlines() if line.strip()]
+            out[b.value] = "failed: " + (" ".join(last[-3:]) if last else "unknown error")
+    return out

@@ -1,0 +1,106 @@
+"""GPU copies of one mesh: vertex and index buffers, the triangle-to-polygon table, and a
+vertex array per program. Uploaded once; drawing with another camera touches none of it."""
+
+from __future__ import annotations
+
+import moderngl
+import numpy as np
+
+from ..errors import GlshadeError
+from ..geometry.mesh import Mesh
+from ..modes import ShadingMode
+
+__all__ = ["GpuMesh", "is_closed_and_oriented"]
+
+_ID_TEXTURE_WIDTH = 4096
+
+
+def is_closed_and_oriented(mesh: Mesh) -> bool:
+    """Every edge shared by exactly two faces that traverse it in opposite directions: then
+    back faces are never visible and can be culled."""
+    he = mesh.half_edges
+    if len(he) == 0:
+        return False
+    n = max(mesh.n_vertices, 1)
+    key = np.sort(he[:, 0] * n + he[:, 1])
+    if (key[1:] == key[:-1]).any():
+        return False  # a directed edge twice: inconsistent orientation or non-manifold
+    rev = he[:, 1] * n + he[:, 0]
+    pos = np.searchsorted(key, rev)
+    pos = np.minimum(pos, len(key) - 1)
+    return bool((key[pos] == rev).all())
+
+
+class GpuMesh:
+    """Buffers for one Mesh in one RenderContext; ``release()`` frees them all."""
+
+    def __init__(self, context, mesh: Mesh):
+        self.context = context
+        self.mesh = mesh
+        ctx = context.ctx
+        tri, owner = mesh.triangles
+        self.n_triangles = len(tri)
+        self.n_polygons = mesh.n_faces
+        self.closed = is_closed_and_oriented(mesh)
+        normals = mesh.normals_from_file if mesh.normals_from_file is not None else \
+            mesh.vertex_normals
+        interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
+        self._objects = []
+        self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
+        self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
+        self._flat_vbo = None
+        width = min(max(self.n_triangles, 1), _ID_TEXTURE_WIDTH)
+        height = -(-max(self.n_triangles, 1) // width)
+        ids = np.zeros(width * height, dtype="i4")
+        ids[: self.n_triangles] = owner
+        self.face_ids = self._keep(ctx.texture((width, height), 1, ids.tobytes(), dtype="i4"))
+        self.face_ids.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self._vaos: dict[int, object] = {}
+        self.released = False
+        context.track(self)
+
+    def _keep(self, obj):
+        self._objects.append(obj)
+        return obj
+
+    def _flat_buffer(self):
+        """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""
+        if self._flat_vbo is None:
+            m = self.mesh
+            tri, owner = m.triangles
+            corners = tri.ravel()
+            face = np.repeat(owner, 3)
+            data = np.hstack([m.vertices[corners], m.face_normals[face],
+                              m.face_centroids[face]]).astype("f4")
+            self._flat_vbo = self._keep(self.context.ctx.buffer(data.tobytes()))
+        return self._flat_vbo
+
+    def vertex_array(self, program, mode: ShadingMode):
+        """The VAO binding this mesh's buffers to ``program`` (cached)."""
+        if self.released:
+            raise GlshadeError("this GpuMesh was released")
+        key = id(program)
+        vao = self._vaos.get(key)
+        if vao is None:
+            ctx = self.context.ctx
+            if mode.per_polygon:
+                vao = ctx.vertex_array(program, [(self._flat_buffer(), "3f 3f 3f", "in_position",
+                                                  "in_face_normal", "in_face_centroid")])
+            else:
+                names = [n for n in ("in_position", "in_normal") if n in program]
+                fmt = "3f 3f" if len(names) == 2 else "3f 12x"
+                vao = ctx.vertex_array(program, [(self.vbo, fmt, *names)], self.ibo, 4)
+            self._vaos[key] = vao
+        return vao
+
+    def release(self) -> None:
+        if self.released:
+            return
+        for vao in self._vaos.values():
+            vao.release()
+        for obj in reversed(self._objects):
+            obj.release()
+        self._vaos.clear()
+        self._objects.clear()
+        self.released = True
+        self.context.untrack(self)

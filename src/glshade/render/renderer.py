@@ -1,0 +1,282 @@
+"""The Renderer: draws a Scene seen by a Camera in a ShadingMode, headless.
+
+Meshes are uploaded once per Renderer and cached (the cache follows the scene: a mesh that
+is garbage-collected loses its GPU copy at the next frame). A new camera only changes
+uniforms; buffers are never re-uploaded per frame.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+
+import moderngl
+import numpy as np
+
+from ..camera import Camera
+from ..errors import GeometryError, GlshadeError
+from ..geometry.transforms import gl_bytes
+from ..modes import ShadingMode
+from ..scene import MAX_LIGHTS, PointLight, Scene
+from .context import RenderContext, create_context
+from .gpu_mesh import GpuMesh
+from .shaders import ShaderLibrary
+from .target import OffscreenTarget
+
+__all__ = ["Renderer", "Frame"]
+
+
+@dataclass
+class Frame:
+    """Everything one pass produces (row 0 at the top).
+
+    color : (H, W, 4) uint8 (float32 with ``color_dtype="f4"``), linear unless ``srgb``.
+    depth : (H, W) float32 distance along the view axis; ``inf`` where nothing was drawn.
+    normal : (H, W, 3) float32 world-space unit normal (zero where nothing was drawn).
+    face_id : (H, W) int32 id of the source polygon (not the triangle); -1 for background.
+        With several models, ids continue from one model to the next in scene order.
+    """
+
+    color: np.ndarray
+    depth: np.ndarray
+    normal: np.ndarray
+    face_id: np.ndarray
+
+
+def _mat3(m: np.ndarray) -> bytes:
+    return np.ascontiguousarray(np.asarray(m, dtype=np.float32).T).tobytes()
+
+
+class Renderer:
+    """Renders scenes into images of ``width`` x ``height`` pixels.
+
+    Parameters
+    ----------
+    width, height : image size in pixels.
+    samples : MSAA samples (0 = off; exact per-pixel comparisons use 0).
+    backend : "auto" (EGL, then OSMesa), "egl" or "osmesa"; ``GLSHADE_BACKEND`` overrides
+        "auto".
+    device : EGL device index, for machines with several GPUs.
+    context : an existing RenderContext to draw with (not released by ``close()``).
+    """
+
+    def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
+                 backend="auto", device: int | None = None,
+                 context: RenderContext | None = None):
+        if int(width) != width or int(height) != height or width < 1 or height < 1:
+            raise GlshadeError(f"width and height must be positive integers, got "
+                               f"{width}x{height}")
+        self._owns_context = context is None
+        self.context = context or create_context(backend, device)
+        self.ctx = self.context.ctx
+        max_samples = self.ctx.max_samples
+        if samples < 0 or samples > max_samples:
+            if self._owns_context:
+                self.context.release()
+            raise GlshadeError(f"samples must be between 0 and {max_samples} on this GL "
+                               f"({self.context.detail}), got {samples}")
+        self.width, self.height, self.samples = int(width), int(height), int(samples)
+        self.shaders = ShaderLibrary(self.context)
+        self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
+        self._targets: dict[str, OffscreenTarget] = {}
+        self.closed = False
+
+    # ------------------------------------------------------------------ lifecycle
+    @property
+    def backend(self) -> str:
+        return self.context.backend.value
+
+    def close(self) -> None:
+        """Free every GL object this Renderer made (and its context, if it made it)."""
+        if self.closed:
+            return
+        for _, gpu in self._meshes.values():
+            gpu.release()
+        for t in self._targets.values():
+            t.release()
+        self.shaders.release()
+        self._meshes.clear()
+        self._targets.clear()
+        if self._owns_context:
+            self.context.release()
+        self.closed = True
+
+    def __enter__(self) -> Renderer:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def _check(self) -> None:
+        if self.closed:
+            raise GlshadeError("this Renderer was closed; make a new one")
+
+    # ------------------------------------------------------------------ caches
+    def _target(self, color_dtype: str) -> OffscreenTarget:
+        t = self._targets.get(color_dtype)
+        if t is None:
+            t = OffscreenTarget(self.context, self.width, self.height, self.samples,
+                                color_dtype)
+            self._targets[color_dtype] = t
+        return t
+
+    def _gpu_mesh(self, mesh) -> GpuMesh:
+        entry = self._meshes.get(id(mesh))
+        if entry is not None and entry[0]() is mesh:
+            return entry[1]
+        if entry is not None:  # the id was reused by a new object
+            entry[1].release()
+        gpu = GpuMesh(self.context, mesh)
+        self._meshes[id(mesh)] = (weakref.ref(mesh), gpu)
+        return gpu
+
+    def _sync(self, scene: Scene) -> None:
+        """Drop GPU copies of meshes that no longer exist (no GL work in finalizers)."""
+        dead = [k for k, (ref, _) in self._meshes.items() if ref() is None]
+        for k in dead:
+            self._meshes.pop(k)[1].release()
+
+    @property
+    def cached_meshes(self) -> int:
+        return len(self._meshes)
+
+    # ------------------------------------------------------------------ drawing
+    def _draw(self, scene: Scene, camera: Camera, mode: ShadingMode, depth_test: bool,
+              cull_back_faces, srgb: bool, target: OffscreenTarget, everything: bool):
+        self._check()
+        if not isinstance(scene, Scene):
+            raise GeometryError(f"expected a Scene, got {type(scene).__name__}")
+        if not isinstance(camera, Camera):
+            raise GeometryError(f"expected a Camera, got {type(camera).__name__}")
+        if cull_back_faces not in ("auto", True, False):
+            raise GeometryError(f"cull_back_faces must be 'auto', True or False, got "
+                                f"{cull_back_faces!r}")
+        if len(scene.lights) > MAX_LIGHTS:
+            raise GeometryError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
+                                f"{len(scene.lights)}")
+        self._sync(scene)
+        ctx = self.ctx
+        prog = self.shaders.program(mode)
+        view = camera.view_matrix()
+        proj = camera.projection_matrix(self.width / self.height)
+        target.begin(scene.background, everything)
+        ctx.viewport = (0, 0, self.width, self.height)
+        if depth_test:
+            ctx.enable(moderngl.DEPTH_TEST)
+        else:
+            ctx.disable(moderngl.DEPTH_TEST)
+
+        def put(name, value):
+            if name in prog:
+                member = prog[name]
+                if isinstance(value, bytes):
+                    member.write(value)
+                else:
+                    member.value = value
+
+        put("u_view", gl_bytes(view))
+        put("u_proj", gl_bytes(proj))
+        put("u_srgb", bool(srgb))
+        put("u_orthographic", camera.projection == "orthographic")
+        put("u_face_ids", 0)
+        self._put_lights(put, scene, view)
+        if mode is ShadingMode.DEPTH:
+            b = scene.bounds()
+            corners = np.array([[x, y, z, 1] for x in b[:, 0] for y in b[:, 1] for z in b[:, 2]])
+            d = -(corners @ view.T)[:, 2]
+            near, far = max(camera.near, d.min()), min(camera.far, d.max())
+            put("u_depth_range", (float(near), float(max(far, near + 1e-6))))
+
+        id_base = 0
+        for model in scene.models:
+            gpu = self._gpu_mesh(model.mesh)
+            if not model.visible or gpu.n_triangles == 0:
+                id_base += gpu.n_polygons
+                continue
+            m = model.transform
+            put("u_model", gl_bytes(m))
+            put("u_normal_view", _mat3(np.linalg.inv((view @ m)[:3, :3]).T))
+            put("u_normal_world", _mat3(np.linalg.inv(m[:3, :3]).T))
+            put("u_face_id_base", id_base)
+            mat = model.material
+            put("u_material_color", mat.color)
+            put("u_ka", mat.ka)
+            put("u_kd", mat.kd)
+            put("u_ks", mat.ks)
+            put("u_shininess", mat.shininess)
+            mirrored = np.linalg.det(m[:3, :3]) < 0
+            ctx.front_face = "cw" if mirrored else "ccw"
+            cull = gpu.closed if cull_back_faces == "auto" else bool(cull_back_faces)
+            if cull:
+                ctx.enable(moderngl.CULL_FACE)
+                ctx.cull_face = "back"
+            else:
+                ctx.disable(moderngl.CULL_FACE)
+            gpu.face_ids.use(0)
+            gpu.vertex_array(prog, mode).render(moderngl.TRIANGLES)
+            id_base += gpu.n_polygons
+        ctx.disable(moderngl.CULL_FACE)
+        ctx.front_face = "ccw"
+        target.resolve(everything)
+
+    @staticmethod
+    def _put_lights(put, scene: Scene, view: np.ndarray) -> None:
+        lights = scene.lights or [None]  # None: the default headlight at the eye
+        pos = np.zeros((MAX_LIGHTS, 4), dtype="f4")
+        color = np.zeros((MAX_LIGHTS, 3), dtype="f4")
+        att = np.zeros((MAX_LIGHTS, 3), dtype="f4")
+        for i, light in enumerate(lights):
+            if light is None:
+                pos[i] = (0, 0, 0, 1)
+                color[i] = (1, 1, 1)
+                att[i] = (1, 0, 0)
+                continue
+            pos[i] = light.view_vector(view)
+            color[i] = np.asarray(light.color) * light.intensity
+            att[i] = light.attenuation if isinstance(light, PointLight) else (1, 0, 0)
+        put("u_light_count", len(lights))
+        put("u_light_pos_view", pos.tobytes())
+        put("u_light_color", color.tobytes())
+        put("u_light_attenuation", att.tobytes())
+        put("u_ambient", scene.ambient)
+
+    def render(self, scene: Scene, camera: Camera, mode="phong", *, depth_test: bool = True,
+               cull_back_faces="auto", srgb: bool = False) -> np.ndarray:
+        """The colour image ``(H, W, 4) uint8``, row 0 at the top.
+
+        ``depth_test=False`` draws in submission order (what the z-buffer is for);
+        ``cull_back_faces="auto"`` culls on closed, consistently oriented meshes; ``srgb``
+        encodes the linear result for display.
+        """
+        mode = ShadingMode.parse(mode)
+        target = self._target("f1")
+        self._draw(scene, camera, mode, depth_test, cull_back_faces, srgb, target, False)
+        return target.read_color()
+
+    def render_frame(self, scene: Scene, camera: Camera, mode="phong", *,
+                     depth_test: bool = True, cull_back_faces="auto", srgb: bool = False,
+                     color_dtype: str = "u1") -> Frame:
+        """Colour, depth, world normals and polygon ids from one pass (several render
+        targets). ``color_dtype="f4"`` returns unquantised float colour, for tests of the
+        formula."""
+        mode = ShadingMode.parse(mode)
+        if color_dtype not in ("u1", "f4"):
+            raise GlshadeError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
+        target = self._target("f1" if color_dtype == "u1" else "f4")
+        self._draw(scene, camera, mode, depth_test, cull_back_faces, srgb, target, True)
+        return Frame(target.read_color(), target.read_depth(), target.read_normal(),
+                     target.read_face_id())
+
+    def render_depth(self, scene: Scene, camera: Camera, **kwargs) -> np.ndarray:
+        """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""
+        return self.render_frame(scene, camera, "depth", **kwargs).depth
+
+    def render_many(self, scene: Scene, cameras: Iterable[Camera], mode="phong",
+                    **kwargs) -> Iterator[np.ndarray]:
+        """Stream colour images for a sequence of cameras; meshes are uploaded once."""
+        for camera in cameras:
+            yield self.render(scene, camera, mode, **kwargs)
+
+    def info(self) -> dict:
+        return self.context.info

@@ -1,0 +1,142 @@
+"""Find, assemble and compile the GLSL programs.
+
+Sources live in the package as ``glshade/shaders`` (the repository's ``shaders/`` folder,
+mapped into the wheel). ``#include "file"`` pulls in ``shaders/include/file`` with ``#line``
+directives, so the driver's line numbers can be mapped back to the file they came from.
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+import re
+from pathlib import Path
+
+from ..errors import ShaderError
+from ..modes import PROGRAMS, ShadingMode
+
+__all__ = ["shader_dir", "ShaderLibrary", "assemble"]
+
+_INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')
+_MAX_DEPTH = 8
+
+
+def shader_dir() -> Path:
+    """The folder holding the GLSL files: package data in an installed wheel, or the
+    repository's ``shaders/`` in an editable install."""
+    packaged = importlib.resources.files("glshade") / "shaders"
+    if packaged.is_dir():
+        return Path(str(packaged))
+    repo = Path(__file__).resolve().parents[3] / "shaders"
+    if repo.is_dir():
+        return repo
+    raise ShaderError(f"GLSL sources not found: neither {packaged} nor {repo} exists "
+                      "(a broken install? reinstall glshade)")
+
+
+def assemble(name: str, root: Path | None = None) -> tuple[str, list[str]]:
+    """Source of ``name`` with includes expanded; and the file of each ``#line`` source
+    number (index = source string number used in ``#line L N``)."""
+    root = root or shader_dir()
+    files: list[str] = []
+
+    def expand(rel: str, depth: int, base: Path) -> list[str]:
+        path = (base / rel) if (base / rel).is_file() else root / "include" / rel
+        if depth > _MAX_DEPTH:
+            raise ShaderError(f"{rel}: #include nested more than {_MAX_DEPTH} deep (a cycle?)")
+        try:
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
+            raise ShaderError(f"{rel}: shader file not found in {root}") from None
+        number = len(files)
+        files.append(path.relative_to(root).as_posix() if path.is_relative_to(root) else
+                     str(path))
+        lines = text.splitlines()
+        out: list[str] = []
+        for i, line in enumerate(lines, start=1):
+            if depth == 0 and i == 1:
+                if not line.startswith("#version"):
+                    raise ShaderError(f"{files[number]}:1: the first line must be #version, "
+                                      f"got {line!r}")
+                out.append(line)
+                out.append(f"#line 2 {number}")
+                continue
+            m = _INCLUDE.match(line)
+            if m:
+                out.extend(expand(m.group(1), depth + 1, path.parent))
+                out.append(f"#line {i + 1} {number}")
+            else:
+                out.append(line)
+        if depth > 0:
+            out.insert(0, f"#line 1 {number}")
+        return out
+
+    return "\n".join(expand(name, 0, root)) + "\n", files
+
+
+# Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C0000: ..."; others "ERROR: 0:12: ..."
+_ERROR_LINE = re.compile(r"(?:ERROR:\s*)?(\d+)[:(](\d+)\)?(?:\(\d+\))?\s*:?\s*(.*)")
+
+
+def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[str]]]) -> str:
+    """Turn a driver's compile log into ``file:line: message`` lines with the source line."""
+    out = []
+    for raw in driver_text.splitlines():
+        m = _ERROR_LINE.search(raw)
+        if not m or "error" not in raw.lower():
+            continue
+        number, line, message = int(m.group(1)), int(m.group(2)), m.group(3).strip()
+        for _, (text, files) in sources.items():
+            if number < len(files):
+                file = files[number]
+                path = shader_dir() / file
+                try:
+                    src = path.read_text(encoding="utf-8").splitlines()[line - 1].strip()
+                except (OSError, IndexError):
+                    src = ""
+                out.append(f"{file}:{line}: {message}" + (f"\n    {src}" if src else ""))
+                break
+    return "\n".join(out)
+
+
+class ShaderLibrary:
+    """Compiled programs of one RenderContext, one per shading mode, built on first use and
+    released with the context."""
+
+    def __init__(self, context):
+        self.context = context
+        self._programs: dict[ShadingMode, object] = {}
+        self.released = False
+        context.track(self)
+
+    def program(self, mode: ShadingMode):
+        if self.released:
+            raise ShaderError("this ShaderLibrary was released")
+        mode = ShadingMode.parse(mode)
+        if mode not in self._programs:
+            vert, frag = PROGRAMS[mode]
+            self._programs[mode] = self.compile(vert, frag)
+        return self._programs[mode]
+
+    def compile(self, vert: str, frag: str, root: Path | None = None):
+        """Compile and link one program; a failure raises ShaderError naming file and line."""
+        vs, frag_src = assemble(vert, root), assemble(frag, root)
+        try:
+            return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0])
+        except Exception as exc:  # moderngl raises a bare Error with the driver's log
+            text = str(exc)
+            stage = {"vertex_shader": vs, "fragment_shader": frag_src}
+            which = "fragment_shader" if "fragment_shader" in text.split("\n", 1)[0] else \
+                "vertex_shader"
+            detail = explain_compile_error(text, {which: stage[which]})
+            head = f"{vert} + {frag}: GLSL {which.replace('_', ' ')} failed to compile"
+            raise ShaderError(head + ("\n" + detail if detail else "") +
+                              "\n--- driver log ---\n" + text.strip()) from None
+
+    def release(self) -> None:
+        if self.released:
+            return
+        for prog in self._programs.values():
+            prog.release()
+        self._programs.clear()
+        self.released = True
+        self.context.untrack(self)

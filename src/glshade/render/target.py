@@ -1,0 +1,113 @@
+"""Offscreen render targets: colour, world normal, polygon id and view depth.
+
+Drawing goes to a multisampled framebuffer when ``samples > 0``; reads come from a
+single-sampled copy resolved by a blit. Colour and normals are averaged by the resolve;
+ids and depth live in integer buffers, which the resolve copies from one sample, so they
+are never blended. A colour-only framebuffer shares the colour and depth buffers, for
+renders that need nothing else.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GlshadeError
+
+__all__ = ["OffscreenTarget"]
+
+
+class OffscreenTarget:
+    """One set of framebuffers of a given size; ``release()`` frees them."""
+
+    def __init__(self, context, width: int, height: int, samples: int = 0,
+                 color_dtype: str = "f1"):
+        if width < 1 or height < 1:
+            raise GlshadeError(f"image size must be positive, got {width}x{height}")
+        self.context = context
+        self.width, self.height, self.samples = int(width), int(height), int(samples)
+        self.color_dtype = color_dtype
+        ctx = context.ctx
+        self._objects = []
+
+        def buffers(samples):
+            size = (self.width, self.height)
+            rb = ctx.renderbuffer
+            color = self._keep(rb(size, 4, samples=samples, dtype=color_dtype))
+            normal = self._keep(rb(size, 4, samples=samples, dtype="f4"))
+            face = self._keep(rb(size, 1, samples=samples, dtype="i4"))
+            depth = self._keep(rb(size, 1, samples=samples, dtype="u4"))
+            zbuf = self._keep(ctx.depth_renderbuffer(size, samples=samples))
+            return color, normal, face, depth, zbuf
+
+        c, n, f, d, z = buffers(self.samples)
+        self.fbo_draw_all = self._keep(ctx.framebuffer([c, n, f, d], z))
+        self.fbo_draw_color = self._keep(ctx.framebuffer([c], z))
+        # integer and normal targets are cleared to zero (background) on their own
+        self.fbo_clear_aux = self._keep(ctx.framebuffer([n, f, d]))
+        if self.samples:
+            c, n, f, d, z = buffers(0)
+            self.fbo_read_all = self._keep(ctx.framebuffer([c, n, f, d], z))
+            self.fbo_read_color = self._keep(ctx.framebuffer([c], z))
+        else:
+            self.fbo_read_all, self.fbo_read_color = self.fbo_draw_all, self.fbo_draw_color
+        self.released = False
+        context.track(self)
+
+    def _keep(self, obj):
+        self._objects.append(obj)
+        return obj
+
+    @property
+    def size(self) -> tuple[int, int]:
+        return self.width, self.height
+
+    def begin(self, background, everything: bool) -> None:
+        """Bind for drawing and clear: colour to the background, the rest to zero."""
+        if self.released:
+            raise GlshadeError("this OffscreenTarget was released")
+        if everything:
+            self.fbo_clear_aux.use()
+            self.fbo_clear_aux.clear(0.0, 0.0, 0.0, 0.0)
+        fbo = self.fbo_draw_all if everything else self.fbo_draw_color
+        fbo.use()
+        fbo.clear(*background, depth=1.0)
+
+    def resolve(self, everything: bool) -> None:
+        if self.samples:
+            ctx = self.context.ctx
+            if everything:
+                ctx.copy_framebuffer(self.fbo_read_all, self.fbo_draw_all)
+            else:
+                ctx.copy_framebuffer(self.fbo_read_color, self.fbo_draw_color)
+
+    def _read(self, attachment: int, components: int, dtype: str) -> np.ndarray:
+        fbo = self.fbo_read_all if attachment else self.fbo_read_color
+        data = fbo.read(components=components, attachment=attachment, dtype=dtype)
+        a = np.frombuffer(data, dtype=np.dtype(dtype.replace("f1", "u1")))
+        a = a.reshape(self.height, self.width, components)
+        return a[::-1]  # GL's row 0 is the bottom; ours is the top
+
+    def read_color(self) -> np.ndarray:
+        """``(H, W, 4)``: uint8, or float32 for a float colour target."""
+        return np.ascontiguousarray(self._read(0, 4, self.color_dtype))
+
+    def read_normal(self) -> np.ndarray:
+        return np.ascontiguousarray(self._read(1, 4, "f4")[..., :3])
+
+    def read_face_id(self) -> np.ndarray:
+        return self._read(2, 1, "i4")[..., 0] - 1  # stored as id + 1; background -> -1
+
+    def read_depth(self) -> np.ndarray:
+        bits = np.ascontiguousarray(self._read(3, 1, "u4")[..., 0])
+        depth = bits.view(np.float32).copy()
+        depth[bits == 0] = np.inf  # never drawn
+        return depth
+
+    def release(self) -> None:
+        if self.released:
+            return
+        for obj in reversed(self._objects):
+            obj.release()
+        self._objects.clear()
+        self.released = True
+        self.context.untrack(self)

@@ -9,12 +9,21 @@ setup:
 
 demo: setup
 	$(VENV)/bin/glshade info assets/teapot.obj
+	@mkdir -p out
+	for mode in flat gouraud phong; do \
+		$(VENV)/bin/glshade render assets/teapot.obj --mode $$mode --size 640x480 \
+			--color 0.85,0.55,0.3 --background 0.12,0.12,0.14 -o out/teapot-$$mode.png || exit 1; \
+	done
 
+# Everything on EGL, then the GL tests again on OSMesa (one backend per process).
 test: setup
 	$(PY) -m pytest -q
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q tests/render
 
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
+	$(PY) benchmarks/quaternion_bench.py
+	$(PY) benchmarks/render_bench.py
 
 assets: setup
 	$(PY) scripts/make_assets.py

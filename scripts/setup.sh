@@ -24,6 +24,7 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 stamp="$VENV/.glshade-installed"
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
-    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]"
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]" 2>&1 \
+        | grep -v "Location .* is ignored" >&2 || true
     touch "$stamp"
 fi

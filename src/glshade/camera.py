@@ -15,7 +15,7 @@ from .errors import GeometryError
 from .geometry import quaternion as quat
 from .geometry.transforms import look_at, orthographic, perspective
 
-__all__ = ["Camera"]
+__all__ = ["Camera", "default_camera"]
 
 PROJECTIONS = ("perspective", "orthographic")
 
@@ -147,3 +147,18 @@ class Camera:
                 == (other.fov_y, other.near, other.far, other.projection, other.height))
 
     __hash__ = None  # type: ignore[assignment]
+
+
+#: the direction the default camera looks from (towards the centre): front, right, above
+DEFAULT_VIEW_FROM = (0.55, 0.45, 1.0)
+
+
+def default_camera(bounds, aspect: float = 1.0, **kwargs) -> Camera:
+    """The auto-framed camera that ``glshade render`` and ``glshade view`` start from:
+    looking at the centre of ``bounds`` (a Mesh, Scene bounds or ``(2, 3)``) from the
+    front-right, above, with everything in view."""
+    b = np.asarray(getattr(bounds, "bounds", bounds), dtype=np.float64)
+    center = b.mean(axis=0)
+    direction = np.asarray(DEFAULT_VIEW_FROM)
+    cam = Camera.look_at(center + direction, center, **kwargs)
+    return cam.frame(b, aspect=aspect, margin=1.0)

@@ -10,7 +10,11 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import re
 import sys
+
+import numpy as np
 
 from ._version import __version__
 
@@ -84,6 +88,147 @@ def _cmd_info(args) -> int:
     return EXIT_OK
 
 
+def _size(text: str) -> tuple[int, int]:
+    m = re.fullmatch(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", text)
+    if not m or int(m.group(1)) < 1 or int(m.group(2)) < 1 or max(map(int, m.groups())) > 16384:
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 800x600 (1..16384), "
+                                         f"got {text!r}")
+    return int(m.group(1)), int(m.group(2))
+
+
+def _vec3(text: str) -> tuple[float, float, float]:
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        values = ()
+    if len(values) != 3 or not all(map(math.isfinite, values)):
+        raise argparse.ArgumentTypeError(f"expected three numbers x,y,z such as 1,2.5,-3, got "
+                                         f"{text!r}")
+    return values
+
+
+def _unit_float(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (0 <= v <= 1):
+        raise argparse.ArgumentTypeError(f"expected a number in [0, 1] such as 0.5, got {text!r}")
+    return v
+
+
+def _positive_float(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (v >= 0 and math.isfinite(v)):
+        raise argparse.ArgumentTypeError(f"expected a non-negative number such as 32, got "
+                                         f"{text!r}")
+    return v
+
+
+def _mode(text: str):
+    from .modes import ShadingMode
+
+    try:
+        return ShadingMode(text.lower())
+    except ValueError:
+        choices = ", ".join(m.value for m in ShadingMode)
+        raise argparse.ArgumentTypeError(f"unknown mode {text!r}; choose one of {choices}") \
+            from None
+
+
+def build_scene(mesh, args):
+    """A one-mesh scene and camera from the render options (shared with the viewer)."""
+    from .camera import Camera, default_camera
+    from .scene import Material, PointLight, Scene
+
+    width, height = args.size
+    scene = Scene(background=args.background)
+    scene.add(mesh, Material(color=args.color, ka=args.ka, kd=args.kd, ks=args.ks,
+                             shininess=args.shininess))
+    if args.eye is not None or args.target is not None:
+        eye = args.eye if args.eye is not None else (0.0, 0.0, 5.0)
+        target = args.target if args.target is not None else tuple(scene.bounds().mean(0))
+        b = scene.bounds()
+        reach = float(np.linalg.norm(b[1] - b[0])) + float(np.linalg.norm(np.subtract(eye,
+                                                                                      target)))
+        camera = Camera.look_at(eye, target, fov_y=args.fov, near=reach * 1e-3, far=reach * 2)
+    else:
+        camera = default_camera(scene.bounds(), width / height, fov_y=args.fov)
+    if args.light:
+        for position in args.light:
+            scene.add_light(PointLight(position))
+    else:
+        # a key light above and to the left of the camera
+        distance = float(np.linalg.norm(camera.position - scene.bounds().mean(0)))
+        position = camera.position + distance * (0.8 * camera.up - 0.5 * camera.right)
+        scene.add_light(PointLight(tuple(position)))
+    return scene, camera
+
+
+def _cmd_render(args) -> int:
+    from .image import save_image
+    from .render.renderer import Renderer
+
+    mesh = _load(args.mesh)
+    scene, camera = build_scene(mesh, args)
+    width, height = args.size
+    with Renderer(width, height, samples=args.samples, backend=args.backend) as renderer:
+        image = renderer.render(scene, camera, args.mode, srgb=args.srgb)
+    save_image(image, args.output)
+    if not args.quiet:
+        print(f"{args.output}: {width}x{height} {args.mode.value}, {mesh.n_faces:,} polygons "
+              f"({renderer.backend})")
+    return EXIT_OK
+
+
+def _cmd_doctor(args) -> int:
+    from .render.context import create_context, probe_backends
+
+    ok = True
+    try:
+        with create_context(args.backend) as ctx:
+            info = ctx.info
+        print(f"backend chosen     {info['backend']}")
+        for key in ("vendor", "renderer", "version", "max_samples", "max_texture_size"):
+            print(f"{key.replace('_', ' '):<18} {info[key]}")
+    except Exception as exc:  # report, then go on to the per-backend probe
+        ok = False
+        print(f"backend chosen     none: {exc}")
+    print("backends:")
+    for name, status in probe_backends().items():
+        print(f"  {name:<8} {status}")
+    return EXIT_OK if ok else EXIT_ENVIRONMENT
+
+
+def add_render_options(p: argparse.ArgumentParser) -> None:
+    """Options shared by render, view and compare."""
+    from .modes import ShadingMode
+
+    p.add_argument("--size", type=_size, default=(800, 600), metavar="WxH",
+                   help="image size (default 800x600)")
+    p.add_argument("--samples", type=int, default=4, help="MSAA samples, 0 = off (default 4)")
+    p.add_argument("--eye", type=_vec3, metavar="X,Y,Z", help="camera position "
+                   "(default: auto framing)")
+    p.add_argument("--target", type=_vec3, metavar="X,Y,Z", help="point looked at")
+    p.add_argument("--fov", type=float, default=45.0, help="vertical field of view, degrees")
+    p.add_argument("--light", type=_vec3, action="append", metavar="X,Y,Z",
+                   help="a point light (repeat for more; default: one above the camera)")
+    p.add_argument("--color", type=_vec3, default=(0.8, 0.8, 0.8), metavar="R,G,B",
+                   help="material colour, linear 0..1")
+    p.add_argument("--background", type=_vec3, default=(0.0, 0.0, 0.0), metavar="R,G,B")
+    p.add_argument("--ka", type=_unit_float, default=0.2, help="ambient coefficient")
+    p.add_argument("--kd", type=_unit_float, default=0.7, help="diffuse coefficient")
+    p.add_argument("--ks", type=_unit_float, default=0.3, help="specular coefficient")
+    p.add_argument("--shininess", type=_positive_float, default=32.0,
+                   help="specular exponent n")
+    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
+    p.add_argument("--srgb", action="store_true", help="encode the linear result as sRGB")
+    del ShadingMode
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="glshade", description="Classic shading on the GPU, headless or in a "
                      "window; and the geometry that goes with it.")
@@ -96,6 +241,19 @@ def build_parser() -> argparse.ArgumentParser:
                    "primitive:NAME[:ARGS], e.g. primitive:icosphere:3")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=_cmd_info)
+
+    p = sub.add_parser("render", help="render a mesh headless to an image")
+    p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
+    p.add_argument("-o", "--output", required=True, help="output image (.png)")
+    p.add_argument("--mode", type=_mode, default="phong",
+                   help="flat, gouraud, phong, normals or depth (default phong)")
+    p.add_argument("-q", "--quiet", action="store_true")
+    add_render_options(p)
+    p.set_defaults(func=_cmd_render)
+
+    p = sub.add_parser("doctor", help="say which GL backends work and what they are")
+    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
+    p.set_defaults(func=_cmd_doctor)
     return parser
 
 

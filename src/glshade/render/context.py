@@ -148,6 +148,14 @@ class RenderContext:
         self._loader = loader
         self._children: list = []
         self.released = False
+        # A framebuffer to bind while others are released: moderngl re-binds the previously
+        # bound framebuffer after making a new one, and a deleted one would be an error.
+        self._idle = ctx.simple_framebuffer((1, 1))
+
+    def rest(self) -> None:
+        """Bind the context's own 1x1 framebuffer (before releasing a bound one)."""
+        if not self.released:
+            self._idle.use()
 
     def track(self, obj):
         self._children.append(obj)
@@ -182,6 +190,7 @@ class RenderContext:
         for child in reversed(self._children):
             child.release()
         self._children.clear()
+        self._idle.release()
         self.ctx.release()
         if self._loader is not None:
             self._loader.release()

@@ -3,6 +3,8 @@ vertex array per program. Uploaded once; drawing with another camera touches non
 
 from __future__ import annotations
 
+import weakref
+
 import moderngl
 import numpy as np
 
@@ -36,7 +38,7 @@ class GpuMesh:
 
     def __init__(self, context, mesh: Mesh):
         self.context = context
-        self.mesh = mesh
+        self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
         ctx = context.ctx
         tri, owner = mesh.triangles
         self.n_triangles = len(tri)
@@ -66,7 +68,9 @@ class GpuMesh:
     def _flat_buffer(self):
         """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""
         if self._flat_vbo is None:
-            m = self.mesh
+            m = self._mesh()
+            if m is None:
+                raise GlshadeError("the mesh of this GpuMesh no longer exists")
             tri, owner = m.triangles
             corners = tri.ravel()
             face = np.repeat(owner, 3)

@@ -77,7 +77,8 @@ def assemble(name: str, root: Path | None = None) -> tuple[str, list[str]]:
 _ERROR_LINE = re.compile(r"(?:ERROR:\s*)?(\d+)[:(](\d+)\)?(?:\(\d+\))?\s*:?\s*(.*)")
 
 
-def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[str]]]) -> str:
+def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[str]]],
+                          root: Path | None = None) -> str:
     """Turn a driver's compile log into ``file:line: message`` lines with the source line."""
     out = []
     for raw in driver_text.splitlines():
@@ -88,7 +89,7 @@ def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[s
         for _, (text, files) in sources.items():
             if number < len(files):
                 file = files[number]
-                path = shader_dir() / file
+                path = (root or shader_dir()) / file
                 try:
                     src = path.read_text(encoding="utf-8").splitlines()[line - 1].strip()
                 except (OSError, IndexError):
@@ -125,9 +126,9 @@ class ShaderLibrary:
         except Exception as exc:  # moderngl raises a bare Error with the driver's log
             text = str(exc)
             stage = {"vertex_shader": vs, "fragment_shader": frag_src}
-            which = "fragment_shader" if "fragment_shader" in text.split("\n", 1)[0] else \
-                "vertex_shader"
-            detail = explain_compile_error(text, {which: stage[which]})
+            found = re.search(r"^(vertex_shader|fragment_shader)\s*$", text, re.M)
+            which = found.group(1) if found else "fragment_shader"
+            detail = explain_compile_error(text, {which: stage[which]}, root)
             head = f"{vert} + {frag}: GLSL {which.replace('_', ' ')} failed to compile"
             raise ShaderError(head + ("\n" + detail if detail else "") +
                               "\n--- driver log ---\n" + text.strip()) from None

@@ -106,6 +106,7 @@ class OffscreenTarget:
     def release(self) -> None:
         if self.released:
             return
+        self.context.rest()
         for obj in reversed(self._objects):
             obj.release()
         self._objects.clear()

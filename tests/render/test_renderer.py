@@ -1,0 +1,313 @@
+"""Renderer behaviour against formulas, geometry and invariants."""
+
+import numpy as np
+import pytest
+
+from glshade import Camera, Mesh
+from glshade.geometry import primitives as P
+from glshade.scene import DirectionalLight, Material, PointLight, Scene
+from tests.oracle.raycast import hit_ellipsoid, pixel_rays, render_ellipsoid
+
+EPS8 = 1 / 255 + 1e-6
+EYE = np.array([0.0, 0.0, 3.0])
+FRONT = Camera.look_at(EYE, [0, 0, 0], fov_y=50.0)
+
+
+def formula(point, normal, eye, lights, mat, ambient=(1, 1, 1)):
+    """The notes' lighting at one point, written plainly."""
+    n = np.asarray(normal, float) / np.linalg.norm(normal)
+    v = (eye - point) / np.linalg.norm(eye - point)
+    out = np.asarray(ambient) * mat.ka * np.asarray(mat.color)
+    for pos, ip in lights:
+        l_vec = (np.asarray(pos) - point) / np.linalg.norm(np.asarray(pos) - point)
+        ln = l_vec @ n
+        if ln <= 0:
+            continue
+        r = 2 * ln * n - l_vec
+        out = out + np.asarray(ip) * (mat.kd * ln * np.asarray(mat.color)
+                                      + mat.ks * max(r @ v, 0) ** mat.shininess)
+    return np.clip(out, 0, 1)
+
+
+def quad_scene(mat, lights, ambient=(1, 1, 1)):
+    s = Scene(ambient=ambient)
+    s.add(P.plane(2.0), mat)
+    for light in lights:
+        s.add_light(light)
+    return s
+
+
+# ------------------------------------------------------------------------ lighting terms
+
+@pytest.mark.parametrize("term", ["ka", "kd", "ks"])
+def test_single_terms_match_formula_at_centre(make_renderer, term):
+    coeffs = {"ka": 0.0, "kd": 0.0, "ks": 0.0, term: 0.8}
+    mat = Material(color=(0.9, 0.6, 0.3), shininess=8, **coeffs)
+    light = (1.0, 0.5, 3.0)
+    img = make_renderer(32, 32).render(quad_scene(mat, [PointLight(light)]), FRONT, "flat")
+    expected = formula(np.zeros(3), [0, 0, 1], EYE, [(light, (1, 1, 1))], mat)
+    np.testing.assert_allclose(img[16, 16, :3] / 255, expected, atol=EPS8)
+    assert expected.max() > 0.1  # the term is really there
+
+
+def test_light_behind_surface_gives_ambient_only(make_renderer):
+    mat = Material(color=(0.5, 0.5, 0.5), ka=0.3, kd=0.7, ks=0.9)
+    scene = quad_scene(mat, [PointLight((0.0, 0.0, -3.0))])
+    for mode in ("flat", "gouraud", "phong"):
+        img = make_renderer(16, 16).render(scene, FRONT, mode)
+        np.testing.assert_allclose(img[4:12, 4:12, :3] / 255, 0.15, atol=EPS8)
+
+
+def test_lights_sum_and_colours_multiply(make_renderer):
+    mat = Material(color=(0.5, 0.25, 1.0), ka=0.1, kd=0.5, ks=0.3, shininess=4)
+    a = PointLight((2.0, 0.0, 2.0), color=(1.0, 0.5, 0.5))
+    b = DirectionalLight((0.5, 1.0, -1.0), color=(0.2, 1.0, 0.4), intensity=0.5)
+    r = make_renderer(16, 16)
+
+    def centre(lights, ambient=(1, 1, 1)):
+        f = r.render_frame(quad_scene(mat, lights, ambient), FRONT, "flat", color_dtype="f4")
+        return f.color[8, 8, :3].astype(float)
+
+    amb = np.asarray(mat.color) * mat.ka
+    both = centre([a, b])
+    np.testing.assert_allclose(both - amb, (centre([a]) - amb) + (centre([b]) - amb),
+                               atol=1e-5)
+    light_b = (-np.asarray(b.direction) * 1e6, np.asarray(b.color) * b.intensity)
+    expected = formula(np.zeros(3), [0, 0, 1], EYE, [(a.position, a.color), light_b], mat)
+    np.testing.assert_allclose(both, expected, atol=1e-5)
+    # ambient multiplies the material colour
+    dark = centre([PointLight((0, 0, -3.0))], ambient=(0.5, 1.0, 0.0))
+    np.testing.assert_allclose(dark, [0.025, 0.025, 0.0], atol=1e-6)
+
+
+def test_srgb_encoding(make_renderer):
+    mat = Material(color=(0.2, 0.5, 0.9), ka=0.3, kd=0.5, ks=0.0)
+    scene = quad_scene(mat, [PointLight((1.0, 1.0, 3.0))])
+    r = make_renderer(16, 16)
+    linear = r.render_frame(scene, FRONT, "flat", color_dtype="f4").color[8, 8, :3]
+    encoded = r.render(scene, FRONT, "flat", srgb=True)[8, 8, :3] / 255
+    c = np.clip(linear, 0, 1)
+    srgb = np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
+    np.testing.assert_allclose(encoded, srgb, atol=EPS8)
+    assert (encoded > linear + 0.05).all()
+
+
+def test_no_light_means_headlight(make_renderer):
+    mat = Material(color=(1, 1, 1), ka=0.0, kd=1.0, ks=0.0)
+    s = Scene()
+    s.add(P.plane(2.0), mat)
+    img = make_renderer(16, 16).render(s, FRONT, "flat")
+    np.testing.assert_allclose(img[8, 8, :3] / 255, 1.0, atol=EPS8)  # L = V = N
+
+
+# ------------------------------------------------------------------------- flat shading
+
+def test_flat_cube_one_value_per_face(make_renderer):
+    s = Scene()
+    s.add(P.cube(), Material(color=(0.7, 0.7, 0.7)))
+    s.add_light(PointLight((2.0, 3.0, 4.0)))
+    cam = Camera.look_at([2.0, 1.5, 2.5], [0, 0, 0])
+    f = make_renderer(96, 96).render_frame(s, cam, "flat")
+    visible = [i for i in range(6) if (f.face_id == i).sum() > 20]
+    assert len(visible) == 3
+    for i in visible:
+        colors = f.color[f.face_id == i][:, :3]
+        assert len(np.unique(colors, axis=0)) == 1, i  # no seam along the diagonal
+
+
+def test_flat_non_planar_quad_is_one_colour(make_renderer):
+    quad = Mesh([[-1, -1, 0.3], [1, -1, -0.3], [1, 1, 0.3], [-1, 1, -0.3]], [[0, 1, 2, 3]])
+    s = Scene()
+    s.add(quad, Material(ks=0.5, shininess=5))
+    s.add_light(PointLight((0.5, 1.0, 2.0)))
+    f = make_renderer(48, 48).render_frame(s, Camera.look_at([0.3, 0.2, 3.0], [0, 0, 0]), "flat")
+    colors = f.color[f.face_id == 0][:, :3]
+    assert len(colors) > 500
+    assert len(np.unique(colors, axis=0)) == 1
+    g = make_renderer(48, 48).render_frame(s, Camera.look_at([0.3, 0.2, 3.0], [0, 0, 0]),
+                                           "gouraud")
+    assert len(np.unique(g.color[g.face_id == 0][:, :3], axis=0)) > 10  # smooth modes vary
+
+
+# ------------------------------------------------------------------------------ depth
+
+def two_quads(order):
+    near = P.plane(1.5).transformed(np.array([[1, 0, 0, 0.3], [0, 1, 0, 0], [0, 0, 1, 0.5],
+                                              [0, 0, 0, 1.0]]))
+    far = P.plane(1.5).transformed(np.array([[1, 0, 0, -0.3], [0, 1, 0, 0], [0, 0, 1, -0.5],
+                                             [0, 0, 0, 1.0]]))
+    s = Scene()
+    meshes = {"near": (near, Material(color=(1, 0, 0))), "far": (far, Material(color=(0, 0, 1)))}
+    for name in order:
+        s.add(*meshes[name])
+    return s
+
+
+def test_depth_test_makes_order_irrelevant(make_renderer):
+    r = make_renderer(64, 64)
+    a = r.render(two_quads(["far", "near"]), FRONT, "flat")
+    b = r.render(two_quads(["near", "far"]), FRONT, "flat")
+    np.testing.assert_array_equal(a, b)
+    c = r.render(two_quads(["far", "near"]), FRONT, "flat", depth_test=False)
+    d = r.render(two_quads(["near", "far"]), FRONT, "flat", depth_test=False)
+    assert not np.array_equal(c, d)
+    np.testing.assert_array_equal(c, a)  # near drawn last wins anyway
+    overlap = (d[..., 2] > 0) & (a[..., 0] > 0)
+    assert overlap.sum() > 100  # there the far quad, drawn last, covers the near one
+
+
+@pytest.mark.parametrize("distance", [0.7, 3.0, 25.0])
+def test_render_depth_of_facing_plane(make_renderer, distance):
+    s = Scene()
+    s.add(P.plane(100.0))
+    cam = Camera.look_at([0, 0, distance], [0, 0, 0], near=0.05, far=200.0)
+    depth = make_renderer(32, 24).render_depth(s, cam)
+    assert depth.shape == (24, 32) and depth.dtype == np.float32
+    np.testing.assert_allclose(depth, distance, rtol=1e-3)
+    empty = make_renderer(8, 8).render_depth(Scene(), cam)
+    assert np.isinf(empty).all()
+
+
+# --------------------------------------------------------------------- spheres, normals
+
+def test_backlit_shiny_sphere_has_no_specular_leak(make_renderer):
+    mat = Material(color=(0.6, 0.6, 0.6), ka=0.2, kd=0.5, ks=1.0, shininess=4)
+    light = (0.3, 0.2, -4.0)
+    s = Scene()
+    s.add(P.icosphere(4), mat)
+    s.add_light(PointLight(light))
+    cam = Camera.look_at([0, 0, 3.5], [0, 0, 0], fov_y=40)
+    o, d = pixel_rays(cam, 64, 64)
+    p, n, hit = hit_ellipsoid(o, d, (1, 1, 1))
+    to_light = np.asarray(light) - p
+    away = hit & (np.einsum("...i,...i", to_light, n) < -0.2)
+    assert away.sum() > 500
+    for mode in ("gouraud", "phong"):
+        f = make_renderer(64, 64).render_frame(s, cam, mode)
+        covered = away & (f.face_id >= 0)  # the mesh is inscribed: skip the rim it misses
+        assert covered.sum() > 400
+        np.testing.assert_allclose(f.color[covered][:, :3] / 255, 0.12, atol=EPS8)
+
+
+def test_non_uniformly_scaled_sphere_uses_inverse_transpose(make_renderer):
+    radii = (1.4, 0.6, 1.0)
+    mat = Material(color=(0.9, 0.8, 0.7), ka=0.1, kd=0.6, ks=0.5, shininess=16)
+    light = (2.0, 3.0, 4.0)
+    s = Scene()
+    s.add(P.icosphere(5), mat, scale=radii)
+    s.add_light(PointLight(light))
+    cam = Camera.look_at([0.4, 0.9, 3.5], [0, 0, 0], fov_y=45)
+    ref, hit = render_ellipsoid(cam, 128, 128, radii, [(light, (1, 1, 1))], mat)
+    f = make_renderer(128, 128).render_frame(s, cam, "phong", color_dtype="f4")
+    both = hit & (f.face_id >= 0)
+    err = np.abs(f.color[..., :3] - ref)[both] * 255
+    assert err.mean() < 0.25 and err.max() < 6, (err.mean(), err.max())
+    # world normals come out as the ellipsoid's
+    o, d = pixel_rays(cam, 128, 128)
+    _, n, _ = hit_ellipsoid(o, d, radii)
+    cos = np.einsum("...i,...i", f.normal, n)[both]
+    assert np.degrees(np.arccos(np.clip(cos, -1, 1))).mean() < 0.5
+
+
+# --------------------------------------------------------------------------- face ids
+
+def cube_face_oracle(cam, w, h):
+    """Which face of the unit cube each pixel centre's ray hits first (-1: none)."""
+    o, d = pixel_rays(cam, w, h)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t0 = (-0.5 - o) / d
+        t1 = (0.5 - o) / d
+    tmin = np.minimum(t0, t1)
+    enter = tmin.max(-1)
+    leave = np.maximum(t0, t1).min(-1)
+    hit = enter < leave
+    axis = tmin.argmax(-1)
+    sign = np.take_along_axis(np.where(d > 0, -1, 1), axis[..., None], -1)[..., 0]
+    face = 2 * axis + (sign > 0)  # box(): -x, +x, -y, +y, -z, +z
+    return np.where(hit, face, -1)
+
+
+@pytest.mark.parametrize("samples", [0, 4])
+def test_face_ids_on_flat_cube(make_renderer, samples):
+    s = Scene()
+    s.add(P.cube())
+    cam = Camera.look_at([1.8, 1.3, 2.2], [0, 0, 0])
+    f = make_renderer(80, 80, samples=samples).render_frame(s, cam, "flat")
+    oracle = cube_face_oracle(cam, 80, 80)
+    assert set(np.unique(f.face_id)) <= set(range(-1, 6))  # no blended ids
+    # compare away from edges: pixels whose 3x3 neighbourhood is one face in the oracle
+    pad = np.pad(oracle, 1, mode="edge")
+    same = np.ones_like(oracle, bool)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            same &= pad[1 + dy:81 + dy, 1 + dx:81 + dx] == oracle
+    assert same.sum() > 3000
+    np.testing.assert_array_equal(f.face_id[same], oracle[same])
+    if samples:
+        depth_values = np.unique(f.depth[np.isfinite(f.depth)])
+        assert np.isfinite(f.depth[same & (oracle >= 0)]).all()
+        assert len(depth_values) > 10
+
+
+def test_face_ids_are_polygons_not_triangles(make_renderer):
+    s = Scene()
+    s.add(P.cylinder(12))  # 12 quads and two 12-gons = 10 triangles each
+    cam = Camera.look_at([0, 3, 3], [0, 0, 0])
+    f = make_renderer(64, 64).render_frame(s, cam, "phong")
+    ids = set(np.unique(f.face_id)) - {-1}
+    assert 12 in ids and max(ids) <= 13
+
+
+# ---------------------------------------------------------------------- resources
+
+def test_thousand_frames_do_not_grow_memory(make_renderer):
+    import resource  # noqa: F401 (Linux only; the suite runs on Linux)
+
+    def rss_mb():
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * 4096 / 2**20
+
+    r = make_renderer(64, 64, samples=4)
+    s = Scene()
+    s.add(P.icosphere(2))
+    cams = [FRONT.orbit([0, np.sin(a / 2), 0, np.cos(a / 2)]) for a in np.linspace(0, 6, 50)]
+    for img in r.render_many(s, cams):
+        pass
+    before = rss_mb()
+    children = len(r.context._children)
+    for i in range(1000):
+        r.render(s, cams[i % 50])
+    assert rss_mb() - before < 40
+    assert len(r.context._children) == children
+    assert r.cached_meshes == 1
+
+
+def test_meshes_are_uploaded_once(make_renderer):
+    r = make_renderer(32, 32)
+    s = Scene()
+    mesh = P.icosphere(1)
+    s.add(mesh)
+    r.render(s, FRONT)
+    gpu = r._gpu_mesh(mesh)
+    r.render(s, FRONT.orbit([0, 0.2, 0, 0.98]))
+    assert r._gpu_mesh(mesh) is gpu
+    del s, mesh
+    import gc
+
+    gc.collect()
+    r.render(Scene(), FRONT)
+    assert r.cached_meshes == 0 and gpu.released
+
+
+def test_closed_renderer_and_bad_arguments(make_renderer):
+    from glshade import GeometryError, GlshadeError
+
+    r = make_renderer(8, 8)
+    with pytest.raises(GeometryError, match="unknown shading mode 'toon'; choose one of flat"):
+        r.render(Scene(), FRONT, "toon")
+    with pytest.raises(GeometryError, match="cull_back_faces"):
+        r.render(Scene(), FRONT, cull_back_faces="sometimes")
+    r.close()
+    r.close()  # a second close does nothing
+    with pytest.raises(GlshadeError, match="closed"):
+        r.render(Scene(), FRONT)

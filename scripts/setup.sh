@@ -24,7 +24,11 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 stamp="$VENV/.glshade-installed"
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
-    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]" 2>&1 \
-        | grep -v "Location .* is ignored" >&2 || true
+    # (pip's warnings about this machine's unreachable extra indexes are filtered out)
+    if ! "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]" \
+            2> >(grep -v "Location .* is ignored" >&2); then
+        echo "setup: pip install failed" >&2
+        exit 1
+    fi
     touch "$stamp"
 fi

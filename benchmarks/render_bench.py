@@ -1,0 +1,170 @@
+"""Rendering speed: frames per second (draw + RGBA read-back) at 512x512 and 1024x1024 for
+about 1k, 100k and 1M triangles, per shading mode, against the floor -- a bare moderngl
+program drawing the same buffers with the same Phong shader -- and against pyrender's
+OffscreenRenderer when it is installed. All series run interleaved in one process (the
+machine is noisy) and the table shows medians and ratios.
+
+Run: ``.venv/bin/python benchmarks/render_bench.py [--rounds N] [--sizes 512,1024]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import moderngl
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import table  # noqa: E402
+
+from glshade import Camera, Mesh  # noqa: E402
+from glshade.camera import default_camera  # noqa: E402
+from glshade.geometry import primitives  # noqa: E402
+from glshade.geometry.transforms import gl_bytes  # noqa: E402
+from glshade.render.renderer import Renderer  # noqa: E402
+from glshade.render.shaders import assemble  # noqa: E402
+from glshade.scene import Material, PointLight, Scene  # noqa: E402
+
+SIZES_TRIANGLES = {"1k": (25, 20), "100k": (250, 200), "1M": (1000, 500)}
+
+
+def triangle_torus(n, m) -> Mesh:
+    t = primitives.torus(1.0, 0.35, n, m)
+    tri, _ = t.triangulate()
+    return Mesh(t.vertices, tri)
+
+
+class BareFloor:
+    """The same Phong shader and buffers drawn with moderngl directly: no glshade code
+    between the frames."""
+
+    def __init__(self, renderer: Renderer, scene: Scene, camera: Camera):
+        ctx = renderer.ctx
+        self.ctx = ctx
+        vs, _ = assemble("smooth.vert")
+        fs, _ = assemble("phong.frag")
+        self.prog = ctx.program(vertex_shader=vs, fragment_shader=fs)
+        gpu = renderer._gpu_mesh(scene.models[0].mesh)
+        self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", "in_position", "in_normal")],
+                                    gpu.ibo, 4)
+        size = (renderer.width, renderer.height)
+        self.fbo = ctx.framebuffer([ctx.renderbuffer(size, 4)], ctx.depth_renderbuffer(size))
+        self.face_ids = gpu.face_ids
+        view = camera.view_matrix()
+        p = self.prog
+        p["u_model"].write(gl_bytes(np.eye(4)))
+        p["u_view"].write(gl_bytes(view))
+        p["u_proj"].write(gl_bytes(camera.projection_matrix(size[0] / size[1])))
+        p["u_normal_view"].write(np.ascontiguousarray(view[:3, :3].astype("f4")).tobytes())
+        p["u_normal_world"].write(np.eye(3, dtype="f4").tobytes())
+        p["u_light_count"].value = 1
+        pos = np.zeros((8, 4), "f4")
+        pos[0] = view @ np.append(scene.lights[0].position, 1)
+        p["u_light_pos_view"].write(pos.tobytes())
+        col = np.zeros((8, 3), "f4")
+        col[0] = 1
+        p["u_light_color"].write(col.tobytes())
+        att = np.zeros((8, 3), "f4")
+        att[:, 0] = 1
+        p["u_light_attenuation"].write(att.tobytes())
+        p["u_ambient"].value = (1, 1, 1)
+        for k, v in (("u_ka", 0.2), ("u_kd", 0.7), ("u_ks", 0.3), ("u_shininess", 32.0)):
+            p[k].value = v
+        p["u_material_color"].value = (0.8, 0.8, 0.8)
+
+    def frame(self):
+        ctx = self.ctx
+        self.fbo.use()
+        self.fbo.clear(0, 0, 0, 1, depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        self.face_ids.use(0)
+        self.vao.render()
+        data = self.fbo.read(components=4)
+        ctx.disable(moderngl.CULL_FACE)
+        return data
+
+    def release(self):
+        for o in (self.vao, self.prog, self.fbo):
+            o.release()
+
+
+def pyrender_series(mesh: Mesh, camera: Camera, size: int):
+    try:
+        import pyrender
+        import trimesh
+    except ImportError:
+        return None
+    tm = trimesh.Trimesh(mesh.vertices, mesh.face_indices.reshape(-1, 3), process=False)
+    scene = pyrender.Scene()
+    scene.add(pyrender.Mesh.from_trimesh(tm, smooth=True))
+    cam = pyrender.PerspectiveCamera(yfov=np.radians(camera.fov_y))
+    pose = np.linalg.inv(camera.view_matrix())
+    scene.add(cam, pose=pose)
+    scene.add(pyrender.PointLight(intensity=10.0), pose=pose)
+    r = pyrender.OffscreenRenderer(size, size)
+    return lambda: r.render(scene), r.delete
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--sizes", default="512,1024")
+    ap.add_argument("--meshes", default="1k,100k,1M")
+    ap.add_argument("--backend", default="egl")
+    ap.add_argument("--seconds", type=float, default=0.3, help="time per series per round")
+    args = ap.parse_args()
+    rows = []
+    info = None
+    for size in [int(s) for s in args.sizes.split(",")]:
+        for label in args.meshes.split(","):
+            mesh = triangle_torus(*SIZES_TRIANGLES[label])
+            scene = Scene()
+            scene.add(mesh, Material())
+            camera = default_camera(mesh.bounds)
+            scene.add_light(PointLight(tuple(camera.position + [2, 3, 0])))
+            with Renderer(size, size, samples=0, backend=args.backend) as r:
+                info = info or r.info()
+                floor = BareFloor(r, scene, camera)
+                series = {m: (lambda m=m: r.render(scene, camera, m))
+                          for m in ("flat", "gouraud", "phong")}
+                series["floor"] = floor.frame
+                peer = pyrender_series(mesh, camera, size)
+                if peer:
+                    series["pyrender"] = peer[0]
+                counts = {}
+                for name, fn in series.items():  # warm up, and pick frames per round
+                    fn()
+                    t = time.perf_counter()
+                    fn()
+                    counts[name] = max(1, int(args.seconds / (time.perf_counter() - t)))
+                fps = {name: [] for name in series}
+                for _ in range(args.rounds):
+                    for name, fn in series.items():
+                        t = time.perf_counter()
+                        for _ in range(counts[name]):
+                            fn()
+                        fps[name].append(counts[name] / (time.perf_counter() - t))
+                med = {k: statistics.median(v) for k, v in fps.items()}
+                floor.release()
+                if peer:
+                    peer[1]()
+            row = [f"{size}x{size}", f"{mesh.n_faces:,}"]
+            row += [f"{med[m]:.1f}" for m in ("flat", "gouraud", "phong", "floor")]
+            row += [f"{med['phong'] / med['floor']:.2f}"]
+            row += [f"{med['pyrender']:.1f} ({med['phong'] / med['pyrender']:.1f}x)"
+                    if "pyrender" in med else "not installed"]
+            rows.append(row)
+            print(".", end="", flush=True, file=sys.stderr)
+    print(file=sys.stderr)
+    print(f"frames per second with RGBA read-back, no MSAA, median of {args.rounds} "
+          f"interleaved rounds; {info['renderer']} via {info['backend']}")
+    print(table(rows, ("image", "triangles", "flat", "gouraud", "phong", "bare moderngl",
+                       "phong / bare", "pyrender (phong / it)")))
+
+
+if __name__ == "__main__":
+    main()

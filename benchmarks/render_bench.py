@@ -93,6 +93,9 @@ class BareFloor:
 
 
 def pyrender_series(mesh: Mesh, camera: Camera, size: int):
+    import os
+
+    os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
     try:
         import pyrender
         import trimesh
@@ -119,39 +122,48 @@ def main() -> None:
     args = ap.parse_args()
     rows = []
     info = None
+    peers_to_delete = []  # pyrender's clean-up runs last, after every glshade context
     for size in [int(s) for s in args.sizes.split(",")]:
+        r = Renderer(size, size, samples=0, backend=args.backend)
+        info = info or r.info()
+
+        def current(fn, r=r):
+            def run():  # pyrender makes its own EGL context current: take ours back
+                with r.ctx:
+                    return fn()
+            return run
+
         for label in args.meshes.split(","):
             mesh = triangle_torus(*SIZES_TRIANGLES[label])
             scene = Scene()
             scene.add(mesh, Material())
             camera = default_camera(mesh.bounds)
             scene.add_light(PointLight(tuple(camera.position + [2, 3, 0])))
-            with Renderer(size, size, samples=0, backend=args.backend) as r:
-                info = info or r.info()
+            with r.ctx:
                 floor = BareFloor(r, scene, camera)
-                series = {m: (lambda m=m: r.render(scene, camera, m))
-                          for m in ("flat", "gouraud", "phong")}
-                series["floor"] = floor.frame
-                peer = pyrender_series(mesh, camera, size)
-                if peer:
-                    series["pyrender"] = peer[0]
-                counts = {}
-                for name, fn in series.items():  # warm up, and pick frames per round
-                    fn()
+            series = {m: current(lambda m=m: r.render(scene, camera, m))
+                      for m in ("flat", "gouraud", "phong")}
+            series["floor"] = current(floor.frame)
+            peer = pyrender_series(mesh, camera, size)
+            if peer:
+                series["pyrender"] = peer[0]
+                peers_to_delete.append(peer[1])
+            counts = {}
+            for name, fn in series.items():  # warm up, and pick frames per round
+                fn()
+                t = time.perf_counter()
+                fn()
+                counts[name] = max(1, int(args.seconds / (time.perf_counter() - t)))
+            fps = {name: [] for name in series}
+            for _ in range(args.rounds):
+                for name, fn in series.items():
                     t = time.perf_counter()
-                    fn()
-                    counts[name] = max(1, int(args.seconds / (time.perf_counter() - t)))
-                fps = {name: [] for name in series}
-                for _ in range(args.rounds):
-                    for name, fn in series.items():
-                        t = time.perf_counter()
-                        for _ in range(counts[name]):
-                            fn()
-                        fps[name].append(counts[name] / (time.perf_counter() - t))
-                med = {k: statistics.median(v) for k, v in fps.items()}
+                    for _ in range(counts[name]):
+                        fn()
+                    fps[name].append(counts[name] / (time.perf_counter() - t))
+            med = {k: statistics.median(v) for k, v in fps.items()}
+            with r.ctx:
                 floor.release()
-                if peer:
-                    peer[1]()
             row = [f"{size}x{size}", f"{mesh.n_faces:,}"]
             row += [f"{med[m]:.1f}" for m in ("flat", "gouraud", "phong", "floor")]
             row += [f"{med['phong'] / med['floor']:.2f}"]
@@ -159,6 +171,11 @@ def main() -> None:
                     if "pyrender" in med else "not installed"]
             rows.append(row)
             print(".", end="", flush=True, file=sys.stderr)
+        r.ctx.__enter__()  # make ours current to free it; the context goes with it
+        r.close()
+    # pyrender's own clean-up cannot make its context current once ours are gone; its
+    # objects go with the process.
+    del peers_to_delete
     print(file=sys.stderr)
     print(f"frames per second with RGBA read-back, no MSAA, median of {args.rounds} "
           f"interleaved rounds; {info['renderer']} via {info['backend']}")

@@ -46,21 +46,19 @@ class BareFloor:
         ctx = renderer.ctx
         self.ctx = ctx
         vs, _ = assemble("smooth.vert")
-        fs, _ = assemble("phong.frag")
+        fs, _ = assemble("phong.frag")  # the colour-only variant, as Renderer.render uses
         self.prog = ctx.program(vertex_shader=vs, fragment_shader=fs)
         gpu = renderer._gpu_mesh(scene.models[0].mesh)
         self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", "in_position", "in_normal")],
                                     gpu.ibo, 4)
         size = (renderer.width, renderer.height)
         self.fbo = ctx.framebuffer([ctx.renderbuffer(size, 4)], ctx.depth_renderbuffer(size))
-        self.face_ids = gpu.face_ids
         view = camera.view_matrix()
         p = self.prog
         p["u_model"].write(gl_bytes(np.eye(4)))
         p["u_view"].write(gl_bytes(view))
         p["u_proj"].write(gl_bytes(camera.projection_matrix(size[0] / size[1])))
         p["u_normal_view"].write(np.ascontiguousarray(view[:3, :3].astype("f4")).tobytes())
-        p["u_normal_world"].write(np.eye(3, dtype="f4").tobytes())
         p["u_light_count"].value = 1
         pos = np.zeros((8, 4), "f4")
         pos[0] = view @ np.append(scene.lights[0].position, 1)
@@ -81,7 +79,6 @@ class BareFloor:
         self.fbo.use()
         self.fbo.clear(0, 0, 0, 1, depth=1.0)
         ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self.face_ids.use(0)
         self.vao.render()
         data = self.fbo.read(components=4)
         ctx.disable(moderngl.CULL_FACE)

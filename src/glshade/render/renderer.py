@@ -157,7 +157,7 @@ class Renderer:
                                 f"{len(scene.lights)}")
         self._sync(scene)
         ctx = self.ctx
-        prog = self.shaders.program(mode)
+        prog = self.shaders.program(mode, aux=everything)
         view = camera.view_matrix()
         proj = camera.projection_matrix(self.width / self.height)
         target.begin(scene.background, everything)
@@ -213,7 +213,8 @@ class Renderer:
                 ctx.cull_face = "back"
             else:
                 ctx.disable(moderngl.CULL_FACE)
-            gpu.face_ids.use(0)
+            if everything:
+                gpu.face_ids.use(0)
             gpu.vertex_array(prog, mode).render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
         ctx.disable(moderngl.CULL_FACE)

@@ -33,9 +33,11 @@ def shader_dir() -> Path:
                       "(a broken install? reinstall glshade)")
 
 
-def assemble(name: str, root: Path | None = None) -> tuple[str, list[str]]:
-    """Source of ``name`` with includes expanded; and the file of each ``#line`` source
-    number (index = source string number used in ``#line L N``)."""
+def assemble(name: str, root: Path | None = None,
+             defines: tuple[str, ...] = ()) -> tuple[str, list[str]]:
+    """Source of ``name`` with includes expanded and ``defines`` injected after
+    ``#version``; and the file of each ``#line`` source number (index = source string
+    number used in ``#line L N``)."""
     root = root or shader_dir()
     files: list[str] = []
 
@@ -58,6 +60,7 @@ def assemble(name: str, root: Path | None = None) -> tuple[str, list[str]]:
                     raise ShaderError(f"{files[number]}:1: the first line must be #version, "
                                       f"got {line!r}")
                 out.append(line)
+                out.extend(f"#define {d}" for d in defines)
                 out.append(f"#line 2 {number}")
                 continue
             m = _INCLUDE.match(line)
@@ -105,22 +108,27 @@ class ShaderLibrary:
 
     def __init__(self, context):
         self.context = context
-        self._programs: dict[ShadingMode, object] = {}
+        self._programs: dict[tuple, object] = {}
         self.released = False
         context.track(self)
 
-    def program(self, mode: ShadingMode):
+    def program(self, mode: ShadingMode, aux: bool = True):
+        """The program of ``mode``; with ``aux=False`` the variant that writes colour only
+        (no normal, polygon id or depth outputs, so no id lookup per pixel)."""
         if self.released:
             raise ShaderError("this ShaderLibrary was released")
         mode = ShadingMode.parse(mode)
-        if mode not in self._programs:
+        key = (mode, bool(aux))
+        if key not in self._programs:
             vert, frag = PROGRAMS[mode]
-            self._programs[mode] = self.compile(vert, frag)
-        return self._programs[mode]
+            self._programs[key] = self.compile(vert, frag,
+                                               defines=("GLSHADE_AUX_OUTPUTS",) if aux else ())
+        return self._programs[key]
 
-    def compile(self, vert: str, frag: str, root: Path | None = None):
+    def compile(self, vert: str, frag: str, root: Path | None = None,
+                defines: tuple[str, ...] = ()):
         """Compile and link one program; a failure raises ShaderError naming file and line."""
-        vs, frag_src = assemble(vert, root), assemble(frag, root)
+        vs, frag_src = assemble(vert, root, defines), assemble(frag, root, defines)
         try:
             return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0])
         except Exception as exc:  # moderngl raises a bare Error with the driver's log

@@ -12,7 +12,7 @@ import sys as _sys
 
 from .camera import Camera, default_camera
 from .geometry import Mesh, concatenate, masspoint, newell_normal, polygon_area, primitives
-from .geometry import quaternion
+from .geometry import brep, quaternion
 from .geometry.masspoint import MassPoint, centroid
 from .image import save_image
 from .io import load_mesh, save_mesh
@@ -23,6 +23,7 @@ from .keyframes import CameraPath, Keyframe
 # ``import glshade.quaternion`` and ``glshade.masspoint`` name the geometry modules
 _sys.modules[__name__ + ".quaternion"] = quaternion
 _sys.modules[__name__ + ".masspoint"] = masspoint
+_sys.modules[__name__ + ".brep"] = brep
 
 _LAZY = {"Renderer": "renderer", "Frame": "renderer", "create_context": "context",
          "RenderContext": "context", "Backend": "context"}
@@ -39,7 +40,7 @@ def __getattr__(name):
 
 __all__ = [
     "__version__", "Mesh", "concatenate", "newell_normal", "polygon_area", "primitives",
-    "quaternion", "masspoint", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
+    "quaternion", "masspoint", "brep", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
     "default_camera", "save_image", "ShadingMode", "Scene", "Material", "PointLight",
     "DirectionalLight", "Renderer", "Frame", "create_context", "RenderContext", "Backend",
     "load_mesh", "save_mesh", "GlshadeError", "GeometryError", "MeshFormatError",

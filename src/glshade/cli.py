@@ -57,10 +57,21 @@ def mesh_summary(mesh) -> dict:
     }
 
 
+def topology_summary(mesh) -> dict:
+    """Euler's formula and the validity checks of the mesh's winged-edge structure."""
+    from .geometry.brep import WingedEdge
+
+    w = WingedEdge.from_mesh(mesh, strict=False)
+    out = w.euler().as_dict()
+    out["problems"] = w.report.message() or None
+    return out
+
+
 def _cmd_info(args) -> int:
     mesh = _load(args.mesh)
     info = mesh_summary(mesh)
     info["source"] = args.mesh
+    info["topology"] = topology_summary(mesh)
     if args.json:
         print(json.dumps(info, indent=2))
         return EXIT_OK
@@ -85,6 +96,17 @@ def _cmd_info(args) -> int:
     for k, c in info["polygon_sizes"].items():
         bar = "#" * max(1, round(40 * c / total))
         print(f"  {k:>4}-gon  {c:>10,}  {bar}")
+    t = info["topology"]
+    print("topology (winged edge):")
+    print("     V       E       F     H    C    G  closed  manifold  oriented  boundary loops")
+    g = "?" if t["G"] is None else t["G"]
+    print(f"  {t['V']:>4} {t['E']:>7} {t['F']:>7} {t['H']:>5} {t['C']:>4} {g:>4}  "
+          f"{'yes' if t['closed'] else 'no':>6}  {'yes' if t['manifold'] else 'no':>8}  "
+          f"{'yes' if t['oriented'] else 'no':>8}  {t['boundary_loops']:>14}")
+    print(f"  Euler's formula {'holds' if t['euler_holds'] else 'does NOT hold'}: "
+          f"{t['formula']}")
+    if t["problems"]:
+        print(f"  problems: {t['problems']}")
     return EXIT_OK
 
 

@@ -11,7 +11,7 @@ from .mesh import Mesh, concatenate
 
 __all__ = [
     "cube", "box", "uv_sphere", "icosphere", "torus", "cylinder", "plane", "cornell_box",
-    "teapot", "CORNELL_COLORS", "PRIMITIVES", "from_spec",
+    "teapot", "voxels", "CORNELL_COLORS", "PRIMITIVES", "from_spec",
 ]
 
 
@@ -224,6 +224,39 @@ def teapot(tessellation: int = 8) -> Mesh:
     welded = Mesh(v, q).weld(1e-6)
     welded.name = "teapot"
     return welded
+
+
+def voxels(occupancy, size: float = 1.0) -> Mesh:
+    """The boundary of a union of unit cubes as quads (outward), for solids of any genus:
+    ``occupancy`` is a boolean ``(nx, ny, nz)`` array; cell (i, j, k) spans
+    ``[i, i+1] x [j, j+1] x [k, k+1]`` times ``size``. Cubes touching only along an edge
+    give a non-manifold surface."""
+    occ = np.pad(np.asarray(occupancy, dtype=bool), 1)
+    shape = np.array(occ.shape) + 1  # lattice points
+    quads = []
+
+    def lattice(i, j, k):
+        return (i * shape[1] + j) * shape[2] + k
+
+    corners = {  # unit-square corners for a face normal to each axis, counter-clockwise
+        0: [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
+        1: [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)],
+        2: [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+    }
+    for axis in range(3):
+        a = np.take(occ, range(occ.shape[axis] - 1), axis=axis)
+        b = np.take(occ, range(1, occ.shape[axis]), axis=axis)
+        for filled_first in (True, False):
+            where = np.argwhere((a & ~b) if filled_first else (~a & b))
+            base = where.copy()
+            base[:, axis] += 1  # the face between cell and cell + 1
+            q = np.stack([lattice(*(base + off).T) for off in np.array(corners[axis])], 1)
+            quads.append(q if filled_first else q[:, ::-1])
+    q = np.concatenate(quads)
+    i, j, k = np.unravel_index(np.arange(np.prod(shape)), tuple(shape))
+    pts = (np.stack([i, j, k], 1) - 1) * size
+    used, remap = np.unique(q, return_inverse=True)
+    return Mesh(pts[used].astype(float), remap.reshape(q.shape), name="voxels")
 
 
 PRIMITIVES = {

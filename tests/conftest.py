@@ -5,3 +5,4 @@ import pytest
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+pytest_plugins = ["pytester"]

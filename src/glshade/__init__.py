@@ -6,7 +6,8 @@ modules are loaded on first use.
 
 from ._version import __version__
 from .errors import (
-    ContextError, GeometryError, GlshadeError, MeshFormatError, ShaderError, TopologyError,
+    ComparisonError, ContextError, GeometryError, GlshadeError, MeshFormatError, ShaderError,
+    TopologyError,
 )
 import sys as _sys
 
@@ -14,6 +15,7 @@ from .camera import Camera, default_camera
 from .geometry import Mesh, concatenate, masspoint, newell_normal, polygon_area, primitives
 from .geometry import brep, quaternion
 from .geometry.masspoint import MassPoint, centroid
+from .comparison import Comparison, compare
 from .image import save_image
 from .io import load_mesh, save_mesh
 from .modes import ShadingMode
@@ -42,7 +44,7 @@ __all__ = [
     "__version__", "Mesh", "concatenate", "newell_normal", "polygon_area", "primitives",
     "quaternion", "masspoint", "brep", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
     "default_camera", "save_image", "ShadingMode", "Scene", "Material", "PointLight",
-    "DirectionalLight", "Renderer", "Frame", "create_context", "RenderContext", "Backend",
+    "DirectionalLight", "compare", "Comparison", "Renderer", "Frame", "create_context", "RenderContext", "Backend",
     "load_mesh", "save_mesh", "GlshadeError", "GeometryError", "MeshFormatError",
-    "TopologyError", "ContextError", "ShaderError",
+    "TopologyError", "ContextError", "ShaderError", "ComparisonError",
 ]

@@ -206,6 +206,75 @@ def _cmd_render(args) -> int:
     return EXIT_OK
 
 
+def _levels(text: str) -> list[int]:
+    m = re.fullmatch(r"\s*(\d+)\s*\.\.\s*(\d+)\s*", text)
+    if m and int(m.group(1)) <= int(m.group(2)) <= 8:
+        return list(range(int(m.group(1)), int(m.group(2)) + 1))
+    try:
+        values = [int(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if not values or min(values) < 0 or max(values) > 8:
+        raise argparse.ArgumentTypeError(f"expected levels such as 0..6 or 1,3,5 (0 to 8), got "
+                                         f"{text!r}")
+    return values
+
+
+def _modes(text: str):
+    return [_mode(t.strip()) for t in text.split(",") if t.strip()] or \
+        [_mode("")]  # an empty list reports the choices
+
+
+def _cmd_compare(args) -> int:
+    from .comparison import compare, sweep, sweep_plot
+    from .geometry import primitives
+    from .image import save_image
+
+    modes = [m.value for m in args.modes]
+    if args.sweep:
+        spec = args.mesh.removeprefix("primitive:").split(":")[0]
+        if spec not in ("icosphere", "uv_sphere"):
+            raise GlshadeErrorUsage("--sweep needs a sphere primitive: primitive:icosphere or "
+                                    "primitive:uv_sphere")
+        make = primitives.icosphere if spec == "icosphere" else \
+            (lambda k: primitives.uv_sphere(4 * 2**k, 8 * 2**k))
+        rows = sweep(make, args.levels, modes=modes, size=args.size, backend=args.backend)
+        head = "level  faces     " + "  ".join(f"{m:>9}" for m in modes) + \
+            "   " + "  ".join(f"{'peak ' + m:>13}" for m in modes)
+        print("mean |error| against the analytic sphere (8-bit units) and the brightest "
+              "pixel (the reference's: %.1f)" % rows[0][modes[0]].reference_peak)
+        print(head)
+        for r in rows:
+            print(f"{r['level']:>5}  {r['faces']:>8,}  " +
+                  "  ".join(f"{r[m].mean_abs:>9.3f}" for m in modes) + "   " +
+                  "  ".join(f"{r[m].peak:>13.1f}" for m in modes))
+        save_image(sweep_plot(rows, modes), args.output)
+        if args.json:
+            from ._atomic import atomic_write
+
+            with atomic_write(args.json, "w") as f:
+                json.dump([{"level": r["level"], "faces": r["faces"],
+                            **{m: r[m].__dict__ for m in modes}} for r in rows], f, indent=2)
+        print(f"plot: {args.output}")
+        return EXIT_OK
+    mesh = _load(args.mesh)
+    scene, camera = build_scene(mesh, args)
+    result = compare(scene, camera, modes, args.reference, size=args.size, diff=args.diff,
+                     backend=args.backend)
+    save_image(result.image, args.output)
+    print(result.table())
+    if args.json:
+        result.write_json(args.json)
+    if args.csv:
+        result.write_csv(args.csv)
+    print(f"grid: {args.output}")
+    return EXIT_OK
+
+
+class GlshadeErrorUsage(ValueError):
+    """Bad combination of arguments (exit 2)."""
+
+
 def _cmd_doctor(args) -> int:
     from .render.context import create_context, probe_backends
 
@@ -273,6 +342,25 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p)
     p.set_defaults(func=_cmd_render)
 
+    p = sub.add_parser("compare", help="flat, Gouraud and Phong side by side, with errors "
+                       "against a reference")
+    p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
+    p.add_argument("-o", "--output", required=True, help="output image: the grid (or the "
+                   "plot, with --sweep)")
+    p.add_argument("--modes", type=_modes, default="flat,gouraud,phong",
+                   help="comma-separated modes (default flat,gouraud,phong)")
+    p.add_argument("--diff", action="store_true", help="add a row of difference heat maps")
+    p.add_argument("--reference", default="analytic", help="analytic (sphere primitives), "
+                   "phong-fine, or an image file (default analytic)")
+    p.add_argument("--json", help="write the metrics as JSON")
+    p.add_argument("--csv", help="write the metrics as CSV")
+    p.add_argument("--sweep", action="store_true", help="error of each mode against "
+                   "tessellation level of a sphere primitive")
+    p.add_argument("--levels", type=_levels, default=list(range(0, 7)),
+                   help="levels for --sweep, e.g. 0..6")
+    add_render_options(p)
+    p.set_defaults(func=_cmd_compare, size=(256, 256), samples=0)
+
     p = sub.add_parser("doctor", help="say which GL backends work and what they are")
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.set_defaults(func=_cmd_doctor)
@@ -286,7 +374,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except GlshadeError as exc:
+    except (GlshadeError, GlshadeErrorUsage) as exc:
         if args.debug:
             raise
         code = EXIT_USAGE if isinstance(exc, ValueError) else EXIT_ENVIRONMENT

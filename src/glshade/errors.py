@@ -14,6 +14,7 @@ __all__ = [
     "TopologyError",
     "ContextError",
     "ShaderError",
+    "ComparisonError",
 ]
 
 
@@ -51,3 +52,7 @@ class ContextError(GlshadeError, RuntimeError):
 
 class ShaderError(GlshadeError, RuntimeError):
     """A GLSL program failed to compile or link: names the file, the line and the driver's text."""
+
+
+class ComparisonError(GlshadeError, ValueError):
+    """A comparison that cannot be made: no analytic surface, a reference of another size."""

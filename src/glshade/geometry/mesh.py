@@ -115,6 +115,9 @@ class Mesh:
             str(k): _readonly(np.asarray(g, dtype=np.int64)) for k, g in (groups or {}).items()
         }
         self.name = name
+        #: the exact surface this mesh approximates, when known (e.g. {"kind": "sphere",
+        #: "radius": 1.0} for sphere primitives): analytic references ray-cast it
+        self.analytic: dict | None = None
 
     def _init_arrays(self, v, indices, offsets) -> None:
         sizes = np.diff(offsets)

@@ -63,7 +63,9 @@ def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
     last = 1 + (stacks - 2) * slices
     bottom = np.stack([np.full(slices, south), last + s1[0], last + s[0]], -1)
     faces = [*top.tolist(), *quads.tolist(), *bottom.tolist()]
-    return Mesh(v, faces, name="uv_sphere")
+    m = Mesh(v, faces, name="uv_sphere")
+    m.analytic = {"kind": "sphere", "radius": float(radius)}
+    return m
 
 
 _ICO_T = (1 + 5**0.5) / 2
@@ -102,7 +104,9 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
             np.stack([a, ab, ca], 1), np.stack([b, bc, ab], 1),
             np.stack([c, ca, bc], 1), np.stack([ab, bc, ca], 1),
         ], 1).reshape(-1, 3)
-    return Mesh(v * radius, f, name="icosphere")
+    m = Mesh(v * radius, f, name="icosphere")
+    m.analytic = {"kind": "sphere", "radius": float(radius)}
+    return m
 
 
 def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:

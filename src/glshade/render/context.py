@@ -123,6 +123,15 @@ class OSMesaLoader:
             raise ContextError(f"{name}: OSMesaMakeCurrent failed")
         self._lib, self._handle, self.library = lib, handle, name
 
+    def __enter__(self):
+        """Make this context current again (moderngl calls it from ``ctx.__enter__``)."""
+        if self._handle:
+            self._lib.OSMesaMakeCurrent(self._handle, self._buffer, _GL_UNSIGNED_BYTE, 4, 4)
+        return self
+
+    def __exit__(self, *exc):
+        return None
+
     def load_opengl_function(self, name: str) -> int:
         return self._lib.OSMesaGetProcAddress(name.encode()) or 0
 
@@ -151,6 +160,12 @@ class RenderContext:
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
         self._idle = ctx.simple_framebuffer((1, 1))
+
+    def make_current(self) -> None:
+        """Make this context current on the calling thread: with several contexts in one
+        process, whichever was made or used last is current, and GL calls go there."""
+        self.check()
+        self.ctx.__enter__()
 
     def rest(self) -> None:
         """Bind the context's own 1x1 framebuffer (before releasing a bound one)."""
@@ -187,6 +202,7 @@ class RenderContext:
     def release(self) -> None:
         if self.released:
             return
+        self.ctx.__enter__()
         for child in reversed(self._children):
             child.release()
         self._children.clear()

@@ -91,6 +91,8 @@ class Renderer:
         """Free every GL object this Renderer made (and its context, if it made it)."""
         if self.closed:
             return
+        if not self.context.released:
+            self.context.make_current()
         for _, gpu in self._meshes.values():
             gpu.release()
         for t in self._targets.values():
@@ -114,6 +116,8 @@ class Renderer:
 
     # ------------------------------------------------------------------ caches
     def _target(self, color_dtype: str) -> OffscreenTarget:
+        self._check()
+        self.context.make_current()
         t = self._targets.get(color_dtype)
         if t is None:
             t = OffscreenTarget(self.context, self.width, self.height, self.samples,

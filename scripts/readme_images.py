@@ -7,6 +7,7 @@ import numpy as np
 
 import glshade
 from glshade.camera import default_camera
+from glshade.comparison import sweep, sweep_plot
 from glshade.geometry import primitives
 from glshade import Renderer
 from glshade.scene import Material, PointLight, Scene
@@ -25,6 +26,17 @@ def main() -> None:
                  ("flat", "gouraud", "phong")]
     glshade.save_image(np.hstack(tiles), DOCS / "teapot-modes.png")
     print(DOCS / "teapot-modes.png")
+
+    # the comparison grid of a coarse sphere against the exact one, and the sweep
+    sphere = Scene()
+    sphere.add(primitives.icosphere(2), Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30))
+    sphere.add_light(PointLight((3.0, 4.0, 5.0)))
+    cam = glshade.Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
+    result = glshade.compare(sphere, cam, size=(200, 200), diff=True)
+    glshade.save_image(result.image, DOCS / "compare-sphere.png")
+    rows = sweep(primitives.icosphere, range(0, 7))
+    glshade.save_image(sweep_plot(rows, ["flat", "gouraud", "phong"]), DOCS / "sweep.png")
+    print(result.table())
 
 
 if __name__ == "__main__":

@@ -9,6 +9,14 @@ import tempfile
 from pathlib import Path
 
 
+def publish(tmp, path) -> None:
+    """Give a finished temporary file the usual permissions and move it into place."""
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600
+    os.replace(tmp, path)
+
+
 @contextlib.contextmanager
 def atomic_write(path, mode: str = "wb"):
     """Yield a file object; on success it replaces ``path``, on failure it is deleted."""
@@ -17,10 +25,7 @@ def atomic_write(path, mode: str = "wb"):
     try:
         with os.fdopen(fd, mode) as f:
             yield f
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
-        os.replace(tmp, path)
+        publish(tmp, path)
     except BaseException:  # interrupted or failed: remove the partial file, then re-raise
         with contextlib.suppress(OSError):
             os.unlink(tmp)

@@ -129,6 +129,13 @@ def _vec3(text: str) -> tuple[float, float, float]:
     return values
 
 
+def _count(text: str) -> int:
+    if not text.strip().isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1 such as 4, got "
+                                         f"{text!r}")
+    return int(text)
+
+
 def _unit_float(text: str) -> float:
     try:
         v = float(text)
@@ -190,19 +197,71 @@ def build_scene(mesh, args):
     return scene, camera
 
 
+def _given(args, name) -> bool:
+    """Whether an option was given on the command line (not left at its default)."""
+    return getattr(args, name) != build_parser_defaults().get(name)
+
+
 def _cmd_render(args) -> int:
     from .image import save_image
     from .render.renderer import Renderer
 
-    mesh = _load(args.mesh)
-    scene, camera = build_scene(mesh, args)
-    width, height = args.size
-    with Renderer(width, height, samples=args.samples, backend=args.backend) as renderer:
-        image = renderer.render(scene, camera, args.mode, srgb=args.srgb)
+    if args.mesh.lower().endswith(".toml"):
+        from .scenefile import load_scene
+
+        sf = load_scene(args.mesh)
+        scene = sf.scene
+        settings = sf.settings
+        width, height = args.size if _given(args, "size") else (settings.width,
+                                                                 settings.height)
+        mode = args.mode if _given(args, "mode") else settings.mode
+        samples = args.samples if _given(args, "samples") else settings.samples
+        srgb = args.srgb or settings.srgb
+        camera = sf.path.at(sf.path.start if args.time is None else args.time)
+        polygons = sum(m.mesh.n_faces for m in scene.models)
+    else:
+        if args.time is not None:
+            raise GlshadeErrorUsage("--time needs a scene file (.toml) with a camera path")
+        mesh = _load(args.mesh)
+        scene, camera = build_scene(mesh, args)
+        (width, height), mode, samples, srgb = args.size, args.mode, args.samples, args.srgb
+        polygons = mesh.n_faces
+    with Renderer(width, height, samples=samples, backend=args.backend) as renderer:
+        image = renderer.render(scene, camera, mode, srgb=srgb)
     save_image(image, args.output)
     if not args.quiet:
-        print(f"{args.output}: {width}x{height} {args.mode.value}, {mesh.n_faces:,} polygons "
+        print(f"{args.output}: {width}x{height} {mode.value}, {polygons:,} polygons "
               f"({renderer.backend})")
+    return EXIT_OK
+
+
+def _cmd_animate(args) -> int:
+    import os
+
+    from .animate import animate, output_format
+    from .scenefile import load_scene
+
+    output_format(args.output)  # a bad extension fails before any rendering
+    sf = load_scene(args.scene)
+    st = sf.settings
+    fps = args.fps or st.fps
+    duration = args.duration if args.duration is not None else st.duration
+    if args.frames is not None:
+        frames = args.frames
+    elif duration:
+        frames = max(1, int(round(duration * fps)))
+    else:
+        frames = 1
+    size = args.size or (st.width, st.height)
+    modes = [m.value for m in args.modes] if args.modes else [(args.mode or st.mode).value]
+    jobs = args.jobs or os.cpu_count() or 1
+    n = animate(sf.scene, sf.path, frames, modes=modes, output=args.output, fps=fps,
+                size=size, samples=st.samples if args.samples is None else args.samples,
+                srgb=st.srgb, jobs=jobs, backend=args.backend,
+                progress=None if not args.quiet else False)
+    if not args.quiet:
+        print(f"{args.output}: {n} frames, {size[0]}x{size[1]}, {fps:g} fps, "
+              f"{'/'.join(modes)}, {jobs} job{'s' if jobs > 1 else ''}")
     return EXIT_OK
 
 
@@ -339,8 +398,32 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--mode", type=_mode, default="phong",
                    help="flat, gouraud, phong, normals or depth (default phong)")
     p.add_argument("-q", "--quiet", action="store_true")
+    p.add_argument("--time", type=float, help="with a scene file: the moment on its camera "
+                   "path (seconds)")
     add_render_options(p)
     p.set_defaults(func=_cmd_render)
+
+    p = sub.add_parser("animate", help="render a scene file's camera path to GIF, PNG, MP4 "
+                       "or frames")
+    p.add_argument("scene", metavar="SCENE.toml")
+    p.add_argument("-o", "--output", required=True, help="out.gif, out.png (APNG), out.mp4 "
+                   "or a folder/ for PNG frames")
+    p.add_argument("--fps", type=_positive_float, help="frames per second (default: the "
+                   "scene's, else 30)")
+    length = p.add_mutually_exclusive_group()
+    length.add_argument("--duration", type=_positive_float, help="seconds of path to render")
+    length.add_argument("--frames", type=_count, help="number of frames")
+    p.add_argument("--mode", type=_mode, help="shading mode (default: the scene's)")
+    p.add_argument("--modes", type=_modes, help="several modes side by side, e.g. "
+                   "flat,gouraud,phong")
+    p.add_argument("--jobs", type=_count, help="worker processes (default: the number of "
+                   "cores)")
+    p.add_argument("--size", type=_size, metavar="WxH", help="frame size (default: the "
+                   "scene's)")
+    p.add_argument("--samples", type=int, help="MSAA samples (default: the scene's)")
+    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+    p.set_defaults(func=_cmd_animate)
 
     p = sub.add_parser("compare", help="flat, Gouraud and Phong side by side, with errors "
                        "against a reference")
@@ -365,6 +448,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.set_defaults(func=_cmd_doctor)
     return parser
+
+
+def build_parser_defaults() -> dict:
+    """Defaults of the render options, to tell which ones a user set."""
+    p = argparse.ArgumentParser()
+    add_render_options(p)
+    p.add_argument("--mode", type=_mode, default="phong")
+    return {k: (p.get_default(k) if k != "mode" else _mode("phong"))
+            for k in ("size", "mode", "samples")}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -98,9 +98,13 @@ class _FrameMaker:
 _worker: _FrameMaker | None = None
 
 
-def _init_worker(args):
+def _init_worker(args, threads):
     global _worker
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
+    # Mesa's software rasterizer starts a thread per core in every process; with one worker
+    # per core that oversubscribes the machine. Share the cores out instead (no effect on
+    # GPU drivers).
+    os.environ.setdefault("LP_NUM_THREADS", str(threads))
     _worker = _FrameMaker(*args)
 
 
@@ -137,7 +141,8 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, 
             maker.close()
         return
     ctx = mp.get_context("spawn")
-    pool = ctx.Pool(jobs, initializer=_init_worker, initargs=(args,))
+    threads = max(1, (os.cpu_count() or 1) // jobs)
+    pool = ctx.Pool(jobs, initializer=_init_worker, initargs=(args, threads))
     try:
         chunk = max(1, min(8, frames // (4 * jobs)))
         for i, data in pool.imap(_work, range(frames), chunksize=chunk):

@@ -15,10 +15,12 @@ demo: setup
 			--color 0.85,0.55,0.3 --background 0.12,0.12,0.14 -o out/teapot-$$mode.png || exit 1; \
 	done
 
-# Everything on EGL, then the GL tests again on OSMesa (one backend per process).
+# Everything on EGL, the GL tests again on OSMesa (one backend per process), then the
+# viewer in a real window under Xvfb.
 test: setup
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q --ignore=tests/viewer
 	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q tests/render
+	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 bench: setup
 	$(PY) benchmarks/geometry_bench.py

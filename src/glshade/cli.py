@@ -334,6 +334,26 @@ class GlshadeErrorUsage(ValueError):
     """Bad combination of arguments (exit 2)."""
 
 
+def _cmd_view(args) -> int:
+    from .viewer.window import Viewer
+
+    if args.mesh.lower().endswith(".toml"):
+        from .scenefile import load_scene
+
+        sf = load_scene(args.mesh)
+        scene, camera = sf.scene, sf.camera
+    else:
+        scene, camera = build_scene(_load(args.mesh), args)
+    with Viewer(scene, camera, size=args.size, mode=args.mode, samples=args.samples,
+                compare=args.compare, visible=not args.hidden) as viewer:
+        if args.screenshot:
+            viewer.run(args.frames)
+            viewer.screenshot(args.screenshot)
+        else:
+            viewer.run(args.frames)
+    return EXIT_OK
+
+
 def _cmd_doctor(args) -> int:
     from .render.context import create_context, probe_backends
 
@@ -443,6 +463,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="levels for --sweep, e.g. 0..6")
     add_render_options(p)
     p.set_defaults(func=_cmd_compare, size=(256, 256), samples=0)
+
+    p = sub.add_parser("view", help="explore a mesh in a window (keys: h)")
+    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
+                   "scene file (.toml)")
+    p.add_argument("--mode", type=_mode, default="phong", help="initial shading mode")
+    p.add_argument("--compare", action="store_true", help="flat | gouraud | phong side by "
+                   "side")
+    p.add_argument("--screenshot", metavar="PATH", help="save the window's pixels after "
+                   "--frames frames and exit")
+    p.add_argument("--frames", type=_count, help="draw this many frames, then exit")
+    p.add_argument("--hidden", action="store_true", help=argparse.SUPPRESS)
+    add_render_options(p)
+    p.set_defaults(func=_cmd_view)
 
     p = sub.add_parser("doctor", help="say which GL backends work and what they are")
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")

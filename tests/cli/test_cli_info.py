@@ -54,3 +54,14 @@ def test_malformed_file_exits_2_naming_the_line(tmp_path):
     assert out.returncode == 2
     assert f"{bad}:4: face index 9" in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_view_without_display_exits_2_in_one_line():
+    import os
+
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    out = subprocess.run([sys.executable, "-m", "glshade", "view", "primitive:cube"],
+                         capture_output=True, text=True, env=env)
+    assert out.returncode == 2
+    assert "no display" in out.stderr and "xvfb-run" in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1

@@ -147,7 +147,8 @@ class Renderer:
 
     # ------------------------------------------------------------------ drawing
     def _draw(self, scene: Scene, camera: Camera, mode: ShadingMode, depth_test: bool,
-              cull_back_faces, srgb: bool, target: OffscreenTarget, everything: bool):
+              cull_back_faces, srgb: bool, target, everything: bool, viewport=None,
+              clear: bool = True, wireframe: bool = False):
         self._check()
         if not isinstance(scene, Scene):
             raise GeometryError(f"expected a Scene, got {type(scene).__name__}")
@@ -163,9 +164,14 @@ class Renderer:
         ctx = self.ctx
         prog = self.shaders.program(mode, aux=everything)
         view = camera.view_matrix()
-        proj = camera.projection_matrix(self.width / self.height)
-        target.begin(scene.background, everything)
-        ctx.viewport = (0, 0, self.width, self.height)
+        vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
+        proj = camera.projection_matrix(vw / vh)
+        if clear:
+            target.begin(scene.background, everything)
+        else:
+            target.bind(everything)
+        ctx.viewport = (vx, vy, vw, vh)
+        ctx.wireframe = wireframe
         if depth_test:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
@@ -223,7 +229,9 @@ class Renderer:
             id_base += gpu.n_polygons
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
-        target.resolve(everything)
+        ctx.wireframe = False
+        if clear:
+            target.resolve(everything)
 
     @staticmethod
     def _put_lights(put, scene: Scene, view: np.ndarray) -> None:
@@ -272,6 +280,17 @@ class Renderer:
         self._draw(scene, camera, mode, depth_test, cull_back_faces, srgb, target, True)
         return Frame(target.read_color(), target.read_depth(), target.read_normal(),
                      target.read_face_id())
+
+    def draw(self, target, scene: Scene, camera: Camera, mode="phong", *,
+             depth_test: bool = True, cull_back_faces="auto", srgb: bool = False,
+             viewport=None, clear: bool = True, wireframe: bool = False) -> None:
+        """Draw into any target with the renderer's programs and buffers -- a window's
+        framebuffer (the viewer) or an offscreen one -- optionally into a ``viewport``
+        ``(x, y, w, h)`` (GL's: origin at the bottom left) without clearing."""
+        self._check()
+        self.context.make_current()
+        self._draw(scene, camera, ShadingMode.parse(mode), depth_test, cull_back_faces, srgb,
+                   target, False, viewport, clear, wireframe)
 
     def render_depth(self, scene: Scene, camera: Camera, **kwargs) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import GlshadeError
 
-__all__ = ["OffscreenTarget"]
+__all__ = ["OffscreenTarget", "WindowTarget"]
 
 
 class OffscreenTarget:
@@ -72,6 +72,10 @@ class OffscreenTarget:
         fbo.use()
         fbo.clear(*background, depth=1.0)
 
+    def bind(self, everything: bool) -> None:
+        """Bind for drawing without clearing."""
+        (self.fbo_draw_all if everything else self.fbo_draw_color).use()
+
     def resolve(self, everything: bool) -> None:
         if self.samples:
             ctx = self.context.ctx
@@ -112,3 +116,47 @@ class OffscreenTarget:
         self._objects.clear()
         self.released = True
         self.context.untrack(self)
+
+
+class WindowTarget:
+    """A window's default framebuffer, in the shape the Renderer draws into: colour only
+    (the window has no id or normal buffers)."""
+
+    def __init__(self, context, width: int, height: int):
+        self.context = context
+        self.width, self.height = int(width), int(height)
+
+    def resize(self, width: int, height: int) -> None:
+        self.width, self.height = max(1, int(width)), max(1, int(height))
+
+    def _fbo(self):
+        ctx = self.context.ctx
+        return ctx.screen if ctx.screen is not None else ctx.detect_framebuffer(0)
+
+    def begin(self, background, everything: bool) -> None:
+        fbo = self._fbo()
+        fbo.use()
+        self.context.ctx.viewport = (0, 0, self.width, self.height)
+        fbo.clear(*background, depth=1.0)
+
+    def bind(self, everything: bool) -> None:
+        self._fbo().use()
+
+    def resolve(self, everything: bool) -> None:
+        pass
+
+    def read_color(self) -> np.ndarray:
+        """The window's pixels ``(H, W, 4) uint8``, row 0 at the top (the back buffer, read
+        before the swap)."""
+        data = self._fbo().read(viewport=(0, 0, self.width, self.height), components=4)
+        return np.frombuffer(data, np.uint8).reshape(self.height, self.width, 4)[::-1].copy()
+
+    def read_depth_at(self, x: int, y_from_top: int) -> float:
+        """Window depth in [0, 1] at one pixel (1 = nothing drawn)."""
+        y = self.height - 1 - int(y_from_top)
+        data = self._fbo().read(viewport=(int(x), y, 1, 1), components=1, attachment=-1,
+                                dtype="f4")
+        return float(np.frombuffer(data, np.float32)[0])
+
+    def release(self) -> None:
+        pass

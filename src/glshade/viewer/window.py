@@ -1,0 +1,377 @@
+"""The glfw window: events in, frames out. All drawing goes through the headless
+Renderer's programs and buffers; this module only supplies the framebuffer and the
+camera control.
+
+Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth; z depth test; w wireframe; c back-face
+culling (auto / on / off); l light at the camera; k add a key frame; p play/pause the path;
+P save the path as TOML; s screenshot; r reset; h or ? help; Esc or q quit. Left-drag:
+arcball; right- or shift-drag: pan; wheel: dolly; double-click: re-centre on the surface.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..camera import Camera, default_camera
+from ..errors import GlshadeError
+from ..geometry import quaternion as quat
+from ..keyframes import CameraPath, Keyframe
+from ..modes import ShadingMode
+from ..scene import Material, PointLight, Scene
+from .arcball import Arcball
+
+__all__ = ["Viewer", "DisplayError", "HELP"]
+
+HELP = __doc__.split("\n\n", 1)[1].strip()
+
+_MODE_KEYS = {"1": ShadingMode.FLAT, "2": ShadingMode.GOURAUD, "3": ShadingMode.PHONG,
+              "4": ShadingMode.NORMALS, "5": ShadingMode.DEPTH}
+DOUBLE_CLICK_S = 0.3
+
+
+class DisplayError(GlshadeError, ValueError):
+    """No display to open a window on (bad environment for this command: exit 2)."""
+
+
+def _has_display() -> bool:
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+class Viewer:
+    """A window showing ``scene``; ``run()`` until closed, or ``step()`` frame by frame.
+
+    Parameters
+    ----------
+    scene : what to show. camera : the initial view (default: the auto-framed camera of
+    ``glshade render``). size : window size in screen coordinates. mode : the initial
+    shading mode. samples : MSAA samples of the window (0 = off). compare : flat | Gouraud
+    | Phong side by side with one camera. visible : False for a hidden window (tests).
+    """
+
+    def __init__(self, scene: Scene, camera: Camera | None = None, *, size=(960, 720),
+                 mode="phong", samples: int = 4, compare: bool = False, visible: bool = True,
+                 title: str = "glshade", screenshot_dir: str | Path = "."):
+        if not _has_display():
+            raise DisplayError("no display to open a window on (DISPLAY is not set); use "
+                               "'glshade render' for images, or run under 'xvfb-run'")
+        import glfw
+        import moderngl
+
+        from ..render.context import Backend, RenderContext
+        from ..render.renderer import Renderer
+        from ..render.target import WindowTarget
+
+        if not glfw.init():
+            raise DisplayError("glfw could not initialise the display "
+                               f"{os.environ.get('DISPLAY', '')!r}; is an X server running?")
+        self._glfw = glfw
+        glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
+        glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
+        glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
+        glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
+        glfw.window_hint(glfw.SAMPLES, int(samples))
+        glfw.window_hint(glfw.VISIBLE, bool(visible))
+        glfw.window_hint(glfw.DOUBLEBUFFER, True)
+        self.window = glfw.create_window(int(size[0]), int(size[1]), title, None, None)
+        if not self.window:
+            glfw.terminate()
+            raise DisplayError("glfw could not open a window with an OpenGL 3.3 core context")
+        glfw.make_context_current(self.window)
+        glfw.swap_interval(0)
+        ctx = moderngl.create_context(require=330)
+        self.context = RenderContext(ctx, Backend.WINDOW, ctx.info.get("GL_RENDERER", ""))
+        fb_w, fb_h = glfw.get_framebuffer_size(self.window)
+        self.target = WindowTarget(self.context, fb_w, fb_h)
+        self.renderer = Renderer(fb_w, fb_h, samples=0, context=self.context)
+        self.scene = scene
+        self.title = title
+        self.compare = bool(compare)
+        self.mode = ShadingMode.parse(mode)
+        self.depth_test = True
+        self.wireframe = False
+        self.cull: str | bool = "auto"
+        self.screenshot_dir = Path(screenshot_dir)
+        self.center = scene.bounds().mean(axis=0)
+        self.home = camera or default_camera(scene.bounds(), self._aspect())
+        self.camera = self.home
+        self.keyframes: list[Keyframe] = []
+        self.playing = False
+        self.play_time = 0.0
+        self.path: CameraPath | None = None
+        self.arcball = Arcball(*glfw.get_window_size(self.window))
+        self._drag = None  # ("rotate" | "pan", start camera, start x, start y)
+        self._last_click = 0.0
+        self._cursor = (0.0, 0.0)
+        self._fps, self._frames, self._t0 = 0.0, 0, time.perf_counter()
+        self.messages: list[str] = []
+        self.frame_count = 0
+        self.closed = False
+        glfw.set_key_callback(self.window, self._key_event)
+        glfw.set_mouse_button_callback(self.window, self._button_event)
+        glfw.set_cursor_pos_callback(self.window, self._cursor_event)
+        glfw.set_scroll_callback(self.window, self._scroll_event)
+        glfw.set_framebuffer_size_callback(self.window, self._resize_event)
+        glfw.set_window_size_callback(self.window, self._window_size_event)
+
+    # ------------------------------------------------------------------ geometry
+    def _aspect(self) -> float:
+        w, h = self.target.width, self.target.height
+        return (w / 3 if self.compare else w) / max(h, 1)
+
+    def _scale(self) -> float:
+        """Framebuffer pixels per window coordinate (2 on HiDPI screens)."""
+        ww, _ = self._glfw.get_window_size(self.window)
+        return self.target.width / max(ww, 1)
+
+    @property
+    def triangles(self) -> int:
+        return sum(len(m.mesh.triangles[0]) for m in self.scene.models if m.visible)
+
+    # ------------------------------------------------------------------ drawing
+    def draw(self) -> None:
+        """Draw one frame into the back buffer (no swap)."""
+        self._glfw.make_context_current(self.window)
+        r, t = self.renderer, self.target
+        kwargs = {"depth_test": self.depth_test, "cull_back_faces": self.cull}
+        if self.compare:
+            w3 = t.width // 3
+            for i, m in enumerate((ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)):
+                r.draw(t, self.scene, self.camera, m, viewport=(i * w3, 0, w3, t.height),
+                       clear=(i == 0), **kwargs)
+                if self.wireframe:
+                    self._draw_wire((i * w3, 0, w3, t.height))
+        else:
+            r.draw(t, self.scene, self.camera, self.mode, **kwargs)
+            if self.wireframe:
+                self._draw_wire(None)
+
+    def _draw_wire(self, viewport) -> None:
+        overlay = Scene(ambient=(1, 1, 1), background=self.scene.background)
+        for m in self.scene.models:
+            overlay.add(m.mesh, Material(color=(0.05, 0.05, 0.05), ka=1.0, kd=0.0, ks=0.0),
+                        m.transform)
+        ctx = self.context.ctx
+        ctx.depth_func = "<="
+        self.renderer.draw(self.target, overlay, self.camera, "flat", viewport=viewport,
+                           clear=False, wireframe=True, depth_test=self.depth_test,
+                           cull_back_faces=self.cull)
+        ctx.depth_func = "<"
+
+    def screenshot(self, path=None) -> np.ndarray:
+        """The window's pixels now ``(H, W, 4) uint8``; saved as PNG when ``path`` is given."""
+        self.draw()
+        img = self.target.read_color()
+        if path is not None:
+            from ..image import save_image
+
+            save_image(img, path)
+            self._say(f"saved {path}")
+        return img
+
+    def step(self, dt: float | None = None) -> None:
+        """Handle events, advance playback, draw and show one frame."""
+        glfw = self._glfw
+        glfw.poll_events()
+        if glfw.window_should_close(self.window):
+            self.closed = True
+            return
+        now = time.perf_counter()
+        if self.playing and self.path is not None:
+            self.play_time += dt if dt is not None else 1 / 60
+            if self.play_time > self.path.end:
+                self.play_time = self.path.start
+            self.camera = self.path.at(self.play_time)
+        self.draw()
+        glfw.swap_buffers(self.window)
+        self.frame_count += 1
+        self._frames += 1
+        if now - self._t0 >= 0.5:
+            self._fps = self._frames / (now - self._t0)
+            self._frames, self._t0 = 0, now
+        glfw.set_window_title(self.window, self.status())
+
+    def status(self) -> str:
+        mode = "flat | gouraud | phong" if self.compare else self.mode.value
+        extra = "" if self.depth_test else "  [no depth test]"
+        if self.playing:
+            extra += "  [playing]"
+        return (f"{self.title} - {mode} - {self._fps:.0f} fps - {self.triangles:,} triangles"
+                f"{extra}")
+
+    def run(self, frames: int | None = None) -> None:
+        """Show frames until the window closes (or ``frames`` have been drawn)."""
+        n = 0
+        last = time.perf_counter()
+        while not self.closed and (frames is None or n < frames):
+            now = time.perf_counter()
+            self.step(now - last)
+            last = now
+            n += 1
+
+    def close(self) -> None:
+        if getattr(self, "window", None) is None:
+            return
+        self._glfw.make_context_current(self.window)
+        self.renderer.close()
+        self.context.release()
+        self._glfw.destroy_window(self.window)
+        self.window = None
+        self.closed = True
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # ------------------------------------------------------------------ actions
+    def key(self, char: str) -> None:
+        """Act on a key as typed (what the key callback calls; tests call it directly)."""
+        if char in _MODE_KEYS:
+            self.mode = _MODE_KEYS[char]
+            self.compare = False
+        elif char == "z":
+            self.depth_test = not self.depth_test
+        elif char == "w":
+            self.wireframe = not self.wireframe
+        elif char == "c":
+            self.cull = {"auto": True, True: False, False: "auto"}[self.cull]
+            self._say(f"back-face culling: {self.cull}")
+        elif char == "l":
+            self.scene.lights = [PointLight(tuple(self.camera.position))]
+        elif char == "k":
+            t = self.keyframes[-1].time + 1.0 if self.keyframes else 0.0
+            self.keyframes.append(Keyframe(t, self.camera.position, self.camera.orientation,
+                                           self.camera.fov_y))
+            self._say(f"key frame {len(self.keyframes)} at t = {t:g}")
+        elif char == "p":
+            if len(self.keyframes) >= 2:
+                self.path = CameraPath(self.keyframes, camera=self.camera)
+                self.playing = not self.playing
+            else:
+                self._say("add two key frames with k before playing")
+        elif char == "P":
+            if self.keyframes:
+                out = self.screenshot_dir / f"glshade-path-{time.strftime('%Y%m%d-%H%M%S')}.toml"
+                CameraPath(self.keyframes, camera=self.camera).save(out)
+                self._say(f"saved {out}")
+        elif char == "s":
+            out = self.screenshot_dir / f"glshade-{time.strftime('%Y%m%d-%H%M%S')}-" \
+                                        f"{self.frame_count}.png"
+            self.screenshot(out)
+        elif char == "r":
+            self.camera = self.home
+            self.center = self.scene.bounds().mean(axis=0)
+            self.playing = False
+        elif char in ("h", "?"):
+            self._say(HELP)
+        elif char in ("q", "escape"):
+            self._glfw.set_window_should_close(self.window, True)
+            self.closed = True
+
+    def _say(self, text: str) -> None:
+        """A message for the user, on the terminal (the title shows the state)."""
+        self.messages.append(text)
+        print(text, file=sys.stderr)
+
+    def press(self, x: float, y: float, button: str = "left", shift: bool = False) -> None:
+        """Mouse press at window coordinates (what the button callback calls)."""
+        now = time.perf_counter()
+        if button == "left" and now - self._last_click < DOUBLE_CLICK_S:
+            self.recentre(x, y)
+        self._last_click = now if button == "left" else 0.0
+        kind = "pan" if button == "right" or shift else "rotate"
+        self._drag = (kind, self.camera, x, y, self.center.copy())
+        if kind == "rotate":
+            self.arcball.begin(x, y)
+
+    def move(self, x: float, y: float) -> None:
+        self._cursor = (x, y)
+        if self._drag is None:
+            return
+        kind, start, x0, y0, center0 = self._drag
+        if kind == "rotate":
+            q_view = self.arcball.drag(x, y)
+            # the object turns by q_view in view space: the camera orbits the other way
+            q_world = quat.multiply(quat.multiply(start.orientation, q_view),
+                                    quat.conjugate(start.orientation))
+            self.camera = start.orbit(quat.conjugate(q_world), self.center)
+        else:
+            distance = float(np.linalg.norm(start.position - self.center))
+            per_px = 2 * distance * np.tan(np.radians(start.fov_y) / 2) / \
+                max(self.arcball.height, 1)
+            shift = (-(x - x0) * start.right + (y - y0) * start.up) * per_px
+            self.camera = start.replace(position=start.position + shift)
+            self.center = center0 + shift
+
+    def release(self) -> None:
+        self._drag = None
+        self.arcball.end()
+
+    def scroll(self, dy: float) -> None:
+        """Dolly towards (dy > 0) or away from the centre."""
+        to_center = self.center - self.camera.position
+        self.camera = self.camera.replace(position=self.camera.position +
+                                          to_center * (1 - 0.9 ** dy))
+
+    def recentre(self, x: float, y: float) -> bool:
+        """Re-centre the view on the surface point under (x, y), from the depth buffer."""
+        self.draw()
+        s = self._scale()
+        px, py = int(x * s), int(y * s)
+        if not (0 <= px < self.target.width and 0 <= py < self.target.height):
+            return False
+        depth = self.target.read_depth_at(px, py)
+        if depth >= 1.0:
+            return False
+        ndc = np.array([2 * (px + 0.5) / self.target.width - 1,
+                        1 - 2 * (py + 0.5) / self.target.height, 2 * depth - 1, 1.0])
+        m = self.camera.projection_matrix(self._aspect()) @ self.camera.view_matrix()
+        p = np.linalg.inv(m) @ ndc
+        point = p[:3] / p[3]
+        self.camera = self.camera.replace(position=self.camera.position + point - self.center)
+        self.center = point
+        return True
+
+    # ------------------------------------------------------------------ glfw callbacks
+    def _key_event(self, window, key, scancode, action, mods):
+        glfw = self._glfw
+        if action != glfw.PRESS:
+            return
+        shift = bool(mods & glfw.MOD_SHIFT)
+        if key == glfw.KEY_ESCAPE:
+            self.key("escape")
+        elif key == glfw.KEY_SLASH and shift:
+            self.key("?")
+        elif glfw.KEY_0 <= key <= glfw.KEY_9:
+            self.key(chr(key))
+        elif glfw.KEY_A <= key <= glfw.KEY_Z:
+            c = chr(key).lower()
+            self.key(c.upper() if shift and c == "p" else c)
+
+    def _button_event(self, window, button, action, mods):
+        glfw = self._glfw
+        x, y = glfw.get_cursor_pos(window)
+        if action == glfw.PRESS:
+            name = {glfw.MOUSE_BUTTON_LEFT: "left", glfw.MOUSE_BUTTON_RIGHT: "right"}.get(
+                button, "other")
+            self.press(x, y, name, bool(mods & glfw.MOD_SHIFT))
+        else:
+            self.release()
+
+    def _cursor_event(self, window, x, y):
+        self.move(x, y)
+
+    def _scroll_event(self, window, dx, dy):
+        self.scroll(dy)
+
+    def _resize_event(self, window, width, height):
+        self.target.resize(width, height)
+
+    def _window_size_event(self, window, width, height):
+        self.arcball.resize(width, height)

@@ -1,0 +1,160 @@
+"""The viewer in a real window (under Xvfb in CI): its pixels equal headless renders, and
+synthesised input drives it."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from glshade import Camera, Material, PointLight, Scene
+from glshade.geometry import primitives as P
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def teapot_scene():
+    s = Scene(background=(0.1, 0.1, 0.12))
+    s.add(P.teapot(4), Material(color=(0.85, 0.55, 0.3), ks=0.5, shininess=40))
+    s.add_light(PointLight((4.0, 6.0, 8.0)))
+    return s
+
+
+CAM = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
+
+HEADLESS = """
+import sys, numpy as np
+from tests.viewer.test_viewer import teapot_scene, CAM
+from glshade import Renderer
+with Renderer(240, 180, samples=0, backend="egl") as r:
+    np.save(sys.argv[1], np.stack([r.render(teapot_scene(), CAM, m) for m in sys.argv[2:]]))
+"""
+
+
+def headless(tmp_path, *modes):
+    """Renders of the same scene by the headless renderer, in its own process (EGL)."""
+    out = tmp_path / "headless.npy"
+    r = subprocess.run([sys.executable, "-c", HEADLESS, str(out), *modes], cwd=ROOT,
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    return np.load(out)
+
+
+def test_window_equals_headless_render(viewer_factory, tmp_path):
+    v = viewer_factory(teapot_scene(), CAM, mode="phong")
+    v.step()
+    shot = v.screenshot().astype(int)
+    ref = headless(tmp_path, "phong")[0].astype(int)
+    assert shot.shape == ref.shape == (180, 240, 4)
+    assert (shot[..., :3].max(-1) > 60).mean() > 0.1  # the teapot is there
+    assert np.abs(shot - ref).max() <= 1
+
+
+def test_keys_switch_modes_like_headless(viewer_factory, tmp_path):
+    v = viewer_factory(teapot_scene(), CAM)
+    refs = headless(tmp_path, "flat", "gouraud", "phong").astype(int)
+    for key, ref in zip("123", refs):
+        v.key(key)
+        v.step()
+        assert np.abs(v.screenshot().astype(int) - ref).max() <= 1, key
+    assert np.abs(refs[0] - refs[2]).max() > 20  # the modes really differ
+
+
+def test_z_toggles_depth_test(viewer_factory):
+    v = viewer_factory(teapot_scene(), CAM)
+    with_z = v.screenshot()
+    v.key("z")
+    without = v.screenshot()
+    assert not v.depth_test
+    expected = v.renderer.render(v.scene, CAM, "phong", depth_test=False)
+    assert np.abs(without.astype(int) - expected.astype(int)).max() <= 1
+    assert np.abs(with_z.astype(int) - without.astype(int)).max() > 20
+    v.key("z")
+    assert np.array_equal(v.screenshot(), with_z)
+
+
+def test_drag_rotates_the_view_by_the_arcball_rotation(viewer_factory):
+    scene = teapot_scene()
+    centre = scene.bounds().mean(0)
+    start = Camera.look_at(centre + [0, 0, 9.0], centre, fov_y=40)
+    v = viewer_factory(scene, start, size=(240, 180))
+    w, h = 240, 180
+    # centre to the right rim of the ball (radius = half the window height): 90 degrees
+    v.press(w / 2, h / 2)
+    v.move(w / 2 + h / 2, h / 2)
+    v.release()
+    # the object turned right, so the camera went round to its left (world -x)
+    np.testing.assert_allclose(v.camera.position, centre + [-9.0, 0, 0], atol=1e-9)
+    np.testing.assert_allclose(v.camera.forward, [1, 0, 0], atol=1e-12)
+    expected = v.renderer.render(scene, v.camera, "phong")
+    assert np.abs(v.screenshot().astype(int) - expected.astype(int)).max() <= 1
+
+
+def test_s_writes_a_png(viewer_factory, tmp_path):
+    from PIL import Image
+
+    v = viewer_factory(teapot_scene(), CAM)
+    v.key("s")
+    (png,) = tmp_path.glob("glshade-*.png")
+    assert Image.open(png).size == (240, 180)
+
+
+def test_k_then_p_plays_the_path(viewer_factory):
+    v = viewer_factory(teapot_scene(), CAM)
+    v.key("k")
+    v.press(120, 90)
+    v.move(160, 90)
+    v.release()
+    turned = v.camera
+    v.key("k")
+    assert len(v.keyframes) == 2
+    v.key("p")
+    assert v.playing
+    v.step(dt=0.5)
+    mid = v.path.at(0.5)
+    np.testing.assert_allclose(v.camera.position, mid.position)
+    assert not np.allclose(mid.position, CAM.position)
+    assert not np.allclose(mid.position, turned.position)
+    v.key("p")
+    assert not v.playing
+
+
+def test_compare_split_view_and_other_keys(viewer_factory):
+    v = viewer_factory(teapot_scene(), CAM, compare=True, size=(360, 120))
+    img = v.screenshot()
+    thirds = [img[:, i * 120:(i + 1) * 120].astype(int) for i in range(3)]
+    assert np.abs(thirds[0] - thirds[2]).max() > 20  # flat and phong differ side by side
+    v.key("w")
+    assert np.abs(v.screenshot().astype(int) - img.astype(int)).max() > 50  # wireframe on
+    v.key("c")
+    assert v.cull is True
+    v.key("l")
+    np.testing.assert_allclose(v.scene.lights[0].position, v.camera.position)
+    v.scroll(3)
+    assert np.linalg.norm(v.camera.position - v.center) < np.linalg.norm(CAM.position -
+                                                                          v.center)
+    v.key("r")
+    assert v.camera == CAM
+    assert "triangles" in v.status()
+    v.key("q")
+    assert v.closed
+
+
+def test_double_click_recentres_on_the_surface(viewer_factory):
+    v = viewer_factory(teapot_scene(), CAM)
+    v.step()
+    assert v.recentre(120, 100)
+    # the new centre lies on the teapot, in front of the old one along the view ray
+    assert abs(v.center[1]) < 3.2 and np.linalg.norm(v.center - CAM.position) < 8
+
+
+def test_view_cli_screenshot(tmp_path):
+    out = tmp_path / "view.png"
+    r = subprocess.run([sys.executable, "-m", "glshade", "view", "primitive:teapot", "--frames",
+                        "2", "--screenshot", str(out), "--size", "200x150", "--samples", "0"],
+                       cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    from PIL import Image
+
+    assert Image.open(out).size == (200, 150)

@@ -27,37 +27,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, TopologyError
+from .graph import component_labels as _components
+from .graph import cycle_labels as _cycle_labels
 from .mesh import Mesh
 
 __all__ = ["WingedEdge", "EulerReport", "TopologyReport"]
 
 Int = NDArray[np.int64]
-
-
-def _components(n: int, a: Int, b: Int) -> Int:
-    """Connected-component label (smallest member) of n nodes joined by pairs (a, b)."""
-    labels = np.arange(n)
-    if len(a) == 0:
-        return labels
-    while True:
-        m = np.minimum(labels[a], labels[b])
-        new = labels.copy()
-        np.minimum.at(new, a, m)
-        np.minimum.at(new, b, m)
-        new = new[new]
-        if np.array_equal(new, labels):
-            return labels
-        labels = new
-
-
-def _cycle_labels(nxt: Int) -> Int:
-    """Label of each element of a permutation's cycles: the smallest index in its cycle."""
-    label = np.arange(len(nxt))
-    jump = nxt.copy()
-    for _ in range(max(1, int(np.ceil(np.log2(max(len(nxt), 2)))) + 1)):
-        label = np.minimum(label, label[jump])
-        jump = jump[jump]
-    return label
 
 
 def _first(items, k: int = 5) -> str:

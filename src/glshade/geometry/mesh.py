@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
+from .graph import component_labels
 from .polygon import convex_mask, ear_clip, newell_of_indexed, unit_normals
 from .tolerance import tol
 
@@ -434,16 +435,7 @@ class Mesh:
         same_dir = self.face_indices[c0] == self.face_indices[c1]
         a = np.concatenate([c0, n0])
         b = np.concatenate([np.where(same_dir, c1, n1), np.where(same_dir, n1, c1)])
-        labels = np.arange(c)
-        while True:  # label propagation: as many rounds as faces around the busiest vertex
-            m = np.minimum(labels[a], labels[b])
-            new = labels.copy()
-            np.minimum.at(new, a, m)
-            np.minimum.at(new, b, m)
-            new = new[new]
-            if np.array_equal(new, labels):
-                break
-            labels = new
+        labels = component_labels(c, a, b)
         uniq, corner_vertex = np.unique(labels, return_inverse=True)
         vertices = self.vertices[self.face_indices[uniq]]
         return Mesh.from_csr(vertices, corner_vertex.astype(np.int64),

@@ -116,7 +116,13 @@ def main() -> None:
     ap.add_argument("--meshes", default="1k,100k,1M")
     ap.add_argument("--backend", default="egl")
     ap.add_argument("--seconds", type=float, default=0.3, help="time per series per round")
+    ap.add_argument("--tune-malloc", action="store_true",
+                    help="pin glibc's malloc thresholds first (glshade.tune_malloc)")
     args = ap.parse_args()
+    if args.tune_malloc:
+        from glshade.render.context import tune_malloc
+
+        print(f"tune_malloc: {tune_malloc()}", file=sys.stderr)
     rows = []
     info = None
     peers_to_delete = []  # pyrender's clean-up runs last, after every glshade context

@@ -15,7 +15,9 @@ from .camera import Camera, default_camera
 from .geometry import Mesh, concatenate, masspoint, newell_normal, polygon_area, primitives
 from .geometry import brep, quaternion
 from .geometry.masspoint import MassPoint, centroid
+from .animate import animate
 from .comparison import Comparison, compare
+from .scenefile import load_scene
 from .image import save_image
 from .io import load_mesh, save_mesh
 from .modes import ShadingMode
@@ -28,7 +30,7 @@ _sys.modules[__name__ + ".masspoint"] = masspoint
 _sys.modules[__name__ + ".brep"] = brep
 
 _LAZY = {"Renderer": "renderer", "Frame": "renderer", "create_context": "context",
-         "RenderContext": "context", "Backend": "context"}
+         "RenderContext": "context", "Backend": "context", "tune_malloc": "context"}
 
 
 def __getattr__(name):
@@ -44,7 +46,8 @@ __all__ = [
     "__version__", "Mesh", "concatenate", "newell_normal", "polygon_area", "primitives",
     "quaternion", "masspoint", "brep", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
     "default_camera", "save_image", "ShadingMode", "Scene", "Material", "PointLight",
-    "DirectionalLight", "compare", "Comparison", "Renderer", "Frame", "create_context", "RenderContext", "Backend",
+    "DirectionalLight", "compare", "Comparison", "animate", "load_scene", "tune_malloc",
+    "Renderer", "Frame", "create_context", "RenderContext", "Backend",
     "load_mesh", "save_mesh", "GlshadeError", "GeometryError", "MeshFormatError",
     "TopologyError", "ContextError", "ShaderError", "ComparisonError",
 ]

@@ -316,8 +316,13 @@ def _cmd_compare(args) -> int:
                             **{m: r[m].__dict__ for m in modes}} for r in rows], f, indent=2)
         print(f"plot: {args.output}")
         return EXIT_OK
-    mesh = _load(args.mesh)
-    scene, camera = build_scene(mesh, args)
+    if args.mesh.lower().endswith(".toml"):
+        from .scenefile import load_scene
+
+        sf = load_scene(args.mesh)
+        scene, camera = sf.scene, sf.camera
+    else:
+        scene, camera = build_scene(_load(args.mesh), args)
     result = compare(scene, camera, modes, args.reference, size=args.size, diff=args.diff,
                      backend=args.backend)
     save_image(result.image, args.output)
@@ -447,7 +452,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("compare", help="flat, Gouraud and Phong side by side, with errors "
                        "against a reference")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
+    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
+                   "scene file (.toml)")
     p.add_argument("-o", "--output", required=True, help="output image: the grid (or the "
                    "plot, with --sweep)")
     p.add_argument("--modes", type=_modes, default="flat,gouraud,phong",

@@ -175,3 +175,31 @@ def test_interrupt_leaves_no_partial_output(tmp_path):
 def test_unknown_output_format(tmp_path):
     r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "a.avi"))
     assert r.returncode == 2 and ".gif, .png, .apng, .mp4" in r.stderr
+
+
+def test_progress_bar_on_a_terminal_and_quiet_otherwise():
+    import io
+
+    from glshade.animate import Progress
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    out = Tty()
+    bar = Progress(4, stream=out)
+    for _ in range(4):
+        bar.update()
+    bar.close()
+    text = out.getvalue()
+    assert "4/4 frames" in text and "fps" in text and "s left" in text
+    quiet = io.StringIO()  # not a terminal
+    Progress(4, stream=quiet).update()
+    assert quiet.getvalue() == ""
+
+
+def test_compare_takes_a_scene_file(tmp_path):
+    r = glshade("compare", "assets/scenes/spheres.toml", "-o", str(tmp_path / "g.png"),
+                "--size", "96x48", "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert "flat" in r.stdout and (tmp_path / "g.png").exists()

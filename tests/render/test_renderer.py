@@ -311,3 +311,12 @@ def test_closed_renderer_and_bad_arguments(make_renderer):
     r.close()  # a second close does nothing
     with pytest.raises(GlshadeError, match="closed"):
         r.render(Scene(), FRONT)
+
+
+def test_tune_malloc_is_opt_in_and_works():
+    import subprocess
+    import sys
+
+    code = ("import glshade\nprint(glshade.tune_malloc())\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip() == "True", out.stderr

@@ -21,6 +21,7 @@ from ._version import __version__
 __all__ = ["main"]
 
 EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
+DEFAULT_SIZE = (800, 600)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -197,11 +198,6 @@ def build_scene(mesh, args):
     return scene, camera
 
 
-def _given(args, name) -> bool:
-    """Whether an option was given on the command line (not left at its default)."""
-    return getattr(args, name) != build_parser_defaults().get(name)
-
-
 def _cmd_render(args) -> int:
     from .image import save_image
     from .render.renderer import Renderer
@@ -212,19 +208,22 @@ def _cmd_render(args) -> int:
         sf = load_scene(args.mesh)
         scene = sf.scene
         settings = sf.settings
-        width, height = args.size if _given(args, "size") else (settings.width,
-                                                                 settings.height)
-        mode = args.mode if _given(args, "mode") else settings.mode
-        samples = args.samples if _given(args, "samples") else settings.samples
+        # options given on the command line win over the scene file's settings
+        width, height = args.size or (settings.width, settings.height)
+        mode = args.mode or settings.mode
+        samples = settings.samples if args.samples is None else args.samples
         srgb = args.srgb or settings.srgb
         camera = sf.path.at(sf.path.start if args.time is None else args.time)
         polygons = sum(m.mesh.n_faces for m in scene.models)
     else:
         if args.time is not None:
             raise GlshadeErrorUsage("--time needs a scene file (.toml) with a camera path")
+        args.size = args.size or DEFAULT_SIZE
         mesh = _load(args.mesh)
         scene, camera = build_scene(mesh, args)
-        (width, height), mode, samples, srgb = args.size, args.mode, args.samples, args.srgb
+        (width, height), srgb = args.size, args.srgb
+        mode = args.mode or _mode("phong")
+        samples = 4 if args.samples is None else args.samples
         polygons = mesh.n_faces
     with Renderer(width, height, samples=samples, backend=args.backend) as renderer:
         image = renderer.render(scene, camera, mode, srgb=srgb)
@@ -380,9 +379,7 @@ def _cmd_doctor(args) -> int:
 
 def add_render_options(p: argparse.ArgumentParser) -> None:
     """Options shared by render, view and compare."""
-    from .modes import ShadingMode
-
-    p.add_argument("--size", type=_size, default=(800, 600), metavar="WxH",
+    p.add_argument("--size", type=_size, default=DEFAULT_SIZE, metavar="WxH",
                    help="image size (default 800x600)")
     p.add_argument("--samples", type=int, default=4, help="MSAA samples, 0 = off (default 4)")
     p.add_argument("--eye", type=_vec3, metavar="X,Y,Z", help="camera position "
@@ -401,7 +398,6 @@ def add_render_options(p: argparse.ArgumentParser) -> None:
                    help="specular exponent n")
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.add_argument("--srgb", action="store_true", help="encode the linear result as sRGB")
-    del ShadingMode
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -420,13 +416,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("render", help="render a mesh headless to an image")
     p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
     p.add_argument("-o", "--output", required=True, help="output image (.png)")
-    p.add_argument("--mode", type=_mode, default="phong",
-                   help="flat, gouraud, phong, normals or depth (default phong)")
+    p.add_argument("--mode", type=_mode, default=None,
+                   help="flat, gouraud, phong, normals or depth (default phong, or the "
+                   "scene file's)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.add_argument("--time", type=float, help="with a scene file: the moment on its camera "
                    "path (seconds)")
     add_render_options(p)
-    p.set_defaults(func=_cmd_render)
+    # unset size and samples fall back to the scene file's, else the defaults
+    p.set_defaults(func=_cmd_render, size=None, samples=None)
 
     p = sub.add_parser("animate", help="render a scene file's camera path to GIF, PNG, MP4 "
                        "or frames")
@@ -487,15 +485,6 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.set_defaults(func=_cmd_doctor)
     return parser
-
-
-def build_parser_defaults() -> dict:
-    """Defaults of the render options, to tell which ones a user set."""
-    p = argparse.ArgumentParser()
-    add_render_options(p)
-    p.add_argument("--mode", type=_mode, default="phong")
-    return {k: (p.get_default(k) if k != "mode" else _mode("phong"))
-            for k in ("size", "mode", "samples")}
 
 
 def main(argv: list[str] | None = None) -> int:

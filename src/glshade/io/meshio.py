@@ -325,7 +325,6 @@ def _read_off(path, data: bytes) -> Mesh:
     if not header.endswith(b"OFF") or header.startswith(b"4") or header.startswith(b"n"):
         raise MeshFormatError(path, f"not an OFF file: the first word is "
                               f"{header.decode(errors='replace')!r}, expected 'OFF'", line=1)
-    with_color = header.startswith(b"C")
     rest = first[1:]
     pos = 1
     if len(rest) < 2:
@@ -374,7 +373,6 @@ def _read_off(path, data: bytes) -> Mesh:
         f = int(np.searchsorted(_offsets(k), c, side="right") - 1)
         raise MeshFormatError(path, f"face {f} has a non-integer index {idx[c]:g}",
                               line=int(fl[f]) + 1)
-    del with_color
     return _build(path, vertices, idx.astype(np.int64), _offsets(k),
                   line_of_face=lambda f: int(fl[f]) + 1,
                   line_of_vertex=lambda i: int(vl[i]) + 1)
@@ -552,7 +550,7 @@ def _ply_binary_faces(path, data, pos, count, props, li, order):
         jump = jump[jump]
         steps *= 2
     starts = np.flatnonzero(reached[:sentinel])
-    if len(starts) < count or (len(starts) > count and False):
+    if len(starts) < count:
         raise MeshFormatError(path, f"truncated: the header promises {count} faces, the data "
                               f"holds {len(starts)}", byte=len(data))
     starts = starts[:count]

@@ -171,7 +171,8 @@ class Renderer:
         else:
             target.bind(everything)
         ctx.viewport = (vx, vy, vw, vh)
-        ctx.wireframe = wireframe
+        if wireframe:  # (set only when used: a polygon-mode change costs llvmpipe a revalidation)
+            ctx.wireframe = True
         if depth_test:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
@@ -229,7 +230,8 @@ class Renderer:
             id_base += gpu.n_polygons
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
-        ctx.wireframe = False
+        if wireframe:
+            ctx.wireframe = False
         if clear:
             target.resolve(everything)
 

@@ -21,7 +21,7 @@ def main() -> None:
     sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
     frames = 120
     results = {}
-    for rounds in range(2):  # alternate, keep the best of two
+    for _ in range(2):  # alternate, keep the best of two
         for jobs in (1, 2):
             t = time.perf_counter()
             n = sum(1 for _ in render_frames(sf.scene, sf.path, frames, "phong",

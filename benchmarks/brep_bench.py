@@ -21,8 +21,8 @@ def main() -> None:
     rows = []
     for label, (n, m) in SIZES.items():
         mesh = primitives.torus(1.0, 0.3, n, m)
-        med = interleaved({"build": lambda: WingedEdge.from_mesh(mesh),
-                           "euler": lambda: WingedEdge.from_mesh(mesh).euler()},
+        med = interleaved({"build": lambda mesh=mesh: WingedEdge.from_mesh(mesh),
+                           "euler": lambda mesh=mesh: WingedEdge.from_mesh(mesh).euler()},
                           repeats=3 if label != "1M" else 1)
         r = WingedEdge.from_mesh(mesh).euler()
         rows.append((label, f"{mesh.n_faces:,}", f"{med['build']:.3f}", f"{med['euler']:.3f}",

@@ -144,7 +144,8 @@ def main() -> None:
             scene.add_light(PointLight(tuple(camera.position + [2, 3, 0])))
             with r.ctx:
                 floor = BareFloor(r, scene, camera)
-            series = {m: current(lambda m=m: r.render(scene, camera, m))
+            series = {m: current(lambda m=m, r=r, scene=scene, camera=camera:
+                                 r.render(scene, camera, m))
                       for m in ("flat", "gouraud", "phong")}
             series["floor"] = current(floor.frame)
             peer = pyrender_series(mesh, camera, size)

@@ -13,7 +13,7 @@ import signal
 import sys
 import tempfile
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -131,8 +131,8 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, 
     if jobs == 1:
         maker = _FrameMaker(*args)
         try:
-            for i in range(frames):
-                data = maker(i)
+            for index in range(frames):
+                data = maker(index)
                 shape = shape or _frame_shape(size, modes)
                 if progress:
                     progress.update()
@@ -145,7 +145,7 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, 
     pool = ctx.Pool(jobs, initializer=_init_worker, initargs=(args, threads))
     try:
         chunk = max(1, min(8, frames // (4 * jobs)))
-        for i, data in pool.imap(_work, range(frames), chunksize=chunk):
+        for _, data in pool.imap(_work, range(frames), chunksize=chunk):
             shape = shape or _frame_shape(size, modes)
             if progress:
                 progress.update()
@@ -242,8 +242,9 @@ def _write_mp4(frames, out: Path, fps: float) -> int:
     try:
         with imageio.get_writer(tmp, fps=fps, codec="libx264", quality=8,
                                 macro_block_size=1, ffmpeg_log_level="error") as w:
-            for n, f in enumerate(frames, start=1):
+            for f in frames:
                 w.append_data(np.ascontiguousarray(f[..., :3]))
+                n += 1
         publish(tmp, out)
         return n
     except BaseException:

@@ -164,7 +164,8 @@ def test_non_manifold_edge_is_named():
     # three triangles on one edge (0, 1)
     v = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]]
     m = Mesh(v, [[0, 1, 2], [1, 0, 3], [0, 1, 4]])
-    with pytest.raises(TopologyError, match=r"1 non-manifold edges .*\(0, 1\) in faces \[0, 1, 2\]"):
+    with pytest.raises(TopologyError,
+                       match=r"1 non-manifold edges .*\(0, 1\) in faces \[0, 1, 2\]"):
         WingedEdge.from_mesh(m)
     report = WingedEdge.from_mesh(m, strict=False).report
     assert len(report.non_manifold_edges) == 1 and not report.ok

@@ -21,7 +21,7 @@ def test_vectors_have_mass_zero_and_translate_points():
     v = MassPoint.vector([1.0, 2, 3])
     assert v.is_vector
     with pytest.raises(GeometryError, match="no point"):
-        v.point
+        _ = v.point
     p = MassPoint([1.0, 1, 1], 2.0)
     # adding the vector (v, 0) to (2P, 2) moves the point by v / 2
     np.testing.assert_allclose((p + v).point, [1.5, 2, 2.5])

@@ -1,6 +1,5 @@
 """Key-frame animation: scene files, frames along paths, files, jobs and interrupts."""
 
-import os
 import signal
 import subprocess
 import sys
@@ -104,7 +103,7 @@ def test_jobs_2_equals_jobs_1_byte_for_byte(tmp_path):
         r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
                     "12", "--size", "96x72", "--jobs", jobs, "--backend", BACKEND)
         assert r.returncode == 0, r.stderr
-        assert f"12 frames" in r.stdout
+        assert "12 frames" in r.stdout
         outs.append(out.read_bytes())
     assert outs[0] == outs[1]
 

@@ -1,7 +1,6 @@
 """Every shader compiles; broken ones name file and line; contexts fail helpfully; both
 backends draw the same pixels."""
 
-import json
 import os
 import shutil
 import subprocess

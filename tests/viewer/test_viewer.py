@@ -6,7 +6,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from glshade import Camera, Material, PointLight, Scene
 from glshade.geometry import primitives as P

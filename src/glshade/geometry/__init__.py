@@ -4,4 +4,5 @@ from .mesh import Mesh, concatenate
 from .polygon import newell_normal, polygon_area
 from . import masspoint, primitives, quaternion
 
-__all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives", "quaternion", "masspoint"]
+__all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives", "quaternion",
+           "masspoint"]

@@ -335,14 +335,16 @@ def _read_off(path, data: bytes) -> Mesh:
     try:
         nv, nf = int(rest[0]), int(rest[1])
     except (ValueError, IndexError):
-        raise MeshFormatError(path, f"bad counts line {b' '.join(rest).decode(errors='replace')!r}"
-                              ", expected 'vertices faces edges'", line=int(keep[pos - 1]) + 1)
+        counts = b" ".join(rest).decode(errors="replace")
+        raise MeshFormatError(path, f"bad counts line {counts!r}, expected 'vertices faces "
+                              "edges'", line=int(keep[pos - 1]) + 1) from None
     if nv < 0 or nf < 0:
         raise MeshFormatError(path, f"negative counts {nv} {nf}", line=int(keep[pos - 1]) + 1)
     vl, fl = keep[pos:pos + nv], keep[pos + nv:pos + nv + nf]
     if len(vl) < nv or len(fl) < nf:
-        raise MeshFormatError(path, f"the header promises {nv} vertices and {nf} faces, but the "
-                              f"file ends after {len(vl)} vertices and {len(fl)} faces (truncated?)")
+        raise MeshFormatError(path, f"the header promises {nv} vertices and {nf} faces, but "
+                              f"the file ends after {len(vl)} vertices and {len(fl)} faces "
+                              "(truncated?)")
     vblob = _join_lines(text, starts, ends, vl)
     vals = parse_numbers(vblob)
     vcount = token_counts(vblob, nv)

@@ -89,7 +89,7 @@ def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[s
         if not m or "error" not in raw.lower():
             continue
         number, line, message = int(m.group(1)), int(m.group(2)), m.group(3).strip()
-        for _, (text, files) in sources.items():
+        for _, (_, files) in sources.items():
             if number < len(files):
                 file = files[number]
                 path = (root or shader_dir()) / file

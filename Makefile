@@ -2,7 +2,7 @@
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: setup demo test bench assets clean
+.PHONY: setup demo test lint bench assets clean
 
 setup:
 	@scripts/setup.sh
@@ -22,10 +22,16 @@ test: setup
 	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q tests/render
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
+lint: setup
+	$(PY) -m pip install -q ruff
+	$(PY) -m ruff check src tests benchmarks scripts
+
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
 	$(PY) benchmarks/quaternion_bench.py
 	$(PY) benchmarks/render_bench.py
+	$(PY) benchmarks/brep_bench.py
+	$(PY) benchmarks/animate_bench.py
 
 assets: setup
 	$(PY) scripts/make_assets.py

@@ -157,3 +157,22 @@ def test_view_cli_screenshot(tmp_path):
     from PIL import Image
 
     assert Image.open(out).size == (200, 150)
+
+
+def test_resize_keeps_the_aspect(viewer_factory):
+    import glfw
+
+    v = viewer_factory(teapot_scene(), CAM, size=(240, 180))
+    glfw.set_window_size(v.window, 300, 120)
+    for _ in range(50):  # the X server answers asynchronously
+        v.step()
+        if (v.target.width, v.target.height) == (300, 120):
+            break
+    assert (v.target.width, v.target.height) == (300, 120)
+    shot = v.screenshot()
+    assert shot.shape == (120, 300, 4)
+    from glshade import Renderer
+
+    with Renderer(300, 120, samples=0, context=v.context) as r:
+        expected = r.render(v.scene, CAM, "phong")
+    assert np.abs(shot.astype(int) - expected.astype(int)).max() <= 1

@@ -96,21 +96,47 @@ class _FrameMaker:
 
 
 _worker: _FrameMaker | None = None
+_worker_error: BaseException | None = None
 
 
 def _init_worker(args, threads):
-    global _worker
+    global _worker, _worker_error
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
     # Mesa's software rasterizer starts a thread per core in every process; with one worker
     # per core that oversubscribes the machine. Share the cores out instead (no effect on
     # GPU drivers).
     os.environ.setdefault("LP_NUM_THREADS", str(threads))
-    _worker = _FrameMaker(*args)
+    try:
+        _worker = _FrameMaker(*args)
+    except Exception as exc:  # reported with the first frame, in the parent, as it is
+        _worker_error = exc
 
 
-def _work(i: int) -> tuple[int, bytes]:
+def _work(i: int) -> bytes:
+    if _worker_error is not None:
+        raise _worker_error
     assert _worker is not None
-    return i, _worker(i)
+    return _worker(i)
+
+
+@contextlib.contextmanager
+def _without_main_reimport():
+    """Spawned workers normally re-run the user's main script (a script without an
+    ``if __name__ == "__main__"`` guard would start pools in its workers). The workers
+    need nothing from it -- their code and data come from glshade -- so hide it while they
+    start."""
+    main = sys.modules.get("__main__")
+    saved = {k: getattr(main, k) for k in ("__file__", "__spec__") if hasattr(main, k)}
+    try:
+        for k in saved:
+            if k == "__spec__":
+                main.__spec__ = None
+            else:
+                delattr(main, k)
+        yield
+    finally:
+        for k, v in saved.items():
+            setattr(main, k, v)
 
 
 def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, modes=None,
@@ -140,22 +166,29 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, 
         finally:
             maker.close()
         return
-    ctx = mp.get_context("spawn")
+    from concurrent.futures import ProcessPoolExecutor
+
     threads = max(1, (os.cpu_count() or 1) // jobs)
-    pool = ctx.Pool(jobs, initializer=_init_worker, initargs=(args, threads))
+    pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn"),
+                               initializer=_init_worker, initargs=(args, threads))
     try:
         chunk = max(1, min(8, frames // (4 * jobs)))
-        for _, data in pool.imap(_work, range(frames), chunksize=chunk):
+        with _without_main_reimport():
+            # map submits every chunk now, which starts the workers: keep the script out
+            results = pool.map(_work, range(frames), chunksize=chunk)
+        for data in results:
             shape = shape or _frame_shape(size, modes)
             if progress:
                 progress.update()
             yield np.frombuffer(data, np.uint8).reshape(shape)
-        pool.close()
+        pool.shutdown(wait=True)
     except BaseException:
-        pool.terminate()  # stop the workers at once (Ctrl-C, an error, a closed generator)
+        # stop the workers at once (Ctrl-C, an error, a generator closed early)
+        processes = list(getattr(pool, "_processes", {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for p in processes:
+            p.terminate()
         raise
-    finally:
-        pool.join()
 
 
 def _frame_shape(size, modes):

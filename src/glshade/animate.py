@@ -108,8 +108,8 @@ def _init_worker(args, threads):
     os.environ.setdefault("LP_NUM_THREADS", str(threads))
     try:
         _worker = _FrameMaker(*args)
-    except Exception as exc:  # reported with the first frame, in the parent, as it is
-        _worker_error = exc
+    except Exception as exc:  # reported with the first frame, in the parent, as it is;
+        _worker_error = exc     # an initializer that raised would be restarted forever
 
 
 def _work(i: int) -> bytes:
@@ -166,29 +166,23 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, mode="phong", *, 
         finally:
             maker.close()
         return
-    from concurrent.futures import ProcessPoolExecutor
-
     threads = max(1, (os.cpu_count() or 1) // jobs)
-    pool = ProcessPoolExecutor(jobs, mp_context=mp.get_context("spawn"),
-                               initializer=_init_worker, initargs=(args, threads))
+    with _without_main_reimport():  # the pool starts its workers here
+        pool = mp.get_context("spawn").Pool(jobs, initializer=_init_worker,
+                                            initargs=(args, threads))
     try:
         chunk = max(1, min(8, frames // (4 * jobs)))
-        with _without_main_reimport():
-            # map submits every chunk now, which starts the workers: keep the script out
-            results = pool.map(_work, range(frames), chunksize=chunk)
-        for data in results:
+        for data in pool.imap(_work, range(frames), chunksize=chunk):
             shape = shape or _frame_shape(size, modes)
             if progress:
                 progress.update()
             yield np.frombuffer(data, np.uint8).reshape(shape)
-        pool.shutdown(wait=True)
+        pool.close()
     except BaseException:
-        # stop the workers at once (Ctrl-C, an error, a generator closed early)
-        processes = list(getattr(pool, "_processes", {}).values())
-        pool.shutdown(wait=False, cancel_futures=True)
-        for p in processes:
-            p.terminate()
+        pool.terminate()  # stop the workers at once (Ctrl-C, an error, a closed generator)
         raise
+    finally:
+        pool.join()
 
 
 def _frame_shape(size, modes):

@@ -202,3 +202,28 @@ def test_compare_takes_a_scene_file(tmp_path):
                 "--size", "96x48", "--backend", BACKEND)
     assert r.returncode == 0, r.stderr
     assert "flat" in r.stdout and (tmp_path / "g.png").exists()
+
+
+def test_workers_do_not_rerun_an_unguarded_script(tmp_path):
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        "import glshade\n"
+        f"sf = glshade.load_scene({str(ROOT / 'assets/scenes/teapot-orbit.toml')!r})\n"
+        "n = glshade.animate(sf.scene, sf.path, 6, output='o.gif', size=(48, 36), jobs=2,\n"
+        f"                   backend={BACKEND!r})\n"
+        "print('frames', n)\n")
+    r = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.count("frames 6") == 1  # printed once: the workers did not run it
+
+
+def test_a_worker_without_gl_is_reported_not_restarted(tmp_path):
+    env = dict(os.environ, GLSHADE_OSMESA_LIBRARY="/no/libOSMesa.so")
+    r = subprocess.run([sys.executable, "-m", "glshade", "animate",
+                        "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "x.gif"),
+                        "--frames", "4", "--jobs", "2", "--backend", "osmesa"],
+                       cwd=ROOT, capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 1
+    assert "cannot load /no/libOSMesa.so" in r.stderr and "Traceback" not in r.stderr
+    assert list(tmp_path.iterdir()) == []

@@ -1,5 +1,6 @@
 """Key-frame animation: scene files, frames along paths, files, jobs and interrupts."""
 
+import os
 import signal
 import subprocess
 import sys

@@ -19,10 +19,6 @@ def interleaved(series: dict, repeats: int = 5) -> dict[str, float]:
 
 
 def table(rows: list[tuple], headers: tuple) -> str:
-    text = [[str(c) for c in row] for row in [headers, *rows]]
-    widths = [max(len(r[i]) for r in text) for i in range(len(headers))]
-    line = "  ".join("-" * w for w in widths)
-    out = ["  ".join(c.ljust(w) for c, w in zip(text[0], widths)), line]
-    out += ["  ".join(c.rjust(w) if i else c.ljust(w) for i, (c, w) in
-                      enumerate(zip(r, widths))) for r in text[1:]]
-    return "\n".join(out)
+    from glshade._table import format_table
+
+    return format_table(rows, headers)

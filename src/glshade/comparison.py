@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from . import metrics
+from ._table import format_table
 from ._atomic import atomic_write
 from .camera import Camera
 from .errors import ComparisonError
@@ -73,12 +74,8 @@ class Comparison:
         rows = [(m.mode, f"{m.mean_abs:.3f}", f"{m.max_abs:.1f}", f"{m.rmse:.3f}",
                  f"{m.psnr:.2f}", f"{m.ssim:.4f}", f"{m.mach_band:.2f}",
                  f"{m.peak:.1f}/{m.reference_peak:.1f}") for m in self.metrics]
-        widths = [max(len(r[i]) for r in [head, *rows]) for i in range(len(head))]
-        lines = ["  ".join(h.ljust(w) for h, w in zip(head, widths)),
-                 "  ".join("-" * w for w in widths)]
-        lines += ["  ".join(c.ljust(w) if i == 0 else c.rjust(w)
-                            for i, (c, w) in enumerate(zip(r, widths))) for r in rows]
-        return f"against the {self.reference_kind} reference, 8-bit units\n" + "\n".join(lines)
+        return (f"against the {self.reference_kind} reference, 8-bit units\n"
+                + format_table(rows, head))
 
     def as_dicts(self) -> list[dict]:
         return [asdict(m) for m in self.metrics]
@@ -141,15 +138,10 @@ def _colour_bar(height: int, vmax: float) -> np.ndarray:
 
 
 def _reference(scene, camera, kind, renderer, size):
-    from .raycast import has_analytic_surfaces, raycast_scene
+    from .raycast import raycast_scene
 
     w, h = size
     if isinstance(kind, (str, Path)) and str(kind) == "analytic":
-        if not has_analytic_surfaces(scene):
-            raise ComparisonError("the analytic reference needs sphere primitives "
-                               "(primitive:icosphere, primitive:uv_sphere); use "
-                               "reference='phong-fine' (or --reference phong-fine) for "
-                               "other meshes")
         color, mask = raycast_scene(scene, camera, w, h)
         bg = np.asarray(scene.background[:3])
         return np.where(mask[..., None], color, bg) * 255, mask, "analytic"

@@ -94,7 +94,7 @@ class CameraPath:
                                 "from 1)")
         self.positions = np.stack([np.asarray(k.position, np.float64) for k in keys])
         # same hemisphere for consecutive keys, so every segment takes the shorter arc
-        self.orientations = quat._hemisphere(
+        self.orientations = quat.same_hemisphere(
             quat.normalize(np.stack([np.asarray(k.orientation, np.float64) for k in keys])))
         base = camera or Camera()
         self.fovs = np.array([base.fov_y if k.fov_y is None else k.fov_y for k in keys])

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .camera import Camera
-from .errors import GlshadeError
+from .errors import ComparisonError
 from .scene import DirectionalLight, PointLight, Scene
 
 __all__ = ["pixel_rays", "raycast_scene", "has_analytic_surfaces"]
@@ -45,9 +45,10 @@ def raycast_scene(scene: Scene, camera: Camera, width: int, height: int
     """Colour ``(H, W, 3)`` in [0, 1] (linear) and coverage ``(H, W)`` of the exact
     surfaces of a scene whose models are all sphere primitives (any transforms)."""
     if not has_analytic_surfaces(scene):
-        raise GlshadeError("an analytic reference needs a scene made of sphere primitives "
-                           "(icosphere, uv_sphere); use the phong-fine reference for other "
-                           "meshes")
+        raise ComparisonError("the analytic reference needs sphere primitives "
+                              "(primitive:icosphere, primitive:uv_sphere); use "
+                              "reference='phong-fine' (or --reference phong-fine) for other "
+                              "meshes")
     o, d = pixel_rays(camera, width, height)
     best_t = np.full((height, width), np.inf)
     color = np.zeros((height, width, 3))

@@ -26,7 +26,7 @@ __all__ = [
     "multiply", "conjugate", "norm", "normalize", "inverse", "dot", "identity", "canonical",
     "from_axis_angle", "to_axis_angle", "rotate", "conformal", "mirror", "scale", "compose",
     "transform_points", "mirror_points", "to_matrix", "from_matrix", "slerp", "exp", "log",
-    "angle_between", "spline", "squad",
+    "angle_between", "spline", "squad", "same_hemisphere",
 ]
 
 Array = NDArray[np.float64]
@@ -333,8 +333,10 @@ def squad(q0: ArrayLike, q1: ArrayLike, s0: ArrayLike, s1: ArrayLike, t: ArrayLi
     return slerp(slerp(q0, q1, t), slerp(s0, s1, t), 2.0 * t * (1.0 - t))
 
 
-def _hemisphere(keys: Array) -> Array:
-    """Flip signs so that consecutive keys are in the same hemisphere (shortest arcs)."""
+def same_hemisphere(keys: ArrayLike) -> Array:
+    """Key rotations ``(K, 4)`` with signs flipped so that consecutive keys lie in the same
+    hemisphere: every segment between them then takes the shorter arc."""
+    keys = _q(keys, "keys")
     flips = np.concatenate([[1.0], np.sign(np.einsum("ij,ij->i", keys[1:], keys[:-1]))])
     flips[flips == 0] = 1.0
     return keys * np.cumprod(flips)[:, None]
@@ -351,7 +353,7 @@ def spline(times: ArrayLike, keys: ArrayLike, t: ArrayLike) -> Array:
     keys are clamped. ``keys (K, 4)``, ``t (...)`` -> ``(..., 4)``.
     """
     times = np.asarray(times, dtype=np.float64)
-    keys = _hemisphere(normalize(keys))
+    keys = same_hemisphere(normalize(keys))
     t = np.asarray(t, dtype=np.float64)
     k = len(keys)
     if k == 1:

@@ -18,8 +18,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
 
-__all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "translation",
-           "compose_transform", "gl_bytes"]
+__all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_transform",
+           "gl_bytes"]
 
 Array = NDArray[np.float64]
 
@@ -73,13 +73,7 @@ def normal_matrix(model_view: ArrayLike) -> Array:
     return np.linalg.inv(m).T
 
 
-def translation(offset: ArrayLike) -> Array:
-    m = np.eye(4)
-    m[:3, 3] = offset
-    return m
-
-
-def compose_transform(rotation: ArrayLike | None = None, translation_: ArrayLike = (0, 0, 0),
+def compose_transform(rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
                       scale: ArrayLike = 1.0) -> Array:
     """``T @ R @ S`` as a 4x4 matrix from a quaternion, a translation and a (per-axis)
     scale."""
@@ -88,7 +82,7 @@ def compose_transform(rotation: ArrayLike | None = None, translation_: ArrayLike
     m = np.eye(4)
     r = np.eye(3) if rotation is None else to_matrix(rotation)
     m[:3, :3] = r * np.broadcast_to(np.asarray(scale, dtype=np.float64), (3,))
-    m[:3, 3] = translation_
+    m[:3, 3] = translation
     return m
 
 

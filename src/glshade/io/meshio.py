@@ -37,7 +37,12 @@ def _format_of(path: Path, fmt: str | None) -> str:
     return fmt
 
 
-def _build(path, vertices, indices, offsets, *, line_of_face=None, **kwargs) -> Mesh:
+def _no_line(_: int) -> None:
+    return None
+
+
+def _build(path, vertices, indices, offsets, *, line_of_face=_no_line,
+           line_of_vertex=_no_line, **kwargs) -> Mesh:
     """Check indices and sizes here, where the file's line numbers are known."""
     vertices = np.asarray(vertices, np.float64)
     if len(offsets) < 2:
@@ -46,10 +51,7 @@ def _build(path, vertices, indices, offsets, *, line_of_face=None, **kwargs) -> 
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         raise MeshFormatError(path, f"vertex {i} has a non-finite coordinate "
-                              f"{vertices[i].tolist()}", line=kwargs.pop("line_of_vertex",
-                                                                        lambda i: None)(i))
-    kwargs.pop("line_of_vertex", None)
-    line_of_face = line_of_face or (lambda f: None)
+                              f"{vertices[i].tolist()}", line=line_of_vertex(i))
     sizes = np.diff(offsets)
     small = sizes < 3
     if small.any():

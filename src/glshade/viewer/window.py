@@ -150,11 +150,20 @@ class Viewer:
             if self.wireframe:
                 self._draw_wire(None)
 
+    def _wire_overlay(self) -> Scene:
+        """The scene's meshes in one dark unlit material, built once per set of models
+        (the meshes themselves are shared, so nothing is uploaded again)."""
+        key = [(id(m.mesh), m.transform.tobytes(), m.visible) for m in self.scene.models]
+        if getattr(self, "_overlay_key", None) != key:
+            overlay = Scene(ambient=(1, 1, 1), background=self.scene.background)
+            dark = Material(color=(0.05, 0.05, 0.05), ka=1.0, kd=0.0, ks=0.0)
+            for m in self.scene.models:
+                overlay.add(m.mesh, dark, m.transform).visible = m.visible
+            self._overlay, self._overlay_key = overlay, key
+        return self._overlay
+
     def _draw_wire(self, viewport) -> None:
-        overlay = Scene(ambient=(1, 1, 1), background=self.scene.background)
-        for m in self.scene.models:
-            overlay.add(m.mesh, Material(color=(0.05, 0.05, 0.05), ka=1.0, kd=0.0, ks=0.0),
-                        m.transform)
+        overlay = self._wire_overlay()
         ctx = self.context.ctx
         ctx.depth_func = "<="
         self.renderer.draw(self.target, overlay, self.camera, "flat", viewport=viewport,

@@ -1,5 +1,6 @@
 #version 330 core
 // Debug view: distance along the view axis as grey, white at near, black at far.
+#include "surface.glsl"
 #include "outputs.glsl"
 
 uniform vec2 u_depth_range;  // near, far of the shown range
@@ -11,6 +12,8 @@ in vec3 v_normal_world;
 void main() {
     float d = -v_position_view.z;
     float g = 1.0 - clamp((d - u_depth_range.x) / (u_depth_range.y - u_depth_range.x), 0.0, 1.0);
-    vec3 n_world = normalize(gl_FrontFacing ? v_normal_world : -v_normal_world);
+    vec3 n_view = v_normal_view;
+    vec3 n_world = normalize(v_normal_world);
+    face_viewer(n_view, n_world);
     write_outputs(vec3(g), n_world, d);
 }

@@ -1,9 +1,8 @@
 #version 330 core
 // Uniform (flat) shading: the polygon's normal, L and V taken at its centroid.
 #include "lighting.glsl"
+#include "surface.glsl"
 #include "outputs.glsl"
-
-uniform bool u_orthographic;
 
 flat in vec3 v_face_normal_view;
 flat in vec3 v_face_normal_world;
@@ -13,10 +12,7 @@ in vec3 v_position_view;
 void main() {
     vec3 n = normalize(v_face_normal_view);
     vec3 n_world = normalize(v_face_normal_world);
-    if (!gl_FrontFacing) {
-        n = -n;
-        n_world = -n_world;
-    }
-    vec3 v = u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-v_centroid_view);
-    write_outputs(light_intensity(v_centroid_view, n, v), n_world, -v_position_view.z);
+    face_viewer(n, n_world);
+    write_outputs(light_intensity(v_centroid_view, n, view_dir(v_centroid_view)), n_world,
+                  -v_position_view.z);
 }

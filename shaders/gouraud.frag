@@ -1,5 +1,6 @@
 #version 330 core
 // Gouraud shading: interpolated vertex intensities.
+#include "surface.glsl"
 #include "outputs.glsl"
 
 in vec3 v_color_front;
@@ -8,7 +9,9 @@ in vec3 v_position_view;
 in vec3 v_normal_world;
 
 void main() {
-    vec3 n_world = gl_FrontFacing ? v_normal_world : -v_normal_world;
+    vec3 n_view = vec3(0.0);  // (lighting was done per vertex)
+    vec3 n_world = v_normal_world;
+    face_viewer(n_view, n_world);
     vec3 color = gl_FrontFacing ? v_color_front : v_color_back;
     write_outputs(color, n_world, -v_position_view.z);
 }

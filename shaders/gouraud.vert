@@ -5,8 +5,6 @@
 #include "transforms.glsl"
 #include "lighting.glsl"
 
-uniform bool u_orthographic;
-
 in vec3 in_position;
 in vec3 in_normal;
 
@@ -18,7 +16,7 @@ out vec3 v_normal_world;
 void main() {
     vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
     vec3 n = normalize(u_normal_view * in_normal);
-    vec3 v = u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-p_view.xyz);
+    vec3 v = view_dir(p_view.xyz);
     v_color_front = light_intensity(p_view.xyz, n, v);
     v_color_back = light_intensity(p_view.xyz, -n, v);
     v_position_view = p_view.xyz;

@@ -1,5 +1,6 @@
 #version 330 core
 // Debug view: the world-space normal as colour, (n + 1) / 2.
+#include "surface.glsl"
 #include "outputs.glsl"
 
 in vec3 v_position_view;
@@ -7,6 +8,8 @@ in vec3 v_normal_view;
 in vec3 v_normal_world;
 
 void main() {
-    vec3 n_world = normalize(gl_FrontFacing ? v_normal_world : -v_normal_world);
+    vec3 n_view = v_normal_view;
+    vec3 n_world = normalize(v_normal_world);
+    face_viewer(n_view, n_world);
     write_outputs(0.5 * n_world + 0.5, n_world, -v_position_view.z);
 }

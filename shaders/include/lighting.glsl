@@ -16,6 +16,12 @@ uniform int u_light_count;
 uniform vec4 u_light_pos_view[MAX_LIGHTS];   // w = 1: point light; w = 0: direction TO light
 uniform vec3 u_light_color[MAX_LIGHTS];      // Ip (colour times intensity)
 uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
+uniform bool u_orthographic;
+
+// Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
+vec3 view_dir(vec3 p_view) {
+    return u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-p_view);
+}
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 color = u_ambient * u_ka * u_material_color;

@@ -1,32 +1,59 @@
-"""The exceptions glshade raises.
+"""Every exception glshade raises on purpose, in one hierarchy.
 
-Every message says what was expected, what arrived and, where there is one, the fix.
-Expected user errors (bad files, bad arguments, no GL) are subclasses of
-:class:`GlshadeError`, so a command line tool can report them in one line.
+Every message says what was expected, what arrived and, where there is one, the fix. Two
+families decide the command line's exit status (:func:`exit_status`):
+
+* :class:`InputError` (also a ``ValueError``): something the user gave is wrong -- an
+  argument, a mesh or scene file, a value handed to the API. Exit status 2.
+* :class:`EnvironmentFailure` (also a ``RuntimeError``): the machine cannot do it -- no GL
+  context, a shader the driver refuses, a missing optional package. Exit status 1.
+
+Errors carry their facts as attributes (file, line, key frame ...), so no caller has to
+recover them by parsing another error's message.
 """
 
 from __future__ import annotations
 
 __all__ = [
-    "GlshadeError",
-    "GeometryError",
-    "MeshFormatError",
-    "TopologyError",
-    "ContextError",
-    "ShaderError",
-    "ComparisonError",
+    "GlshadeError", "InputError", "EnvironmentFailure",
+    "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
+    "OutputError", "UsageError", "ComparisonError", "DisplayError",
+    "ContextError", "ShaderError", "VideoUnavailable",
+    "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
+
+EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
 
 
 class GlshadeError(Exception):
     """Base class of every error glshade raises on purpose."""
 
-
-class GeometryError(GlshadeError, ValueError):
-    """Bad shapes, indices or values handed to the geometry code."""
+    exit_status = EXIT_ENVIRONMENT
 
 
-class MeshFormatError(GlshadeError, ValueError):
+class InputError(GlshadeError, ValueError):
+    """Bad input from the user: arguments, files, values (exit status 2)."""
+
+    exit_status = EXIT_USAGE
+
+
+class EnvironmentFailure(GlshadeError, RuntimeError):
+    """The environment cannot do what was asked: GL, drivers, optional packages (exit 1)."""
+
+    exit_status = EXIT_ENVIRONMENT
+
+
+# ------------------------------------------------------------------ input errors
+
+class GeometryError(InputError):
+    """Bad shapes, indices or values handed to the geometry, scene or renderer code."""
+
+
+class TopologyError(GeometryError):
+    """Invalid topology (non-manifold edges, inconsistent orientation, ...)."""
+
+
+class MeshFormatError(InputError):
     """A mesh file that cannot be read: names the path, the line (or byte) and the fault."""
 
     def __init__(self, path, message: str, line: int | None = None, byte: int | None = None):
@@ -42,17 +69,54 @@ class MeshFormatError(GlshadeError, ValueError):
         super().__init__(f"{where}: {message}")
 
 
-class TopologyError(GeometryError):
-    """Invalid topology (non-manifold edges, inconsistent orientation, ...)."""
+class SceneFormatError(InputError):
+    """A scene file that cannot be used: names the file, the line and the key."""
 
 
-class ContextError(GlshadeError, RuntimeError):
+class PathFormatError(InputError):
+    """A camera path that cannot be read. ``keyframe`` is the 1-based number of the key
+    frame at fault (None when the fault is not in one), so a scene file can point at its
+    line."""
+
+    def __init__(self, message: str, keyframe: int | None = None):
+        self.keyframe = keyframe
+        super().__init__(message)
+
+
+class OutputError(InputError):
+    """An output name glshade cannot write (a bad extension, a non-empty folder)."""
+
+
+class UsageError(InputError):
+    """A combination of arguments that cannot work together."""
+
+
+class ComparisonError(InputError):
+    """A comparison that cannot be made: no analytic surface, a reference of another size."""
+
+
+class DisplayError(InputError):
+    """No display to open a window on: the command needs one (exit status 2, with the
+    alternative in the message)."""
+
+
+# ------------------------------------------------------------------ environment failures
+
+class ContextError(EnvironmentFailure):
     """No OpenGL context could be made: says which backends were tried and why each failed."""
 
 
-class ShaderError(GlshadeError, RuntimeError):
+class ShaderError(EnvironmentFailure):
     """A GLSL program failed to compile or link: names the file, the line and the driver's text."""
 
 
-class ComparisonError(GlshadeError, ValueError):
-    """A comparison that cannot be made: no analytic surface, a reference of another size."""
+class VideoUnavailable(EnvironmentFailure):
+    """MP4 output needs imageio and imageio-ffmpeg (the ``video`` extra)."""
+
+
+def exit_status(exc: BaseException) -> int:
+    """The command line's exit status for an error: 2 for bad input, 1 for the environment
+    (an ``OSError`` such as an unwritable output included)."""
+    if isinstance(exc, GlshadeError):
+        return exc.exit_status
+    return EXIT_ENVIRONMENT

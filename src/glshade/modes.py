@@ -1,4 +1,4 @@
-"""Shading modes and the one table mapping each to its GLSL program."""
+"""The enums that name what a draw does: shading modes, outputs, back-face culling."""
 
 from __future__ import annotations
 
@@ -6,7 +6,19 @@ import enum
 
 from .errors import GeometryError
 
-__all__ = ["ShadingMode", "PROGRAMS"]
+__all__ = ["ShadingMode", "Outputs", "parse_enum"]
+
+
+def parse_enum(cls, value, what: str):
+    """``cls(value)`` for a member or its (case-insensitive) value; a bad one lists the
+    choices."""
+    if isinstance(value, cls):
+        return value
+    try:
+        return cls(str(value).lower())
+    except ValueError:
+        choices = ", ".join(m.value for m in cls)
+        raise GeometryError(f"unknown {what} {value!r}; choose one of {choices}") from None
 
 
 class ShadingMode(enum.Enum):
@@ -21,14 +33,7 @@ class ShadingMode(enum.Enum):
     @classmethod
     def parse(cls, value) -> ShadingMode:
         """Accept a ShadingMode or its name; a bad name lists the choices."""
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            choices = ", ".join(m.value for m in cls)
-            raise GeometryError(f"unknown shading mode {value!r}; choose one of {choices}") \
-                from None
+        return parse_enum(cls, value, "shading mode")
 
     @property
     def per_polygon(self) -> bool:
@@ -36,11 +41,17 @@ class ShadingMode(enum.Enum):
         return self is ShadingMode.FLAT
 
 
-#: program of each mode: (vertex shader file, fragment shader file) under shaders/
-PROGRAMS = {
-    ShadingMode.FLAT: ("flat.vert", "flat.frag"),
-    ShadingMode.GOURAUD: ("gouraud.vert", "gouraud.frag"),
-    ShadingMode.PHONG: ("smooth.vert", "phong.frag"),
-    ShadingMode.NORMALS: ("smooth.vert", "normals.frag"),
-    ShadingMode.DEPTH: ("smooth.vert", "depth.frag"),
-}
+class Outputs(enum.Flag):
+    """What one draw produces besides the picture. Anything beyond COLOR is drawn into a
+    target with integer id and depth buffers (never blended by an MSAA resolve)."""
+
+    COLOR = enum.auto()
+    DEPTH = enum.auto()      # distance along the view axis
+    NORMAL = enum.auto()     # world-space unit normal
+    FACE_ID = enum.auto()    # id of the source polygon
+    ALL = COLOR | DEPTH | NORMAL | FACE_ID
+
+    @property
+    def auxiliary(self) -> bool:
+        """Whether anything beyond colour is asked for."""
+        return bool(self & (Outputs.DEPTH | Outputs.NORMAL | Outputs.FACE_ID))

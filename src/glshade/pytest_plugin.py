@@ -47,7 +47,7 @@ def glshade_golden(request):
     def check(image, name: str, max_mean: float = 0.5, max_pixel: float = 4.0) -> None:
         from PIL import Image
 
-        from glshade.image import save_image
+        from glshade.io.images import save_image
         from glshade.testing import assert_images_close
 
         path = folder / name

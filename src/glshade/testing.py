@@ -57,8 +57,7 @@ def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: floa
     worst = float(diff.max(initial=0))
     if mean <= max_mean and worst <= max_pixel:
         return
-    from .comparison import heatmap
-    from .image import save_image
+    from .io.images import heatmap, save_image
 
     out = Path(save_to) if save_to is not None else failure_dir()
     out.mkdir(parents=True, exist_ok=True)

@@ -64,3 +64,29 @@ def render_ellipsoid(camera, width, height, radii, lights, material, transform=N
     p, n, hit = hit_ellipsoid(o, d, radii)
     img = shade(p, n, camera.position, lights, material)
     return np.where(hit[..., None], img, 0.0), hit
+
+
+def shade_any(p, n, v, lights, material, ambient=(1, 1, 1)):
+    """The notes' lighting for point lights with attenuation and directional lights,
+    unclamped, with the view vector given: ``lights`` are ``("point", position, ip,
+    (c, l, q))`` or ``("directional", travel_direction, ip)``. Written from the notes."""
+    color = np.asarray(material.color, float)
+    total = np.zeros(np.shape(p)) + np.asarray(ambient) * material.ka * color
+    for light in lights:
+        if light[0] == "point":
+            _, pos, ip, (c, lin, q) = light
+            d = np.asarray(pos, float) - p
+            dist = np.sqrt((d * d).sum(-1, keepdims=True))
+            to_light = d / dist
+            factor = 1.0 / (c + lin * dist + q * dist * dist)
+        else:
+            _, direction, ip = light
+            direction = np.asarray(direction, float)
+            to_light = np.zeros(np.shape(p)) - direction / np.linalg.norm(direction)
+            factor = 1.0
+        cos_i = (to_light * n).sum(-1, keepdims=True)
+        reflected = 2 * cos_i * n - to_light
+        cos_r = np.clip((reflected * v).sum(-1, keepdims=True), 0, None)
+        contribution = material.kd * cos_i * color + material.ks * cos_r ** material.shininess
+        total = total + np.where(cos_i > 0, factor * np.asarray(ip) * contribution, 0.0)
+    return total

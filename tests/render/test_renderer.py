@@ -6,27 +6,11 @@ import pytest
 from glshade import Camera, Mesh
 from glshade.geometry import primitives as P
 from glshade.scene import DirectionalLight, Material, PointLight, Scene
-from tests.oracle.raycast import hit_ellipsoid, pixel_rays, render_ellipsoid
+from tests.oracle.raycast import hit_ellipsoid, pixel_rays, render_ellipsoid, shade
 
 EPS8 = 1 / 255 + 1e-6
 EYE = np.array([0.0, 0.0, 3.0])
 FRONT = Camera.look_at(EYE, [0, 0, 0], fov_y=50.0)
-
-
-def formula(point, normal, eye, lights, mat, ambient=(1, 1, 1)):
-    """The notes' lighting at one point, written plainly."""
-    n = np.asarray(normal, float) / np.linalg.norm(normal)
-    v = (eye - point) / np.linalg.norm(eye - point)
-    out = np.asarray(ambient) * mat.ka * np.asarray(mat.color)
-    for pos, ip in lights:
-        l_vec = (np.asarray(pos) - point) / np.linalg.norm(np.asarray(pos) - point)
-        ln = l_vec @ n
-        if ln <= 0:
-            continue
-        r = 2 * ln * n - l_vec
-        out = out + np.asarray(ip) * (mat.kd * ln * np.asarray(mat.color)
-                                      + mat.ks * max(r @ v, 0) ** mat.shininess)
-    return np.clip(out, 0, 1)
 
 
 def quad_scene(mat, lights, ambient=(1, 1, 1)):
@@ -45,7 +29,7 @@ def test_single_terms_match_formula_at_centre(make_renderer, term):
     mat = Material(color=(0.9, 0.6, 0.3), shininess=8, **coeffs)
     light = (1.0, 0.5, 3.0)
     img = make_renderer(32, 32).render(quad_scene(mat, [PointLight(light)]), FRONT, "flat")
-    expected = formula(np.zeros(3), [0, 0, 1], EYE, [(light, (1, 1, 1))], mat)
+    expected = shade(np.zeros(3), np.array([0.0, 0, 1]), EYE, [(light, (1, 1, 1))], mat)
     np.testing.assert_allclose(img[16, 16, :3] / 255, expected, atol=EPS8)
     assert expected.max() > 0.1  # the term is really there
 
@@ -73,7 +57,7 @@ def test_lights_sum_and_colours_multiply(make_renderer):
     np.testing.assert_allclose(both - amb, (centre([a]) - amb) + (centre([b]) - amb),
                                atol=1e-5)
     light_b = (-np.asarray(b.direction) * 1e6, np.asarray(b.color) * b.intensity)
-    expected = formula(np.zeros(3), [0, 0, 1], EYE, [(a.position, a.color), light_b], mat)
+    expected = shade(np.zeros(3), np.array([0.0, 0, 1]), EYE, [(a.position, a.color), light_b], mat)
     np.testing.assert_allclose(both, expected, atol=1e-5)
     # ambient multiplies the material colour
     dark = centre([PointLight((0, 0, -3.0))], ambient=(0.5, 1.0, 0.0))

@@ -5,18 +5,17 @@ import os
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from glshade import ShaderError
-from glshade.modes import PROGRAMS, ShadingMode
+from glshade.modes import ShadingMode
+from glshade.render.shaders import PROGRAMS
 from glshade.render.shaders import ShaderLibrary, assemble, shader_dir
 
-from .conftest import BACKEND
+from tests.conftest import BACKEND, ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_every_mode_has_a_program_that_compiles(gl_context):

@@ -1,6 +1,7 @@
 """The viewer in a real window (under Xvfb in CI): its pixels equal headless renders, and
 synthesised input drives it."""
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -23,28 +24,40 @@ def teapot_scene():
 CAM = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
 
 HEADLESS = """
-import sys, numpy as np
-from tests.viewer.test_viewer import teapot_scene, CAM
-from glshade import Renderer
-with Renderer(240, 180, samples=0, backend="egl") as r:
-    np.save(sys.argv[1], np.stack([r.render(teapot_scene(), CAM, m) for m in sys.argv[2:]]))
+import json, sys, numpy as np
+from tests.viewer.test_viewer import teapot_scene
+from glshade import Camera, Renderer
+job = json.loads(sys.argv[2])
+cam = Camera(position=job["position"], orientation=job["orientation"], fov_y=job["fov_y"],
+             near=job["near"], far=job["far"])
+with Renderer(*job["size"], samples=0, backend="egl") as r:
+    images = [r.render(teapot_scene(), cam, **o) for o in job["renders"]]
+    depth = r.render_depth(teapot_scene(), cam)
+np.savez(sys.argv[1], images=np.array(images, np.uint8).reshape(-1, *depth.shape, 4),
+         depth=depth)
 """
 
 
-def headless(tmp_path, *modes):
-    """Renders of the same scene by the headless renderer, in its own process (EGL)."""
-    out = tmp_path / "headless.npy"
-    r = subprocess.run([sys.executable, "-c", HEADLESS, str(out), *modes], cwd=ROOT,
+def headless(tmp_path, *renders, camera=CAM, size=(240, 180)):
+    """Renders of the teapot scene by the headless renderer in its own process (EGL): one
+    colour image per dict of draw options (or mode name), and the view depth."""
+    out = tmp_path / "headless.npz"
+    job = {"size": list(size), "position": camera.position.tolist(),
+           "orientation": camera.orientation.tolist(), "fov_y": camera.fov_y,
+           "near": camera.near, "far": camera.far,
+           "renders": [r if isinstance(r, dict) else {"mode": r} for r in renders]}
+    r = subprocess.run([sys.executable, "-c", HEADLESS, str(out), json.dumps(job)], cwd=ROOT,
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
-    return np.load(out)
+    data = np.load(out)
+    return data["images"], data["depth"]
 
 
 def test_window_equals_headless_render(viewer_factory, tmp_path):
-    v = viewer_factory(teapot_scene(), CAM, mode="phong")
+    v = viewer_factory(teapot_scene(), CAM, options="phong")
     v.step()
     shot = v.screenshot().astype(int)
-    ref = headless(tmp_path, "phong")[0].astype(int)
+    ref = headless(tmp_path, "phong")[0][0].astype(int)
     assert shot.shape == ref.shape == (180, 240, 4)
     assert (shot[..., :3].max(-1) > 60).mean() > 0.1  # the teapot is there
     assert np.abs(shot - ref).max() <= 1
@@ -52,7 +65,7 @@ def test_window_equals_headless_render(viewer_factory, tmp_path):
 
 def test_keys_switch_modes_like_headless(viewer_factory, tmp_path):
     v = viewer_factory(teapot_scene(), CAM)
-    refs = headless(tmp_path, "flat", "gouraud", "phong").astype(int)
+    refs = headless(tmp_path, "flat", "gouraud", "phong")[0].astype(int)
     for key, ref in zip("123", refs):
         v.key(key)
         v.step()
@@ -60,22 +73,22 @@ def test_keys_switch_modes_like_headless(viewer_factory, tmp_path):
     assert np.abs(refs[0] - refs[2]).max() > 20  # the modes really differ
 
 
-def test_z_toggles_depth_test(viewer_factory):
+def test_z_toggles_depth_test(viewer_factory, tmp_path):
     v = viewer_factory(teapot_scene(), CAM)
     with_z = v.screenshot()
     v.key("z")
     without = v.screenshot()
-    assert not v.depth_test
-    expected = v.renderer.render(v.scene, CAM, "phong", depth_test=False)
+    assert not v.options.depth_test
+    expected = headless(tmp_path, {"mode": "phong", "depth_test": False})[0][0]
     assert np.abs(without.astype(int) - expected.astype(int)).max() <= 1
     assert np.abs(with_z.astype(int) - without.astype(int)).max() > 20
     v.key("z")
     assert np.array_equal(v.screenshot(), with_z)
 
 
-def test_drag_rotates_the_view_by_the_arcball_rotation(viewer_factory):
+def test_drag_rotates_the_view_by_the_arcball_rotation(viewer_factory, tmp_path):
     scene = teapot_scene()
-    centre = scene.bounds().mean(0)
+    centre = scene.bounds.mean(0)
     start = Camera.look_at(centre + [0, 0, 9.0], centre, fov_y=40)
     v = viewer_factory(scene, start, size=(240, 180))
     w, h = 240, 180
@@ -86,7 +99,7 @@ def test_drag_rotates_the_view_by_the_arcball_rotation(viewer_factory):
     # the object turned right, so the camera went round to its left (world -x)
     np.testing.assert_allclose(v.camera.position, centre + [-9.0, 0, 0], atol=1e-9)
     np.testing.assert_allclose(v.camera.forward, [1, 0, 0], atol=1e-12)
-    expected = v.renderer.render(scene, v.camera, "phong")
+    expected = headless(tmp_path, "phong", camera=v.camera)[0][0]
     assert np.abs(v.screenshot().astype(int) - expected.astype(int)).max() <= 1
 
 
@@ -127,7 +140,7 @@ def test_compare_split_view_and_other_keys(viewer_factory):
     v.key("w")
     assert np.abs(v.screenshot().astype(int) - img.astype(int)).max() > 50  # wireframe on
     v.key("c")
-    assert v.cull is True
+    assert v.options.cull is True
     v.key("l")
     np.testing.assert_allclose(v.scene.lights[0].position, v.camera.position)
     v.scroll(3)
@@ -140,12 +153,21 @@ def test_compare_split_view_and_other_keys(viewer_factory):
     assert v.closed
 
 
-def test_double_click_recentres_on_the_surface(viewer_factory):
+def test_double_click_recentres_on_the_surface(viewer_factory, tmp_path):
+    from glshade.cpu.raycast import pixel_rays
+
     v = viewer_factory(teapot_scene(), CAM)
     v.step()
-    assert v.recentre(120, 100)
-    # the new centre lies on the teapot, in front of the old one along the view ray
-    assert abs(v.center[1]) < 3.2 and np.linalg.norm(v.center - CAM.position) < 8
+    x, y = 120, 100
+    assert v.recentre(x, y)
+    # expected: the surface point under the pixel centre, from a headless depth render
+    depth = headless(tmp_path, camera=CAM)[1]
+    origin, direction = pixel_rays(CAM, 240, 180)
+    d = float(depth[y, x])
+    assert np.isfinite(d)
+    point = origin[y, x] + direction[y, x] * d / (direction[y, x] @ CAM.forward)
+    # the window's 24-bit depth buffer quantises depth: a few 1e-4 of the distance
+    np.testing.assert_allclose(v.center, point, atol=2e-3 * np.linalg.norm(point - CAM.position))
 
 
 def test_view_cli_screenshot(tmp_path):
@@ -159,7 +181,7 @@ def test_view_cli_screenshot(tmp_path):
     assert Image.open(out).size == (200, 150)
 
 
-def test_resize_keeps_the_aspect(viewer_factory):
+def test_resize_keeps_the_aspect(viewer_factory, tmp_path):
     import glfw
 
     v = viewer_factory(teapot_scene(), CAM, size=(240, 180))
@@ -171,8 +193,5 @@ def test_resize_keeps_the_aspect(viewer_factory):
     assert (v.target.width, v.target.height) == (300, 120)
     shot = v.screenshot()
     assert shot.shape == (120, 300, 4)
-    from glshade import Renderer
-
-    with Renderer(300, 120, samples=0, context=v.context) as r:
-        expected = r.render(v.scene, CAM, "phong")
+    expected = headless(tmp_path, "phong", size=(300, 120))[0][0]
     assert np.abs(shot.astype(int) - expected.astype(int)).max() <= 1

@@ -1,8 +1,11 @@
-"""Pure-numpy geometry: polygons, meshes, primitives. Never imports a GL module."""
+"""Pure-numpy geometry: polygons, meshes, primitives, quaternions, B-Reps. Never imports a
+GL module."""
 
-from .mesh import Mesh, concatenate
+from . import brep, masspoint, primitives, quaternion
+from .analytic import AnalyticSphere, AnalyticSurface
+from .merge import concatenate
+from .mesh import Mesh
 from .polygon import newell_normal, polygon_area
-from . import masspoint, primitives, quaternion
 
 __all__ = ["Mesh", "concatenate", "newell_normal", "polygon_area", "primitives", "quaternion",
-           "masspoint"]
+           "masspoint", "brep", "AnalyticSphere", "AnalyticSurface"]

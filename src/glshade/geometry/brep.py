@@ -21,103 +21,20 @@ B boundary loops satisfies ``V - E + F - H + B = 2 (C - G)``.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, TopologyError
+from .edges import edge_groups
 from .graph import component_labels as _components
 from .graph import cycle_labels as _cycle_labels
 from .mesh import Mesh
+from .topology import EulerReport, TopologyReport
 
 __all__ = ["WingedEdge", "EulerReport", "TopologyReport"]
 
 Int = NDArray[np.int64]
-
-
-def _first(items, k: int = 5) -> str:
-    items = list(items)
-    more = f" ... ({len(items)} in all)" if len(items) > k else ""
-    return ", ".join(str(i) for i in items[:k]) + more
-
-
-@dataclass
-class TopologyReport:
-    """Problems found while building; empty lists mean a valid 2-manifold structure."""
-
-    non_manifold_edges: list = field(default_factory=list)   # (a, b, [faces])
-    misoriented_edges: list = field(default_factory=list)    # (a, b, [faces])
-    isolated_vertices: list = field(default_factory=list)
-    duplicate_faces: list = field(default_factory=list)      # (f, g)
-    non_manifold_vertices: list = field(default_factory=list)  # pinched: 2+ fans meet
-
-    @property
-    def ok(self) -> bool:
-        return not (self.non_manifold_edges or self.misoriented_edges or
-                    self.isolated_vertices or self.duplicate_faces or
-                    self.non_manifold_vertices)
-
-    def message(self) -> str:
-        parts = []
-        if self.non_manifold_edges:
-            parts.append(f"{len(self.non_manifold_edges)} non-manifold edges (3 or more faces): "
-                         + _first(f"({a}, {b}) in faces {fs}"
-                                  for a, b, fs in self.non_manifold_edges))
-        if self.misoriented_edges:
-            parts.append(f"{len(self.misoriented_edges)} edges where neighbouring faces disagree "
-                         "on orientation (both run the same way): "
-                         + _first(f"({a}, {b}) in faces {fs}"
-                                  for a, b, fs in self.misoriented_edges))
-        if self.isolated_vertices:
-            parts.append(f"{len(self.isolated_vertices)} isolated vertices (in no face): "
-                         + _first(self.isolated_vertices))
-        if self.duplicate_faces:
-            parts.append(f"{len(self.duplicate_faces)} duplicate faces: "
-                         + _first(f"{f} = {g}" for f, g in self.duplicate_faces))
-        if self.non_manifold_vertices:
-            parts.append(f"{len(self.non_manifold_vertices)} non-manifold vertices (several "
-                         "fans of faces meet there): " + _first(self.non_manifold_vertices))
-        return "; ".join(parts)
-
-
-@dataclass
-class EulerReport:
-    """The counts of Euler's formula and what they say."""
-
-    V: int
-    E: int
-    F: int
-    H: int
-    C: int
-    G: int | None
-    B: int
-    is_closed: bool
-    is_manifold: bool
-    is_oriented: bool
-    genus_per_component: list
-
-    @property
-    def holds(self) -> bool:
-        """Whether the counts satisfy ``V - E + F - H + B = 2 (C - G)`` with integer G >= 0."""
-        return self.G is not None and \
-            self.V - self.E + self.F - self.H + self.B == 2 * (self.C - self.G)
-
-    @property
-    def formula(self) -> str:
-        lhs = f"{self.V} - {self.E} + {self.F} - {self.H}"
-        if self.B:
-            lhs += f" + {self.B}"
-        value = self.V - self.E + self.F - self.H + self.B
-        g = "?" if self.G is None else self.G
-        name = "V - E + F - H" + (" + B" if self.B else "")
-        return f"{name} = {lhs} = {value} = 2(C - G) = 2({self.C} - {g})"
-
-    def as_dict(self) -> dict:
-        return {"V": self.V, "E": self.E, "F": self.F, "H": self.H, "C": self.C, "G": self.G,
-                "boundary_loops": self.B, "closed": self.is_closed,
-                "manifold": self.is_manifold, "oriented": self.is_oriented,
-                "euler_holds": self.holds, "formula": self.formula}
 
 
 class WingedEdge:
@@ -164,19 +81,14 @@ class WingedEdge:
         self.loop_offsets = off
 
         # pair half-edges through the undirected key
-        lo, hi = np.minimum(h_from, h_to), np.maximum(h_from, h_to)
-        key = lo * max(nv, 1) + hi
-        order = np.argsort(key, kind="stable")
-        ks = key[order]
-        start = np.flatnonzero(np.r_[True, ks[1:] != ks[:-1]])
-        count = np.diff(np.r_[start, len(ks)])
+        groups = edge_groups(h_from, h_to, nv)
+        order, start, count = groups.order, groups.start, groups.count
         report = TopologyReport()
-        for s, c in zip(start[count > 2].tolist(), count[count > 2].tolist()):
-            hs = order[s:s + c]
-            report.non_manifold_edges.append((int(lo[hs[0]]), int(hi[hs[0]]),
+        for e in np.flatnonzero(count > 2).tolist():
+            hs = order[start[e]:start[e] + count[e]]
+            report.non_manifold_edges.append((int(groups.lo[e]), int(groups.hi[e]),
                                               sorted(set(h_face[hs].tolist()))))
-        pairs = start[count == 2]
-        h0, h1 = order[pairs], order[pairs + 1]
+        h0, h1 = groups.pairs()
         same = h_from[h0] == h_from[h1]
         for a, b in zip(h0[same].tolist(), h1[same].tolist()):
             report.misoriented_edges.append((int(h_from[a]), int(h_to[a]),
@@ -188,10 +100,8 @@ class WingedEdge:
         self.report = report
 
         # edges: one per undirected key; its first half-edge defines P -> N and the left face
-        n_edges = len(start)
-        h_edge = np.empty(len(idx), np.int64)
-        h_edge[order] = np.repeat(np.arange(n_edges), count)
-        first = order[start]
+        h_edge = groups.group
+        first = groups.first
         twin = np.full(len(idx), -1, np.int64)
         ok_pair = ~same
         twin[h0[ok_pair]] = h1[ok_pair]

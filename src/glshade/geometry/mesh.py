@@ -7,18 +7,18 @@ per distinct size (a handful of groups), never per face.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
-from .graph import component_labels
+from .analytic import AnalyticSurface, affine_matrix
+from .edges import EdgeGroups, edge_groups, is_closed_and_oriented
 from .polygon import convex_mask, ear_clip, newell_of_indexed, unit_normals
-from .tolerance import tol
 
-__all__ = ["Mesh", "concatenate"]
+__all__ = ["Mesh"]
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -116,9 +116,9 @@ class Mesh:
             str(k): _readonly(np.asarray(g, dtype=np.int64)) for k, g in (groups or {}).items()
         }
         self.name = name
-        #: the exact surface this mesh approximates, when known (e.g. {"kind": "sphere",
-        #: "radius": 1.0} for sphere primitives): analytic references ray-cast it
-        self.analytic: dict | None = None
+        #: the exact surface this mesh approximates, when known (sphere primitives carry an
+        #: AnalyticSphere): analytic references ray-cast it
+        self.analytic: AnalyticSurface | None = None
 
     def _init_arrays(self, v, indices, offsets) -> None:
         sizes = np.diff(offsets)
@@ -216,10 +216,13 @@ class Mesh:
     @cached_property
     def edges(self) -> NDArray[np.int64]:
         """Unique undirected edges ``(E, 2)``, smaller index first."""
-        h = np.sort(self.half_edges, axis=1)
-        key = h[:, 0] * max(self.n_vertices, 1) + h[:, 1]
-        _, first = np.unique(key, return_index=True)
-        return _readonly(h[first])
+        return _readonly(np.stack([self.edge_groups.lo, self.edge_groups.hi], axis=1))
+
+    @cached_property
+    def edge_groups(self) -> EdgeGroups:
+        """The half-edges grouped by undirected edge (see :mod:`glshade.geometry.edges`)."""
+        he = self.half_edges
+        return edge_groups(he[:, 0], he[:, 1], self.n_vertices)
 
     @cached_property
     def bounds(self) -> NDArray[np.float64]:
@@ -379,24 +382,32 @@ class Mesh:
     def total_area(self) -> float:
         return float(self.face_areas.sum())
 
+    @cached_property
+    def closed_and_oriented(self) -> bool:
+        """Every edge shared by two faces traversing it in opposite directions (back faces
+        of such a surface are never visible, so they can be culled)."""
+        return is_closed_and_oriented(self.half_edges, self.n_vertices)
+
     def transformed(self, matrix: ArrayLike) -> Mesh:
-        """A copy with vertices mapped by a 4x4 (or 3x3) matrix for column vectors."""
-        m = np.asarray(matrix, dtype=np.float64)
-        if m.shape == (3, 3):
-            v = self.vertices @ m.T
-        elif m.shape == (4, 4):
-            h = np.c_[self.vertices, np.ones(self.n_vertices)] @ m.T
-            v = h[:, :3] / h[:, 3:]
-        else:
-            raise GeometryError(f"matrix must have shape (4, 4) or (3, 3), got {m.shape}")
+        """A copy mapped by an affine 4x4 (or 3x3) matrix for column vectors. File normals
+        follow by the inverse transpose; a mirroring matrix reverses the faces, so they stay
+        front faces."""
+        m = affine_matrix(matrix)
+        v = self.vertices @ m[:3, :3].T + m[:3, 3]
+        normals = None
+        if self.normals_from_file is not None:
+            normals = self.normals_from_file @ np.linalg.inv(m[:3, :3])
         flip = np.linalg.det(m[:3, :3]) < 0
-        return self._replace(v, flip=flip)
+        analytic = self.analytic.transformed(m) if self.analytic is not None else None
+        return self._replace(v, flip=flip, normals=normals, analytic=analytic)
 
     def flipped(self) -> Mesh:
-        """The same mesh with every face's orientation reversed."""
-        return self._replace(self.vertices, flip=True)
+        """The same mesh with every face's orientation reversed (file normals negated)."""
+        normals = -self.normals_from_file if self.normals_from_file is not None else None
+        analytic = self.analytic.flipped() if self.analytic is not None else None
+        return self._replace(self.vertices, flip=True, normals=normals, analytic=analytic)
 
-    def _replace(self, vertices, flip: bool = False) -> Mesh:
+    def _replace(self, vertices, flip: bool = False, normals=None, analytic=None) -> Mesh:
         idx = self.face_indices
         if flip:
             # reverse each face's order, keeping its first vertex first
@@ -404,90 +415,20 @@ class Mesh:
             local = np.arange(len(idx)) - start
             rev = np.where(local == 0, 0, np.repeat(self.face_sizes, self.face_sizes) - local)
             idx = idx[start + rev]
-        return Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(),
-                             groups=self.groups, name=self.name)
+        out = Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(), normals=normals,
+                            groups=self.groups, name=self.name)
+        out.analytic = analytic
+        return out
 
     def split_creases(self, angle_deg: float = 30.0) -> Mesh:
-        """Duplicate vertices along sharp edges, so smooth shading keeps creases.
+        """Duplicate vertices along edges sharper than ``angle_deg``, so smooth shading
+        keeps creases (see :func:`glshade.geometry.merge.split_creases`)."""
+        from .merge import split_creases
 
-        Two faces sharing an edge stay smooth across it when their normals differ by less
-        than ``angle_deg``; corners of a vertex joined by smooth edges share one copy of it.
-        """
-        if not 0 <= angle_deg <= 180:
-            raise GeometryError(f"angle_deg must be in [0, 180], got {angle_deg}")
-        c = len(self.face_indices)
-        he = self.half_edges
-        nv = max(self.n_vertices, 1)
-        # Match each half-edge (a, b) with a twin (b, a) -- or (a, b) when orientation is
-        # inconsistent -- through the undirected key.
-        lo, hi = np.minimum(he[:, 0], he[:, 1]), np.maximum(he[:, 0], he[:, 1])
-        key = lo * nv + hi
-        order = np.argsort(key, kind="stable")
-        ks = key[order]
-        pair = ks[1:] == ks[:-1]
-        c0, c1 = order[:-1][pair], order[1:][pair]
-        f0, f1 = self.corner_face[c0], self.corner_face[c1]
-        cos = np.einsum("ij,ij->i", self.face_normals[f0], self.face_normals[f1])
-        smooth = cos >= np.cos(np.radians(angle_deg)) - 1e-12
-        c0, c1 = c0[smooth], c1[smooth]
-        # corners at the same vertex on both sides of the shared edge
-        n0, n1 = self.corner_next[c0], self.corner_next[c1]
-        same_dir = self.face_indices[c0] == self.face_indices[c1]
-        a = np.concatenate([c0, n0])
-        b = np.concatenate([np.where(same_dir, c1, n1), np.where(same_dir, n1, c1)])
-        labels = component_labels(c, a, b)
-        uniq, corner_vertex = np.unique(labels, return_inverse=True)
-        vertices = self.vertices[self.face_indices[uniq]]
-        return Mesh.from_csr(vertices, corner_vertex.astype(np.int64),
-                             self.face_offsets.copy(), groups=self.groups, name=self.name)
+        return split_creases(self, angle_deg)
 
     def weld(self, tolerance: float | None = None) -> Mesh:
-        """Merge vertices closer than ``tolerance`` (default: relative to the bounding box)
-        and drop those no face uses; faces that collapse below 3 corners are removed."""
-        if tolerance is None:
-            tolerance = tol.merge * max(np.sqrt(self._area_scale), 1e-300)
-        q = np.round(self.vertices / tolerance).astype(np.int64)
-        _, first, inverse = np.unique(q, axis=0, return_index=True, return_inverse=True)
-        inverse = inverse.ravel()
-        idx = inverse[self.face_indices]
-        # drop repeated consecutive corners (pole collapse), then faces with < 3 corners
-        keep = idx != idx[self.corner_next]
-        keep_count = np.bincount(self.corner_face[keep], minlength=self.n_faces)
-        ok_face = keep_count >= 3
-        keep &= ok_face[self.corner_face]
-        offsets = np.zeros(int(ok_face.sum()) + 1, np.int64)
-        np.cumsum(keep_count[ok_face], out=offsets[1:])
-        vertices = self.vertices[first]
-        used = np.zeros(len(vertices), bool)
-        used[idx[keep]] = True
-        remap = np.cumsum(used) - 1
-        return Mesh.from_csr(vertices[used], remap[idx[keep]], offsets, name=self.name)
+        """Merge vertices closer than ``tolerance`` (see :func:`glshade.geometry.merge.weld`)."""
+        from .merge import weld
 
-
-def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
-    """Join meshes into one; with ``names`` each input becomes a named group of faces."""
-    meshes = list(meshes)
-    names = list(names) if names is not None else [None] * len(meshes)
-    if len(names) != len(meshes):
-        raise GeometryError(f"got {len(meshes)} meshes but {len(names)} names")
-    vert, idx, sizes, groups = [], [], [], {}
-    v0 = f0 = 0
-    for m, name in zip(meshes, names):
-        vert.append(m.vertices)
-        idx.append(m.face_indices + v0)
-        sizes.append(m.face_sizes)
-        if name is not None:
-            groups[name] = np.arange(f0, f0 + m.n_faces)
-        for gname, g in m.groups.items():
-            groups[f"{name}/{gname}" if name else gname] = g + f0
-        v0 += m.n_vertices
-        f0 += m.n_faces
-    size = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
-    offsets = np.zeros(len(size) + 1, np.int64)
-    np.cumsum(size, out=offsets[1:])
-    return Mesh.from_csr(
-        np.concatenate(vert) if vert else np.zeros((0, 3)),
-        np.concatenate(idx) if idx else np.zeros(0, np.int64),
-        offsets,
-        groups=groups,
-    )
+        return weld(self, tolerance)

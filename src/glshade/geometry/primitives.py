@@ -7,7 +7,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GeometryError
-from .mesh import Mesh, concatenate
+from .analytic import AnalyticSphere
+from .edges import edge_groups
+from .merge import concatenate
+from .mesh import Mesh
 
 __all__ = [
     "cube", "box", "uv_sphere", "icosphere", "torus", "cylinder", "plane", "cornell_box",
@@ -64,7 +67,7 @@ def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
     bottom = np.stack([np.full(slices, south), last + s1[0], last + s[0]], -1)
     faces = [*top.tolist(), *quads.tolist(), *bottom.tolist()]
     m = Mesh(v, faces, name="uv_sphere")
-    m.analytic = {"kind": "sphere", "radius": float(radius)}
+    m.analytic = AnalyticSphere(radius)
     return m
 
 
@@ -91,10 +94,10 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
     v = _ICO_V / np.linalg.norm(_ICO_V, axis=1, keepdims=True)
     f = _ICO_F.copy()
     for _ in range(subdivisions):
-        e = np.sort(np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], 1).reshape(-1, 2), 1)
-        key = e[:, 0] * len(v) + e[:, 1]
-        uniq, first, inv = np.unique(key, return_index=True, return_inverse=True)
-        mid = v[e[first, 0]] + v[e[first, 1]]
+        e = np.stack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], 1).reshape(-1, 2)
+        g = edge_groups(e[:, 0], e[:, 1], len(v))
+        inv = g.group
+        mid = v[g.lo] + v[g.hi]
         mid /= np.linalg.norm(mid, axis=1, keepdims=True)
         m = (len(v) + inv).reshape(-1, 3)  # midpoints of edges (01, 12, 20) per face
         v = np.vstack([v, mid])
@@ -105,7 +108,7 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
             np.stack([c, ca, bc], 1), np.stack([ab, bc, ca], 1),
         ], 1).reshape(-1, 3)
     m = Mesh(v * radius, f, name="icosphere")
-    m.analytic = {"kind": "sphere", "radius": float(radius)}
+    m.analytic = AnalyticSphere(radius)
     return m
 
 

@@ -11,43 +11,27 @@ import numpy as np
 from ..errors import GlshadeError
 from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
+from .base import GLResource
 
-__all__ = ["GpuMesh", "is_closed_and_oriented"]
+__all__ = ["GpuMesh"]
 
 _ID_TEXTURE_WIDTH = 4096
 
 
-def is_closed_and_oriented(mesh: Mesh) -> bool:
-    """Every edge shared by exactly two faces that traverse it in opposite directions: then
-    back faces are never visible and can be culled."""
-    he = mesh.half_edges
-    if len(he) == 0:
-        return False
-    n = max(mesh.n_vertices, 1)
-    key = np.sort(he[:, 0] * n + he[:, 1])
-    if (key[1:] == key[:-1]).any():
-        return False  # a directed edge twice: inconsistent orientation or non-manifold
-    rev = he[:, 1] * n + he[:, 0]
-    pos = np.searchsorted(key, rev)
-    pos = np.minimum(pos, len(key) - 1)
-    return bool((key[pos] == rev).all())
-
-
-class GpuMesh:
+class GpuMesh(GLResource):
     """Buffers for one Mesh in one RenderContext; ``release()`` frees them all."""
 
     def __init__(self, context, mesh: Mesh):
-        self.context = context
+        super().__init__(context)
         self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
         ctx = context.ctx
         tri, owner = mesh.triangles
         self.n_triangles = len(tri)
         self.n_polygons = mesh.n_faces
-        self.closed = is_closed_and_oriented(mesh)
+        self.closed = mesh.closed_and_oriented
         normals = mesh.normals_from_file if mesh.normals_from_file is not None else \
             mesh.vertex_normals
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
-        self._objects = []
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
         self._flat_vbo = None
@@ -58,12 +42,6 @@ class GpuMesh:
         self.face_ids = self._keep(ctx.texture((width, height), 1, ids.tobytes(), dtype="i4"))
         self.face_ids.filter = (moderngl.NEAREST, moderngl.NEAREST)
         self._vaos: dict[int, object] = {}
-        self.released = False
-        context.track(self)
-
-    def _keep(self, obj):
-        self._objects.append(obj)
-        return obj
 
     def _flat_buffer(self):
         """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""
@@ -81,8 +59,7 @@ class GpuMesh:
 
     def vertex_array(self, program, mode: ShadingMode):
         """The VAO binding this mesh's buffers to ``program`` (cached)."""
-        if self.released:
-            raise GlshadeError("this GpuMesh was released")
+        self._check()
         key = id(program)
         vao = self._vaos.get(key)
         if vao is None:
@@ -97,14 +74,7 @@ class GpuMesh:
             self._vaos[key] = vao
         return vao
 
-    def release(self) -> None:
-        if self.released:
-            return
+    def _release_extra(self) -> None:
         for vao in self._vaos.values():
             vao.release()
-        for obj in reversed(self._objects):
-            obj.release()
         self._vaos.clear()
-        self._objects.clear()
-        self.released = True
-        self.context.untrack(self)

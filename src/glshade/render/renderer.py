@@ -1,4 +1,7 @@
-"""The Renderer: draws a Scene seen by a Camera in a ShadingMode, headless.
+"""The Renderer: draws a Scene seen by a Camera with DrawOptions, headless or into a window.
+
+``Renderer.draw(target, scene, camera, options)`` is the one drawing path; ``render`` and
+``render_frame`` draw into the renderer's own offscreen target and read it back.
 
 Meshes are uploaded once per Renderer and cached (the cache follows the scene: a mesh that
 is garbage-collected loses its GPU copy at the next frame). A new camera only changes
@@ -14,11 +17,11 @@ from dataclasses import dataclass
 import moderngl
 import numpy as np
 
-from ..camera import Camera
 from ..errors import GeometryError, GlshadeError
 from ..geometry.transforms import gl_bytes
-from ..modes import ShadingMode
-from ..scene import MAX_LIGHTS, PointLight, Scene
+from ..modes import Outputs, ShadingMode
+from ..options import DrawOptions
+from ..scene import MAX_LIGHTS, Camera, PointLight, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .shaders import ShaderLibrary
@@ -29,7 +32,7 @@ __all__ = ["Renderer", "Frame"]
 
 @dataclass
 class Frame:
-    """Everything one pass produces (row 0 at the top).
+    """What one pass produces (row 0 at the top); outputs not asked for are None.
 
     color : (H, W, 4) uint8 (float32 with ``color_dtype="f4"``), linear unless ``srgb``.
     depth : (H, W) float32 distance along the view axis; ``inf`` where nothing was drawn.
@@ -39,9 +42,9 @@ class Frame:
     """
 
     color: np.ndarray
-    depth: np.ndarray
-    normal: np.ndarray
-    face_id: np.ndarray
+    depth: np.ndarray | None = None
+    normal: np.ndarray | None = None
+    face_id: np.ndarray | None = None
 
 
 def _mat3(m: np.ndarray) -> bytes:
@@ -146,34 +149,37 @@ class Renderer:
         return len(self._meshes)
 
     # ------------------------------------------------------------------ drawing
-    def _draw(self, scene: Scene, camera: Camera, mode: ShadingMode, depth_test: bool,
-              cull_back_faces, srgb: bool, target, everything: bool, viewport=None,
-              clear: bool = True, wireframe: bool = False):
+    def draw(self, target, scene: Scene, camera: Camera, options: DrawOptions | None = None,
+             *, viewport=None, clear: bool = True) -> None:
+        """Draw ``scene`` into ``target`` -- the renderer's offscreen target, a window's
+        framebuffer (the viewer) or any object with its ``begin/bind/resolve`` -- optionally
+        into a ``viewport`` ``(x, y, w, h)`` (GL's: origin at the bottom left) without
+        clearing. The one drawing path: every picture glshade makes comes through here."""
         self._check()
+        options = DrawOptions.of(options)
         if not isinstance(scene, Scene):
             raise GeometryError(f"expected a Scene, got {type(scene).__name__}")
         if not isinstance(camera, Camera):
             raise GeometryError(f"expected a Camera, got {type(camera).__name__}")
-        if cull_back_faces not in ("auto", True, False):
-            raise GeometryError(f"cull_back_faces must be 'auto', True or False, got "
-                                f"{cull_back_faces!r}")
         if len(scene.lights) > MAX_LIGHTS:
             raise GeometryError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")
+        self.context.make_current()
         self._sync(scene)
         ctx = self.ctx
-        prog = self.shaders.program(mode, aux=everything)
+        outputs, aux = options.outputs, options.outputs.auxiliary
+        prog = self.shaders.program(options.mode, aux=aux)
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
         proj = camera.projection_matrix(vw / vh)
         if clear:
-            target.begin(scene.background, everything)
+            target.begin(scene.background, outputs)
         else:
-            target.bind(everything)
+            target.bind(outputs)
         ctx.viewport = (vx, vy, vw, vh)
-        if wireframe:  # (set only when used: a polygon-mode change costs llvmpipe a revalidation)
+        if options.wireframe:  # (set only when used: a polygon-mode change costs llvmpipe)
             ctx.wireframe = True
-        if depth_test:
+        if options.depth_test:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
             ctx.disable(moderngl.DEPTH_TEST)
@@ -188,12 +194,12 @@ class Renderer:
 
         put("u_view", gl_bytes(view))
         put("u_proj", gl_bytes(proj))
-        put("u_srgb", bool(srgb))
+        put("u_srgb", options.srgb)
         put("u_orthographic", camera.projection == "orthographic")
         put("u_face_ids", 0)
-        self._put_lights(put, scene, view)
-        if mode is ShadingMode.DEPTH:
-            b = scene.bounds()
+        self._put_lights(put, scene.lights_for(camera), scene.ambient, view)
+        if options.mode is ShadingMode.DEPTH:
+            b = scene.bounds
             corners = np.array([[x, y, z, 1] for x in b[:, 0] for y in b[:, 1] for z in b[:, 2]])
             d = -(corners @ view.T)[:, 2]
             near, far = max(camera.near, d.min()), min(camera.far, d.max())
@@ -218,35 +224,29 @@ class Renderer:
             put("u_shininess", mat.shininess)
             mirrored = np.linalg.det(m[:3, :3]) < 0
             ctx.front_face = "cw" if mirrored else "ccw"
-            cull = gpu.closed if cull_back_faces == "auto" else bool(cull_back_faces)
+            cull = gpu.closed if options.cull == "auto" else options.cull
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
                 ctx.cull_face = "back"
             else:
                 ctx.disable(moderngl.CULL_FACE)
-            if everything:
+            if aux:
                 gpu.face_ids.use(0)
-            gpu.vertex_array(prog, mode).render(moderngl.TRIANGLES)
+            gpu.vertex_array(prog, options.mode).render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
-        if wireframe:
+        if options.wireframe:
             ctx.wireframe = False
         if clear:
-            target.resolve(everything)
+            target.resolve(outputs)
 
     @staticmethod
-    def _put_lights(put, scene: Scene, view: np.ndarray) -> None:
-        lights = scene.lights or [None]  # None: the default headlight at the eye
+    def _put_lights(put, lights, ambient, view: np.ndarray) -> None:
         pos = np.zeros((MAX_LIGHTS, 4), dtype="f4")
         color = np.zeros((MAX_LIGHTS, 3), dtype="f4")
         att = np.zeros((MAX_LIGHTS, 3), dtype="f4")
         for i, light in enumerate(lights):
-            if light is None:
-                pos[i] = (0, 0, 0, 1)
-                color[i] = (1, 1, 1)
-                att[i] = (1, 0, 0)
-                continue
             pos[i] = light.view_vector(view)
             color[i] = np.asarray(light.color) * light.intensity
             att[i] = light.attenuation if isinstance(light, PointLight) else (1, 0, 0)
@@ -254,55 +254,46 @@ class Renderer:
         put("u_light_pos_view", pos.tobytes())
         put("u_light_color", color.tobytes())
         put("u_light_attenuation", att.tobytes())
-        put("u_ambient", scene.ambient)
+        put("u_ambient", ambient)
 
-    def render(self, scene: Scene, camera: Camera, mode="phong", *, depth_test: bool = True,
-               cull_back_faces="auto", srgb: bool = False) -> np.ndarray:
+    def render(self, scene: Scene, camera: Camera, options=None, **changes) -> np.ndarray:
         """The colour image ``(H, W, 4) uint8``, row 0 at the top.
 
-        ``depth_test=False`` draws in submission order (what the z-buffer is for);
-        ``cull_back_faces="auto"`` culls on closed, consistently oriented meshes; ``srgb``
-        encodes the linear result for display.
+        ``options``: DrawOptions or a shading mode's name; ``changes`` override single
+        options (``mode="flat"``, ``depth_test=False``, ``cull=True``, ``srgb=True`` ...).
         """
-        mode = ShadingMode.parse(mode)
+        options = DrawOptions.of(options, **changes).replace(outputs=Outputs.COLOR)
         target = self._target("f1")
-        self._draw(scene, camera, mode, depth_test, cull_back_faces, srgb, target, False)
+        self.draw(target, scene, camera, options)
         return target.read_color()
 
-    def render_frame(self, scene: Scene, camera: Camera, mode="phong", *,
-                     depth_test: bool = True, cull_back_faces="auto", srgb: bool = False,
-                     color_dtype: str = "u1") -> Frame:
-        """Colour, depth, world normals and polygon ids from one pass (several render
-        targets). ``color_dtype="f4"`` returns unquantised float colour, for tests of the
-        formula."""
-        mode = ShadingMode.parse(mode)
+    def render_frame(self, scene: Scene, camera: Camera, options=None, *,
+                     outputs: Outputs = Outputs.ALL, color_dtype: str = "u1",
+                     **changes) -> Frame:
+        """Colour and the ``outputs`` asked for (depth, world normals, polygon ids) from one
+        pass (several render targets). ``color_dtype="f4"`` returns unquantised float
+        colour, for tests of the formula."""
         if color_dtype not in ("u1", "f4"):
             raise GlshadeError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
+        options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         target = self._target("f1" if color_dtype == "u1" else "f4")
-        self._draw(scene, camera, mode, depth_test, cull_back_faces, srgb, target, True)
-        return Frame(target.read_color(), target.read_depth(), target.read_normal(),
-                     target.read_face_id())
+        self.draw(target, scene, camera, options)
+        want = options.outputs
+        return Frame(target.read_color(),
+                     target.read_depth() if want & Outputs.DEPTH else None,
+                     target.read_normal() if want & Outputs.NORMAL else None,
+                     target.read_face_id() if want & Outputs.FACE_ID else None)
 
-    def draw(self, target, scene: Scene, camera: Camera, mode="phong", *,
-             depth_test: bool = True, cull_back_faces="auto", srgb: bool = False,
-             viewport=None, clear: bool = True, wireframe: bool = False) -> None:
-        """Draw into any target with the renderer's programs and buffers -- a window's
-        framebuffer (the viewer) or an offscreen one -- optionally into a ``viewport``
-        ``(x, y, w, h)`` (GL's: origin at the bottom left) without clearing."""
-        self._check()
-        self.context.make_current()
-        self._draw(scene, camera, ShadingMode.parse(mode), depth_test, cull_back_faces, srgb,
-                   target, False, viewport, clear, wireframe)
-
-    def render_depth(self, scene: Scene, camera: Camera, **kwargs) -> np.ndarray:
+    def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""
-        return self.render_frame(scene, camera, "depth", **kwargs).depth
+        return self.render_frame(scene, camera, "depth", outputs=Outputs.DEPTH,
+                                 **changes).depth
 
-    def render_many(self, scene: Scene, cameras: Iterable[Camera], mode="phong",
-                    **kwargs) -> Iterator[np.ndarray]:
+    def render_many(self, scene: Scene, cameras: Iterable[Camera], options=None,
+                    **changes) -> Iterator[np.ndarray]:
         """Stream colour images for a sequence of cameras; meshes are uploaded once."""
         for camera in cameras:
-            yield self.render(scene, camera, mode, **kwargs)
+            yield self.render(scene, camera, options, **changes)
 
     def info(self) -> dict:
         return self.context.info

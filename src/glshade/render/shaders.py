@@ -12,9 +12,19 @@ import re
 from pathlib import Path
 
 from ..errors import ShaderError
-from ..modes import PROGRAMS, ShadingMode
+from ..modes import ShadingMode
+from .base import GLResource
 
-__all__ = ["shader_dir", "ShaderLibrary", "assemble"]
+__all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS"]
+
+#: program of each mode: (vertex shader file, fragment shader file) under shaders/
+PROGRAMS = {
+    ShadingMode.FLAT: ("flat.vert", "flat.frag"),
+    ShadingMode.GOURAUD: ("gouraud.vert", "gouraud.frag"),
+    ShadingMode.PHONG: ("smooth.vert", "phong.frag"),
+    ShadingMode.NORMALS: ("smooth.vert", "normals.frag"),
+    ShadingMode.DEPTH: ("smooth.vert", "depth.frag"),
+}
 
 _INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')
 _MAX_DEPTH = 8
@@ -102,21 +112,18 @@ def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[s
     return "\n".join(out)
 
 
-class ShaderLibrary:
-    """Compiled programs of one RenderContext, one per shading mode, built on first use and
-    released with the context."""
+class ShaderLibrary(GLResource):
+    """Compiled programs of one RenderContext, one per shading mode and output set, built on
+    first use and released with the context."""
 
     def __init__(self, context):
-        self.context = context
+        super().__init__(context)
         self._programs: dict[tuple, object] = {}
-        self.released = False
-        context.track(self)
 
     def program(self, mode: ShadingMode, aux: bool = True):
         """The program of ``mode``; with ``aux=False`` the variant that writes colour only
         (no normal, polygon id or depth outputs, so no id lookup per pixel)."""
-        if self.released:
-            raise ShaderError("this ShaderLibrary was released")
+        self._check()
         mode = ShadingMode.parse(mode)
         key = (mode, bool(aux))
         if key not in self._programs:
@@ -141,11 +148,7 @@ class ShaderLibrary:
             raise ShaderError(head + ("\n" + detail if detail else "") +
                               "\n--- driver log ---\n" + text.strip()) from None
 
-    def release(self) -> None:
-        if self.released:
-            return
+    def _release_extra(self) -> None:
         for prog in self._programs.values():
             prog.release()
         self._programs.clear()
-        self.released = True
-        self.context.untrack(self)

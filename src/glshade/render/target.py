@@ -12,22 +12,23 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GlshadeError
+from ..modes import Outputs
+from .base import GLResource
 
 __all__ = ["OffscreenTarget", "WindowTarget"]
 
 
-class OffscreenTarget:
+class OffscreenTarget(GLResource):
     """One set of framebuffers of a given size; ``release()`` frees them."""
 
     def __init__(self, context, width: int, height: int, samples: int = 0,
                  color_dtype: str = "f1"):
         if width < 1 or height < 1:
             raise GlshadeError(f"image size must be positive, got {width}x{height}")
-        self.context = context
+        super().__init__(context)
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.color_dtype = color_dtype
         ctx = context.ctx
-        self._objects = []
 
         def buffers(samples):
             size = (self.width, self.height)
@@ -50,36 +51,30 @@ class OffscreenTarget:
             self.fbo_read_color = self._keep(ctx.framebuffer([c], z))
         else:
             self.fbo_read_all, self.fbo_read_color = self.fbo_draw_all, self.fbo_draw_color
-        self.released = False
-        context.track(self)
-
-    def _keep(self, obj):
-        self._objects.append(obj)
-        return obj
 
     @property
     def size(self) -> tuple[int, int]:
         return self.width, self.height
 
-    def begin(self, background, everything: bool) -> None:
+    def begin(self, background, outputs: Outputs) -> None:
         """Bind for drawing and clear: colour to the background, the rest to zero."""
-        if self.released:
-            raise GlshadeError("this OffscreenTarget was released")
-        if everything:
+        self._check()
+        if outputs.auxiliary:
             self.fbo_clear_aux.use()
             self.fbo_clear_aux.clear(0.0, 0.0, 0.0, 0.0)
-        fbo = self.fbo_draw_all if everything else self.fbo_draw_color
+        fbo = self.fbo_draw_all if outputs.auxiliary else self.fbo_draw_color
         fbo.use()
         fbo.clear(*background, depth=1.0)
 
-    def bind(self, everything: bool) -> None:
+    def bind(self, outputs: Outputs) -> None:
         """Bind for drawing without clearing."""
-        (self.fbo_draw_all if everything else self.fbo_draw_color).use()
+        (self.fbo_draw_all if outputs.auxiliary else self.fbo_draw_color).use()
 
-    def resolve(self, everything: bool) -> None:
+    def resolve(self, outputs: Outputs) -> None:
+        """Copy the multisampled drawing into the single-sampled buffers that are read."""
         if self.samples:
             ctx = self.context.ctx
-            if everything:
+            if outputs.auxiliary:
                 ctx.copy_framebuffer(self.fbo_read_all, self.fbo_draw_all)
             else:
                 ctx.copy_framebuffer(self.fbo_read_color, self.fbo_draw_color)
@@ -107,15 +102,8 @@ class OffscreenTarget:
         depth[bits == 0] = np.inf  # never drawn
         return depth
 
-    def release(self) -> None:
-        if self.released:
-            return
-        self.context.rest()
-        for obj in reversed(self._objects):
-            obj.release()
-        self._objects.clear()
-        self.released = True
-        self.context.untrack(self)
+    def _release_extra(self) -> None:
+        self.context.rest()  # never release the bound framebuffer
 
 
 class WindowTarget:
@@ -133,16 +121,16 @@ class WindowTarget:
         ctx = self.context.ctx
         return ctx.screen if ctx.screen is not None else ctx.detect_framebuffer(0)
 
-    def begin(self, background, everything: bool) -> None:
+    def begin(self, background, outputs: Outputs) -> None:
         fbo = self._fbo()
         fbo.use()
         self.context.ctx.viewport = (0, 0, self.width, self.height)
         fbo.clear(*background, depth=1.0)
 
-    def bind(self, everything: bool) -> None:
+    def bind(self, outputs: Outputs) -> None:
         self._fbo().use()
 
-    def resolve(self, everything: bool) -> None:
+    def resolve(self, outputs: Outputs) -> None:
         pass
 
     def read_color(self) -> np.ndarray:

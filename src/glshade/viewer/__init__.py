@@ -3,11 +3,11 @@ Importing this package opens nothing; :class:`Viewer` does."""
 
 from .arcball import Arcball, drag_rotation, sphere_point
 
-__all__ = ["Arcball", "drag_rotation", "sphere_point", "Viewer", "DisplayError"]
+__all__ = ["Arcball", "drag_rotation", "sphere_point", "Viewer"]
 
 
 def __getattr__(name):
-    if name in ("Viewer", "DisplayError"):
+    if name == "Viewer":
         from . import window
 
         return getattr(window, name)

@@ -17,25 +17,20 @@ from pathlib import Path
 
 import numpy as np
 
-from ..camera import Camera, default_camera
-from ..errors import GlshadeError
+from ..errors import DisplayError
 from ..geometry import quaternion as quat
-from ..keyframes import CameraPath, Keyframe
 from ..modes import ShadingMode
-from ..scene import Material, PointLight, Scene
+from ..options import DrawOptions
+from ..scene import Camera, CameraPath, Keyframe, Material, PointLight, Scene, default_camera
 from .arcball import Arcball
 
-__all__ = ["Viewer", "DisplayError", "HELP"]
+__all__ = ["Viewer", "HELP"]
 
 HELP = __doc__.split("\n\n", 1)[1].strip()
 
 _MODE_KEYS = {"1": ShadingMode.FLAT, "2": ShadingMode.GOURAUD, "3": ShadingMode.PHONG,
               "4": ShadingMode.NORMALS, "5": ShadingMode.DEPTH}
 DOUBLE_CLICK_S = 0.3
-
-
-class DisplayError(GlshadeError, ValueError):
-    """No display to open a window on (bad environment for this command: exit 2)."""
 
 
 def _has_display() -> bool:
@@ -48,13 +43,14 @@ class Viewer:
     Parameters
     ----------
     scene : what to show. camera : the initial view (default: the auto-framed camera of
-    ``glshade render``). size : window size in screen coordinates. mode : the initial
-    shading mode. samples : MSAA samples of the window (0 = off). compare : flat | Gouraud
-    | Phong side by side with one camera. visible : False for a hidden window (tests).
+    ``glshade render``). size : window size in screen coordinates. options : the initial
+    DrawOptions (or a mode's name); keys change them. samples : MSAA samples of the window
+    (0 = off). compare : flat | Gouraud | Phong side by side with one camera. visible :
+    False for a hidden window (tests).
     """
 
     def __init__(self, scene: Scene, camera: Camera | None = None, *, size=(960, 720),
-                 mode="phong", samples: int = 4, compare: bool = False, visible: bool = True,
+                 options=None, samples: int = 4, compare: bool = False, visible: bool = True,
                  title: str = "glshade", screenshot_dir: str | Path = "."):
         if not _has_display():
             raise DisplayError("no display to open a window on (DISPLAY is not set); use "
@@ -91,13 +87,10 @@ class Viewer:
         self.scene = scene
         self.title = title
         self.compare = bool(compare)
-        self.mode = ShadingMode.parse(mode)
-        self.depth_test = True
-        self.wireframe = False
-        self.cull: str | bool = "auto"
+        self.options = DrawOptions.of(options)
         self.screenshot_dir = Path(screenshot_dir)
-        self.center = scene.bounds().mean(axis=0)
-        self.home = camera or default_camera(scene.bounds(), self._aspect())
+        self.center = scene.bounds.mean(axis=0)
+        self.home = camera or default_camera(scene.bounds, self._aspect())
         self.camera = self.home
         self.keyframes: list[Keyframe] = []
         self.playing = False
@@ -137,17 +130,18 @@ class Viewer:
         """Draw one frame into the back buffer (no swap)."""
         self._glfw.make_context_current(self.window)
         r, t = self.renderer, self.target
-        kwargs = {"depth_test": self.depth_test, "cull_back_faces": self.cull}
+        filled = self.options.replace(wireframe=False)
         if self.compare:
             w3 = t.width // 3
             for i, m in enumerate((ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)):
-                r.draw(t, self.scene, self.camera, m, viewport=(i * w3, 0, w3, t.height),
-                       clear=(i == 0), **kwargs)
-                if self.wireframe:
-                    self._draw_wire((i * w3, 0, w3, t.height))
+                viewport = (i * w3, 0, w3, t.height)
+                r.draw(t, self.scene, self.camera, filled.replace(mode=m), viewport=viewport,
+                       clear=(i == 0))
+                if self.options.wireframe:
+                    self._draw_wire(viewport)
         else:
-            r.draw(t, self.scene, self.camera, self.mode, **kwargs)
-            if self.wireframe:
+            r.draw(t, self.scene, self.camera, filled)
+            if self.options.wireframe:
                 self._draw_wire(None)
 
     def _wire_overlay(self) -> Scene:
@@ -163,12 +157,11 @@ class Viewer:
         return self._overlay
 
     def _draw_wire(self, viewport) -> None:
-        overlay = self._wire_overlay()
         ctx = self.context.ctx
-        ctx.depth_func = "<="
-        self.renderer.draw(self.target, overlay, self.camera, "flat", viewport=viewport,
-                           clear=False, wireframe=True, depth_test=self.depth_test,
-                           cull_back_faces=self.cull)
+        ctx.depth_func = "<="  # the edges lie exactly on the filled polygons
+        self.renderer.draw(self.target, self._wire_overlay(), self.camera,
+                           self.options.replace(mode=ShadingMode.FLAT), viewport=viewport,
+                           clear=False)
         ctx.depth_func = "<"
 
     def screenshot(self, path=None) -> np.ndarray:
@@ -176,7 +169,7 @@ class Viewer:
         self.draw()
         img = self.target.read_color()
         if path is not None:
-            from ..image import save_image
+            from ..io.images import save_image
 
             save_image(img, path)
             self._say(f"saved {path}")
@@ -205,8 +198,8 @@ class Viewer:
         glfw.set_window_title(self.window, self.status())
 
     def status(self) -> str:
-        mode = "flat | gouraud | phong" if self.compare else self.mode.value
-        extra = "" if self.depth_test else "  [no depth test]"
+        mode = "flat | gouraud | phong" if self.compare else self.options.mode.value
+        extra = "" if self.options.depth_test else "  [no depth test]"
         if self.playing:
             extra += "  [playing]"
         return (f"{self.title} - {mode} - {self._fps:.0f} fps - {self.triangles:,} triangles"
@@ -241,16 +234,17 @@ class Viewer:
     # ------------------------------------------------------------------ actions
     def key(self, char: str) -> None:
         """Act on a key as typed (what the key callback calls; tests call it directly)."""
+        o = self.options
         if char in _MODE_KEYS:
-            self.mode = _MODE_KEYS[char]
+            self.options = o.replace(mode=_MODE_KEYS[char])
             self.compare = False
         elif char == "z":
-            self.depth_test = not self.depth_test
+            self.options = o.replace(depth_test=not o.depth_test)
         elif char == "w":
-            self.wireframe = not self.wireframe
+            self.options = o.replace(wireframe=not o.wireframe)
         elif char == "c":
-            self.cull = {"auto": True, True: False, False: "auto"}[self.cull]
-            self._say(f"back-face culling: {self.cull}")
+            self.options = o.replace(cull={"auto": True, True: False, False: "auto"}[o.cull])
+            self._say(f"back-face culling: {self.options.cull}")
         elif char == "l":
             self.scene.lights = [PointLight(tuple(self.camera.position))]
         elif char == "k":
@@ -275,7 +269,7 @@ class Viewer:
             self.screenshot(out)
         elif char == "r":
             self.camera = self.home
-            self.center = self.scene.bounds().mean(axis=0)
+            self.center = self.scene.bounds.mean(axis=0)
             self.playing = False
         elif char in ("h", "?"):
             self._say(HELP)

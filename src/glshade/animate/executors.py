@@ -1,0 +1,119 @@
+"""Running the same work on many items, in order: in this process, or in a pool of spawned
+worker processes that each build their worker once (one GL context per process).
+
+A *worker factory* is a picklable callable; ``factory(*args)`` returns a worker, a callable
+``worker(item) -> result`` with a ``close()``. Executors yield results in item order.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import multiprocessing as mp
+import os
+import signal
+import sys
+from collections.abc import Iterable, Iterator
+
+from ..errors import InputError
+
+__all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "make_executor"]
+
+
+class Executor:
+    """``map(items)`` yields ``worker(item)`` for each item, in order."""
+
+    def __init__(self, factory, args: tuple):
+        self.factory, self.args = factory, args
+
+    def map(self, items: Iterable) -> Iterator:
+        raise NotImplementedError
+
+
+class SerialExecutor(Executor):
+    """One worker in this process."""
+
+    def map(self, items):
+        worker = self.factory(*self.args)
+        try:
+            for item in items:
+                yield worker(item)
+        finally:
+            worker.close()
+
+
+_worker = None
+_worker_error: BaseException | None = None
+
+
+def _init_worker(factory, args, threads):
+    global _worker, _worker_error
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
+    # Mesa's software rasterizer starts a thread per core in every process; with one worker
+    # per core that oversubscribes the machine. Share the cores out instead (no effect on
+    # GPU drivers).
+    os.environ.setdefault("LP_NUM_THREADS", str(threads))
+    try:
+        _worker = factory(*args)
+    except Exception as exc:  # reported with the first item, in the parent, as it is;
+        _worker_error = exc     # an initializer that raised would be restarted forever
+
+
+def _work(item):
+    if _worker_error is not None:
+        raise _worker_error
+    assert _worker is not None
+    return _worker(item)
+
+
+@contextlib.contextmanager
+def _without_main_reimport():
+    """Spawned workers normally re-run the user's main script (a script without an
+    ``if __name__ == "__main__"`` guard would start pools in its workers). The workers
+    need nothing from it -- their code and data come from glshade -- so hide it while they
+    start."""
+    main = sys.modules.get("__main__")
+    saved = {k: getattr(main, k) for k in ("__file__", "__spec__") if hasattr(main, k)}
+    try:
+        for k in saved:
+            if k == "__spec__":
+                main.__spec__ = None
+            else:
+                delattr(main, k)
+        yield
+    finally:
+        for k, v in saved.items():
+            setattr(main, k, v)
+
+
+class ProcessExecutor(Executor):
+    """``jobs`` spawned worker processes sharing the cores; stopped at once on an error,
+    Ctrl-C or a closed generator."""
+
+    def __init__(self, factory, args: tuple, jobs: int):
+        super().__init__(factory, args)
+        self.jobs = int(jobs)
+
+    def map(self, items):
+        items = list(items)
+        threads = max(1, (os.cpu_count() or 1) // self.jobs)
+        with _without_main_reimport():  # the pool starts its workers here
+            pool = mp.get_context("spawn").Pool(self.jobs, initializer=_init_worker,
+                                                initargs=(self.factory, self.args, threads))
+        try:
+            chunk = max(1, min(8, len(items) // (4 * self.jobs)))
+            yield from pool.imap(_work, items, chunksize=chunk)
+            pool.close()
+        except BaseException:
+            pool.terminate()
+            raise
+        finally:
+            pool.join()
+
+
+def make_executor(factory, args: tuple, jobs: int = 1, items: int | None = None) -> Executor:
+    """A SerialExecutor for one job (or one item), else a ProcessExecutor of ``jobs``."""
+    if int(jobs) != jobs or jobs < 1:
+        raise InputError(f"jobs must be a whole number >= 1, got {jobs!r}")
+    if items is not None:
+        jobs = min(jobs, max(items, 1))
+    return SerialExecutor(factory, args) if jobs == 1 else ProcessExecutor(factory, args, jobs)

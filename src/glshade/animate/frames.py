@@ -1,0 +1,91 @@
+"""Rendering camera paths: the frames of a key-frame path, one or several shading modes side
+by side, in this process or in worker processes (each with its own GL context), in order;
+and :func:`animate`, which writes them to a file."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+
+import numpy as np
+
+from ..errors import InputError
+from ..io.images import LABEL_HEIGHT, labelled_row
+from ..options import DrawOptions
+from ..scene import CameraPath, Scene
+from .executors import make_executor
+from .progress import Progress
+from .writers import write_animation
+
+__all__ = ["animate", "render_frames", "FrameMaker"]
+
+
+class FrameMaker:
+    """A worker that renders frame ``i`` of a path to RGBA bytes (in the main process or in
+    a worker process). ``options`` are drawn unchanged, once per mode in ``modes``."""
+
+    def __init__(self, scene, path, times, options, modes, size, samples, backend):
+        from ..render.renderer import Renderer
+
+        self.scene, self.path, self.times = scene, path, times
+        self.options, self.modes = options, modes
+        self.renderer = Renderer(size[0], size[1], samples=samples, backend=backend)
+
+    def __call__(self, i: int) -> bytes:
+        camera = self.path.at(self.times[i])
+        tiles = {m.value: self.renderer.render(self.scene, camera, self.options.replace(mode=m))
+                 for m in self.modes}
+        if len(tiles) == 1:
+            return next(iter(tiles.values())).tobytes()
+        return labelled_row(tiles).tobytes()
+
+    def close(self):
+        self.renderer.close()
+
+
+def frame_shape(size, n_modes: int) -> tuple[int, int, int]:
+    """``(H, W, 4)`` of a frame: one tile, or ``n_modes`` labelled tiles side by side."""
+    w, h = size
+    return (h, w, 4) if n_modes == 1 else (h + LABEL_HEIGHT, w * n_modes, 4)
+
+
+def render_frames(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
+                  size=(512, 512), samples: int = 4, jobs: int = 1, backend="auto",
+                  progress: Progress | None = None, **changes) -> Iterator[np.ndarray]:
+    """Yield ``frames`` images ``(H, W', 4) uint8`` evenly spaced along ``path``, in order.
+
+    ``options``: DrawOptions or a mode's name (``changes`` override single options). With
+    ``modes`` several shading modes are laid side by side, labelled. ``jobs > 1`` renders
+    in spawned worker processes, each with its own GL context.
+    """
+    options = DrawOptions.of(options, **changes)
+    modes = [DrawOptions.of(m).mode for m in (modes or [options.mode])]
+    if int(frames) != frames or frames < 1:
+        raise InputError(f"need at least one frame, got {frames!r}")
+    times = path.frame_times(int(frames))
+    args = (scene, path, times, options, modes, tuple(size), samples, backend)
+    executor = make_executor(FrameMaker, args, jobs, items=int(frames))
+    shape = frame_shape(size, len(modes))
+    for data in executor.map(range(int(frames))):
+        if progress:
+            progress.update()
+        yield np.frombuffer(data, np.uint8).reshape(shape)
+
+
+def animate(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
+            output=None, fps: float = 30.0, size=(512, 512), samples: int = 4,
+            jobs: int | None = 1, backend="auto", progress: bool | None = False, **changes):
+    """Render ``frames`` frames along ``path``. Without ``output``, return an iterator of
+    images; with it, write the file (GIF, PNG/APNG, MP4 or a folder) and return the number
+    of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal."""
+    jobs = (os.cpu_count() or 1) if jobs is None else jobs
+    bar = Progress(frames, enabled=progress) if progress is not False else None
+    it = render_frames(scene, path, frames, options, modes=modes, size=size, samples=samples,
+                       jobs=jobs, backend=backend, progress=bar, **changes)
+    if output is None:
+        return it
+    try:
+        return write_animation(it, output, fps)
+    finally:
+        if bar:
+            bar.close()

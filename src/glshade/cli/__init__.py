@@ -1,0 +1,30 @@
+"""The ``glshade`` command line tool: the grammar (parser), argument types (validators),
+what is rendered (inputs) and the subcommands (commands, info).
+
+Exit status: 0 on success; 2 for bad input (arguments, or an input file that is missing
+or malformed), reported in one line on stderr; 1 for a failure of the environment (no GL
+context, an output that cannot be written), also one line. ``--debug`` shows tracebacks.
+"""
+
+from __future__ import annotations
+
+import sys
+
+__all__ = ["main"]
+
+
+def main(argv: list[str] | None = None) -> int:
+    from ..errors import GlshadeError, exit_status
+    from .parser import build_parser
+
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except (GlshadeError, OSError) as exc:  # expected: one line, no traceback
+        if args.debug:
+            raise
+        print(f"glshade: error: {exc}", file=sys.stderr)
+        return exit_status(exc)
+    except KeyboardInterrupt:
+        print("glshade: interrupted", file=sys.stderr)
+        return 130

@@ -1,0 +1,141 @@
+"""The subcommands that draw: render, animate, compare, view and doctor. Heavy imports sit
+inside each, so ``--help`` needs no GL."""
+
+from __future__ import annotations
+
+import json
+import os
+
+from ..errors import EXIT_ENVIRONMENT, EXIT_OK, UsageError
+from ..io.scenefile import RenderSettings
+from .info import info
+from .inputs import load_job
+
+__all__ = ["info", "render", "animate", "compare", "view", "doctor"]
+
+#: compare renders small tiles, one sample per pixel like its references
+COMPARE_DEFAULTS = RenderSettings(width=256, height=256, samples=0)
+
+
+def render(args) -> int:
+    from ..io.images import save_image
+    from ..render.renderer import Renderer
+
+    job = load_job(args, args.mesh)
+    (width, height), options = job.size, job.options
+    with Renderer(width, height, samples=job.settings.samples,
+                  backend=args.backend) as renderer:
+        image = renderer.render(job.scene, job.camera, options)
+    save_image(image, args.output)
+    if not args.quiet:
+        print(f"{args.output}: {width}x{height} {options.mode.value}, {job.polygons:,} "
+              f"polygons ({renderer.backend})")
+    return EXIT_OK
+
+
+def animate(args) -> int:
+    from ..animate import animate as run, output_format
+
+    output_format(args.output)  # a bad extension fails before any rendering
+    job = load_job(args, args.scene)
+    st = job.settings
+    fps = args.fps or st.fps
+    duration = args.duration if args.duration is not None else st.duration
+    if args.frames is not None:
+        frames = args.frames
+    elif duration:
+        frames = max(1, int(round(duration * fps)))
+    else:
+        frames = 1
+    modes = [m.value for m in args.modes] if args.modes else [job.options.mode.value]
+    jobs = args.jobs or os.cpu_count() or 1
+    n = run(job.scene, job.path, frames, job.options, modes=modes, output=args.output,
+            fps=fps, size=job.size, samples=st.samples, jobs=jobs, backend=args.backend,
+            progress=None if not args.quiet else False)
+    if not args.quiet:
+        print(f"{args.output}: {n} frames, {job.size[0]}x{job.size[1]}, {fps:g} fps, "
+              f"{'/'.join(modes)}, {jobs} job{'s' if jobs > 1 else ''}")
+    return EXIT_OK
+
+
+def _sweep(args, modes) -> int:
+    from .._atomic import atomic_write
+    from ..compare import sweep, sweep_plot
+    from ..geometry import primitives
+    from ..io.images import save_image
+
+    spec = args.mesh.removeprefix("primitive:").split(":")[0]
+    if spec not in ("icosphere", "uv_sphere"):
+        raise UsageError("--sweep needs a sphere primitive: primitive:icosphere or "
+                         "primitive:uv_sphere")
+    make = primitives.icosphere if spec == "icosphere" else \
+        (lambda k: primitives.uv_sphere(4 * 2**k, 8 * 2**k))
+    rows = sweep(make, args.levels, modes=modes, size=args.size or COMPARE_DEFAULTS.size,
+                 backend=args.backend)
+    print("mean |error| against the analytic sphere (8-bit units) and the brightest pixel "
+          "(the reference's: %.1f)" % rows[0][modes[0]].reference_peak)
+    print("level  faces     " + "  ".join(f"{m:>9}" for m in modes) + "   " +
+          "  ".join(f"{'peak ' + m:>13}" for m in modes))
+    for r in rows:
+        print(f"{r['level']:>5}  {r['faces']:>8,}  " +
+              "  ".join(f"{r[m].mean_abs:>9.3f}" for m in modes) + "   " +
+              "  ".join(f"{r[m].peak:>13.1f}" for m in modes))
+    save_image(sweep_plot(rows, modes), args.output)
+    if args.json:
+        with atomic_write(args.json, "w") as f:
+            json.dump([{"level": r["level"], "faces": r["faces"],
+                        **{m: r[m].__dict__ for m in modes}} for r in rows], f, indent=2)
+    print(f"plot: {args.output}")
+    return EXIT_OK
+
+
+def compare(args) -> int:
+    from ..compare import compare as run
+    from ..io.images import save_image
+
+    modes = [m.value for m in args.modes]
+    if args.sweep:
+        return _sweep(args, modes)
+    job = load_job(args, args.mesh, COMPARE_DEFAULTS)
+    result = run(job.scene, job.camera, modes, args.reference, size=job.size, diff=args.diff,
+                 backend=args.backend, options=job.options)
+    save_image(result.image, args.output)
+    print(result.table())
+    if args.json:
+        result.write_json(args.json)
+    if args.csv:
+        result.write_csv(args.csv)
+    print(f"grid: {args.output}")
+    return EXIT_OK
+
+
+def view(args) -> int:
+    from ..viewer.window import Viewer
+
+    job = load_job(args, args.mesh)
+    with Viewer(job.scene, job.camera, size=job.size, options=job.options,
+                samples=job.settings.samples, compare=args.compare,
+                visible=not args.hidden) as viewer:
+        viewer.run(args.frames)
+        if args.screenshot:
+            viewer.screenshot(args.screenshot)
+    return EXIT_OK
+
+
+def doctor(args) -> int:
+    from ..render.context import create_context, probe_backends
+
+    ok = True
+    try:
+        with create_context(args.backend) as ctx:
+            facts = ctx.info
+        print(f"backend chosen     {facts['backend']}")
+        for key in ("vendor", "renderer", "version", "max_samples", "max_texture_size"):
+            print(f"{key.replace('_', ' '):<18} {facts[key]}")
+    except Exception as exc:  # report, then go on to the per-backend probe
+        ok = False
+        print(f"backend chosen     none: {exc}")
+    print("backends:")
+    for name, status in probe_backends().items():
+        print(f"  {name:<8} {status}")
+    return EXIT_OK if ok else EXIT_ENVIRONMENT

@@ -1,0 +1,102 @@
+"""What a command renders: a mesh file, a primitive or a scene file, with the command
+line's options laid over the scene file's settings, which lie over the defaults of the
+dataclasses (Material, Camera, DrawOptions, RenderSettings): each default lives in one
+place."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import UsageError
+from ..io.scenefile import RenderSettings
+from ..options import DrawOptions
+from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
+
+__all__ = ["Job", "load_job", "load_mesh_spec", "is_scene_file", "build_scene"]
+
+
+def is_scene_file(spec: str) -> bool:
+    return spec.lower().endswith(".toml")
+
+
+def load_mesh_spec(spec: str):
+    """A mesh from a file path or a ``primitive:NAME[:ARGS]`` spec."""
+    from ..geometry import primitives
+    from ..io import load_mesh
+
+    if spec.startswith("primitive:"):
+        return primitives.from_spec(spec)
+    return load_mesh(spec)
+
+
+@dataclass
+class Job:
+    """A scene and how to draw it, as a command resolved it."""
+
+    scene: Scene
+    camera: Camera
+    settings: RenderSettings
+    path: CameraPath | None = None
+
+    @property
+    def options(self) -> DrawOptions:
+        return self.settings.options
+
+    @property
+    def size(self) -> tuple[int, int]:
+        return self.settings.size
+
+    @property
+    def polygons(self) -> int:
+        return sum(m.mesh.n_faces for m in self.scene.models)
+
+
+def _given(args, *names) -> dict:
+    return {n: getattr(args, n) for n in names if getattr(args, n, None) is not None}
+
+
+def build_scene(mesh, args, aspect: float) -> tuple[Scene, Camera]:
+    """A one-mesh scene and its camera from the render options (render, view, compare)."""
+    scene = Scene(**_given(args, "background"))
+    scene.add(mesh, Material.from_values(_given(args, "color", "ka", "kd", "ks", "shininess")))
+    lens = {"fov_y": args.fov} if getattr(args, "fov", None) is not None else {}
+    if args.eye is not None or args.target is not None:
+        eye = args.eye if args.eye is not None else (0.0, 0.0, 5.0)
+        target = args.target if args.target is not None else tuple(scene.bounds.mean(0))
+        b = scene.bounds
+        reach = float(np.linalg.norm(b[1] - b[0])) + \
+            float(np.linalg.norm(np.subtract(eye, target)))
+        camera = Camera.look_at(eye, target, near=reach * 1e-3, far=reach * 2, **lens)
+    else:
+        camera = default_camera(scene.bounds, aspect, **lens)
+    for position in args.light or ():  # none given: the scene's default headlight
+        scene.add_light(PointLight(position))
+    return scene, camera
+
+
+def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
+    """Resolve ``spec`` and ``args`` into a Job: command line > scene file > ``defaults``
+    (a RenderSettings; the dataclass's own when None)."""
+    base = defaults or RenderSettings()
+    time = getattr(args, "time", None)
+    if is_scene_file(spec):
+        from ..io.scenefile import load_scene
+
+        sf = load_scene(spec)
+        settings, scene, path = sf.settings, sf.scene, sf.path
+        camera = path.at(path.start if time is None else time)
+    else:
+        if time is not None:
+            raise UsageError("--time needs a scene file (.toml) with a camera path")
+        settings, path = base, None
+        size = args.size or base.size
+        scene, camera = build_scene(load_mesh_spec(spec), args, size[0] / size[1])
+    overrides = _given(args, "mode", "srgb")
+    settings = replace(settings, options=settings.options.replace(**overrides))
+    if args.size:
+        settings.width, settings.height = args.size
+    if getattr(args, "samples", None) is not None:
+        settings.samples = args.samples
+    return Job(scene, camera, settings, path)

@@ -1,0 +1,106 @@
+"""Argument types for the command line: each converts one value or raises
+``argparse.ArgumentTypeError`` with an example of what is expected."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+
+from ..modes import ShadingMode
+
+__all__ = ["size", "vec3", "count", "unit_float", "nonnegative_float", "mode", "modes",
+           "levels", "samples", "fov"]
+
+
+def size(text: str) -> tuple[int, int]:
+    m = re.fullmatch(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", text)
+    if not m or int(m.group(1)) < 1 or int(m.group(2)) < 1 or max(map(int, m.groups())) > 16384:
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 800x600 (1..16384), "
+                                         f"got {text!r}")
+    return int(m.group(1)), int(m.group(2))
+
+
+def vec3(text: str) -> tuple[float, float, float]:
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        values = ()
+    if len(values) != 3 or not all(map(math.isfinite, values)):
+        raise argparse.ArgumentTypeError(f"expected three numbers x,y,z such as 1,2.5,-3, got "
+                                         f"{text!r}")
+    return values
+
+
+def count(text: str) -> int:
+    if not text.strip().isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 1 such as 4, got "
+                                         f"{text!r}")
+    return int(text)
+
+
+def unit_float(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (0 <= v <= 1):
+        raise argparse.ArgumentTypeError(f"expected a number in [0, 1] such as 0.5, got {text!r}")
+    return v
+
+
+def nonnegative_float(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (v >= 0 and math.isfinite(v)):
+        raise argparse.ArgumentTypeError(f"expected a non-negative number such as 32, got "
+                                         f"{text!r}")
+    return v
+
+
+def mode(text: str) -> ShadingMode:
+    try:
+        return ShadingMode(text.lower())
+    except ValueError:
+        choices = ", ".join(m.value for m in ShadingMode)
+        raise argparse.ArgumentTypeError(f"unknown mode {text!r}; choose one of {choices}") \
+            from None
+
+
+def levels(text: str) -> list[int]:
+    m = re.fullmatch(r"\s*(\d+)\s*\.\.\s*(\d+)\s*", text)
+    if m and int(m.group(1)) <= int(m.group(2)) <= 8:
+        return list(range(int(m.group(1)), int(m.group(2)) + 1))
+    try:
+        values = [int(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if not values or min(values) < 0 or max(values) > 8:
+        raise argparse.ArgumentTypeError(f"expected levels such as 0..6 or 1,3,5 (0 to 8), got "
+                                         f"{text!r}")
+    return values
+
+
+def modes(text: str) -> list[ShadingMode]:
+    return [mode(t.strip()) for t in text.split(",") if t.strip()] or \
+        [mode("")]  # an empty list reports the choices
+
+
+def samples(text: str) -> int:
+    if not text.strip().isdigit():
+        raise argparse.ArgumentTypeError(f"expected a whole number of MSAA samples >= 0 such "
+                                         f"as 4, got {text!r}")
+    return int(text)
+
+
+def fov(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not 0 < value < 180:
+        raise argparse.ArgumentTypeError(f"expected degrees in (0, 180) such as 45, got "
+                                         f"{text!r}")
+    return value

@@ -1,0 +1,9 @@
+"""Comparing shading modes: labelled grids, difference heat maps, error metrics against an
+analytic or refined reference, and tessellation sweeps."""
+
+from . import metrics
+from .comparison import REFERENCES, Comparison, ModeMetrics, compare
+from .sweep import sweep, sweep_plot
+
+__all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES", "sweep", "sweep_plot",
+           "metrics"]

@@ -1,0 +1,201 @@
+"""Comparing shading modes: a labelled grid, difference heat maps, and the numbers.
+
+``compare(scene, camera)`` renders each mode and a reference -- the exact surface ray-cast
+with the same lighting formula (``"analytic"``, for sphere primitives), a Phong render of
+the mesh refined by Phong tessellation (``"phong-fine"``), or an image you supply -- and
+measures each mode against it on the pixels both cover.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._atomic import atomic_write
+from ..errors import ComparisonError
+from ..geometry.subdivide import phong_tessellate
+from ..io.images import (
+    BACKGROUND, LABEL_HEIGHT, colour_bar, heatmap, label, labelled_row, opaque,
+)
+from ..io.tables import format_table
+from ..modes import Outputs, ShadingMode
+from ..options import DrawOptions
+from ..scene import Camera, Scene
+from . import metrics
+
+__all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES"]
+
+REFERENCES = ("analytic", "phong-fine")
+
+@dataclass
+class ModeMetrics:
+    """How far one mode is from the reference, in 8-bit units (PSNR in dB)."""
+
+    mode: str
+    mean_abs: float
+    max_abs: float
+    rmse: float
+    psnr: float
+    ssim: float
+    mach_band: float
+    peak: float            # brightest luminance (the specular highlight)
+    reference_peak: float
+    pixels: int
+
+
+@dataclass
+class Comparison:
+    """The grid image, the per-mode metrics and the images they came from."""
+
+    image: np.ndarray
+    metrics: list[ModeMetrics]
+    images: dict = field(repr=False, default_factory=dict)
+    reference: np.ndarray | None = field(repr=False, default=None)
+    reference_kind: str = ""
+
+    def table(self) -> str:
+        head = ("mode", "mean", "max", "RMSE", "PSNR dB", "SSIM", "Mach band", "peak/ref")
+        rows = [(m.mode, f"{m.mean_abs:.3f}", f"{m.max_abs:.1f}", f"{m.rmse:.3f}",
+                 f"{m.psnr:.2f}", f"{m.ssim:.4f}", f"{m.mach_band:.2f}",
+                 f"{m.peak:.1f}/{m.reference_peak:.1f}") for m in self.metrics]
+        return (f"against the {self.reference_kind} reference, 8-bit units\n"
+                + format_table(rows, head))
+
+    def as_dicts(self) -> list[dict]:
+        return [asdict(m) for m in self.metrics]
+
+    def write_json(self, path) -> None:
+        with atomic_write(path, "w") as f:
+            json.dump({"reference": self.reference_kind, "modes": self.as_dicts()}, f,
+                      indent=2, default=lambda x: None)
+
+    def write_csv(self, path) -> None:
+        rows = self.as_dicts()
+        with atomic_write(path, "w") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+
+    def _repr_png_(self) -> bytes:
+        from PIL import Image
+
+        buf = io.BytesIO()
+        Image.fromarray(self.image).save(buf, format="PNG")
+        return buf.getvalue()
+
+
+def _reference(scene, camera, kind, renderer, size, options):
+    from ..cpu.raycast import raycast_scene
+
+    w, h = size
+    if isinstance(kind, (str, Path)) and str(kind) == "analytic":
+        color, mask = raycast_scene(scene, camera, w, h)
+        bg = np.asarray(scene.background[:3])
+        return np.where(mask[..., None], color, bg) * 255, mask, "analytic"
+    if isinstance(kind, (str, Path)) and str(kind) == "phong-fine":
+        fine = Scene(scene.ambient, scene.background)
+        for m in scene.models:
+            if m.visible:
+                fine.add(phong_tessellate(m.mesh, 6), m.material, m.transform)
+        fine.lights = list(scene.lights)
+        frame = renderer.render_frame(fine, camera, options.replace(mode=ShadingMode.PHONG),
+                                      outputs=Outputs.FACE_ID, color_dtype="f4")
+        return frame.color[..., :3] * 255.0, frame.face_id >= 0, "phong-fine"
+    if isinstance(kind, (str, Path)):
+        from PIL import Image
+
+        path = Path(kind)
+        if not path.is_file():
+            raise ComparisonError(f"reference {str(kind)!r} is neither {' nor '.join(REFERENCES)} "
+                               "nor an image file")
+        kind = np.asarray(Image.open(path).convert("RGB"))
+        label = path.name
+    else:
+        label = "given image"
+    img = np.asarray(kind, dtype=np.float64)
+    if img.shape[:2] != (h, w):
+        raise ComparisonError(f"the reference image is {img.shape[1]}x{img.shape[0]}, the "
+                           f"comparison {w}x{h}")
+    if img.max() <= 1.0:
+        img = img * 255
+    bg = np.asarray(scene.background[:3]) * 255
+    mask = np.abs(img[..., :3] - bg).max(-1) > 1
+    return img[..., :3], mask, label
+
+
+def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
+            reference="analytic", *, size=(256, 256), diff: bool = True, renderer=None,
+            backend="auto", options: DrawOptions | None = None) -> Comparison:
+    """Render ``modes`` and a reference; return the labelled grid and the metrics.
+
+    ``reference``: "analytic" (sphere primitives, ray-cast exactly), "phong-fine" (Phong on
+    a Phong-tessellated copy of each mesh), an image path or an ``(H, W, 3)`` array. No MSAA:
+    every pixel is one sample, like the reference. ``options`` are the draw options every
+    mode shares (its mode is replaced by each of ``modes``).
+    """
+    from ..render.renderer import Renderer
+
+    modes = [ShadingMode.parse(m) for m in modes]
+    if not modes:
+        raise ComparisonError("compare needs at least one mode")
+    w, h = size
+    own = renderer is None
+    r = renderer or Renderer(w, h, samples=0, backend=backend)
+    try:
+        if (r.width, r.height) != (w, h):
+            raise ComparisonError(f"the renderer is {r.width}x{r.height}, size asks {w}x{h}")
+        base = DrawOptions.of(options)
+        ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base)
+        frames = {m: r.render_frame(scene, camera, base.replace(mode=m),
+                                    outputs=Outputs.FACE_ID, color_dtype="f4")
+                  for m in modes}
+    finally:
+        if own:
+            r.close()
+    results, images, errors = [], {}, {}
+    ref_lum = metrics.luminance(ref)
+    for m, f in frames.items():
+        img = f.color[..., :3].astype(np.float64) * 255
+        mask = ref_mask & (f.face_id >= 0)
+        images[m.value] = img
+        errors[m.value] = np.where(mask, metrics.abs_error(img, ref), 0.0)
+        results.append(ModeMetrics(
+            mode=m.value, mean_abs=metrics.mae(img, ref, mask),
+            max_abs=metrics.max_error(img, ref, mask), rmse=metrics.rmse(img, ref, mask),
+            psnr=metrics.psnr(img, ref, mask), ssim=metrics.ssim(img, ref, mask),
+            mach_band=metrics.mach_band_strength(img, f.face_id, ref),
+            peak=float(metrics.luminance(img)[mask].max(initial=0)),
+            reference_peak=float(ref_lum[ref_mask].max(initial=0)), pixels=int(mask.sum())))
+    grid = _grid(images, ref, ref_kind, errors if diff else None)
+    return Comparison(grid, results, images, ref, ref_kind)
+
+
+def _grid(images: dict, ref: np.ndarray, ref_kind: str, errors: dict | None) -> np.ndarray:
+    """Each mode and the reference under their labels; below, each mode's error heat map
+    and the colour bar's key in the reference's column."""
+    def u8(a):
+        return np.clip(a + 0.5, 0, 255).astype(np.uint8)
+
+    tiles = {name: u8(img) for name, img in images.items()}
+    tiles[f"reference: {ref_kind}"] = u8(ref)
+    top = labelled_row(tiles)[..., :3]
+    rows = [top]
+    if errors is not None:
+        vmax = max(max(float(e.max()) for e in errors.values()), 1.0)
+        bottom = [label(heatmap(e, vmax), f"|{name} - reference|")
+                  for name, e in errors.items()]
+        bar = colour_bar(bottom[0].shape[0] - LABEL_HEIGHT, vmax)
+        pad = np.full((LABEL_HEIGHT, bar.shape[1], 3), BACKGROUND, np.uint8)
+        tile_w = ref.shape[1]
+        key = np.hstack([np.vstack([pad, bar]),
+                         np.full((bottom[0].shape[0], tile_w - bar.shape[1], 3), BACKGROUND,
+                                 np.uint8)])
+        rows.append(np.hstack([*bottom, key]))
+    return opaque(np.vstack(rows))
+
+

@@ -1,0 +1,82 @@
+"""How each shading mode's error falls as a sphere is tessellated more finely: the numbers
+(against the analytic sphere) and a log-scale plot drawn with Pillow."""
+
+from __future__ import annotations
+
+from contextlib import nullcontext
+
+import numpy as np
+
+from ..io.images import font
+from ..scene import Camera, Material, PointLight, Scene
+from .comparison import compare
+
+__all__ = ["sweep", "sweep_plot"]
+
+
+def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "gouraud", "phong"),
+          *, material=None, lights=None, size=(192, 192), backend="auto",
+          renderer=None) -> list[dict]:
+    """Error of each mode against the analytic reference for each tessellation level:
+    ``[{"level": k, "faces": F, "flat": ModeMetrics, ...}, ...]``."""
+    from ..render.renderer import Renderer
+
+    rows = []
+    owned = renderer is None
+    with (Renderer(size[0], size[1], samples=0, backend=backend) if owned
+          else nullcontext(renderer)) as r:
+        for k in levels:
+            mesh = make_mesh(k)
+            scene = Scene()
+            scene.add(mesh, material or Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30))
+            for light in lights or [PointLight((3.0, 4.0, 5.0))]:
+                scene.add_light(light)
+            cam = camera or Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
+            c = compare(scene, cam, modes, "analytic", size=size, diff=False, renderer=r)
+            row = {"level": k, "faces": mesh.n_faces}
+            row.update({m.mode: m for m in c.metrics})
+            rows.append(row)
+    return rows
+
+
+def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420)) -> np.ndarray:
+    """A log-scale line plot of ``metric`` against level, drawn with Pillow."""
+    from PIL import Image, ImageDraw
+
+    colors = {"flat": (230, 120, 60), "gouraud": (90, 170, 240), "phong": (120, 220, 120),
+              "normals": (200, 200, 200), "depth": (160, 160, 160)}
+    w, h = size
+    left, right, top, bottom = 70, 20, 40, 50
+    img = Image.new("RGB", (w, h), (250, 250, 250))
+    d = ImageDraw.Draw(img)
+    face, small = font(14), font(11)
+    values = [max(getattr(r[m], metric), 1e-3) for r in rows for m in modes]
+    lo, hi = np.floor(np.log10(min(values))), np.ceil(np.log10(max(values)))
+    hi = max(hi, lo + 1)
+    levels = [r["level"] for r in rows]
+    x0, x1 = min(levels), max(levels) if max(levels) > min(levels) else min(levels) + 1
+
+    def px(level, value):
+        x = left + (level - x0) / (x1 - x0) * (w - left - right)
+        y = top + (hi - np.log10(max(value, 1e-3))) / (hi - lo) * (h - top - bottom)
+        return x, y
+
+    d.rectangle([left, top, w - right, h - bottom], outline=(120, 120, 120))
+    for e in range(int(lo), int(hi) + 1):
+        _, y = px(x0, 10.0**e)
+        d.line([left, y, w - right, y], fill=(225, 225, 225))
+        d.text((8, y - 7), f"1e{e}", fill=(60, 60, 60), font=small)
+    for level in levels:
+        x, _ = px(level, 10**lo)
+        d.text((x - 4, h - bottom + 6), str(level), fill=(60, 60, 60), font=small)
+    d.text((w / 2 - 60, h - 22), "tessellation level", fill=(30, 30, 30), font=face)
+    d.text((left, 10), f"{metric.replace('_', ' ')} error vs the analytic sphere (8-bit, log)",
+           fill=(30, 30, 30), font=face)
+    for i, m in enumerate(modes):
+        pts = [px(r["level"], getattr(r[m], metric)) for r in rows]
+        d.line(pts, fill=colors.get(m, (0, 0, 0)), width=3)
+        for x, y in pts:
+            d.ellipse([x - 3, y - 3, x + 3, y + 3], fill=colors.get(m, (0, 0, 0)))
+        d.text((w - right - 90, top + 8 + 16 * i), m, fill=colors.get(m, (0, 0, 0)),
+               font=face)
+    return np.asarray(img)

@@ -1,0 +1,112 @@
+"""Merging and splitting vertices, and joining meshes.
+
+Welding merges vertices that coincide; crease splitting duplicates vertices along sharp
+edges so smooth shading keeps them. Both keep what follows the surface: file normals (the
+first merged vertex's) and the exact analytic surface.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+
+from ..errors import GeometryError
+from .graph import component_labels
+from .mesh import Mesh
+from .tolerance import tol
+
+__all__ = ["weld", "split_creases", "concatenate"]
+
+
+def _with(mesh: Mesh, vertices, indices, offsets, normals=None, groups=None) -> Mesh:
+    out = Mesh.from_csr(vertices, indices, offsets, normals=normals,
+                        groups=mesh.groups if groups is None else groups, name=mesh.name)
+    out.analytic = mesh.analytic
+    return out
+
+
+def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
+    """Duplicate vertices along sharp edges, so smooth shading keeps creases.
+
+    Two faces sharing an edge stay smooth across it when their normals differ by less than
+    ``angle_deg``; corners of a vertex joined by smooth edges share one copy of it. Edges of
+    more than two faces are creases.
+    """
+    if not 0 <= angle_deg <= 180:
+        raise GeometryError(f"angle_deg must be in [0, 180], got {angle_deg}")
+    c0, c1 = mesh.edge_groups.pairs()
+    f0, f1 = mesh.corner_face[c0], mesh.corner_face[c1]
+    cos = np.einsum("ij,ij->i", mesh.face_normals[f0], mesh.face_normals[f1])
+    smooth = cos >= np.cos(np.radians(angle_deg)) - 1e-12
+    c0, c1 = c0[smooth], c1[smooth]
+    # corners at the same vertex on both sides of the shared edge (the twin runs the other
+    # way, or the same way where orientation is inconsistent)
+    n0, n1 = mesh.corner_next[c0], mesh.corner_next[c1]
+    same_dir = mesh.face_indices[c0] == mesh.face_indices[c1]
+    a = np.concatenate([c0, n0])
+    b = np.concatenate([np.where(same_dir, c1, n1), np.where(same_dir, n1, c1)])
+    labels = component_labels(len(mesh.face_indices), a, b)
+    uniq, corner_vertex = np.unique(labels, return_inverse=True)
+    source = mesh.face_indices[uniq]
+    normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
+    return _with(mesh, mesh.vertices[source], corner_vertex.astype(np.int64),
+                 mesh.face_offsets.copy(), normals)
+
+
+def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
+    """Merge vertices closer than ``tolerance`` (default: relative to the bounding box) and
+    drop those no face uses; faces that collapse below 3 corners are removed (and from the
+    named groups)."""
+    if tolerance is None:
+        tolerance = tol.merge * max(np.sqrt(mesh._area_scale), 1e-300)
+    q = np.round(mesh.vertices / tolerance).astype(np.int64)
+    _, first, inverse = np.unique(q, axis=0, return_index=True, return_inverse=True)
+    inverse = inverse.ravel()
+    idx = inverse[mesh.face_indices]
+    # drop repeated consecutive corners (pole collapse), then faces with < 3 corners
+    keep = idx != idx[mesh.corner_next]
+    keep_count = np.bincount(mesh.corner_face[keep], minlength=mesh.n_faces)
+    ok_face = keep_count >= 3
+    keep &= ok_face[mesh.corner_face]
+    offsets = np.zeros(int(ok_face.sum()) + 1, np.int64)
+    np.cumsum(keep_count[ok_face], out=offsets[1:])
+    vertices = mesh.vertices[first]
+    used = np.zeros(len(vertices), bool)
+    used[idx[keep]] = True
+    remap = np.cumsum(used) - 1
+    normals = None
+    if mesh.normals_from_file is not None:
+        normals = mesh.normals_from_file[first][used]
+    face_number = np.cumsum(ok_face) - 1
+    groups = {name: face_number[g[ok_face[g]]] for name, g in mesh.groups.items()}
+    return _with(mesh, vertices[used], remap[idx[keep]], offsets, normals, groups)
+
+
+def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
+    """Join meshes into one; with ``names`` each input becomes a named group of faces."""
+    meshes = list(meshes)
+    names = list(names) if names is not None else [None] * len(meshes)
+    if len(names) != len(meshes):
+        raise GeometryError(f"got {len(meshes)} meshes but {len(names)} names")
+    vert, idx, sizes, groups = [], [], [], {}
+    v0 = f0 = 0
+    for m, name in zip(meshes, names):
+        vert.append(m.vertices)
+        idx.append(m.face_indices + v0)
+        sizes.append(m.face_sizes)
+        if name is not None:
+            groups[name] = np.arange(f0, f0 + m.n_faces)
+        for gname, g in m.groups.items():
+            groups[f"{name}/{gname}" if name else gname] = g + f0
+        v0 += m.n_vertices
+        f0 += m.n_faces
+    size = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
+    offsets = np.zeros(len(size) + 1, np.int64)
+    np.cumsum(size, out=offsets[1:])
+    return Mesh.from_csr(
+        np.concatenate(vert) if vert else np.zeros((0, 3)),
+        np.concatenate(idx) if idx else np.zeros(0, np.int64),
+        offsets,
+        groups=groups,
+    )

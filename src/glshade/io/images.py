@@ -1,0 +1,104 @@
+"""Images out: saving (PNG through Pillow, written to a temporary file and renamed), and the
+pieces pictures are composed of -- labelled tiles, grids, heat maps with a colour bar."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from .._atomic import atomic_write
+
+__all__ = ["save_image", "heatmap", "label", "labelled_row", "colour_bar", "opaque", "font",
+           "LABEL_HEIGHT", "BACKGROUND"]
+
+LABEL_HEIGHT = 22
+BACKGROUND = (24, 24, 28)
+
+
+def save_image(array, path, format: str | None = None) -> None:
+    """Write an ``(H, W, 3|4)`` uint8 (or float in [0, 1]) image. The format comes from the
+    extension (PNG by default); nothing is left behind if writing fails."""
+    from PIL import Image
+
+    a = np.asarray(array)
+    if a.ndim == 2:
+        a = a[..., None].repeat(3, -1)
+    if a.ndim != 3 or a.shape[2] not in (3, 4):
+        raise InputError(f"an image must have shape (H, W, 3) or (H, W, 4), got {a.shape}")
+    if a.dtype != np.uint8:
+        if not np.issubdtype(a.dtype, np.floating):
+            raise InputError(f"image dtype must be uint8 or float, got {a.dtype}")
+        a = (np.clip(a, 0, 1) * 255 + 0.5).astype(np.uint8)
+    path = Path(path)
+    fmt = format or {".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", ".tif": "TIFF",
+                     ".tiff": "TIFF", ".webp": "WEBP"}.get(path.suffix.lower(), "PNG")
+    img = Image.fromarray(a, "RGBA" if a.shape[2] == 4 else "RGB")
+    if fmt == "JPEG":
+        img = img.convert("RGB")
+    with atomic_write(path, "wb") as f:
+        img.save(f, format=fmt)
+
+
+# a perceptually ordered ramp (dark blue -> purple -> orange -> pale yellow)
+_RAMP = np.array([[0, 0, 4], [40, 11, 84], [101, 21, 110], [159, 42, 99], [212, 72, 66],
+                  [245, 125, 21], [250, 193, 39], [252, 255, 164]], float)
+
+
+def heatmap(values, vmax: float) -> np.ndarray:
+    """Map ``(H, W)`` values in ``[0, vmax]`` to RGB uint8 through the ramp."""
+    t = np.clip(np.asarray(values, float) / max(vmax, 1e-12), 0, 1) * (len(_RAMP) - 1)
+    i = np.minimum(t.astype(int), len(_RAMP) - 2)
+    f = (t - i)[..., None]
+    return ((1 - f) * _RAMP[i] + f * _RAMP[i + 1] + 0.5).astype(np.uint8)
+
+
+def font(size: int = 14):
+    """Pillow's built-in font at ``size`` pixels (a fixed size on Pillow < 10.1)."""
+    from PIL import ImageFont
+
+    try:
+        return ImageFont.load_default(size=size)
+    except TypeError:  # Pillow < 10.1
+        return ImageFont.load_default()
+
+
+def label(tile: np.ndarray, text: str, background=BACKGROUND) -> np.ndarray:
+    """``tile`` (RGB) under a band of LABEL_HEIGHT pixels with ``text`` centred in it."""
+    from PIL import Image, ImageDraw
+
+    h, w = tile.shape[:2]
+    band = Image.new("RGB", (w, LABEL_HEIGHT), background)
+    draw = ImageDraw.Draw(band)
+    face = font(14)
+    width = draw.textlength(text, font=face)
+    draw.text(((w - width) / 2, 3), text, fill=(235, 235, 235), font=face)
+    return np.vstack([np.asarray(band), tile[..., :3]])
+
+
+def colour_bar(height: int, vmax: float) -> np.ndarray:
+    """A vertical key of :func:`heatmap`'s ramp from ``vmax`` (top) to 0, labelled."""
+    from PIL import Image, ImageDraw
+
+    width = 64
+    ramp = heatmap(np.linspace(vmax, 0, height)[:, None].repeat(14, 1), vmax)
+    img = Image.new("RGB", (width, height), BACKGROUND)
+    img.paste(Image.fromarray(ramp), (4, 0))
+    draw = ImageDraw.Draw(img)
+    face = font(11)
+    draw.text((21, 0), f"{vmax:.3g}", fill=(235, 235, 235), font=face)
+    draw.text((21, height // 2 - 6), f"{vmax / 2:.3g}", fill=(235, 235, 235), font=face)
+    draw.text((21, height - 13), "0", fill=(235, 235, 235), font=face)
+    draw.text((21, height - 28), "|err|", fill=(180, 180, 180), font=face)
+    return np.asarray(img)
+
+
+def opaque(rgb: np.ndarray) -> np.ndarray:
+    """``(H, W, 3)`` uint8 with an opaque alpha channel added: ``(H, W, 4)``."""
+    return np.dstack([rgb, np.full(rgb.shape[:2], 255, np.uint8)])
+
+
+def labelled_row(tiles: dict) -> np.ndarray:
+    """Tiles ``{label: (H, W, 3|4) uint8}`` side by side, each under its label: RGBA."""
+    return opaque(np.hstack([label(t, name) for name, t in tiles.items()]))

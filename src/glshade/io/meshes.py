@@ -1,0 +1,68 @@
+"""Read and write polygon meshes: Wavefront OBJ, OFF, PLY and STL, one module each.
+
+Polygons are preserved (a quad stays a quad); STL, which only knows triangles, is welded
+on load so that its topology is usable. Parsing is vectorized with numpy; a malformed file
+raises :class:`~glshade.errors.MeshFormatError` naming the path, the line (or byte offset)
+and what was wrong.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import MeshFormatError
+from ..geometry.mesh import Mesh
+from . import obj, off, ply, stl
+from .._atomic import atomic_write
+
+__all__ = ["load_mesh", "save_mesh", "FORMATS"]
+
+#: each format's module, with ``read(path, data) -> Mesh`` and ``write(mesh, file, binary)``
+_MODULES = {"obj": obj, "off": off, "ply": ply, "stl": stl}
+FORMATS = tuple(_MODULES)
+
+
+def _format_of(path: Path, fmt: str | None) -> str:
+    fmt = (fmt or path.suffix.lstrip(".")).lower()
+    if fmt not in FORMATS:
+        raise MeshFormatError(
+            path, f"unknown mesh format {fmt!r}; supported: {', '.join(FORMATS)}"
+        )
+    return fmt
+
+
+def load_mesh(path, format: str | None = None) -> Mesh:
+    """Load a mesh from an OBJ, OFF, PLY or STL file (format from the extension).
+
+    Raises
+    ------
+    MeshFormatError
+        The file is missing, unreadable or malformed; the message names the path and the
+        line (or byte offset) and says what was wrong.
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise MeshFormatError(path, "is a directory, not a mesh file")
+    fmt = _format_of(path, format)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise MeshFormatError(path, "no such file") from None
+    except IsADirectoryError:
+        raise MeshFormatError(path, "is a directory, not a mesh file") from None
+    except OSError as exc:
+        raise MeshFormatError(path, f"cannot read: {exc.strerror or exc}") from None
+    if not data.strip():
+        raise MeshFormatError(path, "the file is empty")
+    mesh = _MODULES[fmt].read(path, data)
+    mesh.name = mesh.name or path.stem
+    return mesh
+
+
+def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = True) -> None:
+    """Write ``mesh`` to ``path`` (atomically). PLY and STL are binary unless
+    ``binary=False``; STL stores the triangulation. Coordinates keep full precision."""
+    path = Path(path)
+    fmt = _format_of(path, format)
+    with atomic_write(path, "wb") as f:
+        _MODULES[fmt].write(mesh, f, binary)

@@ -1,0 +1,180 @@
+"""Wavefront OBJ: polygons (``f`` lines with ``v/vt/vn`` references), groups and objects; other
+keywords are skipped."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from ..errors import MeshFormatError
+from ..geometry.mesh import Mesh
+from ._common import (
+    COMMENT, build_mesh, join_lines, offsets_from_sizes, write_faces, write_vertices,
+)
+from ._text import (
+    line_starts, normalize_whitespace, parse_decimals, parse_numbers, ragged_take, token_counts,
+)
+
+__all__ = ["read", "write"]
+
+_OBJ_KEYWORDS = {
+    b"v", b"vt", b"vn", b"vp", b"f", b"l", b"p", b"o", b"g", b"s", b"mg", b"usemtl",
+    b"mtllib", b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm",
+    b"trim", b"hole", b"scrv", b"sp", b"end", b"con", b"lod", b"usemap", b"maplib",
+    b"shadow_obj", b"trace_obj", b"ctech", b"stech", b"bevel", b"c_interp", b"d_interp",
+    b"call", b"csh",
+}
+_SLASH_TAIL = re.compile(rb"/\S*")
+
+
+def _blank_keyword(blob: bytes, keyword: bytes) -> bytes:
+    """Replace the one-letter keyword starting every line by a space."""
+    return (b" " + blob[1:]).replace(b"\n" + keyword, b"\n ")
+
+
+def _obj_diagnose(path, data: bytes) -> None:
+    """Slow line-by-line check, run only when the fast parse failed: raises at the first
+    bad line."""
+    n_vertices = 0
+    for number, raw in enumerate(data.split(b"\n"), start=1):
+        tokens = raw.split(b"#", 1)[0].split()
+        if not tokens:
+            continue
+        key, args = tokens[0], tokens[1:]
+        text = raw.strip().decode("utf-8", "replace")
+        if key == b"v":
+            if len(args) not in (3, 4, 6, 7):
+                raise MeshFormatError(path, f"a vertex needs 3 coordinates, got {len(args)}: "
+                                      f"{text!r}", line=number)
+            try:
+                [float(a) for a in args]
+            except ValueError:
+                raise MeshFormatError(path, f"vertex coordinate is not a number: {text!r}",
+                                      line=number) from None
+            n_vertices += 1
+        elif key == b"f":
+            if len(args) < 3:
+                raise MeshFormatError(path, f"a face needs at least 3 vertices, got "
+                                      f"{len(args)}: {text!r}", line=number)
+            for a in args:
+                head = a.split(b"/")[0]
+                try:
+                    i = int(head)
+                except ValueError:
+                    raise MeshFormatError(path, f"face index {a.decode(errors='replace')!r} is"
+                                          f" not an integer: {text!r}", line=number) from None
+                if i == 0:
+                    raise MeshFormatError(path, "face index 0: OBJ indices start at 1",
+                                          line=number)
+                if i > n_vertices or -i > n_vertices:
+                    raise MeshFormatError(path, f"face index {i} but only {n_vertices} vertices"
+                                          " are defined before this line", line=number)
+        elif key not in _OBJ_KEYWORDS:
+            raise MeshFormatError(path, f"unknown statement {key.decode(errors='replace')!r}",
+                                  line=number)
+
+
+def read(path, data: bytes) -> Mesh:
+    if b"\0" in data[:4096]:
+        raise MeshFormatError(path, "binary data in a text OBJ file", byte=data.index(b"\0"))
+    lead = data[:1] in (b" ", b"\t")
+    if lead or b"\r" in data or b"\t" in data or b"\n " in data:
+        data = normalize_whitespace(data)
+    if b"#" in data:
+        arr = np.frombuffer(data, np.uint8)
+        hashes = np.flatnonzero(arr == ord("#"))
+        inline = hashes[hashes > 0]
+        if (arr[inline - 1] != 10).any():  # a comment after data: cut it off
+            data = normalize_whitespace(COMMENT.sub(b"", data))
+    starts, ends = line_starts(data)
+    arr = np.frombuffer(data, np.uint8)
+    b0 = arr[starts]
+    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    one = (ends - starts == 1) | (b1 == 32)
+    is_v = (b0 == ord("v")) & one
+    is_f = (b0 == ord("f")) & one
+    b0 = np.where(ends > starts, b0, 10)
+    skip = (b0 == 10) | (b0 == ord("#")) | (
+        (b0 == ord("v")) & ((b1 == ord("n")) | (b1 == ord("t")) | (b1 == ord("p"))))
+    other = np.flatnonzero(~(is_v | is_f | skip))
+    group_lines, group_names = [], []
+    for i in other.tolist():
+        line = data[starts[i]:ends[i]].split(b"#", 1)[0].split()
+        if not line:
+            continue
+        if line[0] not in _OBJ_KEYWORDS:
+            _obj_diagnose(path, data)
+        if line[0] in (b"o", b"g"):
+            group_lines.append(i)
+            group_names.append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
+
+    v_lines = np.flatnonzero(is_v)
+    f_lines = np.flatnonzero(is_f)
+    vblob = join_lines(data, starts, ends, v_lines)
+    numbers = _blank_keyword(vblob, b"v") if len(v_lines) else b""
+    values = parse_decimals(numbers)
+    if values is None:
+        values = parse_numbers(numbers)
+    if values is None:
+        _obj_diagnose(path, data)
+        raise MeshFormatError(path, "malformed vertex data")
+    if len(values) == 3 * len(v_lines):
+        vertices = values.reshape(-1, 3)
+    else:
+        counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
+        bad = ~np.isin(counts, (3, 4, 6, 7))
+        if bad.any() or counts.sum() != len(values):
+            _obj_diagnose(path, data)
+            raise MeshFormatError(path, "malformed vertex data")
+        vertices = ragged_take(values, offsets_from_sizes(counts)[:-1], np.full(len(counts), 3))
+        vertices = vertices.reshape(-1, 3)
+
+    if len(f_lines) == 0:
+        raise MeshFormatError(path, "the file has no faces ('f' lines)")
+    fblob = join_lines(data, starts, ends, f_lines)  # data is normalized already
+    sizes = token_counts(fblob, len(f_lines)) - 1
+    body = _blank_keyword(fblob, b"f")
+    if b"/" in body:
+        body = _SLASH_TAIL.sub(b"", body)
+    idx = parse_numbers(body, np.int64)
+    if idx is None or len(idx) != sizes.sum() or (idx == 0).any():
+        _obj_diagnose(path, data)
+        raise MeshFormatError(path, "malformed face data")
+    written = idx
+    if idx.min() < 0:
+        # negative indices count back from the vertices defined before their line
+        v_before = np.repeat(np.searchsorted(v_lines, f_lines), sizes)
+        idx = np.where(idx < 0, idx + v_before, idx - 1)
+    else:
+        idx = idx - 1
+    bad = (idx < 0) | (idx >= len(vertices))
+    if bad.any():
+        c = int(np.flatnonzero(bad)[0])
+        f = int(np.searchsorted(offsets_from_sizes(sizes), c, side="right") - 1)
+        raise MeshFormatError(path, f"face index {int(written[c])} is out of range: the file "
+                              f"defines {len(vertices)} vertices", line=int(f_lines[f]) + 1)
+
+    groups = {}
+    if group_lines:
+        owner = np.searchsorted(np.asarray(group_lines), f_lines) - 1
+        for g, name in enumerate(group_names):
+            members = np.flatnonzero(owner == g)
+            if len(members):
+                groups[name] = np.concatenate([groups[name], members]) if name in groups \
+                    else members
+
+    def line_of_face(f):
+        return int(f_lines[f]) + 1
+
+    def line_of_vertex(i):
+        return int(v_lines[i]) + 1
+
+    return build_mesh(path, vertices, idx, offsets_from_sizes(sizes), line_of_face=line_of_face,
+                  line_of_vertex=line_of_vertex, groups=groups)
+
+
+def write(mesh: Mesh, f, binary: bool) -> None:
+    f.write(f"# glshade: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n".encode())
+    write_vertices(f, mesh.vertices, "v ")
+    write_faces(f, mesh, "f ", 1, with_count=False)

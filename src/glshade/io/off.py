@@ -1,0 +1,91 @@
+"""OFF (Object File Format): a header, vertex lines and face lines with their sizes. Comments
+(``#``) are allowed anywhere."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import MeshFormatError
+from ..geometry.mesh import Mesh
+from ._common import (
+    COMMENT, build_mesh, join_lines, numeric_diagnose, offsets_from_sizes, write_faces,
+    write_vertices,
+)
+from ._text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
+
+__all__ = ["read", "write"]
+
+def read(path, data: bytes) -> Mesh:
+    if b"#" in data:
+        data = COMMENT.sub(b"", data)
+    text = normalize_whitespace(data)
+    # drop blank lines but remember the original line numbers
+    starts, ends = line_starts(text)
+    keep = np.flatnonzero(ends > starts)
+    if len(keep) == 0:
+        raise MeshFormatError(path, "the file is empty")
+    first = text[starts[keep[0]]:ends[keep[0]]].split()
+    header = first[0]
+    if not header.endswith(b"OFF") or header.startswith(b"4") or header.startswith(b"n"):
+        raise MeshFormatError(path, f"not an OFF file: the first word is "
+                              f"{header.decode(errors='replace')!r}, expected 'OFF'", line=1)
+    rest = first[1:]
+    pos = 1
+    if len(rest) < 2:
+        if len(keep) < 2:
+            raise MeshFormatError(path, "missing the 'vertices faces edges' counts line")
+        rest = text[starts[keep[1]]:ends[keep[1]]].split()
+        pos = 2
+    try:
+        nv, nf = int(rest[0]), int(rest[1])
+    except (ValueError, IndexError):
+        counts = b" ".join(rest).decode(errors="replace")
+        raise MeshFormatError(path, f"bad counts line {counts!r}, expected 'vertices faces "
+                              "edges'", line=int(keep[pos - 1]) + 1) from None
+    if nv < 0 or nf < 0:
+        raise MeshFormatError(path, f"negative counts {nv} {nf}", line=int(keep[pos - 1]) + 1)
+    vl, fl = keep[pos:pos + nv], keep[pos + nv:pos + nv + nf]
+    if len(vl) < nv or len(fl) < nf:
+        raise MeshFormatError(path, f"the header promises {nv} vertices and {nf} faces, but "
+                              f"the file ends after {len(vl)} vertices and {len(fl)} faces "
+                              "(truncated?)")
+    vblob = join_lines(text, starts, ends, vl)
+    vals = parse_numbers(vblob)
+    vcount = token_counts(vblob, nv)
+    if vals is None or len(vals) != vcount.sum():
+        numeric_diagnose(path, text, starts, ends, vl, "vertex")
+    bad = vcount < 3
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise MeshFormatError(path, f"vertex {i} has {int(vcount[i])} numbers, expected 3",
+                              line=int(vl[i]) + 1)
+    vertices = ragged_take(vals, offsets_from_sizes(vcount)[:-1], np.full(nv, 3)).reshape(-1, 3)
+    fblob = join_lines(text, starts, ends, fl)
+    fvals = parse_numbers(fblob)
+    fcount = token_counts(fblob, nf)
+    if fvals is None or len(fvals) != fcount.sum():
+        numeric_diagnose(path, text, starts, ends, fl, "face")
+    line_off = offsets_from_sizes(fcount)[:-1]
+    k = fvals[line_off] if nf else np.zeros(0)
+    bad = (k != np.round(k)) | (k < 0) | (fcount < k + 1)
+    if bad.any():
+        f = int(np.flatnonzero(bad)[0])
+        raise MeshFormatError(path, f"face {f} says it has {fvals[line_off[f]]:g} vertices but "
+                              f"lists {int(fcount[f]) - 1} numbers", line=int(fl[f]) + 1)
+    k = k.astype(np.int64)
+    idx = ragged_take(fvals, line_off + 1, k)
+    if (idx != np.round(idx)).any():
+        c = int(np.flatnonzero(idx != np.round(idx))[0])
+        f = int(np.searchsorted(offsets_from_sizes(k), c, side="right") - 1)
+        raise MeshFormatError(path, f"face {f} has a non-integer index {idx[c]:g}",
+                              line=int(fl[f]) + 1)
+    return build_mesh(path, vertices, idx.astype(np.int64), offsets_from_sizes(k),
+                  line_of_face=lambda f: int(fl[f]) + 1,
+                  line_of_vertex=lambda i: int(vl[i]) + 1)
+
+
+
+def write(mesh: Mesh, f, binary: bool) -> None:
+    f.write(f"OFF\n{mesh.n_vertices} {mesh.n_faces} {mesh.n_edges}\n".encode())
+    write_vertices(f, mesh.vertices, "")
+    write_faces(f, mesh, "", 0, with_count=True)

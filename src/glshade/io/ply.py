@@ -1,0 +1,257 @@
+"""PLY (Stanford polygon file format): ascii and binary (little- and big-endian), any mix of
+polygon sizes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError, MeshFormatError
+from ..geometry.mesh import Mesh
+from ._common import (
+    build_mesh, join_lines, numeric_diagnose, offsets_from_sizes, write_faces, write_vertices,
+)
+from ._text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
+
+__all__ = ["read", "write"]
+
+_PLY_TYPES = {
+    "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
+    "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4",
+    "float": "f4", "float32": "f4", "double": "f8", "float64": "f8",
+}
+
+
+def _ply_header(path, data: bytes):
+    end = data.find(b"end_header")
+    if not data.startswith(b"ply") or end < 0:
+        raise MeshFormatError(path, "not a PLY file: it must start with 'ply' and have an "
+                              "'end_header' line", line=1)
+    nl = data.find(b"\n", end)
+    body_start = len(data) if nl < 0 else nl + 1
+    lines = data[:end].decode("ascii", "replace").splitlines()
+    fmt, elements = None, []
+    for number, line in enumerate(lines, start=1):
+        words = line.split()
+        if not words or words[0] in ("ply", "comment", "obj_info"):
+            continue
+        if words[0] == "format":
+            if len(words) < 2 or words[1] not in ("ascii", "binary_little_endian",
+                                                  "binary_big_endian"):
+                raise MeshFormatError(path, f"unknown PLY format {line!r}", line=number)
+            fmt = words[1]
+        elif words[0] == "element":
+            if len(words) != 3 or not words[2].isdigit():
+                raise MeshFormatError(path, f"bad element line {line!r}", line=number)
+            elements.append((words[1], int(words[2]), []))
+        elif words[0] == "property":
+            if not elements:
+                raise MeshFormatError(path, "property before any element", line=number)
+            if len(words) == 5 and words[1] == "list":
+                if words[2] not in _PLY_TYPES or words[3] not in _PLY_TYPES:
+                    raise MeshFormatError(path, f"unknown type in {line!r}", line=number)
+                elements[-1][2].append((words[4], "list", _PLY_TYPES[words[2]],
+                                        _PLY_TYPES[words[3]]))
+            elif len(words) == 3 and words[1] in _PLY_TYPES:
+                elements[-1][2].append((words[2], "scalar", _PLY_TYPES[words[1]], None))
+            else:
+                raise MeshFormatError(path, f"bad property line {line!r}", line=number)
+        else:
+            raise MeshFormatError(path, f"unknown header keyword {words[0]!r}", line=number)
+    if fmt is None:
+        raise MeshFormatError(path, "the header has no 'format' line")
+    names = [e[0] for e in elements]
+    if "vertex" not in names or "face" not in names:
+        raise MeshFormatError(path, f"a mesh needs 'vertex' and 'face' elements, found {names}")
+    return fmt, elements, body_start, len(lines) + 2
+
+
+def _vertex_columns(path, props):
+    names = [p[0] for p in props]
+    if any(p[1] == "list" for p in props):
+        raise MeshFormatError(path, "list properties on vertices are not supported")
+    missing = [c for c in "xyz" if c not in names]
+    if missing:
+        raise MeshFormatError(path, f"vertex element lacks properties {missing}")
+    cols = [names.index(c) for c in "xyz"]
+    ncols = [names.index(c) for c in ("nx", "ny", "nz")] if all(
+        c in names for c in ("nx", "ny", "nz")) else None
+    return cols, ncols
+
+
+def _face_layout(path, props):
+    lists = [i for i, p in enumerate(props) if p[1] == "list"]
+    if len(lists) < 1 or props[lists[0]][0] not in ("vertex_indices", "vertex_index"):
+        raise MeshFormatError(path, "face element needs a 'vertex_indices' list property")
+    if len(lists) > 1:
+        raise MeshFormatError(path, "face elements with several lists are not supported")
+    return lists[0]
+
+
+def read(path, data: bytes) -> Mesh:
+    fmt, elements, pos, first_body_line = _ply_header(path, data)
+    if fmt == "ascii":
+        return _read_ply_ascii(path, data[pos:], elements, first_body_line)
+    order = "<" if fmt == "binary_little_endian" else ">"
+    vertices = normals = idx = sizes = None
+    for name, count, props in elements:
+        if name == "vertex":
+            cols, ncols = _vertex_columns(path, props)
+            dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
+            if pos + count * dt.itemsize > len(data):
+                raise MeshFormatError(path, f"truncated: {count} vertices need "
+                                      f"{count * dt.itemsize} bytes, {len(data) - pos} remain",
+                                      byte=len(data))
+            rec = np.frombuffer(data, dt, count=count, offset=pos)
+            vertices = np.stack([rec[f"p{c}"] for c in cols], 1).astype(np.float64)
+            if ncols:
+                normals = np.stack([rec[f"p{c}"] for c in ncols], 1).astype(np.float64)
+            pos += count * dt.itemsize
+        elif name == "face":
+            li = _face_layout(path, props)
+            idx, sizes, pos = _ply_binary_faces(path, data, pos, count, props, li, order)
+            break
+        else:
+            if any(p[1] == "list" for p in props):
+                raise MeshFormatError(path, f"element {name!r} with list properties before "
+                                      "the faces is not supported")
+            pos += count * sum(np.dtype(p[2]).itemsize for p in props)
+    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
+    if normals is not None and np.isfinite(normals).all():
+        mesh = Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets,
+                             normals=normals)
+    return mesh
+
+
+def _ply_binary_faces(path, data, pos, count, props, li, order):
+    """Faces of a binary PLY. Same-size faces are one frombuffer; mixed sizes find the
+    record starts by pointer doubling over the byte positions (vectorized)."""
+    pre = sum(np.dtype(p[2]).itemsize for p in props[:li])
+    post = sum(np.dtype(p[2]).itemsize for p in props[li + 1:])
+    ctype = np.dtype(order + props[li][2])
+    itype = np.dtype(order + props[li][3])
+    head = pre + ctype.itemsize
+    if count == 0:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), pos
+    if pos + head > len(data):
+        raise MeshFormatError(path, "truncated: the face data is missing", byte=len(data))
+    k0 = int(np.frombuffer(data, ctype, count=1, offset=pos + pre)[0])
+    rec_size = head + k0 * itype.itemsize + post
+    if k0 >= 3 and pos + count * rec_size <= len(data):
+        dt = np.dtype([("pre", "V%d" % pre) if pre else ("pre", "u1", (0,)),
+                       ("n", ctype), ("i", itype, (k0,)),
+                       ("post", "V%d" % post) if post else ("post", "u1", (0,))])
+        rec = np.frombuffer(data, dt, count=count, offset=pos)
+        if (rec["n"] == k0).all():
+            idx = rec["i"].astype(np.int64).ravel()
+            return idx, np.full(count, k0, np.int64), pos + count * rec_size
+    # Mixed sizes: next(p) = p + head + n(p) * isize + post for every byte position p.
+    body = np.frombuffer(data, np.uint8, offset=pos)
+    n_pos = len(body) - head + 1
+    if n_pos <= 0:
+        raise MeshFormatError(path, "truncated face data", byte=len(data))
+    counts_at = np.zeros(len(body) + 1, np.int64)
+    raw = np.lib.stride_tricks.sliding_window_view(body, ctype.itemsize)[pre:pre + n_pos]
+    counts_at[:n_pos] = raw.copy().view(ctype).ravel()
+    sentinel = len(body)
+    nxt = np.minimum(np.arange(len(body) + 1) + head + counts_at * itype.itemsize + post,
+                     sentinel)
+    nxt[n_pos:] = sentinel
+    nxt[sentinel] = sentinel
+    # depth[p] = number of records from p to the end... instead: reach all records from 0
+    reached = np.zeros(len(body) + 1, bool)
+    reached[0] = True
+    jump = nxt
+    steps = 1
+    while steps < count:
+        reached[jump[reached]] = True
+        jump = jump[jump]
+        steps *= 2
+    starts = np.flatnonzero(reached[:sentinel])
+    if len(starts) < count:
+        raise MeshFormatError(path, f"truncated: the header promises {count} faces, the data "
+                              f"holds {len(starts)}", byte=len(data))
+    starts = starts[:count]
+    sizes = counts_at[starts]
+    end = starts[-1] + head + sizes[-1] * itype.itemsize + post
+    if end > len(body):
+        raise MeshFormatError(path, f"truncated: face {count - 1} runs past the end of the "
+                              "file", byte=len(data))
+    corner = np.repeat(starts + head, sizes) + itype.itemsize * (
+        np.arange(int(sizes.sum())) - np.repeat(offsets_from_sizes(sizes)[:-1], sizes))
+    window = np.lib.stride_tricks.sliding_window_view(body, itype.itemsize)
+    idx = window[corner].copy().view(itype).ravel().astype(np.int64)
+    return idx, sizes, pos + int(end)
+
+
+def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
+    text = normalize_whitespace(body)
+    starts, ends = line_starts(text)
+    keep = np.flatnonzero(ends > starts)
+    line = 0
+    vertices = normals = idx = sizes = None
+    for name, count, props in elements:
+        lines = keep[line:line + count]
+        if len(lines) < count:
+            raise MeshFormatError(path, f"truncated: the header promises {count} {name} lines, "
+                                  f"the file has {len(lines)}")
+        line += count
+        blob = join_lines(text, starts, ends, lines)
+        vals = parse_numbers(blob)
+        counts = token_counts(blob, count)
+        if vals is None or len(vals) != counts.sum():
+            numeric_diagnose(path, text, starts, ends, lines, name, first_line)
+        if name == "vertex":
+            cols, ncols = _vertex_columns(path, props)
+            bad = counts != len(props)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise MeshFormatError(path, f"vertex {i} has {int(counts[i])} values, the "
+                                      f"header declares {len(props)}",
+                                      line=int(lines[i]) + first_line)
+            table = vals.reshape(count, len(props))
+            vertices = table[:, cols]
+            normals = table[:, ncols] if ncols else None
+        elif name == "face":
+            li = _face_layout(path, props)
+            off = offsets_from_sizes(counts)[:-1]
+            k = vals[off + li] if count else np.zeros(0)
+            extra = len(props) - 1
+            bad = (k != np.round(k)) | (counts != k + 1 + extra)
+            if bad.any():
+                f = int(np.flatnonzero(bad)[0])
+                raise MeshFormatError(path, f"face {f} declares {vals[off[f] + li]:g} vertices "
+                                      f"but has {int(counts[f]) - 1 - extra} indices",
+                                      line=int(lines[f]) + first_line)
+            sizes = k.astype(np.int64)
+            idx = ragged_take(vals, off + li + 1, sizes).astype(np.int64)
+            break
+    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
+    if normals is not None:
+        mesh = Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets,
+                             normals=normals)
+    return mesh
+
+
+def write(mesh: Mesh, f, binary: bool) -> None:
+    fmt = "binary_little_endian" if binary else "ascii"
+    f.write((f"ply\nformat {fmt} 1.0\ncomment glshade\nelement vertex {mesh.n_vertices}\n"
+             "property double x\nproperty double y\nproperty double z\n"
+             f"element face {mesh.n_faces}\nproperty list uchar int vertex_indices\n"
+             "end_header\n").encode())
+    if int(mesh.face_sizes.max(initial=0)) > 255:
+        raise GeometryError("PLY stores polygon sizes as uchar: faces of more than 255 "
+                            "vertices cannot be written")
+    if not binary:
+        write_vertices(f, mesh.vertices, "")
+        write_faces(f, mesh, "", 0, with_count=True)
+        return
+    f.write(mesh.vertices.astype("<f8").tobytes())
+    sizes = mesh.face_sizes
+    face_byte = mesh.face_offsets[:-1] * 4 + np.arange(mesh.n_faces)
+    buf = np.zeros(mesh.n_faces + 4 * len(mesh.face_indices), np.uint8)
+    buf[face_byte] = sizes
+    corner_byte = np.repeat(face_byte + 1, sizes) + 4 * (
+        np.arange(len(mesh.face_indices)) - np.repeat(mesh.face_offsets[:-1], sizes))
+    buf[corner_byte[:, None] + np.arange(4)] = (
+        mesh.face_indices.astype("<i4").view(np.uint8).reshape(-1, 4))
+    f.write(buf.tobytes())

@@ -1,0 +1,348 @@
+"""Scene files: TOML describing meshes, materials, transforms, lights, render settings and
+a camera (one view, or key frames). Read with ``tomllib``; every error names the file, the
+line and the key.
+
+Example (``assets/scenes/teapot-orbit.toml``)::
+
+    [render]
+    size = [512, 384]
+    mode = "phong"
+    background = [0.12, 0.12, 0.14]
+    fps = 24
+
+    [[mesh]]
+    source = "primitive:teapot"        # or a path, relative to this file
+    color = [0.85, 0.55, 0.3]
+    ks = 0.5
+    shininess = 40
+    translation = [0.0, -1.5, 0.0]
+
+    [[light]]
+    position = [4.0, 6.0, 8.0]
+
+    [[camera.keyframe]]
+    time = 0.0
+    eye = [6.0, 2.0, 0.0]
+    target = [0.0, 0.0, 0.0]
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import GlshadeError, PathFormatError, SceneFormatError
+from ..modes import ShadingMode
+from ..options import DEFAULT_SIZE, DrawOptions
+from ..scene import (
+    Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, default_camera,
+)
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["SceneFile", "RenderSettings", "load_scene"]
+
+
+@dataclass
+class RenderSettings:
+    """A scene file's ``[render]`` table: how to draw (the same :class:`DrawOptions` the
+    renderer takes, passed through animation unchanged), and the image and timing."""
+
+    options: DrawOptions = field(default_factory=DrawOptions)
+    width: int = DEFAULT_SIZE[0]
+    height: int = DEFAULT_SIZE[1]
+    samples: int = 4
+    fps: float = 30.0
+    duration: float | None = None
+
+    @property
+    def size(self) -> tuple[int, int]:
+        return self.width, self.height
+
+
+@dataclass
+class SceneFile:
+    """What a scene file holds: the scene, the camera path (one key for a still) and the
+    render settings."""
+
+    scene: Scene
+    path: CameraPath
+    settings: RenderSettings
+    source: Path
+
+    @property
+    def camera(self) -> Camera:
+        return self.path.at(self.path.start)
+
+
+NUMBER = (int, float)
+_SCHEMA = {
+    "render": {"size": "size", "mode": "mode", "samples": "int", "srgb": "bool",
+               "fps": "positive", "duration": "positive", "background": "color",
+               "ambient": "color"},
+    "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
+             "ks": "unit", "shininess": "nonneg", "translation": "vec3", "rotation": "quat",
+             "scale": "scale", "transform": "mat4", "visible": "bool"},
+    "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
+              "intensity": "nonneg", "attenuation": "vec3"},
+    "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
+               "orientation": "quat", "fov_y": "fov", "near": "positive", "far": "positive",
+               "interpolation": "interp", "position_interpolation": "pinterp",
+               "keyframe": "keyframes"},
+}
+_TOP = {"render", "mesh", "light", "camera"}
+
+
+class _Locator:
+    """Find the line of a key in the TOML text (tomllib gives values, not positions)."""
+
+    def __init__(self, text: str):
+        self.lines = text.splitlines()
+
+    def line(self, table: str, index: int | None, key: str | None) -> int | None:
+        header = re.compile(r"^\s*\[\[?\s*" + re.escape(table) + r"\s*\]\]?\s*(#.*)?$")
+        seen, start = -1, None
+        for i, line in enumerate(self.lines):
+            if header.match(line):
+                seen += 1
+                if index is None or seen == index:
+                    start = i
+                    break
+        if start is None:
+            return None
+        if key is None:
+            return start + 1
+        pat = re.compile(r"^\s*" + re.escape(key) + r"\s*=")
+        for j in range(start + 1, len(self.lines)):
+            if re.match(r"^\s*\[", self.lines[j]):
+                break
+            if pat.match(self.lines[j]):
+                return j + 1
+        return start + 1
+
+
+def _check(kind: str, value, where: str):
+    """Validate one value; return it converted, or raise with a readable reason."""
+    def fail(expected):
+        raise SceneFormatError(f"{where} must be {expected}, got {value!r}")
+
+    def numbers(n):
+        if not isinstance(value, list) or len(value) != n or \
+                not all(isinstance(v, NUMBER) and not isinstance(v, bool) for v in value):
+            fail(f"a list of {n} numbers")
+        return [float(v) for v in value]
+
+    if kind == "str":
+        return value if isinstance(value, str) and value else fail("a non-empty string")
+    if kind == "bool":
+        return value if isinstance(value, bool) else fail("true or false")
+    if kind == "int":
+        return value if isinstance(value, int) and not isinstance(value, bool) and value >= 0 \
+            else fail("a non-negative integer")
+    if kind in ("unit", "nonneg", "positive", "fov"):
+        if not isinstance(value, NUMBER) or isinstance(value, bool):
+            fail("a number")
+        v = float(value)
+        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0, "fov": 0 < v < 180}
+        return v if ok[kind] else fail({"unit": "a number in [0, 1]", "nonneg":
+                                        "a number >= 0", "positive": "a number > 0",
+                                        "fov": "a number of degrees in (0, 180)"}[kind])
+    if kind == "color":
+        c = numbers(3)
+        return c if min(c) >= 0 else fail("three numbers >= 0 (linear r, g, b)")
+    if kind == "vec3":
+        return numbers(3)
+    if kind == "quat":
+        q = numbers(4)
+        return q if any(q) else fail("a non-zero quaternion [x, y, z, w]")
+    if kind == "scale":
+        if isinstance(value, NUMBER) and not isinstance(value, bool) and value > 0:
+            return float(value)
+        s = numbers(3)
+        return s if min(s) > 0 else fail("a positive number or three positive numbers")
+    if kind == "mat4":
+        if not isinstance(value, list) or len(value) != 4 or \
+                not all(isinstance(r, list) and len(r) == 4 for r in value):
+            fail("a 4x4 list of lists")
+        return np.array(value, dtype=float)
+    if kind == "size":
+        if not isinstance(value, list) or len(value) != 2 or not all(
+                isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 16384
+                for v in value):
+            fail("[width, height] in pixels, such as [640, 480]")
+        return value
+    if kind == "mode":
+        try:
+            return ShadingMode(value)
+        except (ValueError, TypeError):
+            fail("one of " + ", ".join(repr(m.value) for m in ShadingMode))
+    if kind == "light_type":
+        return value if value in ("point", "directional") else fail("'point' or "
+                                                                    "'directional'")
+    if kind == "interp":
+        return value if value in ("slerp", "spline", "squad") else fail("'slerp' or 'spline'")
+    if kind == "pinterp":
+        return value if value in ("linear", "catmull-rom") else fail("'linear' or "
+                                                                     "'catmull-rom'")
+    return value
+
+
+def _validate(data: dict, loc: _Locator, source: str):
+    for key in data:
+        if key not in _TOP:
+            raise SceneFormatError(f"{source}:{loc.line(key, None, None) or 1}: unknown table "
+                                   f"[{key}]; allowed: {', '.join(sorted(_TOP))}")
+    out = {}
+    for table, schema in _SCHEMA.items():
+        raw = data.get(table)
+        if raw is None:
+            continue
+        many = table in ("mesh", "light")
+        if many and not isinstance(raw, list):
+            raise SceneFormatError(f"{source}:{loc.line(table, None, None)}: write meshes and "
+                                   f"lights as [[{table}]] tables")
+        if not many and not isinstance(raw, dict):
+            raise SceneFormatError(f"{source}: [{table}] must be a table")
+        items = raw if many else [raw]
+        checked = []
+        for i, item in enumerate(items):
+            name = f"[[{table}]] {i + 1}" if many else f"[{table}]"
+            clean = {}
+            for key, value in item.items():
+                line = loc.line(table, i if many else None, key)
+                where = f"{source}:{line}: {name} key '{key}'"
+                if key not in schema:
+                    raise SceneFormatError(f"{source}:{line}: unknown key '{key}' in {name}; "
+                                           f"allowed: {', '.join(sorted(schema))}")
+                clean[key] = value if schema[key] == "keyframes" else \
+                    _check(schema[key], value, where)
+            checked.append(clean)
+        out[table] = checked if many else checked[0]
+    return out
+
+
+def load_scene(path) -> SceneFile:
+    """Read a scene file: the Scene, its CameraPath and its RenderSettings."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneFormatError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneFormatError(f"{path}: cannot read: {exc}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneFormatError(f"{path}: {exc}") from None
+    loc = _Locator(text)
+    source = str(path)
+    d = _validate(data, loc, source)
+
+    r = d.get("render", {})
+    options = DrawOptions.of(None, **{k: r[k] for k in ("mode", "srgb") if k in r})
+    settings = RenderSettings(options, **{k: r[k] for k in ("samples", "fps", "duration")
+                                          if k in r})
+    if "size" in r:
+        settings.width, settings.height = r["size"]
+    scene = Scene(**{k: r[k] for k in ("ambient", "background") if k in r})
+    meshes = d.get("mesh", [])
+    if not meshes:
+        raise SceneFormatError(f"{source}: the scene has no [[mesh]]")
+    for i, m in enumerate(meshes):
+        line = loc.line("mesh", i, "source")
+        if "source" not in m:
+            raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1} "
+                                   "needs a 'source' (a file or primitive:NAME)")
+        mesh = _load_mesh(m["source"], path.parent, f"{source}:{line}")
+        material = Material.from_values(m)
+        try:
+            model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
+                              translation=m.get("translation", (0, 0, 0)),
+                              scale=m.get("scale", 1.0), name=m.get("name"))
+        except GlshadeError as exc:
+            raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
+                                   f"{exc}") from None
+        model.visible = m.get("visible", True)
+    for i, light in enumerate(d.get("light", [])):
+        where = f"{source}:{loc.line('light', i, None)}: [[light]] {i + 1}"
+        kind = light.get("type", "direction" in light and "directional" or "point")
+        if kind == "point":
+            if "position" not in light:
+                raise SceneFormatError(f"{where}: a point light needs a 'position'")
+            obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
+                                                      "attenuation") if k in light})
+        else:
+            if "direction" not in light:
+                raise SceneFormatError(f"{where}: a directional light needs a 'direction'")
+            obj = DirectionalLight(**{k: light[k] for k in ("direction", "color", "intensity")
+                                      if k in light})
+        try:
+            scene.add_light(obj)
+        except GlshadeError as exc:
+            raise SceneFormatError(f"{where}: {exc}") from None
+    camera_path = _camera(d.get("camera"), data.get("camera"), scene, settings, loc, source)
+    if settings.duration is None:
+        settings.duration = camera_path.duration or 0.0
+    return SceneFile(scene, camera_path, settings, path)
+
+
+def _load_mesh(spec: str, base: Path, where: str):
+    from ..geometry import primitives
+    from .meshes import load_mesh
+
+    try:
+        if spec.startswith("primitive:"):
+            return primitives.from_spec(spec)
+        file = (base / spec) if not Path(spec).is_absolute() else Path(spec)
+        if not file.exists():
+            raise SceneFormatError(f"{where}: mesh file {str(file)!r} does not exist")
+        return load_mesh(file)
+    except SceneFormatError:
+        raise
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{where}: {exc}") from None
+
+
+def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
+    aspect = settings.width / settings.height
+    if not cam:
+        base = default_camera(scene.bounds, aspect)
+        return CameraPath([Keyframe(0.0, base.position, base.orientation)], camera=base)
+    lens = {k: cam[k] for k in ("fov_y", "near", "far") if k in cam}
+    b = scene.bounds
+    reach = float(np.linalg.norm(b[1] - b[0])) * 4 + 1
+    lens.setdefault("near", reach * 1e-4)
+    lens.setdefault("far", reach * 4)
+    try:
+        base = Camera(**lens)
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{source}:{loc.line('camera', None, None)}: [camera]: {exc}") \
+            from None
+    interp = {"orientation_interp": cam.get("interpolation", "slerp"),
+              "position_interp": cam.get("position_interpolation", "linear"), "camera": base}
+    keys = cam.get("keyframe")
+    line = loc.line("camera", None, None)
+    if keys is None:
+        one = {k: raw[k] for k in ("eye", "target", "up", "position", "orientation")
+               if k in raw}
+        if not one:
+            view = default_camera(b, aspect)
+            return CameraPath([Keyframe(0.0, view.position, view.orientation)], camera=base)
+        keys = [dict(one, time=0.0)]
+    if not isinstance(keys, list):
+        raise SceneFormatError(f"{source}:{line}: write key frames as [[camera.keyframe]]")
+    try:
+        return CameraPath.from_dict({"keyframe": keys}, f"{source}: [camera]", **interp)
+    except PathFormatError as exc:
+        text = str(exc)
+        if exc.keyframe is not None:
+            kline = loc.line("camera.keyframe", exc.keyframe - 1, None)
+            text = text.replace(f"{source}: [camera]", f"{source}:{kline}: [camera]", 1)
+        raise SceneFormatError(text) from None

@@ -1,0 +1,164 @@
+"""A camera whose orientation is a unit quaternion.
+
+The orientation takes camera axes to world axes: the camera looks down its local -z with
++y up (OpenGL). See :mod:`glshade.geometry.transforms` for the conventions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import GeometryError
+from ..geometry import quaternion as quat
+from ..geometry.transforms import look_at, orthographic, perspective
+
+__all__ = ["Camera", "default_camera"]
+
+PROJECTIONS = ("perspective", "orthographic")
+
+
+def _vec3(value, name) -> NDArray[np.float64]:
+    a = np.asarray(value, dtype=np.float64)
+    if a.shape != (3,) or not np.isfinite(a).all():
+        raise GeometryError(f"{name} must be 3 finite numbers, got {value!r}")
+    return a
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A pinhole (or orthographic) camera.
+
+    Parameters
+    ----------
+    position : (3,) world position of the eye.
+    orientation : (4,) unit quaternion [x, y, z, w], camera axes to world axes.
+    fov_y : vertical field of view in degrees (perspective).
+    near, far : clip distances along the view axis.
+    projection : "perspective" or "orthographic".
+    height : view height in world units (orthographic).
+    """
+
+    position: NDArray[np.float64] = field(default_factory=lambda: np.array([0.0, 0.0, 3.0]))
+    orientation: NDArray[np.float64] = field(default_factory=lambda: quat.identity())
+    fov_y: float = 45.0
+    near: float = 0.1
+    far: float = 100.0
+    projection: str = "perspective"
+    height: float = 2.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "position", _vec3(self.position, "position"))
+        q = np.asarray(self.orientation, dtype=np.float64)
+        if q.shape != (4,) or not np.isfinite(q).all() or np.linalg.norm(q) == 0:
+            raise GeometryError(f"orientation must be a non-zero quaternion [x, y, z, w], "
+                                f"got {self.orientation!r}")
+        object.__setattr__(self, "orientation", quat.normalize(q))
+        if self.projection not in PROJECTIONS:
+            raise GeometryError(f"projection must be one of {PROJECTIONS}, got "
+                                f"{self.projection!r}")
+        if not 0 < float(self.fov_y) < 180:
+            raise GeometryError(f"fov_y must be in (0, 180) degrees, got {self.fov_y}")
+        if not 0 < self.near < self.far:
+            raise GeometryError(f"need 0 < near < far, got near={self.near}, far={self.far}")
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def look_at(cls, eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0),
+                **kwargs) -> Camera:
+        """A camera at ``eye`` looking at ``target`` with ``up`` roughly up."""
+        view = look_at(eye, target, up)
+        return cls(position=eye, orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
+
+    def replace(self, **changes) -> Camera:
+        return replace(self, **changes)
+
+    # ------------------------------------------------------------------ frames
+    @property
+    def rotation(self) -> NDArray[np.float64]:
+        """Camera-to-world rotation ``(3, 3)`` (columns: right, up, back)."""
+        return quat.to_matrix(self.orientation)
+
+    @property
+    def forward(self) -> NDArray[np.float64]:
+        return quat.rotate(self.orientation, [0.0, 0.0, -1.0])
+
+    @property
+    def up(self) -> NDArray[np.float64]:
+        return quat.rotate(self.orientation, [0.0, 1.0, 0.0])
+
+    @property
+    def right(self) -> NDArray[np.float64]:
+        return quat.rotate(self.orientation, [1.0, 0.0, 0.0])
+
+    def view_matrix(self) -> NDArray[np.float64]:
+        """World-to-view ``(4, 4)`` for column vectors."""
+        r = self.rotation
+        m = np.eye(4)
+        m[:3, :3] = r.T
+        m[:3, 3] = -r.T @ self.position
+        return m
+
+    def projection_matrix(self, aspect: float) -> NDArray[np.float64]:
+        """View-to-clip ``(4, 4)`` for column vectors; ``aspect`` = width / height."""
+        if self.projection == "perspective":
+            return perspective(self.fov_y, aspect, self.near, self.far)
+        return orthographic(self.height, aspect, self.near, self.far)
+
+    # ------------------------------------------------------------------ moves
+    def orbit(self, q: ArrayLike, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
+        """Rotate the camera about ``center`` by the rotation ``q`` (position and
+        orientation alike, so the centre stays where it is on screen)."""
+        q = quat.normalize(q)
+        center = _vec3(center, "center")
+        return self.replace(position=quat.transform_points(q, self.position, center),
+                            orientation=quat.multiply(q, self.orientation))
+
+    def frame(self, target, aspect: float = 1.0, margin: float = 1.1) -> Camera:
+        """Move the camera along its view axis so that the bounding sphere of ``target`` (a
+        Mesh, or bounds ``(2, 3)``) fits in view with the given ``margin``; the near and far
+        planes are set around it."""
+        bounds = getattr(target, "bounds", target)
+        b = np.asarray(bounds, dtype=np.float64)
+        if b.shape != (2, 3):
+            raise GeometryError(f"frame needs a mesh or bounds of shape (2, 3), got {b.shape}")
+        center = b.mean(axis=0)
+        radius = max(float(np.linalg.norm(b[1] - b[0])) / 2, 1e-9) * margin
+        if self.projection == "perspective":
+            half_y = np.radians(self.fov_y) / 2
+            half_x = np.arctan(np.tan(half_y) * aspect)
+            distance = radius / np.sin(min(half_x, half_y))
+            return self.replace(position=center - self.forward * distance,
+                                near=max(distance - radius, distance * 1e-3),
+                                far=distance + radius)
+        distance = 2 * radius
+        return self.replace(position=center - self.forward * distance, near=radius * 1e-3,
+                            far=distance + radius,
+                            height=2 * radius * max(1.0, 1.0 / aspect))
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, Camera):
+            return NotImplemented
+        return (np.array_equal(self.position, other.position)
+                and np.array_equal(self.orientation, other.orientation)
+                and (self.fov_y, self.near, self.far, self.projection, self.height)
+                == (other.fov_y, other.near, other.far, other.projection, other.height))
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+#: the direction the default camera looks from (towards the centre): front, right, above
+DEFAULT_VIEW_FROM = (0.55, 0.45, 1.0)
+
+
+def default_camera(bounds, aspect: float = 1.0, **kwargs) -> Camera:
+    """The auto-framed camera that ``glshade render`` and ``glshade view`` start from:
+    looking at the centre of ``bounds`` (a Mesh, a Scene or bounds ``(2, 3)``) from the
+    front-right, above, with everything in view."""
+    b = np.asarray(getattr(bounds, "bounds", bounds), dtype=np.float64)
+    center = b.mean(axis=0)
+    direction = np.asarray(DEFAULT_VIEW_FROM)
+    cam = Camera.look_at(center + direction, center, **kwargs)
+    return cam.frame(b, aspect=aspect, margin=1.0)

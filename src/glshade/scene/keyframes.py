@@ -1,0 +1,262 @@
+"""Camera key frames interpolated with quaternions (the notes' use of slerp).
+
+Orientation between neighbouring keys is slerp (constant angular speed, shortest arc) or a
+C1 quaternion spline; position is linear or Catmull-Rom. Paths load from and save to TOML::
+
+    [[keyframe]]
+    time = 0.0
+    eye = [0.0, 1.0, 5.0]
+    target = [0.0, 0.0, 0.0]
+
+    [[keyframe]]
+    time = 2.0
+    position = [5.0, 1.0, 0.0]
+    orientation = [0.0, 0.7071068, 0.0, 0.7071068]   # [x, y, z, w]
+    fov_y = 35.0
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import GeometryError, PathFormatError
+from ..geometry import quaternion as quat
+from .._atomic import atomic_write
+from .camera import Camera
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["Keyframe", "CameraPath"]
+
+ORIENTATION_INTERP = ("slerp", "spline", "squad")
+POSITION_INTERP = ("linear", "catmull-rom")
+
+
+@dataclass(frozen=True)
+class Keyframe:
+    """One key: a time (seconds), a camera position and orientation, optionally a fov."""
+
+    time: float
+    position: NDArray[np.float64]
+    orientation: NDArray[np.float64]
+    fov_y: float | None = None
+
+    @classmethod
+    def look_at(cls, time: float, eye, target, up=(0, 1, 0), fov_y=None) -> Keyframe:
+        cam = Camera.look_at(eye, target, up)
+        return cls(float(time), cam.position, cam.orientation, fov_y)
+
+
+class CameraPath:
+    """Cameras along key frames.
+
+    Parameters
+    ----------
+    keyframes : sequence of Keyframe, times strictly increasing.
+    orientation_interp : "slerp" (default; constant angular speed within a segment, a kink
+        in angular velocity at the keys) or "spline" (C1 through the keys; "squad" is an
+        alias).
+    position_interp : "linear" (default) or "catmull-rom" (C1 through the keys).
+    camera : a Camera whose lens settings (fov_y, near, far, projection) the path uses
+        where a key does not give its own fov.
+    """
+
+    def __init__(self, keyframes, *, orientation_interp: str = "slerp",
+                 position_interp: str = "linear", camera: Camera | None = None):
+        keys = list(keyframes)
+        if not keys:
+            raise GeometryError("a camera path needs at least one key frame")
+        if orientation_interp not in ORIENTATION_INTERP:
+            raise GeometryError(f"orientation_interp must be one of {ORIENTATION_INTERP}, got "
+                                f"{orientation_interp!r}")
+        if position_interp not in POSITION_INTERP:
+            raise GeometryError(f"position_interp must be one of {POSITION_INTERP}, got "
+                                f"{position_interp!r}")
+        self.keyframes = keys
+        self.times = np.array([k.time for k in keys], dtype=np.float64)
+        steps = np.diff(self.times)
+        if (steps <= 0).any():
+            i = int(np.flatnonzero(steps <= 0)[0])
+            raise GeometryError(f"key frame times must increase: key {i + 2} has time "
+                                f"{self.times[i + 1]:g} after {self.times[i]:g} (keys count "
+                                "from 1)")
+        self.positions = np.stack([np.asarray(k.position, np.float64) for k in keys])
+        # same hemisphere for consecutive keys, so every segment takes the shorter arc
+        self.orientations = quat.same_hemisphere(
+            quat.normalize(np.stack([np.asarray(k.orientation, np.float64) for k in keys])))
+        base = camera or Camera()
+        self.fovs = np.array([base.fov_y if k.fov_y is None else k.fov_y for k in keys])
+        self.camera = base
+        self.orientation_interp = orientation_interp
+        self.position_interp = position_interp
+
+    @property
+    def start(self) -> float:
+        return float(self.times[0])
+
+    @property
+    def end(self) -> float:
+        return float(self.times[-1])
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.start
+
+    def __len__(self) -> int:
+        return len(self.keyframes)
+
+    # ------------------------------------------------------------------ sampling
+    def _segments(self, t):
+        k = len(self.times)
+        seg = np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, max(k - 2, 0))
+        if k == 1:
+            return seg, np.zeros_like(t)
+        h = self.times[seg + 1] - self.times[seg]
+        return seg, np.clip((t - self.times[seg]) / h, 0.0, 1.0)
+
+    def evaluate(self, t: ArrayLike) -> tuple[NDArray, NDArray, NDArray]:
+        """Positions ``(..., 3)``, orientations ``(..., 4)`` and fovs ``(...)`` at times ``t``
+        (clamped to the path), all at once."""
+        t = np.asarray(t, dtype=np.float64)
+        if len(self.times) == 1:
+            shape = t.shape
+            return (np.broadcast_to(self.positions[0], shape + (3,)).copy(),
+                    np.broadcast_to(self.orientations[0], shape + (4,)).copy(),
+                    np.full(shape, self.fovs[0]))
+        seg, u = self._segments(t)
+        if self.orientation_interp == "slerp":
+            q = quat.slerp(self.orientations[seg], self.orientations[seg + 1], u)
+        else:
+            q = quat.spline(self.times, self.orientations, t)
+        p0, p1 = self.positions[seg], self.positions[seg + 1]
+        if self.position_interp == "linear":
+            pos = p0 + u[..., None] * (p1 - p0)
+        else:
+            pos = self._catmull_rom(seg, u)
+        fov = self.fovs[seg] + u * (self.fovs[seg + 1] - self.fovs[seg])
+        return pos, q, fov
+
+    def _catmull_rom(self, seg, u):
+        """Cubic Hermite with tangents from neighbouring keys, weighted for uneven times."""
+        p, t = self.positions, self.times
+        k = len(t)
+        tangent = np.zeros_like(p)
+        d = np.diff(p, axis=0) / np.diff(t)[:, None]  # segment velocities
+        tangent[0], tangent[-1] = d[0], d[-1]
+        if k > 2:
+            h = np.diff(t)
+            tangent[1:-1] = (h[1:, None] * d[:-1] + h[:-1, None] * d[1:]) / \
+                (h[:-1] + h[1:])[:, None]
+        h = (t[seg + 1] - t[seg])[..., None]
+        u = u[..., None]
+        h00, h10 = 2 * u**3 - 3 * u**2 + 1, u**3 - 2 * u**2 + u
+        h01, h11 = -2 * u**3 + 3 * u**2, u**3 - u**2
+        return (h00 * p[seg] + h10 * h * tangent[seg] + h01 * p[seg + 1]
+                + h11 * h * tangent[seg + 1])
+
+    def at(self, t: float) -> Camera:
+        """The camera at time ``t`` (clamped to the path's time range)."""
+        pos, q, fov = self.evaluate(float(t))
+        return self.camera.replace(position=pos, orientation=q, fov_y=float(fov))
+
+    def frame_times(self, n: int) -> NDArray[np.float64]:
+        """``n`` evenly spaced times from the first key to the last, both included."""
+        if n < 1:
+            raise GeometryError(f"need at least one frame, got {n}")
+        return np.linspace(self.start, self.end, n) if n > 1 else np.array([self.start])
+
+    def sample(self, n: int) -> list[Camera]:
+        """Cameras of ``n`` evenly spaced frames (interpolation done in one vectorized pass)."""
+        pos, q, fov = self.evaluate(self.frame_times(n))
+        return [self.camera.replace(position=p, orientation=o, fov_y=float(f))
+                for p, o, f in zip(pos, q, fov)]
+
+    # ------------------------------------------------------------------ TOML
+    @classmethod
+    def from_dict(cls, data: dict, source: str = "<dict>", **kwargs) -> CameraPath:
+        """Build from parsed TOML: ``{"keyframe": [{time, eye, target | position,
+        orientation, fov_y, up}, ...]}``."""
+        entries = data.get("keyframe")
+        if not isinstance(entries, list) or not entries:
+            raise PathFormatError(f"{source}: no [[keyframe]] tables")
+        allowed = {"time", "eye", "target", "up", "position", "orientation", "fov_y"}
+        keys = []
+        for i, e in enumerate(entries, start=1):
+            where = f"{source}: keyframe {i}"
+            unknown = set(e) - allowed
+            if unknown:
+                raise PathFormatError(f"{where}: unknown key(s) {sorted(unknown)}; allowed: "
+                                      f"{sorted(allowed)}", i)
+            if "time" not in e or not isinstance(e["time"], (int, float)) or \
+                    isinstance(e["time"], bool) or not np.isfinite(e["time"]):
+                raise PathFormatError(f"{where}: 'time' must be a finite number", i)
+            if keys and e["time"] <= keys[-1].time:
+                raise PathFormatError(f"{where}: key frame times must increase, got "
+                                      f"{e['time']:g} after {keys[-1].time:g}", i)
+            fov = e.get("fov_y")
+            if fov is not None and not isinstance(fov, (int, float)):
+                raise PathFormatError(f"{where}: 'fov_y' must be a number", i)
+            try:
+                if "eye" in e or "target" in e:
+                    if "eye" not in e or "target" not in e:
+                        raise PathFormatError(f"{where}: give both 'eye' and 'target'", i)
+                    keys.append(Keyframe.look_at(e["time"], e["eye"], e["target"],
+                                                 e.get("up", (0, 1, 0)), fov))
+                elif "position" in e and "orientation" in e:
+                    q = np.asarray(e["orientation"], dtype=np.float64)
+                    if q.shape != (4,) or np.linalg.norm(q) == 0:
+                        raise PathFormatError(f"{where}: 'orientation' must be a non-zero "
+                                              "[x, y, z, w]", i)
+                    pos = np.asarray(e["position"], dtype=np.float64)
+                    if pos.shape != (3,):
+                        raise PathFormatError(f"{where}: 'position' must be [x, y, z]", i)
+                    keys.append(Keyframe(float(e["time"]), pos, quat.normalize(q), fov))
+                else:
+                    raise PathFormatError(f"{where}: give 'eye' and 'target', or 'position' "
+                                          "and 'orientation'", i)
+            except (GeometryError, ValueError, TypeError) as exc:
+                if isinstance(exc, PathFormatError):
+                    raise
+                raise PathFormatError(f"{where}: {exc}", i) from None
+        try:
+            return cls(keys, **kwargs)
+        except GeometryError as exc:
+            raise PathFormatError(f"{source}: {exc}") from None
+
+    @classmethod
+    def load(cls, path, **kwargs) -> CameraPath:
+        """Read a TOML key-frame file (see the module docstring)."""
+        path = Path(path)
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            raise PathFormatError(f"{path}: no such file") from None
+        except tomllib.TOMLDecodeError as exc:
+            raise PathFormatError(f"{path}: {exc}") from None
+        return cls.from_dict(data, str(path), **kwargs)
+
+    def to_toml(self) -> str:
+        def arr(a):
+            return "[" + ", ".join(repr(float(x)) for x in a) + "]"
+
+        out = [f"# camera path: {len(self)} key frames, {self.duration:g} s\n"]
+        for k, p, q in zip(self.keyframes, self.positions, self.orientations):
+            out.append(f"[[keyframe]]\ntime = {float(k.time)!r}\nposition = {arr(p)}\n"
+                       f"orientation = {arr(q)}\n")
+            if k.fov_y is not None:
+                out.append(f"fov_y = {float(k.fov_y)!r}\n")
+            out.append("\n")
+        return "".join(out)
+
+    def save(self, path) -> None:
+        """Write the path as TOML (atomically)."""
+        with atomic_write(path, "w") as f:
+            f.write(self.to_toml())

@@ -1,0 +1,79 @@
+"""Lights, and the one rule for a scene without any: a white headlight at the eye.
+
+The GPU programs, the numpy lighting twin and the command line all take their lights from
+:func:`lights_for`, so a scene with no lights is lit the same way everywhere.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import GeometryError
+from .material import color3, nonnegative
+
+__all__ = ["PointLight", "DirectionalLight", "lights_for", "MAX_LIGHTS"]
+
+MAX_LIGHTS = 8
+
+
+@dataclass(frozen=True)
+class PointLight:
+    """A light at ``position`` (world). No distance attenuation by default (the notes'
+    model); ``attenuation=(c, l, q)`` divides by ``c + l d + q d^2``."""
+
+    position: tuple = (5.0, 5.0, 5.0)
+    color: tuple = (1.0, 1.0, 1.0)
+    intensity: float = 1.0
+    attenuation: tuple = (1.0, 0.0, 0.0)
+
+    def __post_init__(self):
+        p = np.asarray(self.position, dtype=np.float64)
+        if p.shape != (3,) or not np.isfinite(p).all():
+            raise GeometryError(f"light position must be 3 numbers, got {self.position!r}")
+        object.__setattr__(self, "position", tuple(p.tolist()))
+        object.__setattr__(self, "color", color3(self.color, "light color"))
+        object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
+        att = color3(self.attenuation, "attenuation")
+        if att == (0.0, 0.0, 0.0):
+            raise GeometryError("attenuation (c, l, q) must not be all zero")
+        object.__setattr__(self, "attenuation", att)
+
+    def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``[x, y, z, 1]``: the position in view space."""
+        return view @ np.append(self.position, 1.0)
+
+
+@dataclass(frozen=True)
+class DirectionalLight:
+    """A light infinitely far away. ``direction`` is the way the light travels, so the
+    vector to the light is ``L = -direction``."""
+
+    direction: tuple = (-1.0, -1.0, -1.0)
+    color: tuple = (1.0, 1.0, 1.0)
+    intensity: float = 1.0
+
+    def __post_init__(self):
+        d = np.asarray(self.direction, dtype=np.float64)
+        if d.shape != (3,) or not np.isfinite(d).all() or np.linalg.norm(d) == 0:
+            raise GeometryError(f"direction must be a non-zero 3-vector, got {self.direction!r}")
+        object.__setattr__(self, "direction", tuple((d / np.linalg.norm(d)).tolist()))
+        object.__setattr__(self, "color", color3(self.color, "light color"))
+        object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
+
+    attenuation = (1.0, 0.0, 0.0)
+
+    def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``[x, y, z, 0]``: the unit vector towards the light, in view space."""
+        return np.append(view[:3, :3] @ -np.asarray(self.direction), 0.0)
+
+
+def lights_for(lights, camera) -> list:
+    """The lights a draw uses: ``lights``, or -- when there are none -- the default, a white
+    point light at the camera (a headlight: whatever faces the viewer is lit)."""
+    lights = list(lights)
+    if lights:
+        return lights
+    return [PointLight(tuple(float(x) for x in camera.position))]

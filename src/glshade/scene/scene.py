@@ -1,0 +1,94 @@
+"""What is drawn: meshes with materials and transforms, lights, ambient and background.
+
+Plain data (numpy arrays), no GL handles: the renderer keeps the GPU copies.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import GeometryError
+from ..geometry.analytic import affine_matrix
+from ..geometry.mesh import Mesh
+from ..geometry.transforms import compose_transform
+from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
+from .material import Material, color3
+
+__all__ = ["Model", "Scene"]
+
+
+@dataclass(eq=False)
+class Model:
+    """One mesh placed in a scene."""
+
+    mesh: Mesh
+    material: Material = field(default_factory=Material)
+    transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
+    name: str | None = None
+    visible: bool = True
+
+
+class Scene:
+    """Meshes, lights, ambient intensity ``Ia`` and background colour.
+
+    A scene with no lights is drawn with a default headlight: a white point light at the
+    camera (so what faces the viewer is lit), documented here and in the README.
+    """
+
+    def __init__(self, ambient: ArrayLike = (1.0, 1.0, 1.0),
+                 background: ArrayLike = (0.0, 0.0, 0.0, 1.0)):
+        self.ambient = color3(ambient, "ambient")
+        bg = np.asarray(background, dtype=np.float64)
+        if bg.shape == (3,):
+            bg = np.append(bg, 1.0)
+        if bg.shape != (4,) or not np.isfinite(bg).all():
+            raise GeometryError(f"background must be (r, g, b) or (r, g, b, a), got "
+                                f"{background!r}")
+        self.background = tuple(float(x) for x in bg)
+        self.models: list[Model] = []
+        self.lights: list = []
+
+    def add(self, mesh: Mesh, material: Material | None = None, transform: ArrayLike | None = None,
+            *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
+            scale: ArrayLike = 1.0, name: str | None = None) -> Model:
+        """Add a mesh. Place it with a 4x4 ``transform`` (column vectors), or with a
+        quaternion ``rotation``, ``translation`` and ``scale`` (T R S)."""
+        if not isinstance(mesh, Mesh):
+            raise GeometryError(f"scene.add needs a Mesh, got {type(mesh).__name__}")
+        if transform is not None:
+            m = affine_matrix(transform, "transform")
+        else:
+            m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        model = Model(mesh, material or Material(), m, name or mesh.name)
+        self.models.append(model)
+        return model
+
+    def add_light(self, light) -> None:
+        """Add a PointLight or DirectionalLight (at most MAX_LIGHTS)."""
+        if not isinstance(light, (PointLight, DirectionalLight)):
+            raise GeometryError(f"expected a PointLight or DirectionalLight, got {light!r}")
+        if len(self.lights) >= MAX_LIGHTS:
+            raise GeometryError(f"at most {MAX_LIGHTS} lights per scene")
+        self.lights.append(light)
+
+    def lights_for(self, camera) -> list:
+        """The lights a draw with ``camera`` uses (the headlight when there are none)."""
+        return lights_for(self.lights, camera)
+
+    @property
+    def bounds(self) -> NDArray[np.float64]:
+        """World bounding box ``(2, 3)`` of the visible models."""
+        pts = []
+        for m in self.models:
+            if not m.visible or m.mesh.n_vertices == 0:
+                continue
+            b = m.mesh.bounds
+            corners = np.array([[x, y, z] for x in b[:, 0] for y in b[:, 1] for z in b[:, 2]])
+            pts.append(corners @ m.transform[:3, :3].T + m.transform[:3, 3])
+        if not pts:
+            return np.zeros((2, 3))
+        p = np.vstack(pts)
+        return np.stack([p.min(0), p.max(0)])

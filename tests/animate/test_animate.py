@@ -1,0 +1,226 @@
+"""Key-frame animation: scene files, frames along paths, files, jobs and interrupts."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from glshade import Camera, CameraPath, Keyframe, Material, PointLight, Scene
+from glshade import quaternion as Q
+from glshade.animate import animate
+from glshade.geometry import primitives as P
+from glshade.io.scenefile import load_scene
+
+from tests.conftest import BACKEND, ROOT, glshade
+
+pytestmark = pytest.mark.gl  # renders, also in subprocesses: run on every backend
+
+
+
+
+def test_frame_at_key_time_equals_still(make_renderer):
+    sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
+    frames = list(animate(sf.scene, sf.path, 5, "phong", size=(96, 72), samples=0,
+                          backend=BACKEND))
+    assert sf.path.times.tolist() == [0.0, 2.0, 4.0]  # frames 0, 2, 4 sit on the keys
+    r = make_renderer(96, 72)
+    for frame, key in zip(frames[::2], sf.path.keyframes):
+        cam = sf.path.camera.replace(position=key.position, orientation=key.orientation)
+        np.testing.assert_array_equal(frame, r.render(sf.scene, cam, "phong"))
+
+
+def test_slerp_in_motion_turns_by_equal_angles():
+    """A camera at the origin turns 90 degrees about y between two keys; the yaw measured
+    from a red marker's position in each image advances by equal steps."""
+    s = Scene(background=(0, 0, 0))
+    s.add(P.icosphere(2), Material(color=(1, 0, 0), ka=1, kd=0, ks=0), scale=0.12,
+          translation=(0, 0, -5))
+    s.add_light(PointLight((0, 0, 0)))
+    a, b = Q.from_axis_angle([0, 1, 0], -np.pi / 4), Q.from_axis_angle([0, 1, 0], np.pi / 4)
+    lens = Camera(fov_y=60.0, near=0.1, far=20)
+    path = CameraPath([Keyframe(0, [0, 0, 0], a), Keyframe(1, [0, 0, 0], b)], camera=lens)
+    w, h = 480, 120
+    frames = list(animate(s, path, 9, "flat", size=(w, h), samples=0, backend=BACKEND))
+    tan_half_x = np.tan(np.radians(30)) * w / h
+    yaws = []
+    for f in frames:
+        red = f[..., 0] > 128
+        assert red.sum() > 10
+        x_ndc = 2 * (np.nonzero(red)[1].mean() + 0.5) / w - 1
+        yaws.append(np.degrees(np.arctan(x_ndc * tan_half_x)))
+    steps = np.diff(yaws)
+    # turning left (about +y) the camera sees the marker at -z drift right: 90/8 degrees
+    # a frame, every frame
+    np.testing.assert_allclose(steps, 90 / 8, atol=0.35)
+
+
+def test_gif_and_apng_frame_count_and_duration(tmp_path):
+    sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
+    for name in ("a.gif", "a.png"):
+        n = animate(sf.scene, sf.path, 6, output=tmp_path / name, fps=20, size=(64, 48),
+                    samples=0, backend=BACKEND)
+        assert n == 6
+        with Image.open(tmp_path / name) as im:
+            assert im.n_frames == 6
+            assert im.info["duration"] == 50
+            assert im.size == (64, 48)
+
+
+def test_mp4_with_the_video_extra(tmp_path):
+    import imageio.v2 as imageio  # installed with the test extra (glshade[video])
+
+    sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
+    animate(sf.scene, sf.path, 10, output=tmp_path / "a.mp4", fps=10, size=(64, 48),
+            samples=0, backend=BACKEND)
+    reader = imageio.get_reader(tmp_path / "a.mp4")
+    assert reader.count_frames() == 10
+    assert reader.get_meta_data()["fps"] == pytest.approx(10)
+    assert oct((tmp_path / "a.mp4").stat().st_mode)[-3:] != "600"
+
+
+def test_modes_side_by_side_and_frames_folder(tmp_path):
+    r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "frames/"),
+                "--frames", "3", "--modes", "flat,gouraud,phong", "--size", "80x60",
+                "--jobs", "1", "--backend", BACKEND, "-q")
+    assert r.returncode == 0, r.stderr
+    files = sorted((tmp_path / "frames").iterdir())
+    assert [f.name for f in files] == ["frame_00000.png", "frame_00001.png", "frame_00002.png"]
+    assert Image.open(files[0]).size == (240, 60 + 22)
+
+
+def test_jobs_2_equals_jobs_1_byte_for_byte(tmp_path):
+    outs = []
+    for jobs in ("1", "2"):
+        out = tmp_path / f"j{jobs}.gif"
+        r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
+                    "12", "--size", "96x72", "--jobs", jobs, "--backend", BACKEND)
+        assert r.returncode == 0, r.stderr
+        assert "12 frames" in r.stdout
+        outs.append(out.read_bytes())
+    assert outs[0] == outs[1]
+
+
+def test_render_still_from_scene_file(tmp_path):
+    r = glshade("render", "assets/scenes/teapot-orbit.toml", "--time", "2", "-o",
+                str(tmp_path / "t.png"), "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert Image.open(tmp_path / "t.png").size == (512, 384)  # the scene's own size
+
+
+MALFORMED = {
+    "syntax": ("[render\nsize = [1, 2]\n", "Expected ']'"),
+    "unknown_table": ("[lights]\nposition = [1, 2, 3]\n", ":1: unknown table [lights]"),
+    "unknown_key": ('[[mesh]]\nsource = "primitive:cube"\ncolour = [1, 0, 0]\n',
+                    ":3: unknown key 'colour' in [[mesh]] 1"),
+    "wrong_type": ('[[mesh]]\nsource = "primitive:cube"\nks = "shiny"\n',
+                   ":3: [[mesh]] 1 key 'ks' must be a number"),
+    "bad_colour": ('[[mesh]]\nsource = "primitive:cube"\ncolor = [1, 0]\n',
+                   ":3: [[mesh]] 1 key 'color' must be a list of 3 numbers"),
+    "missing_mesh_file": ('[[mesh]]\nsource = "nowhere.obj"\n', "nowhere.obj' does not exist"),
+    "no_source": ("[[mesh]]\ncolor = [1, 0, 0]\n", ":1: [[mesh]] 1 needs a 'source'"),
+    "no_mesh": ("[render]\nsize = [10, 10]\n", "the scene has no [[mesh]]"),
+    "bad_mode": ('[render]\nmode = "toon"\n[[mesh]]\nsource = "primitive:cube"\n',
+                 ":2: [render] key 'mode' must be one of 'flat'"),
+    "bad_size": ('[render]\nsize = [0, 10]\n[[mesh]]\nsource = "primitive:cube"\n',
+                 "key 'size' must be [width, height]"),
+    "light_without_position": ('[[mesh]]\nsource = "primitive:cube"\n[[light]]\n'
+                               'color = [1, 1, 1]\n', ":3: [[light]] 1: a point light needs"),
+    "keyframe_times": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 1\n'
+                       'eye = [0, 0, 5]\ntarget = [0, 0, 0]\n[[camera.keyframe]]\ntime = 0\n'
+                       'eye = [5, 0, 0]\ntarget = [0, 0, 0]\n', "times must increase"),
+    "keyframe_half": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 0\n'
+                      'eye = [0, 0, 5]\n', "keyframe 1: give both 'eye' and 'target'"),
+    "bad_primitive": ('[[mesh]]\nsource = "primitive:blob"\n', ":2: unknown primitive 'blob'"),
+    "mesh_as_table": ('[mesh]\nsource = "primitive:cube"\n', "write meshes and lights as"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MALFORMED))
+def test_malformed_scene_files_exit_2_with_one_line(tmp_path, name):
+    text, message = MALFORMED[name]
+    scene = tmp_path / f"{name}.toml"
+    scene.write_text(text)
+    r = glshade("animate", str(scene), "-o", str(tmp_path / "out.gif"), "--frames", "2")
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert message in r.stderr, r.stderr
+    assert str(scene) in r.stderr
+    assert not (tmp_path / "out.gif").exists()
+
+
+def test_interrupt_leaves_no_partial_output(tmp_path):
+    out = tmp_path / "long.gif"
+    proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+                             "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
+                             "2000", "--size", "128x96", "--jobs", "2", "--backend", BACKEND],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(4)
+    assert proc.poll() is None, proc.stderr.read()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []  # no output, no .part file
+
+
+def test_unknown_output_format(tmp_path):
+    r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "a.avi"))
+    assert r.returncode == 2 and ".gif, .png, .apng, .mp4" in r.stderr
+
+
+def test_progress_bar_on_a_terminal_and_quiet_otherwise():
+    import io
+
+    from glshade.animate import Progress
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    out = Tty()
+    bar = Progress(4, stream=out)
+    for _ in range(4):
+        bar.update()
+    bar.close()
+    text = out.getvalue()
+    assert "4/4 frames" in text and "fps" in text and "s left" in text
+    quiet = io.StringIO()  # not a terminal
+    Progress(4, stream=quiet).update()
+    assert quiet.getvalue() == ""
+
+
+def test_compare_takes_a_scene_file(tmp_path):
+    r = glshade("compare", "assets/scenes/spheres.toml", "-o", str(tmp_path / "g.png"),
+                "--size", "96x48", "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert "flat" in r.stdout and (tmp_path / "g.png").exists()
+
+
+def test_workers_do_not_rerun_an_unguarded_script(tmp_path):
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        "import glshade\n"
+        f"sf = glshade.load_scene({str(ROOT / 'assets/scenes/teapot-orbit.toml')!r})\n"
+        "n = glshade.animate(sf.scene, sf.path, 6, output='o.gif', size=(48, 36), jobs=2,\n"
+        f"                   backend={BACKEND!r})\n"
+        "print('frames', n)\n")
+    r = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.count("frames 6") == 1  # printed once: the workers did not run it
+
+
+def test_a_worker_without_gl_is_reported_not_restarted(tmp_path):
+    env = dict(os.environ, GLSHADE_OSMESA_LIBRARY="/no/libOSMesa.so")
+    r = subprocess.run([sys.executable, "-m", "glshade", "animate",
+                        "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "x.gif"),
+                        "--frames", "4", "--jobs", "2", "--backend", "osmesa"],
+                       cwd=ROOT, capture_output=True, text=True, timeout=120, env=env)
+    assert r.returncode == 1
+    assert "cannot load /no/libOSMesa.so" in r.stderr and "Traceback" not in r.stderr
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,68 @@
+"""``glshade render``: each mode writes a PNG; bad input is one line and exit 2."""
+
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tests.conftest import BACKEND, glshade
+
+pytestmark = pytest.mark.gl  # renders, also in subprocesses: run on every backend
+
+
+
+
+@pytest.mark.parametrize("mode", ["flat", "gouraud", "phong", "normals", "depth"])
+def test_each_mode_renders(tmp_path, mode):
+    out = tmp_path / f"{mode}.png"
+    r = glshade("render", "assets/teapot.obj", "-o", str(out), "--mode", mode, "--size",
+                "120x90", "--backend", BACKEND, "--samples", "0")
+    assert r.returncode == 0, r.stderr
+    img = np.asarray(Image.open(out))
+    assert img.shape == (90, 120, 4)
+    lit = img[..., :3].max(-1) > 20
+    assert 0.05 < lit.mean() < 0.9  # the teapot is in the picture, not filling it
+
+
+def test_flat_and_phong_differ_and_eye_is_used(tmp_path):
+    paths = []
+    for mode, eye in (("flat", "0,2,9"), ("phong", "0,2,9"), ("phong", "9,2,0")):
+        p = tmp_path / f"{mode}{eye}.png"
+        r = glshade("render", "primitive:icosphere:2", "-o", str(p), "--mode", mode, "--size",
+                    "64x64", "--eye", eye, "--target", "0,0,0", "--backend", BACKEND)
+        assert r.returncode == 0, r.stderr
+        paths.append(np.asarray(Image.open(p)).astype(int))
+    assert np.abs(paths[0] - paths[1]).max() > 10
+    assert np.abs(paths[1] - paths[2]).max() > 10  # a different light placement follows
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--size", "big"), "expected WIDTHxHEIGHT such as 800x600"),
+    (("--mode", "toon"), "unknown mode 'toon'; choose one of flat"),
+    (("--eye", "1,2"), "expected three numbers x,y,z"),
+    (("--ka", "2"), "expected a number in [0, 1]"),
+    (("--backend", "dx12"), "invalid choice: 'dx12'"),
+])
+def test_bad_arguments_exit_2_with_one_line(tmp_path, args, message):
+    r = glshade("render", "primitive:cube", "-o", str(tmp_path / "x.png"), *args)
+    assert r.returncode == 2
+    assert message in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_malformed_mesh_exits_2(tmp_path):
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    r = glshade("render", str(bad), "-o", str(tmp_path / "x.png"))
+    assert r.returncode == 2
+    assert str(bad) in r.stderr and "truncated" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert list(tmp_path.iterdir()) == [bad]
+
+
+def test_unwritable_output_exits_1(tmp_path):
+    r = glshade("render", "primitive:cube", "-o", str(tmp_path / "no" / "dir" / "x.png"),
+                "--size", "16x16", "--backend", BACKEND)
+    assert r.returncode == 1
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1

@@ -1,0 +1,127 @@
+"""Comparing shading modes on spheres, the grid, the sweep, and the CLI."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from glshade import Camera, Material, PointLight, Scene, compare
+from glshade.compare import sweep
+from glshade.io.images import LABEL_HEIGHT
+from glshade.geometry import primitives as P
+
+from tests.conftest import BACKEND, ROOT
+
+pytestmark = pytest.mark.gl  # renders, also in subprocesses: run on every backend
+
+CAM = Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
+MAT = Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30)
+
+
+def sphere(level):
+    s = Scene()
+    s.add(P.icosphere(level), MAT)
+    s.add_light(PointLight((3.0, 4.0, 5.0)))
+    return s
+
+
+@pytest.fixture(scope="module")
+def levels(gl_context):
+    from glshade.render.renderer import Renderer
+
+    with Renderer(160, 160, samples=0, context=gl_context) as r:
+        return {k: {m.mode: m for m in compare(sphere(k), CAM, renderer=r, size=(160, 160),
+                                               diff=False).metrics} for k in (1, 2, 3, 4)}
+
+
+def test_error_order_at_each_level_and_decrease(levels):
+    for k, m in levels.items():
+        assert m["flat"].mean_abs > m["gouraud"].mean_abs > m["phong"].mean_abs, k
+    for mode in ("flat", "gouraud", "phong"):
+        errs = [levels[k][mode].mean_abs for k in sorted(levels)]
+        assert all(a > b for a, b in zip(errs, errs[1:])), (mode, errs)
+
+
+def test_gouraud_loses_the_highlight_on_a_coarse_sphere(levels):
+    m = levels[1]
+    assert m["gouraud"].peak < m["phong"].peak - 20
+    assert m["gouraud"].peak < m["gouraud"].reference_peak - 20
+    assert abs(m["phong"].peak - m["phong"].reference_peak) < 5
+
+
+def test_mach_bands_large_for_flat_near_zero_for_phong(levels):
+    m = levels[2]
+    assert m["flat"].mach_band > 5
+    assert m["phong"].mach_band < 0.5
+
+
+def test_grid_columns_in_order_with_labels(make_renderer):
+    r = make_renderer(96, 80)
+    c = compare(sphere(2), CAM, ("phong", "flat"), renderer=r, size=(96, 80), diff=True)
+    img = c.image
+    assert img.shape == (2 * (80 + LABEL_HEIGHT), 3 * 96, 4)
+    # each label band has text (bright pixels) and each tile shows its own render
+    for col in range(3):
+        band = img[:LABEL_HEIGHT, col * 96:(col + 1) * 96, :3]
+        assert (band.max(-1) > 200).sum() > 15
+    tiles = [img[LABEL_HEIGHT:LABEL_HEIGHT + 80, i * 96:(i + 1) * 96, :3].astype(int)
+             for i in range(3)]
+    np.testing.assert_allclose(tiles[0], np.clip(c.images["phong"] + 0.5, 0, 255).astype(int),
+                               atol=0)
+    np.testing.assert_allclose(tiles[1], np.clip(c.images["flat"] + 0.5, 0, 255).astype(int),
+                               atol=0)
+    assert [m.mode for m in c.metrics] == ["phong", "flat"]
+    # the diff row has the colour bar in the last column
+    bar = img[80 + 2 * LABEL_HEIGHT:, 2 * 96 + 4:2 * 96 + 18, :3]
+    assert bar[0].mean() > bar[-1].mean()  # bright at the top (max), dark at 0
+    assert c._repr_png_().startswith(b"\x89PNG")
+
+
+def test_phong_fine_reference_and_given_image(make_renderer):
+    r = make_renderer(64, 64)
+    s = Scene()
+    s.add(P.torus(1, 0.4, 12, 8), MAT)
+    s.add_light(PointLight((3.0, 4.0, 5.0)))
+    cam = Camera.look_at([0, 2.5, 3], [0, 0, 0])
+    fine = compare(s, cam, renderer=r, size=(64, 64), reference="phong-fine")
+    m = {x.mode: x for x in fine.metrics}
+    assert m["flat"].mean_abs > m["phong"].mean_abs
+    again = compare(s, cam, ["phong"], renderer=r, size=(64, 64), reference=fine.reference)
+    assert again.metrics[0].mean_abs == pytest.approx(m["phong"].mean_abs, abs=0.05)
+    from glshade import ComparisonError
+
+    with pytest.raises(ComparisonError, match="exact surface"):
+        compare(s, cam, renderer=r, size=(64, 64))
+
+
+def test_sweep_phong_converges_fastest(make_renderer):
+    rows = sweep(P.icosphere, [1, 2, 3], size=(96, 96), renderer=make_renderer(96, 96))
+    first, last = rows[0], rows[-1]
+    ratio = {m: first[m].mean_abs / last[m].mean_abs for m in ("flat", "gouraud", "phong")}
+    assert last["phong"].mean_abs < last["gouraud"].mean_abs < last["flat"].mean_abs
+    assert ratio["flat"] < ratio["phong"]
+
+
+def test_cli_compare_and_sweep(tmp_path):
+    grid, metrics = tmp_path / "grid.png", tmp_path / "m.json"
+    out = subprocess.run([sys.executable, "-m", "glshade", "compare", "primitive:icosphere:2",
+                          "-o", str(grid), "--diff", "--json", str(metrics), "--size", "96x96",
+                          "--backend", BACKEND, "--csv", str(tmp_path / "m.csv")],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stderr
+    data = json.loads(metrics.read_text())
+    assert [m["mode"] for m in data["modes"]] == ["flat", "gouraud", "phong"]
+    assert "PSNR" in out.stdout and grid.exists()
+    assert (tmp_path / "m.csv").read_text().startswith("mode,mean_abs")
+    plot = tmp_path / "sweep.png"
+    out = subprocess.run([sys.executable, "-m", "glshade", "compare", "primitive:icosphere",
+                          "--sweep", "--levels", "0..2", "-o", str(plot), "--size", "64x64",
+                          "--backend", BACKEND], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stderr
+    assert plot.exists() and len(out.stdout.strip().splitlines()) == 6
+    bad = subprocess.run([sys.executable, "-m", "glshade", "compare", "assets/teapot.obj",
+                          "-o", str(tmp_path / "x.png"), "--backend", BACKEND],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert bad.returncode == 2 and "phong-fine" in bad.stderr

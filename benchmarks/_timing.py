@@ -19,6 +19,6 @@ def interleaved(series: dict, repeats: int = 5) -> dict[str, float]:
 
 
 def table(rows: list[tuple], headers: tuple) -> str:
-    from glshade._table import format_table
+    from glshade.io.tables import format_table
 
     return format_table(rows, headers)

@@ -12,7 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import table  # noqa: E402
 
 from glshade.animate import render_frames  # noqa: E402
-from glshade.scenefile import load_scene  # noqa: E402
+from glshade.io.scenefile import load_scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import table  # noqa: E402
 
 from glshade import Camera, Mesh  # noqa: E402
-from glshade.camera import default_camera  # noqa: E402
+from glshade.scene import default_camera  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.geometry.transforms import gl_bytes  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
@@ -58,7 +58,9 @@ class BareFloor:
         p["u_model"].write(gl_bytes(np.eye(4)))
         p["u_view"].write(gl_bytes(view))
         p["u_proj"].write(gl_bytes(camera.projection_matrix(size[0] / size[1])))
-        p["u_normal_view"].write(np.ascontiguousarray(view[:3, :3].astype("f4")).tobytes())
+        # the normal matrix (inverse transpose of the rigid view: the rotation itself), handed
+        # to GLSL's column-major mat3 transposed, as the renderer does
+        p["u_normal_view"].write(np.ascontiguousarray(view[:3, :3].T.astype("f4")).tobytes())
         p["u_light_count"].value = 1
         pos = np.zeros((8, 4), "f4")
         pos[0] = view @ np.append(scene.lights[0].position, 1)

@@ -6,8 +6,8 @@ from pathlib import Path
 import numpy as np
 
 import glshade
-from glshade.camera import default_camera
-from glshade.comparison import sweep, sweep_plot
+from glshade.scene import default_camera
+from glshade.compare import sweep, sweep_plot
 from glshade.geometry import primitives
 from glshade import Renderer
 from glshade.scene import Material, PointLight, Scene

@@ -28,6 +28,19 @@ def glshade(*args, timeout=120, **kwargs):
                           text=True, cwd=ROOT, timeout=timeout, **kwargs)
 
 
+def closing_factory(build):
+    """For a fixture: yield a function that builds objects, and close them all afterwards."""
+    made = []
+
+    def make(*args, **kwargs):
+        made.append(build(*args, **kwargs))
+        return made[-1]
+
+    yield make
+    for obj in made:
+        obj.close()
+
+
 @pytest.fixture(scope="session")
 def gl_context():
     from glshade.render.context import create_context
@@ -59,16 +72,8 @@ def make_renderer(gl_context):
     """Renderers of any size on the shared context, closed after the test."""
     from glshade.render.renderer import Renderer
 
-    made = []
-
-    def make(width=64, height=64, samples=0):
-        r = Renderer(width, height, samples=samples, context=gl_context)
-        made.append(r)
-        return r
-
-    yield make
-    for r in made:
-        r.close()
+    yield from closing_factory(lambda width=64, height=64, samples=0:
+                               Renderer(width, height, samples=samples, context=gl_context))
 
 
 def pytest_collection_modifyitems(items):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from glshade import Camera, CameraPath, Keyframe, Material, PointLight, Scene
+from glshade import Camera, CameraPath, DrawOptions, Keyframe, Material, PointLight, Scene
 from glshade import quaternion as Q
 from glshade.animate import animate
 from glshade.geometry import primitives as P
@@ -21,17 +21,19 @@ from tests.conftest import BACKEND, ROOT, glshade
 pytestmark = pytest.mark.gl  # renders, also in subprocesses: run on every backend
 
 
-
-
-def test_frame_at_key_time_equals_still(make_renderer):
+@pytest.mark.parametrize("options", [DrawOptions(), DrawOptions(mode="flat", srgb=True,
+                                                                 depth_test=False, cull=True)])
+def test_frame_at_key_time_equals_still(make_renderer, options):
+    """The draw options reach every frame unchanged: frames on the keys equal stills drawn
+    with the same options."""
     sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
-    frames = list(animate(sf.scene, sf.path, 5, "phong", size=(96, 72), samples=0,
+    frames = list(animate(sf.scene, sf.path, 5, options, size=(96, 72), samples=0,
                           backend=BACKEND))
     assert sf.path.times.tolist() == [0.0, 2.0, 4.0]  # frames 0, 2, 4 sit on the keys
     r = make_renderer(96, 72)
     for frame, key in zip(frames[::2], sf.path.keyframes):
         cam = sf.path.camera.replace(position=key.position, orientation=key.orientation)
-        np.testing.assert_array_equal(frame, r.render(sf.scene, cam, "phong"))
+        np.testing.assert_array_equal(frame, r.render(sf.scene, cam, options))
 
 
 def test_slerp_in_motion_turns_by_equal_angles():

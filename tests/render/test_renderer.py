@@ -304,3 +304,19 @@ def test_tune_malloc_is_opt_in_and_works():
     code = ("import glshade\nprint(glshade.tune_malloc())\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip() == "True", out.stderr
+
+
+def test_outputs_choose_what_a_frame_reads_and_colour_is_the_same(make_renderer):
+    from glshade import Outputs
+
+    s = Scene()
+    s.add(P.cube(), Material(color=(0.7, 0.5, 0.3)))
+    cam = Camera.look_at([2.0, 1.5, 2.5], [0, 0, 0])
+    r = make_renderer(48, 48)
+    full = r.render_frame(s, cam, "phong")
+    depth_only = r.render_frame(s, cam, "phong", outputs=Outputs.DEPTH)
+    assert depth_only.normal is None and depth_only.face_id is None
+    np.testing.assert_array_equal(depth_only.depth, full.depth)
+    np.testing.assert_array_equal(full.color, r.render(s, cam, "phong"))
+    assert set(np.unique(full.face_id)) <= {-1, 0, 1, 2, 3, 4, 5}
+    np.testing.assert_array_equal(np.isfinite(full.depth), full.face_id >= 0)

@@ -15,20 +15,13 @@ def viewer_factory(tmp_path):
                         pytrace=False)
         pytest.skip("no DISPLAY: run the viewer tests under xvfb-run")
     from glshade.viewer.window import Viewer
+    from tests.conftest import closing_factory
 
-    made = []
+    def build(scene, camera=None, size=(240, 180), samples=0, visible=True, **kw):
+        return Viewer(scene, camera, size=size, samples=samples, visible=visible,
+                      screenshot_dir=tmp_path, **kw)
 
-    def make(scene, camera=None, **kw):
-        kw.setdefault("size", (240, 180))
-        kw.setdefault("samples", 0)
-        kw.setdefault("visible", True)
-        v = Viewer(scene, camera, screenshot_dir=tmp_path, **kw)
-        made.append(v)
-        return v
-
-    yield make
-    for v in made:
-        v.close()
+    yield from closing_factory(build)
 
 
 def pytest_collection_modifyitems(items):

@@ -39,25 +39,23 @@ def count(text: str) -> int:
     return int(text)
 
 
-def unit_float(text: str) -> float:
+def _number(text: str, ok, expected: str) -> float:
+    """``float(text)`` when ``ok`` holds for it, else an error quoting ``expected``."""
     try:
-        v = float(text)
+        value = float(text)
     except ValueError:
-        v = float("nan")
-    if not (0 <= v <= 1):
-        raise argparse.ArgumentTypeError(f"expected a number in [0, 1] such as 0.5, got {text!r}")
-    return v
+        value = float("nan")
+    if not (math.isfinite(value) and ok(value)):
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
+    return value
+
+
+def unit_float(text: str) -> float:
+    return _number(text, lambda x: 0 <= x <= 1, "a number in [0, 1] such as 0.5")
 
 
 def nonnegative_float(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        v = float("nan")
-    if not (v >= 0 and math.isfinite(v)):
-        raise argparse.ArgumentTypeError(f"expected a non-negative number such as 32, got "
-                                         f"{text!r}")
-    return v
+    return _number(text, lambda x: x >= 0, "a non-negative number such as 32")
 
 
 def mode(text: str) -> ShadingMode:
@@ -96,11 +94,4 @@ def samples(text: str) -> int:
 
 
 def fov(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not 0 < value < 180:
-        raise argparse.ArgumentTypeError(f"expected degrees in (0, 180) such as 45, got "
-                                         f"{text!r}")
-    return value
+    return _number(text, lambda x: 0 < x < 180, "degrees in (0, 180) such as 45")

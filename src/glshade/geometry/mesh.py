@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import GeometryError
 from .analytic import AnalyticSurface, affine_matrix
 from .edges import EdgeGroups, edge_groups, is_closed_and_oriented
-from .polygon import convex_mask, ear_clip, newell_of_indexed, unit_normals
+from .polygon import newell_of_indexed, triangulate_groups, unit_normals
 
 __all__ = ["Mesh"]
 
@@ -327,28 +327,7 @@ class Mesh:
         face_index : (T,) int64
             The source polygon of each triangle, non-decreasing.
         """
-        tris, owner = [], []
-        for k, (ids, idx) in self.size_groups.items():
-            if k == 3:
-                tris.append(idx)
-                owner.append(ids)
-                continue
-            convex = convex_mask(self.vertices[idx], self.newell_normals[ids])
-            j = np.arange(1, k - 1)
-            fan = np.stack([np.zeros_like(j), j, j + 1], axis=1)  # (k-2, 3) local
-            cidx = idx[convex]
-            tris.append(cidx[:, fan].reshape(-1, 3))
-            owner.append(np.repeat(ids[convex], k - 2))
-            for f, face in zip(ids[~convex], idx[~convex]):
-                local = ear_clip(self.vertices[face], self.newell_normals[f])
-                tris.append(face[local])
-                owner.append(np.full(len(local), f))
-        if not tris:
-            return np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
-        tri = np.concatenate(tris)
-        own = np.concatenate(owner)
-        order = np.argsort(own, kind="stable")
-        return tri[order], own[order]
+        return triangulate_groups(self.vertices, self.size_groups, self.newell_normals)
 
     @cached_property
     def triangles(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:

@@ -14,7 +14,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import GeometryError
 from .tolerance import tol
 
-__all__ = ["newell_normal", "unit_normals", "polygon_area", "convex_mask", "ear_clip"]
+__all__ = ["newell_normal", "unit_normals", "polygon_area", "convex_mask", "ear_clip",
+           "triangulate_groups"]
 
 
 def cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -158,3 +159,30 @@ def ear_clip(points: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArra
             remaining.pop(i)
     triangles.append(tuple(remaining))  # type: ignore[arg-type]
     return np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+
+
+def triangulate_groups(vertices, size_groups, newell_normals):
+    """Triangles ``(T, 3)`` and their source polygons ``(T,)`` for polygons grouped by size
+    (``Mesh.size_groups``): convex ones fanned in bulk, concave ones ear clipped."""
+    tris, owner = [], []
+    for k, (ids, idx) in size_groups.items():
+        if k == 3:
+            tris.append(idx)
+            owner.append(ids)
+            continue
+        convex = convex_mask(vertices[idx], newell_normals[ids])
+        j = np.arange(1, k - 1)
+        fan = np.stack([np.zeros_like(j), j, j + 1], axis=1)  # (k-2, 3) local
+        cidx = idx[convex]
+        tris.append(cidx[:, fan].reshape(-1, 3))
+        owner.append(np.repeat(ids[convex], k - 2))
+        for f, face in zip(ids[~convex], idx[~convex]):
+            local = ear_clip(vertices[face], newell_normals[f])
+            tris.append(face[local])
+            owner.append(np.full(len(local), f))
+    if not tris:
+        return np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+    tri = np.concatenate(tris)
+    own = np.concatenate(owner)
+    order = np.argsort(own, kind="stable")
+    return tri[order], own[order]

@@ -1,0 +1,42 @@
+"""Undirected edge groups against a plain dictionary, and the closed-and-oriented test
+against hand-built cases."""
+
+import numpy as np
+
+from glshade import Mesh
+from glshade.geometry import primitives as P
+from glshade.geometry.edges import edge_groups, is_closed_and_oriented
+
+
+def test_groups_equal_a_dictionary_of_edges(rng):
+    a = rng.integers(0, 30, 500)
+    b = rng.integers(0, 30, 500)
+    g = edge_groups(a, b, 30)
+    expected = {}
+    for i, (x, y) in enumerate(zip(a.tolist(), b.tolist())):
+        expected.setdefault((min(x, y), max(x, y)), []).append(i)
+    assert sorted(zip(g.lo.tolist(), g.hi.tolist())) == sorted(expected)
+    for e, (lo, hi) in enumerate(zip(g.lo.tolist(), g.hi.tolist())):
+        members = g.order[g.start[e]:g.start[e] + g.count[e]].tolist()
+        assert members == expected[(lo, hi)]  # input order kept within a group
+        assert (g.group[members] == e).all()
+    h0, h1 = g.pairs()
+    assert len(h0) == sum(len(v) == 2 for v in expected.values())
+
+
+def test_closed_and_oriented_cases():
+    cube = P.cube()
+    assert cube.closed_and_oriented
+    assert P.icosphere(2).closed_and_oriented
+    faces = [f.tolist() for f in cube.faces]
+    faces[0] = faces[0][::-1]  # one face wound the wrong way
+    assert not Mesh(cube.vertices, faces).closed_and_oriented
+    assert not Mesh(cube.vertices, faces[1:]).closed_and_oriented  # a hole
+    assert not P.plane().closed_and_oriented
+    assert not is_closed_and_oriented(np.zeros((0, 2), np.int64), 0)
+
+
+def test_mesh_edges_and_euler_of_a_torus():
+    torus = P.torus(1.0, 0.3, 12, 8)
+    assert torus.n_edges == 2 * 12 * 8  # a quad torus: E = 2F
+    assert torus.n_vertices - torus.n_edges + torus.n_faces == 0

@@ -78,9 +78,15 @@ class PathFormatError(InputError):
     frame at fault (None when the fault is not in one), so a scene file can point at its
     line."""
 
-    def __init__(self, message: str, keyframe: int | None = None):
+    def __init__(self, message: str, keyframe: int | None = None, reason: str | None = None):
         self.keyframe = keyframe
+        self.reason = reason if reason is not None else message
         super().__init__(message)
+
+    @classmethod
+    def at(cls, source: str, keyframe: int, reason: str) -> PathFormatError:
+        """The fault ``reason`` in key frame ``keyframe`` (1-based) of ``source``."""
+        return cls(f"{source}: keyframe {keyframe}: {reason}", keyframe, reason)
 
 
 class OutputError(InputError):

@@ -134,9 +134,13 @@ MALFORMED = {
                                'color = [1, 1, 1]\n', ":3: [[light]] 1: a point light needs"),
     "keyframe_times": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 1\n'
                        'eye = [0, 0, 5]\ntarget = [0, 0, 0]\n[[camera.keyframe]]\ntime = 0\n'
-                       'eye = [5, 0, 0]\ntarget = [0, 0, 0]\n', "times must increase"),
+                       'eye = [5, 0, 0]\ntarget = [0, 0, 0]\n',
+                       ":7: [camera] keyframe 2: key frame times must increase"),
+    "keyframe_inf": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = inf\n'
+                     'eye = [0, 0, 5]\ntarget = [0, 0, 0]\n',
+                     ":3: [camera] keyframe 1: 'time' must be a finite number"),
     "keyframe_half": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 0\n'
-                      'eye = [0, 0, 5]\n', "keyframe 1: give both 'eye' and 'target'"),
+                      'eye = [0, 0, 5]\n', ":3: [camera] keyframe 1: give both 'eye' and"),
     "bad_primitive": ('[[mesh]]\nsource = "primitive:blob"\n', ":2: unknown primitive 'blob'"),
     "mesh_as_table": ('[mesh]\nsource = "primitive:cube"\n', "write meshes and lights as"),
 }

@@ -339,10 +339,10 @@ def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
     if not isinstance(keys, list):
         raise SceneFormatError(f"{source}:{line}: write key frames as [[camera.keyframe]]")
     try:
-        return CameraPath.from_dict({"keyframe": keys}, f"{source}: [camera]", **interp)
+        return CameraPath.from_dict({"keyframe": keys}, source, **interp)
     except PathFormatError as exc:
-        text = str(exc)
-        if exc.keyframe is not None:
-            kline = loc.line("camera.keyframe", exc.keyframe - 1, None)
-            text = text.replace(f"{source}: [camera]", f"{source}:{kline}: [camera]", 1)
-        raise SceneFormatError(text) from None
+        if exc.keyframe is None:
+            raise SceneFormatError(f"{source}:{line}: [camera]: {exc.reason}") from None
+        kline = loc.line("camera.keyframe", exc.keyframe - 1, None)
+        raise SceneFormatError(f"{source}:{kline}: [camera] keyframe {exc.keyframe}: "
+                               f"{exc.reason}") from None

@@ -190,42 +190,41 @@ class CameraPath:
         allowed = {"time", "eye", "target", "up", "position", "orientation", "fov_y"}
         keys = []
         for i, e in enumerate(entries, start=1):
-            where = f"{source}: keyframe {i}"
             unknown = set(e) - allowed
             if unknown:
-                raise PathFormatError(f"{where}: unknown key(s) {sorted(unknown)}; allowed: "
-                                      f"{sorted(allowed)}", i)
+                raise PathFormatError.at(source, i, f"unknown key(s) {sorted(unknown)}; "
+                                         f"allowed: {sorted(allowed)}")
             if "time" not in e or not isinstance(e["time"], (int, float)) or \
                     isinstance(e["time"], bool) or not np.isfinite(e["time"]):
-                raise PathFormatError(f"{where}: 'time' must be a finite number", i)
+                raise PathFormatError.at(source, i, "'time' must be a finite number")
             if keys and e["time"] <= keys[-1].time:
-                raise PathFormatError(f"{where}: key frame times must increase, got "
-                                      f"{e['time']:g} after {keys[-1].time:g}", i)
+                raise PathFormatError.at(source, i, f"key frame times must increase, got "
+                                         f"{e['time']:g} after {keys[-1].time:g}")
             fov = e.get("fov_y")
             if fov is not None and not isinstance(fov, (int, float)):
-                raise PathFormatError(f"{where}: 'fov_y' must be a number", i)
+                raise PathFormatError.at(source, i, "'fov_y' must be a number")
             try:
                 if "eye" in e or "target" in e:
                     if "eye" not in e or "target" not in e:
-                        raise PathFormatError(f"{where}: give both 'eye' and 'target'", i)
+                        raise PathFormatError.at(source, i, "give both 'eye' and 'target'")
                     keys.append(Keyframe.look_at(e["time"], e["eye"], e["target"],
                                                  e.get("up", (0, 1, 0)), fov))
                 elif "position" in e and "orientation" in e:
                     q = np.asarray(e["orientation"], dtype=np.float64)
                     if q.shape != (4,) or np.linalg.norm(q) == 0:
-                        raise PathFormatError(f"{where}: 'orientation' must be a non-zero "
-                                              "[x, y, z, w]", i)
+                        raise PathFormatError.at(source, i, "'orientation' must be a "
+                                                 "non-zero [x, y, z, w]")
                     pos = np.asarray(e["position"], dtype=np.float64)
                     if pos.shape != (3,):
-                        raise PathFormatError(f"{where}: 'position' must be [x, y, z]", i)
+                        raise PathFormatError.at(source, i, "'position' must be [x, y, z]")
                     keys.append(Keyframe(float(e["time"]), pos, quat.normalize(q), fov))
                 else:
-                    raise PathFormatError(f"{where}: give 'eye' and 'target', or 'position' "
-                                          "and 'orientation'", i)
+                    raise PathFormatError.at(source, i, "give 'eye' and 'target', or "
+                                             "'position' and 'orientation'")
             except (GeometryError, ValueError, TypeError) as exc:
                 if isinstance(exc, PathFormatError):
                     raise
-                raise PathFormatError(f"{where}: {exc}", i) from None
+                raise PathFormatError.at(source, i, str(exc)) from None
         try:
             return cls(keys, **kwargs)
         except GeometryError as exc:

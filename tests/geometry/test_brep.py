@@ -232,4 +232,4 @@ def test_info_cli_shows_topology():
     assert (t["V"], t["C"], t["G"], t["closed"], t["euler_holds"]) == (288, 1, 1, True, True)
     text = subprocess.run([sys.executable, "-m", "glshade", "info", "primitive:cube"],
                           capture_output=True, text=True).stdout
-    assert "Euler's formula holds: V - E + F - H = 8 - 12 + 6 - 0 = 2" in text
+    assert "Euler's formula for closed surfaces holds: V - E + F - H = 8 - 12 + 6 - 0 = 2" in text

@@ -36,7 +36,8 @@ def test_stl_round_trip_welds_to_same_surface(tmp_path, binary):
     m = MESHES["teapot"]
     save_mesh(m, tmp_path / "t.stl", binary=binary)
     r = load_mesh(tmp_path / "t.stl")
-    assert r.n_vertices == m.n_vertices
+    # STL welds coincident points: the teapot's touching pieces share them again
+    assert r.n_vertices == len(np.unique(m.vertices, axis=0))
     assert r.n_faces == len(m.triangles[0])
     assert r.signed_volume() == pytest.approx(m.signed_volume(), rel=1e-6)
     # the teapot's quads are not planar: compare with the area of the triangles written

@@ -75,7 +75,9 @@ def info(args) -> int:
     print(f"  {t['V']:>4} {t['E']:>7} {t['F']:>7} {t['H']:>5} {t['C']:>4} {g:>4}  "
           f"{'yes' if t['closed'] else 'no':>6}  {'yes' if t['manifold'] else 'no':>8}  "
           f"{'yes' if t['oriented'] else 'no':>8}  {t['boundary_loops']:>14}")
-    print(f"  Euler's formula {'holds' if t['euler_holds'] else 'does NOT hold'}: "
+    kind = ("for closed surfaces" if t["closed"] else
+             "for surfaces with boundary (each boundary loop counts as a face, B)")
+    print(f"  Euler's formula {kind} {'holds' if t['euler_holds'] else 'does NOT hold'}: "
           f"{t['formula']}")
     if t["problems"]:
         print(f"  problems: {t['problems']}")

@@ -174,9 +174,23 @@ class WingedEdge:
     @classmethod
     def from_mesh(cls, mesh: Mesh, *, strict: bool = True) -> WingedEdge:
         """The winged-edge structure of a polygon mesh (one loop per face). With
-        ``strict=False`` problems are collected in ``.report`` instead of raised."""
-        return cls(mesh.vertices, None, np.arange(mesh.n_faces), mesh.n_faces,
-                   strict=strict, _csr=(mesh.face_indices, mesh.face_offsets))
+        ``strict=False`` problems are collected in ``.report`` instead of raised; a surface
+        whose faces are merely wound inconsistently is then built from
+        :meth:`Mesh.oriented` (its topology -- closed, manifold, boundary loops -- is the
+        same) and reported as not oriented."""
+        w = cls(mesh.vertices, None, np.arange(mesh.n_faces), mesh.n_faces, strict=strict,
+                _csr=(mesh.face_indices, mesh.face_offsets))
+        if strict or not w.report.misoriented_edges or w.report.non_manifold_edges:
+            return w
+        try:
+            fixed = mesh.oriented()
+        except TopologyError:
+            return w  # one-sided: no consistent winding exists
+        out = cls(fixed.vertices, None, np.arange(fixed.n_faces), fixed.n_faces,
+                  strict=False, _csr=(fixed.face_indices, fixed.face_offsets))
+        out.report.misoriented_edges = w.report.misoriented_edges
+        out.report.fixable_orientation = True
+        return out
 
     @classmethod
     def from_faces(cls, vertices: ArrayLike, faces: Sequence, *, strict: bool = True

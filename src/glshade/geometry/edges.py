@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["EdgeGroups", "edge_groups", "is_closed_and_oriented"]
+__all__ = ["EdgeGroups", "edge_groups", "is_closed_and_oriented", "orientation_flips"]
 
 Int = NDArray[np.int64]
 
@@ -74,3 +74,31 @@ def is_closed_and_oriented(half_edges: Int, n_vertices: int) -> bool:
         return False
     h0, h1 = g.pairs()
     return bool((he[h0, 0] != he[h1, 0]).all())
+
+
+def orientation_flips(half_edges: Int, corner_face: Int, n_faces: int,
+                      n_vertices: int) -> tuple[NDArray[np.bool_], bool]:
+    """Which faces to reverse so that every edge shared by two faces is traversed in
+    opposite directions; and whether that is possible everywhere (False on a Moebius strip
+    or a Klein bottle). Each connected piece keeps the orientation of its lowest-numbered
+    face.
+
+    Solved as connected components of the doubled face graph (vectorized): node ``f`` is
+    face f as it is, node ``F + f`` face f reversed; two faces whose shared edge runs the
+    same way join each one's reversed node to the other's own, faces that already agree
+    join own to own and reversed to reversed.
+    """
+    from .graph import component_labels
+
+    he = np.asarray(half_edges, np.int64)
+    g = edge_groups(he[:, 0], he[:, 1], n_vertices)
+    h0, h1 = g.pairs()
+    f0, f1 = corner_face[h0], corner_face[h1]
+    same_way = he[h0, 0] == he[h1, 0]
+    other = np.where(same_way, f1 + n_faces, f1)
+    a = np.r_[f0, f0 + n_faces]
+    b = np.r_[other, np.where(same_way, f1, f1 + n_faces)]
+    label = component_labels(2 * n_faces, a, b)
+    faces = np.arange(n_faces)
+    orientable = not (label[faces] == label[faces + n_faces]).any()
+    return label[faces] > label[faces + n_faces], orientable

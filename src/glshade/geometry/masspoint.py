@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
 
-__all__ = ["MassPoint", "centroid"]
+__all__ = ["MassPoint", "centroid", "mesh_center_of_mass"]
 
 
 class MassPoint:
@@ -122,3 +122,17 @@ def centroid(points: ArrayLike, masses: ArrayLike | None = None) -> NDArray[np.f
     if total.mass == 0:
         raise GeometryError("the masses sum to zero: there is no centre of mass")
     return total.point
+
+
+def mesh_center_of_mass(triangles: NDArray[np.float64], kind: str = "solid"):
+    """Centre of mass ``(3,)`` of triangles ``(T, 3, 3)``: of the solid they bound
+    (``"solid"``: tetrahedra from the origin to each triangle, signed volumes as masses) or
+    of the surface (``"surface"``: triangle centroids weighted by area)."""
+    p = np.asarray(triangles, np.float64)
+    if kind == "solid":
+        mass = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])) / 6.0
+        return centroid(p.sum(axis=1) / 4.0, mass)  # the origin is the 4th corner
+    if kind == "surface":
+        mass = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+        return centroid(p.mean(axis=1), mass)
+    raise GeometryError(f"kind must be 'solid' or 'surface', got {kind!r}")

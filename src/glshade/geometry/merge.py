@@ -1,4 +1,4 @@
-"""Merging and splitting vertices, and joining meshes.
+"""Merging and splitting vertices, winding faces consistently, and joining meshes.
 
 Welding merges vertices that coincide; crease splitting duplicates vertices along sharp
 edges so smooth shading keeps them. Both keep what follows the surface: file normals (the
@@ -11,12 +11,13 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TopologyError
+from .edges import orientation_flips
 from .graph import component_labels
 from .mesh import Mesh
 from .tolerance import tol
 
-__all__ = ["weld", "split_creases", "concatenate"]
+__all__ = ["weld", "split_creases", "split_point_contacts", "oriented", "concatenate"]
 
 
 def _with(mesh: Mesh, vertices, indices, offsets, normals=None, groups=None) -> Mesh:
@@ -52,6 +53,41 @@ def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
     normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
     return _with(mesh, mesh.vertices[source], corner_vertex.astype(np.int64),
                  mesh.face_offsets.copy(), normals)
+
+
+def split_point_contacts(mesh: Mesh) -> Mesh:
+    """Give each piece of surface its own copy of a vertex where pieces only touch at that
+    point (a handle's end resting on a body). Pieces are faces joined through shared edges;
+    a vertex used by several pieces becomes one vertex per piece, so the surface stops
+    being pinched there."""
+    c0, c1 = mesh.edge_groups.pairs()
+    piece = component_labels(mesh.n_faces, mesh.corner_face[c0], mesh.corner_face[c1])
+    key = mesh.face_indices * max(mesh.n_faces, 1) + piece[mesh.corner_face]
+    uniq, corner_vertex = np.unique(key, return_inverse=True)
+    if len(uniq) == mesh.n_vertices:
+        return mesh
+    source = uniq // max(mesh.n_faces, 1)
+    normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
+    return _with(mesh, mesh.vertices[source], corner_vertex.ravel().astype(np.int64),
+                 mesh.face_offsets.copy(), normals)
+
+
+def oriented(mesh: Mesh) -> Mesh:
+    """A copy whose faces are wound consistently: neighbours traverse their shared edge
+    in opposite directions. Each connected piece keeps the winding of its lowest-numbered
+    face; a closed result is turned to face outward (positive volume). Raises
+    TopologyError for a surface that cannot be oriented (a Moebius strip)."""
+    flip, orientable = orientation_flips(mesh.half_edges, mesh.corner_face, mesh.n_faces,
+                                         mesh.n_vertices)
+    if not orientable:
+        raise TopologyError("the surface cannot be oriented (a Moebius strip or Klein "
+                            "bottle is one-sided)")
+    out = mesh._replace(mesh.vertices, flip=flip, normals=mesh.normals_from_file,
+                        analytic=mesh.analytic)
+    if out.closed_and_oriented and out.signed_volume() < 0:
+        out = out._replace(out.vertices, flip=True, normals=out.normals_from_file,
+                           analytic=out.analytic)
+    return out
 
 
 def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:

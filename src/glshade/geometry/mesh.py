@@ -286,9 +286,17 @@ class Mesh:
     @cached_property
     def vertex_normals(self) -> NDArray[np.float64]:
         """Unit vertex normals ``(V, 3)``: normalised sum of the unit normals of the faces
-        around each vertex (the notes' formula). Zero for a vertex in no valid face."""
+        around each vertex (the notes' formula). Where the sum vanishes -- a two-sided wall,
+        the same polygon wound both ways -- the normal of one incident face is used instead;
+        zero only for a vertex in no valid face."""
         summed = self._scatter_to_vertices(self.face_normals[self.corner_face])
-        return _readonly(unit_normals(summed, 1e-24)[0])
+        n, ok = unit_normals(summed, 1e-24)
+        if not ok.all():
+            valid = self._unit_face_normals[1][self.corner_face]
+            fallback = np.zeros_like(n)
+            fallback[self.face_indices[valid]] = self.face_normals[self.corner_face[valid]]
+            n = np.where(ok[:, None], n, fallback)
+        return _readonly(n)
 
     @cached_property
     def corner_angles(self) -> NDArray[np.float64]:
@@ -345,17 +353,9 @@ class Mesh:
         """Centre of mass ``(3,)`` of the solid a closed mesh bounds (``kind="solid"``, the
         tetrahedra from the origin to each triangle, with signed volumes as masses) or of
         its surface (``"surface"``, triangle centroids weighted by area)."""
-        from .masspoint import centroid
+        from .masspoint import mesh_center_of_mass
 
-        tri, _ = self.triangles
-        p = self.vertices[tri]
-        if kind == "solid":
-            mass = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])) / 6.0
-            return centroid(p.sum(axis=1) / 4.0, mass)  # the origin is the 4th corner
-        if kind == "surface":
-            mass = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
-            return centroid(p.mean(axis=1), mass)
-        raise GeometryError(f"kind must be 'solid' or 'surface', got {kind!r}")
+        return mesh_center_of_mass(self.vertices[self.triangles[0]], kind)
 
     @property
     def total_area(self) -> float:
@@ -386,13 +386,22 @@ class Mesh:
         analytic = self.analytic.flipped() if self.analytic is not None else None
         return self._replace(self.vertices, flip=True, normals=normals, analytic=analytic)
 
-    def _replace(self, vertices, flip: bool = False, normals=None, analytic=None) -> Mesh:
+    def oriented(self) -> Mesh:
+        """A copy with faces wound consistently (see :func:`glshade.geometry.merge.oriented`)."""
+        from .merge import oriented
+
+        return oriented(self)
+
+    def _replace(self, vertices, flip=False, normals=None, analytic=None) -> Mesh:
+        """A copy with new vertices; ``flip`` (True, or a mask per face) reverses faces."""
         idx = self.face_indices
-        if flip:
-            # reverse each face's order, keeping its first vertex first
+        flip_face = np.broadcast_to(np.asarray(flip, bool), (self.n_faces,))
+        if flip_face.any():
+            # reverse each chosen face's order, keeping its first vertex first
             start = np.repeat(self.face_offsets[:-1], self.face_sizes)
             local = np.arange(len(idx)) - start
             rev = np.where(local == 0, 0, np.repeat(self.face_sizes, self.face_sizes) - local)
+            rev = np.where(flip_face[self.corner_face], rev, local)
             idx = idx[start + rev]
         out = Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(), normals=normals,
                             groups=self.groups, name=self.name)

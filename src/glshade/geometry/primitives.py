@@ -9,7 +9,7 @@ import numpy as np
 from ..errors import GeometryError
 from .analytic import AnalyticSphere
 from .edges import edge_groups
-from .merge import concatenate
+from .merge import concatenate, split_point_contacts
 from .mesh import Mesh
 
 __all__ = [
@@ -228,7 +228,9 @@ def teapot(tessellation: int = 8) -> Mesh:
     agree = np.einsum("pfc,pfc->p", normal, out)
     q = quads.reshape(len(patches), per_patch, 4)
     q = np.where((agree < 0)[:, None, None], q[..., ::-1], q).reshape(-1, 4)
-    welded = Mesh(v, q).weld(1e-6)
+    # weld the patch seams; the handle's and spout's ends touch the body at single points,
+    # which welding would pinch together: those pieces keep their own vertices there
+    welded = split_point_contacts(Mesh(v, q).weld(1e-6))
     welded.name = "teapot"
     return welded
 

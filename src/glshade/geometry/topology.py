@@ -23,6 +23,7 @@ class TopologyReport:
     isolated_vertices: list = field(default_factory=list)
     duplicate_faces: list = field(default_factory=list)      # (f, g)
     non_manifold_vertices: list = field(default_factory=list)  # pinched: 2+ fans meet
+    fixable_orientation: bool = False  # Mesh.oriented() winds the faces consistently
 
     @property
     def ok(self) -> bool:
@@ -41,6 +42,8 @@ class TopologyReport:
                          "on orientation (both run the same way): "
                          + _first(f"({a}, {b}) in faces {fs}"
                                   for a, b, fs in self.misoriented_edges))
+            if self.fixable_orientation:
+                parts[-1] += " (Mesh.oriented() winds them consistently)"
         if self.isolated_vertices:
             parts.append(f"{len(self.isolated_vertices)} isolated vertices (in no face): "
                          + _first(self.isolated_vertices))

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ..errors import MeshFormatError
@@ -25,17 +27,12 @@ def read(path, data: bytes) -> Mesh:
     if len(keep) == 0:
         raise MeshFormatError(path, "the file is empty")
     first = text[starts[keep[0]]:ends[keep[0]]].split()
-    header = first[0]
-    if not header.endswith(b"OFF") or header.startswith(b"4") or header.startswith(b"n"):
-        raise MeshFormatError(path, f"not an OFF file: the first word is "
-                              f"{header.decode(errors='replace')!r}, expected 'OFF'", line=1)
-    rest = first[1:]
-    pos = 1
+    header, rest, pos, normals = _header(path, first)
     if len(rest) < 2:
-        if len(keep) < 2:
+        if len(keep) < pos + 1:
             raise MeshFormatError(path, "missing the 'vertices faces edges' counts line")
-        rest = text[starts[keep[1]]:ends[keep[1]]].split()
-        pos = 2
+        rest = text[starts[keep[pos]]:ends[keep[pos]]].split()
+        pos += 1
     try:
         nv, nf = int(rest[0]), int(rest[1])
     except (ValueError, IndexError):
@@ -59,7 +56,11 @@ def read(path, data: bytes) -> Mesh:
         i = int(np.flatnonzero(bad)[0])
         raise MeshFormatError(path, f"vertex {i} has {int(vcount[i])} numbers, expected 3",
                               line=int(vl[i]) + 1)
-    vertices = ragged_take(vals, offsets_from_sizes(vcount)[:-1], np.full(nv, 3)).reshape(-1, 3)
+    vertex_start = offsets_from_sizes(vcount)[:-1]
+    vertices = ragged_take(vals, vertex_start, np.full(nv, 3)).reshape(-1, 3)
+    vertex_normals = None
+    if normals and nv and (vcount >= 6).all():  # NOFF: x y z nx ny nz [colour] [s t]
+        vertex_normals = ragged_take(vals, vertex_start + 3, np.full(nv, 3)).reshape(-1, 3)
     fblob = join_lines(text, starts, ends, fl)
     fvals = parse_numbers(fblob)
     fcount = token_counts(fblob, nf)
@@ -80,8 +81,48 @@ def read(path, data: bytes) -> Mesh:
         raise MeshFormatError(path, f"face {f} has a non-integer index {idx[c]:g}",
                               line=int(fl[f]) + 1)
     return build_mesh(path, vertices, idx.astype(np.int64), offsets_from_sizes(k),
-                  line_of_face=lambda f: int(fl[f]) + 1,
-                  line_of_vertex=lambda i: int(vl[i]) + 1)
+                      line_of_face=lambda f: int(fl[f]) + 1,
+                      line_of_vertex=lambda i: int(vl[i]) + 1, normals=vertex_normals)
+
+
+#: the keyword's optional prefixes: texture coordinates, colours, normals, 4-D, n-D
+_KEYWORD = re.compile(rb"(ST)?(C)?(N)?(4)?(n)?OFF")
+
+
+def _is_number(token: bytes) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _header(path, first: list[bytes]):
+    """The keyword line: ``(keyword, tokens after it, lines used, has normals)``. The
+    keyword is optional (the counts line may come first); a 4-D or n-D file other than
+    3-D, and binary OFF, are refused by name rather than misread."""
+    if _is_number(first[0]):
+        return b"", [], 0, False
+    m = _KEYWORD.fullmatch(first[0])
+    word = first[0].decode(errors="replace")
+    if not m:
+        raise MeshFormatError(path, f"not an OFF file: the first word is {word!r}, expected "
+                              "'OFF' (or [ST][C][N][4][n]OFF) or the counts line", line=1)
+    rest = first[1:]
+    if m.group(4):
+        raise MeshFormatError(path, f"{word} holds 4-D vertices; glshade reads 3-D meshes "
+                              "(project them to 3-D first)", line=1)
+    if m.group(5):
+        if not rest or not rest[0].isdigit():
+            raise MeshFormatError(path, f"{word} needs the dimension after it", line=1)
+        if int(rest[0]) != 3:
+            raise MeshFormatError(path, f"{word} {int(rest[0])}: {int(rest[0])}-D vertices; "
+                                  "glshade reads 3-D meshes", line=1)
+        rest = rest[1:]
+    if rest and rest[0].upper() == b"BINARY":
+        raise MeshFormatError(path, "binary OFF is not supported; write it as text OFF or PLY",
+                              line=1)
+    return first[0], rest, 1, bool(m.group(3))
 
 
 

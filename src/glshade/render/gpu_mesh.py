@@ -18,6 +18,19 @@ __all__ = ["GpuMesh"]
 _ID_TEXTURE_WIDTH = 4096
 
 
+def _drawable_normals(mesh: Mesh) -> np.ndarray:
+    """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
+    pixels): file normals where usable, computed ones elsewhere, +z for a vertex that only
+    degenerate faces use (their triangles cover no pixel)."""
+    n = mesh.vertex_normals
+    if mesh.normals_from_file is not None:
+        f = mesh.normals_from_file
+        usable = np.isfinite(f).all(axis=1) & (np.abs(f).sum(axis=1) > 0)
+        n = np.where(usable[:, None], f, n)
+    zero = np.abs(n).sum(axis=1) == 0
+    return np.where(zero[:, None], np.array([0.0, 0.0, 1.0]), n)
+
+
 class GpuMesh(GLResource):
     """Buffers for one Mesh in one RenderContext; ``release()`` frees them all."""
 
@@ -29,8 +42,7 @@ class GpuMesh(GLResource):
         self.n_triangles = len(tri)
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
-        normals = mesh.normals_from_file if mesh.normals_from_file is not None else \
-            mesh.vertex_normals
+        normals = _drawable_normals(mesh)
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))

@@ -45,3 +45,13 @@ def test_every_error_class_lives_in_errors_py():
                     for b in node.bases):
                 elsewhere.append(f"{path.relative_to(root)}: {node.name}")
     assert elsewhere == []
+
+
+def test_errors_survive_pickling_from_worker_processes():
+    import pickle
+
+    for exc in (E.MeshFormatError("a.off", "bad", line=3), E.PathFormatError.at("p", 2, "x"),
+                E.SettingError("samples", "too many"), E.GeometryError("plain")):
+        back = pickle.loads(pickle.dumps(exc))
+        assert type(back) is type(exc) and str(back) == str(exc)
+        assert back.__dict__ == exc.__dict__

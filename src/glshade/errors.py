@@ -17,7 +17,7 @@ from __future__ import annotations
 __all__ = [
     "GlshadeError", "InputError", "EnvironmentFailure",
     "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
-    "OutputError", "UsageError", "ComparisonError", "DisplayError",
+    "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable",
     "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
@@ -68,6 +68,9 @@ class MeshFormatError(InputError):
             where += f" (byte {byte})"
         super().__init__(f"{where}: {message}")
 
+    def __reduce__(self):  # (crosses process boundaries from worker pools)
+        return type(self), (self.path, self.reason, self.line, self.byte)
+
 
 class SceneFormatError(InputError):
     """A scene file that cannot be used: names the file, the line and the key."""
@@ -83,6 +86,9 @@ class PathFormatError(InputError):
         self.reason = reason if reason is not None else message
         super().__init__(message)
 
+    def __reduce__(self):
+        return type(self), (str(self), self.keyframe, self.reason)
+
     @classmethod
     def at(cls, source: str, keyframe: int, reason: str) -> PathFormatError:
         """The fault ``reason`` in key frame ``keyframe`` (1-based) of ``source``."""
@@ -95,6 +101,18 @@ class OutputError(InputError):
 
 class UsageError(InputError):
     """A combination of arguments that cannot work together."""
+
+
+class SettingError(InputError):
+    """A setting this machine cannot honour (MSAA samples, image size). ``setting`` names
+    it, so a command can say where the value came from (a scene file's line)."""
+
+    def __init__(self, setting: str, message: str):
+        self.setting = setting
+        super().__init__(message)
+
+    def __reduce__(self):
+        return type(self), (self.setting, str(self))
 
 
 class ComparisonError(InputError):

@@ -23,8 +23,8 @@ def render(args) -> int:
 
     job = load_job(args, args.mesh)
     (width, height), options = job.size, job.options
-    with Renderer(width, height, samples=job.settings.samples,
-                  backend=args.backend) as renderer:
+    with job.explained(), Renderer(width, height, samples=job.settings.samples,
+                                   backend=args.backend) as renderer:
         image = renderer.render(job.scene, job.camera, options)
     save_image(image, args.output)
     if not args.quiet:
@@ -49,9 +49,10 @@ def animate(args) -> int:
         frames = 1
     modes = [m.value for m in args.modes] if args.modes else [job.options.mode.value]
     jobs = args.jobs or os.cpu_count() or 1
-    n = run(job.scene, job.path, frames, job.options, modes=modes, output=args.output,
-            fps=fps, size=job.size, samples=st.samples, jobs=jobs, backend=args.backend,
-            progress=None if not args.quiet else False)
+    with job.explained():
+        n = run(job.scene, job.path, frames, job.options, modes=modes, output=args.output,
+                fps=fps, size=job.size, samples=st.samples, jobs=jobs, backend=args.backend,
+                progress=None if not args.quiet else False)
     if not args.quiet:
         print(f"{args.output}: {n} frames, {job.size[0]}x{job.size[1]}, {fps:g} fps, "
               f"{'/'.join(modes)}, {jobs} job{'s' if jobs > 1 else ''}")
@@ -113,9 +114,9 @@ def view(args) -> int:
     from ..viewer.window import Viewer
 
     job = load_job(args, args.mesh)
-    with Viewer(job.scene, job.camera, size=job.size, options=job.options,
-                samples=job.settings.samples, compare=args.compare,
-                visible=not args.hidden) as viewer:
+    with job.explained(), Viewer(job.scene, job.camera, size=job.size, options=job.options,
+                                 samples=job.settings.samples, compare=args.compare,
+                                 visible=not args.hidden) as viewer:
         viewer.run(args.frames)
         if args.screenshot:
             viewer.screenshot(args.screenshot)

@@ -5,11 +5,12 @@ place."""
 
 from __future__ import annotations
 
+import contextlib
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import UsageError
+from ..errors import InputError, SettingError, UsageError
 from ..io.scenefile import RenderSettings
 from ..options import DrawOptions
 from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
@@ -52,6 +53,17 @@ class Job:
     def polygons(self) -> int:
         return sum(m.mesh.n_faces for m in self.scene.models)
 
+    @contextlib.contextmanager
+    def explained(self):
+        """Say where a setting the machine refuses came from: a scene file's line."""
+        try:
+            yield
+        except SettingError as exc:
+            where = self.settings.origin.get(exc.setting)
+            if where is None:
+                raise
+            raise UsageError(f"{where}: {exc}") from None
+
 
 def _given(args, *names) -> dict:
     return {n: getattr(args, n) for n in names if getattr(args, n, None) is not None}
@@ -92,11 +104,20 @@ def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
             raise UsageError("--time needs a scene file (.toml) with a camera path")
         settings, path = base, None
         size = args.size or base.size
-        scene, camera = build_scene(load_mesh_spec(spec), args, size[0] / size[1])
+        try:
+            scene, camera = build_scene(load_mesh_spec(spec), args, size[0] / size[1])
+        except InputError as exc:
+            if spec in str(exc):
+                raise
+            raise UsageError(f"{spec}: {exc}") from None
     overrides = _given(args, "mode", "srgb")
     settings = replace(settings, options=settings.options.replace(**overrides))
+    origin = dict(settings.origin)
     if args.size:
         settings.width, settings.height = args.size
+        origin.pop("size", None)
     if getattr(args, "samples", None) is not None:
         settings.samples = args.samples
+        origin.pop("samples", None)
+    settings.origin = origin
     return Job(scene, camera, settings, path)

@@ -18,7 +18,10 @@ from .analytic import AnalyticSurface, affine_matrix
 from .edges import EdgeGroups, edge_groups, is_closed_and_oriented
 from .polygon import newell_of_indexed, triangulate_groups, unit_normals
 
-__all__ = ["Mesh"]
+__all__ = ["Mesh", "MAX_COORDINATE"]
+
+#: the largest coordinate magnitude a mesh may have: squares (areas, lengths) stay finite
+MAX_COORDINATE = 1e150
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -36,22 +39,36 @@ def _faces_to_csr(faces) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
             raise GeometryError(
                 f"faces must be an (F, k) array or a list of index sequences, got shape {arr.shape}"
             )
-        if arr.size and not np.issubdtype(arr.dtype, np.integer):
-            if not np.all(np.mod(arr, 1) == 0):
-                raise GeometryError(f"face indices must be integers, got dtype {arr.dtype}")
         f, k = arr.shape
-        return arr.astype(np.int64).ravel(), np.arange(f + 1, dtype=np.int64) * k
+        return _integer_indices(arr.ravel()), np.arange(f + 1, dtype=np.int64) * k
     faces = list(faces)
     sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
     offsets = np.zeros(len(faces) + 1, dtype=np.int64)
     np.cumsum(sizes, out=offsets[1:])
     try:
-        flat = np.fromiter(
-            (i for f in faces for i in f), dtype=np.int64, count=int(offsets[-1])
-        )
+        flat = np.array([i for f in faces for i in f])
     except (TypeError, ValueError) as exc:
         raise GeometryError(f"face indices must be integers: {exc}") from None
-    return flat, offsets
+    return _integer_indices(flat.reshape(-1)), offsets
+
+
+def _integer_indices(values: np.ndarray) -> NDArray[np.int64]:
+    """Face indices as int64; a float that is not a whole number (1.5, nan) is an error
+    naming it, never truncated."""
+    if values.size == 0 or np.issubdtype(values.dtype, np.integer):
+        return values.astype(np.int64)
+    if values.dtype.kind not in "fb" and values.dtype != object:
+        raise GeometryError(f"face indices must be integers, got dtype {values.dtype}")
+    try:
+        v = values.astype(np.float64)
+    except (TypeError, ValueError):
+        raise GeometryError("face indices must be integers") from None
+    bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**53)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise GeometryError(f"face index {float(v[i]):g} (position {i} of the flat index "
+                            "list) is not a whole number")
+    return v.astype(np.int64)
 
 
 class Mesh:
@@ -97,6 +114,12 @@ class Mesh:
                 f"vertex {i} has a non-finite coordinate {v[i].tolist()} "
                 f"({int(bad.sum())} such vertices)"
             )
+        huge = (np.abs(v) > MAX_COORDINATE).any(axis=1)
+        if huge.any():
+            i = int(np.flatnonzero(huge)[0])
+            raise GeometryError(
+                f"vertex {i} has a coordinate beyond {MAX_COORDINATE:g}: {v[i].tolist()} (areas "
+                "and normals square coordinates; scale the mesh down)")
         if isinstance(faces, tuple) and len(faces) == 2 and all(
             isinstance(x, np.ndarray) for x in faces
         ):

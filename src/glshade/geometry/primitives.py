@@ -18,10 +18,25 @@ __all__ = [
 ]
 
 
-def _check_int(name: str, value, minimum: int) -> int:
-    if int(value) != value or value < minimum:
-        raise GeometryError(f"{name} must be an integer >= {minimum}, got {value!r}")
+#: the most faces a primitive makes (a level beyond it would exhaust memory, not refine)
+MAX_FACES = 4 * 2**20
+
+
+def _check_int(name: str, value, minimum: int, maximum: int = 2**20) -> int:
+    try:
+        ok = np.isfinite(value) and int(value) == value and minimum <= value <= maximum
+    except (TypeError, ValueError, OverflowError):
+        ok = False
+    if not ok:
+        raise GeometryError(f"{name} must be an integer from {minimum} to {maximum}, got "
+                            f"{value!r}")
     return int(value)
+
+
+def _check_faces(what: str, count: int) -> None:
+    if count > MAX_FACES:
+        raise GeometryError(f"{what} would make {count:,} faces; primitives stop at "
+                            f"{MAX_FACES:,}")
 
 
 def box(size=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0)) -> Mesh:
@@ -50,6 +65,7 @@ def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
     """A latitude/longitude sphere: quads, with triangle fans at the poles (y axis)."""
     stacks = _check_int("stacks", stacks, 2)
     slices = _check_int("slices", slices, 3)
+    _check_faces(f"uv_sphere({stacks}, {slices})", stacks * slices)
     theta = np.pi * np.arange(1, stacks) / stacks  # polar angle of the inner rings
     phi = 2 * np.pi * np.arange(slices) / slices
     t, p = np.meshgrid(theta, phi, indexing="ij")
@@ -90,7 +106,7 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
 
     Level k has ``20 * 4**k`` triangles.
     """
-    subdivisions = _check_int("subdivisions", subdivisions, 0)
+    subdivisions = _check_int("subdivisions", subdivisions, 0, 8)  # 8: 1.3M triangles
     v = _ICO_V / np.linalg.norm(_ICO_V, axis=1, keepdims=True)
     f = _ICO_F.copy()
     for _ in range(subdivisions):
@@ -116,6 +132,7 @@ def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
     """A ring torus of quads around the y axis: ``n`` segments around, ``m`` across."""
     n = _check_int("n", n, 3)
     m = _check_int("m", m, 3)
+    _check_faces(f"torus with n={n}, m={m}", n * m)
     if not 0 < r < R:
         raise GeometryError(f"need 0 < r < R for a ring torus, got R={R}, r={r}")
     u = 2 * np.pi * np.arange(n) / n
@@ -204,7 +221,7 @@ def teapot(tessellation: int = 8) -> Mesh:
     side, welded along patch seams; y up, resting on y = 0."""
     from ._teapot_data import PATCHES, VERTICES
 
-    k = _check_int("tessellation", tessellation, 1)
+    k = _check_int("tessellation", tessellation, 1, 256)
     cp = np.array([p.split() for line in VERTICES.strip().splitlines()
                    for p in line.split(";")], float)
     patches = np.array(PATCHES.split(), int).reshape(-1, 4, 4)

@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import GeometryError
 
 __all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_transform",
-           "gl_bytes"]
+           "gl_bytes", "box_corners"]
 
 Array = NDArray[np.float64]
 
@@ -89,3 +89,10 @@ def compose_transform(rotation: ArrayLike | None = None, translation: ArrayLike 
 def gl_bytes(matrix: ArrayLike) -> bytes:
     """A matrix as GLSL wants it: float32, column-major (the transpose of numpy's rows)."""
     return np.ascontiguousarray(np.asarray(matrix, dtype=np.float32).T).tobytes()
+
+
+def box_corners(bounds) -> NDArray[np.float64]:
+    """The 8 corners ``(8, 3)`` of a box given as ``(2, 3)`` minimum and maximum."""
+    b = np.asarray(bounds, np.float64)
+    index = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)])
+    return b[index, [0, 1, 2]]

@@ -41,6 +41,15 @@ def build_mesh(path, vertices, indices, offsets, *, line_of_face=no_line,
         f = int(np.flatnonzero(small)[0])
         raise MeshFormatError(path, f"face {f} has {int(sizes[f])} vertices; a polygon needs "
                               "at least 3", line=line_of_face(f))
+    indices = np.asarray(indices)
+    if indices.dtype.kind == "f":  # read as numbers: whole ones only, never truncated
+        bad = ~np.isfinite(indices) | (indices != np.round(indices))
+        if bad.any():
+            c = int(np.flatnonzero(bad)[0])
+            f = int(np.searchsorted(offsets, c, side="right") - 1)
+            raise MeshFormatError(path, f"face {f} has a non-integer index {indices[c]:g}",
+                                  line=line_of_face(f))
+        indices = np.where(np.abs(indices) < 2**62, indices, -1.0).astype(np.int64)
     out = (indices < 0) | (indices >= len(vertices))
     if out.any():
         c = int(np.flatnonzero(out)[0])

@@ -216,14 +216,15 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
             off = offsets_from_sizes(counts)[:-1]
             k = vals[off + li] if count else np.zeros(0)
             extra = len(props) - 1
-            bad = (k != np.round(k)) | (counts != k + 1 + extra)
+            with np.errstate(invalid="ignore"):  # nan and inf counts are caught here
+                bad = ~np.isfinite(k) | (k != np.round(k)) | (counts != k + 1 + extra)
             if bad.any():
                 f = int(np.flatnonzero(bad)[0])
                 raise MeshFormatError(path, f"face {f} declares {vals[off[f] + li]:g} vertices "
                                       f"but has {int(counts[f]) - 1 - extra} indices",
                                       line=int(lines[f]) + first_line)
             sizes = k.astype(np.int64)
-            idx = ragged_take(vals, off + li + 1, sizes).astype(np.int64)
+            idx = ragged_take(vals, off + li + 1, sizes)
             break
     mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
     if normals is not None:

@@ -61,6 +61,8 @@ class RenderSettings:
     samples: int = 4
     fps: float = 30.0
     duration: float | None = None
+    #: where each setting came from, ``{"samples": "scene.toml:3"}`` (scene files only)
+    origin: dict = field(default_factory=dict)
 
     @property
     def size(self) -> tuple[int, int]:
@@ -84,7 +86,7 @@ class SceneFile:
 
 NUMBER = (int, float)
 _SCHEMA = {
-    "render": {"size": "size", "mode": "mode", "samples": "int", "srgb": "bool",
+    "render": {"size": "size", "mode": "mode", "samples": "samples", "srgb": "bool",
                "fps": "positive", "duration": "positive", "background": "color",
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
@@ -137,18 +139,24 @@ def _check(kind: str, value, where: str):
         if not isinstance(value, list) or len(value) != n or \
                 not all(isinstance(v, NUMBER) and not isinstance(v, bool) for v in value):
             fail(f"a list of {n} numbers")
+        if not all(np.isfinite(v) for v in value):
+            fail(f"a list of {n} finite numbers")
         return [float(v) for v in value]
 
     if kind == "str":
         return value if isinstance(value, str) and value else fail("a non-empty string")
     if kind == "bool":
         return value if isinstance(value, bool) else fail("true or false")
+    if kind == "samples":
+        ok = isinstance(value, int) and not isinstance(value, bool) and \
+            value in (0, 1, 2, 4, 8, 16, 32, 64)
+        return value if ok else fail("0 (no MSAA) or a power of two such as 4")
     if kind == "int":
         return value if isinstance(value, int) and not isinstance(value, bool) and value >= 0 \
             else fail("a non-negative integer")
     if kind in ("unit", "nonneg", "positive", "fov"):
-        if not isinstance(value, NUMBER) or isinstance(value, bool):
-            fail("a number")
+        if not isinstance(value, NUMBER) or isinstance(value, bool) or not np.isfinite(value):
+            fail("a finite number")
         v = float(value)
         ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0, "fov": 0 < v < 180}
         return v if ok[kind] else fail({"unit": "a number in [0, 1]", "nonneg":
@@ -251,6 +259,7 @@ def load_scene(path) -> SceneFile:
                                           if k in r})
     if "size" in r:
         settings.width, settings.height = r["size"]
+    settings.origin = {k: f"{source}:{loc.line('render', None, k)}: [render] {k}" for k in r}
     scene = Scene(**{k: r[k] for k in ("ambient", "background") if k in r})
     meshes = d.get("mesh", [])
     if not meshes:

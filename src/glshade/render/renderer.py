@@ -17,8 +17,10 @@ from dataclasses import dataclass
 import moderngl
 import numpy as np
 
-from ..errors import GeometryError, GlshadeError
-from ..geometry.transforms import gl_bytes
+from ..errors import (
+    EnvironmentFailure, GeometryError, GlshadeError, InputError, SettingError,
+)
+from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Outputs, ShadingMode
 from ..options import DrawOptions
 from ..scene import MAX_LIGHTS, Camera, PointLight, Scene
@@ -47,6 +49,48 @@ class Frame:
     face_id: np.ndarray | None = None
 
 
+#: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
+#: (16), polygon id (4), view depth (4) and the z-buffer (4)
+_BYTES_PER_SAMPLE = 44
+
+
+def _check_whole(name: str, value, minimum: int) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise InputError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+
+
+def _check_fits(context, width: int, height: int, samples: int) -> None:
+    """Refuse, up front and by name, what this GL cannot make: MSAA sample counts it lacks,
+    images wider than its framebuffers, and (on a software renderer, which draws in main
+    memory) images larger than the machine's memory."""
+    import os
+
+    info = context.ctx.info
+    max_samples = context.ctx.max_samples
+    if samples and (samples > max_samples or samples & (samples - 1)):
+        counts = ", ".join(str(2**i) for i in range(int(np.log2(max(max_samples, 1))) + 1))
+        raise SettingError("samples", f"samples must be 0 (off) or one of {counts} on this "
+                                      f"GL ({context.detail}), got {samples}")
+    side = min(int(info.get("GL_MAX_RENDERBUFFER_SIZE") or 16384),
+               *[int(x) for x in (info.get("GL_MAX_VIEWPORT_DIMS") or (16384, 16384))])
+    if max(width, height) > side:
+        raise SettingError("size", f"an image of {width}x{height} is larger than this GL's "
+                                   f"largest framebuffer, {side} pixels a side "
+                                   f"({context.detail})")
+    need = width * height * _BYTES_PER_SAMPLE * (samples + 1 if samples else 1)
+    software = any(w in context.detail.lower() for w in ("llvmpipe", "softpipe", "swrast"))
+    try:
+        memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        memory = 0
+    if software and memory and need > memory // 3:
+        raise SettingError("size", f"an image of {width}x{height} with {samples} samples "
+                                   f"needs about {need / 2**30:.1f} GiB of framebuffers; this "
+                                   "software renderer draws in main memory "
+                                   f"({memory / 2**30:.0f} GiB): ask for fewer pixels or "
+                                   "samples")
+
+
 def _mat3(m: np.ndarray) -> bytes:
     return np.ascontiguousarray(np.asarray(m, dtype=np.float32).T).tobytes()
 
@@ -67,18 +111,18 @@ class Renderer:
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
                  backend="auto", device: int | None = None,
                  context: RenderContext | None = None):
-        if int(width) != width or int(height) != height or width < 1 or height < 1:
-            raise GlshadeError(f"width and height must be positive integers, got "
-                               f"{width}x{height}")
+        _check_whole("width", width, 1)
+        _check_whole("height", height, 1)
+        _check_whole("samples", samples, 0)
         self._owns_context = context is None
         self.context = context or create_context(backend, device)
         self.ctx = self.context.ctx
-        max_samples = self.ctx.max_samples
-        if samples < 0 or samples > max_samples:
+        try:
+            _check_fits(self.context, int(width), int(height), int(samples))
+        except InputError:
             if self._owns_context:
                 self.context.release()
-            raise GlshadeError(f"samples must be between 0 and {max_samples} on this GL "
-                               f"({self.context.detail}), got {samples}")
+            raise
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.shaders = ShaderLibrary(self.context)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
@@ -123,8 +167,15 @@ class Renderer:
         self.context.make_current()
         t = self._targets.get(color_dtype)
         if t is None:
-            t = OffscreenTarget(self.context, self.width, self.height, self.samples,
-                                color_dtype)
+            try:
+                t = OffscreenTarget(self.context, self.width, self.height, self.samples,
+                                    color_dtype)
+            except GlshadeError:
+                raise
+            except Exception as exc:  # the driver's refusal (out of memory, incomplete)
+                raise EnvironmentFailure(f"this GL could not make a {self.width}x"
+                                         f"{self.height} framebuffer with {self.samples} "
+                                         f"samples: {exc}") from None
             self._targets[color_dtype] = t
         return t
 
@@ -199,9 +250,8 @@ class Renderer:
         put("u_face_ids", 0)
         self._put_lights(put, scene.lights_for(camera), scene.ambient, view)
         if options.mode is ShadingMode.DEPTH:
-            b = scene.bounds
-            corners = np.array([[x, y, z, 1] for x in b[:, 0] for y in b[:, 1] for z in b[:, 2]])
-            d = -(corners @ view.T)[:, 2]
+            corners = box_corners(scene.bounds)
+            d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]
             near, far = max(camera.near, d.min()), min(camera.far, d.max())
             put("u_depth_range", (float(near), float(max(far, near + 1e-6))))
 

@@ -13,11 +13,14 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import GeometryError
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
-from ..geometry.transforms import compose_transform
+from ..geometry.transforms import box_corners, compose_transform
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "Scene"]
+__all__ = ["Model", "Scene", "MAX_DRAWABLE_COORDINATE"]
+
+#: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
+MAX_DRAWABLE_COORDINATE = 1e18
 
 
 @dataclass(eq=False)
@@ -62,6 +65,11 @@ class Scene:
             m = affine_matrix(transform, "transform")
         else:
             m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        corners = box_corners(mesh.bounds) @ m[:3, :3].T + m[:3, 3]
+        if mesh.n_vertices and np.abs(corners).max() > MAX_DRAWABLE_COORDINATE:
+            raise GeometryError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
+                                f"the GPU draws up to {MAX_DRAWABLE_COORDINATE:g} (its 32-bit "
+                                "arithmetic squares lengths): scale the mesh down")
         model = Model(mesh, material or Material(), m, name or mesh.name)
         self.models.append(model)
         return model
@@ -85,9 +93,7 @@ class Scene:
         for m in self.models:
             if not m.visible or m.mesh.n_vertices == 0:
                 continue
-            b = m.mesh.bounds
-            corners = np.array([[x, y, z] for x in b[:, 0] for y in b[:, 1] for z in b[:, 2]])
-            pts.append(corners @ m.transform[:3, :3].T + m.transform[:3, 3])
+            pts.append(box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3])
         if not pts:
             return np.zeros((2, 3))
         p = np.vstack(pts)

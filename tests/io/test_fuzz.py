@@ -1,0 +1,93 @@
+"""Hostile input: seeded mutations of small valid files in every format go through the
+command line (in this process, for speed). Each ends with exit 0, or exit 2 and one line
+naming the file -- never a traceback, a hang or a file left behind."""
+
+import io
+import os
+from contextlib import redirect_stderr, redirect_stdout
+
+import numpy as np
+import pytest
+
+from glshade import save_mesh
+from glshade.cli import main
+from glshade.geometry import primitives as P
+
+MUTATIONS_PER_FILE = 300
+TOKENS = [b"nan", b"inf", b"-inf", b"1e308", b"-1", b"0", b"1.5", b"999999999999", b"x",
+          b"", b"-0", b"3 3 3", b"\xff\xfe", b"#", b"/", b"//"]
+
+
+def seeds(tmp_path):
+    """Small valid files: every reader and its variants."""
+    mesh = P.cube().flipped().flipped()
+    out = {}
+    for name, binary in (("m.obj", False), ("m.off", False), ("a.ply", False),
+                         ("b.ply", True), ("a.stl", False), ("b.stl", True)):
+        path = tmp_path / name
+        save_mesh(mesh, path, binary=binary)
+        out[name] = path.read_bytes()
+    big_endian = out["b.ply"].replace(b"binary_little_endian", b"binary_big_endian")
+    out["be.ply"] = big_endian  # byte order misread on purpose: garbage in, clear error out
+    return out
+
+
+def mutate(data: bytes, rng) -> bytes:
+    kind = rng.integers(7)
+    b = bytearray(data)
+    if kind == 0 and b:  # flip bytes
+        for i in rng.integers(0, len(b), rng.integers(1, 6)):
+            b[i] = int(rng.integers(256))
+    elif kind == 1:  # truncate
+        b = b[:rng.integers(0, len(b) + 1)]
+    elif kind == 2:  # replace a token by a hostile one
+        words = bytes(b).split(b" ")
+        i = rng.integers(len(words))
+        words[i] = TOKENS[rng.integers(len(TOKENS))] + words[i][-1:] * (words[i][-1:] == b"\n")
+        b = bytearray(b" ".join(words))
+    elif kind == 3:  # drop a line
+        lines = bytes(b).split(b"\n")
+        del lines[rng.integers(len(lines))]
+        b = bytearray(b"\n".join(lines))
+    elif kind == 4:  # repeat a line
+        lines = bytes(b).split(b"\n")
+        i = rng.integers(len(lines))
+        lines.insert(i, lines[i])
+        b = bytearray(b"\n".join(lines))
+    elif kind == 5:  # insert random bytes
+        i = rng.integers(len(b) + 1)
+        b[i:i] = rng.integers(0, 256, rng.integers(1, 12)).astype(np.uint8).tobytes()
+    else:  # change a number by a digit
+        digits = [i for i, c in enumerate(b) if 48 <= c <= 57]
+        if digits:
+            b[digits[rng.integers(len(digits))]] = 48 + int(rng.integers(10))
+    return bytes(b)
+
+
+def run(*args):
+    err, out = io.StringIO(), io.StringIO()
+    with redirect_stderr(err), redirect_stdout(out):
+        code = main(list(args))
+    return code, err.getvalue()
+
+
+@pytest.mark.filterwarnings("error")  # a numpy warning on bad input is a defect too
+@pytest.mark.parametrize("name", ["m.obj", "m.off", "a.ply", "b.ply", "be.ply", "a.stl",
+                                  "b.stl"])
+def test_mutated_files_exit_0_or_2_with_one_line(tmp_path, name):
+    rng = np.random.default_rng(sum(map(ord, name)))
+    source = seeds(tmp_path)[name]
+    work = tmp_path / "fuzz"
+    work.mkdir()
+    outcomes = {0: 0, 2: 0}
+    for i in range(MUTATIONS_PER_FILE):
+        path = work / f"case{i}{os.path.splitext(name)[1]}"
+        path.write_bytes(mutate(source, rng))
+        code, err = run("info", str(path), "--json")
+        assert code in (0, 2), f"{path.name}: exit {code}: {err}"
+        if code == 2:
+            assert err.count("\n") == 1 and str(path) in err, (path.read_bytes()[:200], err)
+        outcomes[code] += 1
+    assert outcomes[2] > 10  # the mutations do break files
+    assert sorted(p.name for p in work.iterdir()) == sorted(
+        f"case{i}{os.path.splitext(name)[1]}" for i in range(MUTATIONS_PER_FILE))

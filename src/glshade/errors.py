@@ -19,7 +19,7 @@ __all__ = [
     "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable",
-    "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
+    "RenderWarning", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
 
 EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
@@ -136,6 +136,10 @@ class ShaderError(EnvironmentFailure):
 
 class VideoUnavailable(EnvironmentFailure):
     """MP4 output needs imageio and imageio-ffmpeg (the ``video`` extra)."""
+
+
+class RenderWarning(UserWarning):
+    """A render that worked but shows nothing (a blank image), with the reason when known."""
 
 
 def exit_status(exc: BaseException) -> int:

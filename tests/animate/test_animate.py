@@ -120,7 +120,7 @@ MALFORMED = {
     "unknown_key": ('[[mesh]]\nsource = "primitive:cube"\ncolour = [1, 0, 0]\n',
                     ":3: unknown key 'colour' in [[mesh]] 1"),
     "wrong_type": ('[[mesh]]\nsource = "primitive:cube"\nks = "shiny"\n',
-                   ":3: [[mesh]] 1 key 'ks' must be a number"),
+                   ":3: [[mesh]] 1 key 'ks' must be a finite number"),
     "bad_colour": ('[[mesh]]\nsource = "primitive:cube"\ncolor = [1, 0]\n',
                    ":3: [[mesh]] 1 key 'color' must be a list of 3 numbers"),
     "missing_mesh_file": ('[[mesh]]\nsource = "nowhere.obj"\n', "nowhere.obj' does not exist"),

@@ -92,3 +92,12 @@ def test_unwritable_output_exits_1(tmp_path):
                 "--size", "16x16", "--backend", BACKEND)
     assert r.returncode == 1
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_a_blank_render_is_one_warning_line_and_exit_0(tmp_path):
+    r = glshade("render", "primitive:cube", "--eye", "0,0,5", "--target", "0,0,10", "-o",
+                str(tmp_path / "blank.png"), "--size", "32x32", "--backend", BACKEND)
+    assert r.returncode == 0
+    assert r.stderr.strip().splitlines() == [
+        "glshade: warning: the render is blank: no part of the scene lies in the camera's "
+        "view (between its near and far planes, inside its field of view)"]

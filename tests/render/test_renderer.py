@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from glshade import Camera, Mesh
+from glshade.errors import RenderWarning
 from glshade.geometry import primitives as P
 from glshade.scene import DirectionalLight, Material, PointLight, Scene
 from tests.oracle.raycast import hit_ellipsoid, pixel_rays, render_ellipsoid, shade
@@ -148,7 +149,8 @@ def test_render_depth_of_facing_plane(make_renderer, distance):
     depth = make_renderer(32, 24).render_depth(s, cam)
     assert depth.shape == (24, 32) and depth.dtype == np.float32
     np.testing.assert_allclose(depth, distance, rtol=1e-3)
-    empty = make_renderer(8, 8).render_depth(Scene(), cam)
+    with pytest.warns(RenderWarning, match="nothing to draw"):
+        empty = make_renderer(8, 8).render_depth(Scene(), cam)
     assert np.isinf(empty).all()
 
 
@@ -279,7 +281,8 @@ def test_meshes_are_uploaded_once(make_renderer):
     import gc
 
     gc.collect()
-    r.render(Scene(), FRONT)
+    with pytest.warns(RenderWarning):
+        r.render(Scene(), FRONT)
     assert r.cached_meshes == 0 and gpu.released
 
 
@@ -320,3 +323,23 @@ def test_outputs_choose_what_a_frame_reads_and_colour_is_the_same(make_renderer)
     np.testing.assert_array_equal(full.color, r.render(s, cam, "phong"))
     assert set(np.unique(full.face_id)) <= {-1, 0, 1, 2, 3, 4, 5}
     np.testing.assert_array_equal(np.isfinite(full.depth), full.face_id >= 0)
+
+
+@pytest.mark.parametrize("case, reason", [
+    ("empty", "nothing to draw"),
+    ("collinear", "zero area"),
+    ("tiny", "smaller than a pixel"),
+    ("behind", "no part of the scene lies in the camera's view"),
+])
+def test_a_blank_render_warns_and_says_why(make_renderer, case, reason):
+    s = Scene()
+    cam = FRONT
+    if case == "collinear":
+        s.add(Mesh([[0, 0, 0], [1, 1, 1], [2, 2, 2]], [[0, 1, 2]]))
+    elif case == "tiny":
+        s.add(P.cube().transformed(np.diag([1e-12, 1e-12, 1e-12, 1.0])))
+    elif case == "behind":
+        s.add(P.cube(), translation=(0, 0, 10))
+    with pytest.warns(RenderWarning, match=reason):
+        img = make_renderer(16, 16).render(s, cam)
+    assert (img[..., :3] == 0).all()

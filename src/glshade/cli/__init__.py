@@ -14,8 +14,13 @@ __all__ = ["main"]
 
 
 def main(argv: list[str] | None = None) -> int:
+    import warnings
+
     from ..errors import GlshadeError, exit_status
     from .parser import build_parser
+
+    # a warning is one line on stderr, like an error
+    warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
 
     args = build_parser().parse_args(argv)
     try:

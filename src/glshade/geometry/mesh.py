@@ -7,7 +7,7 @@ per distinct size (a handful of groups), never per face.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from functools import cached_property
 
 import numpy as np
@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
 from .analytic import AnalyticSurface, affine_matrix
+from .csr import faces_to_csr
 from .edges import EdgeGroups, edge_groups, is_closed_and_oriented
 from .polygon import newell_of_indexed, triangulate_groups, unit_normals
 
@@ -27,48 +28,6 @@ MAX_COORDINATE = 1e150
 def _readonly(a: np.ndarray) -> np.ndarray:
     a.setflags(write=False)
     return a
-
-
-def _faces_to_csr(faces) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Accept an (F, k) array or a sequence of index sequences; return (indices, offsets)."""
-    if isinstance(faces, np.ndarray) or (
-        isinstance(faces, Sequence) and faces and not isinstance(faces[0], (Sequence, np.ndarray))
-    ):
-        arr = np.asarray(faces)
-        if arr.ndim != 2:
-            raise GeometryError(
-                f"faces must be an (F, k) array or a list of index sequences, got shape {arr.shape}"
-            )
-        f, k = arr.shape
-        return _integer_indices(arr.ravel()), np.arange(f + 1, dtype=np.int64) * k
-    faces = list(faces)
-    sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
-    offsets = np.zeros(len(faces) + 1, dtype=np.int64)
-    np.cumsum(sizes, out=offsets[1:])
-    try:
-        flat = np.array([i for f in faces for i in f])
-    except (TypeError, ValueError) as exc:
-        raise GeometryError(f"face indices must be integers: {exc}") from None
-    return _integer_indices(flat.reshape(-1)), offsets
-
-
-def _integer_indices(values: np.ndarray) -> NDArray[np.int64]:
-    """Face indices as int64; a float that is not a whole number (1.5, nan) is an error
-    naming it, never truncated."""
-    if values.size == 0 or np.issubdtype(values.dtype, np.integer):
-        return values.astype(np.int64)
-    if values.dtype.kind not in "fb" and values.dtype != object:
-        raise GeometryError(f"face indices must be integers, got dtype {values.dtype}")
-    try:
-        v = values.astype(np.float64)
-    except (TypeError, ValueError):
-        raise GeometryError("face indices must be integers") from None
-    bad = ~np.isfinite(v) | (v != np.round(v)) | (np.abs(v) > 2**53)
-    if bad.any():
-        i = int(np.flatnonzero(bad)[0])
-        raise GeometryError(f"face index {float(v[i]):g} (position {i} of the flat index "
-                            "list) is not a whole number")
-    return v.astype(np.int64)
 
 
 class Mesh:
@@ -125,7 +84,7 @@ class Mesh:
         ):
             indices, offsets = (np.asarray(faces[0], np.int64), np.asarray(faces[1], np.int64))
         else:
-            indices, offsets = _faces_to_csr(faces)
+            indices, offsets = faces_to_csr(faces)
         self._init_arrays(v, indices, offsets)
         self.normals_from_file = None
         if normals is not None:

@@ -36,9 +36,21 @@ class GpuMesh(GLResource):
 
     def __init__(self, context, mesh: Mesh):
         super().__init__(context)
+        self._vaos: dict[int, object] = {}
+        self._flat_vbo = None
+        try:
+            self._upload(mesh)
+        except BaseException:
+            self.release()  # nothing half-made stays registered with the context
+            raise
+
+    def _upload(self, mesh: Mesh) -> None:
         self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
-        ctx = context.ctx
+        ctx = self.context.ctx
         tri, owner = mesh.triangles
+        if len(tri) == 0:
+            raise GlshadeError("a GpuMesh needs at least one triangle (the renderer skips "
+                               "empty meshes)")
         self.n_triangles = len(tri)
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
@@ -46,14 +58,12 @@ class GpuMesh(GLResource):
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
-        self._flat_vbo = None
-        width = min(max(self.n_triangles, 1), _ID_TEXTURE_WIDTH)
-        height = -(-max(self.n_triangles, 1) // width)
+        width = min(self.n_triangles, _ID_TEXTURE_WIDTH)
+        height = -(-self.n_triangles // width)
         ids = np.zeros(width * height, dtype="i4")
         ids[: self.n_triangles] = owner
         self.face_ids = self._keep(ctx.texture((width, height), 1, ids.tobytes(), dtype="i4"))
         self.face_ids.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        self._vaos: dict[int, object] = {}
 
     def _flat_buffer(self):
         """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""

@@ -10,6 +10,7 @@ uniforms; buffers are never re-uploaded per frame.
 
 from __future__ import annotations
 
+import warnings
 import weakref
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
@@ -18,7 +19,7 @@ import moderngl
 import numpy as np
 
 from ..errors import (
-    EnvironmentFailure, GeometryError, GlshadeError, InputError, SettingError,
+    EnvironmentFailure, GeometryError, GlshadeError, InputError, RenderWarning, SettingError,
 )
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Outputs, ShadingMode
@@ -52,6 +53,24 @@ class Frame:
 #: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
 #: (16), polygon id (4), view depth (4) and the z-buffer (4)
 _BYTES_PER_SAMPLE = 44
+
+
+def why_blank(scene: Scene, camera: Camera) -> str:
+    """Why a render of ``scene`` covers no pixel, as far as the data can tell."""
+    drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
+    if not drawn:
+        return "the render is blank: the scene has nothing to draw (no visible mesh with faces)"
+    if all(len(m.mesh.degenerate_faces) == m.mesh.n_faces for m in drawn):
+        return ("the render is blank: every face has zero area (identical or collinear "
+                "vertices)")
+    b = scene.bounds
+    extent = float(np.linalg.norm(b[1] - b[0]))
+    distance = float(np.linalg.norm(b.mean(axis=0) - camera.position))
+    if extent < 1e-6 * max(distance, 1e-300):
+        return (f"the render is blank: the scene is {extent:.3g} across, seen from "
+                f"{distance:.3g} away -- smaller than a pixel (frame it, or scale it up)")
+    return ("the render is blank: no part of the scene lies in the camera's view (between "
+            "its near and far planes, inside its field of view)")
 
 
 def _check_whole(name: str, value, minimum: int) -> None:
@@ -127,6 +146,7 @@ class Renderer:
         self.shaders = ShaderLibrary(self.context)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
+        self._query = None
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -144,7 +164,7 @@ class Renderer:
             gpu.release()
         for t in self._targets.values():
             t.release()
-        self.shaders.release()
+        self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._meshes.clear()
         self._targets.clear()
         if self._owns_context:
@@ -257,10 +277,10 @@ class Renderer:
 
         id_base = 0
         for model in scene.models:
-            gpu = self._gpu_mesh(model.mesh)
-            if not model.visible or gpu.n_triangles == 0:
-                id_base += gpu.n_polygons
+            if not model.visible or len(model.mesh.triangles[0]) == 0:
+                id_base += model.mesh.n_faces
                 continue
+            gpu = self._gpu_mesh(model.mesh)
             m = model.transform
             put("u_model", gl_bytes(m))
             put("u_normal_view", _mat3(np.linalg.inv((view @ m)[:3, :3]).T))
@@ -306,6 +326,17 @@ class Renderer:
         put("u_light_attenuation", att.tobytes())
         put("u_ambient", ambient)
 
+    def _counted_draw(self, target, scene: Scene, camera: Camera, options) -> None:
+        """Draw, counting the samples that pass the depth test: a render that covers no
+        pixel is almost always a mistake, so it is reported (RenderWarning) with its cause."""
+        if self._query is None:
+            self.context.make_current()
+            self._query = self.ctx.query(samples=True)
+        with self._query:
+            self.draw(target, scene, camera, options)
+        if self._query.samples == 0:
+            warnings.warn(why_blank(scene, camera), RenderWarning, stacklevel=3)
+
     def render(self, scene: Scene, camera: Camera, options=None, **changes) -> np.ndarray:
         """The colour image ``(H, W, 4) uint8``, row 0 at the top.
 
@@ -314,7 +345,7 @@ class Renderer:
         """
         options = DrawOptions.of(options, **changes).replace(outputs=Outputs.COLOR)
         target = self._target("f1")
-        self.draw(target, scene, camera, options)
+        self._counted_draw(target, scene, camera, options)
         return target.read_color()
 
     def render_frame(self, scene: Scene, camera: Camera, options=None, *,
@@ -327,7 +358,7 @@ class Renderer:
             raise GlshadeError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         target = self._target("f1" if color_dtype == "u1" else "f4")
-        self.draw(target, scene, camera, options)
+        self._counted_draw(target, scene, camera, options)
         want = options.outputs
         return Frame(target.read_color(),
                      target.read_depth() if want & Outputs.DEPTH else None,

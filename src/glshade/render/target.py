@@ -29,28 +29,31 @@ class OffscreenTarget(GLResource):
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.color_dtype = color_dtype
         ctx = context.ctx
+        try:
+            def buffers(samples):
+                size = (self.width, self.height)
+                rb = ctx.renderbuffer
+                color = self._keep(rb(size, 4, samples=samples, dtype=color_dtype))
+                normal = self._keep(rb(size, 4, samples=samples, dtype="f4"))
+                face = self._keep(rb(size, 1, samples=samples, dtype="i4"))
+                depth = self._keep(rb(size, 1, samples=samples, dtype="u4"))
+                zbuf = self._keep(ctx.depth_renderbuffer(size, samples=samples))
+                return color, normal, face, depth, zbuf
 
-        def buffers(samples):
-            size = (self.width, self.height)
-            rb = ctx.renderbuffer
-            color = self._keep(rb(size, 4, samples=samples, dtype=color_dtype))
-            normal = self._keep(rb(size, 4, samples=samples, dtype="f4"))
-            face = self._keep(rb(size, 1, samples=samples, dtype="i4"))
-            depth = self._keep(rb(size, 1, samples=samples, dtype="u4"))
-            zbuf = self._keep(ctx.depth_renderbuffer(size, samples=samples))
-            return color, normal, face, depth, zbuf
-
-        c, n, f, d, z = buffers(self.samples)
-        self.fbo_draw_all = self._keep(ctx.framebuffer([c, n, f, d], z))
-        self.fbo_draw_color = self._keep(ctx.framebuffer([c], z))
-        # integer and normal targets are cleared to zero (background) on their own
-        self.fbo_clear_aux = self._keep(ctx.framebuffer([n, f, d]))
-        if self.samples:
-            c, n, f, d, z = buffers(0)
-            self.fbo_read_all = self._keep(ctx.framebuffer([c, n, f, d], z))
-            self.fbo_read_color = self._keep(ctx.framebuffer([c], z))
-        else:
-            self.fbo_read_all, self.fbo_read_color = self.fbo_draw_all, self.fbo_draw_color
+            c, n, f, d, z = buffers(self.samples)
+            self.fbo_draw_all = self._keep(ctx.framebuffer([c, n, f, d], z))
+            self.fbo_draw_color = self._keep(ctx.framebuffer([c], z))
+            # integer and normal targets are cleared to zero (background) on their own
+            self.fbo_clear_aux = self._keep(ctx.framebuffer([n, f, d]))
+            if self.samples:
+                c, n, f, d, z = buffers(0)
+                self.fbo_read_all = self._keep(ctx.framebuffer([c, n, f, d], z))
+                self.fbo_read_color = self._keep(ctx.framebuffer([c], z))
+            else:
+                self.fbo_read_all, self.fbo_read_color = self.fbo_draw_all, self.fbo_draw_color
+        except BaseException:
+            self.release()  # nothing half-made stays registered with the context
+            raise
 
     @property
     def size(self) -> tuple[int, int]:

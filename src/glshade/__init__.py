@@ -1,46 +1,64 @@
 """glshade: classic shading (flat, Gouraud, Phong) on the GPU, headless or in a window.
 
-Importing glshade touches no GL, no files and no environment variables; the renderer's
-modules are loaded on first use.
+Importing glshade touches no GL, no files and no environment variables, and loads nothing
+heavy: each name below is imported on first use (``glshade.Renderer`` loads moderngl only
+then), so ``import glshade`` and ``glshade --help`` are instant.
 """
 
 from ._version import __version__
-from .animate import animate
-from .compare import Comparison, compare
-from .errors import (
-    ComparisonError, ContextError, GeometryError, GlshadeError, InputError, MeshFormatError,
-    SceneFormatError, ShaderError, TopologyError,
-)
-from .geometry import Mesh, brep, concatenate, masspoint, newell_normal, polygon_area
-from .geometry import primitives, quaternion
-from .geometry.masspoint import MassPoint, centroid
-from .io import load_mesh, load_scene, save_image, save_mesh
-from .modes import Outputs, ShadingMode
-from .options import DrawOptions
-from .scene import (
-    Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, default_camera,
-)
 
-_LAZY = {"Renderer": "renderer", "Frame": "renderer", "create_context": "context",
-         "RenderContext": "context", "Backend": "context", "tune_malloc": "context"}
+#: public name -> (module, attribute); attribute None: the module itself
+_EXPORTS = {
+    # geometry
+    "Mesh": ("geometry.mesh", "Mesh"), "concatenate": ("geometry.merge", "concatenate"),
+    "newell_normal": ("geometry.polygon", "newell_normal"),
+    "polygon_area": ("geometry.polygon", "polygon_area"),
+    "primitives": ("geometry.primitives", None), "quaternion": ("geometry.quaternion", None),
+    "masspoint": ("geometry.masspoint", None), "brep": ("geometry.brep", None),
+    "MassPoint": ("geometry.masspoint", "MassPoint"),
+    "centroid": ("geometry.masspoint", "centroid"),
+    # scene
+    "Camera": ("scene.camera", "Camera"), "default_camera": ("scene.camera", "default_camera"),
+    "CameraPath": ("scene.keyframes", "CameraPath"), "Keyframe": ("scene.keyframes", "Keyframe"),
+    "Material": ("scene.material", "Material"), "PointLight": ("scene.lights", "PointLight"),
+    "DirectionalLight": ("scene.lights", "DirectionalLight"), "Scene": ("scene.scene", "Scene"),
+    # drawing options
+    "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
+    "DrawOptions": ("options", "DrawOptions"),
+    # files
+    "load_mesh": ("io.meshes", "load_mesh"), "save_mesh": ("io.meshes", "save_mesh"),
+    "load_scene": ("io.scenefile", "load_scene"), "save_image": ("io.images", "save_image"),
+    # rendering (GL)
+    "Renderer": ("render.renderer", "Renderer"), "Frame": ("render.renderer", "Frame"),
+    "create_context": ("render.context", "create_context"),
+    "RenderContext": ("render.context", "RenderContext"),
+    "Backend": ("render.context", "Backend"), "tune_malloc": ("render.context", "tune_malloc"),
+    # comparing and animating
+    "compare": ("compare.comparison", "compare"),
+    "Comparison": ("compare.comparison", "Comparison"), "animate": ("animate.frames", "animate"),
+    # errors
+    **{name: ("errors", name) for name in (
+        "GlshadeError", "InputError", "GeometryError", "MeshFormatError", "SceneFormatError",
+        "TopologyError", "ContextError", "ShaderError", "ComparisonError", "RenderWarning")},
+}
+
+__all__ = ["__version__", *_EXPORTS]
 
 
 def __getattr__(name):
-    """The GL parts load on first use, so ``import glshade`` never loads moderngl."""
-    if name in _LAZY:
-        import importlib
+    """Load a public name on first use (and keep it, so the next use is a plain lookup)."""
+    try:
+        module, attribute = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'glshade' has no attribute {name!r}") from None
+    import importlib
 
-        module = importlib.import_module(f".render.{_LAZY[name]}", __name__)
-        return getattr(module, name)
-    raise AttributeError(f"module 'glshade' has no attribute {name!r}")
+    value = importlib.import_module(f"{__name__}.{module}")
+    if attribute is not None:
+        value = getattr(value, attribute)
+    globals()[name] = value
+    return value
 
 
-__all__ = [
-    "__version__", "Mesh", "concatenate", "newell_normal", "polygon_area", "primitives",
-    "quaternion", "masspoint", "brep", "MassPoint", "centroid", "Camera", "CameraPath", "Keyframe",
-    "default_camera", "save_image", "ShadingMode", "Outputs", "DrawOptions", "Scene", "Material",
-    "PointLight", "DirectionalLight", "compare", "Comparison", "animate", "load_scene",
-    "tune_malloc", "Renderer", "Frame", "create_context", "RenderContext", "Backend",
-    "load_mesh", "save_mesh", "GlshadeError", "InputError", "GeometryError", "MeshFormatError",
-    "SceneFormatError", "TopologyError", "ContextError", "ShaderError", "ComparisonError",
-]
+def __dir__():
+    return sorted(__all__)

@@ -18,7 +18,7 @@ __all__ = [
     "GlshadeError", "InputError", "EnvironmentFailure",
     "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
-    "ContextError", "ShaderError", "VideoUnavailable",
+    "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError",
     "RenderWarning", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
 
@@ -132,6 +132,18 @@ class ContextError(EnvironmentFailure):
 
 class ShaderError(EnvironmentFailure):
     """A GLSL program failed to compile or link: names the file, the line and the driver's text."""
+
+
+class OutputWriteError(EnvironmentFailure):
+    """An output that could not be written (no permission, a full disk, a broken encoder):
+    names the output asked for, never the temporary file it was going to."""
+
+    def __init__(self, path, reason: str):
+        self.path, self.reason = str(path), reason
+        super().__init__(f"cannot write {self.path}: {reason}")
+
+    def __reduce__(self):
+        return type(self), (self.path, self.reason)
 
 
 class VideoUnavailable(EnvironmentFailure):

@@ -174,6 +174,24 @@ def test_interrupt_leaves_no_partial_output(tmp_path):
     assert list(tmp_path.iterdir()) == []  # no output, no .part file
 
 
+@pytest.mark.parametrize("delay", [0.2, 0.6, 2.0])
+def test_ctrl_c_on_the_whole_process_group_at_any_moment(tmp_path, delay):
+    """A terminal's Ctrl-C reaches the workers too, even while they are starting."""
+    out = tmp_path / "long.gif"
+    proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+                             "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
+                             "2000", "--size", "64x48", "--jobs", "2", "--backend", BACKEND],
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    time.sleep(delay)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    # 130, or death by SIGINT when it lands while the interpreter itself starts up or exits
+    assert proc.returncode in (130, -signal.SIGINT), err
+    assert err.strip().splitlines() == ["glshade: interrupted"], err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_unknown_output_format(tmp_path):
     r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(tmp_path / "a.avi"))
     assert r.returncode == 2 and ".gif, .png, .apng, .mp4" in r.stderr

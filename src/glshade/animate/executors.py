@@ -85,6 +85,28 @@ def _without_main_reimport():
             setattr(main, k, v)
 
 
+@contextlib.contextmanager
+def _sigint_held():
+    """Hold Ctrl-C back while workers start: a terminal's Ctrl-C reaches every process of
+    the group, and a worker still importing would print its own traceback. Workers are
+    started with SIGINT ignored (inherited through exec, so their Python never turns it into
+    KeyboardInterrupt); this process keeps a Ctrl-C that came meanwhile pending (blocked)
+    and gets it when the block lifts, after its own handler is back."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or \
+            not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    old_mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    old_handler = signal.signal(signal.SIGINT, signal.SIG_IGN)  # (blocked: stays pending)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old_handler)
+        signal.pthread_sigmask(signal.SIG_SETMASK, old_mask)
+
+
 class ProcessExecutor(Executor):
     """``jobs`` spawned worker processes sharing the cores; stopped at once on an error,
     Ctrl-C or a closed generator."""
@@ -96,18 +118,22 @@ class ProcessExecutor(Executor):
     def map(self, items):
         items = list(items)
         threads = max(1, (os.cpu_count() or 1) // self.jobs)
-        with _without_main_reimport():  # the pool starts its workers here
-            pool = mp.get_context("spawn").Pool(self.jobs, initializer=_init_worker,
-                                                initargs=(self.factory, self.args, threads))
+        pool = None
         try:
+            with _without_main_reimport(), _sigint_held():  # the pool starts workers here
+                pool = mp.get_context("spawn").Pool(self.jobs, initializer=_init_worker,
+                                                    initargs=(self.factory, self.args,
+                                                              threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
             yield from pool.imap(_work, items, chunksize=chunk)
             pool.close()
         except BaseException:
-            pool.terminate()
+            if pool is not None:
+                pool.terminate()
             raise
         finally:
-            pool.join()
+            if pool is not None:
+                pool.join()
 
 
 def make_executor(factory, args: tuple, jobs: int = 1, items: int | None = None) -> Executor:

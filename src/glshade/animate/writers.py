@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write, publish
-from ..errors import OutputError, VideoUnavailable
+from .._atomic import atomic_write, publish, writing
+from ..errors import OutputError, OutputWriteError, VideoUnavailable
 
 __all__ = ["output_format", "write_animation", "FORMATS"]
 
@@ -62,17 +62,20 @@ def _write_dir(frames, out: Path) -> int:
     if out.exists() and any(out.iterdir()):
         raise OutputError(f"{out}: the folder exists and is not empty")
     parent = out.parent if str(out.parent) else Path(".")
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
+    with writing(out):
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
     try:
         n = 0
         for n, f in enumerate(frames, start=1):
-            save_image(f, tmp / f"frame_{n - 1:05d}.png")
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700
-        if out.exists():
-            out.rmdir()
-        os.replace(tmp, out)
+            with writing(out):
+                save_image(f, tmp / f"frame_{n - 1:05d}.png")
+        with writing(out):
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700
+            if out.exists():
+                out.rmdir()
+            os.replace(tmp, out)
         return n
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -86,19 +89,61 @@ def _write_mp4(frames, out: Path, fps: float) -> int:
     except ImportError:
         raise VideoUnavailable("MP4 output needs imageio and its ffmpeg plugin: "
                                "pip install 'glshade[video]' (or write .gif or .png)") from None
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".part.mp4",
-                               dir=out.parent if str(out.parent) else ".")
-    os.close(fd)
+    with writing(out):
+        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".part.mp4",
+                                   dir=out.parent if str(out.parent) else ".")
+        os.close(fd)
     n = 0
     try:
-        with imageio.get_writer(tmp, fps=fps, codec="libx264", quality=8,
-                                macro_block_size=1, ffmpeg_log_level="error") as w:
+        writer = imageio.get_writer(tmp, fps=fps, codec="libx264", quality=8,
+                                    macro_block_size=1, ffmpeg_log_level="error")
+        try:
             for f in frames:
-                w.append_data(np.ascontiguousarray(f[..., :3]))
+                with _encoder_errors(out):
+                    writer.append_data(np.ascontiguousarray(f[..., :3]))
                 n += 1
-        publish(tmp, out)
+        finally:
+            with _encoder_errors(out):
+                writer.close()
+        if not _mp4_complete(tmp):  # ffmpeg can exit 0 after a failed write
+            raise OutputWriteError(out, "the video encoder wrote an incomplete file (is the "
+                                   "disk full?)")
+        with writing(out):
+            publish(tmp, out)
         return n
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+@contextlib.contextmanager
+def _encoder_errors(out: Path):
+    """ffmpeg's failures (a broken pipe, a full disk) as one line naming the output."""
+    try:
+        yield
+    except (OSError, RuntimeError, ValueError) as exc:
+        lines = [x.strip() for x in str(exc).splitlines() if x.strip()]
+        reason = getattr(exc, "strerror", None) or (lines[-1] if lines else type(exc).__name__)
+        raise OutputWriteError(out, f"the video encoder failed: {reason}") from None
+
+
+def _mp4_complete(path) -> bool:
+    """Whether an MP4's top-level boxes run exactly to the end of the file and include the
+    index ('moov'): a truncated file fails one or the other."""
+    import struct
+
+    with open(path, "rb") as f:
+        data = f.read()
+    pos, kinds = 0, set()
+    while pos + 8 <= len(data):
+        size, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        if size == 1 and pos + 16 <= len(data):
+            size = struct.unpack(">Q", data[pos + 8:pos + 16])[0]
+        elif size == 0:
+            size = len(data) - pos
+        if size < 8:
+            return False
+        kinds.add(kind)
+        pos += size
+    return pos == len(data) and b"moov" in kinds

@@ -4,6 +4,7 @@ what is rendered (inputs) and the subcommands (commands, info).
 Exit status: 0 on success; 2 for bad input (arguments, or an input file that is missing
 or malformed), reported in one line on stderr; 1 for a failure of the environment (no GL
 context, an output that cannot be written), also one line. ``--debug`` shows tracebacks.
+Ctrl-C at any moment, imports included, ends with one line and status 130.
 """
 
 from __future__ import annotations
@@ -14,6 +15,14 @@ __all__ = ["main"]
 
 
 def main(argv: list[str] | None = None) -> int:
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("glshade: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str] | None) -> int:
     import warnings
 
     from ..errors import GlshadeError, exit_status
@@ -21,7 +30,6 @@ def main(argv: list[str] | None = None) -> int:
 
     # a warning is one line on stderr, like an error
     warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
-
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
@@ -30,6 +38,3 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"glshade: error: {exc}", file=sys.stderr)
         return exit_status(exc)
-    except KeyboardInterrupt:
-        print("glshade: interrupted", file=sys.stderr)
-        return 130

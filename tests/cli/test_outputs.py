@@ -1,0 +1,49 @@
+"""Outputs that cannot be written: one line naming the output asked for (not a temporary
+file), exit status 1, and nothing left behind."""
+
+import resource
+import subprocess
+import sys
+
+import pytest
+
+from tests.conftest import BACKEND, ROOT
+
+pytestmark = pytest.mark.gl
+
+
+def limited(limit_bytes, *args):
+    """The command line with files capped at ``limit_bytes`` (a disk that fills up)."""
+    def cap():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
+
+    return subprocess.run([sys.executable, "-m", "glshade", *args], capture_output=True,
+                          text=True, cwd=ROOT, timeout=120, preexec_fn=cap)
+
+
+@pytest.mark.parametrize("name, extra", [
+    ("out.png", ("render", "assets/teapot.obj", "--size", "200x150")),
+    ("out.gif", ("animate", "assets/scenes/spheres.toml", "--frames", "3", "--size",
+                 "120x90", "-q")),
+    ("out.mp4", ("animate", "assets/scenes/spheres.toml", "--frames", "12", "--size",
+                 "120x90", "-q", "--jobs", "1")),
+    ("frames/", ("animate", "assets/scenes/spheres.toml", "--frames", "3", "--size",
+                 "120x90", "-q")),
+])
+def test_a_full_disk_names_the_output_and_leaves_nothing(tmp_path, name, extra):
+    out = tmp_path / name
+    r = limited(2000, *extra[:2], "-o", str(out), *extra[2:], "--backend", BACKEND)
+    assert r.returncode == 1, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"glshade: error: cannot write {out}"), \
+        r.stderr
+    assert ".part" not in r.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_in_a_missing_folder(tmp_path):
+    out = tmp_path / "no" / "such" / "x.png"
+    r = limited(10**9, "render", "primitive:cube", "-o", str(out), "--size", "16x16",
+                "--backend", BACKEND)
+    assert r.returncode == 1
+    assert r.stderr.strip() == f"glshade: error: cannot write {out}: No such file or directory"

@@ -343,3 +343,19 @@ def test_a_blank_render_warns_and_says_why(make_renderer, case, reason):
     with pytest.warns(RenderWarning, match=reason):
         img = make_renderer(16, 16).render(s, cam)
     assert (img[..., :3] == 0).all()
+
+
+def test_crease_keeps_a_cubes_faces_flat_under_smooth_shading(make_renderer):
+    """Oracle: with creases split, every covered pixel's normal is its face's axis normal;
+    without, the corners' averaged normals bend it."""
+    cam = Camera.look_at([2.0, 1.5, 2.5], [0, 0, 0])
+    r = make_renderer(64, 64)
+    normals = {}
+    for crease in (None, 30.0):
+        s = Scene()
+        s.add(P.cube(), crease=crease)
+        f = r.render_frame(s, cam, "phong")
+        normals[crease] = f.normal[f.face_id >= 0]
+    axis = np.abs(normals[30.0]).max(axis=1)
+    np.testing.assert_allclose(axis, 1.0, atol=1e-5)
+    assert np.abs(normals[None]).max(axis=1).min() < 0.9

@@ -133,9 +133,14 @@ def test_k_then_p_plays_the_path(viewer_factory):
 
 
 def test_compare_split_view_and_other_keys(viewer_factory):
+    from glshade.viewer.labels import LABEL_HEIGHT, label_image
+
     v = viewer_factory(teapot_scene(), CAM, compare=True, size=(360, 120))
     img = v.screenshot()
     thirds = [img[:, i * 120:(i + 1) * 120].astype(int) for i in range(3)]
+    for third, name in zip(thirds, ("flat", "gouraud", "phong")):  # labelled like the grid
+        expected = label_image(name, 120)[..., :3].astype(int)
+        assert np.abs(third[:LABEL_HEIGHT, :, :3] - expected).max() <= 1, name
     assert np.abs(thirds[0] - thirds[2]).max() > 20  # flat and phong differ side by side
     v.key("w")
     assert np.abs(v.screenshot().astype(int) - img.astype(int)).max() > 50  # wireframe on

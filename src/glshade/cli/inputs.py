@@ -72,7 +72,8 @@ def _given(args, *names) -> dict:
 def build_scene(mesh, args, aspect: float) -> tuple[Scene, Camera]:
     """A one-mesh scene and its camera from the render options (render, view, compare)."""
     scene = Scene(**_given(args, "background"))
-    scene.add(mesh, Material.from_values(_given(args, "color", "ka", "kd", "ks", "shininess")))
+    scene.add(mesh, Material.from_values(_given(args, "color", "ka", "kd", "ks", "shininess")),
+              crease=getattr(args, "crease", None))
     lens = {"fov_y": args.fov} if getattr(args, "fov", None) is not None else {}
     if args.eye is not None or args.target is not None:
         eye = args.eye if args.eye is not None else (0.0, 0.0, 5.0)

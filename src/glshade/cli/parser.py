@@ -48,6 +48,8 @@ def add_render_options(p: argparse.ArgumentParser) -> None:
                        f"(default {mat[name]:g})")
     p.add_argument("--shininess", type=v.nonnegative_float,
                    help=f"specular exponent n (default {mat['shininess']:g})")
+    p.add_argument("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
+                   "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.add_argument("--srgb", action="store_true", default=None,
                    help="encode the linear result as sRGB")

@@ -10,7 +10,7 @@ import re
 from ..modes import ShadingMode
 
 __all__ = ["size", "vec3", "count", "unit_float", "nonnegative_float", "mode", "modes",
-           "levels", "samples", "fov"]
+           "levels", "samples", "fov", "degrees"]
 
 
 def size(text: str) -> tuple[int, int]:
@@ -95,3 +95,7 @@ def samples(text: str) -> int:
 
 def fov(text: str) -> float:
     return _number(text, lambda x: 0 < x < 180, "degrees in (0, 180) such as 45")
+
+
+def degrees(text: str) -> float:
+    return _number(text, lambda x: 0 <= x <= 180, "an angle from 0 to 180 such as 30")

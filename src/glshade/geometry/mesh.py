@@ -266,13 +266,25 @@ class Mesh:
         )
 
     @cached_property
+    def _normal_sums(self):
+        return unit_normals(self._scatter_to_vertices(self.face_normals[self.corner_face]),
+                            1e-24)
+
+    @property
+    def folded_vertices(self) -> NDArray[np.int64]:
+        """Vertices whose faces' normals cancel (a two-sided wall: the same polygon wound
+        both ways), where no smooth normal exists; ``split_creases`` separates them."""
+        used = np.zeros(self.n_vertices, bool)
+        used[self.face_indices[self._unit_face_normals[1][self.corner_face]]] = True
+        return np.flatnonzero(used & ~self._normal_sums[1])
+
+    @cached_property
     def vertex_normals(self) -> NDArray[np.float64]:
         """Unit vertex normals ``(V, 3)``: normalised sum of the unit normals of the faces
-        around each vertex (the notes' formula). Where the sum vanishes -- a two-sided wall,
-        the same polygon wound both ways -- the normal of one incident face is used instead;
-        zero only for a vertex in no valid face."""
-        summed = self._scatter_to_vertices(self.face_normals[self.corner_face])
-        n, ok = unit_normals(summed, 1e-24)
+        around each vertex (the notes' formula). Where the sum vanishes (see
+        :attr:`folded_vertices`) the normal of one incident face stands in; zero only for a
+        vertex in no valid face."""
+        n, ok = self._normal_sums
         if not ok.all():
             valid = self._unit_face_normals[1][self.corner_face]
             fallback = np.zeros_like(n)
@@ -389,6 +401,19 @@ class Mesh:
                             groups=self.groups, name=self.name)
         out.analytic = analytic
         return out
+
+    @classmethod
+    def from_trimesh(cls, tm, name: str | None = None) -> Mesh:
+        """From a ``trimesh.Trimesh`` or ``trimesh.Scene`` (the ``formats`` extra)."""
+        from .trimesh_bridge import from_trimesh
+
+        return from_trimesh(tm, name)
+
+    def to_trimesh(self):
+        """A ``trimesh.Trimesh`` of the triangulation (the ``formats`` extra)."""
+        from .trimesh_bridge import to_trimesh
+
+        return to_trimesh(self)
 
     def split_creases(self, angle_deg: float = 30.0) -> Mesh:
         """Duplicate vertices along edges sharper than ``angle_deg``, so smooth shading

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from .._atomic import atomic_write
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
+from ..geometry.trimesh_bridge import HINT, from_trimesh, trimesh_formats, trimesh_module
 from . import obj, off, ply, stl
-from .._atomic import atomic_write
 
 __all__ = ["load_mesh", "save_mesh", "FORMATS"]
 
@@ -22,17 +23,19 @@ _MODULES = {"obj": obj, "off": off, "ply": ply, "stl": stl}
 FORMATS = tuple(_MODULES)
 
 
-def _format_of(path: Path, fmt: str | None) -> str:
+def _format_of(path: Path, fmt: str | None, extra=()) -> str:
     fmt = (fmt or path.suffix.lstrip(".")).lower()
-    if fmt not in FORMATS:
-        raise MeshFormatError(
-            path, f"unknown mesh format {fmt!r}; supported: {', '.join(FORMATS)}"
-        )
+    if fmt not in FORMATS and fmt not in extra:
+        more = (f"; through trimesh also {', '.join(sorted(set(extra) - set(FORMATS)))}"
+                if extra else f" (and, with {HINT}, glTF/GLB, 3MF and more)")
+        raise MeshFormatError(path, f"unknown mesh format {fmt!r}; supported: "
+                              f"{', '.join(FORMATS)}{more}")
     return fmt
 
 
 def load_mesh(path, format: str | None = None) -> Mesh:
-    """Load a mesh from an OBJ, OFF, PLY or STL file (format from the extension).
+    """Load a mesh from an OBJ, OFF, PLY or STL file (format from the extension); with
+    the ``formats`` extra, also any format trimesh reads (glTF/GLB, 3MF, ...).
 
     Raises
     ------
@@ -43,7 +46,7 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     path = Path(path)
     if path.is_dir():
         raise MeshFormatError(path, "is a directory, not a mesh file")
-    fmt = _format_of(path, format)
+    fmt = _format_of(path, format, trimesh_formats())
     try:
         data = path.read_bytes()
     except FileNotFoundError:
@@ -54,6 +57,8 @@ def load_mesh(path, format: str | None = None) -> Mesh:
         raise MeshFormatError(path, f"cannot read: {exc.strerror or exc}") from None
     if not data.strip():
         raise MeshFormatError(path, "the file is empty")
+    if fmt not in _MODULES:
+        return load_with_trimesh(path, fmt)
     mesh = _MODULES[fmt].read(path, data)
     mesh.name = mesh.name or path.stem
     return mesh
@@ -66,3 +71,15 @@ def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = Tru
     fmt = _format_of(path, format)
     with atomic_write(path, "wb") as f:
         _MODULES[fmt].write(mesh, f, binary)
+
+
+def load_with_trimesh(path: Path, fmt: str) -> Mesh:
+    """Read ``path`` through trimesh; any failure of its reader names the file."""
+    trimesh = trimesh_module()
+    try:
+        loaded = trimesh.load(str(path), file_type=fmt, force=None)
+    except Exception as exc:  # trimesh's readers raise anything on a bad file
+        lines = [x for x in str(exc).strip().splitlines() if x.strip()]
+        reason = lines[-1] if lines else type(exc).__name__
+        raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
+    return from_trimesh(loaded, name=path.stem)

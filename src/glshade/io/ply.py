@@ -60,6 +60,9 @@ def _ply_header(path, data: bytes):
     if fmt is None:
         raise MeshFormatError(path, "the header has no 'format' line")
     names = [e[0] for e in elements]
+    if names == ["vertex"]:
+        raise MeshFormatError(path, "a point set (only a 'vertex' element, no faces): "
+                              "glshade draws surfaces")
     if "vertex" not in names or "face" not in names:
         raise MeshFormatError(path, f"a mesh needs 'vertex' and 'face' elements, found {names}")
     return fmt, elements, body_start, len(lines) + 2

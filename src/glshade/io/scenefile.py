@@ -91,7 +91,7 @@ _SCHEMA = {
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
              "ks": "unit", "shininess": "nonneg", "translation": "vec3", "rotation": "quat",
-             "scale": "scale", "transform": "mat4", "visible": "bool"},
+             "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
@@ -154,14 +154,16 @@ def _check(kind: str, value, where: str):
     if kind == "int":
         return value if isinstance(value, int) and not isinstance(value, bool) and value >= 0 \
             else fail("a non-negative integer")
-    if kind in ("unit", "nonneg", "positive", "fov"):
+    if kind in ("unit", "nonneg", "positive", "fov", "degrees"):
         if not isinstance(value, NUMBER) or isinstance(value, bool) or not np.isfinite(value):
             fail("a finite number")
         v = float(value)
-        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0, "fov": 0 < v < 180}
+        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0, "fov": 0 < v < 180,
+              "degrees": 0 <= v <= 180}
         return v if ok[kind] else fail({"unit": "a number in [0, 1]", "nonneg":
                                         "a number >= 0", "positive": "a number > 0",
-                                        "fov": "a number of degrees in (0, 180)"}[kind])
+                                        "fov": "a number of degrees in (0, 180)",
+                                        "degrees": "an angle in degrees from 0 to 180"}[kind])
     if kind == "color":
         c = numbers(3)
         return c if min(c) >= 0 else fail("three numbers >= 0 (linear r, g, b)")
@@ -274,7 +276,8 @@ def load_scene(path) -> SceneFile:
         try:
             model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
                               translation=m.get("translation", (0, 0, 0)),
-                              scale=m.get("scale", 1.0), name=m.get("name"))
+                              scale=m.get("scale", 1.0), name=m.get("name"),
+                              crease=m.get("crease"))
         except GlshadeError as exc:
             raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
                                    f"{exc}") from None

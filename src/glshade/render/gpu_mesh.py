@@ -47,6 +47,9 @@ class GpuMesh(GLResource):
     def _upload(self, mesh: Mesh) -> None:
         self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
         ctx = self.context.ctx
+        if len(mesh.folded_vertices) and mesh.normals_from_file is None:
+            # a two-sided wall: give each side its own vertices, so each has its own normal
+            mesh = mesh.split_creases(179.0)
         tri, owner = mesh.triangles
         if len(tri) == 0:
             raise GlshadeError("a GpuMesh needs at least one triangle (the renderer skips "

@@ -56,11 +56,16 @@ class Scene:
 
     def add(self, mesh: Mesh, material: Material | None = None, transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
-            scale: ArrayLike = 1.0, name: str | None = None) -> Model:
+            scale: ArrayLike = 1.0, name: str | None = None,
+            crease: float | None = None) -> Model:
         """Add a mesh. Place it with a 4x4 ``transform`` (column vectors), or with a
-        quaternion ``rotation``, ``translation`` and ``scale`` (T R S)."""
+        quaternion ``rotation``, ``translation`` and ``scale`` (T R S). ``crease`` (degrees)
+        keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
+        added with its vertices split there (:meth:`Mesh.split_creases`)."""
         if not isinstance(mesh, Mesh):
             raise GeometryError(f"scene.add needs a Mesh, got {type(mesh).__name__}")
+        if crease is not None:
+            mesh = mesh.split_creases(crease)
         if transform is not None:
             m = affine_matrix(transform, "transform")
         else:

@@ -139,10 +139,18 @@ class Viewer:
                        clear=(i == 0))
                 if self.options.wireframe:
                     self._draw_wire(viewport)
+                self._labels().draw(m.value, viewport)  # named like the compare grid's tiles
         else:
             r.draw(t, self.scene, self.camera, filled)
             if self.options.wireframe:
                 self._draw_wire(None)
+
+    def _labels(self):
+        if getattr(self, "_label_overlay", None) is None:
+            from .labels import LabelOverlay
+
+            self._label_overlay = LabelOverlay(self.context, self.renderer.shaders)
+        return self._label_overlay
 
     def _wire_overlay(self) -> Scene:
         """The scene's meshes in one dark unlit material, built once per set of models

@@ -1,0 +1,65 @@
+"""Text labels over the viewer's panes ("flat", "gouraud", "phong" in the split view), as
+the compare grid labels its tiles: Pillow draws the text, one textured quad shows it."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..io.images import BACKGROUND, LABEL_HEIGHT, font
+from ..render.base import GLResource
+
+__all__ = ["LabelOverlay"]
+
+
+def label_image(text: str, width: int) -> np.ndarray:
+    """``(LABEL_HEIGHT, width, 4) uint8``: the text centred on a dark band (opaque)."""
+    from PIL import Image, ImageDraw
+
+    band = Image.new("RGBA", (width, LABEL_HEIGHT), (*BACKGROUND, 255))
+    draw = ImageDraw.Draw(band)
+    face = font(14)
+    draw.text(((width - draw.textlength(text, font=face)) / 2, 3), text,
+              fill=(235, 235, 235, 255), font=face)
+    return np.asarray(band)
+
+
+class LabelOverlay(GLResource):
+    """Draws text bands at the top of viewports; textures are made once per text and
+    width, and freed with the overlay."""
+
+    def __init__(self, context, shaders):
+        super().__init__(context)
+        self.program = shaders.compile("overlay.vert", "overlay.frag")
+        self._keep(self.program)
+        self.vbo = self._keep(context.ctx.buffer(reserve=4 * 4 * 4))
+        self.vao = self._keep(context.ctx.vertex_array(
+            self.program, [(self.vbo, "2f 2f", "in_ndc", "in_uv")]))
+        self._textures: dict[tuple[str, int], object] = {}
+
+    def _texture(self, text: str, width: int):
+        key = (text, width)
+        if key not in self._textures:
+            img = label_image(text, width)[::-1]  # GL's rows run bottom-up
+            tex = self.context.ctx.texture((width, LABEL_HEIGHT), 4, np.ascontiguousarray(img))
+            self._textures[key] = tex
+        return self._textures[key]
+
+    def draw(self, text: str, viewport: tuple[int, int, int, int]) -> None:
+        """The label band across the top of ``viewport`` (x, y, w, h; GL's origin)."""
+        self._check()
+        x, y, w, h = viewport
+        ctx = self.context.ctx
+        band = min(LABEL_HEIGHT, h)
+        ctx.viewport = (x, y + h - band, w, band)
+        quad = np.array([[-1, -1, 0, 0], [1, -1, 1, 0], [-1, 1, 0, 1], [1, 1, 1, 1]], "f4")
+        self.vbo.write(quad.tobytes())
+        self._texture(text, w).use(0)
+        self.program["u_image"].value = 0
+        ctx.disable(ctx.DEPTH_TEST)
+        self.vao.render(mode=ctx.TRIANGLE_STRIP)
+        ctx.viewport = viewport
+
+    def _release_extra(self) -> None:
+        for tex in self._textures.values():
+            tex.release()
+        self._textures.clear()

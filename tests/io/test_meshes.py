@@ -192,7 +192,7 @@ MALFORMED = {
     "stl_ascii_text_coordinate.stl": (
         b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 one 0\n"
         b"endloop\nendfacet\nendsolid t\n", ":6: vertex coordinate is not a number"),
-    "unknown.xyz": (b"1 2 3\n", "unknown mesh format 'xyz'"),
+    "unknown.abc": (b"1 2 3\n", "unknown mesh format 'abc'"),
 }
 
 

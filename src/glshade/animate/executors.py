@@ -85,26 +85,28 @@ def _without_main_reimport():
             setattr(main, k, v)
 
 
-@contextlib.contextmanager
-def _sigint_held():
-    """Hold Ctrl-C back while workers start: a terminal's Ctrl-C reaches every process of
-    the group, and a worker still importing would print its own traceback. Workers are
-    started with SIGINT ignored (inherited through exec, so their Python never turns it into
-    KeyboardInterrupt); this process keeps a Ctrl-C that came meanwhile pending (blocked)
-    and gets it when the block lifts, after its own handler is back."""
-    import threading
+class _WorkerProcess(mp.context.SpawnProcess):
+    """A spawned worker that starts with Ctrl-C ignored. A terminal's Ctrl-C reaches every
+    process of the group, and a worker still importing would print its own traceback; an
+    ignored SIGINT is inherited through exec, so the worker's Python never turns it into
+    KeyboardInterrupt. The parent ignores SIGINT only while the child is forked and
+    exec'd (milliseconds), so its own Ctrl-C still stops the pool."""
 
-    if threading.current_thread() is not threading.main_thread() or \
-            not hasattr(signal, "pthread_sigmask"):
-        yield
-        return
-    old_mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    old_handler = signal.signal(signal.SIGINT, signal.SIG_IGN)  # (blocked: stays pending)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, old_handler)
-        signal.pthread_sigmask(signal.SIG_SETMASK, old_mask)
+    @staticmethod
+    def _Popen(process_obj):
+        import threading
+
+        if threading.current_thread() is not threading.main_thread():
+            return mp.context.SpawnProcess._Popen(process_obj)
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            return mp.context.SpawnProcess._Popen(process_obj)
+        finally:
+            signal.signal(signal.SIGINT, old)
+
+
+class _WorkerContext(mp.context.SpawnContext):
+    Process = _WorkerProcess
 
 
 class ProcessExecutor(Executor):
@@ -120,10 +122,9 @@ class ProcessExecutor(Executor):
         threads = max(1, (os.cpu_count() or 1) // self.jobs)
         pool = None
         try:
-            with _without_main_reimport(), _sigint_held():  # the pool starts workers here
-                pool = mp.get_context("spawn").Pool(self.jobs, initializer=_init_worker,
-                                                    initargs=(self.factory, self.args,
-                                                              threads))
+            with _without_main_reimport():  # the pool starts its workers here
+                pool = _WorkerContext().Pool(self.jobs, initializer=_init_worker,
+                                             initargs=(self.factory, self.args, threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
             yield from pool.imap(_work, items, chunksize=chunk)
             pool.close()

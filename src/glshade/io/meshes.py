@@ -46,7 +46,10 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     path = Path(path)
     if path.is_dir():
         raise MeshFormatError(path, "is a directory, not a mesh file")
-    fmt = _format_of(path, format, trimesh_formats())
+    native = (format or path.suffix.lstrip(".")).lower() in FORMATS
+    # (trimesh is imported only for a format glshade does not read itself: it is slow to
+    # import, and swallows a Ctrl-C that lands while it imports)
+    fmt = _format_of(path, format, () if native else trimesh_formats())
     try:
         data = path.read_bytes()
     except FileNotFoundError:

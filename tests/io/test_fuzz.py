@@ -91,3 +91,34 @@ def test_mutated_files_exit_0_or_2_with_one_line(tmp_path, name):
     assert outcomes[2] > 10  # the mutations do break files
     assert sorted(p.name for p in work.iterdir()) == sorted(
         f"case{i}{os.path.splitext(name)[1]}" for i in range(MUTATIONS_PER_FILE))
+
+
+@pytest.mark.gl
+@pytest.mark.parametrize("name", ["m.obj", "b.ply"])
+def test_mutated_files_render_or_exit_2_and_leave_only_good_outputs(tmp_path, name):
+    import warnings
+
+    from glshade.errors import RenderWarning
+    from tests.conftest import BACKEND
+
+    rng = np.random.default_rng(7 + len(name))
+    source = seeds(tmp_path)[name]
+    work, out = tmp_path / "fuzz", tmp_path / "out"
+    work.mkdir()
+    out.mkdir()
+    rendered = []
+    for i in range(25):
+        path = work / f"case{i}{os.path.splitext(name)[1]}"
+        path.write_bytes(mutate(source, rng))
+        png = out / f"case{i}.png"
+        with warnings.catch_warnings():
+            warnings.simplefilter("default", RenderWarning)  # a broken mesh may draw nothing
+            code, err = run("render", str(path), "-o", str(png), "--size", "24x24",
+                            "--samples", "0", "--backend", BACKEND, "-q")
+        assert code in (0, 2), f"{path.name}: exit {code}: {err}"
+        if code == 0:
+            rendered.append(png.name)
+        else:
+            assert err.count("\n") == 1 and str(path) in err, err
+    assert 0 < len(rendered) < 25
+    assert sorted(p.name for p in out.iterdir()) == sorted(rendered)

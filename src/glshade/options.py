@@ -62,7 +62,10 @@ class DrawOptions:
     @classmethod
     def of(cls, options=None, **changes) -> DrawOptions:
         """Options from a DrawOptions, a shading mode (or its name) or nothing, with
-        ``changes`` applied: what every public drawing function accepts."""
+        ``changes`` applied: what every public drawing function accepts. (The earlier
+        keyword ``cull_back_faces`` is accepted for ``cull``.)"""
+        if "cull_back_faces" in changes:
+            changes["cull"] = changes.pop("cull_back_faces")
         if options is None:
             base = cls()
         elif isinstance(options, cls):

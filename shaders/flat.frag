@@ -1,18 +1,23 @@
 #version 330 core
-// Uniform (flat) shading: the polygon's normal, L and V taken at its centroid.
-#include "lighting.glsl"
+// Uniform (flat) shading: the polygon's one intensity, computed at its corners (flat.vert).
 #include "surface.glsl"
 #include "outputs.glsl"
 
-flat in vec3 v_face_normal_view;
+flat in vec3 v_color_front;
+#ifdef TWO_SIDED
+flat in vec3 v_color_back;
+#endif
 flat in vec3 v_face_normal_world;
-flat in vec3 v_centroid_view;
 in vec3 v_position_view;
 
 void main() {
-    vec3 n = normalize(v_face_normal_view);
+    vec3 n_view = vec3(0.0);  // (lit per polygon in the vertex stage)
     vec3 n_world = normalize(v_face_normal_world);
-    face_viewer(n, n_world);
-    write_outputs(light_intensity(v_centroid_view, n, view_dir(v_centroid_view)), n_world,
-                  -v_position_view.z);
+    face_viewer(n_view, n_world);
+#ifdef TWO_SIDED
+    vec3 color = gl_FrontFacing ? v_color_front : v_color_back;
+#else
+    vec3 color = v_color_front;  // back faces are culled
+#endif
+    write_outputs(color, n_world, -v_position_view.z);
 }

@@ -1,7 +1,8 @@
 #version 330 core
 // Gouraud shading: the lighting formula is evaluated at the vertices; the rasterizer
-// interpolates the intensities linearly across each triangle. Both sides are lit, and the
-// fragment stage picks the one facing the viewer.
+// interpolates the intensities linearly across each triangle. Two-sided programs
+// (TWO_SIDED: not culled) light both sides and the fragment stage picks the one facing the
+// viewer; with back faces culled only the front is lit.
 #include "transforms.glsl"
 #include "lighting.glsl"
 
@@ -9,7 +10,9 @@ in vec3 in_position;
 in vec3 in_normal;
 
 out vec3 v_color_front;
+#ifdef TWO_SIDED
 out vec3 v_color_back;
+#endif
 out vec3 v_position_view;
 out vec3 v_normal_world;
 
@@ -18,7 +21,9 @@ void main() {
     vec3 n = normalize(u_normal_view * in_normal);
     vec3 v = view_dir(p_view.xyz);
     v_color_front = light_intensity(p_view.xyz, n, v);
+#ifdef TWO_SIDED
     v_color_back = light_intensity(p_view.xyz, -n, v);
+#endif
     v_position_view = p_view.xyz;
     v_normal_world = u_normal_world * in_normal;
     gl_Position = u_proj * p_view;

@@ -1,10 +1,23 @@
 // The lighting model of the course notes, in one place for every program:
-//   I = Ia ka + sum over lights ( Ip kd max(L.N, 0) + Ip ks max(R.V, 0)^n ),  R = 2 (L.N) N - L
-// with no specular term from a light behind the surface (L.N <= 0). Ambient and diffuse
-// multiply the material colour; specular multiplies the light's colour. All vectors are
-// unit length and in view space.
+//   I = Ia ka C + sum over lights  k Ip (kd max(L.N, 0) C + ks max(R.V, 0)^n),
+//   R = 2 (L.N) N - L,
+// with no term at all from a light behind the surface (L.N <= 0); k = 1 / (c + l d + q d^2)
+// for an attenuated point light, 1 otherwise. Ambient and diffuse multiply the material
+// colour; specular multiplies the light's colour. All vectors are unit length, in view space.
+//
+// Programs are specialised when compiled (the renderer's defines): LIGHT_COUNT lights whose
+// kinds are LIGHT_KIND_0 .. LIGHT_KIND_7 (DIRECTIONAL, POINT, ATTENUATED), and ORTHOGRAPHIC.
+// Each light's term is then straight-line code: no loop over uniform arrays, no branch on
+// a uniform that the software rasterizer would evaluate on both sides.
 
 #define MAX_LIGHTS 8
+#define DIRECTIONAL 0
+#define POINT 1
+#define ATTENUATED 2
+#ifndef LIGHT_COUNT
+#define LIGHT_COUNT 1
+#define LIGHT_KIND_0 POINT
+#endif
 
 uniform vec3 u_ambient;                      // Ia (colour times intensity)
 uniform vec3 u_material_color;
@@ -12,34 +25,68 @@ uniform float u_ka;
 uniform float u_kd;
 uniform float u_ks;
 uniform float u_shininess;                   // n
-uniform int u_light_count;
-uniform vec4 u_light_pos_view[MAX_LIGHTS];   // w = 1: point light; w = 0: direction TO light
+uniform vec4 u_light_pos_view[MAX_LIGHTS];   // point: position; directional: unit vector TO it
 uniform vec3 u_light_color[MAX_LIGHTS];      // Ip (colour times intensity)
 uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
-uniform bool u_orthographic;
 
 // Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
 vec3 view_dir(vec3 p_view) {
-    return u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-p_view);
+#ifdef ORTHOGRAPHIC
+    return vec3(0.0, 0.0, 1.0);
+#else
+    return normalize(-p_view);
+#endif
+}
+
+// One light's diffuse and specular term; `kind` is a constant, so each call compiles to
+// the code of its kind alone.
+vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
+    vec3 l = u_light_pos_view[i].xyz;
+    float k = 1.0;
+    if (kind != DIRECTIONAL) {
+        vec3 to_light = l - p_view;
+        float dist = length(to_light);
+        l = to_light / max(dist, 1e-30);
+        if (kind == ATTENUATED) {
+            vec3 att = u_light_attenuation[i];
+            k = 1.0 / max(att.x + att.y * dist + att.z * dist * dist, 1e-30);
+        }
+    }
+    float ln = dot(l, n_view);
+    if (ln <= 0.0) {
+        return vec3(0.0);  // light behind the surface: no diffuse, no specular
+    }
+    vec3 r = 2.0 * ln * n_view - l;
+    float rv = max(dot(r, v_view), 0.0);
+    float spec = rv > 0.0 ? pow(rv, u_shininess) : 0.0;
+    return k * u_light_color[i] * (u_kd * ln * u_material_color + u_ks * spec);
 }
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 color = u_ambient * u_ka * u_material_color;
-    for (int i = 0; i < u_light_count; ++i) {
-        vec4 lp = u_light_pos_view[i];
-        vec3 to_light = lp.xyz - p_view * lp.w;
-        float dist = length(to_light);
-        vec3 l = to_light / max(dist, 1e-30);
-        vec3 att = u_light_attenuation[i];
-        float k = 1.0 / max(att.x + att.y * dist * lp.w + att.z * dist * dist * lp.w, 1e-30);
-        float ln = dot(l, n_view);
-        if (ln <= 0.0) {
-            continue;  // light behind the surface: no diffuse, no specular
-        }
-        vec3 r = 2.0 * ln * n_view - l;
-        float rv = max(dot(r, v_view), 0.0);
-        float spec = rv > 0.0 ? pow(rv, u_shininess) : 0.0;
-        color += k * u_light_color[i] * (u_kd * ln * u_material_color + u_ks * spec);
-    }
+#if LIGHT_COUNT > 0
+    color += light_term(0, LIGHT_KIND_0, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 1
+    color += light_term(1, LIGHT_KIND_1, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 2
+    color += light_term(2, LIGHT_KIND_2, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 3
+    color += light_term(3, LIGHT_KIND_3, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 4
+    color += light_term(4, LIGHT_KIND_4, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 5
+    color += light_term(5, LIGHT_KIND_5, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 6
+    color += light_term(6, LIGHT_KIND_6, p_view, n_view, v_view);
+#endif
+#if LIGHT_COUNT > 7
+    color += light_term(7, LIGHT_KIND_7, p_view, n_view, v_view);
+#endif
     return color;
 }

@@ -12,8 +12,7 @@ uniform int u_face_id_base;
 uniform isampler2D u_face_ids;                 // triangle -> polygon id of this mesh
 #endif
 
-uniform bool u_srgb;
-
+// (SRGB is defined for programs that encode for display: no cost for the others)
 vec3 encode_srgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);
     return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
@@ -21,7 +20,10 @@ vec3 encode_srgb(vec3 c) {
 
 void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     color = clamp(color, 0.0, 1.0);
-    frag_color = vec4(u_srgb ? encode_srgb(color) : color, 1.0);
+#ifdef SRGB
+    color = encode_srgb(color);
+#endif
+    frag_color = vec4(color, 1.0);
 #ifdef GLSHADE_AUX_OUTPUTS
     int width = textureSize(u_face_ids, 0).x;
     int tri = gl_PrimitiveID;

@@ -292,8 +292,8 @@ def test_closed_renderer_and_bad_arguments(make_renderer):
     r = make_renderer(8, 8)
     with pytest.raises(GeometryError, match="unknown shading mode 'toon'; choose one of flat"):
         r.render(Scene(), FRONT, "toon")
-    with pytest.raises(GeometryError, match="cull_back_faces"):
-        r.render(Scene(), FRONT, cull_back_faces="sometimes")
+    with pytest.raises(GeometryError, match="cull must be 'auto', True or False"):
+        r.render(Scene(), FRONT, cull_back_faces="sometimes")  # (the earlier keyword)
     r.close()
     r.close()  # a second close does nothing
     with pytest.raises(GlshadeError, match="closed"):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import warnings
 import weakref
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import moderngl
 import numpy as np
@@ -27,6 +27,7 @@ from ..options import DrawOptions
 from ..scene import MAX_LIGHTS, Camera, PointLight, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
+from .programs import ProgramKey, UniformWriter, light_kind
 from .shaders import ShaderLibrary
 from .target import OffscreenTarget
 
@@ -147,6 +148,8 @@ class Renderer:
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query = None
+        self._uniforms = UniformWriter()
+        self._normal_cache: dict[bytes, np.ndarray] = {}
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -165,6 +168,7 @@ class Renderer:
         for t in self._targets.values():
             t.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
+        self._uniforms.forget()
         self._meshes.clear()
         self._targets.clear()
         if self._owns_context:
@@ -239,7 +243,7 @@ class Renderer:
         self._sync(scene)
         ctx = self.ctx
         outputs, aux = options.outputs, options.outputs.auxiliary
-        prog = self.shaders.program(options.mode, aux=aux)
+        lights = scene.lights_for(camera)
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
         proj = camera.projection_matrix(vw / vh)
@@ -255,46 +259,38 @@ class Renderer:
         else:
             ctx.disable(moderngl.DEPTH_TEST)
 
-        def put(name, value):
-            if name in prog:
-                member = prog[name]
-                if isinstance(value, bytes):
-                    member.write(value)
-                else:
-                    member.value = value
-
-        put("u_view", gl_bytes(view))
-        put("u_proj", gl_bytes(proj))
-        put("u_srgb", options.srgb)
-        put("u_orthographic", camera.projection == "orthographic")
-        put("u_face_ids", 0)
-        self._put_lights(put, scene.lights_for(camera), scene.ambient, view)
-        if options.mode is ShadingMode.DEPTH:
-            corners = box_corners(scene.bounds)
-            d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]
-            near, far = max(camera.near, d.min()), min(camera.far, d.max())
-            put("u_depth_range", (float(near), float(max(far, near + 1e-6))))
-
+        key = ProgramKey(options.mode, aux, tuple(light_kind(x) for x in lights),
+                         options.srgb, camera.projection == "orthographic")
+        frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
+        prepared: set[int] = set()
+        put = self._uniforms.put
+        view3 = view[:3, :3]
         id_base = 0
         for model in scene.models:
             if not model.visible or len(model.mesh.triangles[0]) == 0:
                 id_base += model.mesh.n_faces
                 continue
             gpu = self._gpu_mesh(model.mesh)
-            m = model.transform
-            put("u_model", gl_bytes(m))
-            put("u_normal_view", _mat3(np.linalg.inv((view @ m)[:3, :3]).T))
-            put("u_normal_world", _mat3(np.linalg.inv(m[:3, :3]).T))
-            put("u_face_id_base", id_base)
-            mat = model.material
-            put("u_material_color", mat.color)
-            put("u_ka", mat.ka)
-            put("u_kd", mat.kd)
-            put("u_ks", mat.ks)
-            put("u_shininess", mat.shininess)
-            mirrored = np.linalg.det(m[:3, :3]) < 0
-            ctx.front_face = "cw" if mirrored else "ccw"
             cull = gpu.closed if options.cull == "auto" else options.cull
+            prog = self.shaders.program(replace(key, two_sided=not cull))
+            if id(prog) not in prepared:  # the frame's uniforms, once per program used
+                for name, value in frame:
+                    put(prog, name, value)
+                prepared.add(id(prog))
+            m = model.transform
+            normal_world = self._normal_matrix(m)
+            put(prog, "u_model", gl_bytes(m))
+            # (the view is rigid: its inverse transpose is itself)
+            put(prog, "u_normal_view", _mat3(view3 @ normal_world))
+            put(prog, "u_normal_world", _mat3(normal_world))
+            put(prog, "u_face_id_base", id_base)
+            mat = model.material
+            put(prog, "u_material_color", mat.color)
+            put(prog, "u_ka", mat.ka)
+            put(prog, "u_kd", mat.kd)
+            put(prog, "u_ks", mat.ks)
+            put(prog, "u_shininess", mat.shininess)
+            ctx.front_face = "cw" if np.linalg.det(m[:3, :3]) < 0 else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
                 ctx.cull_face = "back"
@@ -311,8 +307,19 @@ class Renderer:
         if clear:
             target.resolve(outputs)
 
+    def _normal_matrix(self, model: np.ndarray) -> np.ndarray:
+        """Inverse transpose of a model matrix's 3x3 part, cached per transform."""
+        key = model.tobytes()
+        found = self._normal_cache.get(key)
+        if found is None:
+            if len(self._normal_cache) > 4096:
+                self._normal_cache.clear()
+            found = self._normal_cache[key] = np.linalg.inv(model[:3, :3]).T
+        return found
+
     @staticmethod
-    def _put_lights(put, lights, ambient, view: np.ndarray) -> None:
+    def _frame_uniforms(scene, camera, lights, view, proj, mode) -> list:
+        """The uniforms every program of one draw shares: matrices, lights, ambient."""
         pos = np.zeros((MAX_LIGHTS, 4), dtype="f4")
         color = np.zeros((MAX_LIGHTS, 3), dtype="f4")
         att = np.zeros((MAX_LIGHTS, 3), dtype="f4")
@@ -320,11 +327,15 @@ class Renderer:
             pos[i] = light.view_vector(view)
             color[i] = np.asarray(light.color) * light.intensity
             att[i] = light.attenuation if isinstance(light, PointLight) else (1, 0, 0)
-        put("u_light_count", len(lights))
-        put("u_light_pos_view", pos.tobytes())
-        put("u_light_color", color.tobytes())
-        put("u_light_attenuation", att.tobytes())
-        put("u_ambient", ambient)
+        out = [("u_view", gl_bytes(view)), ("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
+               ("u_light_pos_view", pos.tobytes()), ("u_light_color", color.tobytes()),
+               ("u_light_attenuation", att.tobytes()), ("u_ambient", scene.ambient)]
+        if mode is ShadingMode.DEPTH:
+            corners = box_corners(scene.bounds)
+            d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]
+            near, far = max(camera.near, d.min()), min(camera.far, d.max())
+            out.append(("u_depth_range", (float(near), float(max(far, near + 1e-6)))))
+        return out
 
     def _counted_draw(self, target, scene: Scene, camera: Camera, options) -> None:
         """Draw, counting the samples that pass the depth test: a render that covers no

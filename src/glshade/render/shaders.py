@@ -14,6 +14,7 @@ from pathlib import Path
 from ..errors import ShaderError
 from ..modes import ShadingMode
 from .base import GLResource
+from .programs import ProgramKey
 
 __all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS"]
 
@@ -120,17 +121,18 @@ class ShaderLibrary(GLResource):
         super().__init__(context)
         self._programs: dict[tuple, object] = {}
 
-    def program(self, mode: ShadingMode, aux: bool = True):
-        """The program of ``mode``; with ``aux=False`` the variant that writes colour only
-        (no normal, polygon id or depth outputs, so no id lookup per pixel)."""
+    def program(self, mode, aux: bool = True):
+        """The program of a :class:`ProgramKey`, compiled on first use; or, given a mode, its
+        general variant (one point light, two-sided; ``aux=False``: colour only, no normal,
+        polygon id or depth outputs, so no id lookup per pixel)."""
         self._check()
-        mode = ShadingMode.parse(mode)
-        key = (mode, bool(aux))
-        if key not in self._programs:
-            vert, frag = PROGRAMS[mode]
-            self._programs[key] = self.compile(vert, frag,
-                                               defines=("GLSHADE_AUX_OUTPUTS",) if aux else ())
-        return self._programs[key]
+        key = mode if isinstance(mode, ProgramKey) else \
+            ProgramKey(ShadingMode.parse(mode), aux=bool(aux))
+        program = self._programs.get(key)
+        if program is None:
+            vert, frag = PROGRAMS[key.mode]
+            program = self._programs[key] = self.compile(vert, frag, defines=key.defines())
+        return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,
                 defines: tuple[str, ...] = ()):

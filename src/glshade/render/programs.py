@@ -1,0 +1,74 @@
+"""Specialised programs: what a draw needs is compiled into its program as ``#define``s --
+the number and kinds of lights, sRGB encoding, an orthographic view, two-sided lighting,
+auxiliary outputs -- so no shader pays at every pixel for a branch on a uniform (which a
+software rasterizer evaluates on both sides). Programs are compiled lazily and cached by
+:class:`ProgramKey`; uniforms are written only when their value changed."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..modes import ShadingMode
+from ..scene.lights import DirectionalLight
+
+__all__ = ["ProgramKey", "light_kind", "UniformWriter"]
+
+
+def light_kind(light) -> str:
+    """The GLSL kind of a light: DIRECTIONAL, POINT, or ATTENUATED (a point light whose
+    intensity falls off with distance)."""
+    if isinstance(light, DirectionalLight):
+        return "DIRECTIONAL"
+    return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
+
+
+@dataclass(frozen=True)
+class ProgramKey:
+    """Everything that selects a compiled program variant."""
+
+    mode: ShadingMode
+    aux: bool = False
+    lights: tuple = ("POINT",)
+    srgb: bool = False
+    orthographic: bool = False
+    two_sided: bool = True
+
+    def defines(self) -> tuple[str, ...]:
+        flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("SRGB", self.srgb),
+                 ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided))
+        out = [name for name, on in flags if on]
+        out.append(f"LIGHT_COUNT {len(self.lights)}")
+        out += [f"LIGHT_KIND_{i} {kind}" for i, kind in enumerate(self.lights)]
+        return tuple(out)
+
+
+class UniformWriter:
+    """Writes uniforms, skipping any whose value is the one last written to that program
+    (a camera move changes a few matrices; materials and lights mostly stay)."""
+
+    def __init__(self):
+        self._last: dict[tuple[int, str], object] = {}
+
+    def put(self, prog, name: str, value) -> None:
+        if name not in prog:
+            return  # optimised away in this variant
+        key = (id(prog), name)
+        member = prog[name]
+        if isinstance(value, np.ndarray):
+            value = value.tobytes()
+        if isinstance(value, bytes):
+            # an array the program uses only in part (2 of 8 lights) is shortened to it
+            value = value[:member.array_length * member.dimension * 4]
+        if self._last.get(key) == value:
+            return
+        if isinstance(value, bytes):
+            member.write(value)
+        else:
+            member.value = value
+        self._last[key] = value
+
+    def forget(self) -> None:
+        """Drop what was remembered (programs were released; their ids may be reused)."""
+        self._last.clear()

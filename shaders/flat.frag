@@ -7,12 +7,18 @@ flat in vec3 v_color_front;
 #ifdef TWO_SIDED
 flat in vec3 v_color_back;
 #endif
+#ifdef WORLD_NORMALS
 flat in vec3 v_face_normal_world;
+#endif
 in vec3 v_position_view;
 
 void main() {
     vec3 n_view = vec3(0.0);  // (lit per polygon in the vertex stage)
+#ifdef WORLD_NORMALS
     vec3 n_world = normalize(v_face_normal_world);
+#else
+    vec3 n_world = vec3(0.0, 0.0, 1.0);  // (not written: no normal output)
+#endif
     face_viewer(n_view, n_world);
 #ifdef TWO_SIDED
     vec3 color = gl_FrontFacing ? v_color_front : v_color_back;

@@ -15,7 +15,9 @@ flat out vec3 v_color_front;
 #ifdef TWO_SIDED
 flat out vec3 v_color_back;
 #endif
+#ifdef WORLD_NORMALS
 flat out vec3 v_face_normal_world;
+#endif
 out vec3 v_position_view;
 
 void main() {
@@ -28,6 +30,8 @@ void main() {
 #ifdef TWO_SIDED
     v_color_back = light_intensity(c, -n, v);
 #endif
+#ifdef WORLD_NORMALS
     v_face_normal_world = u_normal_world * in_face_normal;
+#endif
     gl_Position = u_proj * p_view;
 }

@@ -8,11 +8,17 @@ in vec3 v_color_front;
 in vec3 v_color_back;
 #endif
 in vec3 v_position_view;
+#ifdef WORLD_NORMALS
 in vec3 v_normal_world;
+#endif
 
 void main() {
     vec3 n_view = vec3(0.0);  // (lighting was done per vertex)
+#ifdef WORLD_NORMALS
     vec3 n_world = v_normal_world;
+#else
+    vec3 n_world = vec3(0.0, 0.0, 1.0);  // (not written: no normal output)
+#endif
     face_viewer(n_view, n_world);
 #ifdef TWO_SIDED
     vec3 color = gl_FrontFacing ? v_color_front : v_color_back;

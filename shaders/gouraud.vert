@@ -14,7 +14,9 @@ out vec3 v_color_front;
 out vec3 v_color_back;
 #endif
 out vec3 v_position_view;
+#ifdef WORLD_NORMALS
 out vec3 v_normal_world;
+#endif
 
 void main() {
     vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
@@ -25,6 +27,8 @@ void main() {
     v_color_back = light_intensity(p_view.xyz, -n, v);
 #endif
     v_position_view = p_view.xyz;
+#ifdef WORLD_NORMALS
     v_normal_world = u_normal_world * in_normal;
+#endif
     gl_Position = u_proj * p_view;
 }

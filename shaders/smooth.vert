@@ -8,12 +8,16 @@ in vec3 in_normal;
 
 out vec3 v_position_view;
 out vec3 v_normal_view;
+#ifdef WORLD_NORMALS
 out vec3 v_normal_world;
+#endif
 
 void main() {
     vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
     v_position_view = p_view.xyz;
     v_normal_view = u_normal_view * in_normal;
+#ifdef WORLD_NORMALS
     v_normal_world = u_normal_world * in_normal;
+#endif
     gl_Position = u_proj * p_view;
 }

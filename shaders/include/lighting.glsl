@@ -19,14 +19,13 @@
 #define LIGHT_KIND_0 POINT
 #endif
 
-uniform vec3 u_ambient;                      // Ia (colour times intensity)
-uniform vec3 u_material_color;
-uniform float u_ka;
-uniform float u_kd;
-uniform float u_ks;
-uniform float u_shininess;                   // n
-uniform vec4 u_light_pos_view[MAX_LIGHTS];   // point: position; directional: unit vector TO it
-uniform vec3 u_light_color[MAX_LIGHTS];      // Ip (colour times intensity)
+// The products of the formula that are constant over a draw are made once per model on the
+// CPU (same formula, fewer multiplies per pixel): Ia ka C, Ip kd C and Ip ks per light.
+uniform vec3 u_ambient_term;                   // Ia ka C
+uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C
+uniform vec3 u_light_specular[MAX_LIGHTS];     // Ip ks
+uniform float u_shininess;                     // n
+uniform vec4 u_light_pos_view[MAX_LIGHTS];     // point: position; directional: unit vector TO it
 uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
 
 // Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
@@ -38,8 +37,8 @@ vec3 view_dir(vec3 p_view) {
 #endif
 }
 
-// One light's diffuse and specular term; `kind` is a constant, so each call compiles to
-// the code of its kind alone.
+// One light's diffuse and specular term, k (kd max(L.N, 0) Ip C + ks max(R.V, 0)^n Ip);
+// `kind` is a constant, so each call compiles to the code of its kind alone.
 vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 l = u_light_pos_view[i].xyz;
     float k = 1.0;
@@ -53,17 +52,19 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
         }
     }
     float ln = dot(l, n_view);
-    if (ln <= 0.0) {
-        return vec3(0.0);  // light behind the surface: no diffuse, no specular
-    }
     vec3 r = 2.0 * ln * n_view - l;
     float rv = max(dot(r, v_view), 0.0);
     float spec = rv > 0.0 ? pow(rv, u_shininess) : 0.0;
-    return k * u_light_color[i] * (u_kd * ln * u_material_color + u_ks * spec);
+    vec3 term = ln * u_light_diffuse[i] + spec * u_light_specular[i];
+    if (kind == ATTENUATED) {
+        term *= k;
+    }
+    // (no branch: a light behind the surface, L.N <= 0, contributes nothing at all)
+    return ln > 0.0 ? term : vec3(0.0);
 }
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
-    vec3 color = u_ambient * u_ka * u_material_color;
+    vec3 color = u_ambient_term;
 #if LIGHT_COUNT > 0
     color += light_term(0, LIGHT_KIND_0, p_view, n_view, v_view);
 #endif

@@ -13,7 +13,7 @@ import numpy as np
 from ..modes import ShadingMode
 from ..scene.lights import DirectionalLight
 
-__all__ = ["ProgramKey", "light_kind", "UniformWriter"]
+__all__ = ["ProgramKey", "light_kind", "UniformWriter", "material_uniforms"]
 
 
 def light_kind(light) -> str:
@@ -22,6 +22,24 @@ def light_kind(light) -> str:
     if isinstance(light, DirectionalLight):
         return "DIRECTIONAL"
     return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
+
+
+def material_uniforms(material, lights, ambient) -> list:
+    """The lighting formula's per-draw products for one material: Ia ka C, and per light
+    Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms)."""
+    from ..scene.lights import MAX_LIGHTS
+
+    base = np.asarray(material.color, np.float64)
+    diffuse = np.zeros((MAX_LIGHTS, 3), "f4")
+    specular = np.zeros((MAX_LIGHTS, 3), "f4")
+    for i, light in enumerate(lights):
+        ip = np.asarray(light.color, np.float64) * light.intensity
+        diffuse[i] = ip * material.kd * base
+        specular[i] = ip * material.ks
+    ambient_term = np.asarray(ambient, np.float64) * material.ka * base
+    return [("u_ambient_term", tuple(float(x) for x in ambient_term)),
+            ("u_light_diffuse", diffuse.tobytes()), ("u_light_specular", specular.tobytes()),
+            ("u_shininess", float(material.shininess))]
 
 
 @dataclass(frozen=True)
@@ -36,7 +54,8 @@ class ProgramKey:
     two_sided: bool = True
 
     def defines(self) -> tuple[str, ...]:
-        flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("SRGB", self.srgb),
+        world = self.aux or self.mode is ShadingMode.NORMALS
+        flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided))
         out = [name for name, on in flags if on]
         out.append(f"LIGHT_COUNT {len(self.lights)}")

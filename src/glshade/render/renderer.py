@@ -27,7 +27,7 @@ from ..options import DrawOptions
 from ..scene import MAX_LIGHTS, Camera, PointLight, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
-from .programs import ProgramKey, UniformWriter, light_kind
+from .programs import ProgramKey, UniformWriter, light_kind, material_uniforms
 from .shaders import ShaderLibrary
 from .target import OffscreenTarget
 
@@ -284,12 +284,8 @@ class Renderer:
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
             put(prog, "u_normal_world", _mat3(normal_world))
             put(prog, "u_face_id_base", id_base)
-            mat = model.material
-            put(prog, "u_material_color", mat.color)
-            put(prog, "u_ka", mat.ka)
-            put(prog, "u_kd", mat.kd)
-            put(prog, "u_ks", mat.ks)
-            put(prog, "u_shininess", mat.shininess)
+            for name, value in material_uniforms(model.material, lights, scene.ambient):
+                put(prog, name, value)
             ctx.front_face = "cw" if np.linalg.det(m[:3, :3]) < 0 else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
@@ -321,15 +317,12 @@ class Renderer:
     def _frame_uniforms(scene, camera, lights, view, proj, mode) -> list:
         """The uniforms every program of one draw shares: matrices, lights, ambient."""
         pos = np.zeros((MAX_LIGHTS, 4), dtype="f4")
-        color = np.zeros((MAX_LIGHTS, 3), dtype="f4")
         att = np.zeros((MAX_LIGHTS, 3), dtype="f4")
         for i, light in enumerate(lights):
             pos[i] = light.view_vector(view)
-            color[i] = np.asarray(light.color) * light.intensity
             att[i] = light.attenuation if isinstance(light, PointLight) else (1, 0, 0)
         out = [("u_view", gl_bytes(view)), ("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
-               ("u_light_pos_view", pos.tobytes()), ("u_light_color", color.tobytes()),
-               ("u_light_attenuation", att.tobytes()), ("u_ambient", scene.ambient)]
+               ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)
             d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]

@@ -28,6 +28,7 @@ class OffscreenTarget(GLResource):
         super().__init__(context)
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.color_dtype = color_dtype
+        self._read_buffers: dict[tuple, np.ndarray] = {}
         ctx = context.ctx
         try:
             def buffers(samples):
@@ -83,11 +84,17 @@ class OffscreenTarget(GLResource):
                 ctx.copy_framebuffer(self.fbo_read_color, self.fbo_draw_color)
 
     def _read(self, attachment: int, components: int, dtype: str) -> np.ndarray:
+        """The attachment's pixels, row 0 at the top: a view of a buffer this target keeps
+        and reuses (no fresh megabytes, and their page faults, per frame); callers copy."""
         fbo = self.fbo_read_all if attachment else self.fbo_read_color
-        data = fbo.read(components=components, attachment=attachment, dtype=dtype)
-        a = np.frombuffer(data, dtype=np.dtype(dtype.replace("f1", "u1")))
-        a = a.reshape(self.height, self.width, components)
-        return a[::-1]  # GL's row 0 is the bottom; ours is the top
+        np_dtype = np.dtype(dtype.replace("f1", "u1"))
+        shape = (self.height, self.width, components)
+        key = (attachment, components, dtype)
+        buffer = self._read_buffers.get(key)
+        if buffer is None:
+            buffer = self._read_buffers[key] = np.zeros(shape, np_dtype)
+        fbo.read_into(buffer, components=components, attachment=attachment, dtype=dtype)
+        return buffer[::-1]  # GL's row 0 is the bottom; ours is the top
 
     def read_color(self) -> np.ndarray:
         """``(H, W, 4)``: uint8, or float32 for a float colour target."""
@@ -98,6 +105,7 @@ class OffscreenTarget(GLResource):
 
     def read_face_id(self) -> np.ndarray:
         return self._read(2, 1, "i4")[..., 0] - 1  # stored as id + 1; background -> -1
+        # (the subtraction makes the copy)
 
     def read_depth(self) -> np.ndarray:
         bits = np.ascontiguousarray(self._read(3, 1, "u4")[..., 0])

@@ -16,6 +16,8 @@ Sandwiching ``v -> q v q*`` with ``q(N, phi) = cos(phi/2) O + sin(phi/2) N`` rot
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -233,6 +235,8 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
         raise GeometryError(f"matrices must have shape (..., 3, 3), got {r.shape}")
     if convention == "row":
         r = np.swapaxes(r, -1, -2)
+    if r.shape == (3, 3):
+        return _from_one_matrix(r.tolist())
     d0, d1, d2 = r[..., 0, 0], r[..., 1, 1], r[..., 2, 2]
     trace = d0 + d1 + d2
     pick = np.argmax(np.stack([trace, d0, d1, d2], -1), axis=-1)
@@ -256,6 +260,29 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
         ], -2)
     q = np.take_along_axis(cand, pick[..., None, None], axis=-2)[..., 0, :]
     return canonical(q / np.linalg.norm(q, axis=-1, keepdims=True))
+
+
+def _from_one_matrix(m) -> Array:
+    """Shepperd's method for one matrix (nested lists) in plain floats: a camera is made
+    every frame, and numpy's per-call overhead would dwarf the arithmetic."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = m
+    trace = r00 + r11 + r22
+    big = max(trace, r00, r11, r22)
+    if big == trace:
+        s = math.sqrt(max(1 + trace, 0.0)) * 2
+        q = ((r21 - r12) / s, (r02 - r20) / s, (r10 - r01) / s, s / 4)
+    elif big == r00:
+        s = math.sqrt(max(1 + r00 - r11 - r22, 0.0)) * 2
+        q = (s / 4, (r01 + r10) / s, (r02 + r20) / s, (r21 - r12) / s)
+    elif big == r11:
+        s = math.sqrt(max(1 - r00 + r11 - r22, 0.0)) * 2
+        q = ((r01 + r10) / s, s / 4, (r12 + r21) / s, (r02 - r20) / s)
+    else:
+        s = math.sqrt(max(1 - r00 - r11 + r22, 0.0)) * 2
+        q = ((r02 + r20) / s, (r12 + r21) / s, s / 4, (r10 - r01) / s)
+    n = math.sqrt(sum(c * c for c in q))
+    sign = -1.0 if q[3] < 0 else 1.0
+    return np.array([sign * c / n for c in q])
 
 
 def angle_between(p: ArrayLike, q: ArrayLike) -> Array:

@@ -12,6 +12,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pyrr
 from numpy.typing import ArrayLike, NDArray
@@ -24,18 +26,26 @@ __all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_t
 Array = NDArray[np.float64]
 
 
+def _cross(a: Array, b: Array) -> Array:
+    """The cross product of two 3-vectors (np.cross costs more in overhead than in work)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Array:
     """World-to-view matrix ``(4, 4)`` of a camera at ``eye`` looking at ``target``."""
     eye, target, up = (np.asarray(a, dtype=np.float64) for a in (eye, target, up))
     forward = target - eye
-    if np.linalg.norm(forward) == 0:
+    length = math.sqrt(float(forward @ forward))
+    if length == 0:
         raise GeometryError("look_at: eye and target are the same point")
-    f = forward / np.linalg.norm(forward)
-    s = np.cross(f, up)
-    if np.linalg.norm(s) < 1e-12:
+    f = forward / length
+    s = _cross(f, up)
+    side = math.sqrt(float(s @ s))
+    if side < 1e-12:
         raise GeometryError(f"look_at: up {up.tolist()} is parallel to the view direction")
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
+    s /= side
+    u = _cross(s, f)
     m = np.eye(4)
     m[0, :3], m[1, :3], m[2, :3] = s, u, -f
     m[:3, 3] = -m[:3, :3] @ eye

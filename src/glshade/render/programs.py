@@ -69,9 +69,13 @@ class UniformWriter:
 
     def __init__(self):
         self._last: dict[tuple[int, str], object] = {}
+        self._names: dict[int, frozenset] = {}
 
     def put(self, prog, name: str, value) -> None:
-        if name not in prog:
+        names = self._names.get(id(prog))
+        if names is None:  # (moderngl's `in` walks every member: look them up once)
+            names = self._names[id(prog)] = frozenset(prog)
+        if name not in names:
             return  # optimised away in this variant
         key = (id(prog), name)
         member = prog[name]
@@ -91,3 +95,4 @@ class UniformWriter:
     def forget(self) -> None:
         """Drop what was remembered (programs were released; their ids may be reused)."""
         self._last.clear()
+        self._names.clear()

@@ -1,8 +1,12 @@
 """Rendering speed: frames per second (draw + RGBA read-back) at 512x512 and 1024x1024 for
-about 1k, 100k and 1M triangles, per shading mode, against the floor -- a bare moderngl
-program drawing the same buffers with the same Phong shader -- and against pyrender's
-OffscreenRenderer when it is installed. All series run interleaved in one process (the
-machine is noisy) and the table shows medians and ratios.
+about 1k, 100k and 1M triangles, per shading mode, against two floors drawing the same
+buffers with moderngl directly: "bare" runs glshade's own specialised Phong program with no
+glshade code between frames (what the Python side costs), "textbook" a hand-written program
+with the textbook per-fragment Phong formula and one directional light (what glshade's
+shaders cost). pyrender's OffscreenRenderer runs too when it is installed. All series run
+interleaved in one process (the machine is noisy); the table shows medians and ratios, and
+the per-frame overhead of glshade's Python at 1k triangles (an 8x8 image, so the GPU's share
+is nil).
 
 Run: ``.venv/bin/python benchmarks/render_bench.py [--rounds N] [--sizes 512,1024]``.
 """
@@ -26,8 +30,9 @@ from glshade.scene import default_camera  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.geometry.transforms import gl_bytes  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
-from glshade.render.shaders import assemble  # noqa: E402
-from glshade.scene import Material, PointLight, Scene  # noqa: E402
+from glshade.modes import ShadingMode  # noqa: E402
+from glshade.render.programs import ProgramKey  # noqa: E402
+from glshade.scene import DirectionalLight, Material, Scene  # noqa: E402
 
 SIZES_TRIANGLES = {"1k": (25, 20), "100k": (250, 200), "1M": (1000, 500)}
 
@@ -38,57 +43,97 @@ def triangle_torus(n, m) -> Mesh:
     return Mesh(t.vertices, tri)
 
 
-class BareFloor:
-    """The same Phong shader and buffers drawn with moderngl directly: no glshade code
-    between the frames."""
+TEXTBOOK_VERT = """
+#version 330 core
+uniform mat4 u_mvp;
+in vec3 in_pos;
+in vec3 in_norm;
+out vec3 v_pos;
+out vec3 v_norm;
+void main() {
+    v_pos = in_pos;
+    v_norm = in_norm;
+    gl_Position = u_mvp * vec4(in_pos, 1.0);
+}
+"""
+TEXTBOOK_FRAG = """
+#version 330 core
+uniform vec3 u_eye;
+uniform vec3 u_light_dir;
+uniform vec3 u_color;
+in vec3 v_pos;
+in vec3 v_norm;
+out vec4 f_color;
+void main() {
+    vec3 n = normalize(v_norm);
+    vec3 v = normalize(u_eye - v_pos);
+    float ln = dot(n, u_light_dir);
+    vec3 r = 2.0 * ln * n - u_light_dir;
+    float spec = ln > 0.0 ? pow(max(dot(r, v), 0.0), 32.0) : 0.0;
+    f_color = vec4(0.2 * u_color + 0.7 * max(ln, 0.0) * u_color + 0.3 * spec, 1.0);
+}
+"""
 
-    def __init__(self, renderer: Renderer, scene: Scene, camera: Camera):
+
+class Floor:
+    """The same buffers drawn by moderngl directly into an RGBA8 + depth framebuffer, read
+    back each frame: with glshade's own (specialised) Phong program ("bare": its uniforms
+    left as a glshade draw set them), or with the textbook program."""
+
+    def __init__(self, renderer: Renderer, scene: Scene, camera: Camera, textbook: bool):
         ctx = renderer.ctx
         self.ctx = ctx
-        vs, _ = assemble("smooth.vert")
-        fs, _ = assemble("phong.frag")  # the colour-only variant, as Renderer.render uses
-        self.prog = ctx.program(vertex_shader=vs, fragment_shader=fs)
         gpu = renderer._gpu_mesh(scene.models[0].mesh)
-        self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", "in_position", "in_normal")],
-                                    gpu.ibo, 4)
+        if textbook:
+            self.prog = ctx.program(vertex_shader=TEXTBOOK_VERT, fragment_shader=TEXTBOOK_FRAG)
+            size = (renderer.width, renderer.height)
+            mvp = camera.projection_matrix(size[0] / size[1]) @ camera.view_matrix()
+            self.prog["u_mvp"].write(gl_bytes(mvp))
+            self.prog["u_eye"].value = tuple(camera.position)
+            self.prog["u_light_dir"].value = tuple(-np.asarray(scene.lights[0].direction))
+            self.prog["u_color"].value = (0.8, 0.8, 0.8)
+            self.owned = [self.prog]
+            names = ("in_pos", "in_norm")
+        else:
+            renderer.render(scene, camera, "phong", cull=False)  # sets the program's uniforms
+            key = ProgramKey(ShadingMode.PHONG, lights=("DIRECTIONAL",), two_sided=True)
+            self.prog = renderer.shaders.program(key)
+            self.owned = []
+            names = ("in_position", "in_normal")
+        self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", *names)], gpu.ibo, 4)
         size = (renderer.width, renderer.height)
         self.fbo = ctx.framebuffer([ctx.renderbuffer(size, 4)], ctx.depth_renderbuffer(size))
-        view = camera.view_matrix()
-        p = self.prog
-        p["u_model"].write(gl_bytes(np.eye(4)))
-        p["u_view"].write(gl_bytes(view))
-        p["u_proj"].write(gl_bytes(camera.projection_matrix(size[0] / size[1])))
-        # the normal matrix (inverse transpose of the rigid view: the rotation itself), handed
-        # to GLSL's column-major mat3 transposed, as the renderer does
-        p["u_normal_view"].write(np.ascontiguousarray(view[:3, :3].T.astype("f4")).tobytes())
-        p["u_light_count"].value = 1
-        pos = np.zeros((8, 4), "f4")
-        pos[0] = view @ np.append(scene.lights[0].position, 1)
-        p["u_light_pos_view"].write(pos.tobytes())
-        col = np.zeros((8, 3), "f4")
-        col[0] = 1
-        p["u_light_color"].write(col.tobytes())
-        att = np.zeros((8, 3), "f4")
-        att[:, 0] = 1
-        p["u_light_attenuation"].write(att.tobytes())
-        p["u_ambient"].value = (1, 1, 1)
-        for k, v in (("u_ka", 0.2), ("u_kd", 0.7), ("u_ks", 0.3), ("u_shininess", 32.0)):
-            p[k].value = v
-        p["u_material_color"].value = (0.8, 0.8, 0.8)
 
     def frame(self):
         ctx = self.ctx
         self.fbo.use()
         self.fbo.clear(0, 0, 0, 1, depth=1.0)
-        ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        self.vao.render()
-        data = self.fbo.read(components=4)
+        ctx.enable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.CULL_FACE)
-        return data
+        self.vao.render()
+        return self.fbo.read(components=4)
 
     def release(self):
-        for o in (self.vao, self.prog, self.fbo):
+        for o in (self.vao, self.fbo, *self.owned):
             o.release()
+
+
+def python_overhead_ms(backend: str) -> float:
+    """Median time of one render of 1k triangles at 8x8 pixels: all but nothing of it is
+    the GPU's, the rest is glshade's Python per frame (uniforms, camera, read-back)."""
+    mesh = triangle_torus(*SIZES_TRIANGLES["1k"])
+    scene = Scene()
+    scene.add(mesh, Material())
+    scene.add_light(DirectionalLight((-1.0, -1.0, -1.0)))
+    with Renderer(8, 8, samples=0, backend=backend) as r:
+        base = default_camera(mesh.bounds)
+        times = []
+        for i in range(300):
+            cam = base.orbit([0.0, np.sin(i * 1e-3), 0.0, np.cos(i * 1e-3)])
+            t = time.perf_counter()
+            r.render(scene, cam, "phong")
+            times.append(time.perf_counter() - t)
+    return statistics.median(times[50:]) * 1000
 
 
 def pyrender_series(mesh: Mesh, camera: Camera, size: int):
@@ -143,13 +188,17 @@ def main() -> None:
             scene = Scene()
             scene.add(mesh, Material())
             camera = default_camera(mesh.bounds)
-            scene.add_light(PointLight(tuple(camera.position + [2, 3, 0])))
+            scene.add_light(DirectionalLight((-1.0, -1.0, -1.0)))
             with r.ctx:
-                floor = BareFloor(r, scene, camera)
+                bare = Floor(r, scene, camera, textbook=False)
+                textbook = Floor(r, scene, camera, textbook=True)
             series = {m: current(lambda m=m, r=r, scene=scene, camera=camera:
                                  r.render(scene, camera, m))
                       for m in ("flat", "gouraud", "phong")}
-            series["floor"] = current(floor.frame)
+            series["phong nocull"] = current(lambda r=r, scene=scene, camera=camera:
+                                             r.render(scene, camera, "phong", cull=False))
+            series["bare"] = current(bare.frame)
+            series["textbook"] = current(textbook.frame)
             peer = pyrender_series(mesh, camera, size)
             if peer:
                 series["pyrender"] = peer[0]
@@ -169,10 +218,14 @@ def main() -> None:
                     fps[name].append(counts[name] / (time.perf_counter() - t))
             med = {k: statistics.median(v) for k, v in fps.items()}
             with r.ctx:
-                floor.release()
+                bare.release()
+                textbook.release()
             row = [f"{size}x{size}", f"{mesh.n_faces:,}"]
-            row += [f"{med[m]:.1f}" for m in ("flat", "gouraud", "phong", "floor")]
-            row += [f"{med['phong'] / med['floor']:.2f}"]
+            row += [f"{med[m]:.1f}" for m in ("flat", "gouraud", "phong", "phong nocull",
+                                              "bare", "textbook")]
+            row += [f"{med['phong nocull'] / med['bare']:.2f}",
+                    f"{med['phong nocull'] / med['textbook']:.2f}",
+                    f"{med['phong'] / med['textbook']:.2f}"]
             row += [f"{med['pyrender']:.1f} ({med['phong'] / med['pyrender']:.1f}x)"
                     if "pyrender" in med else "not installed"]
             rows.append(row)
@@ -185,8 +238,13 @@ def main() -> None:
     print(file=sys.stderr)
     print(f"frames per second with RGBA read-back, no MSAA, median of {args.rounds} "
           f"interleaved rounds; {info['renderer']} via {info['backend']}")
-    print(table(rows, ("image", "triangles", "flat", "gouraud", "phong", "bare moderngl",
-                       "phong / bare", "pyrender (phong / it)")))
+    print(table(rows, ("image", "triangles", "flat", "gouraud", "phong", "phong nocull",
+                       "bare", "textbook", "nocull/bare", "nocull/textbook", "phong/textbook",
+                       "pyrender (phong / it)")))
+    print("(phong culls the hidden half of these closed meshes; nocull/... compares the same "
+          "work)")
+    print(f"glshade's Python per frame (1k triangles, 8x8): {python_overhead_ms(args.backend):.3f}"
+          " ms")
 
 
 if __name__ == "__main__":

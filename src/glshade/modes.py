@@ -54,4 +54,4 @@ class Outputs(enum.Flag):
     @property
     def auxiliary(self) -> bool:
         """Whether anything beyond colour is asked for."""
-        return bool(self & (Outputs.DEPTH | Outputs.NORMAL | Outputs.FACE_ID))
+        return bool(self.value & ~Outputs.COLOR.value)

@@ -207,6 +207,17 @@ def to_matrix(q: ArrayLike, convention: str = "column") -> Array:
     """
     if convention not in ("column", "row"):
         raise GeometryError(f"convention must be 'column' or 'row', got {convention!r}")
+    a = np.asarray(q, dtype=np.float64)
+    if a.shape == (4,):  # one quaternion (a camera's, every frame): plain floats
+        x, y, z, w = a.tolist()
+        n = math.sqrt(x * x + y * y + z * z + w * w)
+        if not 0 < n < math.inf:
+            raise GeometryError("cannot normalize a zero or non-finite quaternion")
+        x, y, z, w = x / n, y / n, z / n, w / n
+        r = np.array([[w * w + x * x - y * y - z * z, 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                      [2 * (x * y + z * w), w * w - x * x + y * y - z * z, 2 * (y * z - x * w)],
+                      [2 * (x * z - y * w), 2 * (y * z + x * w), w * w - x * x - y * y + z * z]])
+        return r if convention == "column" else r.T
     x, y, z, w = np.moveaxis(normalize(q), -1, 0)
     r = np.empty(x.shape + (3, 3))
     r[..., 0, 0] = w * w + x * x - y * y - z * z

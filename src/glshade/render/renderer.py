@@ -150,6 +150,7 @@ class Renderer:
         self._query = None
         self._uniforms = UniformWriter()
         self._normal_cache: dict[bytes, np.ndarray] = {}
+        self._material_cache: dict[tuple, list] = {}
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -284,7 +285,7 @@ class Renderer:
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
             put(prog, "u_normal_world", _mat3(normal_world))
             put(prog, "u_face_id_base", id_base)
-            for name, value in material_uniforms(model.material, lights, scene.ambient):
+            for name, value in self._material_uniforms(model.material, lights, scene.ambient):
                 put(prog, name, value)
             ctx.front_face = "cw" if np.linalg.det(m[:3, :3]) < 0 else "ccw"
             if cull:
@@ -302,6 +303,16 @@ class Renderer:
             ctx.wireframe = False
         if clear:
             target.resolve(outputs)
+
+    def _material_uniforms(self, material, lights, ambient) -> list:
+        """:func:`material_uniforms`, cached per material, lights and ambient."""
+        key = (material, tuple(lights), ambient)
+        found = self._material_cache.get(key)
+        if found is None:
+            if len(self._material_cache) > 1024:
+                self._material_cache.clear()
+            found = self._material_cache[key] = material_uniforms(material, lights, ambient)
+        return found
 
     def _normal_matrix(self, model: np.ndarray) -> np.ndarray:
         """Inverse transpose of a model matrix's 3x3 part, cached per transform."""
@@ -347,7 +358,9 @@ class Renderer:
         ``options``: DrawOptions or a shading mode's name; ``changes`` override single
         options (``mode="flat"``, ``depth_test=False``, ``cull=True``, ``srgb=True`` ...).
         """
-        options = DrawOptions.of(options, **changes).replace(outputs=Outputs.COLOR)
+        options = DrawOptions.of(options, **changes)
+        if options.outputs is not Outputs.COLOR:
+            options = options.replace(outputs=Outputs.COLOR)
         target = self._target("f1")
         self._counted_draw(target, scene, camera, options)
         return target.read_color()

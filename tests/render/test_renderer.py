@@ -359,3 +359,33 @@ def test_crease_keeps_a_cubes_faces_flat_under_smooth_shading(make_renderer):
     axis = np.abs(normals[30.0]).max(axis=1)
     np.testing.assert_allclose(axis, 1.0, atol=1e-5)
     assert np.abs(normals[None]).max(axis=1).min() < 0.9
+
+
+def test_specialised_programs_match_the_formula_for_every_light_kind(make_renderer):
+    """One program per light set, compiled once; each kind's term equals the oracle."""
+    from tests.oracle.raycast import shade_any
+
+    mat = Material(color=(0.6, 0.8, 0.4), ka=0.15, kd=0.6, ks=0.4, shininess=12)
+    lights = [PointLight((1.0, 0.5, 2.0), color=(1.0, 0.7, 0.5), attenuation=(1.0, 0.2, 0.1)),
+              PointLight((-0.5, 0.2, 1.5), intensity=0.5),
+              DirectionalLight((0.3, -0.2, -1.0), color=(0.2, 0.4, 1.0))]
+    r = make_renderer(16, 16)
+    scene = quad_scene(mat, lights)
+    from glshade.cpu.raycast import pixel_rays
+
+    origin, direction = pixel_rays(FRONT, 16, 16)
+    hit = origin[8, 8] + direction[8, 8] * (-origin[8, 8, 2] / direction[8, 8, 2])
+    specs = [("point", (1.0, 0.5, 2.0), (1.0, 0.7, 0.5), (1.0, 0.2, 0.1)),
+             ("point", (-0.5, 0.2, 1.5), (0.5, 0.5, 0.5), (1.0, 0.0, 0.0)),
+             ("directional", (0.3, -0.2, -1.0), (0.2, 0.4, 1.0))]
+    # flat: lit once at the polygon's centroid (the origin); phong: at the pixel's point
+    for mode, p in (("flat", np.zeros(3)), ("phong", hit)):
+        got = r.render_frame(scene, FRONT, mode, color_dtype="f4").color[8, 8, :3]
+        v = (EYE - p) / np.linalg.norm(EYE - p)
+        oracle = shade_any(p, np.array([0.0, 0, 1]), v, specs, mat)
+        np.testing.assert_allclose(got, oracle, atol=1e-5)
+    programs = len(r.shaders._programs)
+    for _ in range(3):  # a moving camera compiles nothing new
+        r.render(scene, FRONT.orbit([0, 0.1, 0, 0.995]), "phong")
+        r.render(scene, FRONT, "phong")
+    assert len(r.shaders._programs) == programs + 1  # phong without auxiliary outputs

@@ -5,8 +5,9 @@
 // for an attenuated point light, 1 otherwise. Ambient and diffuse multiply the material
 // colour; specular multiplies the light's colour. All vectors are unit length, in view space.
 //
-// Programs are specialised when compiled (the renderer's defines): LIGHT_COUNT lights whose
-// kinds are LIGHT_KIND_0 .. LIGHT_KIND_7 (DIRECTIONAL, POINT, ATTENUATED), and ORTHOGRAPHIC.
+// Programs are specialised when compiled (the renderer's defines): LIGHT_COUNT (1 to 8)
+// lights whose kinds are the list LIGHT_KINDS (each DIRECTIONAL, POINT or ATTENUATED), and
+// ORTHOGRAPHIC.
 // Each light's term is then straight-line code: no loop over uniform arrays, no branch on
 // a uniform that the software rasterizer would evaluate on both sides.
 
@@ -16,7 +17,7 @@
 #define ATTENUATED 2
 #ifndef LIGHT_COUNT
 #define LIGHT_COUNT 1
-#define LIGHT_KIND_0 POINT
+#define LIGHT_KINDS POINT
 #endif
 
 // The products of the formula that are constant over a draw are made once per model on the
@@ -65,29 +66,10 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 color = u_ambient_term;
-#if LIGHT_COUNT > 0
-    color += light_term(0, LIGHT_KIND_0, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 1
-    color += light_term(1, LIGHT_KIND_1, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 2
-    color += light_term(2, LIGHT_KIND_2, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 3
-    color += light_term(3, LIGHT_KIND_3, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 4
-    color += light_term(4, LIGHT_KIND_4, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 5
-    color += light_term(5, LIGHT_KIND_5, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 6
-    color += light_term(6, LIGHT_KIND_6, p_view, n_view, v_view);
-#endif
-#if LIGHT_COUNT > 7
-    color += light_term(7, LIGHT_KIND_7, p_view, n_view, v_view);
-#endif
+    // a constant trip count over constant kinds: unrolled, each term its kind's code alone
+    const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        color += light_term(i, kinds[i], p_view, n_view, v_view);
+    }
     return color;
 }

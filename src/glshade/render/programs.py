@@ -59,7 +59,7 @@ class ProgramKey:
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided))
         out = [name for name, on in flags if on]
         out.append(f"LIGHT_COUNT {len(self.lights)}")
-        out += [f"LIGHT_KIND_{i} {kind}" for i, kind in enumerate(self.lights)]
+        out.append(f"LIGHT_KINDS {', '.join(self.lights)}")
         return tuple(out)
 
 

@@ -51,6 +51,8 @@ class Frame:
     face_id: np.ndarray | None = None
 
 
+_FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
+
 #: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
 #: (16), polygon id (4), view depth (4) and the z-buffer (4)
 _BYTES_PER_SAMPLE = 44
@@ -248,6 +250,9 @@ class Renderer:
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
         proj = camera.projection_matrix(vw / vh)
+        flip_rows = getattr(target, "rows_top_down", False)
+        if flip_rows:  # image row 0 first in memory; this mirrors the winding on screen
+            proj = _FLIP_Y @ proj
         if clear:
             target.begin(scene.background, outputs)
         else:
@@ -287,7 +292,8 @@ class Renderer:
             put(prog, "u_face_id_base", id_base)
             for name, value in self._material_uniforms(model.material, lights, scene.ambient):
                 put(prog, name, value)
-            ctx.front_face = "cw" if np.linalg.det(m[:3, :3]) < 0 else "ccw"
+            mirrored = (np.linalg.det(m[:3, :3]) < 0) != flip_rows
+            ctx.front_face = "cw" if mirrored else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
                 ctx.cull_face = "back"

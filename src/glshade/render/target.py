@@ -21,6 +21,10 @@ __all__ = ["OffscreenTarget", "WindowTarget"]
 class OffscreenTarget(GLResource):
     """One set of framebuffers of a given size; ``release()`` frees them."""
 
+    #: drawn with y flipped, so that GL's first row in memory is the image's top row and a
+    #: read needs no flip (and no second copy of the pixels)
+    rows_top_down = True
+
     def __init__(self, context, width: int, height: int, samples: int = 0,
                  color_dtype: str = "f1"):
         if width < 1 or height < 1:
@@ -83,22 +87,27 @@ class OffscreenTarget(GLResource):
             else:
                 ctx.copy_framebuffer(self.fbo_read_color, self.fbo_draw_color)
 
-    def _read(self, attachment: int, components: int, dtype: str) -> np.ndarray:
-        """The attachment's pixels, row 0 at the top: a view of a buffer this target keeps
-        and reuses (no fresh megabytes, and their page faults, per frame); callers copy."""
+    def _read(self, attachment: int, components: int, dtype: str, fresh: bool = False):
+        """The attachment's pixels ``(H, W, components)``, row 0 at the top -- the renderer
+        draws offscreen targets upside down (``rows_top_down``), so GL's first row is the
+        image's top and no flip is needed. ``fresh``: into a new array for the caller;
+        else into a buffer this target keeps and reuses (for reads that copy anyway)."""
         fbo = self.fbo_read_all if attachment else self.fbo_read_color
         np_dtype = np.dtype(dtype.replace("f1", "u1"))
         shape = (self.height, self.width, components)
-        key = (attachment, components, dtype)
-        buffer = self._read_buffers.get(key)
-        if buffer is None:
-            buffer = self._read_buffers[key] = np.zeros(shape, np_dtype)
+        if fresh:
+            buffer = np.empty(shape, np_dtype)
+        else:
+            key = (attachment, components, dtype)
+            buffer = self._read_buffers.get(key)
+            if buffer is None:
+                buffer = self._read_buffers[key] = np.zeros(shape, np_dtype)
         fbo.read_into(buffer, components=components, attachment=attachment, dtype=dtype)
-        return buffer[::-1]  # GL's row 0 is the bottom; ours is the top
+        return buffer
 
     def read_color(self) -> np.ndarray:
         """``(H, W, 4)``: uint8, or float32 for a float colour target."""
-        return np.ascontiguousarray(self._read(0, 4, self.color_dtype))
+        return self._read(0, 4, self.color_dtype, fresh=True)
 
     def read_normal(self) -> np.ndarray:
         return np.ascontiguousarray(self._read(1, 4, "f4")[..., :3])
@@ -120,6 +129,8 @@ class OffscreenTarget(GLResource):
 class WindowTarget:
     """A window's default framebuffer, in the shape the Renderer draws into: colour only
     (the window has no id or normal buffers)."""
+
+    rows_top_down = False  # a window shows GL's first row at the bottom
 
     def __init__(self, context, width: int, height: int):
         self.context = context

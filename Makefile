@@ -32,6 +32,7 @@ bench: setup
 	$(PY) benchmarks/render_bench.py
 	$(PY) benchmarks/brep_bench.py
 	$(PY) benchmarks/animate_bench.py
+	$(PY) benchmarks/startup_bench.py
 
 assets: setup
 	$(PY) scripts/make_assets.py

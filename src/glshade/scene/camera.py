@@ -21,7 +21,7 @@ PROJECTIONS = ("perspective", "orthographic")
 
 
 def _vec3(value, name) -> NDArray[np.float64]:
-    a = np.asarray(value, dtype=np.float64)
+    a = np.array(value, dtype=np.float64)  # (a copy: the camera keeps it read-only)
     if a.shape != (3,) or not np.isfinite(a).all():
         raise GeometryError(f"{name} must be 3 finite numbers, got {value!r}")
     return a
@@ -56,6 +56,8 @@ class Camera:
             raise GeometryError(f"orientation must be a non-zero quaternion [x, y, z, w], "
                                 f"got {self.orientation!r}")
         object.__setattr__(self, "orientation", quat.normalize(q))
+        for name in ("position", "orientation"):  # a value: never changed in place
+            getattr(self, name).setflags(write=False)
         if self.projection not in PROJECTIONS:
             raise GeometryError(f"projection must be one of {PROJECTIONS}, got "
                                 f"{self.projection!r}")
@@ -94,11 +96,16 @@ class Camera:
         return quat.rotate(self.orientation, [1.0, 0.0, 0.0])
 
     def view_matrix(self) -> NDArray[np.float64]:
-        """World-to-view ``(4, 4)`` for column vectors."""
-        r = self.rotation
-        m = np.eye(4)
-        m[:3, :3] = r.T
-        m[:3, 3] = -r.T @ self.position
+        """World-to-view ``(4, 4)`` for column vectors (read-only; computed once per camera,
+        so redrawing from the same camera converts no quaternion)."""
+        m = self.__dict__.get("_view")
+        if m is None:
+            r = self.rotation
+            m = np.eye(4)
+            m[:3, :3] = r.T
+            m[:3, 3] = -r.T @ self.position
+            m.setflags(write=False)
+            self.__dict__["_view"] = m  # (a frozen dataclass: a cache, not a field)
         return m
 
     def projection_matrix(self, aspect: float) -> NDArray[np.float64]:

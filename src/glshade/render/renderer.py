@@ -13,7 +13,7 @@ from __future__ import annotations
 import warnings
 import weakref
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import moderngl
 import numpy as np
@@ -24,7 +24,7 @@ from ..errors import (
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Outputs, ShadingMode
 from ..options import DrawOptions
-from ..scene import MAX_LIGHTS, Camera, PointLight, Scene
+from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import ProgramKey, UniformWriter, light_kind, material_uniforms
@@ -153,6 +153,7 @@ class Renderer:
         self._uniforms = UniformWriter()
         self._normal_cache: dict[bytes, np.ndarray] = {}
         self._material_cache: dict[tuple, list] = {}
+        self._programs: dict[tuple, object] = {}
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -172,6 +173,7 @@ class Renderer:
             t.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
+        self._programs.clear()
         self._meshes.clear()
         self._targets.clear()
         if self._owns_context:
@@ -265,8 +267,8 @@ class Renderer:
         else:
             ctx.disable(moderngl.DEPTH_TEST)
 
-        key = ProgramKey(options.mode, aux, tuple(light_kind(x) for x in lights),
-                         options.srgb, camera.projection == "orthographic")
+        variant = (options.mode, aux, tuple(light_kind(x) for x in lights), options.srgb,
+                   camera.projection == "orthographic")
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
         prepared: set[int] = set()
         put = self._uniforms.put
@@ -278,13 +280,13 @@ class Renderer:
                 continue
             gpu = self._gpu_mesh(model.mesh)
             cull = gpu.closed if options.cull == "auto" else options.cull
-            prog = self.shaders.program(replace(key, two_sided=not cull))
+            prog = self._program(variant, not cull)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used
                 for name, value in frame:
                     put(prog, name, value)
                 prepared.add(id(prog))
             m = model.transform
-            normal_world = self._normal_matrix(m)
+            normal_world, mirrored = self._normal_matrix(m)
             put(prog, "u_model", gl_bytes(m))
             # (the view is rigid: its inverse transpose is itself)
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
@@ -292,8 +294,7 @@ class Renderer:
             put(prog, "u_face_id_base", id_base)
             for name, value in self._material_uniforms(model.material, lights, scene.ambient):
                 put(prog, name, value)
-            mirrored = (np.linalg.det(m[:3, :3]) < 0) != flip_rows
-            ctx.front_face = "cw" if mirrored else "ccw"
+            ctx.front_face = "cw" if mirrored != flip_rows else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
                 ctx.cull_face = "back"
@@ -320,24 +321,32 @@ class Renderer:
             found = self._material_cache[key] = material_uniforms(material, lights, ambient)
         return found
 
-    def _normal_matrix(self, model: np.ndarray) -> np.ndarray:
-        """Inverse transpose of a model matrix's 3x3 part, cached per transform."""
+    def _normal_matrix(self, model: np.ndarray) -> tuple[np.ndarray, bool]:
+        """Inverse transpose of a model matrix's 3x3 part, and whether it mirrors (its
+        faces then wind the other way), cached per transform."""
         key = model.tobytes()
         found = self._normal_cache.get(key)
         if found is None:
             if len(self._normal_cache) > 4096:
                 self._normal_cache.clear()
-            found = self._normal_cache[key] = np.linalg.inv(model[:3, :3]).T
+            found = self._normal_cache[key] = (np.linalg.inv(model[:3, :3]).T,
+                                               bool(np.linalg.det(model[:3, :3]) < 0))
         return found
+
+    def _program(self, variant: tuple, two_sided: bool):
+        """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic)."""
+        program = self._programs.get((variant, two_sided))
+        if program is None:
+            key = ProgramKey(*variant, two_sided=two_sided)
+            program = self._programs[(variant, two_sided)] = self.shaders.program(key)
+        return program
 
     @staticmethod
     def _frame_uniforms(scene, camera, lights, view, proj, mode) -> list:
         """The uniforms every program of one draw shares: matrices, lights, ambient."""
-        pos = np.zeros((MAX_LIGHTS, 4), dtype="f4")
-        att = np.zeros((MAX_LIGHTS, 3), dtype="f4")
-        for i, light in enumerate(lights):
-            pos[i] = light.view_vector(view)
-            att[i] = light.attenuation if isinstance(light, PointLight) else (1, 0, 0)
+        # (only as many entries as lights: a program's arrays are cut to what it uses)
+        pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
+        att = np.array([light.attenuation for light in lights], dtype="f4")
         out = [("u_view", gl_bytes(view)), ("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
                ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:

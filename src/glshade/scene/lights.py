@@ -43,7 +43,8 @@ class PointLight:
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[x, y, z, 1]``: the position in view space."""
-        return view @ np.append(self.position, 1.0)
+        x, y, z = view[:3, :3] @ self.position + view[:3, 3]
+        return np.array([x, y, z, 1.0])
 
 
 @dataclass(frozen=True)
@@ -67,7 +68,8 @@ class DirectionalLight:
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[x, y, z, 0]``: the unit vector towards the light, in view space."""
-        return np.append(view[:3, :3] @ -np.asarray(self.direction), 0.0)
+        x, y, z = view[:3, :3] @ self.direction
+        return np.array([-x, -y, -z, 0.0])
 
 
 def lights_for(lights, camera) -> list:

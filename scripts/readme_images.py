@@ -19,7 +19,7 @@ def main() -> None:
     DOCS.mkdir(exist_ok=True)
     scene = Scene(background=(0.12, 0.12, 0.14))
     scene.add(primitives.teapot(3), Material(color=(0.85, 0.55, 0.3), ks=0.5, shininess=40))
-    camera = default_camera(scene.bounds(), 4 / 3)
+    camera = default_camera(scene, 4 / 3)
     scene.add_light(PointLight(tuple(camera.position + 6 * camera.up - 3 * camera.right)))
     with Renderer(400, 300, samples=4) as r:
         tiles = [r.render(scene, camera, mode) for mode in

@@ -122,3 +122,36 @@ def test_mutated_files_render_or_exit_2_and_leave_only_good_outputs(tmp_path, na
             assert err.count("\n") == 1 and str(path) in err, err
     assert 0 < len(rendered) < 25
     assert sorted(p.name for p in out.iterdir()) == sorted(rendered)
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("endian, count_type, index_type", [
+    ("little", "uchar", "int"), ("little", "int", "uint"), ("big", "char", "short"),
+    ("big", "ushort", "int")])
+def test_binary_ply_face_lists_with_hostile_counts(tmp_path, endian, count_type, index_type):
+    """Counts of 0, 1, 2, negative or huge, in truncated records, for every list layout."""
+    import struct
+
+    e = "<" if endian == "little" else ">"
+    cfmt = {"uchar": "B", "int": "i", "char": "b", "ushort": "H"}[count_type]
+    ifmt = {"int": "i", "uint": "I", "short": "h"}[index_type]
+    rng = np.random.default_rng(len(count_type) * 7 + len(index_type))
+    vertices = struct.pack(e + "9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    choices = [0, 1, 2, 3, 4, 100] + ([-1] if cfmt in "ib" else [])
+    for i in range(120):
+        n_faces = int(rng.integers(1, 5))
+        records = b""
+        for _ in range(n_faces):
+            c = int(rng.choice(choices))
+            records += struct.pack(e + cfmt, c) + b"".join(
+                struct.pack(e + ifmt, int(rng.integers(0, 4))) for _ in range(max(0, min(c, 5))))
+        header = (f"ply\nformat binary_{endian}_endian 1.0\nelement vertex 3\n"
+                  "property float x\nproperty float y\nproperty float z\n"
+                  f"element face {n_faces}\nproperty list {count_type} {index_type} "
+                  "vertex_indices\nend_header\n").encode()
+        path = tmp_path / f"case{i}.ply"
+        path.write_bytes(header + vertices + records[:int(rng.integers(0, len(records) + 1))])
+        code, err = run("info", str(path), "--json")
+        assert code in (0, 2), f"{path.name}: exit {code}: {err}"
+        if code == 2:
+            assert err.count("\n") == 1 and str(path) in err, err

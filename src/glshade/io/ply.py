@@ -156,8 +156,10 @@ def _ply_binary_faces(path, data, pos, count, props, li, order):
     raw = np.lib.stride_tricks.sliding_window_view(body, ctype.itemsize)[pre:pre + n_pos]
     counts_at[:n_pos] = raw.copy().view(ctype).ravel()
     sentinel = len(body)
-    nxt = np.minimum(np.arange(len(body) + 1) + head + counts_at * itype.itemsize + post,
-                     sentinel)
+    # (a negative count, at a real record or at a byte that is not one, must not step
+    # backwards: it steps as if 0, and the size check below reports a real one)
+    step = head + np.maximum(counts_at, 0) * itype.itemsize + post
+    nxt = np.minimum(np.arange(len(body) + 1) + step, sentinel)
     nxt[n_pos:] = sentinel
     nxt[sentinel] = sentinel
     # depth[p] = number of records from p to the end... instead: reach all records from 0
@@ -175,6 +177,11 @@ def _ply_binary_faces(path, data, pos, count, props, li, order):
                               f"holds {len(starts)}", byte=len(data))
     starts = starts[:count]
     sizes = counts_at[starts]
+    small = sizes < 3
+    if small.any():  # (before any index is read: a count of 0 has none to read)
+        f = int(np.flatnonzero(small)[0])
+        raise MeshFormatError(path, f"face {f} has {int(sizes[f])} vertices; a polygon needs "
+                              "at least 3", byte=pos + int(starts[f]))
     end = starts[-1] + head + sizes[-1] * itype.itemsize + post
     if end > len(body):
         raise MeshFormatError(path, f"truncated: face {count - 1} runs past the end of the "

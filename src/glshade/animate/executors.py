@@ -52,6 +52,10 @@ def _init_worker(factory, args, threads):
     # per core that oversubscribes the machine. Share the cores out instead (no effect on
     # GPU drivers).
     os.environ.setdefault("LP_NUM_THREADS", str(threads))
+    # a warning from a worker (a blank frame) is one line on stderr, as in the parent's CLI
+    import warnings
+
+    warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
     try:
         _worker = factory(*args)
     except Exception as exc:  # reported with the first item, in the parent, as it is;

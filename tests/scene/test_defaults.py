@@ -69,3 +69,19 @@ def test_default_camera_takes_a_scene_a_mesh_or_bounds():
     np.testing.assert_allclose(to_centre / np.linalg.norm(to_centre), from_scene.forward,
                                atol=1e-12)
     assert default_camera(P.cube()) == default_camera(P.cube().bounds)
+
+
+def test_a_scene_files_render_table_is_draw_options(tmp_path):
+    from glshade.io.scenefile import load_scene
+
+    path = tmp_path / "s.toml"
+    path.write_text('[render]\nmode = "flat"\nsrgb = true\ndepth_test = false\ncull = true\n'
+                    'wireframe = true\n[[mesh]]\nsource = "primitive:cube"\n')
+    options = load_scene(path).settings.options
+    assert options == DrawOptions(mode="flat", srgb=True, depth_test=False, cull=True,
+                                  wireframe=True)
+    path.write_text('[render]\ncull = "sometimes"\n[[mesh]]\nsource = "primitive:cube"\n')
+    from glshade import SceneFormatError
+
+    with pytest.raises(SceneFormatError, match=r":2: \[render\] key 'cull' must be 'auto', "):
+        load_scene(path)

@@ -6,7 +6,7 @@ Example (``assets/scenes/teapot-orbit.toml``)::
 
     [render]
     size = [512, 384]
-    mode = "phong"
+    mode = "phong"                     # and srgb, depth_test, cull, wireframe: DrawOptions
     background = [0.12, 0.12, 0.14]
     fps = 24
 
@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import re
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
@@ -87,6 +87,7 @@ class SceneFile:
 NUMBER = (int, float)
 _SCHEMA = {
     "render": {"size": "size", "mode": "mode", "samples": "samples", "srgb": "bool",
+               "depth_test": "bool", "cull": "cull", "wireframe": "bool",
                "fps": "positive", "duration": "positive", "background": "color",
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
@@ -147,6 +148,9 @@ def _check(kind: str, value, where: str):
         return value if isinstance(value, str) and value else fail("a non-empty string")
     if kind == "bool":
         return value if isinstance(value, bool) else fail("true or false")
+    if kind == "cull":
+        return value if value == "auto" or isinstance(value, bool) else \
+            fail("'auto', true or false")
     if kind == "samples":
         ok = isinstance(value, int) and not isinstance(value, bool) and \
             value in (0, 1, 2, 4, 8, 16, 32, 64)
@@ -256,7 +260,9 @@ def load_scene(path) -> SceneFile:
     d = _validate(data, loc, source)
 
     r = d.get("render", {})
-    options = DrawOptions.of(None, **{k: r[k] for k in ("mode", "srgb") if k in r})
+    # the [render] table's drawing keys are DrawOptions' own fields, by the same names
+    drawing = {f.name for f in fields(DrawOptions)} - {"outputs"}
+    options = DrawOptions.of(None, **{k: r[k] for k in drawing if k in r})
     settings = RenderSettings(options, **{k: r[k] for k in ("samples", "fps", "duration")
                                           if k in r})
     if "size" in r:

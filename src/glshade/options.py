@@ -70,6 +70,12 @@ class DrawOptions:
             base = cls()
         elif isinstance(options, cls):
             base = options
-        else:
-            base = cls(mode=ShadingMode.parse(options))
+        else:  # a mode's name or member: one frozen value per mode, made once
+            mode = ShadingMode.parse(options)
+            base = _BY_MODE.get(mode)
+            if base is None:
+                base = _BY_MODE[mode] = cls(mode=mode)
         return base.replace(**changes) if changes else base
+
+
+_BY_MODE: dict[ShadingMode, DrawOptions] = {}

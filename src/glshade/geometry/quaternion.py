@@ -100,6 +100,13 @@ def norm(q: ArrayLike) -> Array:
 
 def normalize(q: ArrayLike) -> Array:
     """``q / |q|``; raises for a zero quaternion."""
+    if isinstance(q, np.ndarray) and q.shape == (4,) or \
+            isinstance(q, (list, tuple)) and len(q) == 4:  # one (a camera's): plain floats
+        x, y, z, w = (float(c) for c in q)
+        n = math.sqrt(x * x + y * y + z * z + w * w)
+        if not 0 < n < math.inf:
+            raise GeometryError("cannot normalize a zero or non-finite quaternion")
+        return np.array([x / n, y / n, z / n, w / n])
     q = _q(q)
     n = norm(q)
     if np.any(n == 0) or not np.all(np.isfinite(n)):

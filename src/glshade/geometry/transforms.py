@@ -26,30 +26,29 @@ __all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_t
 Array = NDArray[np.float64]
 
 
-def _cross(a: Array, b: Array) -> Array:
-    """The cross product of two 3-vectors (np.cross costs more in overhead than in work)."""
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]])
-
-
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Array:
     """World-to-view matrix ``(4, 4)`` of a camera at ``eye`` looking at ``target``."""
-    eye, target, up = (np.asarray(a, dtype=np.float64) for a in (eye, target, up))
-    forward = target - eye
-    length = math.sqrt(float(forward @ forward))
+    # (three 3-vectors: plain floats, since a camera may be made every frame)
+    try:
+        (ex, ey, ez), (tx, ty, tz), (ux, uy, uz) = (
+            [float(c) for c in a] for a in (eye, target, up))
+    except (TypeError, ValueError):
+        raise GeometryError("look_at: eye, target and up must be 3 numbers each") from None
+    fx, fy, fz = tx - ex, ty - ey, tz - ez
+    length = math.sqrt(fx * fx + fy * fy + fz * fz)
     if length == 0:
         raise GeometryError("look_at: eye and target are the same point")
-    f = forward / length
-    s = _cross(f, up)
-    side = math.sqrt(float(s @ s))
+    fx, fy, fz = fx / length, fy / length, fz / length
+    sx, sy, sz = fy * uz - fz * uy, fz * ux - fx * uz, fx * uy - fy * ux
+    side = math.sqrt(sx * sx + sy * sy + sz * sz)
     if side < 1e-12:
-        raise GeometryError(f"look_at: up {up.tolist()} is parallel to the view direction")
-    s /= side
-    u = _cross(s, f)
-    m = np.eye(4)
-    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
-    m[:3, 3] = -m[:3, :3] @ eye
-    return m
+        raise GeometryError(f"look_at: up {[ux, uy, uz]} is parallel to the view direction")
+    sx, sy, sz = sx / side, sy / side, sz / side
+    vx, vy, vz = sy * fz - sz * fy, sz * fx - sx * fz, sx * fy - sy * fx
+    return np.array([[sx, sy, sz, -(sx * ex + sy * ey + sz * ez)],
+                     [vx, vy, vz, -(vx * ex + vy * ey + vz * ez)],
+                     [-fx, -fy, -fz, fx * ex + fy * ey + fz * ez],
+                     [0.0, 0.0, 0.0, 1.0]])
 
 
 def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> Array:

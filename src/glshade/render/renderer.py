@@ -154,6 +154,7 @@ class Renderer:
         self._normal_cache: dict[bytes, np.ndarray] = {}
         self._material_cache: dict[tuple, list] = {}
         self._programs: dict[tuple, object] = {}
+        self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -174,6 +175,7 @@ class Renderer:
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
+        self._model_state.clear()
         self._meshes.clear()
         self._targets.clear()
         if self._owns_context:
@@ -267,6 +269,7 @@ class Renderer:
         else:
             ctx.disable(moderngl.DEPTH_TEST)
 
+        lights_key = lights = tuple(lights)
         variant = (options.mode, aux, tuple(light_kind(x) for x in lights), options.srgb,
                    camera.projection == "orthographic")
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
@@ -286,14 +289,19 @@ class Renderer:
                     put(prog, name, value)
                 prepared.add(id(prog))
             m = model.transform
-            normal_world, mirrored = self._normal_matrix(m)
-            put(prog, "u_model", gl_bytes(m))
+            transform = m.tobytes()
+            normal_world, mirrored = self._normal_matrix(m, transform)
             # (the view is rigid: its inverse transpose is itself)
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
-            put(prog, "u_normal_world", _mat3(normal_world))
-            put(prog, "u_face_id_base", id_base)
-            for name, value in self._material_uniforms(model.material, lights, scene.ambient):
-                put(prog, name, value)
+            state = (transform, id_base, model.material, lights_key, scene.ambient)
+            if self._model_state.get(id(prog)) != state:  # else all of it is in place
+                put(prog, "u_model", gl_bytes(m))
+                put(prog, "u_normal_world", _mat3(normal_world))
+                put(prog, "u_face_id_base", id_base)
+                for name, value in self._material_uniforms(model.material, lights,
+                                                           scene.ambient):
+                    put(prog, name, value)
+                self._model_state[id(prog)] = state
             ctx.front_face = "cw" if mirrored != flip_rows else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
@@ -313,7 +321,7 @@ class Renderer:
 
     def _material_uniforms(self, material, lights, ambient) -> list:
         """:func:`material_uniforms`, cached per material, lights and ambient."""
-        key = (material, tuple(lights), ambient)
+        key = (material, lights, ambient)
         found = self._material_cache.get(key)
         if found is None:
             if len(self._material_cache) > 1024:
@@ -321,10 +329,9 @@ class Renderer:
             found = self._material_cache[key] = material_uniforms(material, lights, ambient)
         return found
 
-    def _normal_matrix(self, model: np.ndarray) -> tuple[np.ndarray, bool]:
+    def _normal_matrix(self, model: np.ndarray, key: bytes) -> tuple[np.ndarray, bool]:
         """Inverse transpose of a model matrix's 3x3 part, and whether it mirrors (its
-        faces then wind the other way), cached per transform."""
-        key = model.tobytes()
+        faces then wind the other way), cached per transform (``key``: its bytes)."""
         found = self._normal_cache.get(key)
         if found is None:
             if len(self._normal_cache) > 4096:

@@ -75,7 +75,19 @@ class DrawOptions:
             base = _BY_MODE.get(mode)
             if base is None:
                 base = _BY_MODE[mode] = cls(mode=mode)
-        return base.replace(**changes) if changes else base
+        if not changes:
+            return base
+        key = (base, tuple(sorted(changes.items())))
+        try:
+            found = _CHANGED.get(key)
+        except TypeError:  # an unhashable value: let replace() say what is wrong
+            return base.replace(**changes)
+        if found is None:
+            if len(_CHANGED) > 256:
+                _CHANGED.clear()
+            found = _CHANGED[key] = base.replace(**changes)
+        return found
 
 
 _BY_MODE: dict[ShadingMode, DrawOptions] = {}
+_CHANGED: dict[tuple, DrawOptions] = {}  # (options, changes) -> the changed options

@@ -67,32 +67,40 @@ class UniformWriter:
     """Writes uniforms, skipping any whose value is the one last written to that program
     (a camera move changes a few matrices; materials and lights mostly stay)."""
 
+    _ABSENT = (None, 0)
+
     def __init__(self):
         self._last: dict[tuple[int, str], object] = {}
-        self._names: dict[int, frozenset] = {}
+        # (program, name) -> (member, bytes it holds) or _ABSENT: optimised away
+        self._members: dict[tuple[int, str], tuple] = {}
 
     def put(self, prog, name: str, value) -> None:
-        names = self._names.get(id(prog))
-        if names is None:  # (moderngl's `in` walks every member: look them up once)
-            names = self._names[id(prog)] = frozenset(prog)
-        if name not in names:
-            return  # optimised away in this variant
         key = (id(prog), name)
-        member = prog[name]
+        found = self._members.get(key)
+        if found is None:  # (moderngl's `in` walks every member: look each up once)
+            names = set(prog)
+            if name in names:
+                member = prog[name]
+                found = (member, member.array_length * member.dimension * 4)
+            else:
+                found = self._ABSENT
+            self._members[key] = found
+        member, size = found
+        if member is None:
+            return
         if isinstance(value, np.ndarray):
             value = value.tobytes()
         if isinstance(value, bytes):
             # an array the program uses only in part (2 of 8 lights) is shortened to it
-            value = value[:member.array_length * member.dimension * 4]
-        if self._last.get(key) == value:
-            return
-        if isinstance(value, bytes):
-            member.write(value)
-        else:
+            value = value[:size]
+            if self._last.get(key) != value:
+                member.write(value)
+                self._last[key] = value
+        elif self._last.get(key) != value:
             member.value = value
-        self._last[key] = value
+            self._last[key] = value
 
     def forget(self) -> None:
         """Drop what was remembered (programs were released; their ids may be reused)."""
         self._last.clear()
-        self._names.clear()
+        self._members.clear()

@@ -100,10 +100,11 @@ class Camera:
         so redrawing from the same camera converts no quaternion)."""
         m = self.__dict__.get("_view")
         if m is None:
-            r = self.rotation
-            m = np.eye(4)
-            m[:3, :3] = r.T
-            m[:3, 3] = -r.T @ self.position
+            rt = self.rotation.T
+            m = np.zeros((4, 4))
+            m[:3, :3] = rt
+            m[:3, 3] = -(rt @ self.position)
+            m[3, 3] = 1.0
             m.setflags(write=False)
             self.__dict__["_view"] = m  # (a frozen dataclass: a cache, not a field)
         return m

@@ -21,10 +21,10 @@ flat out vec3 v_face_normal_world;
 out vec3 v_position_view;
 
 void main() {
-    vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
+    vec4 p_view = u_model_view * vec4(in_position, 1.0);
     v_position_view = p_view.xyz;
     vec3 n = normalize(u_normal_view * in_face_normal);
-    vec3 c = (u_view * u_model * vec4(in_face_centroid, 1.0)).xyz;
+    vec3 c = (u_model_view * vec4(in_face_centroid, 1.0)).xyz;
     vec3 v = view_dir(c);
     v_color_front = light_intensity(c, n, v);
 #ifdef TWO_SIDED

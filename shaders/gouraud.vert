@@ -19,7 +19,7 @@ out vec3 v_normal_world;
 #endif
 
 void main() {
-    vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
+    vec4 p_view = u_model_view * vec4(in_position, 1.0);
     vec3 n = normalize(u_normal_view * in_normal);
     vec3 v = view_dir(p_view.xyz);
     v_color_front = light_intensity(p_view.xyz, n, v);

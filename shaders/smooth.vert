@@ -13,7 +13,7 @@ out vec3 v_normal_world;
 #endif
 
 void main() {
-    vec4 p_view = u_view * u_model * vec4(in_position, 1.0);
+    vec4 p_view = u_model_view * vec4(in_position, 1.0);
     v_position_view = p_view.xyz;
     v_normal_view = u_normal_view * in_normal;
 #ifdef WORLD_NORMALS

@@ -293,9 +293,9 @@ class Renderer:
             normal_world, mirrored = self._normal_matrix(m, transform)
             # (the view is rigid: its inverse transpose is itself)
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
+            put(prog, "u_model_view", gl_bytes(view @ m))
             state = (transform, id_base, model.material, lights_key, scene.ambient)
             if self._model_state.get(id(prog)) != state:  # else all of it is in place
-                put(prog, "u_model", gl_bytes(m))
                 put(prog, "u_normal_world", _mat3(normal_world))
                 put(prog, "u_face_id_base", id_base)
                 for name, value in self._material_uniforms(model.material, lights,
@@ -354,7 +354,7 @@ class Renderer:
         # (only as many entries as lights: a program's arrays are cut to what it uses)
         pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
         att = np.array([light.attenuation for light in lights], dtype="f4")
-        out = [("u_view", gl_bytes(view)), ("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
+        out = [("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
                ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)

@@ -235,8 +235,9 @@ class Renderer:
              *, viewport=None, clear: bool = True) -> None:
         """Draw ``scene`` into ``target`` -- the renderer's offscreen target, a window's
         framebuffer (the viewer) or any object with its ``begin/bind/resolve`` -- optionally
-        into a ``viewport`` ``(x, y, w, h)`` (GL's: origin at the bottom left) without
-        clearing. The one drawing path: every picture glshade makes comes through here."""
+        into a ``viewport`` ``(x, y, w, h)`` without clearing (GL's: a window's origin is
+        its bottom left; an offscreen target, stored top row first, counts from the top).
+        The one drawing path: every picture glshade makes comes through here."""
         self._check()
         options = DrawOptions.of(options)
         if not isinstance(scene, Scene):

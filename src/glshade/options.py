@@ -8,10 +8,7 @@ from dataclasses import dataclass, fields, replace
 from .errors import GeometryError
 from .modes import Outputs, ShadingMode
 
-__all__ = ["DrawOptions", "CULL_CHOICES", "DEFAULT_SIZE"]
-
-#: back-face culling: "auto" culls closed, consistently oriented meshes only
-CULL_CHOICES = ("auto", True, False)
+__all__ = ["DrawOptions", "DEFAULT_SIZE"]
 
 #: image size (width, height) when neither the command line nor a scene file gives one
 DEFAULT_SIZE = (800, 600)

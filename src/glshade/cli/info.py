@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from ..errors import EXIT_OK
-from .inputs import load_mesh_spec
+from ..io.meshes import load_source
 
 __all__ = ["info", "mesh_summary", "topology_summary"]
 
@@ -40,7 +40,7 @@ def topology_summary(mesh) -> dict:
 
 
 def info(args) -> int:
-    mesh = load_mesh_spec(args.mesh)
+    mesh = load_source(args.mesh)
     info = mesh_summary(mesh)
     info["source"] = args.mesh
     info["topology"] = topology_summary(mesh)

@@ -11,25 +11,16 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import InputError, SettingError, UsageError
+from ..io.meshes import load_source
 from ..io.scenefile import RenderSettings
 from ..options import DrawOptions
 from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
 
-__all__ = ["Job", "load_job", "load_mesh_spec", "is_scene_file", "build_scene"]
+__all__ = ["Job", "load_job", "is_scene_file", "build_scene"]
 
 
 def is_scene_file(spec: str) -> bool:
     return spec.lower().endswith(".toml")
-
-
-def load_mesh_spec(spec: str):
-    """A mesh from a file path or a ``primitive:NAME[:ARGS]`` spec."""
-    from ..geometry import primitives
-    from ..io import load_mesh
-
-    if spec.startswith("primitive:"):
-        return primitives.from_spec(spec)
-    return load_mesh(spec)
 
 
 @dataclass
@@ -105,11 +96,10 @@ def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
             raise UsageError("--time needs a scene file (.toml) with a camera path")
         settings, path = base, None
         size = args.size or base.size
+        mesh = load_source(spec)  # (its errors name the file and line)
         try:
-            scene, camera = build_scene(load_mesh_spec(spec), args, size[0] / size[1])
-        except InputError as exc:
-            if spec in str(exc):
-                raise
+            scene, camera = build_scene(mesh, args, size[0] / size[1])
+        except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
     overrides = _given(args, "mode", "srgb")
     settings = replace(settings, options=settings.options.replace(**overrides))

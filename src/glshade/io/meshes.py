@@ -16,7 +16,7 @@ from ..geometry.mesh import Mesh
 from ..geometry.trimesh_bridge import HINT, from_trimesh, trimesh_formats, trimesh_module
 from . import obj, off, ply, stl
 
-__all__ = ["load_mesh", "save_mesh", "FORMATS"]
+__all__ = ["load_mesh", "load_source", "save_mesh", "FORMATS"]
 
 #: each format's module, with ``read(path, data) -> Mesh`` and ``write(mesh, file, binary)``
 _MODULES = {"obj": obj, "off": off, "ply": ply, "stl": stl}
@@ -65,6 +65,16 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     mesh = _MODULES[fmt].read(path, data)
     mesh.name = mesh.name or path.stem
     return mesh
+
+
+def load_source(spec: str) -> Mesh:
+    """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
+    MESH argument)."""
+    if spec.startswith("primitive:"):
+        from ..geometry import primitives
+
+        return primitives.from_spec(spec)
+    return load_mesh(spec)
 
 
 def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = True) -> None:

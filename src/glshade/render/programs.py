@@ -27,15 +27,10 @@ def light_kind(light) -> str:
 def material_uniforms(material, lights, ambient) -> list:
     """The lighting formula's per-draw products for one material: Ia ka C, and per light
     Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms)."""
-    from ..scene.lights import MAX_LIGHTS
-
     base = np.asarray(material.color, np.float64)
-    diffuse = np.zeros((MAX_LIGHTS, 3), "f4")
-    specular = np.zeros((MAX_LIGHTS, 3), "f4")
-    for i, light in enumerate(lights):
-        ip = np.asarray(light.color, np.float64) * light.intensity
-        diffuse[i] = ip * material.kd * base
-        specular[i] = ip * material.ks
+    ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
+    diffuse = (ip * material.kd * base).astype("f4")
+    specular = (ip * material.ks).astype("f4")
     ambient_term = np.asarray(ambient, np.float64) * material.ka * base
     return [("u_ambient_term", tuple(float(x) for x in ambient_term)),
             ("u_light_diffuse", diffuse.tobytes()), ("u_light_specular", specular.tobytes()),

@@ -117,7 +117,7 @@ class OffscreenTarget(GLResource):
         # (the subtraction makes the copy)
 
     def read_depth(self) -> np.ndarray:
-        bits = np.ascontiguousarray(self._read(3, 1, "u4")[..., 0])
+        bits = self._read(3, 1, "u4")[..., 0]  # (a view of the kept buffer)
         depth = bits.view(np.float32).copy()
         depth[bits == 0] = np.inf  # never drawn
         return depth

@@ -31,7 +31,8 @@ class LabelOverlay(GLResource):
         super().__init__(context)
         self.program = shaders.compile("overlay.vert", "overlay.frag")
         self._keep(self.program)
-        self.vbo = self._keep(context.ctx.buffer(reserve=4 * 4 * 4))
+        quad = np.array([[-1, -1, 0, 0], [1, -1, 1, 0], [-1, 1, 0, 1], [1, 1, 1, 1]], "f4")
+        self.vbo = self._keep(context.ctx.buffer(quad.tobytes()))
         self.vao = self._keep(context.ctx.vertex_array(
             self.program, [(self.vbo, "2f 2f", "in_ndc", "in_uv")]))
         self._textures: dict[tuple[str, int], object] = {}
@@ -51,8 +52,6 @@ class LabelOverlay(GLResource):
         ctx = self.context.ctx
         band = min(LABEL_HEIGHT, h)
         ctx.viewport = (x, y + h - band, w, band)
-        quad = np.array([[-1, -1, 0, 0], [1, -1, 1, 0], [-1, 1, 0, 1], [1, 1, 1, 1]], "f4")
-        self.vbo.write(quad.tobytes())
         self._texture(text, w).use(0)
         self.program["u_image"].value = 0
         ctx.disable(ctx.DEPTH_TEST)

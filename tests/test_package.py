@@ -17,13 +17,14 @@ PACKAGE = Path(glshade.__file__).parent
 #: the layers, lowest first: a module may import its own layer and those below it
 LAYERS = [
     {"_version", "_atomic", "_callable", "errors", "modes", "options"},
+    {"parallel"},
     {"geometry", "quaternion", "masspoint", "brep"},
     {"scene"},
     {"io"},
     {"cpu"},
     {"render"},
     {"compare"},
-    {"animate"},
+    {"animate", "batch"},
     {"viewer"},
     {"cli", "testing", "pytest_plugin", "__init__", "__main__"},
 ]
@@ -32,7 +33,8 @@ RANK = {name: i for i, layer in enumerate(LAYERS) for name in layer}
 
 @pytest.mark.parametrize("modules", ["glshade", "glshade.geometry", "glshade.scene",
                                      "glshade.io", "glshade.cpu", "glshade.compare",
-                                     "glshade.animate", "glshade.cli.parser"])
+                                     "glshade.animate", "glshade.batch", "glshade.parallel",
+                                     "glshade.cli.parser"])
 def test_gl_free_packages_load_no_gl(modules):
     code = (f"import sys, {modules}; "
             "bad = [m for m in ('moderngl', 'glfw', 'glcontext') if m in sys.modules]; "

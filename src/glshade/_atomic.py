@@ -1,14 +1,76 @@
 """Write files atomically: to a temporary name in the same folder, renamed at the end, so
-that an error or an interrupt never leaves a half-written output behind."""
+that an error or an interrupt never leaves a half-written output behind.
+
+A temporary name says who writes it: ``.NAME.HOST-PID.RANDOM.part``. A process killed
+outright (SIGKILL, a lost machine) cannot remove its own; the next writer of the same
+output, or :func:`remove_stale` over a folder, removes those whose process is gone (on this
+host; another host's are left alone, they may be in use)."""
 
 from __future__ import annotations
 
 import contextlib
 import os
+import re
+import socket
 import tempfile
 from pathlib import Path
 
 from .errors import OutputWriteError
+
+__all__ = ["atomic_write", "publish", "writing", "temporary", "remove_stale"]
+
+_HOST = re.sub(r"[^A-Za-z0-9_-]", "_", socket.gethostname()) or "host"
+_PART = re.compile(r"^\.(?P<name>.+)\.(?P<host>[A-Za-z0-9_-]+)-(?P<pid>\d+)\.[^.]+\.part"
+                   r"(?:\.[A-Za-z0-9]+)?$")
+
+
+def _tag(path: Path) -> str:
+    return f".{path.name}.{_HOST}-{os.getpid()}."
+
+
+def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
+    """Make a temporary file (or folder) beside ``path``, named for this process; return
+    its name. Stale ones of the same output are removed first."""
+    path = Path(path)
+    parent = path.parent if str(path.parent) else Path(".")
+    remove_stale(parent, name=path.name)
+    if folder:
+        return tempfile.mkdtemp(prefix=_tag(path), suffix=".part" + suffix, dir=parent)
+    fd, tmp = tempfile.mkstemp(prefix=_tag(path), suffix=".part" + suffix, dir=parent)
+    os.close(fd)
+    return tmp
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # someone else's process
+        return True
+    return True
+
+
+def remove_stale(folder, *, name: str | None = None, recursive: bool = False) -> int:
+    """Remove the temporary files and folders in ``folder`` (of output ``name`` only, if
+    given) left by processes of this host that no longer run. Returns how many."""
+    import shutil
+
+    folder = Path(folder)
+    if not folder.is_dir():
+        return 0
+    found = folder.rglob(".*.part*") if recursive else folder.glob(".*.part*")
+    removed = 0
+    for p in found:
+        m = _PART.match(p.name)
+        if not m or m["host"] != _HOST or (name is not None and m["name"] != name):
+            continue
+        if int(m["pid"]) == os.getpid() or _alive(int(m["pid"])):
+            continue
+        with contextlib.suppress(OSError):
+            shutil.rmtree(p) if p.is_dir() else p.unlink()
+            removed += 1
+    return removed
 
 
 def publish(tmp, path) -> None:
@@ -40,10 +102,9 @@ def atomic_write(path, mode: str = "wb"):
     """Yield a file object; on success it replaces ``path``, on failure it is deleted."""
     path = Path(path)
     with writing(path):
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part",
-                                   dir=path.parent or ".")
+        tmp = temporary(path)
         try:
-            with os.fdopen(fd, mode) as f:
+            with open(tmp, mode) as f:
                 yield f
             publish(tmp, path)
         except BaseException:  # interrupted or failed: remove the partial file, re-raise

@@ -18,7 +18,7 @@ __all__ = [
     "GlshadeError", "InputError", "EnvironmentFailure",
     "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
-    "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError",
+    "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError", "ClusterError",
     "RenderWarning", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
 
@@ -148,6 +148,11 @@ class OutputWriteError(EnvironmentFailure):
 
 class VideoUnavailable(EnvironmentFailure):
     """MP4 output needs imageio and imageio-ffmpeg (the ``video`` extra)."""
+
+
+class ClusterError(EnvironmentFailure):
+    """Work cannot go to a Dask cluster: the ``distributed`` extra is missing, or the
+    scheduler cannot be reached. Says which, and the fix."""
 
 
 class RenderWarning(UserWarning):

@@ -1,10 +1,9 @@
-"""Animation: frames along camera paths (frames), the executors that render them in order
-(executors), the files they go to (writers) and the progress bar (progress)."""
+"""Animation: frames along camera paths (frames) and the files they go to (writers). The
+executors that render them in order and the progress bar live in :mod:`glshade.parallel`."""
 
 from .._callable import callable_package
-from .executors import make_executor
+from ..parallel import Progress, make_executor
 from .frames import animate, render_frames
-from .progress import Progress
 from .writers import FORMATS, output_format, write_animation
 
 __all__ = ["animate", "render_frames", "write_animation", "output_format", "Progress",

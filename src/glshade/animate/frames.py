@@ -13,8 +13,8 @@ from ..errors import InputError
 from ..io.images import LABEL_HEIGHT, labelled_row
 from ..options import DrawOptions
 from ..scene import CameraPath, Scene
-from .executors import make_executor
-from .progress import Progress
+from ..parallel import make_executor
+from ..parallel import Progress
 from .writers import write_animation
 
 __all__ = ["animate", "render_frames", "FrameMaker"]
@@ -22,22 +22,30 @@ __all__ = ["animate", "render_frames", "FrameMaker"]
 
 class FrameMaker:
     """A worker that renders frame ``i`` of a path to RGBA bytes (in the main process or in
-    a worker process). ``options`` are drawn unchanged, once per mode in ``modes``."""
+    a worker process). ``options`` are drawn unchanged, once per mode in ``modes``. With a
+    ``spool`` folder (a cluster's workers) it writes the frame there as a PNG and returns
+    the file's path instead: pixels do not travel through the scheduler."""
 
-    def __init__(self, scene, path, times, options, modes, size, samples, backend):
+    def __init__(self, scene, path, times, options, modes, size, samples, backend,
+                 spool=None):
         from ..render.renderer import Renderer
 
         self.scene, self.path, self.times = scene, path, times
-        self.options, self.modes = options, modes
+        self.options, self.modes, self.spool = options, modes, spool
         self.renderer = Renderer(size[0], size[1], samples=samples, backend=backend)
 
-    def __call__(self, i: int) -> bytes:
+    def __call__(self, i: int) -> bytes | str:
         camera = self.path.at(self.times[i])
         tiles = {m.value: self.renderer.render(self.scene, camera, self.options.replace(mode=m))
                  for m in self.modes}
-        if len(tiles) == 1:
-            return next(iter(tiles.values())).tobytes()
-        return labelled_row(tiles).tobytes()
+        image = next(iter(tiles.values())) if len(tiles) == 1 else labelled_row(tiles)
+        if self.spool is None:
+            return image.tobytes()
+        from ..io.images import save_image
+
+        path = os.path.join(self.spool, f"frame_{i:06d}.png")
+        save_image(image, path)
+        return path
 
     def close(self):
         self.renderer.close()
@@ -51,37 +59,75 @@ def frame_shape(size, n_modes: int) -> tuple[int, int, int]:
 
 def render_frames(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
                   size=(512, 512), samples: int = 4, jobs: int = 1, backend="auto",
-                  progress: Progress | None = None, **changes) -> Iterator[np.ndarray]:
+                  progress: Progress | None = None, scheduler: str | None = None,
+                  spool=None, **changes) -> Iterator[np.ndarray]:
     """Yield ``frames`` images ``(H, W', 4) uint8`` evenly spaced along ``path``, in order.
 
     ``options``: DrawOptions or a mode's name (``changes`` override single options). With
     ``modes`` several shading modes are laid side by side, labelled. ``jobs > 1`` renders
-    in spawned worker processes, each with its own GL context.
+    in spawned worker processes, each with its own GL context; ``scheduler`` (a Dask
+    address, or "local") on a Dask cluster, whose workers pass frames as PNG files through
+    a temporary folder beside ``spool`` (a path every worker can reach; default: this
+    machine's temporary folder).
     """
     options = DrawOptions.of(options, **changes)
     modes = [DrawOptions.of(m).mode for m in (modes or [options.mode])]
     if int(frames) != frames or frames < 1:
         raise InputError(f"need at least one frame, got {frames!r}")
     times = path.frame_times(int(frames))
-    args = (scene, path, times, options, modes, tuple(size), samples, backend)
-    executor = make_executor(FrameMaker, args, jobs, items=int(frames))
-    shape = frame_shape(size, len(modes))
-    for data in executor.map(range(int(frames))):
-        if progress:
-            progress.update()
-        yield np.frombuffer(data, np.uint8).reshape(shape)
+    if scheduler is None:
+        args = (scene, path, times, options, modes, tuple(size), samples, backend)
+        executor = make_executor(FrameMaker, args, jobs, items=int(frames))
+        shape = frame_shape(size, len(modes))
+        for data in executor.map(range(int(frames))):
+            if progress:
+                progress.update()
+            yield np.frombuffer(data, np.uint8).reshape(shape)
+        return
+    yield from _spooled(scene, path, times, options, modes, size, samples, backend, jobs,
+                        scheduler, spool, progress)
+
+
+def _spooled(scene, path, times, options, modes, size, samples, backend, jobs, scheduler,
+             spool, progress):
+    import shutil
+    import tempfile
+
+    from PIL import Image
+
+    from .._atomic import temporary
+
+    folder = temporary(spool, folder=True) if spool else tempfile.mkdtemp(prefix="glshade-")
+    try:
+        args = (scene, path, times, options, modes, tuple(size), samples, backend, folder)
+        executor = make_executor(FrameMaker, args, jobs, scheduler=scheduler)
+        for file in executor.map(range(len(times))):
+            with Image.open(file) as im:
+                frame = np.asarray(im.convert("RGBA"))
+            os.unlink(file)
+            if progress:
+                progress.update()
+            yield frame
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 def animate(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
             output=None, fps: float = 30.0, size=(512, 512), samples: int = 4,
-            jobs: int | None = 1, backend="auto", progress: bool | None = False, **changes):
+            jobs: int | None = 1, backend="auto", progress: bool | None = False,
+            scheduler: str | None = None, **changes):
     """Render ``frames`` frames along ``path``. Without ``output``, return an iterator of
     images; with it, write the file (GIF, PNG/APNG, MP4 or a folder) and return the number
-    of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal."""
+    of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal;
+    ``scheduler`` renders on a Dask cluster (see :func:`render_frames`)."""
     jobs = (os.cpu_count() or 1) if jobs is None else jobs
     bar = Progress(frames, enabled=progress) if progress is not False else None
+    spool = None
+    if output is not None and scheduler is not None and scheduler != "local":
+        spool = os.path.join(os.path.dirname(os.path.abspath(output)), "frames")
     it = render_frames(scene, path, frames, options, modes=modes, size=size, samples=samples,
-                       jobs=jobs, backend=backend, progress=bar, **changes)
+                       jobs=jobs, backend=backend, progress=bar, scheduler=scheduler,
+                       spool=spool, **changes)
     if output is None:
         return it
     try:

@@ -7,12 +7,11 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write, publish, writing
+from .._atomic import atomic_write, publish, temporary, writing
 from ..errors import OutputError, OutputWriteError, VideoUnavailable
 
 __all__ = ["output_format", "write_animation", "FORMATS"]
@@ -61,9 +60,8 @@ def _write_dir(frames, out: Path) -> int:
 
     if out.exists() and any(out.iterdir()):
         raise OutputError(f"{out}: the folder exists and is not empty")
-    parent = out.parent if str(out.parent) else Path(".")
     with writing(out):
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=parent))
+        tmp = Path(temporary(out, folder=True))
     try:
         n = 0
         for n, f in enumerate(frames, start=1):
@@ -90,9 +88,7 @@ def _write_mp4(frames, out: Path, fps: float) -> int:
         raise VideoUnavailable("MP4 output needs imageio and its ffmpeg plugin: "
                                "pip install 'glshade[video]' (or write .gif or .png)") from None
     with writing(out):
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".part.mp4",
-                                   dir=out.parent if str(out.parent) else ".")
-        os.close(fd)
+        tmp = temporary(out, suffix=".mp4")
     n = 0
     try:
         writer = imageio.get_writer(tmp, fps=fps, codec="libx264", quality=8,

@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 
-from ..errors import EXIT_ENVIRONMENT, EXIT_OK, UsageError
+from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, UsageError
 from ..io.scenefile import RenderSettings
 from .info import info
 from .inputs import load_job
 
-__all__ = ["info", "render", "animate", "compare", "view", "doctor"]
+__all__ = ["info", "render", "animate", "batch", "compare", "view", "doctor"]
 
 #: compare renders small tiles, one sample per pixel like its references
 COMPARE_DEFAULTS = RenderSettings(width=256, height=256, samples=0)
@@ -52,27 +53,59 @@ def animate(args) -> int:
     with job.explained():
         n = run(job.scene, job.path, frames, job.options, modes=modes, output=args.output,
                 fps=fps, size=job.size, samples=st.samples, jobs=jobs, backend=args.backend,
-                progress=None if not args.quiet else False)
+                progress=None if not args.quiet else False, scheduler=args.scheduler)
     if not args.quiet:
+        where = (f"Dask at {args.scheduler}" if args.scheduler else
+                 f"{jobs} job{'s' if jobs > 1 else ''}")
         print(f"{args.output}: {n} frames, {job.size[0]}x{job.size[1]}, {fps:g} fps, "
-              f"{'/'.join(modes)}, {jobs} job{'s' if jobs > 1 else ''}")
+              f"{'/'.join(modes)}, {where}")
     return EXIT_OK
+
+
+def batch(args) -> int:
+    from ..batch import BatchSpec, batch as run
+    from ..scene import Material
+
+    if args.eye is not None or args.target is not None:
+        raise UsageError("batch frames every mesh itself; use --views N for more "
+                         "directions, not --eye/--target")
+    given = {k: getattr(args, k) for k in ("color", "ka", "kd", "ks", "shininess")
+             if getattr(args, k) is not None}
+    Material.from_values(given)  # bad values fail now, not once per mesh
+    options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}))
+    spec = BatchSpec(modes=tuple(m.value for m in args.modes), outputs=args.outputs,
+                     size=args.size or (256, 256),
+                     samples=4 if args.samples is None else args.samples, views=args.views,
+                     options=options, material=given, background=args.background,
+                     lights=tuple(args.light or ()), crease=args.crease, fov=args.fov,
+                     backend=args.backend)
+    jobs = args.jobs or (os.cpu_count() or 1)
+    result = run(args.inputs, args.output, spec, jobs=jobs, scheduler=args.scheduler,
+                 overwrite=args.overwrite, progress=None if not args.quiet else False)
+    if not args.quiet:
+        print(result.summary())
+    for r in result.rows:
+        if r.status == "error":
+            print(f"glshade: error: {r.message}", file=sys.stderr)
+    return EXIT_OK if not result.count("error") else EXIT_USAGE
 
 
 def _sweep(args, modes) -> int:
     from .._atomic import atomic_write
     from ..compare import sweep, sweep_plot
-    from ..geometry import primitives
+    from ..compare.sweep import icosphere_level, uv_sphere_level
     from ..io.images import save_image
+    from ..parallel import Progress
 
     spec = args.mesh.removeprefix("primitive:").split(":")[0]
     if spec not in ("icosphere", "uv_sphere"):
         raise UsageError("--sweep needs a sphere primitive: primitive:icosphere or "
                          "primitive:uv_sphere")
-    make = primitives.icosphere if spec == "icosphere" else \
-        (lambda k: primitives.uv_sphere(4 * 2**k, 8 * 2**k))
-    rows = sweep(make, args.levels, modes=modes, size=args.size or COMPARE_DEFAULTS.size,
-                 backend=args.backend)
+    make = icosphere_level if spec == "icosphere" else uv_sphere_level
+    with Progress(len(args.levels), unit="levels") as bar:
+        rows = sweep(make, args.levels, modes=modes, size=args.size or COMPARE_DEFAULTS.size,
+                     backend=args.backend, jobs=args.jobs or 1, scheduler=args.scheduler,
+                     progress=bar)
     print("mean |error| against the analytic sphere (8-bit units) and the brightest pixel "
           "(the reference's: %.1f)" % rows[0][modes[0]].reference_peak)
     print("level  faces     " + "  ".join(f"{m:>9}" for m in modes) + "   " +

@@ -55,6 +55,16 @@ def add_render_options(p: argparse.ArgumentParser) -> None:
                    help="encode the linear result as sRGB")
 
 
+def add_executor_options(p: argparse.ArgumentParser, default_jobs: str = "the number of "
+                         "cores", what: str = "items") -> None:
+    """Where the work runs: local worker processes or a Dask cluster."""
+    p.add_argument("--jobs", type=v.count, help=f"local worker processes rendering {what} "
+                   f"(default: {default_jobs}); with --scheduler local, the workers started")
+    p.add_argument("--scheduler", type=v.scheduler, metavar="ADDRESS",
+                   help="render on a Dask cluster: tcp://HOST:PORT of a running scheduler, "
+                   "or 'local' to start one here (needs pip install 'glshade[distributed]')")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="glshade", description="Classic shading on the GPU, headless or in a "
                      "window; and the geometry that goes with it.")
@@ -93,8 +103,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--mode", type=v.mode, help="shading mode (default: the scene's)")
     p.add_argument("--modes", type=v.modes, help="several modes side by side, e.g. "
                    "flat,gouraud,phong")
-    p.add_argument("--jobs", type=v.count, help="worker processes (default: the number of "
-                   "cores)")
+    add_executor_options(p)
     p.add_argument("--size", type=v.size, metavar="WxH", help="frame size (default: the "
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
@@ -119,8 +128,28 @@ def build_parser() -> argparse.ArgumentParser:
                    "tessellation level of a sphere primitive")
     p.add_argument("--levels", type=v.levels, default=list(range(0, 7)),
                    help="levels for --sweep, e.g. 0..6")
+    add_executor_options(p, default_jobs="1", what="--sweep levels")
     add_render_options(p)
     p.set_defaults(func=c.compare)
+
+    p = sub.add_parser("batch", help="render every mesh of folders or globs to images "
+                       "(and depth/normal/id arrays), resumably, locally or on Dask")
+    p.add_argument("inputs", nargs="+", metavar="INPUT", help="mesh files, folders (searched "
+                   "recursively) or globs such as 'data/**/*.ply'")
+    p.add_argument("-o", "--output", required=True, metavar="OUTDIR",
+                   help="output folder: REL.MODE.png per mesh (and REL.npz), manifest.csv")
+    p.add_argument("--modes", type=v.modes, default="phong", help="comma-separated modes "
+                   "(default phong)")
+    p.add_argument("--outputs", type=v.outputs, default="color", help="color, and any of "
+                   "depth, normal, face_id (saved per view in REL.npz); default color")
+    p.add_argument("--views", type=v.count, default=1, help="N views around each mesh "
+                   "(REL.vK.MODE.png; default 1)")
+    p.add_argument("--overwrite", action="store_true", help="render again the meshes whose "
+                   "outputs exist (default: keep them, so a rerun resumes)")
+    add_executor_options(p, what="meshes")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+    add_render_options(p)
+    p.set_defaults(func=c.batch, size=None)
 
     p = sub.add_parser("view", help="explore a mesh in a window (keys: h)")
     p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "

@@ -99,3 +99,26 @@ def fov(text: str) -> float:
 
 def degrees(text: str) -> float:
     return _number(text, lambda x: 0 <= x <= 180, "an angle from 0 to 180 such as 30")
+
+
+def outputs(text: str):
+    """``color,depth,normal,face_id`` -> an Outputs flag (colour always included)."""
+    from ..modes import Outputs
+
+    names = {"color": Outputs.COLOR, "depth": Outputs.DEPTH, "normal": Outputs.NORMAL,
+             "face_id": Outputs.FACE_ID, "id": Outputs.FACE_ID}
+    flag = Outputs.COLOR
+    for t in (t.strip().lower() for t in text.split(",")):
+        if t not in names:
+            raise argparse.ArgumentTypeError(f"unknown output {t!r}; choose from "
+                                             "color, depth, normal, face_id")
+        flag |= names[t]
+    return flag
+
+
+def scheduler(text: str) -> str:
+    text = text.strip()
+    if text != "local" and not (("://" in text) and text.rsplit(":", 1)[-1].isdigit()):
+        raise argparse.ArgumentTypeError(f"expected a Dask scheduler address such as "
+                                         f"tcp://10.0.0.5:8786, or 'local', got {text!r}")
+    return text

@@ -3,40 +3,82 @@
 
 from __future__ import annotations
 
-from contextlib import nullcontext
-
 import numpy as np
 
 from ..io.images import font
 from ..scene import Camera, Material, PointLight, Scene
 from .comparison import compare
 
-__all__ = ["sweep", "sweep_plot"]
+__all__ = ["sweep", "sweep_plot", "SweepLevel", "icosphere_level", "uv_sphere_level"]
 
 
 def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "gouraud", "phong"),
           *, material=None, lights=None, size=(192, 192), backend="auto",
-          renderer=None) -> list[dict]:
+          renderer=None, jobs: int = 1, scheduler: str | None = None,
+          progress=None) -> list[dict]:
     """Error of each mode against the analytic reference for each tessellation level:
-    ``[{"level": k, "faces": F, "flat": ModeMetrics, ...}, ...]``."""
-    from ..render.renderer import Renderer
+    ``[{"level": k, "faces": F, "flat": ModeMetrics, ...}, ...]``. Levels render in
+    ``jobs`` worker processes or on a Dask ``scheduler`` (then ``make_mesh`` must be
+    picklable: a module-level function or a ``functools.partial`` of one)."""
+    args = (make_mesh, camera, tuple(modes), material, lights, tuple(size), backend)
+    if renderer is not None:
+        worker = SweepLevel(*args, renderer=renderer)
+        return [worker(k) for k in levels]
+    from ..parallel import make_executor
 
+    levels = list(levels)
+    executor = make_executor(SweepLevel, args, jobs, items=len(levels), scheduler=scheduler)
     rows = []
-    owned = renderer is None
-    with (Renderer(size[0], size[1], samples=0, backend=backend) if owned
-          else nullcontext(renderer)) as r:
-        for k in levels:
-            mesh = make_mesh(k)
-            scene = Scene()
-            scene.add(mesh, material or Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30))
-            for light in lights or [PointLight((3.0, 4.0, 5.0))]:
-                scene.add_light(light)
-            cam = camera or Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
-            c = compare(scene, cam, modes, "analytic", size=size, diff=False, renderer=r)
-            row = {"level": k, "faces": mesh.n_faces}
-            row.update({m.mode: m for m in c.metrics})
-            rows.append(row)
+    for row in executor.map(levels):
+        rows.append(row)
+        if progress:
+            progress.update()
     return rows
+
+
+class SweepLevel:
+    """A worker: the row of one tessellation level (its own renderer unless given one)."""
+
+    def __init__(self, make_mesh, camera, modes, material, lights, size, backend,
+                 renderer=None):
+        from ..render.renderer import Renderer
+
+        self.make_mesh, self.modes, self.size = make_mesh, modes, size
+        self.camera = camera or Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
+        self.material = material or Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30)
+        self.lights = lights or [PointLight((3.0, 4.0, 5.0))]
+        self.owned = renderer is None
+        self.renderer = renderer or Renderer(size[0], size[1], samples=0, backend=backend)
+
+    def __call__(self, k: int) -> dict:
+        mesh = self.make_mesh(k)
+        scene = Scene()
+        scene.add(mesh, self.material)
+        for light in self.lights:
+            scene.add_light(light)
+        c = compare(scene, self.camera, self.modes, "analytic", size=self.size, diff=False,
+                    renderer=self.renderer)
+        row = {"level": k, "faces": mesh.n_faces}
+        row.update({m.mode: m for m in c.metrics})
+        return row
+
+    def close(self):
+        if self.owned:
+            self.renderer.close()
+
+
+def icosphere_level(k: int):
+    """The icosphere of subdivision level ``k`` (a picklable ``make_mesh``)."""
+    from ..geometry import primitives
+
+    return primitives.icosphere(k)
+
+
+def uv_sphere_level(k: int):
+    """A UV sphere with ``4 * 2**k`` stacks and ``8 * 2**k`` slices."""
+    from ..geometry import primitives
+
+    return primitives.uv_sphere(4 * 2**k, 8 * 2**k)
 
 
 def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420)) -> np.ndarray:

@@ -9,12 +9,15 @@ __all__ = ["Progress"]
 
 
 class Progress:
-    """A one-line progress bar on a terminal: frames done, frames/s, time left."""
+    """A one-line progress bar on a terminal: items done, items/s, time left. ``unit`` names
+    the items ("frames", "meshes", "levels")."""
 
-    def __init__(self, total: int, enabled: bool | None = None, stream=None):
+    def __init__(self, total: int, enabled: bool | None = None, stream=None,
+                 unit: str = "frames"):
         self.stream = stream or sys.stderr
         self.enabled = self.stream.isatty() if enabled is None else enabled
         self.total, self.done, self.start = total, 0, time.perf_counter()
+        self.unit = unit
 
     def update(self, n: int = 1) -> None:
         self.done += n
@@ -25,11 +28,18 @@ class Progress:
         left = (self.total - self.done) / rate if rate > 0 else 0.0
         width = 30
         filled = int(width * self.done / max(self.total, 1))
+        per = "fps" if self.unit == "frames" else f"{self.unit}/s"
         self.stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total}"
-                          f" frames  {rate:5.1f} fps  {left:5.1f} s left ")
+                          f" {self.unit}  {rate:5.1f} {per}  {left:5.1f} s left ")
         self.stream.flush()
 
     def close(self) -> None:
         if self.enabled:
             self.stream.write("\n")
             self.stream.flush()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

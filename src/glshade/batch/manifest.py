@@ -1,0 +1,67 @@
+"""``manifest.csv``: one row per input (what it became, or why it did not), written
+atomically; an earlier run's manifest lends its rows to the inputs a rerun keeps."""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+from pathlib import Path
+
+from .._atomic import atomic_write
+from .worker import Row
+
+__all__ = ["write_manifest", "read_manifest", "COLUMNS"]
+
+COLUMNS = ("input", "status", "polygons", "seconds", "outputs", "message")
+
+
+def write_manifest(rows: list[Row], path) -> None:
+    """Outputs are written relative to the manifest's folder, so the folder can move."""
+    import os
+
+    base = Path(path).resolve().parent
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(COLUMNS)
+    for r in rows:
+        w.writerow([r.input, r.status, "" if r.polygons is None else r.polygons,
+                    "" if r.seconds is None else f"{r.seconds:.4f}",
+                    ";".join(os.path.relpath(o, base) for o in r.outputs),
+                    r.message])
+    with atomic_write(path, "w") as f:
+        f.write(buf.getvalue())
+
+
+def read_manifest(path) -> dict[str, Row]:
+    """The rows of an earlier manifest by input (empty if there is none, or it is not ours)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return {}
+    rows = {}
+    reader = csv.DictReader(io.StringIO(text))
+    if tuple(reader.fieldnames or ()) != COLUMNS:
+        return {}
+    for d in reader:
+        try:
+            rows[d["input"]] = Row(d["input"], d["status"],
+                                   int(d["polygons"]) if d["polygons"] else None,
+                                   float(d["seconds"]) if d["seconds"] else None,
+                                   tuple(str(path.parent.resolve() / x)
+                                         for x in d["outputs"].split(";") if x),
+                                   d["message"])
+        except (ValueError, TypeError):
+            continue
+    return rows
+
+
+def kept(task, earlier: dict[str, Row]) -> Row:
+    """The row of an input whose outputs all exist already."""
+    old = earlier.get(task.input)
+    row = Row(task.input, "exists", outputs=task.outputs,
+              message="outputs exist; kept (--overwrite to render again)")
+    if old is not None and old.status in ("ok", "exists"):
+        row = dataclasses.replace(row, polygons=old.polygons, seconds=old.seconds)
+    return row

@@ -1,0 +1,149 @@
+"""The same work on a Dask cluster (the ``distributed`` extra): a scheduler's address, or
+``"local"`` for a :class:`distributed.LocalCluster` on this machine.
+
+Each Dask worker thread builds the job's worker (its renderer, one GL context) on its first
+task and keeps it for the job's other tasks, so a context is made once per worker, not per
+task; a worker plugin sets Mesa's thread count before any context exists, sharing each
+host's cores among the workers on it. The factory and its arguments travel once per worker
+(scattered), the items one per task, and each task returns what the worker returns -- file
+paths and small records, never pixels. Results come back in item order. A task on a worker
+that dies is run again elsewhere (Dask's ``allowed-failures``); an error raised by a task
+is raised here, as it was raised there.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import threading
+import uuid
+
+from ..errors import ClusterError, InputError
+from .executors import Executor
+
+try:
+    from distributed import WorkerPlugin
+except ImportError:  # the extra is missing: DaskExecutor says how to install it
+    WorkerPlugin = object
+
+__all__ = ["DaskExecutor", "connect", "INSTALL_HINT"]
+
+INSTALL_HINT = "pip install 'glshade[distributed]'"
+
+_slot = threading.local()  # (job id, worker or the error its factory raised)
+
+
+def _import_distributed():
+    try:
+        import distributed
+    except ImportError:
+        raise ClusterError(f"running on a Dask cluster needs Dask distributed: "
+                           f"{INSTALL_HINT} (or use --jobs N for local processes)") from None
+    return distributed
+
+
+@contextlib.contextmanager
+def connect(scheduler: str, workers: int | None = None):
+    """Yield a Client of the scheduler at ``scheduler`` (``tcp://HOST:PORT``), or of a new
+    LocalCluster of ``workers`` single-threaded worker processes for ``"local"``."""
+    distributed = _import_distributed()
+    cluster = None
+    try:
+        if scheduler == "local":
+            cluster = distributed.LocalCluster(
+                n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                processes=True, dashboard_address=None, silence_logs=logging.ERROR)
+            client = distributed.Client(cluster)
+        else:
+            if "://" not in scheduler:
+                raise InputError(f"--scheduler: expected tcp://HOST:PORT or 'local', got "
+                                 f"{scheduler!r}")
+            try:
+                client = distributed.Client(scheduler, timeout="10s")
+            except OSError as exc:  # unreachable, refused, timed out
+                raise ClusterError(f"cannot reach the Dask scheduler at {scheduler}: "
+                                   f"{exc}") from None
+        try:
+            yield client
+        finally:
+            client.close()
+    finally:
+        if cluster is not None:
+            cluster.close()
+
+
+def _host(address: str) -> str:
+    return address.split("://")[-1].rsplit(":", 1)[0]
+
+
+class MesaThreads(WorkerPlugin):
+    """Worker plugin: share the host's cores among its Dask workers before the first GL
+    context (llvmpipe starts a thread per core in every process otherwise)."""
+
+    idempotent = False
+    name = "glshade-mesa-threads"
+
+    def __init__(self, workers_per_host: dict):
+        self.workers_per_host = workers_per_host
+
+    def setup(self, worker):
+        n = self.workers_per_host.get(_host(worker.address), 1)
+        os.environ.setdefault("LP_NUM_THREADS", str(max(1, (os.cpu_count() or 1) // n)))
+
+    def teardown(self, worker):
+        pass
+
+
+def _worker_for(job: str, spec):
+    slot = getattr(_slot, "value", None)
+    if slot is None or slot[0] != job:
+        if slot is not None and not isinstance(slot[1], BaseException):
+            with contextlib.suppress(Exception):
+                slot[1].close()  # the previous job's renderer, in the thread that made it
+        factory, args = spec
+        try:
+            made = factory(*args)
+        except Exception as exc:  # every item of this job reports it, none retries it
+            made = exc
+        _slot.value = slot = (job, made)
+    if isinstance(slot[1], BaseException):
+        raise slot[1]
+    return slot[1]
+
+
+def _run(item, spec, job):
+    return _worker_for(job, spec)(item)
+
+
+class DaskExecutor(Executor):
+    """The items as Dask tasks on ``scheduler`` (``tcp://HOST:PORT`` or ``"local"``, with
+    ``workers`` processes); the first error or Ctrl-C cancels the rest."""
+
+    def __init__(self, factory, args: tuple, scheduler: str, workers: int | None = None):
+        super().__init__(factory, args)
+        self.scheduler, self.workers = scheduler, workers
+        _import_distributed()  # a missing extra fails before any work
+
+    def map(self, items):
+        items = list(items)
+        with connect(self.scheduler, self.workers) as client:
+            info = client.scheduler_info()["workers"]
+            if not info:
+                client.wait_for_workers(1, timeout=30)
+                info = client.scheduler_info()["workers"]
+            per_host: dict = {}
+            for address in info:
+                per_host[_host(address)] = per_host.get(_host(address), 0) + 1
+            plugin = MesaThreads(per_host)
+            client.register_plugin(plugin, name=plugin.name)
+            [spec] = client.scatter([(self.factory, self.args)], broadcast=True, hash=False)
+            job = uuid.uuid4().hex
+            futures = client.map(_run, items, spec=spec, job=job, pure=False,
+                                 key=[f"glshade-{job}-{i}" for i in range(len(items))])
+            try:
+                for future in futures:
+                    yield future.result()
+            finally:
+                client.cancel(futures)
+

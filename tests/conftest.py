@@ -88,3 +88,64 @@ def pytest_collection_modifyitems(items):
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+class DaskCluster:
+    """A real Dask cluster on 127.0.0.1: a ``dask scheduler`` and ``dask worker`` processes
+    (single-threaded, no nanny, so that killing one kills its work)."""
+
+    def __init__(self, folder: Path, workers: int = 2):
+        import json
+        import time
+
+        self.folder, self.workers = folder, []
+        file = folder / "scheduler.json"
+        dask = str(Path(sys.executable).with_name("dask"))
+        self.scheduler = subprocess.Popen(
+            [dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+             "--scheduler-file", str(file)], cwd=folder, stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL)
+        deadline = time.time() + 60
+        while not file.exists() or not file.read_text().strip():
+            assert self.scheduler.poll() is None and time.time() < deadline, \
+                "the dask scheduler did not start"
+            time.sleep(0.1)
+        time.sleep(0.2)
+        self.address = json.loads(file.read_text())["address"]
+        for _ in range(workers):
+            self.start_worker()
+        self.wait_for(workers)
+
+    def start_worker(self) -> subprocess.Popen:
+        dask = str(Path(sys.executable).with_name("dask"))
+        env = {**os.environ, "GLSHADE_TEST_BACKEND": BACKEND}
+        proc = subprocess.Popen([dask, "worker", self.address, "--nthreads", "1",
+                                 "--no-nanny", "--no-dashboard", "--local-directory",
+                                 str(self.folder)], cwd=self.folder, env=env,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.workers.append(proc)
+        return proc
+
+    def wait_for(self, n: int) -> None:
+        from distributed import Client
+
+        with Client(self.address, timeout="30s") as client:
+            client.wait_for_workers(n, timeout=60)
+
+    def close(self) -> None:
+        for p in [*self.workers, self.scheduler]:
+            p.kill()
+            p.wait(timeout=30)
+
+
+@pytest.fixture(scope="session")
+def dask_cluster(tmp_path_factory):
+    try:
+        import distributed  # noqa: F401
+    except ImportError as exc:  # in the test extra: missing in CI is a failure, not a skip
+        if os.environ.get("CI"):
+            pytest.fail(f"the distributed extra is missing in CI: {exc}", pytrace=False)
+        pytest.skip(f"the distributed extra is missing: {exc}")
+    cluster = DaskCluster(tmp_path_factory.mktemp("dask"))
+    yield cluster
+    cluster.close()

@@ -28,4 +28,5 @@ def test_the_readme_python_example_runs(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "against the phong-fine reference" in r.stdout
     assert (tmp_path / "teapot.png").stat().st_size > 0
+    assert (tmp_path / "thumbs" / "teapot.v01.phong.png").stat().st_size > 0
     assert (tmp_path / "orbit.gif").stat().st_size > 0

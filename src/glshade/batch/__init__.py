@@ -83,7 +83,16 @@ def batch(inputs, outdir, spec: BatchSpec | None = None, *, jobs: int = 1,
     finally:
         if bar:
             bar.close()
-        ordered = [rows.get(i) or Row(t.input, "not run") for i, t in enumerate(tasks)]
+        ordered = [rows.get(i) or _unreported(t) for i, t in enumerate(tasks)]
         write_manifest(ordered, manifest)
         remove_stale(outdir, recursive=True)  # a worker stopped mid-write
     return BatchResult(ordered, manifest, time.perf_counter() - start)
+
+
+def _unreported(task: Task) -> Row:
+    """The row of a task the run stopped before hearing from: a worker may have finished
+    it (its outputs all exist) or not."""
+    if task.done():
+        return Row(task.input, "ok", outputs=task.outputs,
+                   message="rendered; its report was cut off by the interrupt")
+    return Row(task.input, "not run")

@@ -14,7 +14,7 @@ import zipfile
 
 import numpy as np
 
-from .._atomic import atomic_write
+from .._atomic import atomic_write, writing
 from ..errors import EnvironmentFailure, GlshadeError
 from ..modes import Outputs
 from ..options import DrawOptions
@@ -114,7 +114,8 @@ class BatchWorker:
         for position in s.lights:
             scene.add_light(PointLight(position))
         for p in task.outputs:
-            os.makedirs(os.path.dirname(p), exist_ok=True)
+            with writing(p):
+                os.makedirs(os.path.dirname(p), exist_ok=True)
         b = scene.bounds
         centre = b.mean(axis=0)
         lens = {"fov_y": s.fov} if s.fov is not None else {}

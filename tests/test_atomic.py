@@ -1,0 +1,56 @@
+"""Atomic outputs: temporary names say who writes them; a writer killed outright leaves
+one behind, and the next writer of the same output removes it (never a live writer's)."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from glshade._atomic import _HOST, atomic_write, remove_stale
+
+from .conftest import BACKEND, ROOT
+
+
+def _dead_pid() -> int:
+    p = subprocess.Popen([sys.executable, "-c", "pass"])
+    p.wait()
+    return p.pid
+
+
+def test_the_next_writer_removes_a_dead_writers_temporary(tmp_path):
+    stale = tmp_path / f".out.gif.{_HOST}-{_dead_pid()}.k2j4h1.part"
+    other_output = tmp_path / f".other.gif.{_HOST}-{_dead_pid()}.k2j4h1.part"
+    live = tmp_path / f".out.gif.{_HOST}-{os.getppid()}.k2j4h1.part"
+    other_host = tmp_path / ".out.gif.elsewhere-1.k2j4h1.part"
+    for p in (stale, other_output, live, other_host):
+        p.write_bytes(b"half")
+    with atomic_write(tmp_path / "out.gif") as f:
+        f.write(b"GIF89a")
+    assert (tmp_path / "out.gif").read_bytes() == b"GIF89a"
+    assert not stale.exists()
+    assert other_output.exists() and live.exists() and other_host.exists()
+    assert remove_stale(tmp_path) == 1 and not other_output.exists()
+
+
+@pytest.mark.gl
+def test_sigkill_mid_animation_then_rerun_leaves_no_temporary(tmp_path):
+    """A folder of frames is written under a temporary name; SIGKILL leaves it, the next
+    run of the same output removes it."""
+    out = tmp_path / "frames"
+    cmd = [sys.executable, "-m", "glshade", "animate", "assets/scenes/teapot-orbit.toml",
+           "-o", f"{out}/", "--size", "64x48", "--jobs", "1", "--backend", BACKEND, "-q"]
+    proc = subprocess.Popen([*cmd, "--frames", "5000"], cwd=ROOT)
+    deadline = time.time() + 60
+    while not any(p.is_dir() and any(p.iterdir()) for p in tmp_path.iterdir()):
+        assert proc.poll() is None and time.time() < deadline
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    [left] = list(tmp_path.iterdir())
+    assert left.name.startswith(f".frames.{_HOST}-{proc.pid}.") and ".part" in left.name
+    assert subprocess.run([*cmd, "--frames", "2"], cwd=ROOT).returncode == 0
+    assert [p.name for p in tmp_path.iterdir()] == ["frames"]
+    assert len(list(out.iterdir())) == 2

@@ -5,6 +5,10 @@ and a 2-worker Dask LocalCluster (its start-up timed apart), on three workloads:
 * heavy frames: 24 meshes of ~80k triangles at 512x512, 4 views (>= 50 ms a frame);
 * trivial tasks: 200 one-triangle meshes at 16x16: the per-task overhead of each executor.
 
+``--jobs 1`` lets Mesa's llvmpipe rasterise with a thread per core, so on a CPU renderer
+a second job only wins the serial parts (file parsing, Python, PNG encoding); the row with
+llvmpipe held to one thread (a separate process, its start-up included) shows the split.
+
 Run: ``.venv/bin/python benchmarks/batch_bench.py`` (needs the distributed extra for the
 Dask rows; they are left out, and say so, without it).
 """
@@ -54,6 +58,22 @@ def run(folder: Path, spec: BatchSpec, out: Path, **where) -> float:
     return result.seconds
 
 
+def one_thread(folder: Path, spec: BatchSpec, out: Path) -> float:
+    """``--jobs 1`` with llvmpipe held to one thread (a fresh process: Mesa reads
+    LP_NUM_THREADS when its first context is made)."""
+    import os
+    import subprocess
+
+    shutil.rmtree(out, ignore_errors=True)
+    w, h = spec.size
+    args = [sys.executable, "-m", "glshade", "batch", str(folder), "-o", str(out), "-q",
+            "--jobs", "1", "--size", f"{w}x{h}", "--views", str(spec.views),
+            "--samples", str(spec.samples)]
+    t = time.perf_counter()
+    subprocess.run(args, check=True, env={**os.environ, "LP_NUM_THREADS": "1"})
+    return time.perf_counter() - t
+
+
 def main() -> None:
     try:
         import distributed
@@ -81,7 +101,8 @@ def main() -> None:
                 for label, where in executors.items():
                     s = run(folder, spec, root / "out", **where)
                     best[label] = min(best.get(label, float("inf")), s)
-            for label in executors:
+            best["--jobs 1, llvmpipe 1 thread"] = one_thread(folder, spec, root / "out")
+            for label in [*executors, "--jobs 1, llvmpipe 1 thread"]:
                 rate = n / best[label]
                 rows.append((name, label, f"{rate:.1f}", f"{1000 * best[label] / n:.1f}",
                              f"{best['--jobs 1'] / best[label]:.2f}x"))

@@ -22,13 +22,15 @@ def parse_enum(cls, value, what: str):
 
 
 class ShadingMode(enum.Enum):
-    """How a surface is shaded (the notes' three, and two debug views)."""
+    """How a surface is shaded (the notes' three, a radiosity solution's display, and two
+    debug views)."""
 
     FLAT = "flat"          # uniform shading: one intensity per polygon
     GOURAUD = "gouraud"    # intensities at the vertices, interpolated
     PHONG = "phong"        # normals interpolated, lit per pixel
     NORMALS = "normals"    # debug: world normal as colour
     DEPTH = "depth"        # debug: view depth as grey
+    RADIOSITY = "radiosity"  # per-vertex radiosities (Model.vertex_colors), interpolated, unlit
 
     @classmethod
     def parse(cls, value) -> ShadingMode:

@@ -38,6 +38,7 @@ class GpuMesh(GLResource):
         super().__init__(context)
         self._vaos: dict[int, object] = {}
         self._flat_vbo = None
+        self._colors = None  # (colour array, vbo, ibo, {program id: vao}) of the radiosity mode
         try:
             self._upload(mesh)
         except BaseException:
@@ -82,6 +83,39 @@ class GpuMesh(GLResource):
             self._flat_vbo = self._keep(self.context.ctx.buffer(data.tobytes()))
         return self._flat_vbo
 
+    def color_array(self, program, colors: np.ndarray):
+        """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the
+        mesh as given (never split), cached for the same colour array."""
+        self._check()
+        if self._colors is None or self._colors[0] is not colors:
+            self._drop_colors()
+            m = self._mesh()
+            if m is None:
+                raise GlshadeError("the mesh of this GpuMesh no longer exists")
+            data = np.hstack([m.vertices, _drawable_normals(m), colors]).astype("f4")
+            ctx = self.context.ctx
+            vbo = ctx.buffer(data.tobytes())
+            ibo = ctx.buffer(m.triangles[0].astype("u4").tobytes())
+            self._colors = (colors, vbo, ibo, {})
+        colors_, vbo, ibo, vaos = self._colors
+        vao = vaos.get(id(program))
+        if vao is None:
+            names = [n for n in ("in_position", "in_normal", "in_color") if n in program]
+            fmt = " ".join("3f" if n in names else "12x"
+                           for n in ("in_position", "in_normal", "in_color"))
+            vao = vaos[id(program)] = self.context.ctx.vertex_array(
+                program, [(vbo, fmt, *names)], ibo, 4)
+        return vao
+
+    def _drop_colors(self) -> None:
+        if self._colors is not None:
+            _, vbo, ibo, vaos = self._colors
+            for vao in vaos.values():
+                vao.release()
+            vbo.release()
+            ibo.release()
+            self._colors = None
+
     def vertex_array(self, program, mode: ShadingMode):
         """The VAO binding this mesh's buffers to ``program`` (cached)."""
         self._check()
@@ -100,6 +134,7 @@ class GpuMesh(GLResource):
         return vao
 
     def _release_extra(self) -> None:
+        self._drop_colors()
         for vao in self._vaos.values():
             vao.release()
         self._vaos.clear()

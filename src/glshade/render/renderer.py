@@ -311,7 +311,11 @@ class Renderer:
                 ctx.disable(moderngl.CULL_FACE)
             if aux:
                 gpu.face_ids.use(0)
-            gpu.vertex_array(prog, options.mode).render(moderngl.TRIANGLES)
+            if options.mode is ShadingMode.RADIOSITY:
+                vao = gpu.color_array(prog, model.display_colors(scene.ambient))
+            else:
+                vao = gpu.vertex_array(prog, options.mode)
+            vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"

@@ -25,6 +25,7 @@ PROGRAMS = {
     ShadingMode.PHONG: ("smooth.vert", "phong.frag"),
     ShadingMode.NORMALS: ("smooth.vert", "normals.frag"),
     ShadingMode.DEPTH: ("smooth.vert", "depth.frag"),
+    ShadingMode.RADIOSITY: ("radiosity.vert", "radiosity.frag"),
 }
 
 _INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')

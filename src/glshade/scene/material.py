@@ -32,18 +32,38 @@ def nonnegative(value, name) -> float:
 class Material:
     """The notes' reflection coefficients: ambient ``ka``, diffuse ``kd``, specular ``ks``
     and the specular exponent ``shininess`` (``n``). Ambient and diffuse multiply
-    ``color``; specular takes the light's colour."""
+    ``color``; specular takes the light's colour.
+
+    For radiosity (diffuse surfaces only): ``emission`` E, the radiosity a surface gives
+    off by itself (RGB, any non-negative size), and ``reflectance`` the notes' rho_d
+    (RGB, each in [0, 1]); without it, rho_d = kd * color."""
 
     color: tuple = (0.8, 0.8, 0.8)
     ka: float = 0.2
     kd: float = 0.7
     ks: float = 0.3
     shininess: float = 32.0
+    emission: tuple = (0.0, 0.0, 0.0)
+    reflectance: tuple | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "color", color3(self.color, "color"))
         for name in ("ka", "kd", "ks", "shininess"):
             object.__setattr__(self, name, nonnegative(getattr(self, name), name))
+        object.__setattr__(self, "emission", color3(self.emission, "emission"))
+        if self.reflectance is not None:
+            rho = color3(self.reflectance, "reflectance")
+            if max(rho) > 1:
+                raise GeometryError(f"reflectance must be 3 numbers in [0, 1] (a surface "
+                                    f"reflects at most what it receives), got {rho}")
+            object.__setattr__(self, "reflectance", rho)
+
+    @property
+    def rho(self) -> tuple[float, float, float]:
+        """The diffuse reflectance rho_d (RGB) radiosity uses."""
+        if self.reflectance is not None:
+            return self.reflectance
+        return tuple(self.kd * c for c in self.color)
 
 
     @classmethod

@@ -32,6 +32,22 @@ class Model:
     transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
     name: str | None = None
     visible: bool = True
+    #: (V, 3) linear RGB per mesh vertex, shown by the ``radiosity`` mode (read-only)
+    vertex_colors: NDArray[np.float32] | None = None
+    _constant: tuple | None = field(default=None, repr=False)
+
+    def display_colors(self, ambient) -> np.ndarray:
+        """What the ``radiosity`` mode shows at each vertex: ``vertex_colors``, or without
+        them the surface's own emission plus its ambient term (no light transport)."""
+        if self.vertex_colors is not None:
+            return self.vertex_colors
+        key = (self.mesh.n_vertices, self.material, tuple(ambient))
+        if self._constant is None or self._constant[0] != key:  # (the same array each frame)
+            m = self.material
+            c = np.add(m.emission, np.multiply(ambient, m.color) * m.ka)
+            self._constant = (key, np.broadcast_to(np.asarray(c, np.float32),
+                                                   (self.mesh.n_vertices, 3)))
+        return self._constant[1]
 
 
 class Scene:
@@ -57,11 +73,12 @@ class Scene:
     def add(self, mesh: Mesh, material: Material | None = None, transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
-            crease: float | None = None) -> Model:
+            crease: float | None = None, vertex_colors: ArrayLike | None = None) -> Model:
         """Add a mesh. Place it with a 4x4 ``transform`` (column vectors), or with a
         quaternion ``rotation``, ``translation`` and ``scale`` (T R S). ``crease`` (degrees)
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
-        added with its vertices split there (:meth:`Mesh.split_creases`)."""
+        added with its vertices split there (:meth:`Mesh.split_creases`). ``vertex_colors``
+        (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display)."""
         if not isinstance(mesh, Mesh):
             raise GeometryError(f"scene.add needs a Mesh, got {type(mesh).__name__}")
         if crease is not None:
@@ -75,7 +92,20 @@ class Scene:
             raise GeometryError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
                                 f"the GPU draws up to {MAX_DRAWABLE_COORDINATE:g} (its 32-bit "
                                 "arithmetic squares lengths): scale the mesh down")
-        model = Model(mesh, material or Material(), m, name or mesh.name)
+        colors = None
+        if vertex_colors is not None:
+            if crease is not None:
+                raise GeometryError("vertex_colors and crease cannot be combined (crease "
+                                    "splits the vertices the colours belong to)")
+            colors = np.array(vertex_colors, dtype=np.float32)
+            if colors.shape != (mesh.n_vertices, 3) or not np.isfinite(colors).all() \
+                    or (colors < 0).any():
+                raise GeometryError(f"vertex_colors must be ({mesh.n_vertices}, 3) "
+                                    f"non-negative numbers, one per vertex; got shape "
+                                    f"{colors.shape}")
+            colors.flags.writeable = False
+        model = Model(mesh, material or Material(), m, name or mesh.name,
+                      vertex_colors=colors)
         self.models.append(model)
         return model
 

@@ -1,0 +1,148 @@
+"""Form factors by the hemicube (Cohen and Greenberg 1985), drawn on the GPU.
+
+From a point on a patch, the hemisphere above it is covered by half a cube: the top face
+(looking along the normal) and four half side faces. Every patch is drawn into the five
+faces with its id as an integer (never multisampled or blended) and the depth test keeps
+the nearest; each pixel's *delta form factor* -- ``dA / (pi (x^2 + y^2 + 1)^2)`` on the
+top face, ``z dA / (pi (x^2 + z^2 + 1)^2)`` on a side face, for a cube of half-size 1 --
+is then summed per visible patch (a histogram: ``numpy.bincount``). The five faces are one
+atlas (``3N x N``), read back once per point.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError
+from .base import GLResource
+from .shaders import ShaderLibrary
+
+__all__ = ["Hemicube", "delta_form_factors"]
+
+
+def delta_form_factors(n: int) -> np.ndarray:
+    """The atlas of delta form factors ``(N, 3N)``, row 0 at the bottom (GL's order): the
+    top face in columns ``0..N``, the side faces as ``N x N/2`` halves stacked two by two in
+    columns ``N..2N`` and ``2N..3N``. They sum to 1 as N grows."""
+    d = 2.0 / n
+    c = -1 + (np.arange(n) + 0.5) * d
+    x, y = np.meshgrid(c, c)  # (row, column)
+    top = d * d / (np.pi * (x * x + y * y + 1) ** 2)
+    z = (np.arange(n // 2) + 0.5) * d
+    xs, zs = np.meshgrid(c, z)
+    side = zs * d * d / (np.pi * (xs * xs + zs * zs + 1) ** 2)
+    atlas = np.zeros((n, 3 * n))
+    atlas[:, :n] = top
+    for k in range(4):
+        col, row = n + (k // 2) * n, (k % 2) * (n // 2)
+        atlas[row:row + n // 2, col:col + n] = side
+    return atlas
+
+
+def _look(origin, forward, up) -> np.ndarray:
+    f = forward / np.linalg.norm(forward)
+    s = np.cross(f, up)
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ origin
+    return m
+
+
+def _frustum(left, right, bottom, top, near, far) -> np.ndarray:
+    return np.array([
+        [2 * near / (right - left), 0, (right + left) / (right - left), 0],
+        [0, 2 * near / (top - bottom), (top + bottom) / (top - bottom), 0],
+        [0, 0, -(far + near) / (far - near), -2 * far * near / (far - near)],
+        [0, 0, -1, 0]])
+
+
+class Hemicube(GLResource):
+    """Hemicubes of resolution ``N`` (the top face is ``N x N``) over uploaded patches."""
+
+    def __init__(self, context, resolution: int = 128):
+        super().__init__(context)
+        n = int(resolution)
+        if n != resolution or n < 4 or n % 2:
+            raise GeometryError(f"hemicube resolution must be an even whole number >= 4, "
+                                f"got {resolution!r}")
+        limit = context.ctx.info["GL_MAX_RENDERBUFFER_SIZE"]
+        if 3 * n > limit:
+            raise GeometryError(f"hemicube resolution {n} needs a {3 * n}-pixel-wide "
+                                f"target; this GL allows {limit} (use <= {limit // 3})")
+        self.resolution = n
+        self.weights = delta_form_factors(n).ravel()
+        ctx = context.ctx
+        library = ShaderLibrary(context)
+        try:
+            self.program = self._keep(library.compile("hemicube.vert", "hemicube.frag"))
+        finally:
+            library.release()
+        self.ids = self._keep(ctx.renderbuffer((3 * n, n), 1, dtype="i4"))
+        self.depth = self._keep(ctx.depth_renderbuffer((3 * n, n)))
+        self.fbo = self._keep(ctx.framebuffer([self.ids], self.depth))
+        self._vao = self._vbo = None
+        self._buffer = np.empty(3 * n * n, np.int32)
+        self.n_patches = 0
+
+    def upload(self, vertices: np.ndarray, triangles: np.ndarray, patch: np.ndarray,
+               n_patches: int) -> None:
+        """The scene: triangles (T, 3) into vertices, each of patch ``patch[t]``."""
+        self._check()
+        for obj in (self._vao, self._vbo):
+            if obj is not None:
+                obj.release()
+                self._objects.remove(obj)
+        corners = np.asarray(vertices, "f4")[np.asarray(triangles).ravel()]
+        ids = np.repeat(np.asarray(patch, np.int32) + 1, 3)
+        data = np.empty(len(corners), dtype=[("p", "f4", 3), ("id", "i4")])
+        data["p"], data["id"] = corners, ids
+        ctx = self.context.ctx
+        self._vbo = self._keep(ctx.buffer(data.tobytes()))
+        self._vao = self._keep(ctx.vertex_array(self.program,
+                                                [(self._vbo, "3f 1i", "in_position",
+                                                  "in_patch")]))
+        self.n_patches = int(n_patches)
+        lo, hi = corners.min(0), corners.max(0)
+        self.extent = float(np.linalg.norm(hi - lo)) or 1.0
+
+    def faces(self, origin, normal, tangent) -> list[tuple[tuple, np.ndarray]]:
+        """(viewport, view-projection) of the five faces at ``origin``."""
+        n = self.resolution
+        near = 1e-5 * self.extent
+        far = 4.0 * self.extent
+        normal = np.asarray(normal, np.float64)
+        t = np.asarray(tangent, np.float64)
+        b = np.cross(normal, t)
+        top = _frustum(-near, near, -near, near, near, far) @ _look(origin, normal, t)
+        half = _frustum(-near, near, 0.0, near, near, far)
+        out = [((0, 0, n, n), top)]
+        for k, d in enumerate((t, -t, b, -b)):
+            viewport = (n + (k // 2) * n, (k % 2) * (n // 2), n, n // 2)
+            out.append((viewport, half @ _look(origin, d, normal)))
+        return out
+
+    def row(self, origin, normal, tangent) -> np.ndarray:
+        """Form factors ``(P,)`` from the point ``origin`` (on a patch facing ``normal``;
+        ``tangent`` turns the cube about it) to every patch."""
+        import moderngl
+
+        self._check()
+        if self._vao is None:
+            raise GeometryError("upload the patches before asking for form factors")
+        ctx = self.context.ctx
+        self.context.make_current()
+        origin = np.asarray(origin, np.float64) + 1e-6 * self.extent * np.asarray(normal)
+        self.fbo.use()
+        self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        member = self.program["u_view_proj"]
+        for viewport, matrix in self.faces(origin, normal, tangent):
+            ctx.viewport = viewport
+            member.write(np.ascontiguousarray(matrix.T, dtype="f4").tobytes())
+            self._vao.render(moderngl.TRIANGLES)
+        self.fbo.read_into(self._buffer, components=1, dtype="i4")
+        return np.bincount(self._buffer, weights=self.weights,
+                           minlength=self.n_patches + 1)[1:]

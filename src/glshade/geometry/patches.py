@@ -41,6 +41,7 @@ class Patches:
     centers: np.ndarray
     normals: np.ndarray
     areas: np.ndarray
+    corners: np.ndarray
     split: int = 0
 
     @property
@@ -68,26 +69,52 @@ class Patches:
         return out / np.maximum(total, 1e-300)[:, None]
 
     def sample_points(self, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``counts[i]^2`` points spread evenly over patch ``i`` (stratified: the centroids
-        of ``counts[i]^2`` equal-area pieces of each of its triangles, weighted by area).
-        Returns (points (S, 3), patch (S,), weight (S,)) with each patch's weights summing
-        to 1."""
+        """Quadrature points over each patch, about ``counts[i]^2`` of them: on a quad patch
+        the ``s x s`` Gauss-Legendre points of its bilinear map, on a triangle patch the
+        3-point (degree 2) rule on each of ``k^2`` pieces, ``k = ceil(s / sqrt(3))``; the
+        centre for 1. Returns (points (S, 3), patch (S,), weight (S,)), each patch's
+        weights summing to 1: ``sum w f(x)`` is the mean of ``f`` over the patch."""
         counts = np.asarray(counts, np.int64)
-        tri_k = counts[self.triangle_patch]
+        quad = self.corners[:, 3] >= 0
         pts, owner, weight = [], [], []
-        for k in np.unique(tri_k):
-            sel = np.flatnonzero(tri_k == k)
-            cents = _sub_centroids(int(k))  # (k^2, 3) barycentric centroids
-            corners = self.vertices[self.triangles[sel]]  # (n, 3, 3)
-            p = np.einsum("sc,ncd->nsd", cents, corners).reshape(-1, 3)
-            area = _tri_areas(corners)
-            pts.append(p)
-            owner.append(np.repeat(self.triangle_patch[sel], len(cents)))
-            weight.append(np.repeat(area / len(cents), len(cents)))
+        for s in np.unique(counts[quad]):
+            sel = np.flatnonzero(quad & (counts == s))
+            x, w = np.polynomial.legendre.leggauss(int(s))
+            u, v = np.meshgrid((x + 1) / 2, (x + 1) / 2, indexing="ij")
+            u, v, w2 = u.ravel(), v.ravel(), np.outer(w, w).ravel() / 4
+            c = self.vertices[self.corners[sel]]  # (n, 4, 3)
+            basis = np.stack([(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v], 1)
+            du = np.stack([-(1 - v), 1 - v, v, -v], 1)
+            dv = np.stack([-(1 - u), -u, u, 1 - u], 1)
+            jac = np.linalg.norm(np.cross(np.einsum("sk,nkd->nsd", du, c),
+                                          np.einsum("sk,nkd->nsd", dv, c)), axis=2)
+            pts.append(np.einsum("sk,nkd->nsd", basis, c).reshape(-1, 3))
+            owner.append(np.repeat(sel, len(u)))
+            weight.append((jac * w2).ravel())
+        tri_k = np.where(counts <= 1, 1, np.ceil(counts / np.sqrt(3)).astype(np.int64))
+        for k in np.unique(tri_k[~quad]):
+            sel = np.flatnonzero(~quad & (tri_k == k))
+            rule = _centre_rule() if counts[sel[0]] <= 1 else _pieces_rule(int(k))
+            c = self.vertices[self.corners[sel, :3]]  # (n, 3, 3)
+            pts.append(np.einsum("sc,ncd->nsd", rule, c).reshape(-1, 3))
+            owner.append(np.repeat(sel, len(rule)))
+            weight.append(np.repeat(self.areas[sel] / len(rule), len(rule)))
         p, o, w = np.concatenate(pts), np.concatenate(owner), np.concatenate(weight)
         w = w / np.maximum(np.bincount(o, weights=w, minlength=self.n_patches)[o], 1e-300)
         order = np.argsort(o, kind="stable")
         return p[order], o[order], w[order]
+
+
+def _centre_rule() -> np.ndarray:
+    return np.full((1, 3), 1 / 3)
+
+
+def _pieces_rule(k: int) -> np.ndarray:
+    """Barycentric points of the 3-point degree-2 rule on each of k^2 equal pieces."""
+    bary, tris = _triangle_grid(k)
+    sub = bary[tris]  # (k^2, 3 corners, 3)
+    rule = np.array([[2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]])
+    return np.einsum("rc,tcb->trb", rule, sub).reshape(-1, 3)
 
 
 def _tri_areas(corners: np.ndarray) -> np.ndarray:
@@ -108,11 +135,6 @@ def _triangle_grid(k: int) -> tuple[np.ndarray, np.ndarray]:
                 tris.append((index[i + 1, j], index[i + 1, j + 1], index[i, j + 1]))
     bary = np.column_stack([k - ij.sum(1), ij[:, 0], ij[:, 1]]) / k
     return bary, np.array(tris)
-
-
-def _sub_centroids(k: int) -> np.ndarray:
-    bary, tris = _triangle_grid(k)
-    return bary[tris].mean(axis=1)
 
 
 def _counts(length: np.ndarray, size: float) -> np.ndarray:
@@ -213,14 +235,16 @@ def _assemble(parts, split: int, size: float) -> Patches:
     length = np.linalg.norm(normals, axis=1)
     normals = np.divide(normals, length[:, None], out=np.zeros_like(normals),
                         where=length[:, None] > 0)
+    corner_ids = np.concatenate([
+        np.column_stack([triangles[:nq], triangles[nq:2 * nq, 2]]),
+        np.column_stack([triangles[2 * nq:], np.full(nt, -1)])]).astype(np.int64)
+    source = np.concatenate([qsrc, tsrc]).astype(np.int64)
     keep = areas > 0  # degenerate pieces (zero-area source polygons) are dropped
     if not keep.all():
         remap = np.cumsum(keep) - 1
         tkeep = keep[patch]
         triangles, patch = triangles[tkeep], remap[patch[tkeep]]
         areas, centers, normals = areas[keep], centers[keep], normals[keep]
-        qsrc_t = np.concatenate([qsrc, tsrc])[keep]
-    else:
-        qsrc_t = np.concatenate([qsrc, tsrc])
-    return Patches(vertices, triangles, patch, qsrc_t.astype(np.int64), centers, normals,
-                   areas, split)
+        source, corner_ids = source[keep], corner_ids[keep]
+    return Patches(vertices, triangles, patch, source, centers, normals, areas, corner_ids,
+                   split)

@@ -92,7 +92,8 @@ _SCHEMA = {
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
              "ks": "unit", "shininess": "nonneg", "translation": "vec3", "rotation": "quat",
-             "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees"},
+             "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees",
+             "emission": "color", "reflectance": "reflectance"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
@@ -171,6 +172,10 @@ def _check(kind: str, value, where: str):
     if kind == "color":
         c = numbers(3)
         return c if min(c) >= 0 else fail("three numbers >= 0 (linear r, g, b)")
+    if kind == "reflectance":
+        c = numbers(3)
+        return c if 0 <= min(c) and max(c) <= 1 else \
+            fail("three numbers in [0, 1] (a surface reflects at most what it receives)")
     if kind == "vec3":
         return numbers(3)
     if kind == "quat":

@@ -39,13 +39,18 @@ def delta_form_factors(n: int) -> np.ndarray:
     return atlas
 
 
+def _cross(a, b) -> np.ndarray:
+    """(numpy's cross costs more than the rest of a hemicube's Python)"""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
 def _look(origin, forward, up) -> np.ndarray:
-    f = forward / np.linalg.norm(forward)
-    s = np.cross(f, up)
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
+    """View matrix from ``origin`` along the unit ``forward``, ``up`` unit and at right
+    angles to it (a hemicube's axes are)."""
+    s = _cross(forward, up)
     m = np.eye(4)
-    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[0, :3], m[1, :3], m[2, :3] = s, up, -forward
     m[:3, 3] = -m[:3, :3] @ origin
     return m
 
@@ -114,11 +119,11 @@ class Hemicube(GLResource):
         far = 4.0 * self.extent
         normal = np.asarray(normal, np.float64)
         t = np.asarray(tangent, np.float64)
-        b = np.cross(normal, t)
+        b = _cross(normal, t)
         top = _frustum(-near, near, -near, near, near, far) @ _look(origin, normal, t)
         half = _frustum(-near, near, 0.0, near, near, far)
         out = [((0, 0, n, n), top)]
-        for k, d in enumerate((t, -t, b, -b)):
+        for k, d in enumerate((t, -t, b, -b)):  # looking out sideways, up = the normal
             viewport = (n + (k // 2) * n, (k % 2) * (n // 2), n, n // 2)
             out.append((viewport, half @ _look(origin, d, normal)))
         return out

@@ -1,0 +1,152 @@
+"""The radiosity equation in its discrete form, ``B_i = E_i + rho_i sum_j F_ij B_j``,
+solved two ways:
+
+* progressive refinement (Cohen, Chen, Wallace and Greenberg 1988): the patch with the
+  most unshot energy ``dB_i A_i`` shoots it to every patch through one row of form
+  factors (``dB_j += rho_j dB_i F_ij A_i / A_j``, by reciprocity), until the unshot
+  fraction of the emitted energy is below ``until``. Only rows of shooters are computed;
+  an *ambient* term estimates what is still unshot for display;
+* Gauss-Seidel gathering over the full matrix, for small scenes.
+
+Both return a :class:`Solution` with the radiosity per patch and the energy history.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from .formfactors import FormFactors
+
+__all__ = ["Solution", "progressive", "gauss_seidel"]
+
+
+def _energy(values: np.ndarray, areas: np.ndarray) -> float:
+    """Power of per-patch RGB radiosities: sum over patches and channels of B A."""
+    return float((values.sum(axis=1) * areas).sum())
+
+
+@dataclass
+class Solution:
+    """Radiosity ``B`` (P, 3) per patch; ``unshot`` (P, 3) what progressive refinement did
+    not yet shoot (zeros for gathering); ``history`` rows of (seconds, step, unshot
+    fraction) -- a step is a shot or a sweep."""
+
+    problem: object
+    radiosity: np.ndarray
+    unshot: np.ndarray
+    method: str
+    history: list = field(default_factory=list)
+    hemicubes: int = 0
+
+    @property
+    def unshot_fraction(self) -> float:
+        p = self.problem
+        return _energy(self.unshot, p.patches.areas) / _energy(p.emission, p.patches.areas)
+
+    @property
+    def ambient(self) -> np.ndarray:
+        """The ambient term (RGB): the unshot energy spread evenly over the scene, with the
+        scene's mean reflectance's infinite interreflection ``1 / (1 - rho_avg)``."""
+        p = self.problem
+        a = p.patches.areas
+        rho_avg = (p.rho * a[:, None]).sum(0) / a.sum()
+        return (self.unshot * a[:, None]).sum(0) / a.sum() / np.maximum(1 - rho_avg, 1e-9)
+
+    def displayed(self, ambient: bool = True) -> np.ndarray:
+        """Per-patch radiosity to show: plus ``rho * ambient`` where energy is unshot."""
+        if not ambient:
+            return self.radiosity
+        return self.radiosity + self.problem.rho * self.ambient
+
+    def vertex_colors(self, exposure: float = 1.0, ambient: bool = True) -> np.ndarray:
+        """(V, 3) radiosities at the display mesh's vertices, times ``exposure``."""
+        return self.problem.patches.vertex_values(self.displayed(ambient)) * exposure
+
+    def scene(self, exposure: float | None = None, ambient: bool = True, background=(0, 0, 0)):
+        """A Scene showing the solution in the ``radiosity`` mode: one mesh of patches with
+        its vertex radiosities. ``exposure`` scales them for display (default: the
+        brightest non-emitting patch maps to 1)."""
+        from ..scene import Scene
+
+        if exposure is None:
+            exposure = self.auto_exposure(ambient)
+        s = Scene(background=background)
+        s.add(self.problem.patches.mesh(), vertex_colors=self.vertex_colors(exposure, ambient),
+              name="radiosity")
+        return s
+
+    def auto_exposure(self, ambient: bool = True) -> float:
+        b = self.displayed(ambient)
+        lit = self.problem.emission.sum(1) == 0
+        peak = float(b[lit].max()) if lit.any() else float(b.max())
+        return 1.0 / peak if peak > 0 else 1.0
+
+
+def progressive(ff: FormFactors, until: float = 0.01, max_shots: int | None = None,
+                progress=None, on_shot=None) -> Solution:
+    """Shoot until the unshot fraction of the emitted energy is below ``until`` (or
+    ``max_shots``). ``on_shot(solution, shot)`` is called after each shot (animation)."""
+    if not 0 <= until < 1:
+        raise InputError(f"until must be an unshot fraction in [0, 1), got {until!r}")
+    p = ff.problem
+    areas = p.patches.areas
+    emitted = _energy(p.emission, areas)
+    b = p.emission.copy()
+    db = p.emission.copy()
+    sol = Solution(p, b, db, "progressive refinement")
+    start = time.perf_counter()
+    sol.history.append((0.0, 0, 1.0))
+    power = db.sum(axis=1) * areas
+    shots = 0
+    while power.sum() / emitted > until and (max_shots is None or shots < max_shots):
+        i = int(np.argmax(power))
+        row = ff.row(i)  # F[i, j]
+        gain = p.rho * (row * (areas[i] / areas))[:, None] * db[i]  # (P, 3)
+        b += gain
+        db += gain
+        db[i] = 0.0
+        power = db.sum(axis=1) * areas
+        shots += 1
+        sol.history.append((time.perf_counter() - start, shots, float(power.sum() / emitted)))
+        if progress:
+            progress.update()
+        if on_shot:
+            on_shot(sol, shots)
+    sol.hemicubes = ff.hemicubes_drawn
+    return sol
+
+
+def gauss_seidel(ff: FormFactors, iterations: int | None = None, tol: float = 1e-4,
+                 progress=None) -> Solution:
+    """Gather with the full matrix: sweep ``B_i = E_i + rho_i sum_j F_ij B_j`` in place
+    (each row uses the values already updated) until no radiosity changes by more than
+    ``tol`` of the largest, or for ``iterations`` sweeps."""
+    p = ff.problem
+    start = time.perf_counter()
+    f = ff.matrix(progress)
+    e, rho = p.emission, p.rho
+    b = e.copy()
+    sol = Solution(p, b, np.zeros_like(b), "Gauss-Seidel gathering")
+    areas = p.patches.areas
+    emitted = _energy(e, areas)
+    sweeps = 0
+    while iterations is None or sweeps < iterations:
+        change = 0.0
+        for i in range(len(b)):  # (sequential by nature: row i uses rows < i of this sweep)
+            new = e[i] + rho[i] * (f[i] @ b)
+            change = max(change, float(np.abs(new - b[i]).max()))
+            b[i] = new
+        sweeps += 1
+        # the energy still to arrive, estimated from the last change
+        residual = change * areas.sum() * 3 / max(emitted, 1e-300)
+        sol.history.append((time.perf_counter() - start, sweeps, residual))
+        if iterations is None and change <= tol * max(float(b.max()), 1e-300):
+            break
+        if sweeps > 10_000:
+            break
+    sol.hemicubes = ff.hemicubes_drawn
+    return sol

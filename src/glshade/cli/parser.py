@@ -10,6 +10,7 @@ from ..errors import EXIT_USAGE
 from ..options import DEFAULT_SIZE
 from ..scene import Camera, Material
 from . import commands as c
+from . import radiosity as radiosity_command
 from . import validators as v
 
 __all__ = ["build_parser", "add_render_options"]
@@ -150,6 +151,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
     add_render_options(p)
     p.set_defaults(func=c.batch, size=None)
+
+    radiosity_command.add_parser(sub, v)
 
     p = sub.add_parser("view", help="explore a mesh in a window (keys: h)")
     p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "

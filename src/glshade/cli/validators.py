@@ -122,3 +122,18 @@ def scheduler(text: str) -> str:
         raise argparse.ArgumentTypeError(f"expected a Dask scheduler address such as "
                                          f"tcp://10.0.0.5:8786, or 'local', got {text!r}")
     return text
+
+
+def positive_float(text: str) -> float:
+    return _number(text, lambda x: x > 0, "a number > 0")
+
+
+def fraction(text: str) -> float:
+    return _number(text, lambda x: 0 <= x < 1, "a fraction in [0, 1), such as 0.01")
+
+
+def hemicube(text: str) -> int:
+    if not text.strip().isdigit() or int(text) < 4 or int(text) % 2:
+        raise argparse.ArgumentTypeError(f"expected an even whole number >= 4 (pixels a side "
+                                         f"of the hemicube's top face), got {text!r}")
+    return int(text)

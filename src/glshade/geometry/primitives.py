@@ -288,8 +288,14 @@ def voxels(occupancy, size: float = 1.0) -> Mesh:
 PRIMITIVES = {
     "cube": cube, "box": box, "uv_sphere": uv_sphere, "icosphere": icosphere,
     "torus": torus, "cylinder": cylinder, "plane": plane, "cornell_box": cornell_box,
-    "teapot": teapot,
+    "teapot": teapot, "cornell_box_mm": lambda: _cornell_mm(),
 }
+
+
+def _cornell_mm() -> Mesh:
+    from .cornell import cornell_box_mm
+
+    return cornell_box_mm()
 
 
 def from_spec(spec: str) -> Mesh:

@@ -12,19 +12,26 @@ class Progress:
     """A one-line progress bar on a terminal: items done, items/s, time left. ``unit`` names
     the items ("frames", "meshes", "levels")."""
 
-    def __init__(self, total: int, enabled: bool | None = None, stream=None,
+    def __init__(self, total: int | None, enabled: bool | None = None, stream=None,
                  unit: str = "frames"):
         self.stream = stream or sys.stderr
         self.enabled = self.stream.isatty() if enabled is None else enabled
         self.total, self.done, self.start = total, 0, time.perf_counter()
         self.unit = unit
 
-    def update(self, n: int = 1) -> None:
+    def update(self, n: int = 1, note: str | None = None) -> None:
+        """``n`` more items done. With no total (``total=None``: work that ends when it
+        converges) the bar shows the count, the rate and ``note`` instead."""
         self.done += n
         if not self.enabled:
             return
         elapsed = time.perf_counter() - self.start
         rate = self.done / elapsed if elapsed > 0 else 0.0
+        if self.total is None:
+            self.stream.write(f"\r{self.done} {self.unit}  {rate:6.1f} {self.unit}/s  "
+                              f"{elapsed:6.1f} s  {note or ''} ")
+            self.stream.flush()
+            return
         left = (self.total - self.done) / rate if rate > 0 else 0.0
         width = 30
         filled = int(width * self.done / max(self.total, 1))

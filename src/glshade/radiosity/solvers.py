@@ -113,7 +113,7 @@ def progressive(ff: FormFactors, until: float = 0.01, max_shots: int | None = No
         shots += 1
         sol.history.append((time.perf_counter() - start, shots, float(power.sum() / emitted)))
         if progress:
-            progress.update()
+            progress.update(1, f"unshot {sol.history[-1][2]:.2%} (goal {until:.2%})")
         if on_shot:
             on_shot(sol, shots)
     sol.hemicubes = ff.hemicubes_drawn

@@ -23,7 +23,7 @@ LAYERS = [
     {"io"},
     {"cpu"},
     {"render"},
-    {"compare"},
+    {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
     {"cli", "testing", "pytest_plugin", "__init__", "__main__"},

@@ -115,7 +115,9 @@ class Hemicube(GLResource):
     def faces(self, origin, normal, tangent) -> list[tuple[tuple, np.ndarray]]:
         """(viewport, view-projection) of the five faces at ``origin``."""
         n = self.resolution
-        near = 1e-5 * self.extent
+        # (the near plane: nearer, and the 24-bit depth cannot tell a light 0.5 mm below a
+        # ceiling from the ceiling at 500 mm; farther, and a corner's neighbours are clipped)
+        near = 2e-4 * self.extent
         far = 4.0 * self.extent
         normal = np.asarray(normal, np.float64)
         t = np.asarray(tangent, np.float64)
@@ -149,5 +151,6 @@ class Hemicube(GLResource):
             member.write(np.ascontiguousarray(matrix.T, dtype="f4").tobytes())
             self._vao.render(moderngl.TRIANGLES)
         self.fbo.read_into(self._buffer, components=1, dtype="i4")
+        self.context.rest()  # (never leave a framebuffer bound that may be released)
         return np.bincount(self._buffer, weights=self.weights,
                            minlength=self.n_patches + 1)[1:]

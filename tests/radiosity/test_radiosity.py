@@ -1,0 +1,214 @@
+"""Radiosity against closed forms: form factors of classic configurations, reciprocity,
+closed rooms, energy, the two solvers against each other, and the Cornell box."""
+
+import numpy as np
+import pytest
+
+from glshade import Mesh
+from glshade.errors import GeometryError, InputError
+from glshade.geometry import primitives
+from glshade.geometry.patches import subdivide
+from glshade.radiosity import (FormFactors, PatchScene, cornell_scene, gauss_seidel,
+                               progressive)
+from glshade.render.hemicube import delta_form_factors
+from glshade.scene import Material, Scene
+
+
+LIGHT = Material(emission=(1.0, 1.0, 1.0), reflectance=(0.0, 0.0, 0.0))
+BLACK = Material(reflectance=(0.0, 0.0, 0.0))
+
+#: (two facing polygons, the form factor from the first to the second)
+PARALLEL = ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+            [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]], 0.19982)
+PERPENDICULAR = ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+                 [[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]], 0.20004)
+_T = np.linspace(0, 2 * np.pi, 129)[:-1]
+_RING = np.c_[np.cos(_T), np.sin(_T), np.zeros(128)]
+# coaxial unit disks one apart (a 128-gon: 0.04% less area than the disk)
+DISKS = (_RING.tolist(), (_RING[::-1] + [0, 0, 1]).tolist(), (3 - 5 ** 0.5) / 2)
+
+
+def pair(first, second, patch_size=100.0) -> PatchScene:
+    scene = Scene()
+    scene.add(Mesh(first, [list(range(len(first)))]), LIGHT, name="a")
+    scene.add(Mesh(second, [list(range(len(second)))]), BLACK, name="b")
+    return PatchScene.from_scene(scene, patch_size)
+
+
+def group_factor(problem, ff) -> float:
+    """F from model 0 to model 1: the area-weighted sum over their patches."""
+    a = problem.patches.areas
+    src, dst = np.flatnonzero(problem.model == 0), np.flatnonzero(problem.model == 1)
+    return sum(a[i] * ff.row(i)[dst].sum() for i in src) / a[src].sum()
+
+
+@pytest.fixture
+def factors(gl_context):
+    made = []
+
+    def make(problem, *args, **kwargs):
+        made.append(FormFactors(problem, *args, context=gl_context, **kwargs))
+        return made[-1]
+
+    yield make
+    for ff in made:
+        ff.close()
+
+
+def test_delta_form_factors_cover_the_hemisphere():
+    for n in (32, 128, 512):
+        assert abs(delta_form_factors(n).sum() - 1) < 2e-3 * (32 / n) ** 2
+
+
+@pytest.mark.parametrize("case", [PARALLEL, PERPENDICULAR, DISKS],
+                         ids=["parallel squares", "perpendicular squares", "coaxial disks"])
+def test_form_factors_match_closed_forms(case, factors):
+    first, second, exact = case
+    problem = pair(first, second)
+    error = abs(group_factor(problem, factors(problem)) - exact) / exact
+    assert error < 0.01  # at the default resolution and sampling
+
+
+def test_error_shrinks_with_resolution(factors):
+    """With the shooter integrated finely, what is left is the hemicube's pixels."""
+    first, second, exact = PARALLEL
+    problem = pair(first, second)
+    errors = [abs(group_factor(problem, factors(problem, n, samples=8)) - exact) / exact
+              for n in (8, 32, 128)]
+    assert errors[0] > errors[1] > errors[2], errors
+    assert errors[2] < 0.003
+
+
+def closed_box(size=1.0, patch=0.25, rho=0.5, emission=1.0) -> Scene:
+    """A cube whose faces look inward, every face emitting and reflecting alike."""
+    cube = primitives.box((size, size, size)).flipped()
+    scene = Scene()
+    scene.add(cube, Material(emission=(emission,) * 3, reflectance=(rho,) * 3))
+    return scene
+
+
+def test_reciprocity_and_rows_of_a_closed_room(factors):
+    problem = PatchScene.from_scene(closed_box(), 0.25)
+    f = factors(problem, 128).matrix()
+    assert np.allclose(f.sum(axis=1), 1.0, atol=0.005)  # every row sums to 1
+    a = problem.patches.areas
+    af = a[:, None] * f
+    # A_i F_ij = A_j F_ji: to a few % for the pairs that carry energy (small factors are
+    # a few hemicube pixels, whose aliasing is a larger share), and 1% over the matrix
+    big = af > 0.03 * af.max()
+    assert np.allclose(af[big], af.T[big], rtol=0.05)
+    assert np.abs(af - af.T).sum() / af.sum() < 0.01
+
+
+def test_no_reflection_leaves_the_emission(factors):
+    scene = closed_box(rho=0.0, emission=2.0)
+    problem = PatchScene.from_scene(scene, 0.5)
+    sol = progressive(factors(problem), until=0.0)
+    assert np.array_equal(sol.radiosity, problem.emission)
+    assert sol.unshot_fraction == 0
+
+
+def test_uniform_closed_box_converges_to_e_over_one_minus_rho(factors):
+    rho, e = 0.6, 1.5
+    problem = PatchScene.from_scene(closed_box(rho=rho, emission=e), 0.25)
+    ff = factors(problem)
+    pr = progressive(ff, until=1e-4)
+    gs = gauss_seidel(ff, tol=1e-7)
+    exact = e / (1 - rho)
+    assert np.allclose(pr.radiosity, exact, rtol=0.01)
+    assert np.allclose(gs.radiosity, exact, rtol=0.01)
+    assert np.allclose(pr.radiosity, gs.radiosity, rtol=2e-3)
+    assert pr.history[0][2] == 1.0 and pr.history[-1][2] < 1e-4
+    times = [h[0] for h in pr.history]
+    assert times == sorted(times)
+
+
+def test_the_solvers_agree_on_an_open_scene(factors):
+    """Shooting uses the shooters' rows (with reciprocity), gathering every receiver's own
+    row: they agree as far as the hemicube's factors are reciprocal."""
+    scene, _ = cornell_scene()
+    problem = PatchScene.from_scene(scene, 200.0)
+    ff = factors(problem)
+    pr = progressive(ff, until=1e-5)
+    gs = gauss_seidel(ff, tol=1e-8)
+    a = problem.patches.areas[:, None]
+    for k, name in enumerate(problem.names):  # each surface's power
+        m = problem.model == k
+        ratio = (pr.radiosity[m] * a[m]).sum(0) / (gs.radiosity[m] * a[m]).sum(0)
+        assert np.allclose(ratio, 1, atol=0.015), name
+    per_patch = np.abs(pr.radiosity / gs.radiosity - 1)
+    assert np.percentile(per_patch, 90) < 0.05
+
+
+def test_cornell_box_converges_and_bleeds_colour(factors):
+    scene, _ = cornell_scene()
+    problem = PatchScene.from_scene(scene, 100.0)
+    sol = progressive(factors(problem), until=0.01)
+    assert sol.unshot_fraction < 0.01
+    b = sol.displayed()
+    p = problem.patches
+    floor = np.flatnonzero(np.array(problem.names)[problem.model] == "floor")
+    x = p.centers[floor, 0]  # the red wall is at x = 550, the green one at x = 0
+    near_red, near_green = floor[x > 450], floor[x < 100]
+
+    def redness(idx):
+        rgb = (b[idx] * p.areas[idx, None]).sum(0)
+        return rgb[0] / rgb[1]
+
+    assert redness(near_red) > 1.1 * redness(near_green)
+
+
+def test_vertex_values_are_area_weighted_and_crack_free():
+    mesh = primitives.box((2.0, 1.0, 1.0))
+    p = subdivide(mesh, 0.3)
+    assert np.isclose(p.areas.sum(), mesh.face_areas.sum())
+    assert p.mesh().closed_and_oriented  # welded: no cracks between patches
+    values = np.arange(p.n_patches, dtype=float)[:, None]
+    v = p.vertex_values(values)
+    assert v.min() >= 0 and v.max() <= p.n_patches - 1
+    constant = p.vertex_values(np.full((p.n_patches, 3), 0.25))
+    assert np.allclose(constant, 0.25)
+
+
+def test_quadrature_points_integrate_over_patches():
+    p = subdivide(primitives.icosphere(1), 0.4)
+    for s in (1, 2, 5):
+        pts, owner, w = p.sample_points(np.full(p.n_patches, s))
+        assert np.allclose(np.bincount(owner, weights=w), 1.0)
+        mean = np.stack([np.bincount(owner, weights=w * pts[:, d]) for d in range(3)], 1)
+        assert np.allclose(mean, p.centers, atol=1e-12)  # linear functions: exact
+
+
+def test_bad_input_says_what_and_where():
+    with pytest.raises(InputError, match="no emitter"):
+        PatchScene.from_scene(closed_box(emission=0.0), 0.5)
+    scene = Scene()
+    scene.add(primitives.cube(), Material(color=(1.0, 0.9, 0.9), kd=1.2), name="hot wall")
+    scene.add(primitives.cube(), LIGHT)
+    with pytest.raises(InputError, match="hot wall: diffuse reflectance"):
+        PatchScene.from_scene(scene, 0.5)
+    with pytest.raises(GeometryError, match=r"reflectance must be 3 numbers in \[0, 1\]"):
+        Material(reflectance=(0.5, 1.2, 0.5))
+    with pytest.raises(GeometryError, match="patch size"):
+        subdivide(primitives.cube(), 0.0)
+
+
+def test_non_planar_quads_are_split():
+    warped = Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0.3], [0, 1, 0]], [[0, 1, 2, 3]])
+    p = subdivide(warped, 10.0)
+    assert p.split == 1 and p.n_patches == 2
+    assert np.isclose(p.areas.sum(), warped.face_areas.sum(), rtol=0.05)
+
+
+def test_radiosity_mode_shows_vertex_colors(make_renderer):
+    """Oracle: a constant colour per vertex shows as that colour, unlit."""
+    scene = Scene(background=(0, 0, 0))
+    plane = primitives.plane(4.0)
+    scene.add(plane, vertex_colors=np.full((plane.n_vertices, 3), 0.5))
+    from glshade import Camera
+
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0))  # (the plane faces +z)
+    image = make_renderer(32, 32).render(scene, camera, "radiosity")
+    assert np.all(np.abs(image[8:24, 8:24, :3].astype(int) - 128) <= 1)
+    with pytest.raises(GeometryError, match="one per vertex"):
+        scene.add(plane, vertex_colors=np.zeros((3, 3)))

@@ -37,6 +37,23 @@ def main() -> None:
     rows = sweep(primitives.icosphere, range(0, 7))
     glshade.save_image(sweep_plot(rows, ["flat", "gouraud", "phong"]), DOCS / "sweep.png")
     print(result.table())
+    cornell()
+
+
+def cornell() -> None:
+    """The Cornell box by radiosity (progressive refinement to 99% shot), beside the
+    convergence plot."""
+    from glshade.radiosity import cornell_scene, solve
+    from glshade.radiosity.plot import convergence_plot
+
+    scene, camera = cornell_scene()
+    solution = solve(scene, 50.0, until=0.01)
+    with Renderer(360, 360, samples=4) as r:
+        image = r.render(solution.scene(), camera, "radiosity", srgb=True)[..., :3]
+    plot = convergence_plot(solution.history, "progressive refinement: unshot energy (log)",
+                            size=(520, 360), target=0.01)
+    glshade.save_image(np.hstack([image, plot]), DOCS / "cornell-radiosity.png")
+    print(DOCS / "cornell-radiosity.png", solution.unshot_fraction, len(solution.history) - 1)
 
 
 if __name__ == "__main__":

@@ -13,19 +13,22 @@ from glshade.radiosity import (FormFactors, PatchScene, cornell_scene, gauss_sei
 from glshade.render.hemicube import delta_form_factors
 from glshade.scene import Material, Scene
 
+from ..oracle.formfactors import coaxial_disks, parallel_rectangles, perpendicular_rectangles
+
 
 LIGHT = Material(emission=(1.0, 1.0, 1.0), reflectance=(0.0, 0.0, 0.0))
 BLACK = Material(reflectance=(0.0, 0.0, 0.0))
 
 #: (two facing polygons, the form factor from the first to the second)
 PARALLEL = ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
-            [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]], 0.19982)
+            [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]], parallel_rectangles(1, 1, 1))
 PERPENDICULAR = ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
-                 [[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]], 0.20004)
+                 [[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]],
+                 perpendicular_rectangles(1, 1, 1))
 _T = np.linspace(0, 2 * np.pi, 129)[:-1]
 _RING = np.c_[np.cos(_T), np.sin(_T), np.zeros(128)]
 # coaxial unit disks one apart (a 128-gon: 0.04% less area than the disk)
-DISKS = (_RING.tolist(), (_RING[::-1] + [0, 0, 1]).tolist(), (3 - 5 ** 0.5) / 2)
+DISKS = (_RING.tolist(), (_RING[::-1] + [0, 0, 1]).tolist(), coaxial_disks(1, 1, 1))
 
 
 def pair(first, second, patch_size=100.0) -> PatchScene:
@@ -53,6 +56,11 @@ def factors(gl_context):
     yield make
     for ff in made:
         ff.close()
+
+
+def test_the_closed_forms_are_the_published_values():
+    assert round(PARALLEL[2], 5) == 0.19982 and round(PERPENDICULAR[2], 5) == 0.20004
+    assert abs(DISKS[2] - (3 - 5 ** 0.5) / 2) < 1e-15
 
 
 def test_delta_form_factors_cover_the_hemisphere():

@@ -83,7 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
     p.add_argument("-o", "--output", required=True, help="output image (.png)")
     p.add_argument("--mode", type=v.mode, default=None,
-                   help="flat, gouraud, phong, normals or depth (default phong, or the "
+                   help="flat, gouraud, phong, normals, depth or radiosity (default phong, or the "
                    "scene file's)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.add_argument("--time", type=float, help="with a scene file: the moment on its camera "

@@ -67,11 +67,12 @@ class Hemicube(GLResource):
     """Hemicubes of resolution ``N`` (the top face is ``N x N``) over uploaded patches."""
 
     def __init__(self, context, resolution: int = 128):
-        super().__init__(context)
         n = int(resolution)
         if n != resolution or n < 4 or n % 2:
             raise GeometryError(f"hemicube resolution must be an even whole number >= 4, "
                                 f"got {resolution!r}")
+        super().__init__(context)
+        context.make_current()  # (another context may be current: GL objects go there)
         limit = context.ctx.info["GL_MAX_RENDERBUFFER_SIZE"]
         if 3 * n > limit:
             raise GeometryError(f"hemicube resolution {n} needs a {3 * n}-pixel-wide "
@@ -95,6 +96,7 @@ class Hemicube(GLResource):
                n_patches: int) -> None:
         """The scene: triangles (T, 3) into vertices, each of patch ``patch[t]``."""
         self._check()
+        self.context.make_current()
         for obj in (self._vao, self._vbo):
             if obj is not None:
                 obj.release()

@@ -1,0 +1,55 @@
+"""The z-buffer (image space): every polygon is rasterised in draw order; a pixel takes a
+fragment when it is nearer than what the pixel holds (GL_LESS). Vectorised over all the
+fragments of a chunk of triangles; the count of writes is the one a sequential z-buffer
+makes (a fragment is written when nearer than every earlier one at its pixel)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed
+
+__all__ = ["zbuffer"]
+
+
+def _writes(pix, depth, order, held) -> int:
+    """Sequential depth-test passes: per pixel, in draw order, strictly nearer than all
+    before it (``held``: the depth each pixel holds before these fragments)."""
+    if not len(pix):
+        return 0
+    key = np.lexsort((order, pix))
+    pix, depth = pix[key], depth[key]
+    start = np.flatnonzero(np.r_[True, pix[1:] != pix[:-1]])
+    # per pixel: what it holds, then its fragments in draw order
+    values = np.insert(depth, start, held[pix[start]])
+    is_held = np.zeros(len(values), bool)
+    is_held[start + np.arange(len(start))] = True
+    group = np.cumsum(is_held) - 1
+    # exact ranks (ties: the earlier keeps the lower rank); shifting each pixel's ranks
+    # below every earlier pixel's lets one running minimum restart at each pixel
+    rank = np.empty(len(values), np.int64)
+    rank[np.argsort(values, kind="stable")] = np.arange(len(values))
+    shifted = rank - group * (len(values) + 1)
+    before = np.minimum.accumulate(shifted)
+    wrote = shifted[1:] < before[:-1]
+    return int((wrote & ~is_held[1:]).sum())
+
+
+def zbuffer(p: Prepared) -> HiddenResult:
+    counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "fragments": 0,
+                "pixels written": 0}
+
+    def run(result: HiddenResult):
+        exact = np.full(p.n_pixels, np.inf)
+        for pix, tri, depth in fragments(p, p.screen, p.tris, counters):
+            order = p.order[tri]
+            counters["fragments"] += len(pix)
+            counters["pixels written"] += _writes(pix, depth, order, exact)
+            resolve_nearest(p, result, pix, tri, depth, order)
+            exact = result.__dict__["_depth64"]
+        counters["depth tests"] = counters.pop("fragments")
+        counters["inside tests"] = counters.pop("inside tests", 0)
+
+    result = timed("zbuffer", p, run)
+    result.counters = counters
+    return result

@@ -21,7 +21,7 @@ LAYERS = [
     {"geometry", "quaternion", "masspoint", "brep"},
     {"scene"},
     {"io"},
-    {"cpu"},
+    {"cpu", "hidden"},
     {"render"},
     {"compare", "radiosity"},
     {"animate", "batch"},

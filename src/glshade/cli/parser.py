@@ -10,6 +10,7 @@ from ..errors import EXIT_USAGE
 from ..options import DEFAULT_SIZE
 from ..scene import Camera, Material
 from . import commands as c
+from . import hidden as hidden_command
 from . import radiosity as radiosity_command
 from . import validators as v
 
@@ -153,6 +154,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=c.batch, size=None)
 
     radiosity_command.add_parser(sub, v)
+    hidden_command.add_parser(sub, v)
 
     p = sub.add_parser("view", help="explore a mesh in a window (keys: h)")
     p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "

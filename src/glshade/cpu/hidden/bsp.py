@@ -152,6 +152,7 @@ def paint(p: Prepared, result: HiddenResult, pieces: Pieces, sequence, counters=
     tris, src, cut = pieces.arrays()
     tris, src, cut = tris[sequence], src[sequence], cut[sequence]
     sub = p.subset(tris, p.ids[src], np.arange(len(sequence)))
+    sub.src, sub.cut = src, cut  # (kept: the steps of a painter repaint prefixes of it)
     for pix, k, depth in fragments(p, p.screen[src], p.tris[src], None, sub.screen, cut):
         if counters is not None:
             counters["pixels painted"] = counters.get("pixels painted", 0) + len(pix)

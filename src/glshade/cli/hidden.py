@@ -1,0 +1,138 @@
+"""``glshade hidden``: the hidden-surface lab on the command line."""
+
+from __future__ import annotations
+
+from ..errors import EXIT_OK, UsageError
+from .inputs import load_job
+
+__all__ = ["add_parser", "hidden"]
+
+CHOICES = ("zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu")
+
+
+def _algorithms(text: str) -> list[str]:
+    import argparse
+
+    names = [t.strip() for t in text.split(",") if t.strip()]
+    bad = [n for n in names if n not in CHOICES]
+    if bad or not names:
+        raise argparse.ArgumentTypeError(f"unknown algorithm {', '.join(bad) or '(none)'}; "
+                                         f"choose from {', '.join(CHOICES)}")
+    return names
+
+
+def add_parser(sub, validators) -> None:
+    v = validators
+    p = sub.add_parser("hidden", help="the classic hidden-surface algorithms side by side, "
+                       "checked against the GPU z-buffer")
+    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
+                   "scene file (.toml)")
+    p.add_argument("-o", "--output", required=True, help="the grid of id images and "
+                   "disagreement maps (.png)")
+    p.add_argument("--algorithms", type=_algorithms, default=list(CHOICES),
+                   help="comma-separated, from " + ", ".join(CHOICES) + " (default: all)")
+    p.add_argument("--steps", metavar="OUT.gif", help="also animate the algorithms at work")
+    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default 256x256)")
+    for name in ("eye", "target"):
+        p.add_argument(f"--{name}", type=v.vec3, metavar="X,Y,Z", help=argparse_help(name))
+    p.add_argument("--fov", type=v.fov, help="vertical field of view in degrees")
+    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
+    p.set_defaults(func=hidden, light=None, background=None, color=None, ka=None, kd=None,
+                   ks=None, shininess=None, crease=None, samples=None, srgb=None, mode=None)
+
+
+def argparse_help(name: str) -> str:
+    return "camera position (default: auto framing)" if name == "eye" else "point looked at"
+
+
+def hidden(args) -> int:
+    import numpy as np
+
+    from ..animate import output_format
+    from ..cpu.hidden import ALGORITHMS, prepare
+    from ..cpu.hidden.lab import agreement, disagreement_map, id_colors, step_frames
+    from ..io.images import label, opaque, save_image
+    from ..io.tables import format_table
+
+    if args.steps:
+        if output_format(args.steps) == "dir":
+            raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
+    args.size = args.size or (256, 256)
+    job = load_job(args, args.mesh)
+    w, h = job.size
+    p = prepare(job.scene, job.camera, (w, h))
+    results = {}
+    for name in args.algorithms:
+        if name != "gpu":
+            results[name] = ALGORITHMS[name](p)
+    reference_name = "gpu" if "gpu" in args.algorithms else next(iter(results))
+    gpu = None
+    if "gpu" in args.algorithms:
+        gpu = _gpu(job, w, h, args.backend)
+    ref_ids = gpu[0] if gpu else results[reference_name].face_id
+    ref_depth = gpu[1] if gpu else results[reference_name].depth
+    edges = edge_pixels_of(p)
+    rows, top, bottom = [], [], []
+    for name in args.algorithms:
+        ids = gpu[0] if name == "gpu" else results[name].face_id
+        top.append(label(id_colors(ids), name))
+        if name == "gpu":
+            bottom.append(label(disagreement_map(ids, ref_ids, edges), "reference"))
+            rows.append(("gpu", f"{gpu[2] * 1000:.1f}", "-", "0", "0", "-"))
+            continue
+        r = results[name]
+        a = agreement(r, ref_ids, ref_depth, edges)
+        bottom.append(label(disagreement_map(ids, ref_ids, edges),
+                            f"vs {reference_name}: {a.differ}"))
+        counts = ", ".join(f"{k} {v:,}" for k, v in r.counters.items()
+                           if k not in ("polygons", "triangles"))
+        rows.append((name, f"{r.seconds * 1000:.1f}", counts, str(a.differ),
+                     str(a.near_edges), f"{a.depth_error:.1e}"))
+    grid = opaque(np.vstack([np.hstack(top), np.hstack(bottom)]))
+    save_image(grid, args.output)
+    print(f"{p.n_polygons:,} polygons ({len(p.tris):,} triangles) at {w}x{h}; reference: "
+          f"{reference_name}")
+    print(format_table(rows, ("algorithm", "ms", "counters", "differ",
+                              "near edges", "depth err")))
+    if args.steps:
+        _steps(args, p, results, gpu, label, id_colors, step_frames)
+    print(f"grid: {args.output}" + (f"; steps: {args.steps}" if args.steps else ""))
+    return EXIT_OK
+
+
+def edge_pixels_of(p):
+    from ..cpu.hidden import edge_pixels
+
+    return edge_pixels(p)
+
+
+def _gpu(job, w, h, backend):
+    import time
+
+    from ..modes import Outputs
+    from ..render.renderer import Renderer
+
+    with Renderer(w, h, samples=0, backend=backend) as r:
+        start = time.perf_counter()
+        frame = r.render_frame(job.scene, job.camera, "flat", cull=False,
+                               outputs=Outputs.FACE_ID | Outputs.DEPTH)
+        seconds = time.perf_counter() - start
+    return frame.face_id, frame.depth, seconds
+
+
+def _steps(args, p, results, gpu, label, id_colors, step_frames):
+    import numpy as np
+
+    from ..animate import write_animation
+    from ..io.images import opaque
+
+    count = 24
+    columns = []
+    for name in args.algorithms:
+        if name == "gpu":
+            frames = [gpu[0]] * count
+        else:
+            frames = step_frames(name, p, results[name], count)
+        columns.append([label(id_colors(f), name) for f in frames])
+    images = [opaque(np.hstack([c[k] for c in columns])) for k in range(count)]
+    write_animation(images + images[-1:] * 8, args.steps, fps=8)

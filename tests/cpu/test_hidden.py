@@ -1,0 +1,176 @@
+"""The hidden-surface lab against the GPU z-buffer: every algorithm gives the GPU's polygon
+ids (exactly, away from edges) and its view depth, on soups, piercing triangles, cyclic
+overlaps, the teapot and a closed mesh seen from inside; and the counters follow the
+notes' cost model."""
+
+import numpy as np
+import pytest
+
+from glshade import Camera, Mesh, Scene, default_camera
+from glshade.cpu.hidden import (ALGORITHMS, DepthSortCycle, depth_sort, edge_pixels,
+                                prepare, raycast)
+from glshade.geometry import primitives
+from glshade.modes import Outputs
+
+SIZE = (160, 120)
+
+
+def soup(n, seed, piercing):
+    """Random triangles; without piercing, each lies in a plane facing the camera at its
+    own depth (so none can cut another)."""
+    rng = np.random.default_rng(seed)
+    centre = rng.uniform(-1, 1, (n, 1, 3))
+    v = centre + rng.normal(0, 0.3, (n, 3, 3))
+    if not piercing:
+        v[:, :, 2] = np.linspace(-1, 1, n)[rng.permutation(n)][:, None]
+    return Mesh(v.reshape(-1, 3), np.arange(3 * n).reshape(-1, 3))
+
+
+def bars():
+    """Three bars, each passing over the next and under the one before: a cycle."""
+    verts, quads = [], []
+    for k in range(3):
+        a = 2 * np.pi * k / 3
+        d, n = np.array([np.cos(a), np.sin(a), 0]), np.array([-np.sin(a), np.cos(a), 0])
+        p0, p1 = -1.2 * d + [0, 0, -0.3], 1.2 * d + [0, 0, 0.3]
+        verts += [p0 - 0.15 * n, p1 - 0.15 * n, p1 + 0.15 * n, p0 + 0.15 * n]
+        quads.append([4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3])
+    return Mesh(np.array(verts), quads)
+
+
+def _scene(mesh):
+    s = Scene()
+    s.add(mesh)
+    return s
+
+
+def views():
+    front = Camera.look_at((0.3, 0.4, 5), (0, 0, 0), fov_y=45)
+    teapot = _scene(primitives.teapot(5))
+    inside = _scene(primitives.icosphere(2, radius=3.0))
+    return {
+        "soup": (_scene(soup(120, 1, False)), front),
+        "piercing soup": (_scene(soup(60, 2, True)), front),
+        "cyclic bars": (_scene(bars()), Camera.look_at((0, 0, 6), (0, 0, 0))),
+        "teapot": (teapot, default_camera(teapot.bounds, SIZE[0] / SIZE[1])),
+        "inside a closed mesh": (inside, Camera.look_at((0.2, 0.1, 0.3), (1, 0.4, -1),
+                                                        near=0.05)),
+    }
+
+
+VIEWS = views()
+
+
+@pytest.fixture(scope="module")
+def gpu_frames(gl_context):
+    from glshade.render.renderer import Renderer
+
+    out = {}
+    with Renderer(*SIZE, samples=0, context=gl_context) as r:
+        for name, (scene, camera) in VIEWS.items():
+            out[name] = r.render_frame(scene, camera, "flat", cull=False,
+                                       outputs=Outputs.FACE_ID | Outputs.DEPTH)
+    return out
+
+
+def depth_resolution(camera, depth):
+    """The view-depth step of a 24-bit depth buffer at ``depth``."""
+    n, f = camera.near, camera.far
+    return depth ** 2 * (f - n) / (f * n) * 2.0 ** -24
+
+
+@pytest.mark.parametrize("view", list(VIEWS))
+@pytest.mark.parametrize("algorithm", list(ALGORITHMS))
+def test_every_algorithm_gives_the_gpu_ids_and_depth(algorithm, view, gpu_frames):
+    scene, camera = VIEWS[view]
+    p = prepare(scene, camera, SIZE)
+    result = ALGORITHMS[algorithm](p)
+    gpu = gpu_frames[view]
+    covered = int((gpu.face_id >= 0).sum())
+    assert covered > 500
+    edges = edge_pixels(p, 1e-3)
+    diff = result.face_id != gpu.face_id
+    # away from edges: equal, but where the GPU's 24-bit depth buffer cannot tell the two
+    # surfaces apart (piercing triangles, at their line of intersection)
+    off = diff & ~edges
+    with np.errstate(invalid="ignore"):  # (inf - inf where one of them saw nothing)
+        tie = np.abs(result.depth - gpu.depth) <= 4 * depth_resolution(camera, gpu.depth)
+    assert (off & ~tie).sum() == 0, np.argwhere(off & ~tie)[:5]
+    assert (off & tie).sum() <= 2
+    assert (diff & edges).sum() < 0.005 * covered
+    same = ~diff & (gpu.face_id >= 0)
+    rel = np.abs(result.depth[same] - gpu.depth[same]) / gpu.depth[same]
+    assert rel.max() < 1e-5
+    assert np.isinf(result.depth[gpu.face_id < 0]).all()
+
+
+def test_depth_sort_without_splitting_names_the_cycle():
+    scene, camera = VIEWS["cyclic bars"]
+    with pytest.raises(DepthSortCycle, match="overlap cyclically"):
+        depth_sort(prepare(scene, camera, SIZE), split=False)
+    result = depth_sort(prepare(scene, camera, SIZE))
+    assert result.counters["splits"] > 0
+
+
+def slope(x, y):
+    return np.polyfit(np.log(x), np.log(y), 1)[0]
+
+
+def test_ray_casting_tests_grow_with_n_times_big_n():
+    camera = Camera.look_at((0.3, 0.4, 5), (0, 0, 0), fov_y=45)
+    sizes = [25, 50, 100, 200]
+    tests = [raycast(prepare(_scene(soup(n, 3, False)), camera, (64, 48)))
+             .counters["ray-polygon tests"] for n in sizes]
+    assert tests == [n * 64 * 48 for n in sizes]
+    pixels = [32, 64, 128]
+    tests = [raycast(prepare(_scene(soup(50, 3, False)), camera, (w, w)))
+             .counters["ray-polygon tests"] for w in pixels]
+    assert abs(slope(np.square(pixels), tests) - 1) < 1e-9  # linear in N
+
+
+def test_depth_sort_comparisons_grow_as_n_squared():
+    camera = Camera.look_at((0, 0, 6), (0, 0, 0), fov_y=45)
+    sizes = [40, 80, 160, 320]
+    comparisons = []
+    for n in sizes:
+        rng = np.random.default_rng(n)
+        # overlapping depth ranges throughout: every polygon meets a share of the others
+        m = soup(n, n, False)
+        v = m.vertices.copy()
+        v[:, 2] += rng.normal(0, 0.05, len(v))
+        comparisons.append(depth_sort(prepare(_scene(Mesh(v, m.face_indices.reshape(-1, 3))),
+                                              camera, (64, 64))).counters["comparisons"])
+    assert slope(sizes, comparisons) > 1.6, comparisons
+
+
+def test_step_frames_fill_in(gpu_frames):
+    from glshade.cpu.hidden import ALGORITHMS
+    from glshade.cpu.hidden.lab import step_frames
+
+    scene, camera = VIEWS["teapot"]
+    p = prepare(scene, camera, SIZE)
+    for name in ("zbuffer", "scanline", "bsp", "depth-sort"):
+        result = ALGORITHMS[name](p)
+        frames = step_frames(name, p, result, 6)
+        covered = [int((f >= 0).sum()) for f in frames]
+        assert covered[0] < covered[-1] and np.array_equal(frames[-1], result.face_id), name
+
+
+def test_the_command_line_lab(tmp_path):
+    from PIL import Image
+
+    from ..conftest import BACKEND, glshade
+
+    out = tmp_path / "grid.png"
+    r = glshade("hidden", "primitive:teapot:3", "-o", str(out), "--size", "96x72",
+                "--steps", str(tmp_path / "steps.gif"), "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    table = {line.split()[0]: line.split() for line in r.stdout.splitlines()[3:9]}
+    assert set(table) == {"zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu"}
+    for name in ("zbuffer", "scanline", "depth-sort", "bsp", "raycast"):
+        assert table[name][-3] == "0", r.stdout  # no pixel differs from the GPU
+    assert Image.open(out).size == (6 * 96, 2 * (72 + 22))  # two rows of labelled tiles
+    with Image.open(tmp_path / "steps.gif") as gif:
+        assert gif.n_frames >= 24
+    r = glshade("hidden", "primitive:cube", "-o", str(out), "--algorithms", "zbuffer,magic")
+    assert r.returncode == 2 and "unknown algorithm magic" in r.stderr

@@ -19,6 +19,7 @@ __all__ = [
     "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError", "ClusterError",
+    "DepthSortCycle",
     "RenderWarning", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
 
@@ -70,6 +71,11 @@ class MeshFormatError(InputError):
 
     def __reduce__(self):  # (crosses process boundaries from worker pools)
         return type(self), (self.path, self.reason, self.line, self.byte)
+
+
+class DepthSortCycle(GeometryError):
+    """Depth sort without splitting met polygons that overlap cyclically or pierce each
+    other: names two of them."""
 
 
 class SceneFormatError(InputError):

@@ -174,3 +174,17 @@ def test_the_command_line_lab(tmp_path):
         assert gif.n_frames >= 24
     r = glshade("hidden", "primitive:cube", "-o", str(out), "--algorithms", "zbuffer,magic")
     assert r.returncode == 2 and "unknown algorithm magic" in r.stderr
+
+
+def test_algorithms_take_a_scene_and_camera_too():
+    from glshade.cpu.hidden import run, zbuffer
+    from glshade.errors import GeometryError, InputError
+
+    scene, camera = VIEWS["teapot"]
+    a = zbuffer(scene, camera, SIZE)
+    b = run("zbuffer", scene, camera, SIZE)
+    assert np.array_equal(a.face_id, b.face_id) and a.counters == b.counters
+    with pytest.raises(InputError, match="unknown hidden-surface algorithm 'magic'"):
+        run("magic", scene, camera)
+    with pytest.raises(GeometryError, match="needs a camera"):
+        zbuffer(scene)

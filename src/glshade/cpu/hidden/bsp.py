@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import HiddenResult, Prepared, fragments, resolve_last, split_by_plane, timed
+from .common import (HiddenResult, Prepared, fragments, resolve_last, split_by_plane,
+                     takes_scene, timed)
 
 __all__ = ["bsp", "build_bsp", "back_to_front", "paint", "Pieces"]
 
@@ -160,6 +161,7 @@ def paint(p: Prepared, result: HiddenResult, pieces: Pieces, sequence, counters=
     return sub
 
 
+@takes_scene
 def bsp(p: Prepared) -> HiddenResult:
     extent = float(np.abs(p.tris).max()) if len(p.tris) else 1.0
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris)}

@@ -353,6 +353,22 @@ def edge_pixels(p: Prepared, tolerance: float = 1e-3) -> np.ndarray:
     return mask.reshape(height, width)
 
 
+def takes_scene(algorithm):
+    """Let an algorithm of a Prepared view also take ``(scene or mesh, camera, size)``."""
+    import functools
+
+    @functools.wraps(algorithm)
+    def wrapper(view, camera=None, size=(256, 256), **kwargs):
+        if not isinstance(view, Prepared):
+            if camera is None:
+                raise GeometryError(f"{algorithm.__name__} needs a camera with a scene or "
+                                    "mesh (or a view made by prepare())")
+            view = prepare(view, camera, size)
+        return algorithm(view, **kwargs)
+
+    return wrapper
+
+
 def timed(name: str, p: Prepared, run) -> HiddenResult:
     """Run ``run(result)`` on an empty result and time it."""
     result = p.empty_result(name)

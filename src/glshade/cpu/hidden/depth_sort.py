@@ -23,15 +23,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import GeometryError
+from ...errors import DepthSortCycle
 from .bsp import Pieces, paint
-from .common import HiddenResult, Prepared, split_by_plane, timed
+from .common import HiddenResult, Prepared, split_by_plane, timed, takes_scene
 
 __all__ = ["depth_sort", "DepthSortCycle"]
-
-
-class DepthSortCycle(GeometryError):
-    """Depth sort without splitting met polygons that overlap cyclically."""
 
 
 def _sat_separated(a: np.ndarray, b: np.ndarray, eps: float) -> np.ndarray:
@@ -51,6 +47,7 @@ def _sat_separated(a: np.ndarray, b: np.ndarray, eps: float) -> np.ndarray:
     return out
 
 
+@takes_scene
 def depth_sort(p: Prepared, split: bool = True) -> HiddenResult:
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "comparisons": 0,
                 "tests": 0, "moves": 0, "splits": 0, "pieces painted": 0}

@@ -8,11 +8,12 @@ plane and test the inside. Vectorised over chunks of (ray, polygon) pairs."""
 
 from __future__ import annotations
 
-from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed
+from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed, takes_scene
 
 __all__ = ["raycast"]
 
 
+@takes_scene
 def raycast(p: Prepared) -> HiddenResult:
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris),
                 "ray-polygon tests": len(p.tris) * p.n_pixels, "plane intersections": 0,

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import SUBPIXEL, HiddenResult, Prepared, resolve_nearest, timed
+from .common import SUBPIXEL, HiddenResult, Prepared, resolve_nearest, timed, takes_scene
 
 __all__ = ["scanline"]
 
@@ -45,6 +45,7 @@ def _inverse_depth_planes(p: Prepared, screen: np.ndarray) -> tuple[np.ndarray, 
     return coeff, perspective
 
 
+@takes_scene
 def scanline(p: Prepared, steps: int = 0) -> HiddenResult:
     """``steps``: keep that many snapshots of the image as the line sweeps down."""
     width, height = p.size

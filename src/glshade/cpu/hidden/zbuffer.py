@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed
+from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed, takes_scene
 
 __all__ = ["zbuffer"]
 
@@ -35,6 +35,7 @@ def _writes(pix, depth, order, held) -> int:
     return int((wrote & ~is_held[1:]).sum())
 
 
+@takes_scene
 def zbuffer(p: Prepared) -> HiddenResult:
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "fragments": 0,
                 "pixels written": 0}

@@ -1,0 +1,309 @@
+"""Constructive solid geometry: the notes' binary trees whose leaves are primitive solids
+and whose interior nodes are boolean operations or nonsingular transformations, with
+Roth's ray casting as the numpy reference.
+
+Leaves (unit-size defaults, centred at the origin, axis along y): :class:`Sphere`,
+:class:`Box`, :class:`Cylinder`, :class:`Cone` (apex up), :class:`Torus` (around y),
+:class:`HalfSpace` (``normal . p <= offset``). Nodes: ``a | b`` (union), ``a & b``
+(intersection), ``a - b`` (difference) and ``a.transformed(m)`` for any nonsingular affine
+``m`` (shear and non-uniform scale included), with ``translated``, ``rotated``, ``scaled``.
+
+Roth: along every ray each leaf gives its intervals of inside (as boundary *events*: a
+parameter t, entering or leaving, the surface's outward normal, the leaf), and the
+boolean operators combine the event lists up the tree -- sort the two lists together,
+follow inside-A and inside-B through them, keep the events where the result changes.
+The lists are fixed-width arrays sized from the tree (the sum of its leaves' widths), so
+no interval is ever dropped; everything is vectorised over rays.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import GeometryError
+from .analytic import affine_matrix
+
+__all__ = ["Solid", "Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace", "Union",
+           "Intersection", "Difference", "Transformed", "Events"]
+
+
+class Events:
+    """Boundary events along each of N rays, ``(N, K)``: ``t`` (sorted; +inf pads),
+    ``kind`` (+1 enter, -1 leave, 0 pad), ``normal (N, K, 3)`` outward from the solid,
+    ``leaf`` (the leaf's index in the tree)."""
+
+    def __init__(self, t, kind, normal, leaf):
+        self.t, self.kind, self.normal, self.leaf = t, kind, normal, leaf
+
+    @classmethod
+    def empty(cls, n: int, k: int) -> Events:
+        return cls(np.full((n, k), np.inf), np.zeros((n, k), np.int8), np.zeros((n, k, 3)),
+                   np.full((n, k), -1, np.int64))
+
+    def sorted(self) -> Events:
+        order = np.argsort(self.t, axis=1, kind="stable")
+        take = lambda a: np.take_along_axis(a, order if a.ndim == 2 else order[..., None], 1)  # noqa: E731
+        return Events(take(self.t), take(self.kind), take(self.normal), take(self.leaf))
+
+
+class Solid:
+    """A node of a CSG tree."""
+
+    width = 2  # events per ray (a leaf with one interval)
+
+    def __or__(self, other):
+        return Union(self, _solid(other))
+
+    def __and__(self, other):
+        return Intersection(self, _solid(other))
+
+    def __sub__(self, other):
+        return Difference(self, _solid(other))
+
+    def transformed(self, matrix: ArrayLike) -> Solid:
+        return Transformed(self, affine_matrix(matrix, "CSG transform"))
+
+    def translated(self, offset: ArrayLike) -> Solid:
+        m = np.eye(4)
+        m[:3, 3] = _vec(offset, "translation")
+        return self.transformed(m)
+
+    def scaled(self, factor) -> Solid:
+        f = np.broadcast_to(np.asarray(factor, np.float64), (3,))
+        return self.transformed(np.diag([*f, 1.0]))
+
+    def rotated(self, q: ArrayLike) -> Solid:
+        from .quaternion import to_matrix
+
+        m = np.eye(4)
+        m[:3, :3] = to_matrix(q)[:3, :3]
+        return self.transformed(m)
+
+    # the tree
+    def leaves(self) -> list:
+        return [self]
+
+    def contains(self, points: ArrayLike) -> np.ndarray:
+        """``(N,) bool``: which points lie in the solid (its boundary included)."""
+        return self._contains(_points(points))
+
+    @property
+    def bounds(self) -> np.ndarray | None:
+        """``(2, 3)`` box around the solid, or None where it is unbounded."""
+        return self._bounds()
+
+    def events(self, origins, directions) -> Events:
+        """Roth's boundary events along the rays ``origins + t directions``, every t."""
+        leaves = {id(leaf): i for i, leaf in enumerate(self.leaves())}
+        return self._events(np.asarray(origins, np.float64),
+                            np.asarray(directions, np.float64), leaves)
+
+    def intersect(self, origins: ArrayLike, directions: ArrayLike, t_min: float = 0.0):
+        """First surface along each ray beyond ``t_min``: ``(t (N,), normal (N, 3), leaf
+        (N,))``; t = inf and leaf = -1 where the ray misses. Normals are unit, outward
+        from the solid (so flipped on surfaces a difference subtracted)."""
+        o, d = _points(origins), _points(directions)
+        if o.shape != d.shape:
+            raise GeometryError(f"origins {o.shape} and directions {d.shape} differ")
+        ev = self.events(o, d)
+        hit = (ev.t > t_min) & (ev.kind != 0)
+        first = np.where(hit.any(1), np.argmax(hit, axis=1), -1)
+        rows = np.arange(len(o))
+        t = np.where(first >= 0, ev.t[rows, first], np.inf)
+        normal = np.where((first >= 0)[:, None], ev.normal[rows, first], 0.0)
+        length = np.linalg.norm(normal, axis=1, keepdims=True)
+        normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
+        return t, normal, np.where(first >= 0, ev.leaf[rows, first], -1)
+
+    def volume(self, samples: int = 200_000, seed: int = 0) -> tuple[float, float]:
+        """Monte Carlo volume over the bounds: (estimate, standard error)."""
+        b = self.bounds
+        if b is None:
+            raise GeometryError("an unbounded solid (a half-space not cut by anything) has "
+                                "no volume")
+        rng = np.random.default_rng(seed)
+        p = rng.uniform(b[0], b[1], (int(samples), 3))
+        frac = self.contains(p).mean()
+        box = float(np.prod(b[1] - b[0]))
+        return box * frac, box * np.sqrt(frac * (1 - frac) / samples)
+
+    def __repr__(self) -> str:
+        return type(self).__name__
+
+
+# ----------------------------------------------------------------------------- helpers
+
+def _solid(x) -> Solid:
+    if not isinstance(x, Solid):
+        raise GeometryError(f"CSG operands must be solids, got {type(x).__name__}")
+    return x
+
+
+def _vec(v, what) -> np.ndarray:
+    a = np.asarray(v, np.float64)
+    if a.shape != (3,) or not np.isfinite(a).all():
+        raise GeometryError(f"{what} must be 3 finite numbers, got {v!r}")
+    return a
+
+
+def _points(p) -> np.ndarray:
+    a = np.asarray(p, np.float64)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise GeometryError(f"points must have shape (N, 3), got {a.shape}")
+    return a
+
+
+def _positive(value, what) -> float:
+    v = float(value)
+    if not np.isfinite(v) or v <= 0:
+        raise GeometryError(f"{what} must be a positive number, got {value!r}")
+    return v
+
+
+def _interval(n, t0, t1, n0, n1, leaf) -> Events:
+    """Events of one interval [t0, t1] per ray (NaN t0: no interval)."""
+    ev = Events.empty(n, 2)
+    ok = ~np.isnan(t0)
+    ev.t[ok, 0], ev.t[ok, 1] = t0[ok], t1[ok]
+    ev.kind[ok, 0], ev.kind[ok, 1] = 1, -1
+    ev.normal[ok, 0], ev.normal[ok, 1] = n0[ok], n1[ok]
+    ev.leaf[ok] = leaf
+    return ev
+
+
+def _convex(o, d, candidates, inside, gradient, leaf) -> Events:
+    """A convex leaf's interval from candidate boundary parameters (N, C): the segment
+    between consecutive candidates whose midpoints are inside, first to last."""
+    n = len(o)
+    t = np.sort(np.c_[np.full(n, -np.inf), candidates, np.full(n, np.inf)], axis=1)
+    a, b = t[:, :-1], t[:, 1:]
+    mid = np.where(np.isinf(a), b - 1.0, np.where(np.isinf(b), a + 1.0, (a + b) / 2))
+    mid = np.where(np.isinf(a) & np.isinf(b), 0.0, mid)
+    p = o[:, None, :] + mid[..., None] * d[:, None, :]
+    ins = inside(p.reshape(-1, 3)).reshape(mid.shape) & np.isfinite(mid)
+    has = ins.any(1)
+    first = np.argmax(ins, axis=1)
+    last = ins.shape[1] - 1 - np.argmax(ins[:, ::-1], axis=1)
+    rows = np.arange(n)
+    t0 = np.where(has, a[rows, first], np.nan)
+    t1 = np.where(has, b[rows, last], np.nan)
+    p0 = o + np.nan_to_num(t0, posinf=0, neginf=0)[:, None] * d
+    p1 = o + np.nan_to_num(t1, posinf=0, neginf=0)[:, None] * d
+    return _interval(n, t0, t1, gradient(p0), gradient(p1), leaf)
+
+
+def _quadratic(a, b, c):
+    """Real roots (NaN where none) of a t^2 + b t + c, stable."""
+    disc = b * b - 4 * a * c
+    ok = (disc >= 0) & (a != 0)
+    s = np.sqrt(np.where(ok, disc, 0.0))
+    q = -0.5 * (b + np.copysign(s, b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r1, r2 = q / a, c / q
+    r1 = np.where(ok, r1, np.nan)
+    r2 = np.where(ok & (q != 0), r2, r1)
+    return np.fmin(r1, r2), np.fmax(r1, r2)
+
+
+# ----------------------------------------------------------------------------- nodes
+
+class _Boolean(Solid):
+    def __init__(self, a: Solid, b: Solid):
+        self.a, self.b = _solid(a), _solid(b)
+        self.width = a.width + b.width
+
+    def leaves(self) -> list:
+        return [*self.a.leaves(), *self.b.leaves()]
+
+    def _contains(self, p):
+        return self.op(self.a._contains(p), self.b._contains(p))
+
+    def _events(self, o, d, leaves) -> Events:
+        ea, eb = self.a._events(o, d, leaves), self.b._events(o, d, leaves)
+        sign = -1.0 if isinstance(self, Difference) else 1.0  # B's surfaces face the other way
+        ev = Events(np.c_[ea.t, eb.t], np.c_[ea.kind, eb.kind],
+                    np.concatenate([ea.normal, sign * eb.normal], 1), np.c_[ea.leaf, eb.leaf])
+        from_a = np.c_[np.ones_like(ea.kind, bool), np.zeros_like(eb.kind, bool)]
+        order = np.argsort(ev.t, axis=1, kind="stable")
+        ev = Events(*(np.take_along_axis(x, order if x.ndim == 2 else order[..., None], 1)
+                      for x in (ev.t, ev.kind, ev.normal, ev.leaf)))
+        from_a = np.take_along_axis(from_a, order, 1)
+        k = ev.kind.astype(np.int64)
+        in_a = np.cumsum(np.where(from_a, k, 0), axis=1) > 0
+        in_b = np.cumsum(np.where(from_a, 0, k), axis=1) > 0
+        inside = self.op(in_a, in_b)
+        before = np.c_[self.op(np.zeros((len(o), 1), bool), np.zeros((len(o), 1), bool)),
+                       inside[:, :-1]]
+        change = (inside != before) & (ev.kind != 0)
+        out = Events(np.where(change, ev.t, np.inf), np.where(change, inside * 2 - 1, 0)
+                     .astype(np.int8), np.where(change[..., None], ev.normal, 0.0),
+                     np.where(change, ev.leaf, -1))
+        return out.sorted()
+
+
+class Union(_Boolean):
+    op = staticmethod(np.logical_or)
+
+    def _bounds(self):
+        a, b = self.a._bounds(), self.b._bounds()
+        if a is None or b is None:
+            return None
+        return np.array([np.minimum(a[0], b[0]), np.maximum(a[1], b[1])])
+
+
+class Intersection(_Boolean):
+    op = staticmethod(np.logical_and)
+
+    def _bounds(self):
+        a, b = self.a._bounds(), self.b._bounds()
+        if a is None or b is None:
+            return a if b is None else b
+        lo, hi = np.maximum(a[0], b[0]), np.minimum(a[1], b[1])
+        return np.array([lo, np.maximum(hi, lo)])  # (empty: a flat box)
+
+
+class Difference(_Boolean):
+    @staticmethod
+    def op(a, b):
+        return a & ~b
+
+    def _bounds(self):
+        return self.a._bounds()
+
+
+class Transformed(Solid):
+    """A solid moved by a nonsingular affine matrix (column vectors)."""
+
+    def __init__(self, child: Solid, matrix):
+        self.child = _solid(child)
+        self.matrix = affine_matrix(matrix, "CSG transform")
+        self.inverse = np.linalg.inv(self.matrix)
+        self.width = child.width
+
+    def leaves(self) -> list:
+        return self.child.leaves()
+
+    def _contains(self, p):
+        return self.child._contains(p @ self.inverse[:3, :3].T + self.inverse[:3, 3])
+
+    def _bounds(self):
+        from .transforms import box_corners
+
+        b = self.child._bounds()
+        if b is None:
+            return None
+        c = box_corners(b) @ self.matrix[:3, :3].T + self.matrix[:3, 3]
+        return np.array([c.min(0), c.max(0)])
+
+    def _events(self, o, d, leaves) -> Events:
+        m = self.inverse
+        ev = self.child._events(o @ m[:3, :3].T + m[:3, 3], d @ m[:3, :3].T, leaves)
+        # normals follow by the inverse transpose (t is unchanged: rays are not rescaled)
+        ev.normal = ev.normal @ m[:3, :3]
+        return ev
+
+
+# ----------------------------------------------------------------------------- leaves
+
+from .solid_leaves import Box, Cone, Cylinder, HalfSpace, Sphere, Torus  # noqa: E402

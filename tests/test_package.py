@@ -18,7 +18,7 @@ PACKAGE = Path(glshade.__file__).parent
 LAYERS = [
     {"_version", "_atomic", "_callable", "errors", "modes", "options"},
     {"parallel"},
-    {"geometry", "quaternion", "masspoint", "brep", "solids"},
+    {"geometry", "quaternion", "masspoint", "brep", "solids", "octree"},
     {"scene"},
     {"io"},
     {"cpu", "hidden"},

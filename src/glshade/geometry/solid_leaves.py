@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GeometryError
-from .solids import Events, Solid, _convex, _interval, _positive, _quadratic, _vec
+from .solids import (Events, Solid, _by_distance, _convex, _interval, _positive, _quadratic,
+                     _vec)
 
 __all__ = ["Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace"]
 
@@ -15,6 +16,9 @@ __all__ = ["Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace"]
 class _Leaf(Solid):
     def _events(self, o, d, leaves) -> Events:
         return self._leaf_events(o, d, leaves[id(self)])
+
+    def _classify(self, lo, hi):
+        return _by_distance(self.distance, lo, hi)
 
 
 class Sphere(_Leaf):
@@ -26,6 +30,9 @@ class Sphere(_Leaf):
 
     def _bounds(self):
         return np.array([[-self.radius] * 3, [self.radius] * 3])
+
+    def distance(self, p):
+        return np.linalg.norm(p, axis=1) - self.radius
 
     def _leaf_events(self, o, d, leaf):
         t0, t1 = _quadratic(np.einsum("nd,nd->n", d, d), 2 * np.einsum("nd,nd->n", o, d),
@@ -47,6 +54,10 @@ class Box(_Leaf):
 
     def _bounds(self):
         return np.array([-self.half, self.half])
+
+    def distance(self, p):
+        q = np.abs(p) - self.half
+        return np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(1), 0)
 
     def _leaf_events(self, o, d, leaf):
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -80,6 +91,10 @@ class Cylinder(_Leaf):
     def _bounds(self):
         r, h = self.radius, self.h
         return np.array([[-r, -h, -r], [r, h, r]])
+
+    def distance(self, p):
+        q = np.c_[np.hypot(p[:, 0], p[:, 2]) - self.radius, np.abs(p[:, 1]) - self.h]
+        return np.minimum(q.max(1), 0) + np.linalg.norm(np.maximum(q, 0), axis=1)
 
     def _gradient(self, p):
         side = np.abs(np.hypot(p[:, 0], p[:, 2]) - self.radius)
@@ -119,6 +134,13 @@ class Cone(_Leaf):
         r, h = self.radius, self.apex
         return np.array([[-r, -h, -r], [r, h, r]])
 
+    def distance(self, p):
+        """A bound: the larger of the distances to the side's line (extended) and to the
+        slab -- never more than the true distance (an intersection's rule)."""
+        y = p[:, 1]
+        side = (np.hypot(p[:, 0], p[:, 2]) - self.k * (self.apex - y)) / np.hypot(1, self.k)
+        return np.maximum(side, np.abs(y) - self.apex)
+
     def _gradient(self, p):
         y = p[:, 1]
         rho = np.hypot(p[:, 0], p[:, 2])
@@ -157,6 +179,9 @@ class Torus(_Leaf):
     def _bounds(self):
         a, r = self.R + self.r, self.r
         return np.array([[-a, -r, -a], [a, r, a]])
+
+    def distance(self, p):
+        return np.hypot(np.hypot(p[:, 0], p[:, 2]) - self.R, p[:, 1]) - self.r
 
     def _gradient(self, p):
         rho = np.maximum(np.hypot(p[:, 0], p[:, 2]), 1e-300)
@@ -228,6 +253,9 @@ class HalfSpace(_Leaf):
 
     def _bounds(self):
         return None
+
+    def distance(self, p):
+        return p @ self.normal - self.offset
 
     def _leaf_events(self, o, d, leaf):
         n = len(o)

@@ -116,6 +116,12 @@ class Solid:
         normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
         return t, normal, np.where(first >= 0, ev.leaf[rows, first], -1)
 
+    def classify_boxes(self, lo: ArrayLike, hi: ArrayLike) -> np.ndarray:
+        """For axis-aligned boxes ``lo``, ``hi`` (N, 3): 1 if wholly inside the solid, 0 if
+        wholly outside, 2 if the boundary may cross it -- conservative (never 0 or 1 by
+        mistake), from each leaf's distance bound and the booleans' three-valued logic."""
+        return self._classify(np.asarray(lo, np.float64), np.asarray(hi, np.float64))
+
     def volume(self, samples: int = 200_000, seed: int = 0) -> tuple[float, float]:
         """Monte Carlo volume over the bounds: (estimate, standard error)."""
         b = self.bounds
@@ -193,6 +199,20 @@ def _convex(o, d, candidates, inside, gradient, leaf) -> Events:
     return _interval(n, t0, t1, gradient(p0), gradient(p1), leaf)
 
 
+def _corners(lo, hi) -> np.ndarray:
+    """The 8 corners (N, 8, 3) of boxes."""
+    bits = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], bool)
+    return np.where(bits[None], hi[:, None, :], lo[:, None, :])
+
+
+def _by_distance(distance, lo, hi) -> np.ndarray:
+    """Classify boxes by a leaf's signed distance bound at their centres (|d| never more
+    than the true distance to the surface): beyond the half-diagonal, wholly out or in."""
+    centre, half = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
+    d = distance(centre)
+    return np.where(d > half, 0, np.where(d < -half, 1, 2)).astype(np.int8)
+
+
 def _quadratic(a, b, c):
     """Real roots (NaN where none) of a t^2 + b t + c, stable."""
     disc = b * b - 4 * a * c
@@ -242,8 +262,16 @@ class _Boolean(Solid):
         return out.sorted()
 
 
+OUT, IN, MAYBE = 0, 1, 2
+
+
 class Union(_Boolean):
     op = staticmethod(np.logical_or)
+
+    def _classify(self, lo, hi):
+        a, b = self.a._classify(lo, hi), self.b._classify(lo, hi)
+        return np.where((a == IN) | (b == IN), IN, np.where((a == OUT) & (b == OUT), OUT,
+                                                            MAYBE))
 
     def _bounds(self):
         a, b = self.a._bounds(), self.b._bounds()
@@ -254,6 +282,11 @@ class Union(_Boolean):
 
 class Intersection(_Boolean):
     op = staticmethod(np.logical_and)
+
+    def _classify(self, lo, hi):
+        a, b = self.a._classify(lo, hi), self.b._classify(lo, hi)
+        return np.where((a == OUT) | (b == OUT), OUT, np.where((a == IN) & (b == IN), IN,
+                                                               MAYBE))
 
     def _bounds(self):
         a, b = self.a._bounds(), self.b._bounds()
@@ -267,6 +300,11 @@ class Difference(_Boolean):
     @staticmethod
     def op(a, b):
         return a & ~b
+
+    def _classify(self, lo, hi):
+        a, b = self.a._classify(lo, hi), self.b._classify(lo, hi)
+        return np.where((a == OUT) | (b == IN), OUT, np.where((a == IN) & (b == OUT), IN,
+                                                              MAYBE))
 
     def _bounds(self):
         return self.a._bounds()
@@ -286,6 +324,15 @@ class Transformed(Solid):
 
     def _contains(self, p):
         return self.child._contains(p @ self.inverse[:3, :3].T + self.inverse[:3, 3])
+
+    def _classify(self, lo, hi):
+        """(the child sees the box's image as the box around it: conservative)"""
+        from .transforms import box_corners
+
+        corners = np.stack([box_corners(np.array([a, b])) for a, b in zip(lo, hi)]) \
+            if len(lo) < 64 else _corners(lo, hi)
+        c = corners @ self.inverse[:3, :3].T + self.inverse[:3, 3]
+        return self.child._classify(c.min(1), c.max(1))
 
     def _bounds(self):
         from .transforms import box_corners

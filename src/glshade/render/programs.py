@@ -86,8 +86,9 @@ class UniformWriter:
         if isinstance(value, np.ndarray):
             value = value.tobytes()
         if isinstance(value, bytes):
-            # an array the program uses only in part (2 of 8 lights) is shortened to it
-            value = value[:size]
+            # an array the program uses only in part (2 of 8 lights) is shortened to it; one
+            # the driver kept whole is padded with zeros
+            value = value[:size].ljust(size, b"\0")
             if self._last.get(key) != value:
                 member.write(value)
                 self._last[key] = value

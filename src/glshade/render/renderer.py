@@ -29,6 +29,7 @@ from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import ProgramKey, UniformWriter, light_kind, material_uniforms
 from .shaders import ShaderLibrary
+from .csg import CsgPass
 from .target import OffscreenTarget
 
 __all__ = ["Renderer", "Frame"]
@@ -147,6 +148,7 @@ class Renderer:
             raise
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.shaders = ShaderLibrary(self.context)
+        self._csg = CsgPass(self.context, self.shaders)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query = None
@@ -172,6 +174,7 @@ class Renderer:
             gpu.release()
         for t in self._targets.values():
             t.release()
+        self._csg.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
@@ -317,6 +320,9 @@ class Renderer:
                 vao = gpu.vertex_array(prog, options.mode)
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
+        if scene.solids:  # CSG solids, ray cast into the same z-buffer
+            self._csg.draw(self, scene, view, proj, frame, lights, options, variant, id_base,
+                           flip_rows, (vx, vy, vw, vh))
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
         if options.wireframe:

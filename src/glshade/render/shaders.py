@@ -136,9 +136,13 @@ class ShaderLibrary(GLResource):
         return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,
-                defines: tuple[str, ...] = ()):
-        """Compile and link one program; a failure raises ShaderError naming file and line."""
+                defines: tuple[str, ...] = (), insert: tuple[str, str] | None = None):
+        """Compile and link one program; a failure raises ShaderError naming file and line.
+        ``insert``: (a marker line of the fragment source, generated code to put there)."""
         vs, frag_src = assemble(vert, root, defines), assemble(frag, root, defines)
+        if insert is not None:
+            marker, code = insert
+            frag_src = (frag_src[0].replace(marker, code, 1), frag_src[1])
         try:
             return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0])
         except Exception as exc:  # moderngl raises a bare Error with the driver's log

@@ -17,7 +17,7 @@ from ..geometry.transforms import box_corners, compose_transform
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "Scene", "MAX_DRAWABLE_COORDINATE"]
+__all__ = ["Model", "SolidModel", "Scene", "MAX_DRAWABLE_COORDINATE"]
 
 #: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
 MAX_DRAWABLE_COORDINATE = 1e18
@@ -50,6 +50,16 @@ class Model:
         return self._constant[1]
 
 
+@dataclass(eq=False)
+class SolidModel:
+    """One CSG solid in a scene (placed: its transform is part of the tree)."""
+
+    solid: object
+    material: Material = field(default_factory=Material)
+    name: str | None = None
+    visible: bool = True
+
+
 class Scene:
     """Meshes, lights, ambient intensity ``Ia`` and background colour.
 
@@ -68,19 +78,27 @@ class Scene:
                                 f"{background!r}")
         self.background = tuple(float(x) for x in bg)
         self.models: list[Model] = []
+        self.solids: list[SolidModel] = []
         self.lights: list = []
 
     def add(self, mesh: Mesh, material: Material | None = None, transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None) -> Model:
-        """Add a mesh. Place it with a 4x4 ``transform`` (column vectors), or with a
+        """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU). Place
+        it with a 4x4 ``transform`` (column vectors), or with a
         quaternion ``rotation``, ``translation`` and ``scale`` (T R S). ``crease`` (degrees)
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
         added with its vertices split there (:meth:`Mesh.split_creases`). ``vertex_colors``
         (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display)."""
+        from ..geometry.solids import Solid
+
+        if isinstance(mesh, Solid):
+            return self._add_solid(mesh, material, transform, rotation, translation, scale,
+                                   name)
         if not isinstance(mesh, Mesh):
-            raise GeometryError(f"scene.add needs a Mesh, got {type(mesh).__name__}")
+            raise GeometryError(f"scene.add needs a Mesh or a Solid, got "
+                                f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
         if transform is not None:
@@ -109,6 +127,21 @@ class Scene:
         self.models.append(model)
         return model
 
+    def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
+        """A CSG solid, ray cast on the GPU (its placement becomes a Transformed node)."""
+        if transform is not None:
+            m = affine_matrix(transform, "transform")
+        else:
+            m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        if not np.allclose(m, np.eye(4)):
+            solid = solid.transformed(m)
+        if solid.bounds is None:
+            raise GeometryError("a solid in a scene must be bounded: cut a half-space with a "
+                                "bounded solid (e.g. Box(10) & HalfSpace())")
+        model = SolidModel(solid, material or Material(), name or type(solid).__name__)
+        self.solids.append(model)
+        return model
+
     def add_light(self, light) -> None:
         """Add a PointLight or DirectionalLight (at most MAX_LIGHTS)."""
         if not isinstance(light, (PointLight, DirectionalLight)):
@@ -129,6 +162,7 @@ class Scene:
             if not m.visible or m.mesh.n_vertices == 0:
                 continue
             pts.append(box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3])
+        pts += [box_corners(s.solid.bounds) for s in self.solids if s.visible]
         if not pts:
             return np.zeros((2, 3))
         p = np.vstack(pts)

@@ -1,0 +1,76 @@
+#version 330 core
+// CSG solids by ray casting: the ray through this pixel (from the near plane), the tree's
+// events along it, the first surface beyond the near plane; its depth goes to
+// gl_FragDepth, so solids and meshes meet in one z-buffer. Lit by the same function as the
+// meshes (lighting.glsl) with the exact normal at every pixel.
+#include "lighting.glsl"
+#include "csg.glsl"
+
+uniform mat4 u_inverse_view_proj;  // clip -> world
+uniform mat4 u_solid_view_proj;  // world -> clip (the box's own is the vertex stage's)
+uniform mat4 u_view;
+uniform mat3 u_view_normal;        // world -> view, for normals (the view is rigid)
+uniform vec2 u_viewport_origin;
+uniform vec2 u_viewport_size;
+uniform int u_face_id_base;
+uniform vec2 u_depth_range;
+
+layout(location = 0) out vec4 frag_color;
+#ifdef GLSHADE_AUX_OUTPUTS
+layout(location = 1) out vec4 frag_normal;
+layout(location = 2) out int frag_face_id;
+layout(location = 3) out uint frag_depth_bits;
+#endif
+
+// the tree, generated: void csg_tree(vec3 ro, vec3 rd, out Ev events[WIDTH])
+// GLSHADE_CSG_TREE
+
+vec3 encode_srgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+}
+
+void main() {
+    vec2 ndc = (gl_FragCoord.xy - u_viewport_origin) / u_viewport_size * 2.0 - 1.0;
+    vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
+    vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
+    vec3 ro = a.xyz / a.w, rd = normalize(b.xyz / b.w - ro);
+    Ev ev[WIDTH];
+    csg_tree(ro, rd, ev);
+    int hit = -1;
+    for (int k = 0; k < WIDTH; ++k) {
+        if (ev[k].kind != 0 && ev[k].t > 0.0) { hit = k; break; }
+    }
+    if (hit < 0) discard;
+    vec3 p = ro + ev[hit].t * rd;
+    vec4 clip = u_solid_view_proj * vec4(p, 1.0);
+    float z = clip.z / clip.w;
+    if (z > 1.0) discard;  // beyond the far plane
+    gl_FragDepth = 0.5 * z + 0.5;
+    vec3 n_world = normalize(ev[hit].n);
+    vec3 p_view = (u_view * vec4(p, 1.0)).xyz;
+    vec3 n_view = normalize(u_view_normal * n_world);
+    vec3 v = view_dir(p_view);
+    if (dot(n_view, v) < 0.0) {  // seen from inside the solid: the surface faces the eye
+        n_view = -n_view;
+        n_world = -n_world;
+    }
+#if defined(SHOW_NORMALS)
+    vec3 color = 0.5 * n_world + 0.5;
+#elif defined(SHOW_DEPTH)
+    vec3 color = vec3(1.0 - clamp((-p_view.z - u_depth_range.x) /
+                                  (u_depth_range.y - u_depth_range.x), 0.0, 1.0));
+#else
+    vec3 color = light_intensity(p_view, n_view, v);
+#endif
+    color = clamp(color, 0.0, 1.0);
+#ifdef SRGB
+    color = encode_srgb(color);
+#endif
+    frag_color = vec4(color, 1.0);
+#ifdef GLSHADE_AUX_OUTPUTS
+    frag_normal = vec4(n_world, 1.0);
+    frag_face_id = u_face_id_base + ev[hit].leaf + 1;
+    frag_depth_bits = floatBitsToUint(-p_view.z);
+#endif
+}

@@ -1,0 +1,243 @@
+"""Drawing CSG solids on the GPU: the tree becomes generated GLSL (one event array per
+node, sized from its leaves; the leaves and the merge of csg.glsl), compiled once per tree
+*shape* and cached -- sizes and transforms are uniforms, so editing them recompiles
+nothing. Each solid is drawn as the back faces of its bounding box; the fragment program
+casts the pixel's ray through the tree and writes the first surface's depth to
+gl_FragDepth, so solids and meshes share one z-buffer.
+
+Shading: the lighting function of the meshes with the exact normal at every pixel; the
+flat, Gouraud and Phong modes all light per pixel (a solid has no polygons or vertices to
+hold an intensity), ``normals`` and ``depth`` show what they show for meshes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..geometry import solids as L  # (the leaves, re-exported: importing solids first)
+from ..geometry.solids import Difference, Intersection, Solid, Transformed, Union
+from ..geometry.transforms import box_corners, gl_bytes
+from ..modes import ShadingMode
+
+__all__ = ["tree_code", "leaf_uniforms", "shape_key"]
+
+_KIND = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
+         L.Torus: "torus", L.HalfSpace: "halfspace"}
+_OPS = {Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
+        Difference: ("D", "ca > 0 && !(cb > 0)")}
+
+
+def shape_key(solid: Solid) -> str:
+    """The tree's shape (what the generated code depends on), e.g. ``D(U(sphere,box),...)``."""
+    if isinstance(solid, Transformed):
+        return shape_key(solid.child)
+    if type(solid) in _OPS:
+        return f"{_OPS[type(solid)][0]}({shape_key(solid.a)},{shape_key(solid.b)})"
+    return _KIND[type(solid)]
+
+
+def tree_code(solid: Solid) -> tuple[str, int, int]:
+    """(GLSL defining ``csg_tree``, number of leaves, events width)."""
+    lines, helpers, counter = [], {}, [0, 0]
+
+    def visit(node) -> tuple[str, int]:
+        if isinstance(node, Transformed):
+            return visit(node.child)
+        if type(node) in _OPS:
+            a, wa = visit(node.a)
+            b, wb = visit(node.b)
+            letter, test = _OPS[type(node)]
+            name = f"comb_{letter}_{wa}_{wb}"
+            helpers.setdefault(name, _combine(name, wa, wb, test))
+            out = f"n{counter[1]}"
+            counter[1] += 1
+            lines.append(f"    Ev {out}[{wa + wb}]; {name}({a}, {b}, {out});")
+            return out, wa + wb
+        i = counter[0]
+        counter[0] += 1
+        width = 4 if isinstance(node, L.Torus) else 2
+        out = f"l{i}"
+        lines.append(f"    Ev {out}[{width}]; leaf_{_KIND[type(node)]}({i}, "
+                     f"(u_leaf_inverse[{i}] * vec4(ro, 1.0)).xyz, "
+                     f"mat3(u_leaf_inverse[{i}]) * rd, {out});")
+        return out, width
+
+    root, width = visit(solid)
+    body = "\n".join(lines)
+    code = "\n".join(helpers.values()) + (
+        f"\nvoid csg_tree(vec3 ro, vec3 rd, out Ev events[{width}]) {{\n{body}\n"
+        f"    events = {root};\n}}\n")
+    return code, counter[0], width
+
+
+def _combine(name: str, wa: int, wb: int, test: str) -> str:
+    """Merge two sorted event lists; keep the events where ``test`` (in A, in B) changes."""
+    n = wa + wb
+    return f"""
+void {name}(Ev A[{wa}], Ev B[{wb}], out Ev C[{n}]) {{
+    int i = 0, j = 0, m = 0, ca = 0, cb = 0;
+    bool before = false;
+    for (int k = 0; k < {n}; ++k) C[k] = pad_event();
+    for (int k = 0; k < {n}; ++k) {{
+        Ev a = A[min(i, {wa - 1})], b = B[min(j, {wb - 1})];
+        bool take_a = j >= {wb} || (i < {wa} && a.t <= b.t);
+        Ev e = take_a ? a : b;
+        if (take_a) {{ ca += a.kind; i++; }} else {{ cb += b.kind; j++; }}
+        if (e.kind == 0) continue;
+        bool inside = {test};
+        if (inside != before) {{
+            C[m] = Ev(e.t, inside ? 1 : -1, e.n, e.leaf);
+            m++;
+            before = inside;
+        }}
+    }}
+}}"""
+
+
+def leaf_uniforms(solid: Solid) -> dict:
+    """Per leaf, in ``solid.leaves()`` order: world-to-leaf matrices, normal matrices
+    (negated under a difference's right side) and size parameters."""
+    inverse, normal, params = [], [], []
+
+    def visit(node, matrix, sign):
+        if isinstance(node, Transformed):
+            visit(node.child, matrix @ node.matrix, sign)
+            return
+        if type(node) in _OPS:
+            visit(node.a, matrix, sign)
+            visit(node.b, matrix, -sign if isinstance(node, Difference) else sign)
+            return
+        inv = np.linalg.inv(matrix)
+        inverse.append(inv)
+        normal.append(sign * inv[:3, :3].T)
+        params.append(_params(node))
+
+    visit(solid, np.eye(4), 1.0)
+    mats = np.array(inverse)
+    return {"u_leaf_inverse": np.ascontiguousarray(mats.transpose(0, 2, 1), "f4"),
+            "u_leaf_normal": np.ascontiguousarray(np.array(normal).transpose(0, 2, 1), "f4"),
+            "u_leaf_param": np.array(params, "f4")}
+
+
+def _params(leaf) -> list:
+    if isinstance(leaf, L.Sphere):
+        return [leaf.radius, 0, 0, 0]
+    if isinstance(leaf, L.Box):
+        return [*leaf.half, 0]
+    if isinstance(leaf, L.Cylinder):
+        return [leaf.radius, leaf.h, 0, 0]
+    if isinstance(leaf, L.Cone):
+        return [leaf.radius, leaf.apex, leaf.k, 0]
+    if isinstance(leaf, L.Torus):
+        return [leaf.R, leaf.r, 0, 0]
+    return [*leaf.normal, leaf.offset]
+
+
+class CsgPass:
+    """Programs (per tree shape and variant), the unit box and the drawing of solids, for
+    one Renderer; released with it."""
+
+    def __init__(self, context, shaders):
+        self.context, self.shaders = context, shaders
+        self._programs: dict = {}
+        self._box = None
+
+    def program(self, solid: Solid, key):
+        shape = shape_key(solid)
+        found = self._programs.get((shape, key))
+        if found is None:
+            code, leaves, width = tree_code(solid)
+            defines = (*key.defines(), f"LEAVES {leaves}", f"WIDTH {width}")
+            if key.mode is ShadingMode.NORMALS:
+                defines += ("SHOW_NORMALS",)
+            elif key.mode is ShadingMode.DEPTH:
+                defines += ("SHOW_DEPTH",)
+            found = self.shaders.compile("csg.vert", "csg.frag", defines=defines,
+                                         insert=("// GLSHADE_CSG_TREE", code))
+            self._programs[(shape, key)] = found
+        return found
+
+    def vertex_array(self, program):
+        ctx = self.context.ctx
+        if self._box is None:
+            corners = box_corners(np.array([[0.0] * 3, [1.0] * 3]))
+            faces = np.array([[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6],
+                              [0, 2, 6, 4], [1, 5, 7, 3]])
+            tri = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+            self._box = (ctx.buffer(corners.astype("f4").tobytes()),
+                         ctx.buffer(tri.astype("u4").tobytes()), {})
+        vbo, ibo, vaos = self._box
+        vao = vaos.get(id(program))
+        if vao is None:
+            vao = vaos[id(program)] = ctx.vertex_array(program, [(vbo, "3f", "in_position")],
+                                                       ibo, 4)
+        return vao
+
+    def draw(self, renderer, scene, view, proj, frame, lights, options, variant, id_base,
+             flip_rows, viewport) -> None:
+        """Draw the scene's visible solids (after its meshes: their ids follow)."""
+        import moderngl
+
+        from .programs import ProgramKey
+
+        ctx = self.context.ctx
+        view_proj = proj @ view
+        put = renderer._uniforms.put
+        n_polygons = id_base
+        for model in scene.solids:
+            if not model.visible:
+                continue
+            prog = self.program(model.solid, ProgramKey(*variant, two_sided=False))
+            for name, value in frame:
+                put(prog, name, value)
+            for name, value in renderer._material_uniforms(model.material, lights,
+                                                           scene.ambient):
+                put(prog, name, value)
+            for name, value in leaf_uniforms(model.solid).items():
+                put(prog, name, value.tobytes())
+            put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(model.solid.bounds)))
+            put(prog, "u_solid_view_proj", gl_bytes(view_proj))
+            put(prog, "u_inverse_view_proj", gl_bytes(np.linalg.inv(view_proj)))
+            put(prog, "u_view", gl_bytes(view))
+            put(prog, "u_view_normal", np.ascontiguousarray(view[:3, :3].T, "f4").tobytes())
+            put(prog, "u_viewport_origin", (float(viewport[0]), float(viewport[1])))
+            put(prog, "u_viewport_size", (float(viewport[2]), float(viewport[3])))
+            put(prog, "u_face_id_base", n_polygons)
+            ctx.enable(moderngl.CULL_FACE)
+            ctx.front_face = "cw" if flip_rows else "ccw"
+            ctx.cull_face = "front"  # the box's back faces: inside it or outside, every pixel
+            self.vertex_array(prog).render(moderngl.TRIANGLES)
+            ctx.cull_face = "back"
+            n_polygons += len(model.solid.leaves())
+
+    def release(self):
+        for p in self._programs.values():
+            p.release()
+        self._programs.clear()
+        if self._box is not None:
+            vbo, ibo, vaos = self._box
+            for vao in vaos.values():
+                vao.release()
+            vbo.release()
+            ibo.release()
+            self._box = None
+
+
+def box_matrix(bounds: np.ndarray) -> np.ndarray:
+    """The matrix taking the unit cube onto ``bounds`` (slightly enlarged)."""
+    lo, hi = bounds
+    size = np.maximum(hi - lo, 1e-9 * max(float(np.abs(bounds).max()), 1.0))
+    pad = 1e-4 * size + 1e-9
+    m = np.diag([*(size + 2 * pad), 1.0])
+    m[:3, 3] = lo - pad
+    return m
+
+
+def solid_bounds(solid: Solid) -> np.ndarray:
+    b = solid.bounds
+    if b is None:
+        raise GeometryError("a solid drawn on screen must be bounded: cut a half-space with "
+                            "a bounded solid (e.g. Box(10) & HalfSpace())")
+    return b
+

@@ -30,6 +30,7 @@ from .gpu_mesh import GpuMesh
 from .programs import ProgramKey, UniformWriter, light_kind, material_uniforms
 from .shaders import ShaderLibrary
 from .csg import CsgPass
+from .diagnostics import why_blank
 from .target import OffscreenTarget
 
 __all__ = ["Renderer", "Frame"]
@@ -57,24 +58,6 @@ _FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
 #: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
 #: (16), polygon id (4), view depth (4) and the z-buffer (4)
 _BYTES_PER_SAMPLE = 44
-
-
-def why_blank(scene: Scene, camera: Camera) -> str:
-    """Why a render of ``scene`` covers no pixel, as far as the data can tell."""
-    drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
-    if not drawn:
-        return "the render is blank: the scene has nothing to draw (no visible mesh with faces)"
-    if all(len(m.mesh.degenerate_faces) == m.mesh.n_faces for m in drawn):
-        return ("the render is blank: every face has zero area (identical or collinear "
-                "vertices)")
-    b = scene.bounds
-    extent = float(np.linalg.norm(b[1] - b[0]))
-    distance = float(np.linalg.norm(b.mean(axis=0) - camera.position))
-    if extent < 1e-6 * max(distance, 1e-300):
-        return (f"the render is blank: the scene is {extent:.3g} across, seen from "
-                f"{distance:.3g} away -- smaller than a pixel (frame it, or scale it up)")
-    return ("the render is blank: no part of the scene lies in the camera's view (between "
-            "its near and far planes, inside its field of view)")
 
 
 def _check_whole(name: str, value, minimum: int) -> None:

@@ -39,8 +39,48 @@ def topology_summary(mesh) -> dict:
     return out
 
 
+def solid_summary(solid, depth: int = 6) -> dict:
+    """Volume (Monte Carlo, and the octree's bounds), bounds, leaves and the octree's
+    cells and memory per level."""
+    from ..geometry.octree import Octree
+
+    volume, error = solid.volume()
+    tree = Octree.from_solid(solid, depth)
+    inner, outer = tree.volume_bounds()
+    b = solid.bounds
+    return {"kind": "CSG solid", "leaves": len(solid.leaves()),
+            "bounds": {"min": b[0].tolist(), "max": b[1].tolist()},
+            "volume": volume, "volume_error": error, "octree_depth": depth,
+            "octree_volume_bounds": [inner, outer], "octree_levels": tree.counts()}
+
+
+def _solid_info(args, solid) -> int:
+    s = solid_summary(solid)
+    s["source"] = args.mesh
+    if args.json:
+        print(json.dumps(s, indent=2))
+        return EXIT_OK
+    lo, hi = s["bounds"]["min"], s["bounds"]["max"]
+    print(f"source        {args.mesh}")
+    print(f"kind          CSG solid, {s['leaves']} leaves")
+    print(f"bounding box  [{', '.join(f'{x:.4g}' for x in lo)}] .. "
+          f"[{', '.join(f'{x:.4g}' for x in hi)}]")
+    print(f"volume        {s['volume']:.6g} +- {s['volume_error']:.2g} (Monte Carlo); "
+          f"octree depth {s['octree_depth']}: {s['octree_volume_bounds'][0]:.6g} .. "
+          f"{s['octree_volume_bounds'][1]:.6g}")
+    print("octree:  level    inside   outside  boundary     bytes")
+    for c in s["octree_levels"]:
+        print(f"         {c['level']:>5} {c['inside']:>9,} {c['outside']:>9,} "
+              f"{c['boundary']:>9,} {c['bytes']:>9,}")
+    return EXIT_OK
+
+
 def info(args) -> int:
+    from ..geometry.solids import Solid
+
     mesh = load_source(args.mesh)
+    if isinstance(mesh, Solid):
+        return _solid_info(args, mesh)
     info = mesh_summary(mesh)
     info["source"] = args.mesh
     info["topology"] = topology_summary(mesh)

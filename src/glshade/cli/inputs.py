@@ -42,7 +42,8 @@ class Job:
 
     @property
     def polygons(self) -> int:
-        return sum(m.mesh.n_faces for m in self.scene.models)
+        return sum(m.mesh.n_faces for m in self.scene.models) + \
+            sum(len(m.solid.leaves()) for m in self.scene.solids)
 
     @contextlib.contextmanager
     def explained(self):

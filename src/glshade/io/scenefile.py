@@ -101,7 +101,9 @@ _SCHEMA = {
                "interpolation": "interp", "position_interpolation": "pinterp",
                "keyframe": "keyframes"},
 }
-_TOP = {"render", "mesh", "light", "camera"}
+_SCHEMA["solid"] = {k: v for k, v in _SCHEMA["mesh"].items()
+                    if k not in ("source", "crease")} | {"tree": "str"}
+_TOP = {"render", "mesh", "solid", "light", "camera"}
 
 
 class _Locator:
@@ -213,6 +215,25 @@ def _check(kind: str, value, where: str):
     return value
 
 
+def _add_solid(scene, m: dict, i: int, loc: _Locator, source: str) -> None:
+    """A ``[[solid]]`` table: a CSG ``tree`` in the syntax of :mod:`glshade.io.csgtext`."""
+    from .csgtext import parse_solid
+
+    if "tree" not in m:
+        raise SceneFormatError(f"{source}:{loc.line('solid', i, None)}: [[solid]] {i + 1} "
+                               "needs a 'tree', e.g. tree = \"box(2) - sphere(1.2)\"")
+    solid = parse_solid(m["tree"], f"{source}:{loc.line('solid', i, 'tree')}: tree")
+    try:
+        model = scene.add(solid, Material.from_values(m), m.get("transform"),
+                          rotation=m.get("rotation"), translation=m.get("translation",
+                                                                        (0, 0, 0)),
+                          scale=m.get("scale", 1.0), name=m.get("name"))
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{source}:{loc.line('solid', i, None)}: [[solid]] {i + 1}: "
+                               f"{exc}") from None
+    model.visible = m.get("visible", True)
+
+
 def _validate(data: dict, loc: _Locator, source: str):
     for key in data:
         if key not in _TOP:
@@ -223,7 +244,7 @@ def _validate(data: dict, loc: _Locator, source: str):
         raw = data.get(table)
         if raw is None:
             continue
-        many = table in ("mesh", "light")
+        many = table in ("mesh", "solid", "light")
         if many and not isinstance(raw, list):
             raise SceneFormatError(f"{source}:{loc.line(table, None, None)}: write meshes and "
                                    f"lights as [[{table}]] tables")
@@ -275,8 +296,8 @@ def load_scene(path) -> SceneFile:
     settings.origin = {k: f"{source}:{loc.line('render', None, k)}: [render] {k}" for k in r}
     scene = Scene(**{k: r[k] for k in ("ambient", "background") if k in r})
     meshes = d.get("mesh", [])
-    if not meshes:
-        raise SceneFormatError(f"{source}: the scene has no [[mesh]]")
+    if not meshes and not d.get("solid"):
+        raise SceneFormatError(f"{source}: the scene has no [[mesh]] or [[solid]]")
     for i, m in enumerate(meshes):
         line = loc.line("mesh", i, "source")
         if "source" not in m:
@@ -293,6 +314,8 @@ def load_scene(path) -> SceneFile:
             raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
                                    f"{exc}") from None
         model.visible = m.get("visible", True)
+    for i, m in enumerate(d.get("solid", [])):
+        _add_solid(scene, m, i, loc, source)
     for i, light in enumerate(d.get("light", [])):
         where = f"{source}:{loc.line('light', i, None)}: [[light]] {i + 1}"
         kind = light.get("type", "direction" in light and "directional" or "point")

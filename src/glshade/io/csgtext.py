@@ -1,0 +1,96 @@
+"""CSG trees written as text, for scene files (``[[solid]] tree = "..."``) and the command
+line (``solid:TEXT``): leaves ``sphere(r)``, ``box(s)`` or ``box(x, y, z)``,
+``cylinder(r, h)``, ``cone(r, h)``, ``torus(R, r)``, ``halfspace([nx, ny, nz], d)``;
+operators ``|`` (union), ``&`` (intersection), ``-`` (difference), parentheses; and
+methods ``.move(x, y, z)``, ``.scale(s)`` or ``.scale(x, y, z)``, ``.turn(degrees, [ax,
+ay, az])`` and ``.transform([[...4 rows...]])``. Example::
+
+    (box(2, 1, 2) - cylinder(0.4, 3).turn(90, [1, 0, 0])) | sphere(0.6).move(0, 0.8, 0)
+
+Parsed by Python's own parser (``ast``) and evaluated by walking the tree: only numbers,
+lists and these names are allowed, so a scene file cannot run code."""
+
+from __future__ import annotations
+
+import ast
+
+import numpy as np
+
+from ..errors import GlshadeError, InputError
+
+__all__ = ["parse_solid"]
+
+
+def _leaves():
+    from ..geometry import solids as S
+
+    def box(*s):
+        if len(s) not in (1, 3):
+            raise InputError(f"box takes a size or three sizes (x, y, z), got {len(s)}")
+        return S.Box(s[0] if len(s) == 1 else list(s))
+
+    return {"sphere": S.Sphere, "box": box,
+            "cylinder": S.Cylinder, "cone": S.Cone, "torus": S.Torus,
+            "halfspace": S.HalfSpace}
+
+
+def _turn(solid, degrees, axis):
+    a = np.asarray(axis, np.float64)
+    if a.shape != (3,) or not np.linalg.norm(a):
+        raise InputError(f"turn needs an axis of 3 numbers, not all zero; got {axis!r}")
+    half = np.radians(float(degrees)) / 2
+    return solid.rotated([*(np.sin(half) * a / np.linalg.norm(a)), np.cos(half)])
+
+
+def _scale(solid, *f):
+    return solid.scaled(f[0] if len(f) == 1 else list(f))
+
+
+_METHODS = {"move": lambda s, *v: s.translated(v[0] if len(v) == 1 else list(v)),
+            "scale": _scale, "turn": _turn,
+            "transform": lambda s, m: s.transformed(m)}
+_OPS = {ast.BitOr: "__or__", ast.BitAnd: "__and__", ast.Sub: "__sub__"}
+
+
+def parse_solid(text: str, where: str = "solid"):
+    """The Solid a text describes; a mistake is an InputError naming ``where`` and the
+    offending piece."""
+    try:
+        # (in parentheses: a tree may run over several lines)
+        tree = ast.parse(f"(\n{text.strip()}\n)", mode="eval")
+    except SyntaxError as exc:
+        raise InputError(f"{where}: not a CSG expression ({exc.msg}, line "
+                         f"{(exc.lineno or 2) - 1} of the tree, column {exc.offset}): "
+                         f"{text.strip()!r}") from None
+    leaves = _leaves()
+
+    def value(node):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and \
+                not isinstance(node.value, bool):
+            return float(node.value)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return -value(node.operand)
+        if isinstance(node, (ast.List, ast.Tuple)):
+            return [value(e) for e in node.elts]
+        raise InputError(f"{where}: expected a number or a list of numbers, got "
+                         f"{ast.unparse(node)!r}")
+
+    def solid(node):
+        if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
+            return getattr(solid(node.left), _OPS[type(node.op)])(solid(node.right))
+        if isinstance(node, ast.Call) and not node.keywords:
+            f = node.func
+            if isinstance(f, ast.Name) and f.id in leaves:
+                return leaves[f.id](*[value(a) for a in node.args])
+            if isinstance(f, ast.Attribute) and f.attr in _METHODS:
+                return _METHODS[f.attr](solid(f.value), *[value(a) for a in node.args])
+        raise InputError(f"{where}: {ast.unparse(node)!r} is not a solid: use "
+                         f"{', '.join(leaves)}(...), |, &, -, and .move/.scale/.turn/"
+                         ".transform")
+
+    try:
+        return solid(tree.body)
+    except (GlshadeError, TypeError, ValueError) as exc:
+        if isinstance(exc, InputError) and str(exc).startswith(f"{where}: "):
+            raise
+        raise InputError(f"{where}: {exc}") from None

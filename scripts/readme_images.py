@@ -38,6 +38,28 @@ def main() -> None:
     glshade.save_image(sweep_plot(rows, ["flat", "gouraud", "phong"]), DOCS / "sweep.png")
     print(result.table())
     cornell()
+    csg()
+
+
+def csg() -> None:
+    """The sample CSG part with a mesh through it, and its octree at two depths."""
+    from glshade.geometry.octree import Octree
+    from glshade.io.scenefile import load_scene
+
+    sf = load_scene(DOCS.parent / "assets/scenes/csg-part.toml")
+    camera = sf.path.at(sf.path.start)
+    solid = sf.scene.solids[0].solid
+    tiles = []
+    with Renderer(360, 270, samples=4) as r:
+        tiles.append(r.render(sf.scene, camera, "phong"))
+        for depth in (4, 6):
+            s = Scene(background=(0.12, 0.12, 0.14))
+            s.add(Octree.from_solid(solid, depth).to_mesh("inside+boundary"),
+                  Material(color=(0.8, 0.55, 0.3)))
+            s.add_light(PointLight((4.0, 6.0, 5.0)))
+            tiles.append(r.render(s, camera, "flat"))
+    glshade.save_image(np.hstack(tiles), DOCS / "csg-octree.png")
+    print(DOCS / "csg-octree.png")
 
 
 def cornell() -> None:

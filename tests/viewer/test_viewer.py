@@ -21,30 +21,41 @@ def teapot_scene():
     return s
 
 
+def csg_scene():
+    """A CSG solid with the teapot through it (ray cast and rasterised, one z-buffer)."""
+    from glshade.solids import Box, Sphere
+
+    s = teapot_scene()
+    s.add(Box((6.0, 0.4, 6.0)).translated((0, 0.9, 0)) - Sphere(1.5).translated((2, 1, 2)),
+          Material(color=(0.4, 0.6, 0.85)))
+    return s
+
+
 CAM = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
 
 HEADLESS = """
 import json, sys, numpy as np
-from tests.viewer.test_viewer import teapot_scene
+from tests.viewer import test_viewer
 from glshade import Camera, Renderer
 job = json.loads(sys.argv[2])
 cam = Camera(position=job["position"], orientation=job["orientation"], fov_y=job["fov_y"],
              near=job["near"], far=job["far"])
 with Renderer(*job["size"], samples=0, backend="egl") as r:
-    images = [r.render(teapot_scene(), cam, **o) for o in job["renders"]]
-    depth = r.render_depth(teapot_scene(), cam)
+    scene = getattr(test_viewer, job["scene"])()
+    images = [r.render(scene, cam, **o) for o in job["renders"]]
+    depth = r.render_depth(scene, cam)
 np.savez(sys.argv[1], images=np.array(images, np.uint8).reshape(-1, *depth.shape, 4),
          depth=depth)
 """
 
 
-def headless(tmp_path, *renders, camera=CAM, size=(240, 180)):
+def headless(tmp_path, *renders, camera=CAM, size=(240, 180), scene="teapot_scene"):
     """Renders of the teapot scene by the headless renderer in its own process (EGL): one
     colour image per dict of draw options (or mode name), and the view depth."""
     out = tmp_path / "headless.npz"
     job = {"size": list(size), "position": camera.position.tolist(),
            "orientation": camera.orientation.tolist(), "fov_y": camera.fov_y,
-           "near": camera.near, "far": camera.far,
+           "near": camera.near, "far": camera.far, "scene": scene,
            "renders": [r if isinstance(r, dict) else {"mode": r} for r in renders]}
     r = subprocess.run([sys.executable, "-c", HEADLESS, str(out), json.dumps(job)], cwd=ROOT,
                        capture_output=True, text=True, timeout=120)
@@ -60,6 +71,15 @@ def test_window_equals_headless_render(viewer_factory, tmp_path):
     ref = headless(tmp_path, "phong")[0][0].astype(int)
     assert shot.shape == ref.shape == (180, 240, 4)
     assert (shot[..., :3].max(-1) > 60).mean() > 0.1  # the teapot is there
+    assert np.abs(shot - ref).max() <= 1
+
+
+def test_window_draws_csg_solids_like_headless(viewer_factory, tmp_path):
+    v = viewer_factory(csg_scene(), CAM)
+    shot = v.screenshot().astype(int)
+    ref = headless(tmp_path, "phong", scene="csg_scene")[0][0].astype(int)
+    blue = (shot[..., 2] > shot[..., 0] + 30).mean()
+    assert blue > 0.05  # the solid is there
     assert np.abs(shot - ref).max() <= 1
 
 

@@ -25,6 +25,32 @@ layout(location = 3) out uint frag_depth_bits;
 // the tree, generated: void csg_tree(vec3 ro, vec3 rd, out Ev events[WIDTH])
 // GLSHADE_CSG_TREE
 
+#ifdef FLAT_FACES
+// Flat shading: a planar leaf face is lit once, at its centre (as a mesh polygon at its
+// centroid); a curved face has no centre and is lit where the ray hits it.
+const int LEAF_KINDS[LEAVES] = int[LEAVES](LEAF_KINDS_LIST);
+
+vec3 face_centre(int i, vec3 p_world) {
+    vec3 p = (u_leaf_inverse[i] * vec4(p_world, 1.0)).xyz;
+    vec4 q = u_leaf_param[i];
+    int kind = LEAF_KINDS[i];
+    vec3 c;
+    if (kind == 1) {                       // box: the face of the largest p / h
+        vec3 r = abs(p / q.xyz);
+        c = r.x >= r.y && r.x >= r.z ? vec3(sign(p.x) * q.x, 0.0, 0.0) :
+            r.y >= r.z ? vec3(0.0, sign(p.y) * q.y, 0.0) : vec3(0.0, 0.0, sign(p.z) * q.z);
+    } else if (kind == 2 && abs(abs(p.y) - q.y) < abs(length(p.xz) - q.x)) {
+        c = vec3(0.0, sign(p.y) * q.y, 0.0);   // a cylinder's cap
+    } else if (kind == 3 && abs(p.y + q.y) < abs(length(p.xz) - q.z * (q.y - p.y))) {
+        c = vec3(0.0, -q.y, 0.0);              // a cone's base
+    } else {
+        return p_world;
+    }
+    vec4 w = inverse(u_leaf_inverse[i]) * vec4(c, 1.0);
+    return w.xyz / w.w;
+}
+#endif
+
 vec3 encode_srgb(vec3 c) {
     c = clamp(c, 0.0, 1.0);
     return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
@@ -61,7 +87,13 @@ void main() {
     vec3 color = vec3(1.0 - clamp((-p_view.z - u_depth_range.x) /
                                   (u_depth_range.y - u_depth_range.x), 0.0, 1.0));
 #else
+#ifdef FLAT_FACES
+    vec3 centre_view = (u_view * vec4(face_centre(ev[hit].leaf, p), 1.0)).xyz;
+    if (dot(n_view, view_dir(centre_view)) < 0.0) n_view = -n_view;  // (seen from inside)
+    vec3 color = light_intensity(centre_view, n_view, view_dir(centre_view));
+#else
     vec3 color = light_intensity(p_view, n_view, v);
+#endif
 #endif
     color = clamp(color, 0.0, 1.0);
 #ifdef SRGB

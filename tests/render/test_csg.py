@@ -134,3 +134,27 @@ def test_unbounded_solids_are_refused():
         Scene().add(HalfSpace())
     with pytest.raises(GeometryError, match="bounded"):
         Scene().add(Sphere() | HalfSpace())
+
+
+def test_flat_lights_each_planar_face_once_at_its_centre(make_renderer):
+    """Oracle: the numpy twin of the lighting formula at the face's centre."""
+    from glshade import PointLight
+    from glshade.cpu.lighting import light_intensity, view_dir
+
+    scene = Scene()
+    material = Material(color=(0.8, 0.6, 0.4), ks=0.4, shininess=20)
+    scene.add(Box((2, 1, 2)) | Sphere(0.5).translated((0, 0.8, 0)), material)
+    scene.add_light(PointLight((1.5, 2.0, 2.5)))
+    frame = make_renderer(*SIZE).render_frame(scene, OUTSIDE, "flat", color_dtype="f4")
+    box = frame.face_id == 0
+    faces = {(1, 0, 0): (1, 0, 0), (0, 1, 0): (0, 0.5, 0), (0, 0, 1): (0, 0, 1)}
+    for normal, centre in faces.items():
+        on = box & (np.abs(frame.normal - normal).max(-1) < 1e-4)
+        assert on.sum() > 100
+        c = np.array(centre, float)
+        expected = light_intensity(c, np.array(normal, float), view_dir(c, OUTSIDE), material,
+                                   scene.lights_for(OUTSIDE), scene.ambient)
+        got = frame.color[on][:, :3]
+        assert np.abs(got - np.clip(expected, 0, 1)).max() < 1e-4
+    ball = frame.color[frame.face_id == 1][:, :3]
+    assert ball.std(0).max() > 0.01  # a curved face stays lit per pixel

@@ -5,9 +5,12 @@ nothing. Each solid is drawn as the back faces of its bounding box; the fragment
 casts the pixel's ray through the tree and writes the first surface's depth to
 gl_FragDepth, so solids and meshes share one z-buffer.
 
-Shading: the lighting function of the meshes with the exact normal at every pixel; the
-flat, Gouraud and Phong modes all light per pixel (a solid has no polygons or vertices to
-hold an intensity), ``normals`` and ``depth`` show what they show for meshes.
+Shading: the lighting function of the meshes with the exact normal at every pixel.
+Gouraud and Phong both light per pixel (a solid has no vertices to hold an intensity);
+flat gives each planar leaf face -- a box's faces, a cylinder's or a cone's caps -- one
+intensity, lit at the face's centre as a mesh polygon is lit at its centroid, while curved
+faces (and a half-space's unbounded plane) have no centre and stay lit per pixel;
+``normals`` and ``depth`` show what they show for meshes.
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ __all__ = ["tree_code", "leaf_uniforms", "shape_key"]
 
 _KIND = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
          L.Torus: "torus", L.HalfSpace: "halfspace"}
+#: leaf kinds as the fragment program's flat shading knows them
+_KIND_CODE = {L.Sphere: 0, L.Box: 1, L.Cylinder: 2, L.Cone: 3, L.Torus: 4, L.HalfSpace: 5}
 _OPS = {Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
         Difference: ("D", "ca > 0 && !(cb > 0)")}
 
@@ -153,6 +158,9 @@ class CsgPass:
                 defines += ("SHOW_NORMALS",)
             elif key.mode is ShadingMode.DEPTH:
                 defines += ("SHOW_DEPTH",)
+            elif key.mode is ShadingMode.FLAT:
+                kinds = ", ".join(str(_KIND_CODE[type(leaf)]) for leaf in solid.leaves())
+                defines += ("FLAT_FACES", f"LEAF_KINDS_LIST {kinds}")
             found = self.shaders.compile("csg.vert", "csg.frag", defines=defines,
                                          insert=("// GLSHADE_CSG_TREE", code))
             self._programs[(shape, key)] = found

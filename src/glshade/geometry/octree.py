@@ -215,26 +215,38 @@ def winding_number(points, triangles) -> np.ndarray:
 
 
 def _distance_below(points, triangles, limit) -> np.ndarray:
-    """Whether each point is within ``limit`` (N,) of some triangle (exact point-triangle
-    distance, chunked)."""
+    """Whether each point is within ``limit`` (N,) of some triangle: a cheap test against
+    the triangles' boxes first, the exact point-triangle distance only for the pairs it
+    keeps (chunked)."""
     near = np.zeros(len(points), bool)
-    step = max(1, 1_000_000 // max(len(triangles), 1))
+    lo, hi = triangles.min(1), triangles.max(1)
+    step = max(1, 4_000_000 // max(len(triangles), 1))
     for s in range(0, len(points), step):
-        d2 = _point_triangle_d2(points[s:s + step], triangles)
-        near[s:s + step] = (d2 <= limit[s:s + step, None] ** 2).any(1)
+        p, lim = points[s:s + step], limit[s:s + step]
+        gap = np.maximum(np.maximum(lo[None] - p[:, None], p[:, None] - hi[None]), 0)
+        pi, ti = np.nonzero(np.einsum("ntd,ntd->nt", gap, gap) <= lim[:, None] ** 2)
+        if not len(pi):
+            continue
+        d2 = _point_triangle_d2(p[pi], triangles[ti])
+        hit = np.zeros(len(p), bool)
+        hit[pi[d2 <= lim[pi] ** 2]] = True
+        near[s:s + step] = hit
     return near
 
 
 def _point_triangle_d2(p, t) -> np.ndarray:
-    """Squared distances (N, T) from points to triangles (Ericson's region tests)."""
-    a, b, c = (t[None, :, i] for i in range(3))
-    p = p[:, None]
+    """Squared distances from points (..., 3) to triangles (..., 3, 3), broadcast
+    (Ericson's region tests: the face, else the nearest edge point)."""
+    a, b, c = t[..., 0, :], t[..., 1, :], t[..., 2, :]
     ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = np.einsum("ntd,ntd->nt", ab, ap), np.einsum("ntd,ntd->nt", ac, ap)
-    bp = p - b
-    d3, d4 = np.einsum("ntd,ntd->nt", ab, bp), np.einsum("ntd,ntd->nt", ac, bp)
-    cp = p - c
-    d5, d6 = np.einsum("ntd,ntd->nt", ab, cp), np.einsum("ntd,ntd->nt", ac, cp)
+    bp, cp = p - b, p - c
+
+    def dot(x, y):
+        return (x * y).sum(-1)
+
+    d1, d2 = dot(ab, ap), dot(ac, ap)
+    d3, d4 = dot(ab, bp), dot(ac, bp)
+    d5, d6 = dot(ab, cp), dot(ac, cp)
     va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
     with np.errstate(divide="ignore", invalid="ignore"):
         denom = 1.0 / (va + vb + vc)

@@ -220,3 +220,18 @@ def test_resize_keeps_the_aspect(viewer_factory, tmp_path):
     assert shot.shape == (120, 300, 4)
     expected = headless(tmp_path, "phong", size=(300, 120))[0][0]
     assert np.abs(shot.astype(int) - expected.astype(int)).max() <= 1
+
+
+def test_six_shows_a_radiosity_solution(viewer_factory):
+    """Key 6: the radiosity mode, drawing a solution's vertex radiosities unlit."""
+    from glshade import ShadingMode
+
+    scene = Scene(background=(0, 0, 0))
+    plane = P.plane(4.0)
+    scene.add(plane, vertex_colors=np.tile([[0.2, 0.6, 0.4]], (plane.n_vertices, 1)))
+    v = viewer_factory(scene, Camera.look_at((0, 0, 3), (0, 0, 0)), size=(120, 90))
+    v.key("6")
+    v.step()
+    assert v.options.mode is ShadingMode.RADIOSITY
+    centre = v.screenshot()[45, 60, :3].astype(int)
+    assert np.abs(centre - [51, 153, 102]).max() <= 1

@@ -2,10 +2,11 @@
 Renderer's programs and buffers; this module only supplies the framebuffer and the
 camera control.
 
-Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth; z depth test; w wireframe; c back-face
-culling (auto / on / off); l light at the camera; k add a key frame; p play/pause the path;
-P save the path as TOML; s screenshot; r reset; h or ? help; Esc or q quit. Left-drag:
-arcball; right- or shift-drag: pan; wheel: dolly; double-click: re-centre on the surface.
+Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth, 6 radiosity; z depth test; w
+wireframe; c back-face culling (auto / on / off); l light at the camera; k add a key frame;
+p play/pause the path; P save the path as TOML; s screenshot; r reset; h or ? help; Esc or
+q quit. Left-drag: arcball; right- or shift-drag: pan; wheel: dolly; double-click:
+re-centre on the surface.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ __all__ = ["Viewer", "HELP"]
 HELP = __doc__.split("\n\n", 1)[1].strip()
 
 _MODE_KEYS = {"1": ShadingMode.FLAT, "2": ShadingMode.GOURAUD, "3": ShadingMode.PHONG,
-              "4": ShadingMode.NORMALS, "5": ShadingMode.DEPTH}
+              "4": ShadingMode.NORMALS, "5": ShadingMode.DEPTH, "6": ShadingMode.RADIOSITY}
 DOUBLE_CLICK_S = 0.3
 
 

@@ -110,10 +110,7 @@ class Cylinder(_Leaf):
             c1, c2 = (-self.h - o[:, 1]) / d[:, 1], (self.h - o[:, 1]) / d[:, 1]
         cand = np.c_[r1, r2, c1, c2]
         cand = np.where(np.isfinite(cand), cand, np.inf)
-        return _convex(o, d, cand, self._contains_eps, self._gradient, leaf)
-
-    def _contains_eps(self, p):
-        return self._contains(p)
+        return _convex(o, d, cand, self._contains, self._gradient, leaf)
 
 
 class Cone(_Leaf):

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GeometryError
 from ..geometry import solids as L  # (the leaves, re-exported: importing solids first)
 from ..geometry.solids import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
@@ -240,12 +239,3 @@ def box_matrix(bounds: np.ndarray) -> np.ndarray:
     m = np.diag([*(size + 2 * pad), 1.0])
     m[:3, 3] = lo - pad
     return m
-
-
-def solid_bounds(solid: Solid) -> np.ndarray:
-    b = solid.bounds
-    if b is None:
-        raise GeometryError("a solid drawn on screen must be bounded: cut a half-space with "
-                            "a bounded solid (e.g. Box(10) & HalfSpace())")
-    return b
-

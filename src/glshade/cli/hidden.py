@@ -33,24 +33,21 @@ def add_parser(sub, validators) -> None:
                    help="comma-separated, from " + ", ".join(CHOICES) + " (default: all)")
     p.add_argument("--steps", metavar="OUT.gif", help="also animate the algorithms at work")
     p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default 256x256)")
-    for name in ("eye", "target"):
-        p.add_argument(f"--{name}", type=v.vec3, metavar="X,Y,Z", help=argparse_help(name))
+    p.add_argument("--eye", type=v.vec3, metavar="X,Y,Z",
+                   help="camera position (default: auto framing)")
+    p.add_argument("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
     p.add_argument("--fov", type=v.fov, help="vertical field of view in degrees")
     p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
     p.set_defaults(func=hidden, light=None, background=None, color=None, ka=None, kd=None,
                    ks=None, shininess=None, crease=None, samples=None, srgb=None, mode=None)
 
 
-def argparse_help(name: str) -> str:
-    return "camera position (default: auto framing)" if name == "eye" else "point looked at"
-
-
 def hidden(args) -> int:
     import numpy as np
 
     from ..animate import output_format
-    from ..cpu.hidden import ALGORITHMS, prepare
-    from ..cpu.hidden.lab import agreement, disagreement_map, id_colors, step_frames
+    from ..cpu.hidden import ALGORITHMS, edge_pixels, prepare
+    from ..cpu.hidden.lab import agreement, disagreement_map, id_colors
     from ..io.images import label, opaque, save_image
     from ..io.tables import format_table
 
@@ -71,7 +68,7 @@ def hidden(args) -> int:
         gpu = _gpu(job, w, h, args.backend)
     ref_ids = gpu[0] if gpu else results[reference_name].face_id
     ref_depth = gpu[1] if gpu else results[reference_name].depth
-    edges = edge_pixels_of(p)
+    edges = edge_pixels(p)
     rows, top, bottom = [], [], []
     for name in args.algorithms:
         ids = gpu[0] if name == "gpu" else results[name].face_id
@@ -95,15 +92,9 @@ def hidden(args) -> int:
     print(format_table(rows, ("algorithm", "ms", "counters", "differ",
                               "near edges", "depth err")))
     if args.steps:
-        _steps(args, p, results, gpu, label, id_colors, step_frames)
+        _steps(args, p, results, gpu)
     print(f"grid: {args.output}" + (f"; steps: {args.steps}" if args.steps else ""))
     return EXIT_OK
-
-
-def edge_pixels_of(p):
-    from ..cpu.hidden import edge_pixels
-
-    return edge_pixels(p)
 
 
 def _gpu(job, w, h, backend):
@@ -120,11 +111,13 @@ def _gpu(job, w, h, backend):
     return frame.face_id, frame.depth, seconds
 
 
-def _steps(args, p, results, gpu, label, id_colors, step_frames):
+def _steps(args, p, results, gpu):
+    """The algorithms at work side by side, as an animation."""
     import numpy as np
 
     from ..animate import write_animation
-    from ..io.images import opaque
+    from ..cpu.hidden.lab import id_colors, step_frames
+    from ..io.images import label, opaque
 
     count = 24
     columns = []

@@ -14,7 +14,7 @@ __all__ = ["radiosity", "add_parser"]
 STEP_FRAMES = 36
 
 
-def add_parser(sub, validators, add_executor=None) -> None:
+def add_parser(sub, validators) -> None:
     v = validators
     p = sub.add_parser("radiosity", help="solve a scene's diffuse interreflection (hemicube "
                        "form factors on the GPU) and render it")

@@ -327,11 +327,7 @@ class Transformed(Solid):
 
     def _classify(self, lo, hi):
         """(the child sees the box's image as the box around it: conservative)"""
-        from .transforms import box_corners
-
-        corners = np.stack([box_corners(np.array([a, b])) for a, b in zip(lo, hi)]) \
-            if len(lo) < 64 else _corners(lo, hi)
-        c = corners @ self.inverse[:3, :3].T + self.inverse[:3, 3]
+        c = _corners(lo, hi) @ self.inverse[:3, :3].T + self.inverse[:3, 3]
         return self.child._classify(c.min(1), c.max(1))
 
     def _bounds(self):

@@ -91,8 +91,6 @@ class MesaThreads(WorkerPlugin):
         n = self.workers_per_host.get(_host(worker.address), 1)
         os.environ.setdefault("LP_NUM_THREADS", str(max(1, (os.cpu_count() or 1) // n)))
 
-    def teardown(self, worker):
-        pass
 
 
 def _worker_for(job: str, spec):

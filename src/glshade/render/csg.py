@@ -15,6 +15,8 @@ faces (and a half-space's unbounded plane) have no centre and stay lit per pixel
 
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 
 from ..geometry import solids as L  # (the leaves, re-exported: importing solids first)
@@ -26,8 +28,8 @@ __all__ = ["tree_code", "leaf_uniforms", "shape_key"]
 
 _KIND = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
          L.Torus: "torus", L.HalfSpace: "halfspace"}
-#: leaf kinds as the fragment program's flat shading knows them
-_KIND_CODE = {L.Sphere: 0, L.Box: 1, L.Cylinder: 2, L.Cone: 3, L.Torus: 4, L.HalfSpace: 5}
+#: leaf kinds as the fragment program's flat shading numbers them (csg.frag's face_centre)
+_KIND_CODE = {kind: code for code, kind in enumerate(_KIND)}
 _OPS = {Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
         Difference: ("D", "ca > 0 && !(cb > 0)")}
 
@@ -146,9 +148,19 @@ class CsgPass:
         self.context, self.shaders = context, shaders
         self._programs: dict = {}
         self._box = None
+        # per solid (solids are values: a new tree is a new object), what each frame reuses
+        self._solids = weakref.WeakKeyDictionary()
+
+    def _facts(self, solid: Solid):
+        """(shape key, leaf uniforms) of a solid, made once."""
+        found = self._solids.get(solid)
+        if found is None:
+            found = self._solids[solid] = (shape_key(solid), {
+                name: value.tobytes() for name, value in leaf_uniforms(solid).items()})
+        return found
 
     def program(self, solid: Solid, key):
-        shape = shape_key(solid)
+        shape = self._facts(solid)[0]
         found = self._programs.get((shape, key))
         if found is None:
             code, leaves, width = tree_code(solid)
@@ -201,8 +213,8 @@ class CsgPass:
             for name, value in renderer._material_uniforms(model.material, lights,
                                                            scene.ambient):
                 put(prog, name, value)
-            for name, value in leaf_uniforms(model.solid).items():
-                put(prog, name, value.tobytes())
+            for name, value in self._facts(model.solid)[1].items():
+                put(prog, name, value)
             put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(model.solid.bounds)))
             put(prog, "u_solid_view_proj", gl_bytes(view_proj))
             put(prog, "u_inverse_view_proj", gl_bytes(np.linalg.inv(view_proj)))

@@ -23,7 +23,7 @@ class Pieces:
     triangle of the Prepared view each comes from, and ``cut`` flags of its edges. Grows
     (capacity doubling) as pieces are added; indices stay valid."""
 
-    def __init__(self, tris, src):
+    def __init__(self, tris, src, cut=None):
         self.size = len(tris)
         cap = max(16, 2 * self.size)
         self._t = np.empty((cap, 3, 3))
@@ -32,6 +32,8 @@ class Pieces:
         self._n = np.zeros((cap, 4))  # unit normal, offset (zeros: no plane)
         self._a = np.zeros(cap)       # area
         self._t[:self.size], self._s[:self.size] = tris, src
+        if cut is not None:
+            self._c[:self.size] = cut
         self._planes(0, self.size)
 
     def _planes(self, start, stop):

@@ -104,6 +104,5 @@ def _paint_prefix(p: Prepared, sub: Prepared, result: HiddenResult, stop: int) -
     """Repaint the first ``stop`` pieces of a painter's sequence (kept by the algorithm)."""
     from .bsp import Pieces
 
-    pieces = Pieces(sub.tris[:stop], sub.src[:stop])
-    pieces._c[:stop] = sub.cut[:stop]
+    pieces = Pieces(sub.tris[:stop], sub.src[:stop], sub.cut[:stop])
     paint(p, result, pieces, np.arange(stop))

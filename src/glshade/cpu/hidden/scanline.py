@@ -18,7 +18,7 @@ from .common import SUBPIXEL, HiddenResult, Prepared, resolve_nearest, timed, ta
 __all__ = ["scanline"]
 
 
-def _inverse_depth_planes(p: Prepared, screen: np.ndarray) -> tuple[np.ndarray, bool]:
+def _inverse_depth_planes(p: Prepared) -> tuple[np.ndarray, bool]:
     """Per triangle ``(A, B, C)`` with ``q = A x + B y + C`` at screen (x, y): q = 1/depth
     in perspective (depth itself for an orthographic camera), fitted exactly from three
     screen points by the plane along their rays."""
@@ -56,7 +56,7 @@ def scanline(p: Prepared, steps: int = 0) -> HiddenResult:
         if not len(p.tris):
             return
         s = np.round(p.screen * SUBPIXEL) / SUBPIXEL  # the GPU's snapped vertices
-        coeff, perspective = _inverse_depth_planes(p, s)
+        coeff, perspective = _inverse_depth_planes(p)
         # the edge table: non-horizontal edges, with the rows whose centres they cross
         a = s.reshape(-1, 2)
         b = np.roll(s, -1, axis=1).reshape(-1, 2)

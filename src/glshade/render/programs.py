@@ -88,7 +88,7 @@ class UniformWriter:
         if isinstance(value, bytes):
             # an array the program uses only in part (2 of 8 lights) is shortened to it; one
             # the driver kept whole is padded with zeros
-            value = value[:size].ljust(size, b"\0")
+            value = value[:size] if len(value) >= size else value.ljust(size, b"\0")
             if self._last.get(key) != value:
                 member.write(value)
                 self._last[key] = value

@@ -115,3 +115,33 @@ def test_mesa_threads_share_the_cores(dask_cluster):
         got = client.run(lambda: os.environ.get("LP_NUM_THREADS"))
     expected = str(max(1, (os.cpu_count() or 1) // len(workers)))
     assert set(got.values()) == {expected}
+
+
+_START_WITH_CTRL_C = """
+import multiprocessing as mp, os, signal, sys
+from glshade.parallel import make_executor
+from tests.parallel.workers import SignalMaskWorker
+if sys.argv[1] == "interrupt":  # Ctrl-C lands while the pool launches its first worker
+    launch = mp.context.SpawnProcess._Popen
+    def interrupted(process_obj):
+        os.kill(os.getpid(), signal.SIGINT)
+        return launch(process_obj)
+    mp.context.SpawnProcess._Popen = staticmethod(interrupted)
+try:
+    print(list(make_executor(SignalMaskWorker, (), jobs=2).map(range(4))))
+except KeyboardInterrupt:
+    print("interrupted", len(mp.active_children()))
+"""
+
+
+def test_ctrl_c_while_workers_start_stops_the_pool():
+    """A Ctrl-C that lands while a worker is being launched is held, not ignored, and stops
+    the pool once it exists; the workers themselves start with Ctrl-C blocked."""
+    def run(mode):
+        done = subprocess.run([sys.executable, "-c", _START_WITH_CTRL_C, mode], cwd=ROOT,
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+        return done.stdout.strip()
+
+    assert run("interrupt") == "interrupted 0"
+    assert run("plain") == str([(i, True, True) for i in range(4)])

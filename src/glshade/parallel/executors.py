@@ -90,23 +90,40 @@ def _without_main_reimport():
 
 
 class _WorkerProcess(mp.context.SpawnProcess):
-    """A spawned worker that starts with Ctrl-C ignored. A terminal's Ctrl-C reaches every
-    process of the group, and a worker still importing would print its own traceback; an
-    ignored SIGINT is inherited through exec, so the worker's Python never turns it into
-    KeyboardInterrupt. The parent ignores SIGINT only while the child is forked and
-    exec'd (milliseconds), so its own Ctrl-C still stops the pool."""
+    """A spawned worker that starts with Ctrl-C blocked. A terminal's Ctrl-C reaches every
+    process of the group, and a worker still importing would print its own traceback; a
+    blocked signal stays blocked through fork and exec, so the worker's Python never turns
+    it into KeyboardInterrupt. Only the starting thread blocks it, and only while the child
+    is launched; the parent's own Ctrl-C is held back meanwhile (:func:`_held_sigint`), not
+    lost."""
 
     @staticmethod
     def _Popen(process_obj):
-        import threading
-
-        if threading.current_thread() is not threading.main_thread():
-            return mp.context.SpawnProcess._Popen(process_obj)
-        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
         try:
             return mp.context.SpawnProcess._Popen(process_obj)
         finally:
-            signal.signal(signal.SIGINT, old)
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+@contextlib.contextmanager
+def _held_sigint():
+    """Hold a Ctrl-C that arrives while the pool starts its workers and raise it once the
+    pool exists, so that it is stopped like a running one (a KeyboardInterrupt in the middle
+    of the pool's own start would leave workers behind)."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    old = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if caught:
+        raise KeyboardInterrupt
 
 
 class _WorkerContext(mp.context.SpawnContext):
@@ -126,7 +143,7 @@ class ProcessExecutor(Executor):
         threads = max(1, (os.cpu_count() or 1) // self.jobs)
         pool = None
         try:
-            with _without_main_reimport():  # the pool starts its workers here
+            with _without_main_reimport(), _held_sigint():  # the pool starts its workers
                 pool = _WorkerContext().Pool(self.jobs, initializer=_init_worker,
                                              initargs=(self.factory, self.args, threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))

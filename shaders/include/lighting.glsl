@@ -6,28 +6,12 @@
 // colour; specular multiplies the light's colour. All vectors are unit length, in view space.
 //
 // Programs are specialised when compiled (the renderer's defines): LIGHT_COUNT (1 to 8)
-// lights whose kinds are the list LIGHT_KINDS (each DIRECTIONAL, POINT or ATTENUATED), and
-// ORTHOGRAPHIC.
+// lights whose kinds are the list LIGHT_KINDS (each DIRECTIONAL, POINT or ATTENUATED),
+// ORTHOGRAPHIC, and FLAT_CONSTANTS (where the per-draw constants come from: constants.glsl).
 // Each light's term is then straight-line code: no loop over uniform arrays, no branch on
 // a uniform that the software rasterizer would evaluate on both sides.
 
-#define MAX_LIGHTS 8
-#define DIRECTIONAL 0
-#define POINT 1
-#define ATTENUATED 2
-#ifndef LIGHT_COUNT
-#define LIGHT_COUNT 1
-#define LIGHT_KINDS POINT
-#endif
-
-// The products of the formula that are constant over a draw are made once per model on the
-// CPU (same formula, fewer multiplies per pixel): Ia ka C, Ip kd C and Ip ks per light.
-uniform vec3 u_ambient_term;                   // Ia ka C
-uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C
-uniform vec3 u_light_specular[MAX_LIGHTS];     // Ip ks
-uniform float u_shininess;                     // n
-uniform vec4 u_light_pos_view[MAX_LIGHTS];     // point: position; directional: unit vector TO it
-uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
+#include "constants.glsl"
 
 // Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
 vec3 view_dir(vec3 p_view) {
@@ -41,22 +25,22 @@ vec3 view_dir(vec3 p_view) {
 // One light's diffuse and specular term, k (kd max(L.N, 0) Ip C + ks max(R.V, 0)^n Ip);
 // `kind` is a constant, so each call compiles to the code of its kind alone.
 vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
-    vec3 l = u_light_pos_view[i].xyz;
+    vec3 l = LIGHT_POS_VIEW(i).xyz;
     float k = 1.0;
     if (kind != DIRECTIONAL) {
         vec3 to_light = l - p_view;
         float dist = length(to_light);
         l = to_light / max(dist, 1e-30);
         if (kind == ATTENUATED) {
-            vec3 att = u_light_attenuation[i];
+            vec3 att = LIGHT_ATTENUATION(i);
             k = 1.0 / max(att.x + att.y * dist + att.z * dist * dist, 1e-30);
         }
     }
     float ln = dot(l, n_view);
     vec3 r = 2.0 * ln * n_view - l;
     float rv = max(dot(r, v_view), 0.0);
-    float spec = rv > 0.0 ? pow(rv, u_shininess) : 0.0;
-    vec3 term = ln * u_light_diffuse[i] + spec * u_light_specular[i];
+    float spec = rv > 0.0 ? pow(rv, SHININESS) : 0.0;
+    vec3 term = ln * LIGHT_DIFFUSE(i) + spec * LIGHT_SPECULAR(i);
     if (kind == ATTENUATED) {
         term *= k;
     }
@@ -65,7 +49,7 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
 }
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
-    vec3 color = u_ambient_term;
+    vec3 color = AMBIENT_TERM;
     // a constant trip count over constant kinds: unrolled, each term its kind's code alone
     const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
     for (int i = 0; i < LIGHT_COUNT; ++i) {

@@ -183,6 +183,11 @@ class RenderContext:
             pass
 
     @property
+    def software(self) -> bool:
+        """Whether this GL rasterizes on the CPU (Mesa's llvmpipe, softpipe, swrast)."""
+        return any(w in self.detail.lower() for w in ("llvmpipe", "softpipe", "swrast"))
+
+    @property
     def info(self) -> dict:
         self.check()
         i = self.ctx.info

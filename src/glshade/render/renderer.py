@@ -27,7 +27,10 @@ from ..options import DrawOptions
 from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
-from .programs import ProgramKey, UniformWriter, light_kind, material_uniforms
+from .programs import (
+    FLAT_CONSTANTS_PIXELS, ProgramKey, UniformWriter, flat_constants_fit, light_kind,
+    material_uniforms,
+)
 from .shaders import ShaderLibrary
 from .csg import CsgPass
 from .diagnostics import why_blank
@@ -84,7 +87,7 @@ def _check_fits(context, width: int, height: int, samples: int) -> None:
                                    f"largest framebuffer, {side} pixels a side "
                                    f"({context.detail})")
     need = width * height * _BYTES_PER_SAMPLE * (samples + 1 if samples else 1)
-    software = any(w in context.detail.lower() for w in ("llvmpipe", "softpipe", "swrast"))
+    software = context.software
     try:
         memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     except (ValueError, OSError, AttributeError):
@@ -140,6 +143,12 @@ class Renderer:
         self._material_cache: dict[tuple, list] = {}
         self._programs: dict[tuple, object] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
+        #: Phong programs may read the lighting constants as flat varyings instead of
+        #: uniforms (shaders/include/constants.glsl): on by default on a software
+        #: rasterizer, for models whose triangles are large (:data:`FLAT_CONSTANTS_PIXELS`);
+        #: the pictures are the same either way
+        self.flat_constants = self.context.software
+        self._max_varyings = int(self.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
         self.closed = False
 
     # ------------------------------------------------------------------ lifecycle
@@ -270,7 +279,8 @@ class Renderer:
                 continue
             gpu = self._gpu_mesh(model.mesh)
             cull = gpu.closed if options.cull == "auto" else options.cull
-            prog = self._program(variant, not cull)
+            flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
+            prog = self._program(variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used
                 for name, value in frame:
                     put(prog, name, value)
@@ -334,12 +344,15 @@ class Renderer:
                                                bool(np.linalg.det(model[:3, :3]) < 0))
         return found
 
-    def _program(self, variant: tuple, two_sided: bool):
-        """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic)."""
-        program = self._programs.get((variant, two_sided))
+    def _program(self, variant: tuple, two_sided: bool, flat: bool = False):
+        """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic),
+        with flat lighting constants if asked for and they fit."""
+        found = (variant, two_sided, flat)
+        program = self._programs.get(found)
         if program is None:
-            key = ProgramKey(*variant, two_sided=two_sided)
-            program = self._programs[(variant, two_sided)] = self.shaders.program(key)
+            flat = flat and flat_constants_fit(*variant[:3], self._max_varyings)
+            key = ProgramKey(*variant, two_sided=two_sided, flat_constants=flat)
+            program = self._programs[found] = self.shaders.program(key)
         return program
 
     @staticmethod

@@ -27,11 +27,11 @@ from _timing import table  # noqa: E402
 
 from glshade import Camera, Mesh  # noqa: E402
 from glshade.scene import default_camera  # noqa: E402
+from glshade.render.programs import FLAT_CONSTANTS_PIXELS  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.geometry.transforms import gl_bytes  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
 from glshade.modes import ShadingMode  # noqa: E402
-from glshade.render.programs import ProgramKey  # noqa: E402
 from glshade.scene import DirectionalLight, Material, Scene  # noqa: E402
 
 SIZES_TRIANGLES = {"1k": (25, 20), "100k": (250, 200), "1M": (1000, 500)}
@@ -96,8 +96,11 @@ class Floor:
             names = ("in_pos", "in_norm")
         else:
             renderer.render(scene, camera, "phong", cull=False)  # sets the program's uniforms
-            key = ProgramKey(ShadingMode.PHONG, lights=("DIRECTIONAL",), two_sided=True)
-            self.prog = renderer.shaders.program(key)
+            # (the program that draw used: its key depends on the machine and the mesh)
+            flat = renderer.flat_constants and \
+                gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= renderer.width * renderer.height
+            [self.prog] = [prog for (variant, two_sided, f), prog in renderer._programs.items()
+                           if variant[0] is ShadingMode.PHONG and two_sided and f == flat]
             self.owned = []
             names = ("in_position", "in_normal")
         self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", *names)], gpu.ibo, 4)

@@ -16,7 +16,7 @@ PACKAGE = Path(glshade.__file__).parent
 
 #: the layers, lowest first: a module may import its own layer and those below it
 LAYERS = [
-    {"_version", "_atomic", "_callable", "errors", "modes", "options"},
+    {"_version", "_atomic", "_callable", "_interrupt", "errors", "modes", "options"},
     {"parallel"},
     {"geometry", "quaternion", "masspoint", "brep", "solids", "octree"},
     {"scene"},

@@ -15,9 +15,16 @@ __all__ = ["main"]
 
 
 def main(argv: list[str] | None = None) -> int:
+    from .._interrupt import catch_dropped
+
+    catch_dropped()
     try:
         return _main(argv)
     except KeyboardInterrupt:
+        # CPython notes a KeyboardInterrupt that leaves a nested exec of source text (the
+        # dataclasses and namedtuples being made while modules import) and, handled or not,
+        # ends the process with SIGINT instead of this status; the next such exec clears it
+        exec("")
         print("glshade: interrupted", file=sys.stderr)
         return 130
 

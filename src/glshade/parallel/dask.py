@@ -19,6 +19,7 @@ import os
 import threading
 import uuid
 
+from .._interrupt import check
 from ..errors import ClusterError, InputError
 from .executors import Executor
 
@@ -141,6 +142,7 @@ class DaskExecutor(Executor):
                                  key=[f"glshade-{job}-{i}" for i in range(len(items))])
             try:
                 for future in futures:
+                    check()
                     yield future.result()
             finally:
                 client.cancel(futures)

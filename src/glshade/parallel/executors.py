@@ -14,6 +14,7 @@ import signal
 import sys
 from collections.abc import Iterable, Iterator
 
+from .._interrupt import check
 from ..errors import InputError
 
 __all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "make_executor"]
@@ -36,6 +37,7 @@ class SerialExecutor(Executor):
         worker = self.factory(*self.args)
         try:
             for item in items:
+                check()
                 yield worker(item)
         finally:
             worker.close()
@@ -147,7 +149,9 @@ class ProcessExecutor(Executor):
                 pool = _WorkerContext().Pool(self.jobs, initializer=_init_worker,
                                              initargs=(self.factory, self.args, threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
-            yield from pool.imap(_work, items, chunksize=chunk)
+            for result in pool.imap(_work, items, chunksize=chunk):
+                check()
+                yield result
             pool.close()
         except BaseException:
             if pool is not None:

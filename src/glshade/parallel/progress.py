@@ -5,6 +5,8 @@ from __future__ import annotations
 import sys
 import time
 
+from .._interrupt import check
+
 __all__ = ["Progress"]
 
 
@@ -21,7 +23,9 @@ class Progress:
 
     def update(self, n: int = 1, note: str | None = None) -> None:
         """``n`` more items done. With no total (``total=None``: work that ends when it
-        converges) the bar shows the count, the rate and ``note`` instead."""
+        converges) the bar shows the count, the rate and ``note`` instead. A Ctrl-C that
+        Python dropped on the way (``glshade._interrupt``) is raised here."""
+        check()
         self.done += n
         if not self.enabled:
             return

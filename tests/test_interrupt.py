@@ -1,0 +1,54 @@
+"""A Ctrl-C that Python drops inside a ``__del__`` or weakref callback is raised again by
+the next item of a long loop, and says nothing meanwhile."""
+
+import subprocess
+import sys
+
+CODE = """
+import gc, sys
+from glshade._interrupt import catch_dropped
+from glshade.parallel import Progress, make_executor
+
+class DropsACtrlC:
+    def __del__(self):
+        raise KeyboardInterrupt  # (as a SIGINT landing in a finalizer would)
+
+class Fails:
+    def __del__(self):
+        raise ValueError("an ordinary unraisable error")
+
+catch_dropped()
+Fails(); gc.collect()  # other unraisables are still reported
+DropsACtrlC(); gc.collect()
+print("went on")
+try:
+    Progress(3).update()
+except KeyboardInterrupt:
+    print("raised by the progress bar")
+DropsACtrlC(); gc.collect()
+try:
+    list(make_executor(Worker, ()).map(range(3)))
+except KeyboardInterrupt:
+    print("raised by the executor")
+Progress(3).update()
+print("once only")
+"""
+
+WORKER = """
+class Worker:
+    def __call__(self, item):
+        return item
+    def close(self):
+        pass
+"""
+
+
+def test_a_dropped_ctrl_c_is_raised_at_the_next_item():
+    code = CODE.replace("catch_dropped()\n", WORKER + "catch_dropped()\n", 1)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[:4] == ["went on", "raised by the progress bar",
+                                           "raised by the executor", "once only"]
+    assert "ValueError: an ordinary unraisable error" in done.stderr
+    assert "KeyboardInterrupt" not in done.stderr

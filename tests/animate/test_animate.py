@@ -163,7 +163,7 @@ def test_interrupt_leaves_no_partial_output(tmp_path):
     out = tmp_path / "long.gif"
     proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
                              "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
-                             "2000", "--size", "128x96", "--jobs", "2", "--backend", BACKEND],
+                             "20000", "--size", "128x96", "--jobs", "2", "--backend", BACKEND],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(4)
     assert proc.poll() is None, proc.stderr.read()
@@ -180,7 +180,7 @@ def test_ctrl_c_on_the_whole_process_group_at_any_moment(tmp_path, delay):
     out = tmp_path / "long.gif"
     proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
                              "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
-                             "2000", "--size", "64x48", "--jobs", "2", "--backend", BACKEND],
+                             "20000", "--size", "64x48", "--jobs", "2", "--backend", BACKEND],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     time.sleep(delay)

@@ -47,3 +47,26 @@ def test_an_output_in_a_missing_folder(tmp_path):
                 "--backend", BACKEND)
     assert r.returncode == 1
     assert r.stderr.strip() == f"glshade: error: cannot write {out}: No such file or directory"
+
+
+@pytest.mark.parametrize("command", [("render", "primitive:cube"),
+                                     ("compare", "primitive:icosphere:1"),
+                                     ("hidden", "primitive:cube"),
+                                     ("radiosity", "assets/scenes/cornell-box.toml")])
+def test_an_output_that_is_not_an_image_is_refused_before_any_work(tmp_path, command):
+    out = tmp_path / "out.pgn"  # (a typo)
+    r = limited(10**9, *command, "-o", str(out), "--backend", BACKEND)
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"{out}: '.pgn' is not an image extension" in lines[0], r.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name, magic", [("a.jpg", b"\xff\xd8"), ("a.webp", b"RIFF"),
+                                         ("a", b"\x89PNG")])
+def test_the_image_format_follows_the_extension(tmp_path, name, magic):
+    out = tmp_path / name
+    r = limited(10**9, "render", "primitive:cube", "-o", str(out), "--size", "16x16", "-q",
+                "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert out.read_bytes().startswith(magic)

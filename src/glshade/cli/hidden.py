@@ -27,8 +27,8 @@ def add_parser(sub, validators) -> None:
                        "checked against the GPU z-buffer")
     p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
                    "scene file (.toml)")
-    p.add_argument("-o", "--output", required=True, help="the grid of id images and "
-                   "disagreement maps (.png)")
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="the grid of id images and disagreement maps (.png)")
     p.add_argument("--algorithms", type=_algorithms, default=list(CHOICES),
                    help="comma-separated, from " + ", ".join(CHOICES) + " (default: all)")
     p.add_argument("--steps", metavar="OUT.gif", help="also animate the algorithms at work")

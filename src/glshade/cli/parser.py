@@ -82,7 +82,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("render", help="render a mesh headless to an image")
     p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
-    p.add_argument("-o", "--output", required=True, help="output image (.png)")
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="output image (.png; .jpg, .webp ... by extension)")
     p.add_argument("--mode", type=v.mode, default=None,
                    help="flat, gouraud, phong, normals, depth or radiosity (default phong, or the "
                    "scene file's)")
@@ -117,8 +118,8 @@ def build_parser() -> argparse.ArgumentParser:
                        "against a reference")
     p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
                    "scene file (.toml)")
-    p.add_argument("-o", "--output", required=True, help="output image: the grid (or the "
-                   "plot, with --sweep)")
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="output image: the grid (or the plot, with --sweep)")
     p.add_argument("--modes", type=v.modes, default="flat,gouraud,phong",
                    help="comma-separated modes (default flat,gouraud,phong)")
     p.add_argument("--diff", action="store_true", help="add a row of difference heat maps")

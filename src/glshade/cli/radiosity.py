@@ -20,7 +20,8 @@ def add_parser(sub, validators) -> None:
                        "form factors on the GPU) and render it")
     p.add_argument("scene", metavar="SCENE.toml", help="a scene file whose materials give "
                    "emission (e.g. assets/scenes/cornell-box.toml)")
-    p.add_argument("-o", "--output", required=True, help="the image (.png)")
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="the image (.png)")
     p.add_argument("--patch-size", type=v.positive_float, metavar="S", help="cut polygons "
                    "into patches of about S (scene units; default: a 24th of the diagonal)")
     p.add_argument("--hemicube", type=v.hemicube, default=128, metavar="N",

@@ -137,3 +137,15 @@ def hemicube(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected an even whole number >= 4 (pixels a side "
                                          f"of the hemicube's top face), got {text!r}")
     return int(text)
+
+
+def image_output(text: str) -> str:
+    """An image file to write: its extension must be an image's (checked before any work)."""
+    from ..errors import InputError
+    from ..io.images import image_format
+
+    try:
+        image_format(text)
+    except InputError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text

@@ -10,18 +10,38 @@ import numpy as np
 from ..errors import InputError
 from .._atomic import atomic_write
 
-__all__ = ["save_image", "heatmap", "label", "labelled_row", "colour_bar", "opaque", "font",
-           "LABEL_HEIGHT", "BACKGROUND"]
+__all__ = ["save_image", "image_format", "IMAGE_FORMATS", "heatmap", "label", "labelled_row",
+           "colour_bar", "opaque", "font", "LABEL_HEIGHT", "BACKGROUND"]
 
 LABEL_HEIGHT = 22
 BACKGROUND = (24, 24, 28)
 
 
+#: image file extensions and their Pillow formats
+IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", ".tif": "TIFF",
+                 ".tiff": "TIFF", ".webp": "WEBP"}
+
+
+def image_format(path) -> str:
+    """The format an image written to ``path`` gets: its extension's, PNG for a path with
+    none; an extension that is not an image's is refused (a typo, or a file of another
+    kind), naming the path."""
+    suffix = Path(path).suffix.lower()
+    if not suffix:
+        return "PNG"
+    if suffix not in IMAGE_FORMATS:
+        raise InputError(f"{path}: {suffix!r} is not an image extension; use one of "
+                         f"{', '.join(IMAGE_FORMATS)}")
+    return IMAGE_FORMATS[suffix]
+
+
 def save_image(array, path, format: str | None = None) -> None:
     """Write an ``(H, W, 3|4)`` uint8 (or float in [0, 1]) image. The format comes from the
-    extension (PNG by default); nothing is left behind if writing fails."""
+    extension (:func:`image_format`); nothing is left behind if writing fails."""
     from PIL import Image
 
+    path = Path(path)
+    fmt = format or image_format(path)
     a = np.asarray(array)
     if a.ndim == 2:
         a = a[..., None].repeat(3, -1)
@@ -31,9 +51,6 @@ def save_image(array, path, format: str | None = None) -> None:
         if not np.issubdtype(a.dtype, np.floating):
             raise InputError(f"image dtype must be uint8 or float, got {a.dtype}")
         a = (np.clip(a, 0, 1) * 255 + 0.5).astype(np.uint8)
-    path = Path(path)
-    fmt = format or {".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", ".tif": "TIFF",
-                     ".tiff": "TIFF", ".webp": "WEBP"}.get(path.suffix.lower(), "PNG")
     img = Image.fromarray(a, "RGBA" if a.shape[2] == 4 else "RGB")
     if fmt == "JPEG":
         img = img.convert("RGB")

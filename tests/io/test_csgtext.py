@@ -28,7 +28,10 @@ def test_text_builds_the_same_tree_as_python():
     ("sphere('a')", "expected a number"),
     ("torus(1, 2)", "r < R"),
     ("box(1, 2)", "three sizes"),
-    ("box(1", "not a CSG expression"),
+    ("box(1", r"not a CSG expression \('\(' was never closed\)"),
+    ("box(1) -", r"not a CSG expression \(invalid syntax; it ends too early\)"),
+    ("box(1) +* sphere(1)", r"\(invalid syntax; column 9\)"),
+    ("box(1)\n  | sphere(1) $ 2", r"\(invalid syntax; line 2, column 15\)"),
     ("sphere(1).turn(90, [0, 0, 0])", "axis"),
 ])
 def test_mistakes_name_where(text, message):

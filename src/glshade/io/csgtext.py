@@ -59,8 +59,15 @@ def parse_solid(text: str, where: str = "solid"):
         # (in parentheses: a tree may run over several lines)
         tree = ast.parse(f"(\n{text.strip()}\n)", mode="eval")
     except SyntaxError as exc:
-        raise InputError(f"{where}: not a CSG expression ({exc.msg}, line "
-                         f"{(exc.lineno or 2) - 1} of the tree, column {exc.offset}): "
+        lines = text.strip().splitlines()
+        line = (exc.lineno or 0) - 1  # (line 0 and the last are the wrapping parentheses)
+        if line > len(lines):
+            at = "; it ends too early"
+        elif line < 1:
+            at = ""  # (a parenthesis left open: the message says so)
+        else:
+            at = "; " + (f"line {line}, " if len(lines) > 1 else "") + f"column {exc.offset}"
+        raise InputError(f"{where}: not a CSG expression ({exc.msg}{at}): "
                          f"{text.strip()!r}") from None
     leaves = _leaves()
 

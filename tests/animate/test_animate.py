@@ -61,6 +61,27 @@ def test_slerp_in_motion_turns_by_equal_angles():
     np.testing.assert_allclose(steps, 90 / 8, atol=0.35)
 
 
+def test_a_mesh_animates_as_a_seamless_turntable(tmp_path):
+    out = tmp_path / "spin.gif"
+    r = glshade("animate", "assets/teapot.obj", "-o", str(out), "--frames", "12", "--size",
+                "64x48", "--jobs", "1", "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    with Image.open(out) as im:
+        frames = [np.asarray(f.convert("RGB"), float) for f in _frames(im)]
+    assert len(frames) == 12
+    step = [np.abs(a - b).mean() for a, b in zip(frames, frames[1:] + frames[:1])]
+    # the wrap from the last frame to the first is one more step of the turn, no jump
+    assert step[-1] < 1.5 * np.median(step[:-1]) and min(step) > 0
+    half = np.abs(frames[0] - frames[6]).mean()  # the far side of the teapot
+    assert half > max(step)
+
+
+def _frames(im):
+    for i in range(im.n_frames):
+        im.seek(i)
+        yield im
+
+
 def test_gif_and_apng_frame_count_and_duration(tmp_path):
     sf = load_scene(ROOT / "assets/scenes/teapot-orbit.toml")
     for name in ("a.gif", "a.png"):

@@ -103,6 +103,30 @@ def test_path_slerp_equal_angles_per_frame():
     np.testing.assert_allclose(steps, np.pi / 2 / 8, atol=1e-12)
 
 
+@pytest.mark.parametrize("degrees", [360.0, 90.0, -135.0])
+def test_turntable_circles_the_centre_at_constant_speed(degrees):
+    """Against the exact orbit: the start camera turned about the up axis (scipy-free:
+    Rodrigues by hand), looking at the centre all the way."""
+    centre = np.array([1.0, 0.5, -2.0])
+    start = Camera.look_at([4.0, 2.5, 3.0], centre, fov_y=35.0)
+    path = CameraPath.turntable(start, centre, 3.0, degrees)
+    cams = path.sample(61)
+    rel0 = start.position - centre
+    for i, cam in enumerate(cams):
+        a = np.radians(degrees) * i / 60
+        c, s_ = np.cos(a), np.sin(a)
+        exact = centre + [c * rel0[0] + s_ * rel0[2], rel0[1], -s_ * rel0[0] + c * rel0[2]]
+        assert np.linalg.norm(cam.position - exact) < 1e-3 * np.linalg.norm(rel0)
+        to_centre = (centre - cam.position) / np.linalg.norm(centre - cam.position)
+        assert np.degrees(np.arccos(min(1.0, cam.forward @ to_centre))) < 0.05
+        assert cam.fov_y == 35.0
+    steps = [Q.angle_between(c0.orientation, c1.orientation) for c0, c1 in zip(cams, cams[1:])]
+    np.testing.assert_allclose(steps, abs(np.radians(degrees)) / 60, atol=1e-9)
+    assert path.duration == 3.0
+    with pytest.raises(GeometryError, match="duration"):
+        CameraPath.turntable(start, centre, 0.0)
+
+
 def test_path_times_must_increase():
     with pytest.raises(GeometryError, match="times must increase: key 2 has time 1 after 1"):
         CameraPath([Keyframe.look_at(1, [0, 0, 5], [0, 0, 0]),

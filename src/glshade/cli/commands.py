@@ -34,6 +34,10 @@ def render(args) -> int:
     return EXIT_OK
 
 
+#: seconds of a mesh's turntable when neither --frames nor --duration is given
+TURNTABLE_SECONDS = 4.0
+
+
 def animate(args) -> int:
     from ..animate import animate as run, output_format
 
@@ -42,12 +46,20 @@ def animate(args) -> int:
     st = job.settings
     fps = args.fps or st.fps
     duration = args.duration if args.duration is not None else st.duration
+    if job.path is None and duration is None:
+        duration = TURNTABLE_SECONDS
     if args.frames is not None:
         frames = args.frames
     elif duration:
         frames = max(1, int(round(duration * fps)))
     else:
         frames = 1
+    if job.path is None:  # a mesh: one turn round it, the last frame one step short of
+        from ..scene import CameraPath  # the first, so that the loop is seamless
+
+        centre = job.scene.bounds.mean(0)
+        job.path = CameraPath.turntable(job.camera, centre, max(frames - 1, 1) / fps,
+                                        360.0 * (frames - 1) / frames)
     modes = [m.value for m in args.modes] if args.modes else [job.options.mode.value]
     jobs = args.jobs or os.cpu_count() or 1
     with job.explained():

@@ -67,16 +67,17 @@ def build_scene(mesh, args, aspect: float) -> tuple[Scene, Camera]:
     scene.add(mesh, Material.from_values(_given(args, "color", "ka", "kd", "ks", "shininess")),
               crease=getattr(args, "crease", None))
     lens = {"fov_y": args.fov} if getattr(args, "fov", None) is not None else {}
-    if args.eye is not None or args.target is not None:
-        eye = args.eye if args.eye is not None else (0.0, 0.0, 5.0)
-        target = args.target if args.target is not None else tuple(scene.bounds.mean(0))
+    eye, target = getattr(args, "eye", None), getattr(args, "target", None)
+    if eye is not None or target is not None:  # (animate has neither: it turns round)
+        eye = eye if eye is not None else (0.0, 0.0, 5.0)
+        target = target if target is not None else tuple(scene.bounds.mean(0))
         b = scene.bounds
         reach = float(np.linalg.norm(b[1] - b[0])) + \
             float(np.linalg.norm(np.subtract(eye, target)))
         camera = Camera.look_at(eye, target, near=reach * 1e-3, far=reach * 2, **lens)
     else:
         camera = default_camera(scene.bounds, aspect, **lens)
-    for position in args.light or ():  # none given: the scene's default headlight
+    for position in getattr(args, "light", None) or ():  # none: the default headlight
         scene.add_light(PointLight(position))
     return scene, camera
 

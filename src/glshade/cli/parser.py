@@ -93,9 +93,10 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p)
     p.set_defaults(func=c.render)
 
-    p = sub.add_parser("animate", help="render a scene file's camera path to GIF, PNG, MP4 "
-                       "or frames")
-    p.add_argument("scene", metavar="SCENE.toml")
+    p = sub.add_parser("animate", help="render a scene file's camera path, or a turntable "
+                       "round a mesh, to GIF, PNG, MP4 or frames")
+    p.add_argument("scene", metavar="SCENE.toml|MESH", help="a scene file with a camera path, "
+                   "or a mesh (a turn round it: 4 s unless --frames or --duration)")
     p.add_argument("-o", "--output", required=True, help="out.gif, out.png (APNG), out.mp4 "
                    "or a folder/ for PNG frames")
     p.add_argument("--fps", type=v.nonnegative_float, help="frames per second (default: the "

@@ -98,6 +98,27 @@ class CameraPath:
         self.orientation_interp = orientation_interp
         self.position_interp = position_interp
 
+    @classmethod
+    def turntable(cls, camera: Camera, center, duration: float = 4.0, degrees: float = 360.0,
+                  up=(0.0, 1.0, 0.0)) -> CameraPath:
+        """``camera`` carried ``degrees`` round the axis ``up`` through ``center`` in
+        ``duration`` seconds, at constant speed: keys every 5 degrees at most, orientations by
+        slerp (exact for a turn about one axis), positions along the chords (within 0.1% of
+        the circle)."""
+        if not duration > 0:
+            raise GeometryError(f"a turntable needs a duration > 0, got {duration}")
+        axis = np.asarray(up, np.float64)
+        if axis.shape != (3,) or not np.linalg.norm(axis):
+            raise GeometryError(f"up must be 3 numbers, not all zero; got {up!r}")
+        axis = axis / np.linalg.norm(axis)
+        n = max(1, int(np.ceil(abs(degrees) / 5.0)))
+        keys = []
+        for i in range(n + 1):
+            half = np.radians(degrees) * i / n / 2
+            cam = camera.orbit([*(np.sin(half) * axis), np.cos(half)], center)
+            keys.append(Keyframe(duration * i / n, cam.position, cam.orientation))
+        return cls(keys, camera=camera)
+
     @property
     def start(self) -> float:
         return float(self.times[0])

@@ -116,11 +116,13 @@ def test_modes_side_by_side_and_frames_folder(tmp_path):
     assert Image.open(files[0]).size == (240, 60 + 22)
 
 
-def test_jobs_2_equals_jobs_1_byte_for_byte(tmp_path):
+@pytest.mark.parametrize("source", ["assets/scenes/teapot-orbit.toml",
+                                    "solid:box(1.6) - sphere(1)"])  # (solids go to workers too)
+def test_jobs_2_equals_jobs_1_byte_for_byte(tmp_path, source):
     outs = []
     for jobs in ("1", "2"):
         out = tmp_path / f"j{jobs}.gif"
-        r = glshade("animate", "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
+        r = glshade("animate", source, "-o", str(out), "--frames",
                     "12", "--size", "96x72", "--jobs", jobs, "--backend", BACKEND)
         assert r.returncode == 0, r.stderr
         assert "12 frames" in r.stdout

@@ -100,3 +100,22 @@ def test_bad_solids_say_what_is_wrong():
     with pytest.raises(GeometryError, match="unbounded"):
         HalfSpace().volume()
     assert (Box(2.0) & HalfSpace()).bounds.tolist() == [[-1, -1, -1], [1, 1, 1]]
+
+
+def test_a_pickled_tree_loads_in_a_fresh_process():
+    """Worker processes unpickle solids before anything else imports them: the leaves'
+    module (what a pickle names) must load first as well as second."""
+    import pickle
+    import subprocess
+    import sys
+
+    tree = (Box((2, 1, 2)) - Cylinder(0.4, 3)).translated((0.5, 0, 0)) | Sphere(0.6)
+    code = ("import pickle, sys, numpy as np; _, s = pickle.loads(sys.stdin.buffer.read()); "
+            "print(int(s.contains(np.array([[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], "
+            "[1.4, 0.0, 0.9]])).sum()))")
+    payload = pickle.dumps((Sphere(1.0), tree))  # (a leaf's class is the first looked up)
+    done = subprocess.run([sys.executable, "-c", code], input=payload,
+                          capture_output=True, timeout=60)
+    assert done.returncode == 0, done.stderr.decode()
+    expected = tree.contains(np.array([[0.0, 0, 0], [0.5, 0, 0], [1.4, 0, 0.9]])).sum()
+    assert int(done.stdout) == expected

@@ -145,3 +145,23 @@ def test_ctrl_c_while_workers_start_stops_the_pool():
 
     assert run("interrupt") == "interrupted 0"
     assert run("plain") == str([(i, True, True) for i in range(4)])
+
+
+_UNLOADABLE = """
+from glshade.parallel import make_executor
+from tests.parallel.workers import SignalMaskWorker
+
+class OnlyHere:  # (defined in this script: a worker process cannot load it)
+    pass
+
+try:
+    list(make_executor(SignalMaskWorker, (OnlyHere(),), jobs=2).map(range(4)))
+except Exception as exc:
+    print(type(exc).__name__, "OnlyHere" in str(exc))
+"""
+
+
+def test_a_factory_the_workers_cannot_load_is_an_error_not_a_hang():
+    done = subprocess.run([sys.executable, "-c", _UNLOADABLE], cwd=ROOT, capture_output=True,
+                          text=True, timeout=120)
+    assert done.stdout.strip() == "AttributeError True", done.stdout + done.stderr

@@ -24,8 +24,8 @@ from numpy.typing import ArrayLike
 from ..errors import GeometryError
 from .analytic import affine_matrix
 
-__all__ = ["Solid", "Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace", "Union",
-           "Intersection", "Difference", "Transformed", "Events"]
+__all__ = ["Solid", "Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace",  # noqa: F822
+           "Union", "Intersection", "Difference", "Transformed", "Events"]  # (leaves: below)
 
 
 class Events:
@@ -349,4 +349,14 @@ class Transformed(Solid):
 
 # ----------------------------------------------------------------------------- leaves
 
-from .solid_leaves import Box, Cone, Cylinder, HalfSpace, Sphere, Torus  # noqa: E402
+_LEAVES = ("Box", "Cone", "Cylinder", "HalfSpace", "Sphere", "Torus")
+
+
+def __getattr__(name: str):
+    """The leaves live in ``solid_leaves``, which builds on this module; they load on first
+    use, so either module may be imported first (a pickled leaf names ``solid_leaves``)."""
+    if name in _LEAVES:
+        from . import solid_leaves
+
+        return getattr(solid_leaves, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import multiprocessing as mp
 import os
+import pickle
 import signal
 import sys
 from collections.abc import Iterable, Iterator
@@ -47,7 +48,7 @@ _worker = None
 _worker_error: BaseException | None = None
 
 
-def _init_worker(factory, args, threads):
+def _init_worker(payload: bytes, threads: int):
     global _worker, _worker_error
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
     # Mesa's software rasterizer starts a thread per core in every process; with one worker
@@ -58,10 +59,11 @@ def _init_worker(factory, args, threads):
     import warnings
 
     warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
-    try:
+    try:  # (the factory comes pickled: a worker that cannot load it reports why)
+        factory, args = pickle.loads(payload)
         _worker = factory(*args)
-    except Exception as exc:  # reported with the first item, in the parent, as it is;
-        _worker_error = exc     # an initializer that raised would be restarted forever
+    except Exception as exc:  # reported with the first item, in the parent, as it is; a
+        _worker_error = exc     # worker that died while starting would be restarted forever
 
 
 def _work(item):
@@ -145,9 +147,10 @@ class ProcessExecutor(Executor):
         threads = max(1, (os.cpu_count() or 1) // self.jobs)
         pool = None
         try:
+            payload = pickle.dumps((self.factory, self.args))
             with _without_main_reimport(), _held_sigint():  # the pool starts its workers
                 pool = _WorkerContext().Pool(self.jobs, initializer=_init_worker,
-                                             initargs=(self.factory, self.args, threads))
+                                             initargs=(payload, threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
             for result in pool.imap(_work, items, chunksize=chunk):
                 check()

@@ -19,7 +19,7 @@ import weakref
 
 import numpy as np
 
-from ..geometry import solids as L  # (the leaves, re-exported: importing solids first)
+from ..geometry import solids as L  # (the leaves: L.Box ...)
 from ..geometry.solids import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode

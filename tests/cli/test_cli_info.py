@@ -38,6 +38,8 @@ def test_info_table_on_bundled_asset():
     (("info", "primitive:sphere"), "unknown primitive 'sphere'"),
     (("info",), "required: MESH"),
     (("frobnicate",), "invalid choice: 'frobnicate'"),
+    (("info", "assets/scenes/teapot-orbit.toml"), "a scene file; glshade info describes one"),
+    (("animate", "assets/teapot.obj", "-o", "x.avi"), "x.avi"),
 ])
 def test_bad_input_exits_2_with_one_line(args, message):
     out = run(*args)

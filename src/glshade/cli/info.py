@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ..errors import EXIT_OK
+from ..errors import EXIT_OK, UsageError
 from ..io.meshes import load_source
 
 __all__ = ["info", "mesh_summary", "topology_summary"]
@@ -77,7 +77,11 @@ def _solid_info(args, solid) -> int:
 
 def info(args) -> int:
     from ..geometry.solids import Solid
+    from .inputs import is_scene_file
 
+    if is_scene_file(args.mesh):
+        raise UsageError(f"{args.mesh}: a scene file; glshade info describes one mesh: give "
+                         "one of the scene's mesh files (its [[mesh]] source)")
     mesh = load_source(args.mesh)
     if isinstance(mesh, Solid):
         return _solid_info(args, mesh)

@@ -115,6 +115,10 @@ class Renderer:
         "auto".
     device : EGL device index, for machines with several GPUs.
     context : an existing RenderContext to draw with (not released by ``close()``).
+
+    ``flat_constants`` (on by default on a software rasterizer) lets Phong programs take the
+    lighting constants as flat varyings for models with large triangles: faster there, the
+    same pictures.
     """
 
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
@@ -143,10 +147,7 @@ class Renderer:
         self._material_cache: dict[tuple, list] = {}
         self._programs: dict[tuple, object] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
-        #: Phong programs may read the lighting constants as flat varyings instead of
-        #: uniforms (shaders/include/constants.glsl): on by default on a software
-        #: rasterizer, for models whose triangles are large (:data:`FLAT_CONSTANTS_PIXELS`);
-        #: the pictures are the same either way
+        # (shaders/include/constants.glsl; per model: programs.FLAT_CONSTANTS_PIXELS)
         self.flat_constants = self.context.software
         self._max_varyings = int(self.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
         self.closed = False

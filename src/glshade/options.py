@@ -22,7 +22,9 @@ class DrawOptions:
     ----------
     mode : shading mode (a ShadingMode or its name).
     depth_test : the z-buffer; False draws in submission order.
-    cull : back-face culling, "auto" (closed, consistently oriented meshes), True or False.
+    cull : back-face culling: "auto" (closed, consistently oriented meshes wholly beyond the
+        near plane, so seen from outside; from inside a mesh its back faces are what shows),
+        True or False.
     srgb : encode the linear result as sRGB for display.
     wireframe : draw polygon edges instead of filled polygons.
     outputs : what the draw writes besides colour (:class:`Outputs`).

@@ -1,5 +1,7 @@
 """Renderer behaviour against formulas, geometry and invariants."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -330,19 +332,48 @@ def test_outputs_choose_what_a_frame_reads_and_colour_is_the_same(make_renderer)
     ("collinear", "zero area"),
     ("tiny", "smaller than a pixel"),
     ("behind", "no part of the scene lies in the camera's view"),
+    ("inside, culled", r"back faces are culled \(cull=True\) and the camera may be inside"),
 ])
 def test_a_blank_render_warns_and_says_why(make_renderer, case, reason):
     s = Scene()
     cam = FRONT
-    if case == "collinear":
+    if case == "inside, culled":  # (the camera, at z = 3, inside a closed sphere)
+        s.add(P.icosphere(2), scale=5.0)
+    elif case == "collinear":
         s.add(Mesh([[0, 0, 0], [1, 1, 1], [2, 2, 2]], [[0, 1, 2]]))
     elif case == "tiny":
         s.add(P.cube().transformed(np.diag([1e-12, 1e-12, 1e-12, 1.0])))
     elif case == "behind":
         s.add(P.cube(), translation=(0, 0, 10))
     with pytest.warns(RenderWarning, match=reason):
-        img = make_renderer(16, 16).render(s, cam)
+        img = make_renderer(16, 16).render(s, cam, cull=case == "inside, culled")
     assert (img[..., :3] == 0).all()
+
+
+@pytest.mark.parametrize("where", ["outside", "inside", "cut by the near plane"])
+def test_auto_culling_only_where_back_faces_are_hidden(make_renderer, where):
+    """'auto' culls a closed mesh seen from outside -- the same picture as no culling, half
+    the work -- and not one the camera is inside or whose front the near plane cuts away."""
+    s = Scene()
+    s.add(P.icosphere(3), Material(color=(0.9, 0.6, 0.3)))
+    cam = {"outside": FRONT,
+           "inside": Camera.look_at((0.2, 0.1, 0.3), (0, 0, -1)),
+           "cut by the near plane": Camera.look_at((0, 0, 1.5), (0, 0, 0), near=0.8)}[where]
+    r = make_renderer(48, 48)
+    auto = r.render_frame(s, cam, "phong", color_dtype="f4")
+    kept = r.render_frame(s, cam, "phong", color_dtype="f4", cull=False)
+    with warnings.catch_warnings():  # (culled, the inside can be blank: that is the point)
+        warnings.simplefilter("ignore", RenderWarning)
+        culled = r.render_frame(s, cam, "phong", color_dtype="f4", cull=True)
+    assert (kept.face_id >= 0).mean() > 0.3
+    np.testing.assert_array_equal(auto.color, kept.color)
+    np.testing.assert_array_equal(auto.face_id, kept.face_id)
+    used = {k.two_sided for k in r.shaders._programs}
+    if where == "outside":
+        np.testing.assert_array_equal(auto.color, culled.color)  # nothing hidden was lost
+        assert used == {False, True}  # (auto drew one-sided, culled; False two-sided)
+    else:
+        assert (culled.face_id >= 0).sum() < (kept.face_id >= 0).sum()  # what culling loses
 
 
 def test_crease_keeps_a_cubes_faces_flat_under_smooth_shading(make_renderer):

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.transforms import box_corners
 from ..scene import Camera, Scene
 
 __all__ = ["why_blank"]
 
 
-def why_blank(scene: Scene, camera: Camera) -> str:
-    """Why a render of ``scene`` covers no pixel, as far as the data can tell."""
+def why_blank(scene: Scene, camera: Camera, cull="auto") -> str:
+    """Why a render of ``scene`` covers no pixel, as far as the data can tell (``cull``: the
+    draw's back-face culling)."""
     drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
     solids = [s for s in scene.solids if s.visible]
     empty = [s for s in solids if np.prod(s.solid.bounds[1] - s.solid.bounds[0]) == 0]
@@ -32,5 +34,13 @@ def why_blank(scene: Scene, camera: Camera) -> str:
     if extent < 1e-6 * max(distance, 1e-300):
         return (f"the render is blank: the scene is {extent:.3g} across, seen from "
                 f"{distance:.3g} away -- smaller than a pixel (frame it, or scale it up)")
+    if cull is True:  # seen from inside (or cut by the near plane): all back faces
+        view = camera.view_matrix()
+        for m in drawn:
+            corners = box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3]
+            if (corners @ view[2, :3] + view[2, 3] >= -camera.near).any():
+                return ("the render is blank: back faces are culled (cull=True) and the "
+                        "camera may be inside a mesh, where every face turns its back to it "
+                        "(use cull='auto' or False)")
     return ("the render is blank: no part of the scene lies in the camera's view (between "
             "its near and far planes, inside its field of view)")

@@ -9,6 +9,7 @@ import moderngl
 import numpy as np
 
 from ..errors import GlshadeError
+from ..geometry.transforms import box_corners
 from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
 from .base import GLResource
@@ -58,6 +59,8 @@ class GpuMesh(GLResource):
         self.n_triangles = len(tri)
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
+        # (homogeneous bounding-box corners, as columns: where a camera sees the mesh from)
+        self.corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])
         normals = _drawable_normals(mesh)
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))

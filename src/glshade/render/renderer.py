@@ -279,19 +279,21 @@ class Renderer:
                 id_base += model.mesh.n_faces
                 continue
             gpu = self._gpu_mesh(model.mesh)
-            cull = gpu.closed if options.cull == "auto" else options.cull
+            m = model.transform
+            model_view = view @ m
+            cull = options.cull if options.cull != "auto" else gpu.closed and bool(  # seen
+                (model_view[2] @ gpu.corners < -camera.near).all())  # from outside it, wholly
             flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
             prog = self._program(variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used
                 for name, value in frame:
                     put(prog, name, value)
                 prepared.add(id(prog))
-            m = model.transform
             transform = m.tobytes()
             normal_world, mirrored = self._normal_matrix(m, transform)
             # (the view is rigid: its inverse transpose is itself)
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
-            put(prog, "u_model_view", gl_bytes(view @ m))
+            put(prog, "u_model_view", gl_bytes(model_view))
             state = (transform, id_base, model.material, lights_key, scene.ambient)
             if self._model_state.get(id(prog)) != state:  # else all of it is in place
                 put(prog, "u_normal_world", _mat3(normal_world))
@@ -380,7 +382,7 @@ class Renderer:
         with self._query:
             self.draw(target, scene, camera, options)
         if self._query.samples == 0:
-            warnings.warn(why_blank(scene, camera), RenderWarning, stacklevel=3)
+            warnings.warn(why_blank(scene, camera, options.cull), RenderWarning, stacklevel=3)
 
     def render(self, scene: Scene, camera: Camera, options=None, **changes) -> np.ndarray:
         """The colour image ``(H, W, 4) uint8``, row 0 at the top.

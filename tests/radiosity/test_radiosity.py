@@ -77,6 +77,21 @@ def test_form_factors_match_closed_forms(case, factors):
     assert error < 0.01  # at the default resolution and sampling
 
 
+def test_hemicubes_drawn_in_batches_equal_one_at_a_time(factors):
+    """A batch (20 points: more than one read) gives each point the row it gets alone."""
+    problem = pair(*PARALLEL[:2], patch_size=0.25)
+    hemicube = factors(problem, 32).hemicube
+    assert hemicube.batch < 20
+    rng = np.random.default_rng(3)
+    points = np.c_[rng.uniform(0.05, 0.95, (20, 2)), np.zeros(20)]
+    normal = np.array([0.0, 0.0, 1.0])
+    turns = [np.array([np.cos(a), np.sin(a), 0.0]) for a in rng.uniform(0, 2 * np.pi, 20)]
+    together = hemicube.rows(points, normal, turns)
+    alone = np.array([hemicube.row(p, normal, t) for p, t in zip(points, turns)])
+    np.testing.assert_array_equal(together, alone)
+    assert together.sum(1).min() > 0.1  # (they see the other square)
+
+
 def test_error_shrinks_with_resolution(factors):
     """With the shooter integrated finely, what is left is the hemicube's pixels."""
     first, second, exact = PARALLEL

@@ -105,10 +105,10 @@ class FormFactors:
             self._cache.move_to_end(i)
             return found
         n = self.problem.patches.normals[i]
-        out = np.zeros(self.problem.n_patches)
-        for k in range(self._first[i], self._first[i + 1]):
-            out += self._weights[k] * self.hemicube.row(self._points[k], n, self._tangent(n))
-        self.hemicubes_drawn += self._first[i + 1] - self._first[i]
+        a, b = self._first[i], self._first[i + 1]
+        turns = [self._tangent(n) for _ in range(a, b)]  # (one random turn per cube)
+        out = self._weights[a:b] @ self.hemicube.rows(self._points[a:b], n, turns)
+        self.hemicubes_drawn += b - a
         out[i] = 0.0
         self._cache[i] = out
         if len(self._cache) > self._cache_rows:

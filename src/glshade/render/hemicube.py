@@ -6,7 +6,8 @@ faces with its id as an integer (never multisampled or blended) and the depth te
 the nearest; each pixel's *delta form factor* -- ``dA / (pi (x^2 + y^2 + 1)^2)`` on the
 top face, ``z dA / (pi (x^2 + z^2 + 1)^2)`` on a side face, for a cube of half-size 1 --
 is then summed per visible patch (a histogram: ``numpy.bincount``). The five faces are one
-atlas (``3N x N``), read back once per point.
+atlas (``3N x N``); the atlases of up to ``BATCH`` points are drawn one above the other and
+read back together (a software rasterizer then bins them in one pass).
 """
 
 from __future__ import annotations
@@ -17,7 +18,10 @@ from ..errors import GeometryError
 from .base import GLResource
 from .shaders import ShaderLibrary
 
-__all__ = ["Hemicube", "delta_form_factors"]
+__all__ = ["Hemicube", "delta_form_factors", "BATCH", "BATCH_PIXELS"]
+
+#: hemicubes drawn before one read-back: at most 16, in at most about a million pixels
+BATCH, BATCH_PIXELS = 16, 2**20
 
 
 def delta_form_factors(n: int) -> np.ndarray:
@@ -78,18 +82,20 @@ class Hemicube(GLResource):
             raise GeometryError(f"hemicube resolution {n} needs a {3 * n}-pixel-wide "
                                 f"target; this GL allows {limit} (use <= {limit // 3})")
         self.resolution = n
-        self.weights = delta_form_factors(n).ravel()
+        self.batch = max(1, min(BATCH, BATCH_PIXELS // (3 * n * n), limit // n))
+        self.weights = np.tile(delta_form_factors(n).ravel(), self.batch)
         ctx = context.ctx
         library = ShaderLibrary(context)
         try:
             self.program = self._keep(library.compile("hemicube.vert", "hemicube.frag"))
         finally:
             library.release()
-        self.ids = self._keep(ctx.renderbuffer((3 * n, n), 1, dtype="i4"))
-        self.depth = self._keep(ctx.depth_renderbuffer((3 * n, n)))
+        size = (3 * n, n * self.batch)
+        self.ids = self._keep(ctx.renderbuffer(size, 1, dtype="i4"))
+        self.depth = self._keep(ctx.depth_renderbuffer(size))
         self.fbo = self._keep(ctx.framebuffer([self.ids], self.depth))
         self._vao = self._vbo = None
-        self._buffer = np.empty(3 * n * n, np.int32)
+        self._buffer = np.empty(3 * n * n * self.batch, np.int32)
         self.n_patches = 0
 
     def upload(self, vertices: np.ndarray, triangles: np.ndarray, patch: np.ndarray,
@@ -111,6 +117,9 @@ class Hemicube(GLResource):
                                                 [(self._vbo, "3f 1i", "in_position",
                                                   "in_patch")]))
         self.n_patches = int(n_patches)
+        # patch ids of the k-th atlas of a batch counted from k (P + 1): one histogram
+        self._offsets = np.repeat(np.arange(self.batch, dtype=np.int32) * (self.n_patches + 1),
+                                  3 * self.resolution ** 2)
         lo, hi = corners.min(0), corners.max(0)
         self.extent = float(np.linalg.norm(hi - lo)) or 1.0
 
@@ -135,24 +144,42 @@ class Hemicube(GLResource):
     def row(self, origin, normal, tangent) -> np.ndarray:
         """Form factors ``(P,)`` from the point ``origin`` (on a patch facing ``normal``;
         ``tangent`` turns the cube about it) to every patch."""
+        return self.rows([origin], normal, [tangent])[0]
+
+    def rows(self, origins, normal, tangents) -> np.ndarray:
+        """Form factors ``(K, P)`` from each of the points ``origins`` on one patch, the
+        cube at point k turned by ``tangents[k]``: drawn ``batch`` at a time, one read each."""
         import moderngl
 
         self._check()
         if self._vao is None:
             raise GeometryError("upload the patches before asking for form factors")
+        origins = np.atleast_2d(np.asarray(origins, np.float64))
+        normal = np.asarray(normal, np.float64)
         ctx = self.context.ctx
         self.context.make_current()
-        origin = np.asarray(origin, np.float64) + 1e-6 * self.extent * np.asarray(normal)
-        self.fbo.use()
-        self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
-        ctx.enable(moderngl.DEPTH_TEST)
-        ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+        n, p1 = self.resolution, self.n_patches + 1
+        out = np.empty((len(origins), self.n_patches))
         member = self.program["u_view_proj"]
-        for viewport, matrix in self.faces(origin, normal, tangent):
-            ctx.viewport = viewport
-            member.write(np.ascontiguousarray(matrix.T, dtype="f4").tobytes())
-            self._vao.render(moderngl.TRIANGLES)
-        self.fbo.read_into(self._buffer, components=1, dtype="i4")
-        self.context.rest()  # (never leave a framebuffer bound that may be released)
-        return np.bincount(self._buffer, weights=self.weights,
-                           minlength=self.n_patches + 1)[1:]
+        try:
+            for start in range(0, len(origins), self.batch):
+                chunk = origins[start:start + self.batch]
+                used = (0, 0, 3 * n, n * len(chunk))
+                self.fbo.use()
+                self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0, viewport=used)
+                ctx.enable(moderngl.DEPTH_TEST)
+                ctx.disable(moderngl.CULL_FACE | moderngl.BLEND)
+                for k, origin in enumerate(chunk):
+                    origin = origin + 1e-6 * self.extent * normal
+                    for (x, y, w, h), matrix in self.faces(origin, normal, tangents[start + k]):
+                        ctx.viewport = (x, y + k * n, w, h)
+                        member.write(np.ascontiguousarray(matrix.T, dtype="f4").tobytes())
+                        self._vao.render(moderngl.TRIANGLES)
+                m = len(chunk) * 3 * n * n
+                self.fbo.read_into(self._buffer, viewport=used, components=1, dtype="i4")
+                hist = np.bincount(self._buffer[:m] + self._offsets[:m],
+                                   weights=self.weights[:m], minlength=len(chunk) * p1)
+                out[start:start + len(chunk)] = hist.reshape(len(chunk), p1)[:, 1:]
+        finally:
+            self.context.rest()  # (never leave a framebuffer bound that may be released)
+        return out

@@ -59,8 +59,7 @@ class GpuMesh(GLResource):
         self.n_triangles = len(tri)
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
-        # (homogeneous bounding-box corners, as columns: where a camera sees the mesh from)
-        self.corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])
+        self._corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])  # (homogeneous)
         normals = _drawable_normals(mesh)
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
@@ -71,6 +70,12 @@ class GpuMesh(GLResource):
         ids[: self.n_triangles] = owner
         self.face_ids = self._keep(ctx.texture((width, height), 1, ids.tobytes(), dtype="i4"))
         self.face_ids.filter = (moderngl.NEAREST, moderngl.NEAREST)
+
+    def beyond(self, model_view: np.ndarray, near: float) -> bool:
+        """Whether the mesh lies wholly beyond a camera's near plane (``model_view``: model
+        to view space), so that the camera sees a closed mesh from outside -- where culling
+        its back faces cannot change the picture."""
+        return bool((model_view[2] @ self._corners < -near).all())
 
     def _flat_buffer(self):
         """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""

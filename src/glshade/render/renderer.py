@@ -281,8 +281,8 @@ class Renderer:
             gpu = self._gpu_mesh(model.mesh)
             m = model.transform
             model_view = view @ m
-            cull = options.cull if options.cull != "auto" else gpu.closed and bool(  # seen
-                (model_view[2] @ gpu.corners < -camera.near).all())  # from outside it, wholly
+            cull = options.cull if options.cull != "auto" else \
+                gpu.closed and gpu.beyond(model_view, camera.near)  # (seen from outside)
             flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
             prog = self._program(variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used

@@ -72,7 +72,10 @@ class Camera:
                 **kwargs) -> Camera:
         """A camera at ``eye`` looking at ``target`` with ``up`` roughly up."""
         view = look_at(eye, target, up)
-        return cls(position=eye, orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
+        camera = cls(position=eye, orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
+        view.setflags(write=False)  # (its view matrix is this one: no conversion back from
+        camera.__dict__["_view"] = view  # the quaternion when it is drawn, a frame each)
+        return camera
 
     def replace(self, **changes) -> Camera:
         return replace(self, **changes)

@@ -103,6 +103,8 @@ class _WorkerProcess(mp.context.SpawnProcess):
 
     @staticmethod
     def _Popen(process_obj):
+        if not hasattr(signal, "pthread_sigmask"):  # (not POSIX: nothing to block)
+            return mp.context.SpawnProcess._Popen(process_obj)
         old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
         try:
             return mp.context.SpawnProcess._Popen(process_obj)

@@ -41,7 +41,27 @@ def _main(argv: list[str] | None) -> int:
     try:
         return args.func(args)
     except (GlshadeError, OSError) as exc:  # expected: one line, no traceback
+        if isinstance(exc, BrokenPipeError) and _stdout_closed():
+            return 141  # (`glshade info ... | head`: the reader has all it wanted)
         if args.debug:
             raise
         print(f"glshade: error: {exc}", file=sys.stderr)
         return exit_status(exc)
+
+
+def _stdout_closed() -> bool:
+    """Whether it is standard output whose reader went away (not, say, ffmpeg's pipe); if
+    so, it is pointed at /dev/null so that nothing more is written to it at exit."""
+    import os
+    import select
+
+    try:
+        fd = sys.stdout.fileno()
+        poll = select.poll()
+        poll.register(fd, select.POLLOUT)
+        closed = any(events & select.POLLERR for _, events in poll.poll(0))
+    except (OSError, ValueError, AttributeError):  # (no descriptor, or no poll here)
+        return False
+    if closed:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), fd)
+    return closed

@@ -38,7 +38,6 @@ def test_info_table_on_bundled_asset():
     (("info", "primitive:sphere"), "unknown primitive 'sphere'"),
     (("info",), "required: MESH"),
     (("frobnicate",), "invalid choice: 'frobnicate'"),
-    (("info", "assets/scenes/teapot-orbit.toml"), "a scene file; glshade info describes one"),
     (("animate", "assets/teapot.obj", "-o", "x.avi"), "x.avi"),
 ])
 def test_bad_input_exits_2_with_one_line(args, message):
@@ -67,3 +66,35 @@ def test_view_without_display_exits_2_in_one_line():
     assert out.returncode == 2
     assert "no display" in out.stderr and "xvfb-run" in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_info_on_a_scene_file_lists_models_lights_and_path():
+    out = run("info", "assets/scenes/spheres.toml", "--json")
+    assert out.returncode == 0, out.stderr
+    info = json.loads(out.stdout)
+    # icospheres 1, 2 and 4: 20 * 4^level faces, 10 * 4^level + 2 vertices, closed
+    assert [m["faces"] for m in info["models"]] == [80, 320, 5120]
+    assert [m["vertices"] for m in info["models"]] == [42, 162, 2562]
+    assert all(m["closed"] for m in info["models"])
+    assert info["models"][0]["bounds"] == {"min": [-3.4, -1.0, -1.0], "max": [-1.4, 1.0, 1.0]}
+    assert [x["kind"] for x in info["lights"]] == ["point"]
+    box = run("info", "assets/scenes/cornell-box.toml")
+    assert box.returncode == 0, box.stderr
+    emitting = [line.split()[0] for line in box.stdout.splitlines()[3:11]
+                if line.split()[4] == "yes"]
+    assert emitting == ["light"]
+    assert "a headlight at the camera" in box.stdout
+
+
+def test_a_reader_that_goes_away_ends_the_output_quietly():
+    """`glshade info ... | head -1`: no error about a broken pipe, status 141 as from SIGPIPE."""
+    import os
+
+    read, write = os.pipe()
+    os.close(read)  # (the reader is already gone)
+    try:
+        out = subprocess.run([sys.executable, "-m", "glshade", "info", "primitive:torus"],
+                             stdout=write, stderr=subprocess.PIPE, text=True, timeout=60)
+    finally:
+        os.close(write)
+    assert (out.returncode, out.stderr) == (141, "")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ..errors import EXIT_OK, UsageError
+from ..errors import EXIT_OK
 from ..io.meshes import load_source
 
 __all__ = ["info", "mesh_summary", "topology_summary"]
@@ -75,13 +75,69 @@ def _solid_info(args, solid) -> int:
     return EXIT_OK
 
 
+def scene_summary(scene_file) -> dict:
+    """A scene file's models (counts, closedness, world bounds), solids, lights, camera path
+    and render settings, as plain JSON-able data."""
+    from ..geometry.transforms import box_corners
+    from ..scene import DirectionalLight
+
+    sf, st = scene_file, scene_file.settings
+    models = []
+    for m in sf.scene.models:
+        corners = box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3]
+        models.append({"name": m.name, "faces": m.mesh.n_faces, "vertices": m.mesh.n_vertices,
+                       "closed": bool(m.mesh.closed_and_oriented), "visible": m.visible,
+                       "emission": list(map(float, m.material.emission)),
+                       "bounds": {"min": corners.min(0).tolist(),
+                                  "max": corners.max(0).tolist()}})
+    lights = [{"kind": "directional" if isinstance(x, DirectionalLight) else "point",
+               "at": list(map(float, x.direction if isinstance(x, DirectionalLight)
+                              else x.position)),
+               "color": list(map(float, x.color)), "intensity": float(x.intensity)}
+              for x in sf.scene.lights]
+    return {"kind": "scene", "models": models,
+            "solids": [{"name": x.name, "leaves": len(x.solid.leaves())}
+                       for x in sf.scene.solids],
+            "lights": lights, "keyframes": len(sf.path), "duration": sf.path.duration,
+            "size": list(st.size), "mode": st.options.mode.value, "fps": st.fps,
+            "samples": st.samples}
+
+
+def _scene_info(args) -> int:
+    from ..io.scenefile import load_scene
+
+    s = scene_summary(load_scene(args.mesh))
+    s["source"] = args.mesh
+    if args.json:
+        print(json.dumps(s, indent=2))
+        return EXIT_OK
+    print(f"source  {args.mesh}")
+    print(f"render  {s['size'][0]}x{s['size'][1]} {s['mode']}, {s['samples']} samples, "
+          f"{s['fps']:g} fps; camera path of {s['keyframes']} key frame"
+          f"{'s' if s['keyframes'] != 1 else ''}, {s['duration']:g} s")
+    print(f"models ({len(s['models'])}):        faces  vertices  closed  emits  bounding box")
+    for m in s["models"]:
+        lo, hi = m["bounds"]["min"], m["bounds"]["max"]
+        print(f"  {str(m['name'])[:18]:<18} {m['faces']:>7,} {m['vertices']:>9,}  "
+              f"{'yes' if m['closed'] else 'no':>6}  {'yes' if any(m['emission']) else 'no':>5}"
+              f"  [{', '.join(f'{x:.4g}' for x in lo)}] .. [{', '.join(f'{x:.4g}' for x in hi)}]")
+    for x in s["solids"]:
+        print(f"  {str(x['name'])[:18]:<18} CSG solid, {x['leaves']} leaves")
+    print(f"lights ({len(s['lights'])}):" if s["lights"] else
+          "lights: none (a headlight at the camera)")
+    for x in s["lights"]:
+        where = "shining along" if x["kind"] == "directional" else "at"
+        print(f"  {x['kind']:<11} {where} ({', '.join(f'{v:.3g}' for v in x['at'])}), "
+              f"intensity {x['intensity']:g}")
+    return EXIT_OK
+
+
 def info(args) -> int:
     from ..geometry.solids import Solid
     from .inputs import is_scene_file
 
     if is_scene_file(args.mesh):
-        raise UsageError(f"{args.mesh}: a scene file; glshade info describes one mesh: give "
-                         "one of the scene's mesh files (its [[mesh]] source)")
+        return _scene_info(args)
     mesh = load_source(args.mesh)
     if isinstance(mesh, Solid):
         return _solid_info(args, mesh)

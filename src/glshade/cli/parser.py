@@ -74,9 +74,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
-    p = sub.add_parser("info", help="print counts, polygon sizes, bounds and area of a mesh")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file (.obj .off .ply .stl) or "
-                   "primitive:NAME[:ARGS], e.g. primitive:icosphere:3")
+    p = sub.add_parser("info", help="print counts, polygon sizes, bounds and area of a mesh "
+                       "(or what a scene file holds)")
+    p.add_argument("mesh", metavar="MESH|SCENE", help="a mesh file (.obj .off .ply .stl), "
+                   "primitive:NAME[:ARGS] (e.g. primitive:icosphere:3), solid:TEXT or a scene "
+                   "file (.toml)")
     p.add_argument("--json", action="store_true", help="machine-readable output")
     p.set_defaults(func=c.info)
 

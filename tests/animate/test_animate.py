@@ -137,6 +137,21 @@ def test_render_still_from_scene_file(tmp_path):
     assert Image.open(tmp_path / "t.png").size == (512, 384)  # the scene's own size
 
 
+def test_a_time_off_the_path_warns_and_a_zero_frame_rate_is_refused(tmp_path):
+    late = glshade("render", "assets/scenes/teapot-orbit.toml", "--time", "100", "-o",
+                   str(tmp_path / "late.png"), "--backend", BACKEND)
+    end = glshade("render", "assets/scenes/teapot-orbit.toml", "--time", "4", "-o",
+                  str(tmp_path / "end.png"), "--backend", BACKEND)
+    assert late.returncode == 0 and end.returncode == 0
+    assert late.stderr.strip() == ("glshade: warning: --time 100 is outside "
+                                   "assets/scenes/teapot-orbit.toml's camera path (0 to 4 s): "
+                                   "the view at its end")
+    assert (tmp_path / "late.png").read_bytes() == (tmp_path / "end.png").read_bytes()
+    zero = glshade("animate", "assets/teapot.obj", "-o", str(tmp_path / "a.gif"), "--fps", "0")
+    assert zero.returncode == 2 and "--fps: expected a number > 0" in zero.stderr
+    assert not (tmp_path / "a.gif").exists()
+
+
 MALFORMED = {
     "syntax": ("[render\nsize = [1, 2]\n", "Expected ']'"),
     "unknown_table": ("[lights]\nposition = [1, 2, 3]\n", ":1: unknown table [lights]"),

@@ -92,6 +92,13 @@ def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
 
         sf = load_scene(spec)
         settings, scene, path = sf.settings, sf.scene, sf.path
+        if time is not None and not path.start <= time <= path.end:
+            import warnings
+
+            side = "end" if time > path.end else "start"
+            warnings.warn(f"--time {time:g} is outside {spec}'s camera path ({path.start:g} "
+                          f"to {path.end:g} s): the view at its {side}", UserWarning,
+                          stacklevel=2)
         camera = path.at(path.start if time is None else time)
     else:
         if time is not None:

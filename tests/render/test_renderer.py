@@ -311,6 +311,24 @@ def test_tune_malloc_is_opt_in_and_works():
     assert out.stdout.strip() == "True", out.stderr
 
 
+@pytest.mark.parametrize("samples", [0, 4])
+def test_the_background_colour_stays_out_of_ids_depth_and_normals(make_renderer, samples):
+    """Background pixels: the background colour, and no polygon (-1), no depth (inf), no
+    normal (0) -- whatever the colour (a clear reaches every attachment it is given)."""
+    s = Scene(background=(0.12, 0.5, 0.9))
+    s.add(P.icosphere(2))
+    frame = make_renderer(48, 48, samples).render_frame(s, FRONT, "phong")
+    empty = frame.face_id < 0
+    assert 0.3 < empty.mean() < 0.9
+    assert np.array_equal(empty, np.isinf(frame.depth))
+    # (with MSAA, colour and normals are averaged at the silhouette: look one pixel away)
+    pad = np.pad(empty, 1, constant_values=True)
+    clear = np.all([pad[1 + dy:49 + dy, 1 + dx:49 + dx] for dy in (-1, 0, 1)
+                    for dx in (-1, 0, 1)], axis=0)
+    assert (frame.normal[clear] == 0).all()
+    assert (frame.color[clear][:, :3] == np.round(np.array([0.12, 0.5, 0.9]) * 255)).all()
+
+
 def test_outputs_choose_what_a_frame_reads_and_colour_is_the_same(make_renderer):
     from glshade import Outputs
 

@@ -65,14 +65,17 @@ class OffscreenTarget(GLResource):
         return self.width, self.height
 
     def begin(self, background, outputs: Outputs) -> None:
-        """Bind for drawing and clear: colour to the background, the rest to zero."""
+        """Bind for drawing and clear: colour to the background, the rest to zero (each
+        through a framebuffer of its own: a clear reaches every colour attachment, and the
+        background colour in an id or depth buffer would read as a polygon at a distance)."""
         self._check()
         if outputs.auxiliary:
             self.fbo_clear_aux.use()
             self.fbo_clear_aux.clear(0.0, 0.0, 0.0, 0.0)
-        fbo = self.fbo_draw_all if outputs.auxiliary else self.fbo_draw_color
-        fbo.use()
-        fbo.clear(*background, depth=1.0)
+        self.fbo_draw_color.use()
+        self.fbo_draw_color.clear(*background, depth=1.0)
+        if outputs.auxiliary:
+            self.fbo_draw_all.use()
 
     def bind(self, outputs: Outputs) -> None:
         """Bind for drawing without clearing."""

@@ -176,6 +176,23 @@ def test_the_command_line_lab(tmp_path):
     assert r.returncode == 2 and "unknown algorithm magic" in r.stderr
 
 
+def test_the_lab_on_a_scene_with_a_background_and_a_solid(tmp_path):
+    """The CSG part scene: a coloured background (which must not leak into the GPU's ids
+    and depths) and a solid, which is not polygons: left out everywhere, with a warning."""
+    from ..conftest import BACKEND, glshade
+
+    r = glshade("hidden", "assets/scenes/csg-part.toml", "-o", str(tmp_path / "grid.png"),
+                "--algorithms", "zbuffer,scanline,raycast,gpu", "--size", "128x96",
+                "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.strip() == ("glshade: warning: the scene's CSG solids (part) are not "
+                                "polygons: every algorithm here, the GPU's z-buffer "
+                                "included, leaves them out")
+    table = {line.split()[0]: line.split() for line in r.stdout.splitlines()[3:7]}
+    for name in ("zbuffer", "scanline", "raycast"):
+        assert table[name][-3] == "0", r.stdout
+
+
 def test_algorithms_take_a_scene_and_camera_too():
     from glshade.cpu.hidden import run, zbuffer
     from glshade.errors import GeometryError, InputError

@@ -56,6 +56,16 @@ def hidden(args) -> int:
             raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
     args.size = args.size or (256, 256)
     job = load_job(args, args.mesh)
+    if job.scene.solids:  # the algorithms are for polygons: so is the GPU's reference here
+        import copy
+        import warnings
+
+        names = ", ".join(str(x.name) for x in job.scene.solids)
+        warnings.warn(f"the scene's CSG solids ({names}) are not polygons: every algorithm "
+                      "here, the GPU's z-buffer included, leaves them out", UserWarning,
+                      stacklevel=2)
+        job.scene = copy.copy(job.scene)
+        job.scene.solids = []
     w, h = job.size
     p = prepare(job.scene, job.camera, (w, h))
     results = {}

@@ -214,6 +214,13 @@ def test_bad_input_says_what_and_where():
         Material(reflectance=(0.5, 1.2, 0.5))
     with pytest.raises(GeometryError, match="patch size"):
         subdivide(primitives.cube(), 0.0)
+    from glshade.solids import Sphere
+
+    with_solid = closed_box()
+    with_solid.add(Sphere(0.2), name="ball")
+    with pytest.warns(UserWarning, match=r"CSG solids \(ball\) are not polygons"):
+        problem = PatchScene.from_scene(with_solid, 0.5)
+    assert problem.n_patches == PatchScene.from_scene(closed_box(), 0.5).n_patches
 
 
 def test_non_planar_quads_are_split():

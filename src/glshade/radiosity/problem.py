@@ -55,6 +55,13 @@ class PatchScene:
         models = [(i, m) for i, m in enumerate(scene.models) if m.visible]
         if not models:
             raise InputError("radiosity needs a scene with at least one visible mesh")
+        solids = [str(s.name) for s in scene.solids if s.visible]
+        if solids:
+            import warnings
+
+            warnings.warn(f"the scene's CSG solids ({', '.join(solids)}) are not polygons: "
+                          "radiosity leaves them out (they neither block, receive nor give "
+                          "light, and are not drawn)", UserWarning, stacklevel=2)
         if patch_size is None:
             b = scene.bounds
             patch_size = float(np.linalg.norm(b[1] - b[0])) / 24

@@ -180,6 +180,9 @@ MALFORMED = {
     "keyframe_half": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 0\n'
                       'eye = [0, 0, 5]\n', ":3: [camera] keyframe 1: give both 'eye' and"),
     "bad_primitive": ('[[mesh]]\nsource = "primitive:blob"\n', ":2: unknown primitive 'blob'"),
+    "one_view_eye_at_target": ('[[mesh]]\nsource = "primitive:cube"\n[camera]\n'
+                               'eye = [1, 2, 3]\ntarget = [1, 2, 3]\n',
+                               ":3: [camera]: look_at: eye and target are the same point"),
     "mesh_as_table": ('[mesh]\nsource = "primitive:cube"\n', "write meshes and lights as"),
 }
 

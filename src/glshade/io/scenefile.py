@@ -375,7 +375,8 @@ def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
               "position_interp": cam.get("position_interpolation", "linear"), "camera": base}
     keys = cam.get("keyframe")
     line = loc.line("camera", None, None)
-    if keys is None:
+    single = keys is None  # (one view: eye and target in [camera] itself)
+    if single:
         one = {k: raw[k] for k in ("eye", "target", "up", "position", "orientation")
                if k in raw}
         if not one:
@@ -387,7 +388,7 @@ def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
     try:
         return CameraPath.from_dict({"keyframe": keys}, source, **interp)
     except PathFormatError as exc:
-        if exc.keyframe is None:
+        if exc.keyframe is None or single:
             raise SceneFormatError(f"{source}:{line}: [camera]: {exc.reason}") from None
         kline = loc.line("camera.keyframe", exc.keyframe - 1, None)
         raise SceneFormatError(f"{source}:{kline}: [camera] keyframe {exc.keyframe}: "

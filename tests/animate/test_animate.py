@@ -155,6 +155,12 @@ def test_a_time_off_the_path_warns_and_a_zero_frame_rate_is_refused(tmp_path):
 MALFORMED = {
     "syntax": ("[render\nsize = [1, 2]\n", "Expected ']'"),
     "unknown_table": ("[lights]\nposition = [1, 2, 3]\n", ":1: unknown table [lights]"),
+    "top_level_key": ('# light\nambient = [0.2, 0.2, 0.2]\n[[mesh]]\nsource = "primitive:cube"\n',
+                      ":2: unknown top-level key 'ambient' (keys go in a table, such as "
+                      "[render])"),
+    "zero_direction": ('[[mesh]]\nsource = "primitive:cube"\n[[light]]\ntype = "directional"\n'
+                       'direction = [0, 0, 0]\n', ":3: [[light]] 1: direction must be a "
+                       "non-zero 3-vector"),
     "unknown_key": ('[[mesh]]\nsource = "primitive:cube"\ncolour = [1, 0, 0]\n',
                     ":3: unknown key 'colour' in [[mesh]] 1"),
     "wrong_type": ('[[mesh]]\nsource = "primitive:cube"\nks = "shiny"\n',

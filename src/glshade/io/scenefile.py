@@ -237,8 +237,16 @@ def _add_solid(scene, m: dict, i: int, loc: _Locator, source: str) -> None:
 def _validate(data: dict, loc: _Locator, source: str):
     for key in data:
         if key not in _TOP:
-            raise SceneFormatError(f"{source}:{loc.line(key, None, None) or 1}: unknown table "
-                                   f"[{key}]; allowed: {', '.join(sorted(_TOP))}")
+            value = data[key]
+            if isinstance(value, dict) or isinstance(value, list) and value and \
+                    all(isinstance(v, dict) for v in value):
+                what, line = f"table [{key}]", loc.line(key, None, None)
+            else:  # (a key = value before any table)
+                what = f"top-level key '{key}' (keys go in a table, such as [render])"
+                line = next((i + 1 for i, text in enumerate(loc.lines)
+                             if re.match(rf"\s*{re.escape(key)}\s*=", text)), None)
+            raise SceneFormatError(f"{source}:{line or 1}: unknown {what}; allowed tables: "
+                                   f"{', '.join(sorted(_TOP))}")
     out = {}
     for table, schema in _SCHEMA.items():
         raw = data.get(table)
@@ -319,17 +327,16 @@ def load_scene(path) -> SceneFile:
     for i, light in enumerate(d.get("light", [])):
         where = f"{source}:{loc.line('light', i, None)}: [[light]] {i + 1}"
         kind = light.get("type", "direction" in light and "directional" or "point")
-        if kind == "point":
-            if "position" not in light:
-                raise SceneFormatError(f"{where}: a point light needs a 'position'")
-            obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
-                                                      "attenuation") if k in light})
-        else:
-            if "direction" not in light:
-                raise SceneFormatError(f"{where}: a directional light needs a 'direction'")
-            obj = DirectionalLight(**{k: light[k] for k in ("direction", "color", "intensity")
-                                      if k in light})
-        try:
+        needs = "position" if kind == "point" else "direction"
+        if needs not in light:
+            raise SceneFormatError(f"{where}: a {kind} light needs a '{needs}'")
+        try:  # (a value the light refuses -- a zero direction -- is named with its line)
+            if kind == "point":
+                obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
+                                                          "attenuation") if k in light})
+            else:
+                obj = DirectionalLight(**{k: light[k] for k in ("direction", "color",
+                                                                "intensity") if k in light})
             scene.add_light(obj)
         except GlshadeError as exc:
             raise SceneFormatError(f"{where}: {exc}") from None

@@ -120,9 +120,12 @@ def build_bsp(pieces: Pieces, eps: float):
     return nodes, counters
 
 
-def back_to_front(nodes, eye=(0.0, 0.0, 0.0)) -> np.ndarray:
-    """Piece indices in painting order (far to near) for an eye at ``eye`` (view space)."""
+def back_to_front(nodes, eye=(0.0, 0.0, 0.0, 1.0)) -> np.ndarray:
+    """Piece indices in painting order (far to near) for an eye at ``eye`` (view space,
+    homogeneous: ``w = 0`` is an orthographic camera's eye, at infinity)."""
     eye = np.asarray(eye, np.float64)
+    if eye.shape == (3,):
+        eye = np.append(eye, 1.0)
     if not nodes:
         return np.zeros(0, np.int64)
     out = []
@@ -135,7 +138,7 @@ def back_to_front(nodes, eye=(0.0, 0.0, 0.0)) -> np.ndarray:
         normal, offset, own, front, back = nodes[k]
         # coplanar polygons: the first drawn painted last (it wins a tie, as GL_LESS)
         own = own[::-1]
-        if normal @ eye - offset >= 0:  # the eye is in front: back, own, front
+        if normal @ eye[:3] - offset * eye[3] >= 0:  # the eye is in front: back, own, front
             first, second = back, front
         else:
             first, second = front, back
@@ -172,7 +175,7 @@ def bsp(p: Prepared) -> HiddenResult:
         pieces = Pieces(p.tris, np.arange(len(p.tris)))
         nodes, c = build_bsp(pieces, 1e-9 * extent)
         counters.update(c)
-        sequence = back_to_front(nodes)
+        sequence = back_to_front(nodes, p.eye)
         counters["pieces painted"] = len(sequence)
         result.painted = paint(p, result, pieces, sequence, counters)
 

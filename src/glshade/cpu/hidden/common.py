@@ -60,6 +60,16 @@ class Prepared:
     near: float
     far: float
     n_polygons: int
+    #: the eye, homogeneous, in view space: the origin (0, 0, 0, 1) for a perspective
+    #: camera; the point at infinity along +z (0, 0, 1, 0) for an orthographic one, whose
+    #: rays are parallel. Which side of a plane n.x = d faces the eye: n.e - d w.
+    eye: tuple = (0.0, 0.0, 0.0, 1.0)
+
+    def eye_side(self, normal: np.ndarray, offset) -> np.ndarray:
+        """``n.e - d w`` for planes ``n.x = d`` (rows of ``normal``, ``offset``): positive
+        where the eye is in front of the plane, zero where it sees it edge-on."""
+        e = self.eye
+        return np.asarray(normal) @ np.asarray(e[:3]) - np.asarray(offset) * e[3]
 
     @property
     def n_pixels(self) -> int:
@@ -76,7 +86,8 @@ class Prepared:
     def subset(self, tris, ids, order) -> Prepared:
         """The same view with other triangles (pieces split by an algorithm)."""
         return Prepared(tris, self.to_screen(tris), ids, order, self.size, self.proj,
-                        self.ray_origin, self.ray_dir, self.near, self.far, self.n_polygons)
+                        self.ray_origin, self.ray_dir, self.near, self.far, self.n_polygons,
+                        self.eye)
 
     def empty_result(self, name: str) -> HiddenResult:
         w, h = self.size
@@ -202,7 +213,8 @@ def prepare(scene_or_mesh, camera, size=(256, 256)) -> Prepared:
     direction /= np.linalg.norm(direction, axis=1, keepdims=True)
     prepared = Prepared(tris, np.zeros((len(tris), 3, 2)), ids[src], order[src],
                         (width, height), proj, a, direction, camera.near, camera.far,
-                        n_polygons)
+                        n_polygons, (0.0, 0.0, 1.0, 0.0) if camera.projection ==
+                        "orthographic" else (0.0, 0.0, 0.0, 1.0))
     prepared.screen = prepared.to_screen(tris) if len(tris) else prepared.screen
     return prepared
 

@@ -156,17 +156,19 @@ class _Cache:
 def _behind(c: _Cache, a: int, b: int, eps: float) -> bool:
     """Whether polygon ``a`` lies wholly on the far side of ``b``'s plane from the eye."""
     n, d = c.plane(b)
-    if abs(d) <= eps:
+    eye = c.p.eye_side(n, d)
+    if abs(eye) <= eps:
         return True  # b is seen edge-on
-    return bool(((c.t[a] @ n - d) * np.sign(-d) <= eps).all())
+    return bool(((c.t[a] @ n - d) * np.sign(eye) <= eps).all())
 
 
 def _in_front(c: _Cache, a: int, b: int, eps: float) -> bool:
     """Whether polygon ``a`` lies wholly on the eye's side of ``b``'s plane."""
     n, d = c.plane(b)
-    if abs(d) <= eps:
+    eye = c.p.eye_side(n, d)
+    if abs(eye) <= eps:
         return True
-    return bool(((c.t[a] @ n - d) * np.sign(-d) >= -eps).all())
+    return bool(((c.t[a] @ n - d) * np.sign(eye) >= -eps).all())
 
 
 def _swapped_ok(c: _Cache, P: int, Q: int, eps: float) -> bool:
@@ -187,15 +189,15 @@ def _first_blocker(c: _Cache, P: int, rest: np.ndarray, eps: float, counters):
     left = q[~ok]
     counters["tests"] += len(q) + len(left)
     if len(left):
-        # 3: P wholly on the far side of Q's plane (the eye is at the origin)
+        # 3: P wholly on the far side of Q's plane
         nq, dq = c.n[left], c.d[left]
         side = np.einsum("kd,nd->nk", c.t[P], nq) - dq[:, None]   # (n, 3)
-        eye = -dq                                                  # the eye's side
+        eye = c.p.eye_side(nq, dq)                                 # the eye's side
         far = np.where(np.abs(eye) <= eps, True, (side * np.sign(eye)[:, None] <= eps).all(1))
         # 4: Q wholly on the near side of P's plane
         n_p, d_p = c.n[P], c.d[P]
         side_q = np.einsum("nkd,d->nk", c.t[left], n_p) - d_p
-        eye_p = -d_p
+        eye_p = float(c.p.eye_side(n_p, d_p))
         near = (side_q * np.sign(eye_p) >= -eps).all(1) if abs(eye_p) > eps else \
             np.ones(len(left), bool)
         sub_ok = far | near

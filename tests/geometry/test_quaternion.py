@@ -369,3 +369,18 @@ def test_normalisation_against_drift(rng):
     drift_kept = np.abs(Q.norm(kept) - 1).max()
     assert drift_kept <= 4e-16
     assert drift_raw > 10 * max(drift_kept, 1e-16)
+
+
+def test_from_matrix_refuses_mirrors_and_flat_frames(rng):
+    """A rotation's determinant is +1; a mirror's -1 has no quaternion (it used to come back
+    as some rotation without a word)."""
+    r = Rotation.random(4, random_state=1).as_matrix()
+    mirrored = r.copy()
+    mirrored[2] = r[2] @ np.diag([1.0, 1.0, -1.0])
+    with pytest.raises(GeometryError, match=r"matrix \(2,\) is not a rotation: its "
+                                            r"determinant is -1"):
+        Q.from_matrix(mirrored)
+    with pytest.raises(GeometryError, match="the matrix is not a rotation.*determinant is 0"):
+        Q.from_matrix(np.zeros((3, 3)))
+    np.testing.assert_allclose(np.abs(Q.from_matrix(r)), np.abs(Rotation.from_matrix(r)
+                                                                 .as_quat()), atol=1e-12)

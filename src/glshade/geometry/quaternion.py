@@ -253,8 +253,15 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
         raise GeometryError(f"matrices must have shape (..., 3, 3), got {r.shape}")
     if convention == "row":
         r = np.swapaxes(r, -1, -2)
-    if r.shape == (3, 3):
-        return _from_one_matrix(r.tolist())
+    if r.shape == (3, 3):  # (one matrix, a camera's every frame: plain floats)
+        m = r.tolist()
+        (a, b, c), (d, e, f), (g, h, i) = m
+        _check_turns(a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g), None)
+        return _from_one_matrix(m)
+    det = np.linalg.det(r)
+    if not (det > 0).all():
+        bad = tuple(int(k) for k in np.argwhere(~(det > 0))[0])
+        _check_turns(float(det[bad]), bad)
     d0, d1, d2 = r[..., 0, 0], r[..., 1, 1], r[..., 2, 2]
     trace = d0 + d1 + d2
     pick = np.argmax(np.stack([trace, d0, d1, d2], -1), axis=-1)
@@ -278,6 +285,15 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
         ], -2)
     q = np.take_along_axis(cand, pick[..., None, None], axis=-2)[..., 0, :]
     return canonical(q / np.linalg.norm(q, axis=-1, keepdims=True))
+
+
+def _check_turns(det: float, which) -> None:
+    """A mirror, or a degenerate frame, has no quaternion: say so (``which``: its index)."""
+    if not det > 0:
+        name = f"matrix {which}" if which is not None else "the matrix"
+        raise GeometryError(f"{name} is not a rotation: its determinant is {det:.3g} (a "
+                            "mirror or a flat frame); a quaternion turns, it cannot mirror "
+                            "-- quaternion.mirror(normal, v) sandwiches a vector instead")
 
 
 def _from_one_matrix(m) -> Array:

@@ -82,3 +82,17 @@ def test_center_of_mass_l_prism_by_hand():
     m = Mesh(v, [list(range(n)), [n + i for i in reversed(range(n))], *sides])
     assert m.signed_volume() == pytest.approx(3.0)
     np.testing.assert_allclose(m.center_of_mass(), [5 / 6, 0.5, 5 / 6], atol=1e-12)
+
+
+def test_center_of_mass_of_a_mesh_object():
+    """A Mesh is taken as it is (its triangles); anything else of the wrong shape is named."""
+    from glshade.geometry import primitives
+    from glshade.geometry.masspoint import mesh_center_of_mass
+
+    shifted = primitives.cube().transformed(np.array([[1, 0, 0, 2.0], [0, 1, 0, -1.0],
+                                                      [0, 0, 1, 0.5], [0, 0, 0, 1.0]]))
+    np.testing.assert_allclose(mesh_center_of_mass(shifted), [2.0, -1.0, 0.5], atol=1e-12)
+    np.testing.assert_allclose(mesh_center_of_mass(shifted, "surface"), [2.0, -1.0, 0.5],
+                               atol=1e-12)
+    with pytest.raises(GeometryError, match=r"triangles of shape \(T, 3, 3\), got \(4, 3\)"):
+        mesh_center_of_mass(np.zeros((4, 3)))

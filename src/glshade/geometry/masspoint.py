@@ -124,11 +124,15 @@ def centroid(points: ArrayLike, masses: ArrayLike | None = None) -> NDArray[np.f
     return total.point
 
 
-def mesh_center_of_mass(triangles: NDArray[np.float64], kind: str = "solid"):
-    """Centre of mass ``(3,)`` of triangles ``(T, 3, 3)``: of the solid they bound
-    (``"solid"``: tetrahedra from the origin to each triangle, signed volumes as masses) or
-    of the surface (``"surface"``: triangle centroids weighted by area)."""
+def mesh_center_of_mass(triangles, kind: str = "solid"):
+    """Centre of mass ``(3,)`` of a Mesh or of triangles ``(T, 3, 3)``: of the solid they
+    bound (``"solid"``: tetrahedra from the origin to each triangle, signed volumes as
+    masses) or of the surface (``"surface"``: triangle centroids weighted by area)."""
+    if hasattr(triangles, "vertices") and hasattr(triangles, "triangles"):  # a Mesh
+        triangles = triangles.vertices[triangles.triangles[0]]
     p = np.asarray(triangles, np.float64)
+    if p.ndim != 3 or p.shape[1:] != (3, 3):
+        raise GeometryError(f"need a Mesh or triangles of shape (T, 3, 3), got {p.shape}")
     if kind == "solid":
         mass = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])) / 6.0
         return centroid(p.sum(axis=1) / 4.0, mass)  # the origin is the 4th corner

@@ -180,6 +180,13 @@ def test_flipped_face_is_named():
     w = WingedEdge.from_mesh(Mesh(cube.vertices, faces), strict=False)
     assert not w.euler().is_oriented
     assert all(3 in fs for _, _, fs in w.report.misoriented_edges)
+    # a flip is the one fault named: the ends of its edges are not also called pinched
+    # vertices (two triangles whose shared edge runs the same way in both)
+    for mesh in (Mesh(cube.vertices, faces),
+                 Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [1, 2, 3]])):
+        report = WingedEdge.from_mesh(mesh, strict=False).report
+        assert report.misoriented_edges and report.non_manifold_vertices == []
+        assert "non-manifold vertices" not in report.message()
 
 
 def test_isolated_vertex_and_duplicate_face():

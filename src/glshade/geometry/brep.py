@@ -128,7 +128,10 @@ class WingedEdge:
         self.face_edge = np.where(outer >= 0, h_edge[off[np.maximum(outer, 0)]], -1)
         # boundary half-edges (no twin), and boundary loops through them
         self._boundary = np.flatnonzero(twin < 0)
-        report.non_manifold_vertices = self._pinched_vertices()
+        # (a mis-oriented edge breaks the fans at its ends: those are reported with it)
+        on_misoriented = {v for a, b, _ in report.misoriented_edges for v in (a, b)}
+        report.non_manifold_vertices = [v for v in self._pinched_vertices()
+                                        if v not in on_misoriented]
         if strict and not report.ok:
             raise TopologyError(report.message())
 

@@ -254,14 +254,10 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
     if convention == "row":
         r = np.swapaxes(r, -1, -2)
     if r.shape == (3, 3):  # (one matrix, a camera's every frame: plain floats)
-        m = r.tolist()
-        (a, b, c), (d, e, f), (g, h, i) = m
-        _check_turns(a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g), None)
-        return _from_one_matrix(m)
-    det = np.linalg.det(r)
-    if not (det > 0).all():
-        bad = tuple(int(k) for k in np.argwhere(~(det > 0))[0])
-        _check_turns(float(det[bad]), bad)
+        return _from_one_matrix(r.tolist())
+    det = np.linalg.det(r)  # (the smallest determinant is the one to name, if any)
+    worst = tuple(int(k) for k in np.unravel_index(np.argmin(det), det.shape))
+    _check_turns(float(det[worst]), f"matrix {worst}")
     d0, d1, d2 = r[..., 0, 0], r[..., 1, 1], r[..., 2, 2]
     trace = d0 + d1 + d2
     pick = np.argmax(np.stack([trace, d0, d1, d2], -1), axis=-1)
@@ -270,12 +266,9 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
     s_x = np.sqrt(np.maximum(1 + d0 - d1 - d2, 0)) * 2  # 4 x
     s_y = np.sqrt(np.maximum(1 - d0 + d1 - d2, 0)) * 2  # 4 y
     s_z = np.sqrt(np.maximum(1 - d0 - d1 + d2, 0)) * 2  # 4 z
-    r21_m_r12 = r[..., 2, 1] - r[..., 1, 2]
-    r02_m_r20 = r[..., 0, 2] - r[..., 2, 0]
-    r10_m_r01 = r[..., 1, 0] - r[..., 0, 1]
-    r01_p_r10 = r[..., 0, 1] + r[..., 1, 0]
-    r02_p_r20 = r[..., 0, 2] + r[..., 2, 0]
-    r12_p_r21 = r[..., 1, 2] + r[..., 2, 1]
+    r21_m_r12, r02_m_r20 = r[..., 2, 1] - r[..., 1, 2], r[..., 0, 2] - r[..., 2, 0]
+    r10_m_r01, r01_p_r10 = r[..., 1, 0] - r[..., 0, 1], r[..., 0, 1] + r[..., 1, 0]
+    r02_p_r20, r12_p_r21 = r[..., 0, 2] + r[..., 2, 0], r[..., 1, 2] + r[..., 2, 1]
     with np.errstate(divide="ignore", invalid="ignore"):
         cand = np.stack([
             np.stack([r21_m_r12 / s_w, r02_m_r20 / s_w, r10_m_r01 / s_w, s_w / 4], -1),
@@ -287,10 +280,8 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
     return canonical(q / np.linalg.norm(q, axis=-1, keepdims=True))
 
 
-def _check_turns(det: float, which) -> None:
-    """A mirror, or a degenerate frame, has no quaternion: say so (``which``: its index)."""
-    if not det > 0:
-        name = f"matrix {which}" if which is not None else "the matrix"
+def _check_turns(det: float, name: str = "the matrix") -> None:
+    if not det > 0:  # a mirror, or a degenerate frame, has no quaternion: say so
         raise GeometryError(f"{name} is not a rotation: its determinant is {det:.3g} (a "
                             "mirror or a flat frame); a quaternion turns, it cannot mirror "
                             "-- quaternion.mirror(normal, v) sandwiches a vector instead")
@@ -300,6 +291,8 @@ def _from_one_matrix(m) -> Array:
     """Shepperd's method for one matrix (nested lists) in plain floats: a camera is made
     every frame, and numpy's per-call overhead would dwarf the arithmetic."""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = m
+    _check_turns(r00 * (r11 * r22 - r12 * r21) - r01 * (r10 * r22 - r12 * r20)
+                 + r02 * (r10 * r21 - r11 * r20))
     trace = r00 + r11 + r22
     big = max(trace, r00, r11, r22)
     if big == trace:

@@ -78,13 +78,12 @@ def _solid_info(args, solid) -> int:
 def scene_summary(scene_file) -> dict:
     """A scene file's models (counts, closedness, world bounds), solids, lights, camera path
     and render settings, as plain JSON-able data."""
-    from ..geometry.transforms import box_corners
     from ..scene import DirectionalLight
 
     sf, st = scene_file, scene_file.settings
     models = []
     for m in sf.scene.models:
-        corners = box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3]
+        corners = m.corners
         models.append({"name": m.name, "faces": m.mesh.n_faces, "vertices": m.mesh.n_vertices,
                        "closed": bool(m.mesh.closed_and_oriented), "visible": m.visible,
                        "emission": list(map(float, m.material.emission)),

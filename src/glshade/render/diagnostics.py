@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.transforms import box_corners
 from ..scene import Camera, Scene
 
 __all__ = ["why_blank"]
@@ -37,8 +36,7 @@ def why_blank(scene: Scene, camera: Camera, cull="auto") -> str:
     if cull is True:  # seen from inside (or cut by the near plane): all back faces
         view = camera.view_matrix()
         for m in drawn:
-            corners = box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3]
-            if (corners @ view[2, :3] + view[2, 3] >= -camera.near).any():
+            if (m.corners @ view[2, :3] + view[2, 3] >= -camera.near).any():
                 return ("the render is blank: back faces are culled (cull=True) and the "
                         "camera may be inside a mesh, where every face turns its back to it "
                         "(use cull='auto' or False)")

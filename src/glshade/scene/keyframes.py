@@ -107,15 +107,11 @@ class CameraPath:
         the circle)."""
         if not duration > 0:
             raise GeometryError(f"a turntable needs a duration > 0, got {duration}")
-        axis = np.asarray(up, np.float64)
-        if axis.shape != (3,) or not np.linalg.norm(axis):
-            raise GeometryError(f"up must be 3 numbers, not all zero; got {up!r}")
-        axis = axis / np.linalg.norm(axis)
         n = max(1, int(np.ceil(abs(degrees) / 5.0)))
+        turns = quat.from_axis_angle(up, np.radians(degrees) * np.arange(n + 1) / n)
         keys = []
-        for i in range(n + 1):
-            half = np.radians(degrees) * i / n / 2
-            cam = camera.orbit([*(np.sin(half) * axis), np.cos(half)], center)
+        for i, q in enumerate(turns):
+            cam = camera.orbit(q, center)
             keys.append(Keyframe(duration * i / n, cam.position, cam.orientation))
         return cls(keys, camera=camera)
 

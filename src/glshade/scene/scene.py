@@ -36,6 +36,11 @@ class Model:
     vertex_colors: NDArray[np.float32] | None = None
     _constant: tuple | None = field(default=None, repr=False)
 
+    @property
+    def corners(self) -> NDArray[np.float64]:
+        """The mesh's bounding-box corners ``(8, 3)`` placed in the world."""
+        return box_corners(self.mesh.bounds) @ self.transform[:3, :3].T + self.transform[:3, 3]
+
     def display_colors(self, ambient) -> np.ndarray:
         """What the ``radiosity`` mode shows at each vertex: ``vertex_colors``, or without
         them the surface's own emission plus its ambient term (no light transport)."""
@@ -161,7 +166,7 @@ class Scene:
         for m in self.models:
             if not m.visible or m.mesh.n_vertices == 0:
                 continue
-            pts.append(box_corners(m.mesh.bounds) @ m.transform[:3, :3].T + m.transform[:3, 3])
+            pts.append(m.corners)
         pts += [box_corners(s.solid.bounds) for s in self.solids if s.visible]
         if not pts:
             return np.zeros((2, 3))

@@ -124,8 +124,6 @@ def back_to_front(nodes, eye=(0.0, 0.0, 0.0, 1.0)) -> np.ndarray:
     """Piece indices in painting order (far to near) for an eye at ``eye`` (view space,
     homogeneous: ``w = 0`` is an orthographic camera's eye, at infinity)."""
     eye = np.asarray(eye, np.float64)
-    if eye.shape == (3,):
-        eye = np.append(eye, 1.0)
     if not nodes:
         return np.zeros(0, np.int64)
     out = []

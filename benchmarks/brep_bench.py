@@ -12,7 +12,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import interleaved, table  # noqa: E402
 
 from glshade.geometry import primitives  # noqa: E402
-from glshade.geometry.brep import WingedEdge  # noqa: E402
+from glshade.brep import WingedEdge  # noqa: E402
 
 SIZES = {"10k": (125, 80), "100k": (400, 250), "1M": (1250, 800)}
 

@@ -19,7 +19,7 @@ from _timing import interleaved, table  # noqa: E402
 
 from glshade import Camera, Mesh, Scene  # noqa: E402
 from glshade.cpu.csg import render_solids  # noqa: E402
-from glshade.geometry.octree import Octree  # noqa: E402
+from glshade.octree import Octree  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
 from glshade.solids import Box, Cone, Cylinder, Sphere  # noqa: E402
 

@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import table  # noqa: E402
 
 from glshade import Camera, Mesh, Scene  # noqa: E402
-from glshade.cpu.hidden import ALGORITHMS, prepare  # noqa: E402
+from glshade.hidden import ALGORITHMS, prepare  # noqa: E402
 from glshade.modes import Outputs  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
 

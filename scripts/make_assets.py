@@ -25,7 +25,7 @@ def l_prism() -> Mesh:
 def cornell_box() -> None:
     """assets/cornell/*.obj (the published box, one file per part) and the scene file
     assets/scenes/cornell-box.toml with its materials and camera."""
-    from glshade.geometry.cornell import cornell_parts
+    from glshade.geometry.primitives import cornell_parts
     from glshade.radiosity.cornell import CORNELL_CAMERA, CORNELL_MATERIALS
 
     (ASSETS / "cornell").mkdir(exist_ok=True)

@@ -43,7 +43,7 @@ def main() -> None:
 
 def csg() -> None:
     """The sample CSG part with a mesh through it, and its octree at two depths."""
-    from glshade.geometry.octree import Octree
+    from glshade.octree import Octree
     from glshade.io.scenefile import load_scene
 
     sf = load_scene(DOCS.parent / "assets/scenes/csg-part.toml")

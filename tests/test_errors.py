@@ -8,14 +8,16 @@ from glshade import errors as E
 
 @pytest.mark.parametrize("cls", [E.GeometryError, E.TopologyError, E.MeshFormatError,
                                  E.SceneFormatError, E.PathFormatError, E.OutputError,
-                                 E.UsageError, E.ComparisonError, E.DisplayError])
+                                 E.UsageError, E.ComparisonError, E.OptionError,
+                                 E.SceneError])
 def test_user_errors_exit_2(cls):
     exc = cls("f.obj", "bad") if cls is E.MeshFormatError else cls("bad")
     assert isinstance(exc, (E.InputError, ValueError))
     assert E.exit_status(exc) == 2
 
 
-@pytest.mark.parametrize("cls", [E.ContextError, E.ShaderError, E.VideoUnavailable])
+@pytest.mark.parametrize("cls", [E.ContextError, E.ShaderError, E.VideoUnavailable,
+                                 E.DisplayError])
 def test_environment_failures_exit_1(cls):
     assert isinstance(cls("x"), RuntimeError)
     assert E.exit_status(cls("x")) == 1

@@ -5,18 +5,23 @@ heavy: each name below is imported on first use (``glshade.Renderer`` loads mode
 then), so ``import glshade`` and ``glshade --help`` are instant.
 """
 
+from typing import TYPE_CHECKING
+
 from ._version import __version__
 
-#: public name -> (module, attribute); attribute None: the module itself
+#: public name -> (module, attribute); attribute None: the module itself. The names are
+#: typed for checkers and IDEs by the TYPE_CHECKING imports below (a test keeps both equal).
 _EXPORTS = {
-    # geometry
+    # the notes' algebra and chapters, each a module or package of its own
+    "quaternion": ("quaternion", None), "masspoint": ("masspoint", None),
+    "brep": ("brep", None), "solids": ("solids", None), "octree": ("octree", None),
+    "hidden": ("hidden", None), "radiosity": ("radiosity", None),
+    "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
+    # the mesh kernel
+    "geometry": ("geometry", None),
     "Mesh": ("geometry.mesh", "Mesh"), "concatenate": ("geometry.merge", "concatenate"),
     "newell_normal": ("geometry.polygon", "newell_normal"),
     "polygon_area": ("geometry.polygon", "polygon_area"),
-    "primitives": ("geometry.primitives", None), "quaternion": ("geometry.quaternion", None),
-    "masspoint": ("geometry.masspoint", None), "brep": ("geometry.brep", None),
-    "MassPoint": ("geometry.masspoint", "MassPoint"),
-    "centroid": ("geometry.masspoint", "centroid"),
     # scene
     "Camera": ("scene.camera", "Camera"), "default_camera": ("scene.camera", "default_camera"),
     "CameraPath": ("scene.keyframes", "CameraPath"), "Keyframe": ("scene.keyframes", "Keyframe"),
@@ -24,7 +29,8 @@ _EXPORTS = {
     "DirectionalLight": ("scene.lights", "DirectionalLight"), "Scene": ("scene.scene", "Scene"),
     # drawing options
     "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
-    "DrawOptions": ("options", "DrawOptions"),
+    "Culling": ("modes", "Culling"), "Projection": ("modes", "Projection"),
+    "DrawOptions": ("options", "DrawOptions"), "RenderConfig": ("options", "RenderConfig"),
     # files
     "load_mesh": ("io.meshes", "load_mesh"), "save_mesh": ("io.meshes", "save_mesh"),
     "load_scene": ("io.scenefile", "load_scene"), "save_image": ("io.images", "save_image"),
@@ -34,18 +40,44 @@ _EXPORTS = {
     "RenderContext": ("render.context", "RenderContext"),
     "Backend": ("render.context", "Backend"), "tune_malloc": ("render.context", "tune_malloc"),
     # comparing and animating
-    "compare": ("compare.comparison", "compare"),
-    "Comparison": ("compare.comparison", "Comparison"), "animate": ("animate.frames", "animate"),
+    "compare": ("compare", None),  # (callable packages: glshade.compare(...) is the function)
+    "Comparison": ("compare.comparison", "Comparison"), "animate": ("animate", None),
     # errors
     **{name: ("errors", name) for name in (
-        "GlshadeError", "InputError", "GeometryError", "MeshFormatError", "SceneFormatError",
-        "TopologyError", "ContextError", "ShaderError", "ComparisonError", "RenderWarning")},
+        "GlshadeError", "InputError", "EnvironmentFailure", "GeometryError", "OptionError",
+        "SceneError", "MeshFormatError", "SceneFormatError", "TopologyError", "ContextError",
+        "DisplayError", "ShaderError", "ComparisonError", "RenderWarning")},
 }
 
 __all__ = ["__version__", *_EXPORTS]
 
+if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
+    from . import brep, geometry, hidden, masspoint, octree, quaternion, radiosity, solids
+    from .compare.comparison import Comparison, compare
+    from .animate.frames import animate
+    from .errors import (ComparisonError, ContextError, DisplayError, EnvironmentFailure,
+                         GeometryError, GlshadeError, InputError, MeshFormatError,
+                         OptionError, RenderWarning, SceneError, SceneFormatError,
+                         ShaderError, TopologyError)
+    from .geometry.merge import concatenate
+    from .geometry.mesh import Mesh
+    from .geometry.polygon import newell_normal, polygon_area
+    from .io.images import save_image
+    from .io.meshes import load_mesh, save_mesh
+    from .io.scenefile import load_scene
+    from .masspoint import MassPoint, centroid
+    from .modes import Culling, Outputs, Projection, ShadingMode
+    from .options import DrawOptions, RenderConfig
+    from .render.context import Backend, RenderContext, create_context, tune_malloc
+    from .render.renderer import Frame, Renderer
+    from .scene.camera import Camera, default_camera
+    from .scene.keyframes import CameraPath, Keyframe
+    from .scene.lights import DirectionalLight, PointLight
+    from .scene.material import Material
+    from .scene.scene import Scene
 
-def __getattr__(name):
+
+def __getattr__(name: str):
     """Load a public name on first use (and keep it, so the next use is a plain lookup)."""
     try:
         module, attribute = _EXPORTS[name]
@@ -60,5 +92,5 @@ def __getattr__(name):
     return value
 
 
-def __dir__():
+def __dir__() -> list[str]:
     return sorted(__all__)

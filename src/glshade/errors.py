@@ -16,7 +16,8 @@ from __future__ import annotations
 
 __all__ = [
     "GlshadeError", "InputError", "EnvironmentFailure",
-    "GeometryError", "TopologyError", "MeshFormatError", "SceneFormatError", "PathFormatError",
+    "GeometryError", "OptionError", "SceneError", "TopologyError", "MeshFormatError",
+    "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError", "ClusterError",
     "DepthSortCycle",
@@ -47,7 +48,18 @@ class EnvironmentFailure(GlshadeError, RuntimeError):
 # ------------------------------------------------------------------ input errors
 
 class GeometryError(InputError):
-    """Bad shapes, indices or values handed to the geometry, scene or renderer code."""
+    """Bad shapes or values of geometry: vertices, faces, polygons, solids, quaternions,
+    transforms. (Options are :class:`OptionError`; scene values :class:`SceneError`.)"""
+
+
+class OptionError(InputError):
+    """A bad option or argument value: a shading mode, a backend's name, an image size, a
+    sample count, a dtype. Names the option, what arrived and the valid choices."""
+
+
+class SceneError(InputError):
+    """A scene value that cannot be drawn: a camera (eye at its target, a field of view
+    out of range), a light, a material, a key-frame path, a model's transform."""
 
 
 class TopologyError(GeometryError):
@@ -82,7 +94,7 @@ class SceneFormatError(InputError):
     """A scene file that cannot be used: names the file, the line and the key."""
 
 
-class PathFormatError(InputError):
+class PathFormatError(SceneError):
     """A camera path that cannot be read. ``keyframe`` is the 1-based number of the key
     frame at fault (None when the fault is not in one), so a scene file can point at its
     line."""
@@ -125,15 +137,15 @@ class ComparisonError(InputError):
     """A comparison that cannot be made: no analytic surface, a reference of another size."""
 
 
-class DisplayError(InputError):
-    """No display to open a window on: the command needs one (exit status 2, with the
-    alternative in the message)."""
-
-
 # ------------------------------------------------------------------ environment failures
 
 class ContextError(EnvironmentFailure):
     """No OpenGL context could be made: says which backends were tried and why each failed."""
+
+
+class DisplayError(EnvironmentFailure):
+    """No display to open a window on: the machine lacks what the command needs (exit
+    status 1), with the headless alternative in the message."""
 
 
 class ShaderError(EnvironmentFailure):

@@ -1,24 +1,31 @@
-"""The enums that name what a draw does: shading modes, outputs, back-face culling."""
+"""The enums that name what a draw does: shading modes, outputs, back-face culling and the
+camera's projection. Strings are accepted at the edges and converted once by
+:func:`parse_enum`, whose error lists the choices."""
 
 from __future__ import annotations
 
 import enum
+from typing import TypeVar
 
-from .errors import GeometryError
+from .errors import OptionError
 
-__all__ = ["ShadingMode", "Outputs", "parse_enum"]
+__all__ = ["ShadingMode", "Outputs", "Culling", "Projection", "Backend", "HEADLESS_BACKENDS",
+           "parse_enum"]
 
 
-def parse_enum(cls, value, what: str):
-    """``cls(value)`` for a member or its (case-insensitive) value; a bad one lists the
-    choices."""
+E = TypeVar("E", bound=enum.Enum)
+
+
+def parse_enum(cls: type[E], value: object, what: str) -> E:
+    """``cls(value)`` for a member or its (case-insensitive) value; a bad one raises
+    :class:`OptionError` listing the choices."""
     if isinstance(value, cls):
         return value
     try:
         return cls(str(value).lower())
     except ValueError:
-        choices = ", ".join(m.value for m in cls)
-        raise GeometryError(f"unknown {what} {value!r}; choose one of {choices}") from None
+        choices = ", ".join(str(m.value) for m in cls)
+        raise OptionError(f"unknown {what} {value!r}; choose one of {choices}") from None
 
 
 class ShadingMode(enum.Enum):
@@ -57,3 +64,65 @@ class Outputs(enum.Flag):
     def auxiliary(self) -> bool:
         """Whether anything beyond colour is asked for."""
         return bool(self.value & ~Outputs.COLOR.value)
+
+
+class Culling(enum.Enum):
+    """Back-face culling. ``True``, ``False`` and ``"auto"`` are accepted for ON, OFF, AUTO."""
+
+    AUTO = "auto"  # closed, consistently oriented meshes wholly beyond the near plane
+    ON = "on"      # every back face (from inside a mesh nothing shows)
+    OFF = "off"    # none: both sides are drawn, back faces lit as seen
+
+    @classmethod
+    def parse(cls, value: object) -> Culling:
+        """A Culling, True (ON), False (OFF) or a member's name."""
+        if isinstance(value, cls):
+            return value
+        if value is True:
+            return cls.ON
+        if value is False:
+            return cls.OFF
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise OptionError(f"cull must be 'auto', True or False (or one of "
+                              f"{', '.join(m.value for m in cls)}), got {value!r}") from None
+
+    def __bool__(self) -> bool:  # (so `if options.cull:` reads as before: AUTO and ON cull)
+        return self is not Culling.OFF
+
+
+class Projection(enum.Enum):
+    """A camera's projection."""
+
+    PERSPECTIVE = "perspective"
+    ORTHOGRAPHIC = "orthographic"
+
+    @classmethod
+    def parse(cls, value: object) -> Projection:
+        return parse_enum(cls, value, "projection")
+
+
+class Backend(enum.Enum):
+    """Where a GL context comes from (:func:`glshade.create_context`). WINDOW is the
+    viewer's own; headless rendering takes AUTO (EGL, else OSMesa), EGL or OSMESA."""
+
+    AUTO = "auto"
+    EGL = "egl"
+    OSMESA = "osmesa"
+    WINDOW = "window"
+
+    @classmethod
+    def parse(cls, value: object) -> Backend:
+        """A Backend or a headless backend's name; a bad name lists the choices."""
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise OptionError(f"unknown backend {value!r}; choose one of "
+                              f"{', '.join(HEADLESS_BACKENDS)}") from None
+
+
+#: the backends a headless render may name (the command line's --backend choices)
+HEADLESS_BACKENDS = tuple(b.value for b in Backend if b is not Backend.WINDOW)

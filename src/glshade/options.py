@@ -1,14 +1,25 @@
-"""How to draw: one frozen value shared by the renderer, the viewer, animation, comparison,
-scene files and the command line, so no layer re-declares an option or its default."""
+"""How to draw and what to draw with: two frozen values shared by the renderer, the viewer,
+animation, comparison, batches, radiosity, scene files and the command line, so no layer
+re-declares an option, its default or its rule.
+
+- :class:`DrawOptions`: how one draw looks (mode, depth test, culling, sRGB, outputs).
+- :class:`RenderConfig`: what a Renderer is built with (image size, MSAA samples, backend).
+
+Each value's rules are checked here, where it is made; the command line and the scene files
+convert text and add where it came from."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
 
-from .errors import GeometryError
-from .modes import Outputs, ShadingMode
+from typing import Any
 
-__all__ = ["DrawOptions", "DEFAULT_SIZE"]
+import numpy as np
+
+from .errors import OptionError
+from .modes import Backend, Culling, Outputs, ShadingMode
+
+__all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "check_whole"]
 
 #: image size (width, height) when neither the command line nor a scene file gives one
 DEFAULT_SIZE = (800, 600)
@@ -22,9 +33,9 @@ class DrawOptions:
     ----------
     mode : shading mode (a ShadingMode or its name).
     depth_test : the z-buffer; False draws in submission order.
-    cull : back-face culling: "auto" (closed, consistently oriented meshes wholly beyond the
-        near plane, so seen from outside; from inside a mesh its back faces are what shows),
-        True or False.
+    cull : back-face culling (:class:`Culling`, or True, False, "auto"): AUTO culls closed,
+        consistently oriented meshes wholly beyond the near plane, so seen from outside
+        (from inside a mesh its back faces are what shows).
     srgb : encode the linear result as sRGB for display.
     wireframe : draw polygon edges instead of filled polygons.
     outputs : what the draw writes besides colour (:class:`Outputs`).
@@ -32,34 +43,34 @@ class DrawOptions:
 
     mode: ShadingMode = ShadingMode.PHONG
     depth_test: bool = True
-    cull: str | bool = "auto"
+    cull: Culling = Culling.AUTO
     srgb: bool = False
     wireframe: bool = False
     outputs: Outputs = Outputs.COLOR
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "mode", ShadingMode.parse(self.mode))
-        if not (isinstance(self.cull, bool) or self.cull == "auto"):
-            raise GeometryError(f"cull must be 'auto', True or False, got {self.cull!r}")
+        object.__setattr__(self, "cull", Culling.parse(self.cull))
         for name in ("depth_test", "srgb", "wireframe"):
             value = getattr(self, name)
             if not isinstance(value, bool):
-                raise GeometryError(f"{name} must be True or False, got {value!r}")
+                raise OptionError(f"{name} must be True or False, got {value!r}")
         if not isinstance(self.outputs, Outputs) or not self.outputs & Outputs.COLOR:
-            raise GeometryError(f"outputs must be an Outputs flag including COLOR, got "
+            raise OptionError(f"outputs must be an Outputs flag including COLOR, got "
                                 f"{self.outputs!r}")
 
-    def replace(self, **changes) -> DrawOptions:
+    def replace(self, **changes: Any) -> DrawOptions:
         """A copy with ``changes``; an unknown option is named with the valid ones."""
         names = {f.name for f in fields(self)}
         unknown = sorted(set(changes) - names)
         if unknown:
-            raise GeometryError(f"unknown draw option(s) {', '.join(unknown)}; valid: "
+            raise OptionError(f"unknown draw option(s) {', '.join(unknown)}; valid: "
                                 f"{', '.join(sorted(names))}")
         return replace(self, **changes)
 
     @classmethod
-    def of(cls, options=None, **changes) -> DrawOptions:
+    def of(cls, options: DrawOptions | ShadingMode | str | None = None,
+           **changes: Any) -> DrawOptions:
         """Options from a DrawOptions, a shading mode (or its name) or nothing, with
         ``changes`` applied: what every public drawing function accepts. (The earlier
         keyword ``cull_back_faces`` is accepted for ``cull``.)"""
@@ -90,3 +101,48 @@ class DrawOptions:
 
 _BY_MODE: dict[ShadingMode, DrawOptions] = {}
 _CHANGED: dict[tuple, DrawOptions] = {}  # (options, changes) -> the changed options
+
+
+def check_whole(name: str, value: object, minimum: int) -> int:
+    """``value`` as an int when it is a whole number >= ``minimum`` (bools refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise OptionError(f"{name} must be a whole number >= {minimum}, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class RenderConfig:
+    """What a Renderer is built with: one value that ``compare``, ``batch``, ``animate``,
+    radiosity and the command line pass along, so each rule is checked once.
+
+    Parameters
+    ----------
+    width, height : image size in pixels (>= 1).
+    samples : MSAA samples per pixel (0 = off, which exact per-pixel comparisons use).
+        Whether this GL offers the count is checked when the Renderer is made.
+    backend : where the GL context comes from (:class:`Backend` or its name).
+    device : which GPU, for EGL on a machine with several (None: the default).
+    """
+
+    width: int = 512
+    height: int = 512
+    samples: int = 4
+    backend: Backend = Backend.AUTO
+    device: int | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "width", check_whole("width", self.width, 1))
+        object.__setattr__(self, "height", check_whole("height", self.height, 1))
+        object.__setattr__(self, "samples", check_whole("samples", self.samples, 0))
+        object.__setattr__(self, "backend", Backend.parse(self.backend))
+        if self.device is not None:
+            object.__setattr__(self, "device", check_whole("device", self.device, 0))
+
+    @property
+    def size(self) -> tuple[int, int]:
+        """``(width, height)`` in pixels."""
+        return self.width, self.height
+
+    def replace(self, **changes: Any) -> RenderConfig:
+        """A copy with ``changes`` (checked like the original)."""
+        return replace(self, **changes)

@@ -61,15 +61,19 @@ def test_euler_characteristic(name, chi):
 
 
 def test_cornell_box_parts():
+    """The published box (mm): walls face into the room, the blocks outward, the light
+    down; the parts are the published ones."""
     m = P.cornell_box()
-    assert set(m.groups) == set(P.CORNELL_COLORS)
+    assert set(m.groups) == {"floor", "ceiling", "back_wall", "green_wall", "red_wall",
+                             "light", "short_block", "tall_block"}
     assert (m.face_sizes == 4).all()
-    # walls face into the room: the floor's normal is +y, the back wall's +z
-    np.testing.assert_allclose(m.face_normals[m.groups["floor"]], [[0, 1, 0]])
-    np.testing.assert_allclose(m.face_normals[m.groups["back_wall"]], [[0, 0, 1]])
-    for box in ("short_box", "tall_box"):
-        sub = m.groups[box]
-        assert len(sub) == 6
+    np.testing.assert_allclose(m.face_normals[m.groups["floor"]], [[0, 1, 0]], atol=1e-12)
+    np.testing.assert_allclose(m.face_normals[m.groups["back_wall"]], [[0, 0, -1]],
+                               atol=1e-3)
+    np.testing.assert_allclose(m.face_normals[m.groups["light"]], [[0, -1, 0]], atol=1e-12)
+    for box in ("short_block", "tall_block"):
+        assert len(m.groups[box]) == 5  # (as published: four sides and a top, no bottom)
+    assert m.bounds[1, 1] == pytest.approx(548.8) and m.bounds[0, 1] == 0.0  # mm
 
 
 def test_teapot():

@@ -9,7 +9,7 @@ import pytest
 
 from glshade import Camera, Mesh, MeshFormatError, Scene, load_mesh, save_mesh
 from glshade.geometry import primitives as P
-from glshade.geometry.brep import WingedEdge
+from glshade.brep import WingedEdge
 
 CORPUS = Path(__file__).parent / "corpus"
 

@@ -11,7 +11,7 @@ import pytest
 
 from glshade.batch import BatchSpec, Task
 from glshade.batch.worker import BatchWorker
-from glshade.compare.sweep import icosphere_level, sweep
+from glshade.compare._sweep import icosphere_level, sweep
 from glshade.errors import ClusterError, InputError, OutputWriteError
 from glshade.geometry import primitives
 from glshade.io.meshes import save_mesh

@@ -7,7 +7,7 @@ import pytest
 from glshade import Mesh
 from glshade.errors import GeometryError, InputError
 from glshade.geometry import primitives
-from glshade.geometry.patches import subdivide
+from glshade.radiosity.patches import subdivide
 from glshade.radiosity import (FormFactors, PatchScene, cornell_scene, gauss_seidel,
                                progressive)
 from glshade.render.hemicube import delta_form_factors

@@ -289,12 +289,12 @@ def test_meshes_are_uploaded_once(make_renderer):
 
 
 def test_closed_renderer_and_bad_arguments(make_renderer):
-    from glshade import GeometryError, GlshadeError
+    from glshade import GlshadeError, OptionError
 
     r = make_renderer(8, 8)
-    with pytest.raises(GeometryError, match="unknown shading mode 'toon'; choose one of flat"):
+    with pytest.raises(OptionError, match="unknown shading mode 'toon'; choose one of flat"):
         r.render(Scene(), FRONT, "toon")
-    with pytest.raises(GeometryError, match="cull must be 'auto', True or False"):
+    with pytest.raises(OptionError, match="cull must be 'auto', True or False"):
         r.render(Scene(), FRONT, cull_back_faces="sometimes")  # (the earlier keyword)
     r.close()
     r.close()  # a second close does nothing

@@ -100,9 +100,9 @@ def test_context_error_for_missing_egl_device():
 
 def test_unknown_backend():
     from glshade.render.context import create_context
-    from glshade import ContextError
+    from glshade import OptionError
 
-    with pytest.raises(ContextError, match="unknown backend 'vulkan'; choose one of auto, egl"):
+    with pytest.raises(OptionError, match="unknown backend 'vulkan'; choose one of auto, egl"):
         create_context("vulkan")
 
 

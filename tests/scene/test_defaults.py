@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from glshade import (
-    Camera, DirectionalLight, DrawOptions, GeometryError, Material, Outputs, PointLight, Scene,
-    ShadingMode, default_camera,
+    Camera, Culling, DirectionalLight, DrawOptions, Material, OptionError,
+    Outputs, PointLight, Scene, ShadingMode, default_camera,
 )
 from glshade.geometry import primitives as P
 from glshade.io.scenefile import RenderSettings
@@ -43,14 +43,14 @@ def test_draw_options_validate_and_combine():
     o = DrawOptions.of("flat", depth_test=False)
     assert o.mode is ShadingMode.FLAT and not o.depth_test and o.outputs is Outputs.COLOR
     assert DrawOptions.of(o) is o
-    assert o.replace(cull=True).cull is True
-    with pytest.raises(GeometryError, match="unknown draw option.*culling"):
+    assert o.replace(cull=True).cull is Culling.ON and o.replace(cull=False).cull is Culling.OFF
+    with pytest.raises(OptionError, match="unknown draw option.*culling"):
         o.replace(culling=True)
-    with pytest.raises(GeometryError, match="cull must be 'auto', True or False"):
+    with pytest.raises(OptionError, match="cull must be 'auto', True or False"):
         DrawOptions(cull="sometimes")
-    with pytest.raises(GeometryError, match="unknown shading mode 'toon'; choose one of flat"):
+    with pytest.raises(OptionError, match="unknown shading mode 'toon'; choose one of flat"):
         DrawOptions.of("toon")
-    with pytest.raises(GeometryError, match="must include COLOR|including COLOR"):
+    with pytest.raises(OptionError, match="must include COLOR|including COLOR"):
         DrawOptions(outputs=Outputs.DEPTH)
     with pytest.raises(dataclasses.FrozenInstanceError):
         o.mode = ShadingMode.PHONG

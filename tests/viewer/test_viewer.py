@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from glshade import Camera, Material, PointLight, Scene
+from glshade import Camera, Culling, Material, PointLight, Scene
 from glshade.geometry import primitives as P
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -165,7 +165,7 @@ def test_compare_split_view_and_other_keys(viewer_factory):
     v.key("w")
     assert np.abs(v.screenshot().astype(int) - img.astype(int)).max() > 50  # wireframe on
     v.key("c")
-    assert v.options.cull is True
+    assert v.options.cull is Culling.ON
     v.key("l")
     np.testing.assert_allclose(v.scene.lights[0].position, v.camera.position)
     v.scroll(3)

@@ -17,7 +17,7 @@ from pathlib import Path
 from .._atomic import remove_stale, writing
 from ..parallel import Progress, make_executor
 from .manifest import kept, read_manifest, write_manifest
-from .plan import Task, find_inputs, plan
+from ._plan import Task, find_inputs, plan
 from .worker import BatchSpec, BatchWorker, Row
 
 __all__ = ["batch", "BatchSpec", "BatchResult", "Row", "Task", "find_inputs", "plan"]

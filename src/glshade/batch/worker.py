@@ -18,7 +18,7 @@ from .._atomic import atomic_write, writing
 from ..errors import EnvironmentFailure, GlshadeError
 from ..modes import Outputs
 from ..options import DrawOptions
-from .plan import Task
+from ._plan import Task
 
 __all__ = ["BatchSpec", "BatchWorker", "Row", "view_directions", "write_npz"]
 

@@ -105,7 +105,7 @@ def batch(args) -> int:
 def _sweep(args, modes) -> int:
     from .._atomic import atomic_write
     from ..compare import sweep, sweep_plot
-    from ..compare.sweep import icosphere_level, uv_sphere_level
+    from ..compare._sweep import icosphere_level, uv_sphere_level
     from ..io.images import save_image
     from ..parallel import Progress
 

@@ -46,8 +46,8 @@ def hidden(args) -> int:
     import numpy as np
 
     from ..animate import output_format
-    from ..cpu.hidden import ALGORITHMS, edge_pixels, prepare
-    from ..cpu.hidden.lab import agreement, disagreement_map, id_colors
+    from ..hidden import ALGORITHMS, edge_pixels, prepare
+    from ..hidden.lab import agreement, disagreement_map, id_colors
     from ..io.images import label, opaque, save_image
     from ..io.tables import format_table
 
@@ -126,7 +126,7 @@ def _steps(args, p, results, gpu):
     import numpy as np
 
     from ..animate import write_animation
-    from ..cpu.hidden.lab import id_colors, step_frames
+    from ..hidden.lab import id_colors, step_frames
     from ..io.images import label, opaque
 
     count = 24

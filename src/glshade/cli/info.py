@@ -31,7 +31,7 @@ def mesh_summary(mesh) -> dict:
 
 def topology_summary(mesh) -> dict:
     """Euler's formula and the validity checks of the mesh's winged-edge structure."""
-    from ..geometry.brep import WingedEdge
+    from ..brep import WingedEdge
 
     w = WingedEdge.from_mesh(mesh, strict=False)
     out = w.euler().as_dict()
@@ -42,7 +42,7 @@ def topology_summary(mesh) -> dict:
 def solid_summary(solid, depth: int = 6) -> dict:
     """Volume (Monte Carlo, and the octree's bounds), bounds, leaves and the octree's
     cells and memory per level."""
-    from ..geometry.octree import Octree
+    from ..octree import Octree
 
     volume, error = solid.volume()
     tree = Octree.from_solid(solid, depth)
@@ -132,7 +132,7 @@ def _scene_info(args) -> int:
 
 
 def info(args) -> int:
-    from ..geometry.solids import Solid
+    from ..solids.tree import Solid
     from .inputs import is_scene_file
 
     if is_scene_file(args.mesh):

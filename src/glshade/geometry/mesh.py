@@ -347,7 +347,7 @@ class Mesh:
         """Centre of mass ``(3,)`` of the solid a closed mesh bounds (``kind="solid"``, the
         tetrahedra from the origin to each triangle, with signed volumes as masses) or of
         its surface (``"surface"``, triangle centroids weighted by area)."""
-        from .masspoint import mesh_center_of_mass
+        from ..masspoint import mesh_center_of_mass
 
         return mesh_center_of_mass(self.vertices[self.triangles[0]], kind)
 

@@ -14,7 +14,7 @@ from .mesh import Mesh
 
 __all__ = [
     "cube", "box", "uv_sphere", "icosphere", "torus", "cylinder", "plane", "cornell_box",
-    "teapot", "voxels", "CORNELL_COLORS", "PRIMITIVES", "from_spec",
+    "cornell_parts", "teapot", "voxels", "PRIMITIVES", "from_spec",
 ]
 
 
@@ -169,42 +169,36 @@ def plane(size: float = 2.0) -> Mesh:
 
 
 #: Diffuse colours of the Cornell box's parts (linear RGB).
-CORNELL_COLORS = {
-    "floor": (0.73, 0.73, 0.73), "ceiling": (0.73, 0.73, 0.73),
-    "back_wall": (0.73, 0.73, 0.73), "left_wall": (0.63, 0.065, 0.05),
-    "right_wall": (0.14, 0.45, 0.091), "light": (1.0, 1.0, 1.0),
-    "short_box": (0.73, 0.73, 0.73), "tall_box": (0.73, 0.73, 0.73),
-}
+def cornell_parts() -> dict[str, Mesh]:
+    """The Cornell box's parts from its published measurements (millimetres,
+    :mod:`glshade.geometry.data.cornell`), each a Mesh of quads: walls face into the room,
+    the blocks outward, the light down."""
+    from .data.cornell import CENTER, CORNELL_PARTS, LIGHT_DROP
 
-
-def _quad(points) -> Mesh:
-    return Mesh(points, [[0, 1, 2, 3]])
-
-
-def _rotated_box(size, center, angle_deg) -> Mesh:
-    b = box(size)
-    c, s = np.cos(np.radians(angle_deg)), np.sin(np.radians(angle_deg))
-    rot = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
-    return Mesh(b.vertices @ rot.T + center, b.face_indices.reshape(-1, 4), name="box")
+    out = {}
+    for name, quads in CORNELL_PARTS.items():
+        q = np.array(quads, dtype=np.float64)
+        if name == "light":
+            q[..., 1] -= LIGHT_DROP
+        v = q.reshape(-1, 3)
+        f = np.arange(len(v)).reshape(-1, 4)
+        n = np.cross(q[:, 2] - q[:, 0], q[:, 3] - q[:, 1])  # (diagonals: planar quads)
+        if name.endswith("block"):
+            toward = q.mean(1) - q.reshape(-1, 3).mean(0)  # outward from the block
+        elif name == "light":
+            toward = np.tile([0.0, -1.0, 0.0], (len(q), 1))
+        else:
+            toward = np.asarray(CENTER) - q.mean(1)  # into the room
+        flip = np.einsum("ij,ij->i", n, toward) < 0
+        f[flip] = f[flip][:, ::-1]
+        out[name] = Mesh(v, f, name=name).weld()
+    return out
 
 
 def cornell_box() -> Mesh:
-    """The Cornell box as quads in ``[0, 1]^3``, open towards +z (the camera).
-
-    Walls face into the room; the two boxes are closed and face outward. Each part is a
-    named group (see :data:`CORNELL_COLORS`).
-    """
-    parts = {
-        "floor": _quad([[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]),
-        "ceiling": _quad([[0, 1, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1]]),
-        "back_wall": _quad([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]),
-        "left_wall": _quad([[0, 0, 0], [0, 1, 0], [0, 1, 1], [0, 0, 1]]),
-        "right_wall": _quad([[1, 0, 0], [1, 0, 1], [1, 1, 1], [1, 1, 0]]),
-        "light": _quad([[0.4, 0.999, 0.4], [0.6, 0.999, 0.4], [0.6, 0.999, 0.6],
-                        [0.4, 0.999, 0.6]]),
-        "short_box": _rotated_box((0.3, 0.3, 0.3), (0.65, 0.15, 0.62), -17),
-        "tall_box": _rotated_box((0.3, 0.6, 0.3), (0.33, 0.3, 0.35), 17),
-    }
+    """The published Cornell box (millimetres) as one mesh, each part a named group; the
+    radiosity chapter's materials and camera are in :mod:`glshade.radiosity.cornell`."""
+    parts = cornell_parts()
     m = concatenate(parts.values(), parts.keys())
     m.name = "cornell_box"
     return m
@@ -219,7 +213,7 @@ def _bernstein(t: np.ndarray) -> np.ndarray:
 def teapot(tessellation: int = 8) -> Mesh:
     """The Utah teapot from Newell's 32 Bezier patches, ``tessellation`` quads per patch
     side, welded along patch seams; y up, resting on y = 0."""
-    from ._teapot_data import PATCHES, VERTICES
+    from .data.teapot import PATCHES, VERTICES
 
     k = _check_int("tessellation", tessellation, 1, 256)
     cp = np.array([p.split() for line in VERTICES.strip().splitlines()
@@ -288,14 +282,8 @@ def voxels(occupancy, size: float = 1.0) -> Mesh:
 PRIMITIVES = {
     "cube": cube, "box": box, "uv_sphere": uv_sphere, "icosphere": icosphere,
     "torus": torus, "cylinder": cylinder, "plane": plane, "cornell_box": cornell_box,
-    "teapot": teapot, "cornell_box_mm": lambda: _cornell_mm(),
+    "teapot": teapot,
 }
-
-
-def _cornell_mm() -> Mesh:
-    from .cornell import cornell_box_mm
-
-    return cornell_box_mm()
 
 
 def from_spec(spec: str) -> Mesh:

@@ -86,7 +86,7 @@ def compose_transform(rotation: ArrayLike | None = None, translation: ArrayLike 
                       scale: ArrayLike = 1.0) -> Array:
     """``T @ R @ S`` as a 4x4 matrix from a quaternion, a translation and a (per-axis)
     scale."""
-    from .quaternion import to_matrix
+    from ..quaternion import to_matrix
 
     m = np.eye(4)
     r = np.eye(3) if rotation is None else to_matrix(rotation)

@@ -69,9 +69,9 @@ def load_mesh(path, format: str | None = None) -> Mesh:
 
 def load_source(spec: str) -> Mesh:
     """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
-    MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.io.csgtext`)."""
+    MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`)."""
     if spec.startswith("solid:"):
-        from .csgtext import parse_solid
+        from ..solids.text import parse_solid
 
         return parse_solid(spec[len("solid:"):], "solid")
     if spec.startswith("primitive:"):

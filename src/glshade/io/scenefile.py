@@ -216,8 +216,8 @@ def _check(kind: str, value, where: str):
 
 
 def _add_solid(scene, m: dict, i: int, loc: _Locator, source: str) -> None:
-    """A ``[[solid]]`` table: a CSG ``tree`` in the syntax of :mod:`glshade.io.csgtext`."""
-    from .csgtext import parse_solid
+    """A ``[[solid]]`` table: a CSG ``tree`` in the syntax of :mod:`glshade.solids.text`."""
+    from ..solids.text import parse_solid
 
     if "tree" not in m:
         raise SceneFormatError(f"{source}:{loc.line('solid', i, None)}: [[solid]] {i + 1} "

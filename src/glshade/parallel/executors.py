@@ -16,9 +16,8 @@ import sys
 from collections.abc import Iterable, Iterator
 
 from .._interrupt import check
-from ..errors import InputError
 
-__all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "make_executor"]
+__all__ = ["Executor", "SerialExecutor", "ProcessExecutor"]
 
 
 class Executor:
@@ -165,19 +164,3 @@ class ProcessExecutor(Executor):
         finally:
             if pool is not None:
                 pool.join()
-
-
-def make_executor(factory, args: tuple, jobs: int = 1, items: int | None = None,
-                  scheduler: str | None = None) -> Executor:
-    """Where the work runs: on a Dask cluster if ``scheduler`` is given (an address, or
-    ``"local"`` for a LocalCluster of ``jobs`` workers), else in this process for one job
-    (or one item), else in ``jobs`` local worker processes."""
-    if int(jobs) != jobs or jobs < 1:
-        raise InputError(f"jobs must be a whole number >= 1, got {jobs!r}")
-    if scheduler is not None:
-        from .dask import DaskExecutor
-
-        return DaskExecutor(factory, args, scheduler, workers=int(jobs))
-    if items is not None:
-        jobs = min(jobs, max(items, 1))
-    return SerialExecutor(factory, args) if jobs == 1 else ProcessExecutor(factory, args, jobs)

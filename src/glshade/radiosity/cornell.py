@@ -1,4 +1,4 @@
-"""The Cornell box for radiosity: the published geometry (:mod:`glshade.geometry.cornell`,
+"""The Cornell box for radiosity: the published geometry (:mod:`glshade.geometry.data.cornell`,
 millimetres), the published camera, and RGB approximations of the measured spectral
 reflectances and of the light's emission (the values common renderers use)."""
 
@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.cornell import CORNELL_PARTS, cornell_parts
+from ..geometry.data.cornell import CORNELL_PARTS
+from ..geometry.primitives import cornell_parts
 
 __all__ = ["CORNELL_PARTS", "CORNELL_MATERIALS", "CORNELL_CAMERA", "cornell_parts",
            "cornell_scene"]

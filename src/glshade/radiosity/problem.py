@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ..geometry.patches import Patches, subdivide
+from .patches import Patches, subdivide
 from ..scene import Scene
 
 __all__ = ["PatchScene", "concatenate_patches"]

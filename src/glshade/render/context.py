@@ -15,34 +15,15 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
-import enum
 import os
 import re
 
-from ..errors import ContextError
+from ..errors import ContextError, OptionError
+from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "probe_backends", "tune_malloc"]
 
 REQUIRE = 330
-
-
-class Backend(enum.Enum):
-    """Where the GL context comes from."""
-
-    AUTO = "auto"
-    EGL = "egl"
-    OSMESA = "osmesa"
-    WINDOW = "window"
-
-    @classmethod
-    def parse(cls, value) -> Backend:
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            choices = ", ".join(b.value for b in cls if b is not cls.WINDOW)
-            raise ContextError(f"unknown backend {value!r}; choose one of {choices}") from None
 
 
 _EGL_ERRORS = {
@@ -272,9 +253,12 @@ def create_context(backend="auto", device: int | None = None) -> RenderContext:
     choice = Backend.parse(backend)
     if choice is Backend.AUTO:
         env = os.environ.get("GLSHADE_BACKEND", "").strip()
-        choice = Backend.parse(env) if env else Backend.AUTO
+        try:
+            choice = Backend.parse(env) if env else Backend.AUTO
+        except OptionError as exc:
+            raise OptionError(f"GLSHADE_BACKEND: {exc}") from None
     if choice is Backend.WINDOW:
-        raise ContextError("the window backend belongs to the viewer (glshade view); "
+        raise OptionError("the window backend belongs to the viewer (glshade view); "
                            "headless rendering uses egl or osmesa")
     ladder = [Backend.EGL, Backend.OSMESA] if choice is Backend.AUTO else [choice]
     failures = []

@@ -19,8 +19,8 @@ import weakref
 
 import numpy as np
 
-from ..geometry import solids as L  # (the leaves: L.Box ...)
-from ..geometry.solids import Difference, Intersection, Solid, Transformed, Union
+from ..solids import leaves as L  # (the leaves: L.Box ...)
+from ..solids.tree import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode
 

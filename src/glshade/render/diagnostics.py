@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..modes import Culling
 from ..scene import Camera, Scene
 
 __all__ = ["why_blank"]
 
 
-def why_blank(scene: Scene, camera: Camera, cull="auto") -> str:
+def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str:
     """Why a render of ``scene`` covers no pixel, as far as the data can tell (``cull``: the
     draw's back-face culling)."""
     drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
@@ -33,7 +34,7 @@ def why_blank(scene: Scene, camera: Camera, cull="auto") -> str:
     if extent < 1e-6 * max(distance, 1e-300):
         return (f"the render is blank: the scene is {extent:.3g} across, seen from "
                 f"{distance:.3g} away -- smaller than a pixel (frame it, or scale it up)")
-    if cull is True:  # seen from inside (or cut by the near plane): all back faces
+    if Culling.parse(cull) is Culling.ON:  # from inside (or cut by the near plane): all back
         view = camera.view_matrix()
         for m in drawn:
             if (m.corners @ view[2, :3] + view[2, 3] >= -camera.near).any():

@@ -20,10 +20,11 @@ import numpy as np
 
 from ..errors import (
     EnvironmentFailure, GeometryError, GlshadeError, InputError, RenderWarning, SettingError,
+    UsageError,
 )
 from ..geometry.transforms import box_corners, gl_bytes
-from ..modes import Outputs, ShadingMode
-from ..options import DrawOptions
+from ..modes import Backend, Culling, Outputs, ShadingMode
+from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
@@ -61,11 +62,6 @@ _FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
 #: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
 #: (16), polygon id (4), view depth (4) and the z-buffer (4)
 _BYTES_PER_SAMPLE = 44
-
-
-def _check_whole(name: str, value, minimum: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise InputError(f"{name} must be a whole number >= {minimum}, got {value!r}")
 
 
 def _check_fits(context, width: int, height: int, samples: int) -> None:
@@ -115,6 +111,8 @@ class Renderer:
         "auto".
     device : EGL device index, for machines with several GPUs.
     context : an existing RenderContext to draw with (not released by ``close()``).
+    config : all of the above but the context as one :class:`~glshade.RenderConfig`
+        (``Renderer(config=c)``; then the other arguments are not given).
 
     ``flat_constants`` (on by default on a software rasterizer) lets Phong programs take the
     lighting constants as flat varyings for models with large triangles: faster there, the
@@ -122,21 +120,24 @@ class Renderer:
     """
 
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
-                 backend="auto", device: int | None = None,
-                 context: RenderContext | None = None):
-        _check_whole("width", width, 1)
-        _check_whole("height", height, 1)
-        _check_whole("samples", samples, 0)
+                 backend: Backend | str = "auto", device: int | None = None,
+                 context: RenderContext | None = None, *, config: RenderConfig | None = None):
+        if config is None:
+            config = RenderConfig(width, height, samples, backend, device)
+        elif (width, height, samples, backend, device) != (512, 512, 4, "auto", None):
+            raise UsageError("give a Renderer either a config or width, height, samples, "
+                             "backend and device, not both")
+        self.config = config
         self._owns_context = context is None
-        self.context = context or create_context(backend, device)
+        self.context = context or create_context(config.backend, config.device)
         self.ctx = self.context.ctx
         try:
-            _check_fits(self.context, int(width), int(height), int(samples))
+            _check_fits(self.context, config.width, config.height, config.samples)
         except InputError:
             if self._owns_context:
                 self.context.release()
             raise
-        self.width, self.height, self.samples = int(width), int(height), int(samples)
+        self.width, self.height, self.samples = config.width, config.height, config.samples
         self.shaders = ShaderLibrary(self.context)
         self._csg = CsgPass(self.context, self.shaders)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
@@ -281,8 +282,9 @@ class Renderer:
             gpu = self._gpu_mesh(model.mesh)
             m = model.transform
             model_view = view @ m
-            cull = options.cull if options.cull != "auto" else \
-                gpu.closed and gpu.beyond(model_view, camera.near)  # (seen from outside)
+            cull = options.cull is Culling.ON or (
+                options.cull is Culling.AUTO and gpu.closed
+                and gpu.beyond(model_view, camera.near))  # (seen from outside)
             flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
             prog = self._program(variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used

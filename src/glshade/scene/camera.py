@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
-from ..geometry import quaternion as quat
+from .. import quaternion as quat
 from ..geometry.transforms import look_at, orthographic, perspective
 
 __all__ = ["Camera", "default_camera"]

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, PathFormatError
-from ..geometry import quaternion as quat
+from .. import quaternion as quat
 from .._atomic import atomic_write
 from .camera import Camera
 

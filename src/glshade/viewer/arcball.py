@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry import quaternion as quat
+from .. import quaternion as quat
 
 __all__ = ["sphere_point", "drag_rotation", "Arcball"]
 

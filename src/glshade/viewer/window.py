@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DisplayError
-from ..geometry import quaternion as quat
-from ..modes import ShadingMode
+from .. import quaternion as quat
+from ..modes import Culling, ShadingMode
 from ..options import DrawOptions
 from ..scene import Camera, CameraPath, Keyframe, Material, PointLight, Scene, default_camera
 from .arcball import Arcball
@@ -252,8 +252,9 @@ class Viewer:
         elif char == "w":
             self.options = o.replace(wireframe=not o.wireframe)
         elif char == "c":
-            self.options = o.replace(cull={"auto": True, True: False, False: "auto"}[o.cull])
-            self._say(f"back-face culling: {self.options.cull}")
+            turn = {Culling.AUTO: Culling.ON, Culling.ON: Culling.OFF, Culling.OFF: Culling.AUTO}
+            self.options = o.replace(cull=turn[o.cull])
+            self._say(f"back-face culling: {self.options.cull.value}")
         elif char == "l":
             self.scene.lights = [PointLight(tuple(self.camera.position))]
         elif char == "k":

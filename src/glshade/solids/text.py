@@ -22,7 +22,7 @@ __all__ = ["parse_solid"]
 
 
 def _leaves():
-    from ..geometry import solids as S
+    from . import leaves as S
 
     def box(*s):
         if len(s) not in (1, 3):

@@ -2,18 +2,16 @@
 of Computer Graphics, "Cornell Box Data"), in millimetres: walls face into the room, the
 blocks face outward, the light faces down. The light is lowered 0.5 mm below the ceiling
 (in the data it lies in the ceiling's plane, where the two would z-fight). Materials and the
-camera are in :mod:`glshade.radiosity.cornell`."""
+camera are in :mod:`glshade.radiosity.cornell`; the meshes are built by
+:func:`glshade.geometry.primitives.cornell_parts`."""
 
 from __future__ import annotations
 
-import numpy as np
+__all__ = ["CORNELL_PARTS", "CENTER", "LIGHT_DROP"]
 
-from .merge import concatenate
-from .mesh import Mesh
-
-__all__ = ["CORNELL_PARTS", "cornell_parts", "cornell_box_mm"]
-
-CENTER = np.array([278.0, 274.4, 279.6])
+#: the room's centre (mm), which the walls face
+CENTER = (278.0, 274.4, 279.6)
+#: mm the light hangs below the ceiling's plane
 LIGHT_DROP = 0.5
 
 #: quads (each 4 corners, mm) of every part, as published
@@ -44,32 +42,3 @@ CORNELL_PARTS = {
         [[314.0, 0, 456.0], [314.0, 330.0, 456.0], [265.0, 330.0, 296.0], [265.0, 0, 296.0]],
         [[265.0, 0, 296.0], [265.0, 330.0, 296.0], [423.0, 330.0, 247.0], [423.0, 0, 247.0]]],
 }
-
-def cornell_parts() -> dict[str, Mesh]:
-    """Each part as a Mesh of quads, oriented (walls inward, blocks outward, light down)."""
-    out = {}
-    for name, quads in CORNELL_PARTS.items():
-        q = np.array(quads, dtype=np.float64)
-        if name == "light":
-            q[..., 1] -= LIGHT_DROP
-        v = q.reshape(-1, 3)
-        f = np.arange(len(v)).reshape(-1, 4)
-        n = np.cross(q[:, 2] - q[:, 0], q[:, 3] - q[:, 1])  # (diagonals: planar quads)
-        if name.endswith("block"):
-            toward = q.mean(1) - q.reshape(-1, 3).mean(0)  # outward from the block
-        elif name == "light":
-            toward = np.tile([0.0, -1.0, 0.0], (len(q), 1))
-        else:
-            toward = CENTER - q.mean(1)  # into the room
-        flip = np.einsum("ij,ij->i", n, toward) < 0
-        f[flip] = f[flip][:, ::-1]
-        out[name] = Mesh(v, f, name=name).weld()
-    return out
-
-
-def cornell_box_mm() -> Mesh:
-    """The whole box as one mesh, each part a named group."""
-    parts = cornell_parts()
-    m = concatenate(parts.values(), parts.keys())
-    m.name = "cornell_box_mm"
-    return m

@@ -4,12 +4,12 @@ other. Image space: :func:`zbuffer`, :func:`scanline`, :func:`raycast`; object s
 :func:`depth_sort` (Newell, Newell and Sancha) and :func:`bsp`.
 """
 
-from .bsp import bsp
+from ._bsp import bsp
 from .common import HiddenResult, Prepared, edge_pixels, prepare
-from .depth_sort import DepthSortCycle, depth_sort
-from .raycast import raycast
-from .scanline import scanline
-from .zbuffer import zbuffer
+from ._depth_sort import DepthSortCycle, depth_sort
+from ._raycast import raycast
+from ._scanline import scanline
+from ._zbuffer import zbuffer
 
 __all__ = ["prepare", "Prepared", "HiddenResult", "edge_pixels", "zbuffer", "scanline",
            "raycast", "depth_sort", "bsp", "DepthSortCycle", "ALGORITHMS", "run"]
@@ -21,7 +21,7 @@ ALGORITHMS = {"zbuffer": zbuffer, "scanline": scanline, "depth-sort": depth_sort
 
 def run(name: str, scene_or_mesh, camera, size=(256, 256)) -> HiddenResult:
     """Run the algorithm ``name`` on a Scene or Mesh seen by ``camera``."""
-    from ...errors import InputError
+    from ..errors import InputError
 
     if name not in ALGORITHMS:
         raise InputError(f"unknown hidden-surface algorithm {name!r}; choose from "

@@ -1,4 +1,4 @@
-"""The leaves of CSG trees (:mod:`glshade.geometry.solids`): primitive solids in their own
+"""The leaves of CSG trees (:mod:`glshade.solids`): primitive solids in their own
 frame -- centred at the origin, axis along y -- each with its inside test, bounds and the
 boundary events of a ray (Roth)."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GeometryError
-from .solids import (Events, Solid, _by_distance, _convex, _interval, _positive, _quadratic,
+from .tree import (Events, Solid, _by_distance, _convex, _interval, _positive, _quadratic,
                      _vec)
 
 __all__ = ["Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace"]

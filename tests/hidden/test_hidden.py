@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from glshade import Camera, Mesh, Scene, default_camera
-from glshade.cpu.hidden import (ALGORITHMS, DepthSortCycle, depth_sort, edge_pixels,
+from glshade.hidden import (ALGORITHMS, DepthSortCycle, depth_sort, edge_pixels,
                                 prepare, raycast)
 from glshade.geometry import primitives
 from glshade.modes import Outputs
@@ -153,8 +153,8 @@ def test_depth_sort_comparisons_grow_as_n_squared():
 
 
 def test_step_frames_fill_in(gpu_frames):
-    from glshade.cpu.hidden import ALGORITHMS
-    from glshade.cpu.hidden.lab import step_frames
+    from glshade.hidden import ALGORITHMS
+    from glshade.hidden.lab import step_frames
 
     scene, camera = VIEWS["teapot"]
     p = prepare(scene, camera, SIZE)
@@ -203,7 +203,7 @@ def test_the_lab_on_a_scene_with_a_background_and_a_solid(tmp_path):
 
 
 def test_algorithms_take_a_scene_and_camera_too():
-    from glshade.cpu.hidden import run, zbuffer
+    from glshade.hidden import run, zbuffer
     from glshade.errors import GeometryError, InputError
 
     scene, camera = VIEWS["teapot"]

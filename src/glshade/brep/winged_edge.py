@@ -26,13 +26,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, TopologyError
-from .edges import edge_groups
-from .graph import component_labels as _components
-from .graph import cycle_labels as _cycle_labels
-from .mesh import Mesh
+from ..geometry.edges import edge_groups
+from ..geometry.graph import component_labels as _components
+from ..geometry.graph import cycle_labels as _cycle_labels
+from ..geometry.mesh import Mesh
 from .topology import EulerReport, TopologyReport
 
-__all__ = ["WingedEdge", "EulerReport", "TopologyReport"]
+__all__ = ["WingedEdge"]
 
 Int = NDArray[np.int64]
 

@@ -87,7 +87,7 @@ def test_center_of_mass_l_prism_by_hand():
 def test_center_of_mass_of_a_mesh_object():
     """A Mesh is taken as it is (its triangles); anything else of the wrong shape is named."""
     from glshade.geometry import primitives
-    from glshade.geometry.masspoint import mesh_center_of_mass
+    from glshade.masspoint import mesh_center_of_mass
 
     shifted = primitives.cube().transformed(np.array([[1, 0, 0, 2.0], [0, 1, 0, -1.0],
                                                       [0, 0, 1, 0.5], [0, 0, 0, 1.0]]))

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...errors import GeometryError
-from ...geometry.mesh import Mesh
+from ..errors import GeometryError
+from ..geometry.mesh import Mesh
 
 __all__ = ["Prepared", "HiddenResult", "prepare", "fragments", "resolve_nearest",
            "resolve_last", "edge_pixels", "split_by_plane"]
@@ -97,7 +97,7 @@ class Prepared:
 
 def _scene_triangles(scene_or_mesh, view: np.ndarray):
     """View-space triangles of every visible model, their polygon ids and draw order."""
-    from ...scene import Scene
+    from ..scene import Scene
 
     if isinstance(scene_or_mesh, Mesh):
         models = [(scene_or_mesh, np.eye(4), True)]

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from glshade.errors import InputError, SceneFormatError
-from glshade.io.csgtext import parse_solid
+from glshade.solids import parse_solid
 from glshade.io.scenefile import load_scene
 from glshade.solids import Box, Cylinder, Sphere
 

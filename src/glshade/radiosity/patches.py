@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GeometryError
-from .mesh import Mesh
+from ..geometry.mesh import Mesh
 
 __all__ = ["Patches", "subdivide"]
 

@@ -8,9 +8,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bsp import paint
+from ._bsp import paint
 from .common import HiddenResult, Prepared
-from .zbuffer import zbuffer
+from ._zbuffer import zbuffer
 
 __all__ = ["Agreement", "agreement", "id_colors", "disagreement_map", "step_frames"]
 
@@ -102,7 +102,7 @@ def step_frames(name: str, p: Prepared, result: HiddenResult, count: int = 24) -
 
 def _paint_prefix(p: Prepared, sub: Prepared, result: HiddenResult, stop: int) -> None:
     """Repaint the first ``stop`` pieces of a painter's sequence (kept by the algorithm)."""
-    from .bsp import Pieces
+    from ._bsp import Pieces
 
     pieces = Pieces(sub.tris[:stop], sub.src[:stop], sub.cut[:stop])
     paint(p, result, pieces, np.arange(stop))

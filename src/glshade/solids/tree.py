@@ -22,10 +22,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
-from .analytic import affine_matrix
+from ..geometry.analytic import affine_matrix
 
-__all__ = ["Solid", "Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace",  # noqa: F822
-           "Union", "Intersection", "Difference", "Transformed", "Events"]  # (leaves: below)
+__all__ = ["Solid", "Union", "Intersection", "Difference", "Transformed", "Events"]
 
 
 class Events:
@@ -74,7 +73,7 @@ class Solid:
         return self.transformed(np.diag([*f, 1.0]))
 
     def rotated(self, q: ArrayLike) -> Solid:
-        from .quaternion import to_matrix
+        from ..quaternion import to_matrix
 
         m = np.eye(4)
         m[:3, :3] = to_matrix(q)[:3, :3]
@@ -331,7 +330,7 @@ class Transformed(Solid):
         return self.child._classify(c.min(1), c.max(1))
 
     def _bounds(self):
-        from .transforms import box_corners
+        from ..geometry.transforms import box_corners
 
         b = self.child._bounds()
         if b is None:
@@ -345,18 +344,3 @@ class Transformed(Solid):
         # normals follow by the inverse transpose (t is unchanged: rays are not rescaled)
         ev.normal = ev.normal @ m[:3, :3]
         return ev
-
-
-# ----------------------------------------------------------------------------- leaves
-
-_LEAVES = ("Box", "Cone", "Cylinder", "HalfSpace", "Sphere", "Torus")
-
-
-def __getattr__(name: str):
-    """The leaves live in ``solid_leaves``, which builds on this module; they load on first
-    use, so either module may be imported first (a pickled leaf names ``solid_leaves``)."""
-    if name in _LEAVES:
-        from . import solid_leaves
-
-        return getattr(solid_leaves, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

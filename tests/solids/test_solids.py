@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from glshade.errors import GeometryError
-from glshade.geometry.solids import Box, Cone, Cylinder, HalfSpace, Sphere, Torus
+from glshade.solids import Box, Cone, Cylinder, HalfSpace, Sphere, Torus
 
 SHEAR = np.array([[1.0, 0.4, 0.0, 0.3], [0.0, 1.0, 0.2, -0.1], [0.0, 0.0, 1.5, 0.2],
                   [0.0, 0.0, 0.0, 1.0]])

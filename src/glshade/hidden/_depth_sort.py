@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import DepthSortCycle
-from .bsp import Pieces, paint
+from ..errors import DepthSortCycle
+from ._bsp import Pieces, paint
 from .common import HiddenResult, Prepared, split_by_plane, timed, takes_scene
 
 __all__ = ["depth_sort", "DepthSortCycle"]

@@ -7,8 +7,8 @@ import pytest
 
 from glshade.errors import GeometryError
 from glshade.geometry import primitives
-from glshade.geometry.octree import BOUNDARY, INSIDE, OUTSIDE, Octree, winding_number
-from glshade.geometry.solids import Box, Cylinder, Torus
+from glshade.octree import BOUNDARY, INSIDE, OUTSIDE, Octree, winding_number
+from glshade.solids import Box, Cylinder, Torus
 
 
 @pytest.mark.parametrize("solid, exact", [
@@ -77,7 +77,7 @@ def test_neighbours_and_bad_depths():
     assert {OUTSIDE, INSIDE, BOUNDARY} <= set(nb.ravel().tolist())
     with pytest.raises(GeometryError, match="depth"):
         Octree.from_solid(Box(), 13)
-    from glshade.geometry.solids import HalfSpace
+    from glshade.solids import HalfSpace
 
     with pytest.raises(GeometryError, match="unbounded"):
         Octree.from_solid(HalfSpace(), 3)

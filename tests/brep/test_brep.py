@@ -6,7 +6,7 @@ import pytest
 
 from glshade import Mesh, TopologyError, concatenate, load_mesh, newell_normal
 from glshade.geometry import primitives as P
-from glshade.geometry.brep import WingedEdge
+from glshade.brep import WingedEdge
 
 
 def counts(w):

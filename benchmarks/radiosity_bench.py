@@ -59,10 +59,10 @@ def main() -> None:
         rows = []
         problem = squares()
         for n in (32, 64, 128, 256, 512):
-            with FormFactors(problem, n, samples=8, context=ctx) as ff:
+            with FormFactors(problem, n, quadrature=8, context=ctx) as ff:
                 t = time.perf_counter()
                 f = ff.row(0)[1]
-                per = (time.perf_counter() - t) / ff.samples[0] ** 2
+                per = (time.perf_counter() - t) / ff.quadrature[0] ** 2
             rows.append((str(n), f"{f:.5f}", f"{100 * abs(f - EXACT) / EXACT:.3f}%",
                          f"{1 / per:.0f}"))
         print("form factor of parallel unit squares (exact 0.19982), shooter 8x8 points")
@@ -77,7 +77,7 @@ def main() -> None:
         with FormFactors(problem, 128, context=ctx) as ff:
             t = time.perf_counter()
             f = ff.row(0)[1]
-            rows.append((f"GPU row, N=128, {ff.samples[0]}x{ff.samples[0]} points", f"{f:.5f}",
+            rows.append((f"GPU row, N=128, {ff.quadrature[0]}x{ff.quadrature[0]} points", f"{f:.5f}",
                          f"{100 * abs(f - EXACT) / EXACT:.4f}%",
                          f"{1000 * (time.perf_counter() - t):.2f}"))
         print("\nCPU reference (double Gauss quadrature, no occlusion) against one GPU row")

@@ -92,8 +92,8 @@ class Culling(enum.Enum):
         return self is not Culling.OFF
 
 
-class Projection(enum.Enum):
-    """A camera's projection."""
+class Projection(str, enum.Enum):
+    """A camera's projection (equal to its value as a string, so older comparisons hold)."""
 
     PERSPECTIVE = "perspective"
     ORTHOGRAPHIC = "orthographic"

@@ -19,7 +19,13 @@ import numpy as np
 from .errors import OptionError
 from .modes import Backend, Culling, Outputs, ShadingMode
 
-__all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "check_whole"]
+__all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS",
+           "check_whole", "check_size", "check_samples"]
+
+#: the largest image side glshade makes (GL's framebuffers go no further on most drivers)
+MAX_SIZE = 16384
+#: the MSAA sample counts a draw may ask for (0: off); the GL may offer fewer
+MSAA_COUNTS = (0, 1, 2, 4, 8, 16, 32, 64)
 
 #: image size (width, height) when neither the command line nor a scene file gives one
 DEFAULT_SIZE = (800, 600)
@@ -110,6 +116,25 @@ def check_whole(name: str, value: object, minimum: int) -> int:
     return int(value)
 
 
+def check_size(width: object, height: object) -> tuple[int, int]:
+    """The one rule for an image size: whole pixels, 1 to MAX_SIZE a side."""
+    ok = all(not isinstance(v, bool) and isinstance(v, (int, np.integer))
+             and 1 <= v <= MAX_SIZE for v in (width, height))
+    if not ok:
+        raise OptionError(f"size must be whole pixels from 1 to {MAX_SIZE} a side (width x "
+                          f"height such as 800x600), got {width!r}x{height!r}")
+    return int(width), int(height)  # type: ignore[call-overload]
+
+
+def check_samples(samples: object) -> int:
+    """The one rule for MSAA samples: 0 (off) or a power of two up to 64."""
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
+            or samples not in MSAA_COUNTS:
+        raise OptionError(f"samples (MSAA) must be 0 (off) or a power of two up to 64 such "
+                          f"as 4, got {samples!r}")
+    return int(samples)
+
+
 @dataclass(frozen=True)
 class RenderConfig:
     """What a Renderer is built with: one value that ``compare``, ``batch``, ``animate``,
@@ -131,9 +156,10 @@ class RenderConfig:
     device: int | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "width", check_whole("width", self.width, 1))
-        object.__setattr__(self, "height", check_whole("height", self.height, 1))
-        object.__setattr__(self, "samples", check_whole("samples", self.samples, 0))
+        width, height = check_size(self.width, self.height)
+        object.__setattr__(self, "width", width)
+        object.__setattr__(self, "height", height)
+        object.__setattr__(self, "samples", check_samples(self.samples))
         object.__setattr__(self, "backend", Backend.parse(self.backend))
         if self.device is not None:
             object.__setattr__(self, "device", check_whole("device", self.device, 0))

@@ -171,9 +171,9 @@ MALFORMED = {
     "no_source": ("[[mesh]]\ncolor = [1, 0, 0]\n", ":1: [[mesh]] 1 needs a 'source'"),
     "no_mesh": ("[render]\nsize = [10, 10]\n", "the scene has no [[mesh]]"),
     "bad_mode": ('[render]\nmode = "toon"\n[[mesh]]\nsource = "primitive:cube"\n',
-                 ":2: [render] key 'mode' must be one of 'flat'"),
+                 ":2: [render] key 'mode': unknown shading mode 'toon'; choose one of flat"),
     "bad_size": ('[render]\nsize = [0, 10]\n[[mesh]]\nsource = "primitive:cube"\n',
-                 "key 'size' must be [width, height]"),
+                 "key 'size' must be whole pixels from 1 to 16384 a side"),
     "light_without_position": ('[[mesh]]\nsource = "primitive:cube"\n[[light]]\n'
                                'color = [1, 1, 1]\n', ":3: [[light]] 1: a point light needs"),
     "keyframe_times": ('[[mesh]]\nsource = "primitive:cube"\n[[camera.keyframe]]\ntime = 1\n'

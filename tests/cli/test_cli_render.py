@@ -64,7 +64,7 @@ def test_flat_and_phong_differ(tmp_path):
 
 @pytest.mark.parametrize("args, message", [
     (("--size", "big"), "expected WIDTHxHEIGHT such as 800x600"),
-    (("--mode", "toon"), "unknown mode 'toon'; choose one of flat"),
+    (("--mode", "toon"), "unknown shading mode 'toon'; choose one of flat"),
     (("--eye", "1,2"), "expected three numbers x,y,z"),
     (("--ka", "2"), "expected a number in [0, 1]"),
     (("--backend", "dx12"), "invalid choice: 'dx12'"),

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from glshade import Mesh
-from glshade.errors import GeometryError, InputError
+from glshade.errors import GeometryError, InputError, SceneError
 from glshade.geometry import primitives
 from glshade.radiosity.patches import subdivide
 from glshade.radiosity import (FormFactors, PatchScene, cornell_scene, gauss_seidel,
@@ -96,7 +96,7 @@ def test_error_shrinks_with_resolution(factors):
     """With the shooter integrated finely, what is left is the hemicube's pixels."""
     first, second, exact = PARALLEL
     problem = pair(first, second)
-    errors = [abs(group_factor(problem, factors(problem, n, samples=8)) - exact) / exact
+    errors = [abs(group_factor(problem, factors(problem, n, quadrature=8)) - exact) / exact
               for n in (8, 32, 128)]
     assert errors[0] > errors[1] > errors[2], errors
     assert errors[2] < 0.003
@@ -210,7 +210,7 @@ def test_bad_input_says_what_and_where():
     scene.add(primitives.cube(), LIGHT)
     with pytest.raises(InputError, match="hot wall: diffuse reflectance"):
         PatchScene.from_scene(scene, 0.5)
-    with pytest.raises(GeometryError, match=r"reflectance must be 3 numbers in \[0, 1\]"):
+    with pytest.raises(SceneError, match=r"reflectance must be 3 numbers in \[0, 1\]"):
         Material(reflectance=(0.5, 1.2, 0.5))
     with pytest.raises(GeometryError, match="patch size"):
         subdivide(primitives.cube(), 0.0)
@@ -240,5 +240,5 @@ def test_radiosity_mode_shows_vertex_colors(make_renderer):
     camera = Camera.look_at((0, 0, 3), (0, 0, 0))  # (the plane faces +z)
     image = make_renderer(32, 32).render(scene, camera, "radiosity")
     assert np.all(np.abs(image[8:24, 8:24, :3].astype(int) - 128) <= 1)
-    with pytest.raises(GeometryError, match="one per vertex"):
+    with pytest.raises(SceneError, match="one per vertex"):
         scene.add(plane, vertex_colors=np.zeros((3, 3)))

@@ -128,11 +128,11 @@ def test_editing_sizes_reuses_the_program(make_renderer):
 
 
 def test_unbounded_solids_are_refused():
-    from glshade.errors import GeometryError
+    from glshade.errors import SceneError
 
-    with pytest.raises(GeometryError, match="bounded"):
+    with pytest.raises(SceneError, match="bounded"):
         Scene().add(HalfSpace())
-    with pytest.raises(GeometryError, match="bounded"):
+    with pytest.raises(SceneError, match="bounded"):
         Scene().add(Sphere() | HalfSpace())
 
 

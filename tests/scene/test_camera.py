@@ -4,7 +4,7 @@ import numpy as np
 import pyrr
 import pytest
 
-from glshade import Camera, CameraPath, GeometryError, Keyframe
+from glshade import Camera, CameraPath, GeometryError, Keyframe, OptionError, SceneError
 from glshade import quaternion as Q
 from glshade.errors import PathFormatError
 
@@ -64,11 +64,11 @@ def test_frame_fits_bounding_sphere():
 
 
 def test_camera_validation():
-    with pytest.raises(GeometryError, match="fov_y"):
+    with pytest.raises(SceneError, match="fov_y"):
         Camera(fov_y=0)
-    with pytest.raises(GeometryError, match="near < far"):
+    with pytest.raises(SceneError, match="near < far"):
         Camera(near=2, far=1)
-    with pytest.raises(GeometryError, match="projection"):
+    with pytest.raises(OptionError, match="projection"):
         Camera(projection="fisheye")
     with pytest.raises(GeometryError, match="parallel"):
         Camera.look_at([0, 5, 0], [0, 0, 0])
@@ -123,12 +123,12 @@ def test_turntable_circles_the_centre_at_constant_speed(degrees):
     steps = [Q.angle_between(c0.orientation, c1.orientation) for c0, c1 in zip(cams, cams[1:])]
     np.testing.assert_allclose(steps, abs(np.radians(degrees)) / 60, atol=1e-9)
     assert path.duration == 3.0
-    with pytest.raises(GeometryError, match="duration"):
+    with pytest.raises(SceneError, match="duration"):
         CameraPath.turntable(start, centre, 0.0)
 
 
 def test_path_times_must_increase():
-    with pytest.raises(GeometryError, match="times must increase: key 2 has time 1 after 1"):
+    with pytest.raises(SceneError, match="times must increase: key 2 has time 1 after 1"):
         CameraPath([Keyframe.look_at(1, [0, 0, 5], [0, 0, 0]),
                     Keyframe.look_at(1, [5, 0, 0], [0, 0, 0])])
 

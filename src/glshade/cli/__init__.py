@@ -1,5 +1,6 @@
 """The ``glshade`` command line tool: the grammar (parser), argument types (validators),
-what is rendered (inputs) and the subcommands (commands, info).
+the typed value each subcommand's arguments become (arguments), what is rendered
+(inputs) and the subcommands (commands, info, hidden, radiosity).
 
 Exit status: 0 on success; 2 for bad input (arguments, or an input file that is missing
 or malformed), reported in one line on stderr; 1 for a failure of the environment (no GL
@@ -33,13 +34,14 @@ def _main(argv: list[str] | None) -> int:
     import warnings
 
     from ..errors import GlshadeError, exit_status
+    from .arguments import from_namespace
     from .parser import build_parser
 
     # a warning is one line on stderr, like an error
     warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
     args = build_parser().parse_args(argv)
-    try:
-        return args.func(args)
+    try:  # the Namespace becomes the subcommand's typed arguments here, and only here
+        return args.func(from_namespace(args.arguments, args))
     except (GlshadeError, OSError) as exc:  # expected: one line, no traceback
         if isinstance(exc, BrokenPipeError) and _stdout_closed():
             return 141  # (`glshade info ... | head`: the reader has all it wanted)

@@ -9,6 +9,7 @@ import sys
 
 from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, UsageError
 from ..io.scenefile import RenderSettings
+from . import arguments as a
 from .info import info
 from .inputs import load_job
 
@@ -18,7 +19,7 @@ __all__ = ["info", "render", "animate", "batch", "compare", "view", "doctor"]
 COMPARE_DEFAULTS = RenderSettings(width=256, height=256, samples=0)
 
 
-def render(args) -> int:
+def render(args: a.RenderCommandArgs) -> int:
     from ..io.images import save_image
     from ..render.renderer import Renderer
 
@@ -38,7 +39,7 @@ def render(args) -> int:
 TURNTABLE_SECONDS = 4.0
 
 
-def animate(args) -> int:
+def animate(args: a.AnimateArgs) -> int:
     from ..animate import animate as run, output_format
 
     output_format(args.output)  # a bad extension fails before any rendering
@@ -74,22 +75,21 @@ def animate(args) -> int:
     return EXIT_OK
 
 
-def batch(args) -> int:
+def batch(args: a.BatchArgs) -> int:
     from ..batch import BatchSpec, batch as run
     from ..scene import Material
 
     if args.eye is not None or args.target is not None:
         raise UsageError("batch frames every mesh itself; use --views N for more "
                          "directions, not --eye/--target")
-    given = {k: getattr(args, k) for k in ("color", "ka", "kd", "ks", "shininess")
-             if getattr(args, k) is not None}
+    given = args.given("color", "ka", "kd", "ks", "shininess")
     Material.from_values(given)  # bad values fail now, not once per mesh
     options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}))
     spec = BatchSpec(modes=tuple(m.value for m in args.modes), outputs=args.outputs,
                      size=args.size or (256, 256),
                      samples=4 if args.samples is None else args.samples, views=args.views,
                      options=options, material=given, background=args.background,
-                     lights=tuple(args.light or ()), crease=args.crease, fov=args.fov,
+                     lights=args.light, crease=args.crease, fov=args.fov,
                      backend=args.backend)
     jobs = args.jobs or (os.cpu_count() or 1)
     result = run(args.inputs, args.output, spec, jobs=jobs, scheduler=args.scheduler,
@@ -102,7 +102,7 @@ def batch(args) -> int:
     return EXIT_OK if not result.count("error") else EXIT_USAGE
 
 
-def _sweep(args, modes) -> int:
+def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
     from .._atomic import atomic_write
     from ..compare import sweep, sweep_plot
     from ..compare._sweep import icosphere_level, uv_sphere_level
@@ -135,7 +135,7 @@ def _sweep(args, modes) -> int:
     return EXIT_OK
 
 
-def compare(args) -> int:
+def compare(args: a.CompareArgs) -> int:
     from ..compare import compare as run
     from ..io.images import save_image
 
@@ -155,7 +155,7 @@ def compare(args) -> int:
     return EXIT_OK
 
 
-def view(args) -> int:
+def view(args: a.ViewArgs) -> int:
     from ..viewer.window import Viewer
 
     job = load_job(args, args.mesh)
@@ -168,7 +168,7 @@ def view(args) -> int:
     return EXIT_OK
 
 
-def doctor(args) -> int:
+def doctor(args: a.DoctorArgs) -> int:
     from ..render.context import create_context, probe_backends
 
     ok = True

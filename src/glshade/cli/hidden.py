@@ -2,47 +2,15 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..errors import EXIT_OK, UsageError
+from .arguments import HiddenArgs
 from .inputs import load_job
 
-__all__ = ["add_parser", "hidden"]
+__all__ = ["hidden"]
 
-CHOICES = ("zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu")
-
-
-def _algorithms(text: str) -> list[str]:
-    import argparse
-
-    names = [t.strip() for t in text.split(",") if t.strip()]
-    bad = [n for n in names if n not in CHOICES]
-    if bad or not names:
-        raise argparse.ArgumentTypeError(f"unknown algorithm {', '.join(bad) or '(none)'}; "
-                                         f"choose from {', '.join(CHOICES)}")
-    return names
-
-
-def add_parser(sub, validators) -> None:
-    v = validators
-    p = sub.add_parser("hidden", help="the classic hidden-surface algorithms side by side, "
-                       "checked against the GPU z-buffer")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
-                   "scene file (.toml)")
-    p.add_argument("-o", "--output", required=True, type=v.image_output,
-                   help="the grid of id images and disagreement maps (.png)")
-    p.add_argument("--algorithms", type=_algorithms, default=list(CHOICES),
-                   help="comma-separated, from " + ", ".join(CHOICES) + " (default: all)")
-    p.add_argument("--steps", metavar="OUT.gif", help="also animate the algorithms at work")
-    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default 256x256)")
-    p.add_argument("--eye", type=v.vec3, metavar="X,Y,Z",
-                   help="camera position (default: auto framing)")
-    p.add_argument("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
-    p.add_argument("--fov", type=v.fov, help="vertical field of view in degrees")
-    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
-    p.set_defaults(func=hidden, light=None, background=None, color=None, ka=None, kd=None,
-                   ks=None, shininess=None, crease=None, samples=None, srgb=None, mode=None)
-
-
-def hidden(args) -> int:
+def hidden(args: HiddenArgs) -> int:
     import numpy as np
 
     from ..animate import output_format
@@ -54,7 +22,7 @@ def hidden(args) -> int:
     if args.steps:
         if output_format(args.steps) == "dir":
             raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
-    args.size = args.size or (256, 256)
+    args = replace(args, size=args.size or (256, 256))
     job = load_job(args, args.mesh)
     if job.scene.solids:  # the algorithms are for polygons: so is the GPU's reference here
         import copy
@@ -121,7 +89,7 @@ def _gpu(job, w, h, backend):
     return frame.face_id, frame.depth, seconds
 
 
-def _steps(args, p, results, gpu):
+def _steps(args: HiddenArgs, p, results, gpu):
     """The algorithms at work side by side, as an animation."""
     import numpy as np
 

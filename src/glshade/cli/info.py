@@ -6,6 +6,7 @@ import json
 
 from ..errors import EXIT_OK
 from ..io.meshes import load_source
+from .arguments import InfoArgs
 
 __all__ = ["info", "mesh_summary", "topology_summary"]
 
@@ -54,7 +55,7 @@ def solid_summary(solid, depth: int = 6) -> dict:
             "octree_volume_bounds": [inner, outer], "octree_levels": tree.counts()}
 
 
-def _solid_info(args, solid) -> int:
+def _solid_info(args: InfoArgs, solid) -> int:
     s = solid_summary(solid)
     s["source"] = args.mesh
     if args.json:
@@ -102,7 +103,7 @@ def scene_summary(scene_file) -> dict:
             "samples": st.samples}
 
 
-def _scene_info(args) -> int:
+def _scene_info(args: InfoArgs) -> int:
     from ..io.scenefile import load_scene
 
     s = scene_summary(load_scene(args.mesh))
@@ -131,7 +132,7 @@ def _scene_info(args) -> int:
     return EXIT_OK
 
 
-def info(args) -> int:
+def info(args: InfoArgs) -> int:
     from ..solids.tree import Solid
     from .inputs import is_scene_file
 

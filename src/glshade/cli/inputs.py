@@ -15,6 +15,7 @@ from ..io.meshes import load_source
 from ..io.scenefile import RenderSettings
 from ..options import DrawOptions
 from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
+from .arguments import RenderArgs
 
 __all__ = ["Job", "load_job", "is_scene_file", "build_scene"]
 
@@ -57,17 +58,13 @@ class Job:
             raise UsageError(f"{where}: {exc}") from None
 
 
-def _given(args, *names) -> dict:
-    return {n: getattr(args, n) for n in names if getattr(args, n, None) is not None}
-
-
-def build_scene(mesh, args, aspect: float) -> tuple[Scene, Camera]:
+def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
     """A one-mesh scene and its camera from the render options (render, view, compare)."""
-    scene = Scene(**_given(args, "background"))
-    scene.add(mesh, Material.from_values(_given(args, "color", "ka", "kd", "ks", "shininess")),
-              crease=getattr(args, "crease", None))
-    lens = {"fov_y": args.fov} if getattr(args, "fov", None) is not None else {}
-    eye, target = getattr(args, "eye", None), getattr(args, "target", None)
+    scene = Scene(**args.given("background"))
+    scene.add(mesh, Material.from_values(args.given("color", "ka", "kd", "ks", "shininess")),
+              crease=args.crease)
+    lens = {"fov_y": args.fov} if args.fov is not None else {}
+    eye, target = args.eye, args.target
     if eye is not None or target is not None:  # (animate has neither: it turns round)
         eye = eye if eye is not None else (0.0, 0.0, 5.0)
         target = target if target is not None else tuple(scene.bounds.mean(0))
@@ -77,16 +74,16 @@ def build_scene(mesh, args, aspect: float) -> tuple[Scene, Camera]:
         camera = Camera.look_at(eye, target, near=reach * 1e-3, far=reach * 2, **lens)
     else:
         camera = default_camera(scene.bounds, aspect, **lens)
-    for position in getattr(args, "light", None) or ():  # none: the default headlight
+    for position in args.light:  # none: the default headlight
         scene.add_light(PointLight(position))
     return scene, camera
 
 
-def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
+def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None) -> Job:
     """Resolve ``spec`` and ``args`` into a Job: command line > scene file > ``defaults``
     (a RenderSettings; the dataclass's own when None)."""
     base = defaults or RenderSettings()
-    time = getattr(args, "time", None)
+    time = args.time
     if is_scene_file(spec):
         from ..io.scenefile import load_scene
 
@@ -110,13 +107,13 @@ def load_job(args, spec: str, defaults: RenderSettings | None = None) -> Job:
             scene, camera = build_scene(mesh, args, size[0] / size[1])
         except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
-    overrides = _given(args, "mode", "srgb")
+    overrides = args.given("mode", "srgb")
     settings = replace(settings, options=settings.options.replace(**overrides))
     origin = dict(settings.origin)
     if args.size:
         settings.width, settings.height = args.size
         origin.pop("size", None)
-    if getattr(args, "samples", None) is not None:
+    if args.samples is not None:
         settings.samples = args.samples
         origin.pop("samples", None)
     settings.origin = origin

@@ -1,4 +1,7 @@
-"""The command line's grammar: subcommands, their options and help."""
+"""The command line's grammar: every subcommand, its options and help, in one place. Each
+subcommand names its command function (``func``) and the typed value its arguments become
+(``arguments``, :mod:`.arguments`); the commands live in :mod:`.commands`, :mod:`.info`,
+:mod:`.hidden` and :mod:`.radiosity`."""
 
 from __future__ import annotations
 
@@ -7,8 +10,10 @@ import dataclasses
 
 from .._version import __version__
 from ..errors import EXIT_USAGE
+from ..modes import HEADLESS_BACKENDS
 from ..options import DEFAULT_SIZE
 from ..scene import Camera, Material
+from . import arguments as a
 from . import commands as c
 from . import hidden as hidden_command
 from . import radiosity as radiosity_command
@@ -22,18 +27,40 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
 
 
+def _examples(*lines: str) -> dict:
+    """An epilog of examples for a subcommand's --help (kept as written)."""
+    return {"epilog": "examples:\n" + "\n".join(f"  {line}" for line in lines),
+            "formatter_class": argparse.RawDescriptionHelpFormatter}
+
+
+def add_backend(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--backend", choices=HEADLESS_BACKENDS, default="auto",
+                   help="where the GL context comes from: auto (EGL, else OSMesa), egl or "
+                   "osmesa (default auto; GLSHADE_BACKEND overrides auto)")
+
+
+def add_quiet(p: argparse.ArgumentParser, what: str = "no summary line") -> None:
+    p.add_argument("-q", "--quiet", action="store_true", help=what)
+
+
+MESH_HELP = ("a mesh file (.obj .off .ply .stl; glTF and others with glshade[formats]), "
+             "primitive:NAME[:ARGS] (e.g. primitive:icosphere:3), solid:TEXT (a CSG tree, "
+             "e.g. \"solid:box(2) - sphere(1.2)\") or a scene file (.toml)")
+
+
 def _defaults(cls) -> dict:
     return {f.name: f.default for f in dataclasses.fields(cls)}
 
 
-def add_render_options(p: argparse.ArgumentParser) -> None:
-    """Options shared by render, view and compare. An option left out is None here: its
-    default is decided where the value is used (scene file, then the dataclasses), and the
-    help text quotes those defaults."""
+def add_render_options(p: argparse.ArgumentParser, size_default: str | None = None) -> None:
+    """Options shared by render, view, compare and batch. An option left out is None here:
+    its default is decided where the value is used (scene file, then the dataclasses), and
+    the help text quotes those defaults."""
     mat, cam = _defaults(Material), _defaults(Camera)
     w, h = DEFAULT_SIZE
     p.add_argument("--size", type=v.size, metavar="WxH",
-                   help=f"image size (default: the scene file's, else {w}x{h})")
+                   help=f"image size (default: the scene file's, else "
+                   f"{size_default or f'{w}x{h}'})")
     p.add_argument("--samples", type=v.samples, help="MSAA samples, 0 = off (default 4)")
     p.add_argument("--eye", type=v.vec3, metavar="X,Y,Z", help="camera position "
                    "(default: auto framing)")
@@ -52,7 +79,7 @@ def add_render_options(p: argparse.ArgumentParser) -> None:
                    help=f"specular exponent n (default {mat['shininess']:g})")
     p.add_argument("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
                    "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
-    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
+    add_backend(p)
     p.add_argument("--srgb", action="store_true", default=None,
                    help="encode the linear result as sRGB")
 
@@ -75,28 +102,38 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     p = sub.add_parser("info", help="print counts, polygon sizes, bounds and area of a mesh "
-                       "(or what a scene file holds)")
-    p.add_argument("mesh", metavar="MESH|SCENE", help="a mesh file (.obj .off .ply .stl), "
-                   "primitive:NAME[:ARGS] (e.g. primitive:icosphere:3), solid:TEXT or a scene "
-                   "file (.toml)")
+                       "(or what a scene file holds)",
+                       **_examples("glshade info assets/teapot.obj",
+                                   "glshade info \"solid:box(2) - cylinder(0.5, 3)\" --json",
+                                   "glshade info assets/scenes/cornell-box.toml"))
+    p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("--json", action="store_true", help="machine-readable output")
-    p.set_defaults(func=c.info)
+    p.set_defaults(func=c.info, arguments=a.InfoArgs)
 
-    p = sub.add_parser("render", help="render a mesh headless to an image")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file or primitive:NAME[:ARGS]")
+    p = sub.add_parser("render", help="render a mesh, solid or scene headless to an image",
+                       **_examples("glshade render assets/teapot.obj -o teapot.png --mode gouraud",
+                                   "glshade render primitive:torus -o t.png --size 256x256 "
+                                   "--samples 0",
+                                   "glshade render \"solid:box(2) - sphere(1.2)\" -o part.png",
+                                   "glshade render assets/scenes/teapot-orbit.toml -o f.png "
+                                   "--time 1.5"))
+    p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("-o", "--output", required=True, type=v.image_output,
                    help="output image (.png; .jpg, .webp ... by extension)")
     p.add_argument("--mode", type=v.mode, default=None,
                    help="flat, gouraud, phong, normals, depth or radiosity (default phong, or the "
                    "scene file's)")
-    p.add_argument("-q", "--quiet", action="store_true")
+    add_quiet(p)
     p.add_argument("--time", type=float, help="with a scene file: the moment on its camera "
                    "path (seconds)")
     add_render_options(p)
-    p.set_defaults(func=c.render)
+    p.set_defaults(func=c.render, arguments=a.RenderCommandArgs)
 
     p = sub.add_parser("animate", help="render a scene file's camera path, or a turntable "
-                       "round a mesh, to GIF, PNG, MP4 or frames")
+                       "round a mesh, to GIF, PNG, MP4 or frames",
+                       **_examples("glshade animate assets/scenes/teapot-orbit.toml -o orbit.gif",
+                                   "glshade animate primitive:teapot -o spin.png --frames 48 "
+                                   "--modes flat,gouraud,phong --jobs 2"))
     p.add_argument("scene", metavar="SCENE.toml|MESH", help="a scene file with a camera path, "
                    "or a mesh (a turn round it: 4 s unless --frames or --duration)")
     p.add_argument("-o", "--output", required=True, help="out.gif, out.png (APNG), out.mp4 "
@@ -113,14 +150,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--size", type=v.size, metavar="WxH", help="frame size (default: the "
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
-    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
-    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
-    p.set_defaults(func=c.animate)
+    add_backend(p)
+    add_quiet(p, "no progress bar or summary")
+    p.set_defaults(func=c.animate, arguments=a.AnimateArgs)
 
     p = sub.add_parser("compare", help="flat, Gouraud and Phong side by side, with errors "
-                       "against a reference")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
-                   "scene file (.toml)")
+                       "against a reference",
+                       **_examples("glshade compare primitive:icosphere:2 -o grid.png --diff",
+                                   "glshade compare assets/teapot.obj -o grid.png --reference "
+                                   "phong-fine --json m.json",
+                                   "glshade compare primitive:icosphere --sweep --levels 0..6 "
+                                   "-o sweep.png"))
+    p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("-o", "--output", required=True, type=v.image_output,
                    help="output image: the grid (or the plot, with --sweep)")
     p.add_argument("--modes", type=v.modes, default="flat,gouraud,phong",
@@ -135,11 +176,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--levels", type=v.levels, default=list(range(0, 7)),
                    help="levels for --sweep, e.g. 0..6")
     add_executor_options(p, default_jobs="1", what="--sweep levels")
-    add_render_options(p)
-    p.set_defaults(func=c.compare)
+    add_render_options(p, size_default="%dx%d per cell" % c.COMPARE_DEFAULTS.size)
+    p.set_defaults(func=c.compare, arguments=a.CompareArgs)
 
     p = sub.add_parser("batch", help="render every mesh of folders or globs to images "
-                       "(and depth/normal/id arrays), resumably, locally or on Dask")
+                       "(and depth/normal/id arrays), resumably, locally or on Dask",
+                       **_examples("glshade batch assets/ -o thumbs --views 2 --jobs 2",
+                                   "glshade batch 'data/**/*.ply' -o out --outputs depth,normal "
+                                   "--scheduler local"))
     p.add_argument("inputs", nargs="+", metavar="INPUT", help="mesh files, folders (searched "
                    "recursively) or globs such as 'data/**/*.ply'")
     p.add_argument("-o", "--output", required=True, metavar="OUTDIR",
@@ -153,16 +197,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--overwrite", action="store_true", help="render again the meshes whose "
                    "outputs exist (default: keep them, so a rerun resumes)")
     add_executor_options(p, what="meshes")
-    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
-    add_render_options(p)
-    p.set_defaults(func=c.batch, size=None)
+    add_quiet(p, "no progress bar or summary")
+    add_render_options(p, size_default="256x256")
+    p.set_defaults(func=c.batch, arguments=a.BatchArgs)
 
-    radiosity_command.add_parser(sub, v)
-    hidden_command.add_parser(sub, v)
+    add_radiosity(sub)
+    add_hidden(sub)
 
-    p = sub.add_parser("view", help="explore a mesh in a window (keys: h)")
-    p.add_argument("mesh", metavar="MESH", help="a mesh file, primitive:NAME[:ARGS] or a "
-                   "scene file (.toml)")
+    p = sub.add_parser("view", help="explore a mesh in a window (keys: h)",
+                       **_examples("glshade view assets/teapot.obj",
+                                   "glshade view primitive:teapot --compare",
+                                   "glshade view assets/scenes/csg-part.toml --mode gouraud"))
+    p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("--mode", type=v.mode, help="initial shading mode (default phong)")
     p.add_argument("--compare", action="store_true", help="flat | gouraud | phong side by "
                    "side")
@@ -171,9 +217,74 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--frames", type=v.count, help="draw this many frames, then exit")
     p.add_argument("--hidden", action="store_true", help=argparse.SUPPRESS)
     add_render_options(p)
-    p.set_defaults(func=c.view)
+    p.set_defaults(func=c.view, arguments=a.ViewArgs)
 
     p = sub.add_parser("doctor", help="say which GL backends work and what they are")
-    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
-    p.set_defaults(func=c.doctor)
+    add_backend(p)
+    p.set_defaults(func=c.doctor, arguments=a.DoctorArgs)
     return parser
+
+
+
+def add_radiosity(sub) -> None:
+    p = sub.add_parser("radiosity", help="solve a scene's diffuse interreflection (hemicube "
+                       "form factors on the GPU) and render it",
+                       **_examples("glshade radiosity assets/scenes/cornell-box.toml -o box.png",
+                                   "glshade radiosity assets/scenes/cornell-box.toml -o box.png "
+                                   "--patch-size 50 --steps steps.gif"))
+    p.add_argument("scene", metavar="SCENE.toml", help="a scene file whose materials give "
+                   "emission (e.g. assets/scenes/cornell-box.toml)")
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="the image (.png)")
+    p.add_argument("--patch-size", type=v.positive_float, metavar="S", help="cut polygons "
+                   "into patches of about S (scene units; default: a 24th of the diagonal)")
+    p.add_argument("--hemicube", type=v.hemicube, default=128, metavar="N",
+                   help="hemicube resolution, the top face's pixels a side (default 128)")
+    p.add_argument("--method", type=v.radiosity_method, default="progressive",
+                   help="progressive refinement (default) or gauss-seidel gathering over the "
+                   "full matrix (small scenes)")
+    stop = p.add_mutually_exclusive_group()
+    stop.add_argument("--until", type=v.fraction, default=0.01, metavar="F",
+                      help="stop when the unshot fraction of the emitted energy is below F "
+                      "(default 0.01)")
+    stop.add_argument("--iterations", type=v.count, metavar="N", help="stop after N shots "
+                      "(progressive) or N sweeps (Gauss-Seidel)")
+    p.add_argument("--steps", metavar="OUT", help="also animate the solution at work, the "
+                   "energy shot so far (.gif, .png, .mp4 or a folder/)")
+    p.add_argument("--plot", metavar="PNG", help="convergence plot (default: OUTPUT's name "
+                   "with -convergence.png)")
+    p.add_argument("--exposure", type=v.positive_float, help="scale of radiosity to display "
+                   "(default: the brightest lit surface shows as white)")
+    p.add_argument("--no-ambient", action="store_true", help="show only the energy shot so "
+                   "far (no ambient estimate of the rest)")
+    p.add_argument("--seed", type=int, default=0, help="of the hemicubes' random turns")
+    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default: the "
+                   "scene's)")
+    p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
+    p.add_argument("--srgb", action="store_true", default=None, help="encode as sRGB")
+    add_backend(p)
+    add_quiet(p, "no progress bar or summary")
+    p.set_defaults(func=radiosity_command.radiosity, arguments=a.RadiosityArgs)
+
+
+def add_hidden(sub) -> None:
+    p = sub.add_parser("hidden", help="the classic hidden-surface algorithms side by side, "
+                       "checked against the GPU z-buffer",
+                       **_examples("glshade hidden primitive:teapot:4 -o grid.png --steps "
+                                   "steps.gif",
+                                   "glshade hidden assets/lprism.obj -o g.png --algorithms "
+                                   "scanline,bsp,gpu"))
+    p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="the grid of id images and disagreement maps (.png)")
+    p.add_argument("--algorithms", type=v.algorithms, default=list(v.ALGORITHM_CHOICES),
+                   help="comma-separated, from " + ", ".join(v.ALGORITHM_CHOICES) +
+                   " (default: all)")
+    p.add_argument("--steps", metavar="OUT.gif", help="also animate the algorithms at work")
+    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default 256x256)")
+    p.add_argument("--eye", type=v.vec3, metavar="X,Y,Z",
+                   help="camera position (default: auto framing)")
+    p.add_argument("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
+    p.add_argument("--fov", type=v.fov, help="vertical field of view in degrees")
+    add_backend(p)
+    p.set_defaults(func=hidden_command.hidden, arguments=a.HiddenArgs)

@@ -5,55 +5,19 @@ from __future__ import annotations
 import os
 import time
 
+from dataclasses import replace
+
 from ..errors import EXIT_OK, UsageError
+from .arguments import RadiosityArgs
 from .inputs import is_scene_file, load_job
 
-__all__ = ["radiosity", "add_parser"]
+__all__ = ["radiosity"]
 
 #: frames of --steps: the unshot fraction at evenly spaced steps of its logarithm
 STEP_FRAMES = 36
 
 
-def add_parser(sub, validators) -> None:
-    v = validators
-    p = sub.add_parser("radiosity", help="solve a scene's diffuse interreflection (hemicube "
-                       "form factors on the GPU) and render it")
-    p.add_argument("scene", metavar="SCENE.toml", help="a scene file whose materials give "
-                   "emission (e.g. assets/scenes/cornell-box.toml)")
-    p.add_argument("-o", "--output", required=True, type=v.image_output,
-                   help="the image (.png)")
-    p.add_argument("--patch-size", type=v.positive_float, metavar="S", help="cut polygons "
-                   "into patches of about S (scene units; default: a 24th of the diagonal)")
-    p.add_argument("--hemicube", type=v.hemicube, default=128, metavar="N",
-                   help="hemicube resolution, the top face's pixels a side (default 128)")
-    p.add_argument("--method", choices=["progressive", "gauss-seidel"], default="progressive",
-                   help="progressive refinement (default) or Gauss-Seidel gathering over the "
-                   "full matrix (small scenes)")
-    stop = p.add_mutually_exclusive_group()
-    stop.add_argument("--until", type=v.fraction, default=0.01, metavar="F",
-                      help="stop when the unshot fraction of the emitted energy is below F "
-                      "(default 0.01)")
-    stop.add_argument("--iterations", type=v.count, metavar="N", help="stop after N shots "
-                      "(progressive) or N sweeps (Gauss-Seidel)")
-    p.add_argument("--steps", metavar="OUT", help="also animate the solution at work, the "
-                   "energy shot so far (.gif, .png, .mp4 or a folder/)")
-    p.add_argument("--plot", metavar="PNG", help="convergence plot (default: OUTPUT's name "
-                   "with -convergence.png)")
-    p.add_argument("--exposure", type=v.positive_float, help="scale of radiosity to display "
-                   "(default: the brightest lit surface shows as white)")
-    p.add_argument("--no-ambient", action="store_true", help="show only the energy shot so "
-                   "far (no ambient estimate of the rest)")
-    p.add_argument("--seed", type=int, default=0, help="of the hemicubes' random turns")
-    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default: the "
-                   "scene's)")
-    p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
-    p.add_argument("--srgb", action="store_true", default=None, help="encode as sRGB")
-    p.add_argument("--backend", choices=["auto", "egl", "osmesa"], default="auto")
-    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
-    p.set_defaults(func=radiosity)
-
-
-def radiosity(args) -> int:
+def radiosity(args: RadiosityArgs) -> int:
     from ..animate import output_format
     from ..io.images import save_image
     from ..modes import ShadingMode
@@ -68,8 +32,7 @@ def radiosity(args) -> int:
                          "give emission, such as assets/scenes/cornell-box.toml")
     if args.steps:
         output_format(args.steps)  # a bad extension fails before the work
-    args.mode = None
-    job = load_job(args, args.scene)
+    job = load_job(replace(args, mode=None), args.scene)
     options = job.options.replace(mode=ShadingMode.RADIOSITY)
     problem = PatchScene.from_scene(job.scene, args.patch_size)
     plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"

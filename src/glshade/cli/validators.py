@@ -1,5 +1,7 @@
-"""Argument types for the command line: each converts one value or raises
-``argparse.ArgumentTypeError`` with an example of what is expected."""
+"""Argument types for the command line: each converts one value's text or raises
+``argparse.ArgumentTypeError`` with an example of what is expected. Where the library has a
+rule for the value (sizes, MSAA samples, fields of view, the enums' choices), the text is
+converted here and the rule is the library's own, with its message."""
 
 from __future__ import annotations
 
@@ -7,18 +9,29 @@ import argparse
 import math
 import re
 
+from ..errors import InputError
 from ..modes import ShadingMode
 
 __all__ = ["size", "vec3", "count", "unit_float", "nonnegative_float", "mode", "modes",
            "levels", "samples", "fov", "degrees"]
 
 
+def _rule(check, *values):
+    """The library's rule for a value, its error as argparse's."""
+    try:
+        return check(*values)
+    except InputError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def size(text: str) -> tuple[int, int]:
+    from ..options import check_size
+
     m = re.fullmatch(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", text)
-    if not m or int(m.group(1)) < 1 or int(m.group(2)) < 1 or max(map(int, m.groups())) > 16384:
-        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 800x600 (1..16384), "
-                                         f"got {text!r}")
-    return int(m.group(1)), int(m.group(2))
+    if not m:
+        raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT such as 800x600, got "
+                                         f"{text!r}")
+    return _rule(check_size, int(m.group(1)), int(m.group(2)))
 
 
 def vec3(text: str) -> tuple[float, float, float]:
@@ -59,12 +72,7 @@ def nonnegative_float(text: str) -> float:
 
 
 def mode(text: str) -> ShadingMode:
-    try:
-        return ShadingMode(text.lower())
-    except ValueError:
-        choices = ", ".join(m.value for m in ShadingMode)
-        raise argparse.ArgumentTypeError(f"unknown mode {text!r}; choose one of {choices}") \
-            from None
+    return _rule(ShadingMode.parse, text)
 
 
 def levels(text: str) -> list[int]:
@@ -87,14 +95,42 @@ def modes(text: str) -> list[ShadingMode]:
 
 
 def samples(text: str) -> int:
+    from ..options import check_samples
+
     if not text.strip().isdigit():
-        raise argparse.ArgumentTypeError(f"expected a whole number of MSAA samples >= 0 such "
-                                         f"as 4, got {text!r}")
-    return int(text)
+        raise argparse.ArgumentTypeError(f"expected a whole number of MSAA samples (0 or a "
+                                         f"power of two such as 4), got {text!r}")
+    return _rule(check_samples, int(text))
 
 
 def fov(text: str) -> float:
-    return _number(text, lambda x: 0 < x < 180, "degrees in (0, 180) such as 45")
+    from ..scene.camera import check_fov
+
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected degrees in (0, 180) such as 45, got "
+                                         f"{text!r}") from None
+    return _rule(check_fov, value, "the field of view")
+
+
+def radiosity_method(text: str) -> str:
+    from ..radiosity import Method
+
+    return _rule(Method.parse, text).value
+
+
+#: --algorithms of glshade hidden: the lab's, and the GPU's z-buffer as a reference
+ALGORITHM_CHOICES = ("zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu")
+
+
+def algorithms(text: str) -> list[str]:
+    names = [t.strip() for t in text.split(",") if t.strip()]
+    bad = [n for n in names if n not in ALGORITHM_CHOICES]
+    if bad or not names:
+        raise argparse.ArgumentTypeError(f"unknown algorithm {', '.join(bad) or '(none)'}; "
+                                         f"choose from {', '.join(ALGORITHM_CHOICES)}")
+    return names
 
 
 def degrees(text: str) -> float:

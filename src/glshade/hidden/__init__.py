@@ -4,6 +4,11 @@ other. Image space: :func:`zbuffer`, :func:`scanline`, :func:`raycast`; object s
 :func:`depth_sort` (Newell, Newell and Sancha) and :func:`bsp`.
 """
 
+from __future__ import annotations
+
+import enum
+
+from ..modes import parse_enum
 from ._bsp import bsp
 from .common import HiddenResult, Prepared, edge_pixels, prepare
 from ._depth_sort import DepthSortCycle, depth_sort
@@ -12,18 +17,29 @@ from ._scanline import scanline
 from ._zbuffer import zbuffer
 
 __all__ = ["prepare", "Prepared", "HiddenResult", "edge_pixels", "zbuffer", "scanline",
-           "raycast", "depth_sort", "bsp", "DepthSortCycle", "ALGORITHMS", "run"]
-
-#: name -> function(prepared) -> HiddenResult
-ALGORITHMS = {"zbuffer": zbuffer, "scanline": scanline, "depth-sort": depth_sort,
-              "bsp": bsp, "raycast": raycast}
+           "raycast", "depth_sort", "bsp", "DepthSortCycle", "Algorithm", "ALGORITHMS", "run"]
 
 
-def run(name: str, scene_or_mesh, camera, size=(256, 256)) -> HiddenResult:
-    """Run the algorithm ``name`` on a Scene or Mesh seen by ``camera``."""
-    from ..errors import InputError
+class Algorithm(str, enum.Enum):
+    """The lab's hidden-surface algorithms (the GPU's z-buffer is the reference)."""
 
-    if name not in ALGORITHMS:
-        raise InputError(f"unknown hidden-surface algorithm {name!r}; choose from "
-                         f"{', '.join(ALGORITHMS)}")
-    return ALGORITHMS[name](prepare(scene_or_mesh, camera, size))
+    ZBUFFER = "zbuffer"
+    SCANLINE = "scanline"
+    DEPTH_SORT = "depth-sort"
+    BSP = "bsp"
+    RAYCAST = "raycast"
+
+    @classmethod
+    def parse(cls, value: object) -> Algorithm:
+        return parse_enum(cls, value, "hidden-surface algorithm")
+
+
+#: an algorithm's name -> function(prepared) -> HiddenResult
+ALGORITHMS = {Algorithm.ZBUFFER.value: zbuffer, Algorithm.SCANLINE.value: scanline,
+              Algorithm.DEPTH_SORT.value: depth_sort, Algorithm.BSP.value: bsp,
+              Algorithm.RAYCAST.value: raycast}
+
+
+def run(algorithm: Algorithm | str, scene_or_mesh, camera, size=(256, 256)) -> HiddenResult:
+    """Run ``algorithm`` on a Scene or Mesh seen by ``camera``."""
+    return ALGORITHMS[Algorithm.parse(algorithm).value](prepare(scene_or_mesh, camera, size))

@@ -36,8 +36,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import GlshadeError, PathFormatError, SceneFormatError
-from ..modes import ShadingMode
-from ..options import DEFAULT_SIZE, DrawOptions
+from ..modes import Culling, ShadingMode
+from ..options import DEFAULT_SIZE, DrawOptions, check_samples, check_size
+from ..scene.camera import check_fov
+from ..scene.keyframes import OrientationInterp, PositionInterp
 from ..scene import (
     Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, default_camera,
 )
@@ -134,6 +136,19 @@ class _Locator:
         return start + 1
 
 
+def _size(value: object) -> tuple[int, int]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise SceneFormatError(f"size must be [width, height] in pixels, such as [640, 480], "
+                               f"got {value!r}")
+    return check_size(*value)
+
+
+#: the rules of the values that the API checks where they are made: one rule, one message
+_RULES = {"size": _size, "samples": check_samples, "fov": check_fov,
+          "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
+          "pinterp": PositionInterp.parse, "cull": Culling.parse}
+
+
 def _check(kind: str, value, where: str):
     """Validate one value; return it converted, or raise with a readable reason."""
     def fail(expected):
@@ -151,25 +166,17 @@ def _check(kind: str, value, where: str):
         return value if isinstance(value, str) and value else fail("a non-empty string")
     if kind == "bool":
         return value if isinstance(value, bool) else fail("true or false")
-    if kind == "cull":
-        return value if value == "auto" or isinstance(value, bool) else \
-            fail("'auto', true or false")
-    if kind == "samples":
-        ok = isinstance(value, int) and not isinstance(value, bool) and \
-            value in (0, 1, 2, 4, 8, 16, 32, 64)
-        return value if ok else fail("0 (no MSAA) or a power of two such as 4")
     if kind == "int":
         return value if isinstance(value, int) and not isinstance(value, bool) and value >= 0 \
             else fail("a non-negative integer")
-    if kind in ("unit", "nonneg", "positive", "fov", "degrees"):
+    if kind in ("unit", "nonneg", "positive", "degrees"):
         if not isinstance(value, NUMBER) or isinstance(value, bool) or not np.isfinite(value):
             fail("a finite number")
         v = float(value)
-        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0, "fov": 0 < v < 180,
+        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0,
               "degrees": 0 <= v <= 180}
         return v if ok[kind] else fail({"unit": "a number in [0, 1]", "nonneg":
                                         "a number >= 0", "positive": "a number > 0",
-                                        "fov": "a number of degrees in (0, 180)",
                                         "degrees": "an angle in degrees from 0 to 180"}[kind])
     if kind == "color":
         c = numbers(3)
@@ -193,25 +200,17 @@ def _check(kind: str, value, where: str):
                 not all(isinstance(r, list) and len(r) == 4 for r in value):
             fail("a 4x4 list of lists")
         return np.array(value, dtype=float)
-    if kind == "size":
-        if not isinstance(value, list) or len(value) != 2 or not all(
-                isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 16384
-                for v in value):
-            fail("[width, height] in pixels, such as [640, 480]")
-        return value
-    if kind == "mode":
+    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull"):
         try:
-            return ShadingMode(value)
-        except (ValueError, TypeError):
-            fail("one of " + ", ".join(repr(m.value) for m in ShadingMode))
+            return _RULES[kind](value)
+        except (GlshadeError, ValueError, TypeError) as exc:
+            # the rule's own words, with the file's key as their subject
+            said = re.match(r"[\w ()]+? must (.*)", str(exc), re.S)
+            raise SceneFormatError(f"{where} must {said.group(1)}" if said else
+                                   f"{where}: {exc}") from None
     if kind == "light_type":
         return value if value in ("point", "directional") else fail("'point' or "
                                                                     "'directional'")
-    if kind == "interp":
-        return value if value in ("slerp", "spline", "squad") else fail("'slerp' or 'spline'")
-    if kind == "pinterp":
-        return value if value in ("linear", "catmull-rom") else fail("'linear' or "
-                                                                     "'catmull-rom'")
     return value
 
 

@@ -10,29 +10,41 @@ solution in the renderer's ``radiosity`` mode (vertex radiosities, Gouraud-inter
 
 from __future__ import annotations
 
+import enum
+
+from ..modes import Backend, parse_enum
 from .cornell import CORNELL_CAMERA, CORNELL_MATERIALS, cornell_parts, cornell_scene
-from .formfactors import FormFactors, sample_counts
+from .formfactors import FormFactors, quadrature_counts
 from .problem import PatchScene
 from .solvers import Solution, gauss_seidel, progressive
 
-__all__ = ["PatchScene", "FormFactors", "Solution", "progressive", "gauss_seidel", "solve",
-           "sample_counts", "cornell_scene", "cornell_parts", "CORNELL_CAMERA",
+__all__ = ["PatchScene", "FormFactors", "Solution", "Method", "progressive", "gauss_seidel",
+           "solve", "quadrature_counts", "cornell_scene", "cornell_parts", "CORNELL_CAMERA",
            "CORNELL_MATERIALS"]
 
 
-def solve(scene, patch_size: float | None = None, *, method: str = "progressive",
-          until: float = 0.01, max_shots: int | None = None, hemicube: int = 128,
-          samples="auto", seed: int = 0, context=None, backend: str = "auto",
-          progress=None, on_shot=None) -> Solution:
-    """Patch ``scene``, compute form factors on the GPU and solve: ``method`` is
-    "progressive" (until the unshot fraction is below ``until``, or ``max_shots``) or
-    "gauss-seidel" (the full matrix; small scenes)."""
-    from ..errors import InputError
+class Method(str, enum.Enum):
+    """How the radiosity equation is solved."""
 
-    if method not in ("progressive", "gauss-seidel"):
-        raise InputError(f"method must be 'progressive' or 'gauss-seidel', got {method!r}")
+    PROGRESSIVE = "progressive"    # shoot the most unshot energy first (Cohen et al. 1988)
+    GAUSS_SEIDEL = "gauss-seidel"  # gather over the full matrix (small scenes)
+
+    @classmethod
+    def parse(cls, value: object) -> Method:
+        return parse_enum(cls, value, "radiosity method")
+
+
+def solve(scene, patch_size: float | None = None, *, method: Method | str = Method.PROGRESSIVE,
+          until: float = 0.01, max_shots: int | None = None, hemicube: int = 128,
+          quadrature: int | str = "auto", seed: int = 0, context=None,
+          backend: Backend | str = Backend.AUTO, progress=None, on_shot=None) -> Solution:
+    """Patch ``scene``, compute form factors on the GPU and solve: ``method`` is
+    PROGRESSIVE (until the unshot fraction is below ``until``, or ``max_shots``) or
+    GAUSS_SEIDEL (the full matrix; small scenes). ``quadrature``: Gauss points a side per
+    shooter (:func:`quadrature_counts`)."""
+    chosen = Method.parse(method)
     problem = PatchScene.from_scene(scene, patch_size)
-    with FormFactors(problem, hemicube, samples, seed, context, backend) as ff:
-        if method == "progressive":
+    with FormFactors(problem, hemicube, quadrature, seed, context, backend) as ff:
+        if chosen is Method.PROGRESSIVE:
             return progressive(ff, until, max_shots, progress, on_shot)
         return gauss_seidel(ff, progress=progress)

@@ -17,20 +17,20 @@ from collections import OrderedDict
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, OptionError
 from .problem import PatchScene
 
-__all__ = ["FormFactors", "sample_counts"]
+__all__ = ["FormFactors", "quadrature_counts"]
 
-MAX_SAMPLES = 8
+MAX_QUADRATURE = 8
 
 
 FACTOR = 1.5
 
 
-def sample_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
+def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
     """Quadrature points a side for each shooter: ``ceil(factor D / d)`` in [1,
-    MAX_SAMPLES], D the patch's diameter, d the distance to the nearest patch centre not
+    MAX_QUADRATURE], D the patch's diameter, d the distance to the nearest patch centre not
     in its plane (a long thin patch needs points along its length, whatever its area)."""
     p = problem.patches
     c, n = p.centers, p.normals
@@ -47,30 +47,32 @@ def sample_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
     corners = np.where((p.corners >= 0)[..., None], corners, corners[:, :1])
     extent = np.linalg.norm(corners[:, :, None] - corners[:, None, :], axis=3).max((1, 2))
     s = np.ceil(factor * extent / nearest)
-    return np.clip(np.nan_to_num(s, nan=1.0, posinf=1.0), 1, MAX_SAMPLES).astype(np.int64)
+    return np.clip(np.nan_to_num(s, nan=1.0, posinf=1.0), 1, MAX_QUADRATURE).astype(np.int64)
 
 
 class FormFactors:
     """Rows of the form-factor matrix of ``problem`` from GPU hemicubes of ``resolution``
-    (the top face's pixels a side). ``samples``: points per shooter triangle side, "auto"
-    (:func:`sample_counts`) or a whole number for every patch. Rows are cached (up to
+    (the top face's pixels a side). ``quadrature``: Gauss points per shooter triangle
+    side, "auto" (:func:`quadrature_counts`) or a whole number for every patch (not MSAA
+    ``samples``: hemicubes are never multisampled). Rows are cached (up to
     ``cache_mb``); ``close()`` releases the GL objects (and the context, if made here)."""
 
-    def __init__(self, problem: PatchScene, resolution: int = 128, samples="auto",
+    def __init__(self, problem: PatchScene, resolution: int = 128,
+                 quadrature: int | str = "auto",
                  seed: int = 0, context=None, backend: str = "auto", cache_mb: float = 512):
         from ..render.context import create_context
         from ..render.hemicube import Hemicube
 
         self.problem = problem
         p = problem.patches
-        if samples == "auto":
-            self.samples = sample_counts(problem)
+        if quadrature == "auto":
+            self.quadrature = quadrature_counts(problem)
         else:
-            if int(samples) != samples or samples < 1:
-                raise InputError(f"samples must be 'auto' or a whole number >= 1, got "
-                                 f"{samples!r}")
-            self.samples = np.full(p.n_patches, int(samples))
-        points, owner, weight = p.sample_points(self.samples)
+            if isinstance(quadrature, str) or int(quadrature) != quadrature or quadrature < 1:
+                raise OptionError(f"quadrature must be 'auto' or a whole number >= 1, got "
+                                  f"{quadrature!r}")
+            self.quadrature = np.full(p.n_patches, int(quadrature))
+        points, owner, weight = p.sample_points(self.quadrature)
         self._points, self._weights = points, weight
         self._first = np.searchsorted(owner, np.arange(p.n_patches + 1))
         self._rng = np.random.default_rng(seed)

@@ -11,19 +11,31 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError
+from ..errors import SceneError
+from ..modes import Projection
 from .. import quaternion as quat
 from ..geometry.transforms import look_at, orthographic, perspective
 
 __all__ = ["Camera", "default_camera"]
 
-PROJECTIONS = ("perspective", "orthographic")
+PROJECTIONS = tuple(p.value for p in Projection)
+
+
+def check_fov(fov_y: object, what: str = "fov_y") -> float:
+    """The one rule for a vertical field of view: degrees in (0, 180)."""
+    try:
+        value = float(fov_y)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        value = float("nan")
+    if not 0 < value < 180:
+        raise SceneError(f"{what} must be in (0, 180) degrees, got {fov_y!r}")
+    return value
 
 
 def _vec3(value, name) -> NDArray[np.float64]:
     a = np.array(value, dtype=np.float64)  # (a copy: the camera keeps it read-only)
     if a.shape != (3,) or not np.isfinite(a).all():
-        raise GeometryError(f"{name} must be 3 finite numbers, got {value!r}")
+        raise SceneError(f"{name} must be 3 finite numbers, got {value!r}")
     return a
 
 
@@ -37,7 +49,7 @@ class Camera:
     orientation : (4,) unit quaternion [x, y, z, w], camera axes to world axes.
     fov_y : vertical field of view in degrees (perspective).
     near, far : clip distances along the view axis.
-    projection : "perspective" or "orthographic".
+    projection : :class:`~glshade.Projection` (or "perspective", "orthographic").
     height : view height in world units (orthographic).
     """
 
@@ -46,25 +58,22 @@ class Camera:
     fov_y: float = 45.0
     near: float = 0.1
     far: float = 100.0
-    projection: str = "perspective"
+    projection: Projection = Projection.PERSPECTIVE
     height: float = 2.0
 
     def __post_init__(self):
         object.__setattr__(self, "position", _vec3(self.position, "position"))
         q = np.asarray(self.orientation, dtype=np.float64)
         if q.shape != (4,) or not np.isfinite(q).all() or np.linalg.norm(q) == 0:
-            raise GeometryError(f"orientation must be a non-zero quaternion [x, y, z, w], "
+            raise SceneError(f"orientation must be a non-zero quaternion [x, y, z, w], "
                                 f"got {self.orientation!r}")
         object.__setattr__(self, "orientation", quat.normalize(q))
         for name in ("position", "orientation"):  # a value: never changed in place
             getattr(self, name).setflags(write=False)
-        if self.projection not in PROJECTIONS:
-            raise GeometryError(f"projection must be one of {PROJECTIONS}, got "
-                                f"{self.projection!r}")
-        if not 0 < float(self.fov_y) < 180:
-            raise GeometryError(f"fov_y must be in (0, 180) degrees, got {self.fov_y}")
+        object.__setattr__(self, "projection", Projection.parse(self.projection))
+        object.__setattr__(self, "fov_y", check_fov(self.fov_y))
         if not 0 < self.near < self.far:
-            raise GeometryError(f"need 0 < near < far, got near={self.near}, far={self.far}")
+            raise SceneError(f"need 0 < near < far, got near={self.near}, far={self.far}")
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -114,7 +123,7 @@ class Camera:
 
     def projection_matrix(self, aspect: float) -> NDArray[np.float64]:
         """View-to-clip ``(4, 4)`` for column vectors; ``aspect`` = width / height."""
-        if self.projection == "perspective":
+        if self.projection is Projection.PERSPECTIVE:
             return perspective(self.fov_y, aspect, self.near, self.far)
         return orthographic(self.height, aspect, self.near, self.far)
 
@@ -134,10 +143,10 @@ class Camera:
         bounds = getattr(target, "bounds", target)
         b = np.asarray(bounds, dtype=np.float64)
         if b.shape != (2, 3):
-            raise GeometryError(f"frame needs a mesh or bounds of shape (2, 3), got {b.shape}")
+            raise SceneError(f"frame needs a mesh or bounds of shape (2, 3), got {b.shape}")
         center = b.mean(axis=0)
         radius = max(float(np.linalg.norm(b[1] - b[0])) / 2, 1e-9) * margin
-        if self.projection == "perspective":
+        if self.projection is Projection.PERSPECTIVE:
             half_y = np.radians(self.fov_y) / 2
             half_x = np.arctan(np.tan(half_y) * aspect)
             distance = radius / np.sin(min(half_x, half_y))

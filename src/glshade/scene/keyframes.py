@@ -17,6 +17,7 @@ C1 quaternion spline; position is linear or Catmull-Rom. Paths load from and sav
 
 from __future__ import annotations
 
+import enum
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,7 +25,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError, PathFormatError
+from ..errors import PathFormatError, SceneError
+from ..modes import parse_enum
 from .. import quaternion as quat
 from .._atomic import atomic_write
 from .camera import Camera
@@ -34,10 +36,34 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-__all__ = ["Keyframe", "CameraPath"]
+__all__ = ["Keyframe", "CameraPath", "OrientationInterp", "PositionInterp"]
 
-ORIENTATION_INTERP = ("slerp", "spline", "squad")
-POSITION_INTERP = ("linear", "catmull-rom")
+
+class OrientationInterp(str, enum.Enum):
+    """How orientations go between key frames."""
+
+    SLERP = "slerp"    # constant angular speed within a segment (a kink at the keys)
+    SPLINE = "spline"  # C1 through the keys (Shoemake's squad; "squad" is accepted)
+
+    @classmethod
+    def parse(cls, value: object) -> OrientationInterp:
+        return cls.SPLINE if value == "squad" else parse_enum(cls, value, "orientation "
+                                                              "interpolation")
+
+
+class PositionInterp(str, enum.Enum):
+    """How positions go between key frames."""
+
+    LINEAR = "linear"
+    CATMULL_ROM = "catmull-rom"  # C1 through the keys
+
+    @classmethod
+    def parse(cls, value: object) -> PositionInterp:
+        return parse_enum(cls, value, "position interpolation")
+
+
+ORIENTATION_INTERP = tuple(m.value for m in OrientationInterp)
+POSITION_INTERP = tuple(m.value for m in PositionInterp)
 
 
 @dataclass(frozen=True)
@@ -69,23 +95,21 @@ class CameraPath:
         where a key does not give its own fov.
     """
 
-    def __init__(self, keyframes, *, orientation_interp: str = "slerp",
-                 position_interp: str = "linear", camera: Camera | None = None):
+    def __init__(self, keyframes, *,
+                 orientation_interp: OrientationInterp | str = OrientationInterp.SLERP,
+                 position_interp: PositionInterp | str = PositionInterp.LINEAR,
+                 camera: Camera | None = None):
         keys = list(keyframes)
         if not keys:
-            raise GeometryError("a camera path needs at least one key frame")
-        if orientation_interp not in ORIENTATION_INTERP:
-            raise GeometryError(f"orientation_interp must be one of {ORIENTATION_INTERP}, got "
-                                f"{orientation_interp!r}")
-        if position_interp not in POSITION_INTERP:
-            raise GeometryError(f"position_interp must be one of {POSITION_INTERP}, got "
-                                f"{position_interp!r}")
+            raise SceneError("a camera path needs at least one key frame")
+        orientation = OrientationInterp.parse(orientation_interp)
+        position = PositionInterp.parse(position_interp)
         self.keyframes = keys
         self.times = np.array([k.time for k in keys], dtype=np.float64)
         steps = np.diff(self.times)
         if (steps <= 0).any():
             i = int(np.flatnonzero(steps <= 0)[0])
-            raise GeometryError(f"key frame times must increase: key {i + 2} has time "
+            raise SceneError(f"key frame times must increase: key {i + 2} has time "
                                 f"{self.times[i + 1]:g} after {self.times[i]:g} (keys count "
                                 "from 1)")
         self.positions = np.stack([np.asarray(k.position, np.float64) for k in keys])
@@ -95,8 +119,8 @@ class CameraPath:
         base = camera or Camera()
         self.fovs = np.array([base.fov_y if k.fov_y is None else k.fov_y for k in keys])
         self.camera = base
-        self.orientation_interp = orientation_interp
-        self.position_interp = position_interp
+        self.orientation_interp = orientation
+        self.position_interp = position
 
     @classmethod
     def turntable(cls, camera: Camera, center, duration: float = 4.0, degrees: float = 360.0,
@@ -106,7 +130,7 @@ class CameraPath:
         slerp (exact for a turn about one axis), positions along the chords (within 0.1% of
         the circle)."""
         if not duration > 0:
-            raise GeometryError(f"a turntable needs a duration > 0, got {duration}")
+            raise SceneError(f"a turntable needs a duration > 0, got {duration}")
         n = max(1, int(np.ceil(abs(degrees) / 5.0)))
         turns = quat.from_axis_angle(up, np.radians(degrees) * np.arange(n + 1) / n)
         keys = []
@@ -149,12 +173,12 @@ class CameraPath:
                     np.broadcast_to(self.orientations[0], shape + (4,)).copy(),
                     np.full(shape, self.fovs[0]))
         seg, u = self._segments(t)
-        if self.orientation_interp == "slerp":
+        if self.orientation_interp is OrientationInterp.SLERP:
             q = quat.slerp(self.orientations[seg], self.orientations[seg + 1], u)
         else:
             q = quat.spline(self.times, self.orientations, t)
         p0, p1 = self.positions[seg], self.positions[seg + 1]
-        if self.position_interp == "linear":
+        if self.position_interp is PositionInterp.LINEAR:
             pos = p0 + u[..., None] * (p1 - p0)
         else:
             pos = self._catmull_rom(seg, u)
@@ -187,7 +211,7 @@ class CameraPath:
     def frame_times(self, n: int) -> NDArray[np.float64]:
         """``n`` evenly spaced times from the first key to the last, both included."""
         if n < 1:
-            raise GeometryError(f"need at least one frame, got {n}")
+            raise SceneError(f"need at least one frame, got {n}")
         return np.linspace(self.start, self.end, n) if n > 1 else np.array([self.start])
 
     def sample(self, n: int) -> list[Camera]:
@@ -238,13 +262,13 @@ class CameraPath:
                 else:
                     raise PathFormatError.at(source, i, "give 'eye' and 'target', or "
                                              "'position' and 'orientation'")
-            except (GeometryError, ValueError, TypeError) as exc:
+            except (SceneError, ValueError, TypeError) as exc:
                 if isinstance(exc, PathFormatError):
                     raise
                 raise PathFormatError.at(source, i, str(exc)) from None
         try:
             return cls(keys, **kwargs)
-        except GeometryError as exc:
+        except SceneError as exc:
             raise PathFormatError(f"{source}: {exc}") from None
 
     @classmethod

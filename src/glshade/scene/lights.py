@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
+from ..errors import SceneError
 from .material import color3, nonnegative
 
 __all__ = ["PointLight", "DirectionalLight", "lights_for", "MAX_LIGHTS"]
@@ -32,13 +32,13 @@ class PointLight:
     def __post_init__(self):
         p = np.asarray(self.position, dtype=np.float64)
         if p.shape != (3,) or not np.isfinite(p).all():
-            raise GeometryError(f"light position must be 3 numbers, got {self.position!r}")
+            raise SceneError(f"light position must be 3 numbers, got {self.position!r}")
         object.__setattr__(self, "position", tuple(p.tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
         att = color3(self.attenuation, "attenuation")
         if att == (0.0, 0.0, 0.0):
-            raise GeometryError("attenuation (c, l, q) must not be all zero")
+            raise SceneError("attenuation (c, l, q) must not be all zero")
         object.__setattr__(self, "attenuation", att)
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -59,7 +59,7 @@ class DirectionalLight:
     def __post_init__(self):
         d = np.asarray(self.direction, dtype=np.float64)
         if d.shape != (3,) or not np.isfinite(d).all() or np.linalg.norm(d) == 0:
-            raise GeometryError(f"direction must be a non-zero 3-vector, got {self.direction!r}")
+            raise SceneError(f"direction must be a non-zero 3-vector, got {self.direction!r}")
         object.__setattr__(self, "direction", tuple((d / np.linalg.norm(d)).tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))

@@ -7,7 +7,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import SceneError
 
 __all__ = ["Material", "color3", "nonnegative"]
 
@@ -17,14 +17,14 @@ def color3(value, name) -> tuple[float, float, float]:
     if c.shape == ():
         c = np.repeat(c, 3)
     if c.shape != (3,) or not np.isfinite(c).all() or (c < 0).any():
-        raise GeometryError(f"{name} must be 3 non-negative numbers (r, g, b), got {value!r}")
+        raise SceneError(f"{name} must be 3 non-negative numbers (r, g, b), got {value!r}")
     return tuple(float(x) for x in c)
 
 
 def nonnegative(value, name) -> float:
     v = float(value)
     if not np.isfinite(v) or v < 0:
-        raise GeometryError(f"{name} must be a non-negative number, got {value!r}")
+        raise SceneError(f"{name} must be a non-negative number, got {value!r}")
     return v
 
 
@@ -54,7 +54,7 @@ class Material:
         if self.reflectance is not None:
             rho = color3(self.reflectance, "reflectance")
             if max(rho) > 1:
-                raise GeometryError(f"reflectance must be 3 numbers in [0, 1] (a surface "
+                raise SceneError(f"reflectance must be 3 numbers in [0, 1] (a surface "
                                     f"reflects at most what it receives), got {rho}")
             object.__setattr__(self, "reflectance", rho)
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError
+from ..errors import SceneError
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.transforms import box_corners, compose_transform
@@ -79,7 +79,7 @@ class Scene:
         if bg.shape == (3,):
             bg = np.append(bg, 1.0)
         if bg.shape != (4,) or not np.isfinite(bg).all():
-            raise GeometryError(f"background must be (r, g, b) or (r, g, b, a), got "
+            raise SceneError(f"background must be (r, g, b) or (r, g, b, a), got "
                                 f"{background!r}")
         self.background = tuple(float(x) for x in bg)
         self.models: list[Model] = []
@@ -102,7 +102,7 @@ class Scene:
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
         if not isinstance(mesh, Mesh):
-            raise GeometryError(f"scene.add needs a Mesh or a Solid, got "
+            raise SceneError(f"scene.add needs a Mesh or a Solid, got "
                                 f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
@@ -112,18 +112,18 @@ class Scene:
             m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
         corners = box_corners(mesh.bounds) @ m[:3, :3].T + m[:3, 3]
         if mesh.n_vertices and np.abs(corners).max() > MAX_DRAWABLE_COORDINATE:
-            raise GeometryError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
+            raise SceneError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
                                 f"the GPU draws up to {MAX_DRAWABLE_COORDINATE:g} (its 32-bit "
                                 "arithmetic squares lengths): scale the mesh down")
         colors = None
         if vertex_colors is not None:
             if crease is not None:
-                raise GeometryError("vertex_colors and crease cannot be combined (crease "
+                raise SceneError("vertex_colors and crease cannot be combined (crease "
                                     "splits the vertices the colours belong to)")
             colors = np.array(vertex_colors, dtype=np.float32)
             if colors.shape != (mesh.n_vertices, 3) or not np.isfinite(colors).all() \
                     or (colors < 0).any():
-                raise GeometryError(f"vertex_colors must be ({mesh.n_vertices}, 3) "
+                raise SceneError(f"vertex_colors must be ({mesh.n_vertices}, 3) "
                                     f"non-negative numbers, one per vertex; got shape "
                                     f"{colors.shape}")
             colors.flags.writeable = False
@@ -141,7 +141,7 @@ class Scene:
         if not np.allclose(m, np.eye(4)):
             solid = solid.transformed(m)
         if solid.bounds is None:
-            raise GeometryError("a solid in a scene must be bounded: cut a half-space with a "
+            raise SceneError("a solid in a scene must be bounded: cut a half-space with a "
                                 "bounded solid (e.g. Box(10) & HalfSpace())")
         model = SolidModel(solid, material or Material(), name or type(solid).__name__)
         self.solids.append(model)
@@ -150,9 +150,9 @@ class Scene:
     def add_light(self, light) -> None:
         """Add a PointLight or DirectionalLight (at most MAX_LIGHTS)."""
         if not isinstance(light, (PointLight, DirectionalLight)):
-            raise GeometryError(f"expected a PointLight or DirectionalLight, got {light!r}")
+            raise SceneError(f"expected a PointLight or DirectionalLight, got {light!r}")
         if len(self.lights) >= MAX_LIGHTS:
-            raise GeometryError(f"at most {MAX_LIGHTS} lights per scene")
+            raise SceneError(f"at most {MAX_LIGHTS} lights per scene")
         self.lights.append(light)
 
     def lights_for(self, camera) -> list:

@@ -23,8 +23,11 @@ from ..solids import leaves as L  # (the leaves: L.Box ...)
 from ..solids.tree import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode
+from .base import GLResource
+from .programs import MaterialUniforms, UniformWriter
+from .state import DrawState
 
-__all__ = ["tree_code", "leaf_uniforms", "shape_key"]
+__all__ = ["CsgPass", "tree_code", "leaf_uniforms", "shape_key", "box_matrix"]
 
 _KIND = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
          L.Torus: "torus", L.HalfSpace: "halfspace"}
@@ -140,12 +143,15 @@ def _params(leaf) -> list:
     return [*leaf.normal, leaf.offset]
 
 
-class CsgPass:
+class CsgPass(GLResource):
     """Programs (per tree shape and variant), the unit box and the drawing of solids, for
-    one Renderer; released with it."""
+    one Renderer: a GL owner of the renderer's context, released with it. Shares the
+    renderer's uniform writer and material cache (public collaborators, handed in)."""
 
-    def __init__(self, context, shaders):
-        self.context, self.shaders = context, shaders
+    def __init__(self, context, shaders, uniforms: UniformWriter,
+                 materials: MaterialUniforms):
+        super().__init__(context)
+        self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
         self._programs: dict = {}
         self._box = None
         # per solid (solids are values: a new tree is a new object), what each frame reuses
@@ -160,6 +166,7 @@ class CsgPass:
         return found
 
     def program(self, solid: Solid, key):
+        self._check()
         shape = self._facts(solid)[0]
         found = self._programs.get((shape, key))
         if found is None:
@@ -184,8 +191,8 @@ class CsgPass:
             faces = np.array([[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6],
                               [0, 2, 6, 4], [1, 5, 7, 3]])
             tri = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
-            self._box = (ctx.buffer(corners.astype("f4").tobytes()),
-                         ctx.buffer(tri.astype("u4").tobytes()), {})
+            self._box = (self._keep(ctx.buffer(corners.astype("f4").tobytes())),
+                         self._keep(ctx.buffer(tri.astype("u4").tobytes())), {})
         vbo, ibo, vaos = self._box
         vao = vaos.get(id(program))
         if vao is None:
@@ -193,25 +200,26 @@ class CsgPass:
                                                        ibo, 4)
         return vao
 
-    def draw(self, renderer, scene, view, proj, frame, lights, options, variant, id_base,
-             flip_rows, viewport) -> None:
-        """Draw the scene's visible solids (after its meshes: their ids follow)."""
+    def draw(self, state: DrawState, id_base: int) -> None:
+        """Draw the scene's visible solids (after its meshes: their ids follow from
+        ``id_base``, the meshes' polygon count)."""
         import moderngl
 
         from .programs import ProgramKey
 
+        self._check()
         ctx = self.context.ctx
-        view_proj = proj @ view
-        put = renderer._uniforms.put
+        view, view_proj, viewport = state.view, state.view_proj, state.viewport
+        put = self.uniforms.put
         n_polygons = id_base
-        for model in scene.solids:
+        for model in state.scene.solids:
             if not model.visible:
                 continue
-            prog = self.program(model.solid, ProgramKey(*variant, two_sided=False))
-            for name, value in frame:
+            prog = self.program(model.solid, ProgramKey(*state.variant, two_sided=False))
+            for name, value in state.frame_uniforms:
                 put(prog, name, value)
-            for name, value in renderer._material_uniforms(model.material, lights,
-                                                           scene.ambient):
+            for name, value in self.materials(model.material, state.lights,
+                                              state.scene.ambient):
                 put(prog, name, value)
             for name, value in self._facts(model.solid)[1].items():
                 put(prog, name, value)
@@ -224,22 +232,20 @@ class CsgPass:
             put(prog, "u_viewport_size", (float(viewport[2]), float(viewport[3])))
             put(prog, "u_face_id_base", n_polygons)
             ctx.enable(moderngl.CULL_FACE)
-            ctx.front_face = "cw" if flip_rows else "ccw"
+            ctx.front_face = "cw" if state.flip_rows else "ccw"
             ctx.cull_face = "front"  # the box's back faces: inside it or outside, every pixel
             self.vertex_array(prog).render(moderngl.TRIANGLES)
             ctx.cull_face = "back"
             n_polygons += len(model.solid.leaves())
 
-    def release(self):
+    def _release_extra(self) -> None:
+        """The programs and vertex arrays (the box's buffers are in ``_objects``)."""
         for p in self._programs.values():
             p.release()
         self._programs.clear()
         if self._box is not None:
-            vbo, ibo, vaos = self._box
-            for vao in vaos.values():
+            for vao in self._box[2].values():
                 vao.release()
-            vbo.release()
-            ibo.release()
             self._box = None
 
 

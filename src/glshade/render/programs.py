@@ -13,7 +13,7 @@ import numpy as np
 from ..modes import ShadingMode
 from ..scene.lights import DirectionalLight
 
-__all__ = ["ProgramKey", "light_kind", "UniformWriter", "material_uniforms",
+__all__ = ["ProgramKey", "light_kind", "UniformWriter", "material_uniforms", "MaterialUniforms",
            "flat_constants_fit", "FLAT_CONSTANTS_PIXELS"]
 
 
@@ -36,6 +36,27 @@ def material_uniforms(material, lights, ambient) -> list:
     return [("u_ambient_term", tuple(float(x) for x in ambient_term)),
             ("u_light_diffuse", diffuse.tobytes()), ("u_light_specular", specular.tobytes()),
             ("u_shininess", float(material.shininess))]
+
+
+class MaterialUniforms:
+    """:func:`material_uniforms`, cached per (material, lights, ambient): shared by the
+    passes of one Renderer, so a material lit the same way is computed once."""
+
+    def __init__(self, limit: int = 1024):
+        self._cache: dict[tuple, list] = {}
+        self.limit = limit
+
+    def __call__(self, material, lights: tuple, ambient) -> list:
+        key = (material, lights, ambient)
+        found = self._cache.get(key)
+        if found is None:
+            if len(self._cache) > self.limit:
+                self._cache.clear()
+            found = self._cache[key] = material_uniforms(material, lights, ambient)
+        return found
+
+    def clear(self) -> None:
+        self._cache.clear()
 
 
 #: viewport pixels per triangle from which a model's Phong program takes its lighting

@@ -23,16 +23,17 @@ from ..errors import (
     UsageError,
 )
 from ..geometry.transforms import box_corners, gl_bytes
-from ..modes import Backend, Culling, Outputs, ShadingMode
+from ..modes import Backend, Culling, Outputs, Projection, ShadingMode
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import (
-    FLAT_CONSTANTS_PIXELS, ProgramKey, UniformWriter, flat_constants_fit, light_kind,
-    material_uniforms,
+    FLAT_CONSTANTS_PIXELS, MaterialUniforms, ProgramKey, UniformWriter, flat_constants_fit,
+    light_kind,
 )
 from .shaders import ShaderLibrary
+from .state import DrawState
 from .csg import CsgPass
 from .diagnostics import why_blank
 from .target import OffscreenTarget
@@ -139,13 +140,13 @@ class Renderer:
             raise
         self.width, self.height, self.samples = config.width, config.height, config.samples
         self.shaders = ShaderLibrary(self.context)
-        self._csg = CsgPass(self.context, self.shaders)
+        self._uniforms = UniformWriter()
+        self._materials = MaterialUniforms()
+        self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query = None
-        self._uniforms = UniformWriter()
         self._normal_cache: dict[bytes, np.ndarray] = {}
-        self._material_cache: dict[tuple, list] = {}
         self._programs: dict[tuple, object] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         # (shaders/include/constants.glsl; per model: programs.FLAT_CONSTANTS_PIXELS)
@@ -269,8 +270,10 @@ class Renderer:
 
         lights_key = lights = tuple(lights)
         variant = (options.mode, aux, tuple(light_kind(x) for x in lights), options.srgb,
-                   camera.projection == "orthographic")
+                   camera.projection is Projection.ORTHOGRAPHIC)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
+        state = DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
+                          (vx, vy, vw, vh), flip_rows)
         prepared: set[int] = set()
         put = self._uniforms.put
         view3 = view[:3, :3]
@@ -296,14 +299,13 @@ class Renderer:
             # (the view is rigid: its inverse transpose is itself)
             put(prog, "u_normal_view", _mat3(view3 @ normal_world))
             put(prog, "u_model_view", gl_bytes(model_view))
-            state = (transform, id_base, model.material, lights_key, scene.ambient)
-            if self._model_state.get(id(prog)) != state:  # else all of it is in place
+            held = (transform, id_base, model.material, lights_key, scene.ambient)
+            if self._model_state.get(id(prog)) != held:  # else all of it is in place
                 put(prog, "u_normal_world", _mat3(normal_world))
                 put(prog, "u_face_id_base", id_base)
-                for name, value in self._material_uniforms(model.material, lights,
-                                                           scene.ambient):
+                for name, value in self._materials(model.material, lights, scene.ambient):
                     put(prog, name, value)
-                self._model_state[id(prog)] = state
+                self._model_state[id(prog)] = held
             ctx.front_face = "cw" if mirrored != flip_rows else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
@@ -319,24 +321,13 @@ class Renderer:
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
         if scene.solids:  # CSG solids, ray cast into the same z-buffer
-            self._csg.draw(self, scene, view, proj, frame, lights, options, variant, id_base,
-                           flip_rows, (vx, vy, vw, vh))
+            self._csg.draw(state, id_base)
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
         if options.wireframe:
             ctx.wireframe = False
         if clear:
             target.resolve(outputs)
-
-    def _material_uniforms(self, material, lights, ambient) -> list:
-        """:func:`material_uniforms`, cached per material, lights and ambient."""
-        key = (material, lights, ambient)
-        found = self._material_cache.get(key)
-        if found is None:
-            if len(self._material_cache) > 1024:
-                self._material_cache.clear()
-            found = self._material_cache[key] = material_uniforms(material, lights, ambient)
-        return found
 
     def _normal_matrix(self, model: np.ndarray, key: bytes) -> tuple[np.ndarray, bool]:
         """Inverse transpose of a model matrix's 3x3 part, and whether it mirrors (its

@@ -172,3 +172,24 @@ class RenderConfig:
     def replace(self, **changes: Any) -> RenderConfig:
         """A copy with ``changes`` (checked like the original)."""
         return replace(self, **changes)
+
+    @classmethod
+    def of(cls, config: RenderConfig | None = None, *, size: tuple[int, int] | None = None,
+           samples: int | None = None, backend: Backend | str | None = None,
+           base: RenderConfig | None = None) -> RenderConfig:
+        """The config a function was given, or one from its convenience keywords laid over
+        ``base`` (the function's defaults): what animate, compare, sweeps and batches take."""
+        if config is not None:
+            if not isinstance(config, RenderConfig):
+                raise OptionError(f"config must be a RenderConfig, got "
+                                  f"{type(config).__name__}")
+            return config
+        out = base or cls()
+        changes: dict[str, Any] = {}
+        if size is not None:
+            changes["width"], changes["height"] = tuple(size)
+        if samples is not None:
+            changes["samples"] = samples
+        if backend is not None:
+            changes["backend"] = backend
+        return out.replace(**changes) if changes else out

@@ -113,9 +113,9 @@ def test_drag_rotates_the_view_by_the_arcball_rotation(viewer_factory, tmp_path)
     v = viewer_factory(scene, start, size=(240, 180))
     w, h = 240, 180
     # centre to the right rim of the ball (radius = half the window height): 90 degrees
-    v.press(w / 2, h / 2)
-    v.move(w / 2 + h / 2, h / 2)
-    v.release()
+    v.mouse_down(w / 2, h / 2)
+    v.mouse_move(w / 2 + h / 2, h / 2)
+    v.mouse_up()
     # the object turned right, so the camera went round to its left (world -x)
     np.testing.assert_allclose(v.camera.position, centre + [-9.0, 0, 0], atol=1e-9)
     np.testing.assert_allclose(v.camera.forward, [1, 0, 0], atol=1e-12)
@@ -135,9 +135,9 @@ def test_s_writes_a_png(viewer_factory, tmp_path):
 def test_k_then_p_plays_the_path(viewer_factory):
     v = viewer_factory(teapot_scene(), CAM)
     v.key("k")
-    v.press(120, 90)
-    v.move(160, 90)
-    v.release()
+    v.mouse_down(120, 90)
+    v.mouse_move(160, 90)
+    v.mouse_up()
     turned = v.camera
     v.key("k")
     assert len(v.keyframes) == 2

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..io.images import LABEL_HEIGHT, labelled_row
-from ..options import DrawOptions
+from ..options import DrawOptions, RenderConfig
 from ..scene import CameraPath, Scene
 from ..parallel import make_executor
 from ..parallel import Progress
@@ -26,13 +26,13 @@ class FrameMaker:
     ``spool`` folder (a cluster's workers) it writes the frame there as a PNG and returns
     the file's path instead: pixels do not travel through the scheduler."""
 
-    def __init__(self, scene, path, times, options, modes, size, samples, backend,
+    def __init__(self, scene, path, times, options, modes, config: RenderConfig,
                  spool=None):
         from ..render.renderer import Renderer
 
         self.scene, self.path, self.times = scene, path, times
         self.options, self.modes, self.spool = options, modes, spool
-        self.renderer = Renderer(size[0], size[1], samples=samples, backend=backend)
+        self.renderer = Renderer(config=config)
 
     def __call__(self, i: int) -> bytes | str:
         camera = self.path.at(self.times[i])
@@ -58,9 +58,10 @@ def frame_shape(size, n_modes: int) -> tuple[int, int, int]:
 
 
 def render_frames(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
-                  size=(512, 512), samples: int = 4, jobs: int = 1, backend="auto",
-                  progress: Progress | None = None, scheduler: str | None = None,
-                  spool=None, **changes) -> Iterator[np.ndarray]:
+                  config: RenderConfig | None = None, size=None, samples: int | None = None,
+                  jobs: int = 1, backend=None, progress: Progress | None = None,
+                  scheduler: str | None = None, spool=None,
+                  **changes) -> Iterator[np.ndarray]:
     """Yield ``frames`` images ``(H, W', 4) uint8`` evenly spaced along ``path``, in order.
 
     ``options``: DrawOptions or a mode's name (``changes`` override single options). With
@@ -68,28 +69,29 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, options=None, *, 
     in spawned worker processes, each with its own GL context; ``scheduler`` (a Dask
     address, or "local") on a Dask cluster, whose workers pass frames as PNG files through
     a temporary folder beside ``spool`` (a path every worker can reach; default: this
-    machine's temporary folder).
+    machine's temporary folder). ``config`` (or ``size``, ``samples``, ``backend``): what
+    each worker's Renderer is built with (default 512x512, 4 samples).
     """
+    config = RenderConfig.of(config, size=size, samples=samples, backend=backend)
     options = DrawOptions.of(options, **changes)
     modes = [DrawOptions.of(m).mode for m in (modes or [options.mode])]
     if int(frames) != frames or frames < 1:
         raise InputError(f"need at least one frame, got {frames!r}")
     times = path.frame_times(int(frames))
     if scheduler is None:
-        args = (scene, path, times, options, modes, tuple(size), samples, backend)
+        args = (scene, path, times, options, modes, config)
         executor = make_executor(FrameMaker, args, jobs, items=int(frames))
-        shape = frame_shape(size, len(modes))
+        shape = frame_shape(config.size, len(modes))
         for data in executor.map(range(int(frames))):
             if progress:
                 progress.update()
             yield np.frombuffer(data, np.uint8).reshape(shape)
         return
-    yield from _spooled(scene, path, times, options, modes, size, samples, backend, jobs,
-                        scheduler, spool, progress)
+    yield from _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
+                        progress)
 
 
-def _spooled(scene, path, times, options, modes, size, samples, backend, jobs, scheduler,
-             spool, progress):
+def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool, progress):
     import shutil
     import tempfile
 
@@ -99,7 +101,7 @@ def _spooled(scene, path, times, options, modes, size, samples, backend, jobs, s
 
     folder = temporary(spool, folder=True) if spool else tempfile.mkdtemp(prefix="glshade-")
     try:
-        args = (scene, path, times, options, modes, tuple(size), samples, backend, folder)
+        args = (scene, path, times, options, modes, config, folder)
         executor = make_executor(FrameMaker, args, jobs, scheduler=scheduler)
         for file in executor.map(range(len(times))):
             with Image.open(file) as im:
@@ -113,21 +115,22 @@ def _spooled(scene, path, times, options, modes, size, samples, backend, jobs, s
 
 
 def animate(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
-            output=None, fps: float = 30.0, size=(512, 512), samples: int = 4,
-            jobs: int | None = 1, backend="auto", progress: bool | None = False,
-            scheduler: str | None = None, **changes):
+            output=None, fps: float = 30.0, config: RenderConfig | None = None, size=None,
+            samples: int | None = None, jobs: int | None = 1, backend=None,
+            progress: bool | None = False, scheduler: str | None = None, **changes):
     """Render ``frames`` frames along ``path``. Without ``output``, return an iterator of
     images; with it, write the file (GIF, PNG/APNG, MP4 or a folder) and return the number
     of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal;
-    ``scheduler`` renders on a Dask cluster (see :func:`render_frames`)."""
+    ``scheduler`` renders on a Dask cluster (see :func:`render_frames`); ``config`` (or
+    ``size``, ``samples``, ``backend``) is what each Renderer is built with."""
     jobs = (os.cpu_count() or 1) if jobs is None else jobs
     bar = Progress(frames, enabled=progress) if progress is not False else None
     spool = None
     if output is not None and scheduler is not None and scheduler != "local":
         spool = os.path.join(os.path.dirname(os.path.abspath(output)), "frames")
-    it = render_frames(scene, path, frames, options, modes=modes, size=size, samples=samples,
-                       jobs=jobs, backend=backend, progress=bar, scheduler=scheduler,
-                       spool=spool, **changes)
+    config = RenderConfig.of(config, size=size, samples=samples, backend=backend)
+    it = render_frames(scene, path, frames, options, modes=modes, config=config, jobs=jobs,
+                       progress=bar, scheduler=scheduler, spool=spool, **changes)
     if output is None:
         return it
     try:

@@ -17,7 +17,7 @@ import numpy as np
 from .._atomic import atomic_write, writing
 from ..errors import EnvironmentFailure, GlshadeError
 from ..modes import Outputs
-from ..options import DrawOptions
+from ..options import DrawOptions, RenderConfig
 from ._plan import Task
 
 __all__ = ["BatchSpec", "BatchWorker", "Row", "view_directions", "write_npz"]
@@ -39,6 +39,11 @@ class BatchSpec:
     crease: float | None = None
     fov: float | None = None
     backend: str = "auto"
+
+    @property
+    def config(self) -> RenderConfig:
+        """What each worker's Renderer is built with (checked there, by RenderConfig)."""
+        return RenderConfig(*self.size, samples=self.samples, backend=self.backend)
 
 
 @dataclasses.dataclass
@@ -83,8 +88,7 @@ class BatchWorker:
         from ..render.renderer import Renderer
 
         self.spec = spec
-        w, h = spec.size
-        self.renderer = Renderer(w, h, samples=spec.samples, backend=spec.backend)
+        self.renderer = Renderer(config=spec.config)
 
     def __call__(self, task: Task) -> Row:
         start = time.perf_counter()

@@ -9,6 +9,7 @@ import sys
 
 from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, UsageError
 from ..io.scenefile import RenderSettings
+from ..options import RenderConfig
 from . import arguments as a
 from .info import info
 from .inputs import load_job
@@ -25,8 +26,7 @@ def render(args: a.RenderCommandArgs) -> int:
 
     job = load_job(args, args.mesh)
     (width, height), options = job.size, job.options
-    with job.explained(), Renderer(width, height, samples=job.settings.samples,
-                                   backend=args.backend) as renderer:
+    with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(job.scene, job.camera, options)
     save_image(image, args.output)
     if not args.quiet:
@@ -65,7 +65,7 @@ def animate(args: a.AnimateArgs) -> int:
     jobs = args.jobs or os.cpu_count() or 1
     with job.explained():
         n = run(job.scene, job.path, frames, job.options, modes=modes, output=args.output,
-                fps=fps, size=job.size, samples=st.samples, jobs=jobs, backend=args.backend,
+                fps=fps, config=job.config(args.backend), jobs=jobs,
                 progress=None if not args.quiet else False, scheduler=args.scheduler)
     if not args.quiet:
         where = (f"Dask at {args.scheduler}" if args.scheduler else
@@ -115,9 +115,10 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
                          "primitive:uv_sphere")
     make = icosphere_level if spec == "icosphere" else uv_sphere_level
     with Progress(len(args.levels), unit="levels") as bar:
-        rows = sweep(make, args.levels, modes=modes, size=args.size or COMPARE_DEFAULTS.size,
-                     backend=args.backend, jobs=args.jobs or 1, scheduler=args.scheduler,
-                     progress=bar)
+        config = RenderConfig(*(args.size or COMPARE_DEFAULTS.size), samples=0,
+                              backend=args.backend)
+        rows = sweep(make, args.levels, modes=modes, config=config, jobs=args.jobs or 1,
+                     scheduler=args.scheduler, progress=bar)
     print("mean |error| against the analytic sphere (8-bit units) and the brightest pixel "
           "(the reference's: %.1f)" % rows[0][modes[0]].reference_peak)
     print("level  faces     " + "  ".join(f"{m:>9}" for m in modes) + "   " +
@@ -143,8 +144,8 @@ def compare(args: a.CompareArgs) -> int:
     if args.sweep:
         return _sweep(args, modes)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
-    result = run(job.scene, job.camera, modes, args.reference, size=job.size, diff=args.diff,
-                 backend=args.backend, options=job.options)
+    result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
+                 options=job.options, config=job.config(args.backend).replace(samples=0))
     save_image(result.image, args.output)
     print(result.table())
     if args.json:

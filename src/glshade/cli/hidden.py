@@ -79,9 +79,10 @@ def _gpu(job, w, h, backend):
     import time
 
     from ..modes import Outputs
+    from ..options import RenderConfig
     from ..render.renderer import Renderer
 
-    with Renderer(w, h, samples=0, backend=backend) as r:
+    with Renderer(config=RenderConfig(w, h, samples=0, backend=backend)) as r:
         start = time.perf_counter()
         frame = r.render_frame(job.scene, job.camera, "flat", cull=False,
                                outputs=Outputs.FACE_ID | Outputs.DEPTH)

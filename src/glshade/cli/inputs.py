@@ -13,7 +13,8 @@ import numpy as np
 from ..errors import InputError, SettingError, UsageError
 from ..io.meshes import load_source
 from ..io.scenefile import RenderSettings
-from ..options import DrawOptions
+from ..modes import Backend
+from ..options import DrawOptions, RenderConfig
 from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
 from .arguments import RenderArgs
 
@@ -40,6 +41,10 @@ class Job:
     @property
     def size(self) -> tuple[int, int]:
         return self.settings.size
+
+    def config(self, backend: Backend | str = Backend.AUTO) -> RenderConfig:
+        """What the job's Renderer is built with: its size and samples, and ``backend``."""
+        return RenderConfig(*self.size, samples=self.settings.samples, backend=backend)
 
     @property
     def polygons(self) -> int:

@@ -53,7 +53,7 @@ def radiosity(args: RadiosityArgs) -> int:
     w, h = job.size
     with create_context(args.backend) as ctx, \
             FormFactors(problem, args.hemicube, seed=args.seed, context=ctx) as ff, \
-            Renderer(w, h, samples=job.settings.samples, context=ctx) as renderer, \
+            Renderer(config=job.config(args.backend), context=ctx) as renderer, \
             Progress(None, enabled=None if not quiet else False,
                      unit="shots" if args.method == "progressive" else "rows") as bar:
         start = time.perf_counter()

@@ -6,21 +6,27 @@ from __future__ import annotations
 import numpy as np
 
 from ..io.images import font
+from ..options import RenderConfig
 from ..scene import Camera, Material, PointLight, Scene
 from .comparison import compare
 
 __all__ = ["sweep", "sweep_plot", "SweepLevel", "icosphere_level", "uv_sphere_level"]
 
+#: a sweep's tiles: small, one sample per pixel like the analytic reference
+SWEEP_CONFIG = RenderConfig(192, 192, samples=0)
+
 
 def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "gouraud", "phong"),
-          *, material=None, lights=None, size=(192, 192), backend="auto",
-          renderer=None, jobs: int = 1, scheduler: str | None = None,
-          progress=None) -> list[dict]:
+          *, material=None, lights=None, size=None, backend=None,
+          config: RenderConfig | None = None, renderer=None, jobs: int = 1,
+          scheduler: str | None = None, progress=None) -> list[dict]:
     """Error of each mode against the analytic reference for each tessellation level:
     ``[{"level": k, "faces": F, "flat": ModeMetrics, ...}, ...]``. Levels render in
     ``jobs`` worker processes or on a Dask ``scheduler`` (then ``make_mesh`` must be
-    picklable: a module-level function or a ``functools.partial`` of one)."""
-    args = (make_mesh, camera, tuple(modes), material, lights, tuple(size), backend)
+    picklable: a module-level function or a ``functools.partial`` of one). ``config`` (or
+    ``size``, ``backend``): what each worker's Renderer is built with (192x192, no MSAA)."""
+    config = RenderConfig.of(config, size=size, backend=backend, base=SWEEP_CONFIG)
+    args = (make_mesh, camera, tuple(modes), material, lights, config)
     if renderer is not None:
         worker = SweepLevel(*args, renderer=renderer)
         return [worker(k) for k in levels]
@@ -39,16 +45,16 @@ def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "goura
 class SweepLevel:
     """A worker: the row of one tessellation level (its own renderer unless given one)."""
 
-    def __init__(self, make_mesh, camera, modes, material, lights, size, backend,
+    def __init__(self, make_mesh, camera, modes, material, lights, config: RenderConfig,
                  renderer=None):
         from ..render.renderer import Renderer
 
-        self.make_mesh, self.modes, self.size = make_mesh, modes, size
+        self.make_mesh, self.modes, self.size = make_mesh, modes, config.size
         self.camera = camera or Camera.look_at([0.4, 0.6, 3.3], [0, 0, 0], fov_y=40)
         self.material = material or Material(color=(0.9, 0.75, 0.6), ks=0.5, shininess=30)
         self.lights = lights or [PointLight((3.0, 4.0, 5.0))]
         self.owned = renderer is None
-        self.renderer = renderer or Renderer(size[0], size[1], samples=0, backend=backend)
+        self.renderer = renderer or Renderer(config=config)
 
     def __call__(self, k: int) -> dict:
         mesh = self.make_mesh(k)

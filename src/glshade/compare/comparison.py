@@ -24,7 +24,7 @@ from ..io.images import (
 )
 from ..io.tables import format_table
 from ..modes import Outputs, ShadingMode
-from ..options import DrawOptions
+from ..options import DrawOptions, RenderConfig
 from ..scene import Camera, Scene
 from . import metrics
 
@@ -128,24 +128,34 @@ def _reference(scene, camera, kind, renderer, size, options):
     return img[..., :3], mask, label
 
 
+#: what compare renders with unless told: small tiles, one sample per pixel like its references
+COMPARE_CONFIG = RenderConfig(256, 256, samples=0)
+
+
 def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
-            reference="analytic", *, size=(256, 256), diff: bool = True, renderer=None,
-            backend="auto", options: DrawOptions | None = None) -> Comparison:
+            reference="analytic", *, size=None, diff: bool = True, renderer=None,
+            backend=None, options: DrawOptions | None = None,
+            config: RenderConfig | None = None) -> Comparison:
     """Render ``modes`` and a reference; return the labelled grid and the metrics.
 
     ``reference``: "analytic" (sphere primitives, ray-cast exactly), "phong-fine" (Phong on
     a Phong-tessellated copy of each mesh), an image path or an ``(H, W, 3)`` array. No MSAA:
     every pixel is one sample, like the reference. ``options`` are the draw options every
-    mode shares (its mode is replaced by each of ``modes``).
+    mode shares (its mode is replaced by each of ``modes``). ``config`` (or ``size``,
+    ``backend``): the renderer made when none is given (default 256x256; ``samples`` 0).
     """
     from ..render.renderer import Renderer
 
     modes = [ShadingMode.parse(m) for m in modes]
     if not modes:
         raise ComparisonError("compare needs at least one mode")
-    w, h = size
+    config = RenderConfig.of(config, size=size, backend=backend, base=COMPARE_CONFIG)
+    if config.samples:
+        raise ComparisonError(f"compare draws one sample per pixel, like its references: "
+                              f"config.samples must be 0, got {config.samples}")
+    size = w, h = config.size
     own = renderer is None
-    r = renderer or Renderer(w, h, samples=0, backend=backend)
+    r = renderer or Renderer(config=config)
     try:
         if (r.width, r.height) != (w, h):
             raise ComparisonError(f"the renderer is {r.width}x{r.height}, size asks {w}x{h}")

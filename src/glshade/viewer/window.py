@@ -292,8 +292,9 @@ class Viewer:
         self.messages.append(text)
         print(text, file=sys.stderr)
 
-    def press(self, x: float, y: float, button: str = "left", shift: bool = False) -> None:
-        """Mouse press at window coordinates (what the button callback calls)."""
+    def mouse_down(self, x: float, y: float, button: str = "left",
+                   shift: bool = False) -> None:
+        """A mouse button pressed at window coordinates (what the button callback calls)."""
         now = time.perf_counter()
         if button == "left" and now - self._last_click < DOUBLE_CLICK_S:
             self.recentre(x, y)
@@ -303,7 +304,8 @@ class Viewer:
         if kind == "rotate":
             self.arcball.begin(x, y)
 
-    def move(self, x: float, y: float) -> None:
+    def mouse_move(self, x: float, y: float) -> None:
+        """The cursor moved to window coordinates: drags turn or pan the view."""
         self._cursor = (x, y)
         if self._drag is None:
             return
@@ -322,7 +324,8 @@ class Viewer:
             self.camera = start.replace(position=start.position + shift)
             self.center = center0 + shift
 
-    def release(self) -> None:
+    def mouse_up(self) -> None:
+        """The button let go: the drag ends. (``close()`` frees the window and its GL.)"""
         self._drag = None
         self.arcball.end()
 
@@ -373,12 +376,12 @@ class Viewer:
         if action == glfw.PRESS:
             name = {glfw.MOUSE_BUTTON_LEFT: "left", glfw.MOUSE_BUTTON_RIGHT: "right"}.get(
                 button, "other")
-            self.press(x, y, name, bool(mods & glfw.MOD_SHIFT))
+            self.mouse_down(x, y, name, bool(mods & glfw.MOD_SHIFT))
         else:
-            self.release()
+            self.mouse_up()
 
     def _cursor_event(self, window, x, y):
-        self.move(x, y)
+        self.mouse_move(x, y)
 
     def _scroll_event(self, window, dx, dy):
         self.scroll(dy)

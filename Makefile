@@ -25,6 +25,7 @@ test: setup
 lint: setup
 	$(PY) -m pip install -q ruff
 	$(PY) -m ruff check src tests benchmarks scripts
+	$(PY) -m mypy  # src/ and tests/typing/user_api.py (pyproject.toml [tool.mypy])
 
 bench: setup
 	$(PY) benchmarks/geometry_bench.py

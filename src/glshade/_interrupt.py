@@ -6,12 +6,14 @@ raise it again between items (:func:`check`, called by the progress bar)."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import sys
 
 __all__ = ["catch_dropped", "check"]
 
 _dropped = False
-_previous_hook = None
+_previous_hook: Any = None
 
 
 def _hook(unraisable) -> None:

@@ -31,7 +31,7 @@ MSAA_COUNTS = (0, 1, 2, 4, 8, 16, 32, 64)
 DEFAULT_SIZE = (800, 600)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class DrawOptions:
     """Everything that decides how a scene is drawn, apart from where (target, viewport).
 
@@ -54,9 +54,21 @@ class DrawOptions:
     wireframe: bool = False
     outputs: Outputs = Outputs.COLOR
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "mode", ShadingMode.parse(self.mode))
-        object.__setattr__(self, "cull", Culling.parse(self.cull))
+    def __init__(self, mode: ShadingMode | str = ShadingMode.PHONG, depth_test: bool = True,
+                 cull: Culling | bool | str = Culling.AUTO, srgb: bool = False,
+                 wireframe: bool = False, outputs: Outputs = Outputs.COLOR) -> None:
+        # (written out so that names are accepted where members are stored: a mode's name,
+        # cull=True; the stored fields are the enums, and type checkers see both)
+        put = object.__setattr__
+        put(self, "mode", ShadingMode.parse(mode))
+        put(self, "cull", Culling.parse(cull))
+        put(self, "depth_test", depth_test)
+        put(self, "srgb", srgb)
+        put(self, "wireframe", wireframe)
+        put(self, "outputs", outputs)
+        self._check()
+
+    def _check(self) -> None:
         for name in ("depth_test", "srgb", "wireframe"):
             value = getattr(self, name)
             if not isinstance(value, bool):
@@ -88,9 +100,10 @@ class DrawOptions:
             base = options
         else:  # a mode's name or member: one frozen value per mode, made once
             mode = ShadingMode.parse(options)
-            base = _BY_MODE.get(mode)
-            if base is None:
-                base = _BY_MODE[mode] = cls(mode=mode)
+            made = _BY_MODE.get(mode)
+            if made is None:
+                made = _BY_MODE[mode] = cls(mode=mode)
+            base = made
         if not changes:
             return base
         key = (base, tuple(sorted(changes.items())))
@@ -135,7 +148,7 @@ def check_samples(samples: object) -> int:
     return int(samples)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class RenderConfig:
     """What a Renderer is built with: one value that ``compare``, ``batch``, ``animate``,
     radiosity and the command line pass along, so each rule is checked once.
@@ -155,14 +168,15 @@ class RenderConfig:
     backend: Backend = Backend.AUTO
     device: int | None = None
 
-    def __post_init__(self) -> None:
-        width, height = check_size(self.width, self.height)
-        object.__setattr__(self, "width", width)
-        object.__setattr__(self, "height", height)
-        object.__setattr__(self, "samples", check_samples(self.samples))
-        object.__setattr__(self, "backend", Backend.parse(self.backend))
-        if self.device is not None:
-            object.__setattr__(self, "device", check_whole("device", self.device, 0))
+    def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
+                 backend: Backend | str = Backend.AUTO, device: int | None = None) -> None:
+        put = object.__setattr__
+        width, height = check_size(width, height)
+        put(self, "width", width)
+        put(self, "height", height)
+        put(self, "samples", check_samples(samples))
+        put(self, "backend", Backend.parse(backend))
+        put(self, "device", None if device is None else check_whole("device", device, 0))
 
     @property
     def size(self) -> tuple[int, int]:

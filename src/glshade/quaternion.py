@@ -108,10 +108,10 @@ def normalize(q: ArrayLike) -> Array:
             raise GeometryError("cannot normalize a zero or non-finite quaternion")
         return np.array([x / n, y / n, z / n, w / n])
     q = _q(q)
-    n = norm(q)
-    if np.any(n == 0) or not np.all(np.isfinite(n)):
+    lengths = norm(q)
+    if np.any(lengths == 0) or not np.all(np.isfinite(lengths)):
         raise GeometryError("cannot normalize a zero or non-finite quaternion")
-    return q / n[..., None]
+    return q / lengths[..., None]
 
 
 def inverse(q: ArrayLike) -> Array:

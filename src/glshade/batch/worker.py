@@ -16,7 +16,7 @@ import numpy as np
 
 from .._atomic import atomic_write, writing
 from ..errors import EnvironmentFailure, GlshadeError
-from ..modes import Outputs
+from ..modes import Backend, Outputs
 from ..options import DrawOptions, RenderConfig
 from ._plan import Task
 
@@ -38,12 +38,12 @@ class BatchSpec:
     lights: tuple = ()  # point-light positions; none: the headlight
     crease: float | None = None
     fov: float | None = None
-    backend: str = "auto"
+    backend: Backend | str = "auto"
 
     @property
     def config(self) -> RenderConfig:
         """What each worker's Renderer is built with (checked there, by RenderConfig)."""
-        return RenderConfig(*self.size, samples=self.samples, backend=self.backend)
+        return RenderConfig(*self.size, samples=self.samples, backend=Backend.parse(self.backend))
 
 
 @dataclasses.dataclass

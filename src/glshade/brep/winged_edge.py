@@ -54,6 +54,8 @@ class WingedEdge:
         nv = len(self.vertices)
         if _csr is not None:
             idx, off = _csr
+        elif loops is None:
+            raise TopologyError("a WingedEdge needs loops (or the CSR arrays)")
         else:
             sizes = np.fromiter((len(lp) for lp in loops), np.int64, len(loops))
             off = np.zeros(len(loops) + 1, np.int64)
@@ -292,7 +294,7 @@ class WingedEdge:
         chi = vert_c - edge_c + face_c - hole_c + bnd_c
         twice_g = 2 - chi
         genus = [int(g) // 2 if g % 2 == 0 and g >= 0 else None for g in twice_g.tolist()]
-        g_total = None if any(g is None for g in genus) else int(sum(genus))
+        g_total = None if any(g is None for g in genus) else sum(g or 0 for g in genus)
         return EulerReport(
             V=int(used.sum()), E=self.n_edges, F=int(outer.sum()), H=int((~outer).sum()),
             C=c, G=g_total, B=len(loops), is_closed=self.is_closed,

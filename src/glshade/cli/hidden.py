@@ -41,7 +41,7 @@ def hidden(args: HiddenArgs) -> int:
         if name != "gpu":
             results[name] = ALGORITHMS[name](p)
     reference_name = "gpu" if "gpu" in args.algorithms else next(iter(results))
-    gpu = None
+    gpu: tuple | None = None
     if "gpu" in args.algorithms:
         gpu = _gpu(job, w, h, args.backend)
     ref_ids = gpu[0] if gpu else results[reference_name].face_id
@@ -49,12 +49,15 @@ def hidden(args: HiddenArgs) -> int:
     edges = edge_pixels(p)
     rows, top, bottom = [], [], []
     for name in args.algorithms:
-        ids = gpu[0] if name == "gpu" else results[name].face_id
-        top.append(label(id_colors(ids), name))
         if name == "gpu":
+            assert gpu is not None  # (made above when asked for)
+            ids = gpu[0]
+            top.append(label(id_colors(ids), name))
             bottom.append(label(disagreement_map(ids, ref_ids, edges), "reference"))
             rows.append(("gpu", f"{gpu[2] * 1000:.1f}", "-", "0", "0", "-"))
             continue
+        ids = results[name].face_id
+        top.append(label(id_colors(ids), name))
         r = results[name]
         a = agreement(r, ref_ids, ref_depth, edges)
         bottom.append(label(disagreement_map(ids, ref_ids, edges),

@@ -44,7 +44,8 @@ class Job:
 
     def config(self, backend: Backend | str = Backend.AUTO) -> RenderConfig:
         """What the job's Renderer is built with: its size and samples, and ``backend``."""
-        return RenderConfig(*self.size, samples=self.settings.samples, backend=backend)
+        return RenderConfig(*self.size, samples=self.settings.samples,
+                            backend=Backend.parse(backend))
 
     @property
     def polygons(self) -> int:

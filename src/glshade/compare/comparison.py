@@ -171,6 +171,7 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     ref_lum = metrics.luminance(ref)
     for m, f in frames.items():
         img = f.color[..., :3].astype(np.float64) * 255
+        assert f.face_id is not None  # (asked for)
         mask = ref_mask & (f.face_id >= 0)
         images[m.value] = img
         errors[m.value] = np.where(mask, metrics.abs_error(img, ref), 0.0)

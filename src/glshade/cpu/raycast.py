@@ -56,7 +56,9 @@ def raycast_scene(scene: Scene, camera: Camera, width: int, height: int
     for model in scene.models:
         if not model.visible:
             continue
-        t, n = model.mesh.analytic.transformed(model.transform).intersect(o, d)
+        surface = model.mesh.analytic
+        assert surface is not None  # (has_analytic_surfaces was checked)
+        t, n = surface.transformed(model.transform).intersect(o, d)
         hit = t < best_t
         if not hit.any():
             continue

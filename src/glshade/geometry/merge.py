@@ -122,12 +122,12 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
 def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
     """Join meshes into one; with ``names`` each input becomes a named group of faces."""
     meshes = list(meshes)
-    names = list(names) if names is not None else [None] * len(meshes)
-    if len(names) != len(meshes):
-        raise GeometryError(f"got {len(meshes)} meshes but {len(names)} names")
+    labels: list[str | None] = list(names) if names is not None else [None] * len(meshes)
+    if len(labels) != len(meshes):
+        raise GeometryError(f"got {len(meshes)} meshes but {len(labels)} names")
     vert, idx, sizes, groups = [], [], [], {}
     v0 = f0 = 0
-    for m, name in zip(meshes, names):
+    for m, name in zip(meshes, labels):
         vert.append(m.vertices)
         idx.append(m.face_indices + v0)
         sizes.append(m.face_sizes)

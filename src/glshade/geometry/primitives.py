@@ -123,9 +123,9 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
             np.stack([a, ab, ca], 1), np.stack([b, bc, ab], 1),
             np.stack([c, ca, bc], 1), np.stack([ab, bc, ca], 1),
         ], 1).reshape(-1, 3)
-    m = Mesh(v * radius, f, name="icosphere")
-    m.analytic = AnalyticSphere(radius)
-    return m
+    sphere = Mesh(v * radius, f, name="icosphere")
+    sphere.analytic = AnalyticSphere(radius)
+    return sphere
 
 
 def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
@@ -238,7 +238,7 @@ def teapot(tessellation: int = 8) -> Mesh:
     out = (m.face_centroids - [0, 1.2, 0]).reshape(len(patches), per_patch, 3)
     agree = np.einsum("pfc,pfc->p", normal, out)
     q = quads.reshape(len(patches), per_patch, 4)
-    q = np.where((agree < 0)[:, None, None], q[..., ::-1], q).reshape(-1, 4)
+    q = np.where((agree < 0)[:, None, None], q[..., ::-1], q).reshape(-1, 4)  # type: ignore[assignment]
     # weld the patch seams; the handle's and spout's ends touch the body at single points,
     # which welding would pinch together: those pieces keep their own vertices there
     welded = split_point_contacts(Mesh(v, q).weld(1e-6))

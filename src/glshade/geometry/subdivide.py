@@ -36,7 +36,7 @@ def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
             small.append((index[i, j], index[i + 1, j], index[i, j + 1]))
             if i + j < k - 1:
                 small.append((index[i + 1, j], index[i + 1, j + 1], index[i, j + 1]))
-    small = np.asarray(small)
+    corners = np.asarray(small)
     p = mesh.vertices[tri]                      # (T, 3, 3)
     n = normals[tri]
     flat = np.einsum("pc,tcx->tpx", bary, p)   # (T, P, 3) linear points
@@ -47,5 +47,5 @@ def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
     nn = np.einsum("pc,tcx->tpx", bary, n)
     nn /= np.maximum(np.linalg.norm(nn, axis=-1, keepdims=True), 1e-300)
     t = len(tri)
-    faces = (small[None] + (np.arange(t) * len(bary))[:, None, None]).reshape(-1, 3)
+    faces = (corners[None] + (np.arange(t) * len(bary))[:, None, None]).reshape(-1, 3)
     return Mesh(curved.reshape(-1, 3), faces, normals=nn.reshape(-1, 3), name=mesh.name)

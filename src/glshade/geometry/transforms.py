@@ -31,7 +31,7 @@ def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Arr
     # (three 3-vectors: plain floats, since a camera may be made every frame)
     try:
         (ex, ey, ez), (tx, ty, tz), (ux, uy, uz) = (
-            [float(c) for c in a] for a in (eye, target, up))
+            [float(c) for c in a] for a in (eye, target, up))  # type: ignore[union-attr,arg-type]
     except (TypeError, ValueError):
         raise GeometryError("look_at: eye, target and up must be 3 numbers each") from None
     fx, fy, fz = tx - ex, ty - ey, tz - ez

@@ -70,7 +70,7 @@ class Pieces:
 def build_bsp(pieces: Pieces, eps: float):
     """Nodes ``[normal, offset, own pieces, front child, back child]`` (children: node
     indices or -1) over ``pieces`` (split ones are added to it), and counters."""
-    nodes = []
+    nodes: list[list] = []
     counters = {"nodes": 0, "splits": 0, "classifications": 0}
     if not pieces.size:
         return nodes, counters

@@ -92,7 +92,7 @@ def scanline(p: Prepared, steps: int = 0) -> HiddenResult:
                 ael_tri = np.r_[ael_tri, tri[new]]
                 ael_last = np.r_[ael_last, last[new]]
                 counters["AEL insertions"] += int(stop - nxt)
-                nxt = stop
+                nxt = int(stop)
             if not len(ael_x) and nxt >= len(first):
                 break
             if len(ael_x):

@@ -12,6 +12,8 @@ equal depth go to the polygon drawn first (GL_LESS). No back faces are culled.
 
 from __future__ import annotations
 
+from typing import Any
+
 import time
 from dataclasses import dataclass, field
 
@@ -40,6 +42,8 @@ class HiddenResult:
     counters: dict = field(default_factory=dict)
     seconds: float = 0.0
     steps: list = field(default_factory=list)  # (label, face_id) snapshots, for teaching
+    #: the object-space algorithms' paint order (depth sort, BSP), for their steps
+    painted: Any = None
 
 
 @dataclass
@@ -64,6 +68,9 @@ class Prepared:
     #: camera; the point at infinity along +z (0, 0, 1, 0) for an orthographic one, whose
     #: rays are parallel. Which side of a plane n.x = d faces the eye: n.e - d w.
     eye: tuple = (0.0, 0.0, 0.0, 1.0)
+    #: after splitting (BSP, depth sort): each piece's source triangle and whether it was cut
+    src: Any = None
+    cut: Any = None
 
     def eye_side(self, normal: np.ndarray, offset) -> np.ndarray:
         """``n.e - d w`` for planes ``n.x = d`` (rows of ``normal``, ``offset``): positive
@@ -133,7 +140,7 @@ def split_by_plane(tris: np.ndarray, normal: np.ndarray, offset: np.ndarray, eps
     cut = np.zeros((n, 3), bool) if cut is None else cut
     d = np.einsum("nkd,nd->nk", tris, normal) - offset[:, None]
     d = np.where(np.abs(d) <= eps, 0.0, d)
-    out = {True: ([], [], []), False: ([], [], [])}
+    out: dict[bool, tuple[list, list, list]] = {True: ([], [], []), False: ([], [], [])}
     for side in (True, False):
         s = d if side else -d
         inside = s >= 0
@@ -275,7 +282,7 @@ def fragments(p: Prepared, tris_screen: np.ndarray, tris_view: np.ndarray, count
             # on the edge: inside for a "top" or "left" edge (image coordinates, y down)
             top_left = ((ey * sign == 0) & (ex * sign < 0)) | (ey * sign > 0)
             inside &= (f > 0) | ((f == 0) & top_left)
-        if cut is not None:
+        if cut is not None and piece_screen is not None:
             q = piece_screen[tri]
             q1, q2 = q[:, 1] - q[:, 0], q[:, 2] - q[:, 0]
             qsign = np.sign(q1[:, 0] * q2[:, 1] - q1[:, 1] * q2[:, 0])

@@ -88,7 +88,7 @@ def step_frames(name: str, p: Prepared, result: HiddenResult, count: int = 24) -
         for k in range(1, count + 1):
             partial = p.empty_result(name)
             stop = int(round(n * k / count))
-            if stop:
+            if stop and sub is not None:
                 _paint_prefix(p, sub, partial, stop)
             frames.append(partial.face_id)
         return frames

@@ -3,6 +3,8 @@ file's line, and writing vertex and face lines in bulk."""
 
 from __future__ import annotations
 
+from typing import NoReturn
+
 import re
 
 import numpy as np
@@ -90,7 +92,8 @@ def write_faces(f, mesh: Mesh, prefix: str, base: int, with_count: bool) -> None
     f.write(text.encode())
 
 
-def numeric_diagnose(path, text, starts, ends, lines, what: str, first_line: int = 1):
+def numeric_diagnose(path, text, starts, ends, lines, what: str,
+                     first_line: int = 1) -> NoReturn:
     for i in lines.tolist():
         for token in text[starts[i]:ends[i]].split():
             try:

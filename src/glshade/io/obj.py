@@ -3,6 +3,8 @@ keywords are skipped."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import re
 
 import numpy as np
@@ -155,7 +157,7 @@ def read(path, data: bytes) -> Mesh:
         raise MeshFormatError(path, f"face index {int(written[c])} is out of range: the file "
                               f"defines {len(vertices)} vertices", line=int(f_lines[f]) + 1)
 
-    groups = {}
+    groups: dict[str, Any] = {}
     if group_lines:
         owner = np.searchsorted(np.asarray(group_lines), f_lines) - 1
         for g, name in enumerate(group_names):

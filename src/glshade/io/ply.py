@@ -3,6 +3,8 @@ polygon sizes."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..errors import GeometryError, MeshFormatError
@@ -29,7 +31,8 @@ def _ply_header(path, data: bytes):
     nl = data.find(b"\n", end)
     body_start = len(data) if nl < 0 else nl + 1
     lines = data[:end].decode("ascii", "replace").splitlines()
-    fmt, elements = None, []
+    fmt: str | None = None
+    elements: list[Any] = []
     for number, line in enumerate(lines, start=1):
         words = line.split()
         if not words or words[0] in ("ply", "comment", "obj_info"):

@@ -330,6 +330,7 @@ def load_scene(path) -> SceneFile:
         if needs not in light:
             raise SceneFormatError(f"{where}: a {kind} light needs a '{needs}'")
         try:  # (a value the light refuses -- a zero direction -- is named with its line)
+            obj: PointLight | DirectionalLight
             if kind == "point":
                 obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
                                                           "attenuation") if k in light})

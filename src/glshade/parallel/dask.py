@@ -26,7 +26,7 @@ from .executors import Executor
 try:
     from distributed import WorkerPlugin
 except ImportError:  # the extra is missing: DaskExecutor says how to install it
-    WorkerPlugin = object
+    WorkerPlugin = object  # type: ignore[misc,assignment]
 
 __all__ = ["DaskExecutor", "connect", "INSTALL_HINT"]
 

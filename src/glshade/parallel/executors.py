@@ -13,7 +13,7 @@ import os
 import pickle
 import signal
 import sys
-from collections.abc import Iterable, Iterator
+from collections.abc import Generator, Iterable
 
 from .._interrupt import check
 
@@ -26,7 +26,7 @@ class Executor:
     def __init__(self, factory, args: tuple):
         self.factory, self.args = factory, args
 
-    def map(self, items: Iterable) -> Iterator:
+    def map(self, items: Iterable) -> Generator:
         raise NotImplementedError
 
 

@@ -18,6 +18,7 @@ from collections import OrderedDict
 import numpy as np
 
 from ..errors import InputError, OptionError
+from ..modes import Backend
 from .problem import PatchScene
 
 __all__ = ["FormFactors", "quadrature_counts"]
@@ -59,7 +60,8 @@ class FormFactors:
 
     def __init__(self, problem: PatchScene, resolution: int = 128,
                  quadrature: int | str = "auto",
-                 seed: int = 0, context=None, backend: str = "auto", cache_mb: float = 512):
+                 seed: int = 0, context=None, backend: Backend | str = "auto",
+                 cache_mb: float = 512):
         from ..render.context import create_context
         from ..render.hemicube import Hemicube
 

@@ -80,8 +80,9 @@ class Patches:
         for s in np.unique(counts[quad]):
             sel = np.flatnonzero(quad & (counts == s))
             x, w = np.polynomial.legendre.leggauss(int(s))
-            u, v = np.meshgrid((x + 1) / 2, (x + 1) / 2, indexing="ij")
-            u, v, w2 = u.ravel(), v.ravel(), np.outer(w, w).ravel() / 4
+            uu, vv = np.meshgrid((x + 1) / 2, (x + 1) / 2, indexing="ij")
+            u, v = uu.ravel(), vv.ravel()
+            w2 = np.outer(w, w).ravel() / 4
             c = self.vertices[self.corners[sel]]  # (n, 4, 3)
             basis = np.stack([(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v], 1)
             du = np.stack([-(1 - v), 1 - v, v, -v], 1)
@@ -227,9 +228,9 @@ def _assemble(parts, split: int, size: float) -> Patches:
     tri_area = 0.5 * np.linalg.norm(cross, axis=1)
     n_p = nq + nt
     areas = np.bincount(patch, weights=tri_area, minlength=n_p)
-    centers = np.stack([np.bincount(patch, weights=tri_area * corners[:, :, d].mean(1),
+    centers: np.ndarray = np.stack([np.bincount(patch, weights=tri_area * corners[:, :, d].mean(1),
                                     minlength=n_p) for d in range(3)], 1)
-    centers /= np.maximum(areas, 1e-300)[:, None]
+    centers = centers / np.maximum(areas, 1e-300)[:, None]
     normals = np.stack([np.bincount(patch, weights=cross[:, d], minlength=n_p)
                         for d in range(3)], 1)
     length = np.linalg.norm(normals, axis=1)

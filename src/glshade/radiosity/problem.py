@@ -83,12 +83,12 @@ class PatchScene:
             rho.append(np.broadcast_to(r, (p.n_patches, 3)))
             owner.append(np.full(p.n_patches, k))
         patches = concatenate_patches(parts)
-        emission = np.concatenate(emission).astype(np.float64)
-        if not (emission > 0).any():
+        emitted = np.concatenate(emission).astype(np.float64)
+        if not (emitted > 0).any():
             raise InputError("the scene has no emitter: radiosity moves light that surfaces "
                              "give off; set a material's emission (e.g. emission = [15, 15, "
                              "15] on the light's mesh)")
-        return cls(patches, emission, np.concatenate(rho).astype(np.float64),
+        return cls(patches, emitted, np.concatenate(rho).astype(np.float64),
                    np.concatenate(owner), names, float(patch_size))
 
     def summary(self) -> str:

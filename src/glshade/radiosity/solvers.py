@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import InputError
 from .formfactors import FormFactors
+from .problem import PatchScene
 
 __all__ = ["Solution", "progressive", "gauss_seidel"]
 
@@ -35,7 +36,7 @@ class Solution:
     not yet shoot (zeros for gathering); ``history`` rows of (seconds, step, unshot
     fraction) -- a step is a shot or a sweep."""
 
-    problem: object
+    problem: PatchScene
     radiosity: np.ndarray
     unshot: np.ndarray
     method: str

@@ -8,9 +8,13 @@ context releases whatever its children left when it goes. No GL work in ``__del_
 
 from __future__ import annotations
 
+from typing import TypeVar
+
 from ..errors import GlshadeError
 
 __all__ = ["GLResource"]
+
+R = TypeVar("R", bound="GLResource")
 
 
 class GLResource:
@@ -45,7 +49,7 @@ class GLResource:
         self.released = True
         self.context.untrack(self)
 
-    def __enter__(self):
+    def __enter__(self: R) -> R:
         return self
 
     def __exit__(self, *exc) -> None:

@@ -13,6 +13,8 @@ been current, an EGL context made later in the same process can silently draw no
 
 from __future__ import annotations
 
+from typing import Any
+
 import ctypes
 import ctypes.util
 import os
@@ -198,7 +200,7 @@ class RenderContext:
             self._loader.release()
         self.released = True
 
-    def __enter__(self):
+    def __enter__(self) -> RenderContext:
         return self
 
     def __exit__(self, *exc):
@@ -212,7 +214,7 @@ class RenderContext:
 def _make_egl(device: int | None) -> RenderContext:
     import moderngl
 
-    settings = {"backend": "egl"}
+    settings: dict[str, Any] = {"backend": "egl"}
     dev = device if device is not None else os.environ.get("GLSHADE_EGL_DEVICE")
     if dev not in (None, ""):
         settings["device_index"] = int(dev)
@@ -228,7 +230,9 @@ def _make_osmesa() -> RenderContext:
 
     loader = OSMesaLoader()
     try:
-        ctx = moderngl.create_context(standalone=True, require=REQUIRE, context=loader)
+        # (moderngl's stubs want a dict for ``context``; glcontext takes a loader object)
+        ctx = moderngl.create_context(standalone=True, require=REQUIRE,
+                                      context=loader)  # type: ignore[arg-type]
     except Exception as exc:
         loader.release()
         raise ContextError(f"moderngl could not use the OSMesa context: {exc}") from None

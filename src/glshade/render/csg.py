@@ -15,6 +15,8 @@ faces (and a half-space's unbounded plane) have no centre and stay lit per pixel
 
 from __future__ import annotations
 
+from typing import Any
+
 import weakref
 
 import numpy as np
@@ -29,12 +31,13 @@ from .state import DrawState
 
 __all__ = ["CsgPass", "tree_code", "leaf_uniforms", "shape_key", "box_matrix"]
 
-_KIND = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
+_KIND: dict[type, str] = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
          L.Torus: "torus", L.HalfSpace: "halfspace"}
 #: leaf kinds as the fragment program's flat shading numbers them (csg.frag's face_centre)
 _KIND_CODE = {kind: code for code, kind in enumerate(_KIND)}
-_OPS = {Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
-        Difference: ("D", "ca > 0 && !(cb > 0)")}
+_OPS: dict[type, tuple[str, str]] = {
+    Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
+    Difference: ("D", "ca > 0 && !(cb > 0)")}
 
 
 def shape_key(solid: Solid) -> str:
@@ -42,13 +45,16 @@ def shape_key(solid: Solid) -> str:
     if isinstance(solid, Transformed):
         return shape_key(solid.child)
     if type(solid) in _OPS:
-        return f"{_OPS[type(solid)][0]}({shape_key(solid.a)},{shape_key(solid.b)})"
+        node: Any = solid  # (a boolean: it has a and b)
+        return f"{_OPS[type(solid)][0]}({shape_key(node.a)},{shape_key(node.b)})"
     return _KIND[type(solid)]
 
 
 def tree_code(solid: Solid) -> tuple[str, int, int]:
     """(GLSL defining ``csg_tree``, number of leaves, events width)."""
-    lines, helpers, counter = [], {}, [0, 0]
+    lines: list[str] = []
+    helpers: dict[str, str] = {}
+    counter = [0, 0]
 
     def visit(node) -> tuple[str, int]:
         if isinstance(node, Transformed):
@@ -153,9 +159,9 @@ class CsgPass(GLResource):
         super().__init__(context)
         self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
         self._programs: dict = {}
-        self._box = None
+        self._box: Any = None
         # per solid (solids are values: a new tree is a new object), what each frame reuses
-        self._solids = weakref.WeakKeyDictionary()
+        self._solids: weakref.WeakKeyDictionary[Solid, tuple] = weakref.WeakKeyDictionary()
 
     def _facts(self, solid: Solid):
         """(shape key, leaf uniforms) of a solid, made once."""
@@ -215,7 +221,7 @@ class CsgPass(GLResource):
         for model in state.scene.solids:
             if not model.visible:
                 continue
-            prog = self.program(model.solid, ProgramKey(*state.variant, two_sided=False))
+            prog = self.program(model.solid, ProgramKey.of(state.variant, two_sided=False))
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
@@ -223,7 +229,9 @@ class CsgPass(GLResource):
                 put(prog, name, value)
             for name, value in self._facts(model.solid)[1].items():
                 put(prog, name, value)
-            put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(model.solid.bounds)))
+            bounds = model.solid.bounds
+            assert bounds is not None  # (Scene.add refuses unbounded solids)
+            put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))
             put(prog, "u_solid_view_proj", gl_bytes(view_proj))
             put(prog, "u_inverse_view_proj", gl_bytes(np.linalg.inv(view_proj)))
             put(prog, "u_view", gl_bytes(view))

@@ -15,7 +15,7 @@ def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str
     draw's back-face culling)."""
     drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
     solids = [s for s in scene.solids if s.visible]
-    empty = [s for s in solids if np.prod(s.solid.bounds[1] - s.solid.bounds[0]) == 0]
+    empty = [s for s in solids if (b := s.solid.bounds) is not None and np.prod(b[1] - b[0]) == 0]
     if solids and len(empty) == len(solids) and not drawn:
         names = ", ".join(str(s.name) for s in empty)
         return (f"the render is blank: the solid ({names}) is empty -- an intersection of "

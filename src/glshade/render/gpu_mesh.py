@@ -3,6 +3,8 @@ vertex array per program. Uploaded once; drawing with another camera touches non
 
 from __future__ import annotations
 
+from typing import Any
+
 import weakref
 
 import moderngl
@@ -37,9 +39,10 @@ class GpuMesh(GLResource):
 
     def __init__(self, context, mesh: Mesh):
         super().__init__(context)
-        self._vaos: dict[int, object] = {}
-        self._flat_vbo = None
-        self._colors = None  # (colour array, vbo, ibo, {program id: vao}) of the radiosity mode
+        self._vaos: dict[int, Any] = {}
+        self._flat_vbo: Any = None
+        # (colour array, vbo, ibo, {program id: vao}) of the radiosity mode
+        self._colors: Any = None
         try:
             self._upload(mesh)
         except BaseException:

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import OptionError, UsageError
 from .base import GLResource
 from .shaders import ShaderLibrary
 
@@ -73,13 +73,13 @@ class Hemicube(GLResource):
     def __init__(self, context, resolution: int = 128):
         n = int(resolution)
         if n != resolution or n < 4 or n % 2:
-            raise GeometryError(f"hemicube resolution must be an even whole number >= 4, "
+            raise OptionError(f"hemicube resolution must be an even whole number >= 4, "
                                 f"got {resolution!r}")
         super().__init__(context)
         context.make_current()  # (another context may be current: GL objects go there)
         limit = context.ctx.info["GL_MAX_RENDERBUFFER_SIZE"]
         if 3 * n > limit:
-            raise GeometryError(f"hemicube resolution {n} needs a {3 * n}-pixel-wide "
+            raise OptionError(f"hemicube resolution {n} needs a {3 * n}-pixel-wide "
                                 f"target; this GL allows {limit} (use <= {limit // 3})")
         self.resolution = n
         self.batch = max(1, min(BATCH, BATCH_PIXELS // (3 * n * n), limit // n))
@@ -153,7 +153,7 @@ class Hemicube(GLResource):
 
         self._check()
         if self._vao is None:
-            raise GeometryError("upload the patches before asking for form factors")
+            raise UsageError("upload the patches before asking for form factors")
         origins = np.atleast_2d(np.asarray(origins, np.float64))
         normal = np.asarray(normal, np.float64)
         ctx = self.context.ctx

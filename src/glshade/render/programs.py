@@ -7,14 +7,15 @@ software rasterizer evaluates on both sides). Programs are compiled lazily and c
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from ..modes import ShadingMode
 from ..scene.lights import DirectionalLight
 
-__all__ = ["ProgramKey", "light_kind", "UniformWriter", "material_uniforms", "MaterialUniforms",
-           "flat_constants_fit", "FLAT_CONSTANTS_PIXELS"]
+__all__ = ["ProgramKey", "Variant", "light_kind", "UniformWriter", "material_uniforms",
+           "MaterialUniforms", "flat_constants_fit", "FLAT_CONSTANTS_PIXELS"]
 
 
 def light_kind(light) -> str:
@@ -76,6 +77,16 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
     return 2 + bool(aux) + 1 + per_light * len(lights) <= max_vectors
 
 
+class Variant(NamedTuple):
+    """What every program of one draw shares (the rest of a ProgramKey is per model)."""
+
+    mode: ShadingMode
+    aux: bool
+    lights: tuple
+    srgb: bool
+    orthographic: bool
+
+
 @dataclass(frozen=True)
 class ProgramKey:
     """Everything that selects a compiled program variant."""
@@ -88,6 +99,13 @@ class ProgramKey:
     two_sided: bool = True
     #: Phong's lighting constants reach the fragment stage as flat varyings (constants.glsl)
     flat_constants: bool = False
+
+    @classmethod
+    def of(cls, variant: Variant, *, two_sided: bool = True,
+           flat_constants: bool = False) -> ProgramKey:
+        """The key of a draw's variant for one model."""
+        return cls(variant.mode, variant.aux, variant.lights, variant.srgb,
+                   variant.orthographic, two_sided, flat_constants)
 
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS

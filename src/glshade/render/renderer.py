@@ -10,6 +10,8 @@ uniforms; buffers are never re-uploaded per frame.
 
 from __future__ import annotations
 
+from typing import Any
+
 import warnings
 import weakref
 from collections.abc import Iterable, Iterator
@@ -19,8 +21,8 @@ import moderngl
 import numpy as np
 
 from ..errors import (
-    EnvironmentFailure, GeometryError, GlshadeError, InputError, RenderWarning, SettingError,
-    UsageError,
+    EnvironmentFailure, GlshadeError, InputError, RenderWarning, SettingError,
+    OptionError, SceneError, UsageError,
 )
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Backend, Culling, Outputs, Projection, ShadingMode
@@ -29,8 +31,8 @@ from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import (
-    FLAT_CONSTANTS_PIXELS, MaterialUniforms, ProgramKey, UniformWriter, flat_constants_fit,
-    light_kind,
+    FLAT_CONSTANTS_PIXELS, MaterialUniforms, ProgramKey, UniformWriter, Variant,
+    flat_constants_fit, light_kind,
 )
 from .shaders import ShaderLibrary
 from .state import DrawState
@@ -124,7 +126,7 @@ class Renderer:
                  backend: Backend | str = "auto", device: int | None = None,
                  context: RenderContext | None = None, *, config: RenderConfig | None = None):
         if config is None:
-            config = RenderConfig(width, height, samples, backend, device)
+            config = RenderConfig(width, height, samples, Backend.parse(backend), device)
         elif (width, height, samples, backend, device) != (512, 512, 4, "auto", None):
             raise UsageError("give a Renderer either a config or width, height, samples, "
                              "backend and device, not both")
@@ -145,9 +147,9 @@ class Renderer:
         self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
-        self._query = None
-        self._normal_cache: dict[bytes, np.ndarray] = {}
-        self._programs: dict[tuple, object] = {}
+        self._query: Any = None
+        self._normal_cache: dict[bytes, tuple[np.ndarray, bool]] = {}
+        self._programs: dict[tuple, Any] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         # (shaders/include/constants.glsl; per model: programs.FLAT_CONSTANTS_PIXELS)
         self.flat_constants = self.context.software
@@ -239,17 +241,16 @@ class Renderer:
         self._check()
         options = DrawOptions.of(options)
         if not isinstance(scene, Scene):
-            raise GeometryError(f"expected a Scene, got {type(scene).__name__}")
+            raise OptionError(f"expected a Scene, got {type(scene).__name__}")
         if not isinstance(camera, Camera):
-            raise GeometryError(f"expected a Camera, got {type(camera).__name__}")
+            raise OptionError(f"expected a Camera, got {type(camera).__name__}")
         if len(scene.lights) > MAX_LIGHTS:
-            raise GeometryError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
+            raise SceneError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")
         self.context.make_current()
         self._sync(scene)
         ctx = self.ctx
         outputs, aux = options.outputs, options.outputs.auxiliary
-        lights = scene.lights_for(camera)
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
         proj = camera.projection_matrix(vw / vh)
@@ -268,9 +269,9 @@ class Renderer:
         else:
             ctx.disable(moderngl.DEPTH_TEST)
 
-        lights_key = lights = tuple(lights)
-        variant = (options.mode, aux, tuple(light_kind(x) for x in lights), options.srgb,
-                   camera.projection is Projection.ORTHOGRAPHIC)
+        lights_key = lights = tuple(scene.lights_for(camera))
+        variant = Variant(options.mode, aux, tuple(light_kind(x) for x in lights),
+                          options.srgb, camera.projection is Projection.ORTHOGRAPHIC)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
         state = DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
                           (vx, vy, vw, vh), flip_rows)
@@ -340,14 +341,15 @@ class Renderer:
                                                bool(np.linalg.det(model[:3, :3]) < 0))
         return found
 
-    def _program(self, variant: tuple, two_sided: bool, flat: bool = False):
+    def _program(self, variant: Variant, two_sided: bool, flat: bool = False):
         """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic),
         with flat lighting constants if asked for and they fit."""
         found = (variant, two_sided, flat)
         program = self._programs.get(found)
         if program is None:
-            flat = flat and flat_constants_fit(*variant[:3], self._max_varyings)
-            key = ProgramKey(*variant, two_sided=two_sided, flat_constants=flat)
+            flat = flat and flat_constants_fit(variant.mode, variant.aux, variant.lights,
+                                               self._max_varyings)
+            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat)
             program = self._programs[found] = self.shaders.program(key)
         return program
 
@@ -397,7 +399,7 @@ class Renderer:
         pass (several render targets). ``color_dtype="f4"`` returns unquantised float
         colour, for tests of the formula."""
         if color_dtype not in ("u1", "f4"):
-            raise GlshadeError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
+            raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         target = self._target("f1" if color_dtype == "u1" else "f4")
         self._counted_draw(target, scene, camera, options)
@@ -409,8 +411,10 @@ class Renderer:
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""
-        return self.render_frame(scene, camera, "depth", outputs=Outputs.DEPTH,
-                                 **changes).depth
+        depth = self.render_frame(scene, camera, "depth", outputs=Outputs.DEPTH,
+                                  **changes).depth
+        assert depth is not None  # (asked for)
+        return depth
 
     def render_many(self, scene: Scene, cameras: Iterable[Camera], options=None,
                     **changes) -> Iterator[np.ndarray]:

@@ -7,6 +7,8 @@ directives, so the driver's line numbers can be mapped back to the file they cam
 
 from __future__ import annotations
 
+from typing import Any
+
 import importlib.resources
 import re
 from pathlib import Path
@@ -153,7 +155,7 @@ class ShaderLibrary(GLResource):
 
     def __init__(self, context):
         super().__init__(context)
-        self._programs: dict[tuple, object] = {}
+        self._programs: dict[ProgramKey, Any] = {}
 
     def program(self, mode, aux: bool = True):
         """The program of a :class:`ProgramKey`, compiled on first use; or, given a mode, its

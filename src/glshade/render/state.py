@@ -14,6 +14,7 @@ import numpy as np
 
 from ..options import DrawOptions
 from ..scene import Camera, Scene
+from .programs import Variant
 
 __all__ = ["DrawState"]
 
@@ -42,7 +43,7 @@ class DrawState:
     view: np.ndarray
     proj: np.ndarray
     lights: tuple
-    variant: tuple
+    variant: Variant
     frame_uniforms: tuple
     viewport: tuple[int, int, int, int]
     flip_rows: bool

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GlshadeError
+from ..errors import OptionError
 from ..modes import Outputs
 from .base import GLResource
 
@@ -28,7 +28,7 @@ class OffscreenTarget(GLResource):
     def __init__(self, context, width: int, height: int, samples: int = 0,
                  color_dtype: str = "f1"):
         if width < 1 or height < 1:
-            raise GlshadeError(f"image size must be positive, got {width}x{height}")
+            raise OptionError(f"image size must be positive, got {width}x{height}")
         super().__init__(context)
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.color_dtype = color_dtype
@@ -98,6 +98,7 @@ class OffscreenTarget(GLResource):
         fbo = self.fbo_read_all if attachment else self.fbo_read_color
         np_dtype = np.dtype(dtype.replace("f1", "u1"))
         shape = (self.height, self.width, components)
+        buffer: np.ndarray | None
         if fresh:
             buffer = np.empty(shape, np_dtype)
         else:

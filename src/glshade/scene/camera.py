@@ -81,7 +81,8 @@ class Camera:
                 **kwargs) -> Camera:
         """A camera at ``eye`` looking at ``target`` with ``up`` roughly up."""
         view = look_at(eye, target, up)
-        camera = cls(position=eye, orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
+        camera = cls(position=np.asarray(eye, np.float64),
+                     orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
         view.setflags(write=False)  # (its view matrix is this one: no conversion back from
         camera.__dict__["_view"] = view  # the quaternion when it is drawn, a frame each)
         return camera

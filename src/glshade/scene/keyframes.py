@@ -229,7 +229,7 @@ class CameraPath:
         if not isinstance(entries, list) or not entries:
             raise PathFormatError(f"{source}: no [[keyframe]] tables")
         allowed = {"time", "eye", "target", "up", "position", "orientation", "fov_y"}
-        keys = []
+        keys: list[Keyframe] = []
         for i, e in enumerate(entries, start=1):
             unknown = set(e) - allowed
             if unknown:

@@ -18,7 +18,7 @@ def color3(value, name) -> tuple[float, float, float]:
         c = np.repeat(c, 3)
     if c.shape != (3,) or not np.isfinite(c).all() or (c < 0).any():
         raise SceneError(f"{name} must be 3 non-negative numbers (r, g, b), got {value!r}")
-    return tuple(float(x) for x in c)
+    return float(c[0]), float(c[1]), float(c[2])
 
 
 def nonnegative(value, name) -> float:

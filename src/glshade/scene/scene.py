@@ -14,6 +14,7 @@ from ..errors import SceneError
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.transforms import box_corners, compose_transform
+from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
@@ -59,7 +60,7 @@ class Model:
 class SolidModel:
     """One CSG solid in a scene (placed: its transform is part of the tree)."""
 
-    solid: object
+    solid: Solid
     material: Material = field(default_factory=Material)
     name: str | None = None
     visible: bool = True

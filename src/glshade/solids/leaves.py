@@ -14,6 +14,9 @@ __all__ = ["Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace"]
 
 
 class _Leaf(Solid):
+    def _leaf_events(self, o: np.ndarray, d: np.ndarray, leaf: int) -> Events:
+        raise NotImplementedError
+
     def _events(self, o, d, leaves) -> Events:
         return self._leaf_events(o, d, leaves[id(self)])
 

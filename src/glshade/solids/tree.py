@@ -18,6 +18,8 @@ no interval is ever dropped; everything is vectorised over rays.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -136,6 +138,19 @@ class Solid:
     def __repr__(self) -> str:
         return type(self).__name__
 
+    # what every node implements (points, rays and boxes already as float64 arrays)
+    def _contains(self, p: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def _bounds(self) -> np.ndarray | None:
+        raise NotImplementedError
+
+    def _events(self, o: np.ndarray, d: np.ndarray, leaves: dict[int, int]) -> Events:
+        raise NotImplementedError
+
+    def _classify(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
 
 # ----------------------------------------------------------------------------- helpers
 
@@ -228,6 +243,9 @@ def _quadratic(a, b, c):
 # ----------------------------------------------------------------------------- nodes
 
 class _Boolean(Solid):
+    #: inside the result, from inside A and inside B (elementwise on bool arrays)
+    op: Any
+
     def __init__(self, a: Solid, b: Solid):
         self.a, self.b = _solid(a), _solid(b)
         self.width = a.width + b.width

@@ -47,7 +47,7 @@ class Arcball:
 
     def __init__(self, width: float, height: float):
         self.resize(width, height)
-        self._start = None
+        self._start: np.ndarray | None = None
 
     def resize(self, width: float, height: float) -> None:
         self.width, self.height = float(width), float(height)

@@ -3,6 +3,8 @@ the compare grid labels its tiles: Pillow draws the text, one textured quad show
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..io.images import BACKGROUND, LABEL_HEIGHT, font
@@ -35,7 +37,7 @@ class LabelOverlay(GLResource):
         self.vbo = self._keep(context.ctx.buffer(quad.tobytes()))
         self.vao = self._keep(context.ctx.vertex_array(
             self.program, [(self.vbo, "2f 2f", "in_ndc", "in_uv")]))
-        self._textures: dict[tuple[str, int], object] = {}
+        self._textures: dict[tuple[str, int], Any] = {}
 
     def _texture(self, text: str, width: int):
         key = (text, width)

@@ -11,6 +11,8 @@ re-centre on the surface.
 
 from __future__ import annotations
 
+from typing import Any
+
 import os
 import sys
 import time
@@ -74,7 +76,7 @@ class Viewer:
         glfw.window_hint(glfw.SAMPLES, int(samples))
         glfw.window_hint(glfw.VISIBLE, bool(visible))
         glfw.window_hint(glfw.DOUBLEBUFFER, True)
-        self.window = glfw.create_window(int(size[0]), int(size[1]), title, None, None)
+        self.window: Any = glfw.create_window(int(size[0]), int(size[1]), title, None, None)
         if not self.window:
             glfw.terminate()
             raise DisplayError("glfw could not open a window with an OpenGL 3.3 core context")
@@ -98,7 +100,7 @@ class Viewer:
         self.play_time = 0.0
         self.path: CameraPath | None = None
         self.arcball = Arcball(*glfw.get_window_size(self.window))
-        self._drag = None  # ("rotate" | "pan", start camera, start x, start y)
+        self._drag: tuple | None = None  # ("rotate" | "pan", start camera, start x, start y)
         self._last_click = 0.0
         self._cursor = (0.0, 0.0)
         self._fps, self._frames, self._t0 = 0.0, 0, time.perf_counter()

@@ -21,8 +21,10 @@ def pytest_addoption(parser):
     group = parser.getgroup("glshade")
     group.addoption("--glshade-update-golden", action="store_true", default=False,
                     help="write the images glshade_golden is given as the new golden images")
-    group.addoption("--glshade-backend", default="auto",
-                    help="GL backend for glshade_renderer: auto, egl or osmesa")
+    from glshade.modes import HEADLESS_BACKENDS
+
+    group.addoption("--glshade-backend", default="auto", choices=HEADLESS_BACKENDS,
+                    help="GL backend for glshade_renderer: " + ", ".join(HEADLESS_BACKENDS))
 
 
 @pytest.fixture(scope="session")

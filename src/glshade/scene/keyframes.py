@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import PathFormatError, SceneError
+from ..errors import OptionError, PathFormatError, SceneError
 from ..modes import parse_enum
 from .. import quaternion as quat
 from .._atomic import atomic_write
@@ -47,8 +47,13 @@ class OrientationInterp(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> OrientationInterp:
-        return cls.SPLINE if value == "squad" else parse_enum(cls, value, "orientation "
-                                                              "interpolation")
+        if value == "squad":  # (Shoemake's name for the same curve)
+            return cls.SPLINE
+        try:
+            return parse_enum(cls, value, "orientation interpolation")
+        except OptionError:
+            raise OptionError(f"unknown orientation interpolation {value!r}; choose one of "
+                              "slerp, spline (or squad, the spline's other name)") from None
 
 
 class PositionInterp(str, enum.Enum):

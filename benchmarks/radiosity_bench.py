@@ -77,7 +77,8 @@ def main() -> None:
         with FormFactors(problem, 128, context=ctx) as ff:
             t = time.perf_counter()
             f = ff.row(0)[1]
-            rows.append((f"GPU row, N=128, {ff.quadrature[0]}x{ff.quadrature[0]} points", f"{f:.5f}",
+            q = ff.quadrature[0]
+            rows.append((f"GPU row, N=128, {q}x{q} points", f"{f:.5f}",
                          f"{100 * abs(f - EXACT) / EXACT:.4f}%",
                          f"{1000 * (time.perf_counter() - t):.2f}"))
         print("\nCPU reference (double Gauss quadrature, no occlusion) against one GPU row")

@@ -1,9 +1,11 @@
 """Helpers for testing rendered images in other projects' test suites.
 
 ``assert_images_close`` compares two images with explicit thresholds and, when they differ,
-saves the actual image, the expected one and a difference heat map next to the failing
-test, and says where they differ. The pytest plugin (``glshade.pytest_plugin``, registered
-as an entry point) adds a ``glshade_renderer`` fixture and golden-image checks.
+saves the actual image, the expected one and a difference heat map in a results folder
+outside the source tree (:func:`failure_dir`), and says where they differ. RGB and RGBA
+images are compared by what they hold (RGB is RGBA with an opaque alpha). The pytest plugin
+(``glshade.pytest_plugin``, registered as an entry point) adds a ``glshade_renderer``
+fixture and golden-image checks (:mod:`glshade.golden`).
 """
 
 from __future__ import annotations
@@ -18,14 +20,18 @@ __all__ = ["assert_images_close", "failure_dir"]
 
 
 def failure_dir() -> Path:
-    """Where failure images go: ``glshade-failures/<test name>/`` beside the running test
-    file (from ``PYTEST_CURRENT_TEST``), else in the current directory."""
+    """Where failure images go: ``<results>/<test name>/``, the results folder being
+    ``GLSHADE_RESULTS`` (the pytest plugin sets it to its results folder) or this machine's
+    temporary folder -- never beside the test, in the source tree."""
+    import tempfile
+
     current = os.environ.get("PYTEST_CURRENT_TEST", "")
     node = current.split(" ")[0]
-    file, _, name = node.partition("::")
-    base = Path(file).parent if file else Path.cwd()
-    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", name or "images")
-    return base / "glshade-failures" / safe
+    name = node.partition("::")[2]
+    safe = re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", name or "images")
+    base = os.environ.get("GLSHADE_RESULTS") or os.path.join(tempfile.gettempdir(),
+                                                             "glshade-results")
+    return Path(base) / safe
 
 
 def _as_float(img, name) -> np.ndarray:
@@ -50,6 +56,9 @@ def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: floa
     pixels are over, their bounding box and the worst pixel.
     """
     a, e = _as_float(actual, "actual"), _as_float(expected, "expected")
+    if a.shape[:2] == e.shape[:2] and {a.shape[2], e.shape[2]} == {3, 4}:
+        a, e = (x if x.shape[2] == 4 else np.concatenate([x, np.full(x.shape[:2] + (1,), 255.0)],
+                                                         axis=2) for x in (a, e))
     if a.shape != e.shape:
         raise AssertionError(f"image shapes differ: actual {a.shape}, expected {e.shape}")
     diff = np.abs(a - e).max(axis=-1)

@@ -45,18 +45,30 @@ def test_broken(glshade_renderer, glshade_golden):
 
 def test_pytest_plugin_golden_images(pytester, gl_context):
     backend = gl_context.backend.value
-    pytester.makepyfile(test_images=PLUGIN_TEST)
+    pytester.makepyfile(test_images=PLUGIN_TEST.replace(
+        'glshade_golden(img, "sphere.png")', 'glshade_golden(img, "sphere-broken.png")'))
     result = pytester.runpytest_subprocess("--glshade-backend", backend, "-k", "golden")
     result.assert_outcomes(failed=1)
-    result.stdout.fnmatch_lines(["*no golden image*--glshade-update-golden*"])
+    result.stdout.fnmatch_lines(["*no golden image*--glshade-add-missing*"])
     result = pytester.runpytest_subprocess("--glshade-backend", backend, "-k", "golden",
                                            "--glshade-update-golden")
     result.assert_outcomes(passed=1)
     assert (pytester.path / "golden" / "sphere.png").exists()
-    result = pytester.runpytest_subprocess("--glshade-backend", backend)
+    assert (pytester.path / "golden" / "sphere.json").exists()  # (its fingerprint)
+    import shutil
+
+    shutil.copy(pytester.path / "golden" / "sphere.png",
+                pytester.path / "golden" / "sphere-broken.png")
+    shutil.copy(pytester.path / "golden" / "sphere.json",
+                pytester.path / "golden" / "sphere-broken.json")
+    results = pytester.path.parent / "results"
+    result = pytester.runpytest_subprocess("--glshade-backend", backend, "--glshade-results",
+                                           str(results))
     result.assert_outcomes(passed=2, failed=1)
-    result.stdout.fnmatch_lines(["*images differ*Saved actual.png, expected.png and diff.png*"])
-    assert (pytester.path / "glshade-failures" / "test_broken" / "diff.png").exists()
+    result.stdout.fnmatch_lines(["*the same renderer made different bytes*Saved actual.png*",
+                                 f"glshade: 1 golden image(s) differ; see {results}*index.html"])
+    assert (results / "sphere-broken" / "diff.png").exists()
+    assert not (pytester.path / "glshade-failures").exists()  # (never in the source tree)
 
 
 def test_pytest_plugin_fails_clearly_without_gl(pytester):

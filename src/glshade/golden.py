@@ -1,0 +1,167 @@
+"""Golden images that explain a mismatch: each golden PNG has a fingerprint of the renderer
+that made it beside it (``name.json``), and a comparison gives a verdict, not just a number.
+
+What is promised (measured on Mesa llvmpipe): glshade's images are bit-identical across EGL
+and OSMesa, 1 or 2 llvmpipe threads and MSAA 0 or 4 for the same GL driver. So:
+
+* **Same fingerprint** (GL vendor, renderer, version, backend, MSAA samples, glshade
+  version): the bytes must be equal. Any difference is a regression.
+* **Another fingerprint** (another driver, a GPU, a new glshade): drivers legitimately
+  differ where coverage is decided, on polygon edges and silhouettes, so the id buffer of
+  the new render (a :class:`~glshade.Frame`'s ``face_id``) splits the pixels. Pixels within
+  ``edge_width`` pixels of an edge (where the polygon id changes, background included) may
+  differ by any amount; they are counted and shown. Interior pixels -- inside one polygon,
+  where every driver evaluates the same formula -- must be within ``max_pixel`` (8-bit
+  units), and their mean difference within ``max_mean``. Without an id buffer the
+  tolerances apply to every pixel.
+
+RGB and RGBA images are compared by what they hold: an RGB image is RGBA with an opaque
+alpha, so an RGBA render with alpha 255 everywhere equals its RGB golden.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["fingerprint", "as_rgba", "edge_mask", "Verdict", "judge", "read_golden",
+           "write_golden", "FINGERPRINT_KEYS"]
+
+#: what a fingerprint records, in this order
+FINGERPRINT_KEYS = ("vendor", "renderer", "version", "backend", "samples", "glshade")
+
+
+def fingerprint(renderer: Any) -> dict[str, Any]:
+    """The facts that decide a render's bytes: the GL driver's vendor, renderer and version,
+    the backend, the renderer's MSAA samples and glshade's version."""
+    from ._version import __version__
+
+    info = renderer.context.info
+    return {"vendor": info.get("vendor"), "renderer": info.get("renderer"),
+            "version": info.get("version"), "backend": info.get("backend"),
+            "samples": int(renderer.samples), "glshade": __version__}
+
+
+def as_rgba(image: Any) -> np.ndarray:
+    """``(H, W, 4) uint8`` of an image: grey, RGB (alpha 255) or RGBA; uint8 or floats in
+    [0, 1]."""
+    a = np.asarray(image)
+    if a.ndim == 2:
+        a = a[..., None]
+    if a.ndim != 3 or a.shape[2] not in (1, 3, 4):
+        raise ValueError(f"an image must be (H, W), (H, W, 3) or (H, W, 4), got {a.shape}")
+    if a.dtype != np.uint8:
+        a = np.clip(np.round(np.asarray(a, np.float64) * 255.0), 0, 255).astype(np.uint8)
+    if a.shape[2] == 1:
+        a = np.repeat(a, 3, axis=2)
+    if a.shape[2] == 3:
+        a = np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2)
+    return a
+
+
+def edge_mask(face_id: np.ndarray, width: int = 1) -> np.ndarray:
+    """``(H, W) bool``: pixels within ``width`` pixels (8-neighbourhood) of a place where the
+    polygon id changes -- a polygon's edge, or the silhouette against the background."""
+    ids = np.asarray(face_id)
+    if ids.ndim != 2:
+        raise ValueError(f"face_id must be (H, W), got {ids.shape}")
+    change = np.zeros(ids.shape, bool)
+    horizontal = ids[:, 1:] != ids[:, :-1]
+    vertical = ids[1:, :] != ids[:-1, :]
+    change[:, 1:] |= horizontal
+    change[:, :-1] |= horizontal
+    change[1:, :] |= vertical
+    change[:-1, :] |= vertical
+    out = change
+    for _ in range(max(int(width) - 1, 0)):  # grow by one pixel (8-neighbourhood) per step
+        grown = out.copy()
+        grown[1:, :] |= out[:-1, :]
+        grown[:-1, :] |= out[1:, :]
+        grown[:, 1:] |= out[:, :-1]
+        grown[:, :-1] |= out[:, 1:]
+        out = grown
+    return out
+
+
+@dataclass
+class Verdict:
+    """The outcome of comparing a render with its golden image."""
+
+    ok: bool
+    reason: str
+    same_fingerprint: bool
+    mean: float = 0.0            # mean |difference| over the judged pixels (8-bit units)
+    worst: float = 0.0           # the largest difference of a judged pixel
+    differing: int = 0           # pixels that differ at all
+    edge_differing: int = 0      # of them, on polygon edges (another driver's coverage)
+    interior_over: int = 0       # interior pixels over max_pixel (a regression)
+    diff: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+
+    def summary(self) -> str:
+        return (f"{self.reason}: {self.differing} pixels differ ({self.edge_differing} on "
+                f"polygon edges), {self.interior_over} interior pixels over tolerance, mean "
+                f"{self.mean:.3f}, max {self.worst:.1f}")
+
+
+def judge(actual: Any, expected: Any, *, same_fingerprint: bool,
+          face_id: np.ndarray | None = None, max_mean: float = 0.5,
+          max_pixel: float = 4.0, edge_width: int = 1) -> Verdict:
+    """Compare a render with its golden image (see the module's rules)."""
+    a, e = as_rgba(actual), as_rgba(expected)
+    if a.shape != e.shape:
+        return Verdict(False, f"sizes differ: the render is {a.shape[1]}x{a.shape[0]}, the "
+                       f"golden {e.shape[1]}x{e.shape[0]}", same_fingerprint)
+    diff = np.abs(a.astype(np.int16) - e.astype(np.int16)).max(axis=2).astype(np.float64)
+    differing = diff > 0
+    if same_fingerprint:
+        n = int(differing.sum())
+        return Verdict(n == 0, "identical bytes, as the same renderer must give" if n == 0
+                       else "the same renderer made different bytes (a regression)", True,
+                       float(diff.mean()), float(diff.max(initial=0)), n, 0, n, diff)
+    if face_id is None:
+        judged = np.ones(diff.shape, bool)
+        edges = np.zeros(diff.shape, bool)
+    else:
+        if np.shape(face_id) != diff.shape:
+            raise ValueError(f"face_id {np.shape(face_id)} does not match the image "
+                             f"{diff.shape}")
+        edges = edge_mask(face_id, edge_width)
+        judged = ~edges
+    values = diff[judged]
+    mean = float(values.mean()) if values.size else 0.0
+    worst = float(values.max(initial=0))
+    over = int(((diff > max_pixel) & judged).sum())
+    ok = over == 0 and mean <= max_mean
+    where = "interior " if face_id is not None else ""
+    reason = (f"another renderer: {where}pixels within tolerance" if ok else
+              f"another renderer, but {where}pixels differ beyond tolerance (max_pixel "
+              f"{max_pixel:g}, max_mean {max_mean:g}): a regression")
+    return Verdict(ok, reason, False, mean, worst, int(differing.sum()),
+                   int((differing & edges).sum()), over, diff)
+
+
+def read_golden(path: Path) -> tuple[np.ndarray, dict[str, Any] | None]:
+    """A golden image and its fingerprint (None when it has none: an older golden)."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        image = np.asarray(im)
+    meta = path.with_suffix(".json")
+    facts = json.loads(meta.read_text(encoding="utf-8")) if meta.exists() else None
+    return image, facts
+
+
+def write_golden(path: Path, image: Any, facts: dict[str, Any]) -> None:
+    """Write a golden image and its fingerprint beside it (each atomically)."""
+    from ._atomic import atomic_write
+    from .io.images import save_image
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    save_image(as_rgba(image), path)
+    with atomic_write(path.with_suffix(".json"), "w") as f:
+        json.dump({k: facts.get(k) for k in FINGERPRINT_KEYS}, f, indent=2)
+        f.write("\n")

@@ -5,7 +5,6 @@ edge pixels free and interior pixels held to tolerance from another)."""
 import json
 
 import numpy as np
-import pytest
 
 from glshade.golden import as_rgba, edge_mask, judge
 

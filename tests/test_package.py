@@ -17,7 +17,8 @@ PACKAGE = Path(glshade.__file__).parent
 #: the layers, lowest first: a module may import its own layer and those below it. Each
 #: chapter of the notes is one package (or module) at its public import path.
 LAYERS = [
-    {"_version", "_atomic", "_callable", "_interrupt", "_vec", "errors", "modes", "options"},
+    {"_version", "_atomic", "_callable", "_interrupt", "_vec", "errors", "modes", "options",
+     "examples"},
     {"parallel"},
     {"quaternion", "masspoint"},
     {"geometry"},

@@ -16,6 +16,7 @@ _EXPORTS = {
     "quaternion": ("quaternion", None), "masspoint": ("masspoint", None),
     "brep": ("brep", None), "solids": ("solids", None), "octree": ("octree", None),
     "hidden": ("hidden", None), "radiosity": ("radiosity", None),
+    "examples": ("examples", None),
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
     # the mesh kernel
     "geometry": ("geometry", None),
@@ -52,7 +53,8 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import brep, geometry, hidden, masspoint, octree, quaternion, radiosity, solids
+    from . import (brep, examples, geometry, hidden, masspoint, octree, quaternion, radiosity,
+                   solids)
     from .compare.comparison import Comparison, compare
     from .animate.frames import animate
     from .errors import (ComparisonError, ContextError, DisplayError, EnvironmentFailure,

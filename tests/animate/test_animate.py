@@ -295,3 +295,77 @@ def test_a_worker_without_gl_is_reported_not_restarted(tmp_path):
     assert r.returncode == 1
     assert "cannot load /no/libOSMesa.so" in r.stderr and "Traceback" not in r.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_animate_a_loaded_scene_file_honours_its_render_table(tmp_path):
+    """glshade.animate(scene_file, ...) takes the file's path, size, fps and draw options
+    where the call gives none (it used to draw 512x512 at 30 fps whatever the file said)."""
+    from PIL import Image
+
+    import glshade
+
+    path = tmp_path / "s.toml"
+    path.write_text('[render]\nsize = [48, 32]\nfps = 10\nduration = 0.4\nmode = "flat"\n'
+                    'samples = 0\n[[mesh]]\nsource = "primitive:cube"\n'
+                    '[[camera.keyframe]]\ntime = 0\neye = [3, 2, 4]\ntarget = [0, 0, 0]\n'
+                    '[[camera.keyframe]]\ntime = 1\neye = [-3, 2, 4]\ntarget = [0, 0, 0]\n')
+    sf = glshade.load_scene(path)
+    n = glshade.animate(sf, output=str(tmp_path / "a.gif"))
+    assert n == 4  # duration 0.4 s at 10 fps
+    with Image.open(tmp_path / "a.gif") as gif:
+        assert gif.size == (48, 32) and gif.n_frames == 4
+        assert gif.info["duration"] == 100  # ms: 10 fps
+    frames = list(glshade.animate(sf, frames=2))
+    flat = glshade.animate(sf.scene, sf.path, 2, "flat", size=(48, 32), samples=0)
+    for a, b in zip(frames, flat):
+        assert np.array_equal(a, b)  # the file's mode (flat) and samples, by default
+    with pytest.raises(glshade.InputError, match="needs a camera path"):
+        glshade.animate(sf.scene)
+
+
+def test_a_path_file_is_a_scene_files_camera_table(tmp_path):
+    """One key-frame format: CameraPath.save writes [camera] + [[camera.keyframe]], which a
+    scene file takes as it is, and CameraPath.load reads a scene file's path."""
+    import glshade
+
+    p = glshade.CameraPath([glshade.Keyframe.look_at(0.0, (0, 1, 5), (0, 0, 0)),
+                            glshade.Keyframe.look_at(2.0, (5, 1, 0), (0, 0, 0))],
+                           orientation_interp="spline", camera=glshade.Camera(fov_y=35))
+    p.save(tmp_path / "path.toml")
+    text = (tmp_path / "path.toml").read_text()
+    assert "[[camera.keyframe]]" in text and 'interpolation = "spline"' in text
+    back = glshade.CameraPath.load(tmp_path / "path.toml")
+    scene_file = tmp_path / "scene.toml"
+    scene_file.write_text('[[mesh]]\nsource = "primitive:cube"\n\n' + text)
+    from_scene = glshade.load_scene(scene_file).path
+    also = glshade.CameraPath.load(scene_file)
+    t = np.linspace(0, 2, 9)
+    for q in (back, from_scene, also):
+        pos, rot, fov = q.evaluate(t)
+        ref = p.evaluate(t)
+        np.testing.assert_allclose(pos, ref[0], atol=1e-9)
+        np.testing.assert_allclose(np.abs(np.einsum("ij,ij->i", rot, ref[1])), 1, atol=1e-9)
+        np.testing.assert_allclose(fov, 35.0)
+    assert back.orientation_interp is glshade.scene.keyframes.OrientationInterp.SPLINE
+
+
+def test_examples_by_name_in_the_api_and_the_cli(tmp_path):
+    import subprocess
+    import sys
+
+    import glshade
+
+    names = glshade.examples.names()
+    assert {"cornell-box", "csg-part", "teapot-orbit", "teapot.obj", "torus.off"} <= set(names)
+    assert glshade.examples.path("cornell-box").name == "cornell-box.toml"
+    with pytest.raises(glshade.InputError, match="no example named 'cornel'; the examples"):
+        glshade.examples.path("cornel")
+    out = subprocess.run([sys.executable, "-m", "glshade", "render", "teapot.obj", "-o",
+                          "t.png", "--size", "32x24"], capture_output=True, text=True,
+                         cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert (tmp_path / "t.png").exists()
+    (tmp_path / "teapot.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    out = subprocess.run([sys.executable, "-m", "glshade", "info", "teapot.obj", "--json"],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert '"faces": 1' in out.stdout  # a file of that name wins over the example

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..io.images import LABEL_HEIGHT, labelled_row
+from ..io.scenefile import SceneFile
 from ..options import DrawOptions, RenderConfig
 from ..scene import CameraPath, Scene
 from ..parallel import make_executor
@@ -114,15 +115,37 @@ def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def animate(scene: Scene, path: CameraPath, frames: int, options=None, *, modes=None,
-            output=None, fps: float = 30.0, config: RenderConfig | None = None, size=None,
-            samples: int | None = None, jobs: int | None = 1, backend=None,
-            progress: bool | None = False, scheduler: str | None = None, **changes):
+def animate(scene, path: CameraPath | None = None, frames: int | None = None, options=None,
+            *, modes=None, output=None, fps: float | None = None,
+            config: RenderConfig | None = None, size=None, samples: int | None = None,
+            jobs: int | None = 1, backend=None, progress: bool | None = False,
+            scheduler: str | None = None, **changes):
     """Render ``frames`` frames along ``path``. Without ``output``, return an iterator of
     images; with it, write the file (GIF, PNG/APNG, MP4 or a folder) and return the number
     of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal;
     ``scheduler`` renders on a Dask cluster (see :func:`render_frames`); ``config`` (or
-    ``size``, ``samples``, ``backend``) is what each Renderer is built with."""
+    ``size``, ``samples``, ``backend``) is what each Renderer is built with.
+
+    ``scene`` may be a loaded scene file (:func:`glshade.load_scene`): then its camera path,
+    its ``[render]`` size, samples, fps, duration and draw options are used wherever the
+    call does not give its own (``frames`` defaults to duration x fps, else the path's)."""
+    if isinstance(scene, SceneFile):
+        st = scene.settings
+        path = scene.path if path is None else path
+        options = st.options if options is None else options
+        fps = st.fps if fps is None else fps
+        if config is None:
+            config = RenderConfig.of(size=size or st.size,
+                                     samples=st.samples if samples is None else samples,
+                                     backend=backend)
+        if frames is None:
+            seconds = st.duration if st.duration is not None else path.duration
+            frames = max(1, int(round(seconds * fps)))
+        scene = scene.scene
+    if path is None or frames is None:
+        raise InputError("animate needs a camera path and a number of frames (or a loaded "
+                         "scene file, which has both)")
+    fps = 30.0 if fps is None else fps
     jobs = (os.cpu_count() or 1) if jobs is None else jobs
     bar = Progress(frames, enabled=progress) if progress is not False else None
     spool = None

@@ -133,9 +133,13 @@ def _scene_info(args: InfoArgs) -> int:
 
 
 def info(args: InfoArgs) -> int:
+    from dataclasses import replace
+
+    from .. import examples
     from ..solids.tree import Solid
     from .inputs import is_scene_file
 
+    args = replace(args, mesh=examples.resolve(args.mesh))  # (an example's name: its file)
     if is_scene_file(args.mesh):
         return _scene_info(args)
     mesh = load_source(args.mesh)

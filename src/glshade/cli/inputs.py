@@ -16,6 +16,7 @@ from ..io.scenefile import RenderSettings
 from ..modes import Backend
 from ..options import DrawOptions, RenderConfig
 from ..scene import Camera, CameraPath, Material, PointLight, Scene, default_camera
+from .. import examples
 from .arguments import RenderArgs
 
 __all__ = ["Job", "load_job", "is_scene_file", "build_scene"]
@@ -87,7 +88,9 @@ def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
 
 def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None) -> Job:
     """Resolve ``spec`` and ``args`` into a Job: command line > scene file > ``defaults``
-    (a RenderSettings; the dataclass's own when None)."""
+    (a RenderSettings; the dataclass's own when None). A name that is no file but an
+    example's (``cornell-box``, ``teapot.obj``) is that example."""
+    spec = examples.resolve(spec)
     base = defaults or RenderSettings()
     time = args.time
     if is_scene_file(spec):

@@ -27,6 +27,9 @@ def radiosity(args: RadiosityArgs) -> int:
     from ..render.context import create_context
     from ..render.renderer import Renderer
 
+    from .. import examples
+
+    args = replace(args, scene=examples.resolve(args.scene))
     if not is_scene_file(args.scene):
         raise UsageError(f"{args.scene}: radiosity needs a scene file (.toml) whose materials "
                          "give emission, such as assets/scenes/cornell-box.toml")

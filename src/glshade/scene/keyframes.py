@@ -1,18 +1,29 @@
 """Camera key frames interpolated with quaternions (the notes' use of slerp).
 
 Orientation between neighbouring keys is slerp (constant angular speed, shortest arc) or a
-C1 quaternion spline; position is linear or Catmull-Rom. Paths load from and save to TOML::
+C1 quaternion spline; position is linear or Catmull-Rom.
 
-    [[keyframe]]
+One file format: a path is a scene file's ``[camera]`` table with its key frames, so a path
+saved by :meth:`CameraPath.save` (or the viewer's ``P``) can be pasted into a scene file,
+and :meth:`CameraPath.load` reads a scene file's path::
+
+    [camera]
+    interpolation = "slerp"                  # or "spline" ("squad")
+    position_interpolation = "linear"        # or "catmull-rom"
+    fov_y = 45.0                             # the lens, where a key gives none
+
+    [[camera.keyframe]]
     time = 0.0
     eye = [0.0, 1.0, 5.0]
     target = [0.0, 0.0, 0.0]
 
-    [[keyframe]]
+    [[camera.keyframe]]
     time = 2.0
     position = [5.0, 1.0, 0.0]
     orientation = [0.0, 0.7071068, 0.0, 0.7071068]   # [x, y, z, w]
     fov_y = 35.0
+
+(Top-level ``[[keyframe]]`` tables, the earlier form, are read too.)
 """
 
 from __future__ import annotations
@@ -228,11 +239,24 @@ class CameraPath:
     # ------------------------------------------------------------------ TOML
     @classmethod
     def from_dict(cls, data: dict, source: str = "<dict>", **kwargs) -> CameraPath:
-        """Build from parsed TOML: ``{"keyframe": [{time, eye, target | position,
-        orientation, fov_y, up}, ...]}``."""
+        """Build from parsed TOML: a scene file's ``{"camera": {"keyframe": [...],
+        "interpolation": ..., "fov_y": ...}}`` or ``{"keyframe": [{time, eye, target |
+        position, orientation, fov_y, up}, ...]}``."""
+        camera = data.get("camera")
+        if "keyframe" not in data and isinstance(camera, dict):
+            data = camera
+            kwargs.setdefault("orientation_interp", camera.get("interpolation", "slerp"))
+            kwargs.setdefault("position_interp",
+                              camera.get("position_interpolation", "linear"))
+            lens = {k: camera[k] for k in ("fov_y", "near", "far") if k in camera}
+            if lens and "camera" not in kwargs:
+                try:
+                    kwargs["camera"] = Camera(**lens)
+                except SceneError as exc:
+                    raise PathFormatError(f"{source}: [camera]: {exc}") from None
         entries = data.get("keyframe")
         if not isinstance(entries, list) or not entries:
-            raise PathFormatError(f"{source}: no [[keyframe]] tables")
+            raise PathFormatError(f"{source}: no [[camera.keyframe]] tables")
         allowed = {"time", "eye", "target", "up", "position", "orientation", "fov_y"}
         keys: list[Keyframe] = []
         for i, e in enumerate(entries, start=1):
@@ -292,9 +316,12 @@ class CameraPath:
         def arr(a):
             return "[" + ", ".join(repr(float(x)) for x in a) + "]"
 
-        out = [f"# camera path: {len(self)} key frames, {self.duration:g} s\n"]
+        out = [f"# camera path: {len(self)} key frames, {self.duration:g} s\n",
+               f"[camera]\ninterpolation = \"{self.orientation_interp.value}\"\n"
+               f"position_interpolation = \"{self.position_interp.value}\"\n"
+               f"fov_y = {float(self.camera.fov_y)!r}\n\n"]
         for k, p, q in zip(self.keyframes, self.positions, self.orientations):
-            out.append(f"[[keyframe]]\ntime = {float(k.time)!r}\nposition = {arr(p)}\n"
+            out.append(f"[[camera.keyframe]]\ntime = {float(k.time)!r}\nposition = {arr(p)}\n"
                        f"orientation = {arr(q)}\n")
             if k.fov_y is not None:
                 out.append(f"fov_y = {float(k.fov_y)!r}\n")

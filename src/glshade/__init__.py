@@ -37,6 +37,7 @@ _EXPORTS = {
     "load_scene": ("io.scenefile", "load_scene"), "save_image": ("io.images", "save_image"),
     # rendering (GL)
     "Renderer": ("render.renderer", "Renderer"), "Frame": ("render.renderer", "Frame"),
+    "Pick": ("render.renderer", "Pick"), "View": ("scene.camera", "View"),
     "create_context": ("render.context", "create_context"),
     "RenderContext": ("render.context", "RenderContext"),
     "Backend": ("render.context", "Backend"), "tune_malloc": ("render.context", "tune_malloc"),
@@ -71,8 +72,8 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .modes import Culling, Outputs, Projection, ShadingMode
     from .options import DrawOptions, RenderConfig
     from .render.context import Backend, RenderContext, create_context, tune_malloc
-    from .render.renderer import Frame, Renderer
-    from .scene.camera import Camera, default_camera
+    from .render.renderer import Frame, Pick, Renderer
+    from .scene.camera import Camera, View, default_camera
     from .scene.keyframes import CameraPath, Keyframe
     from .scene.lights import DirectionalLight, PointLight
     from .scene.material import Material

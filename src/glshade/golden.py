@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from .compare.metrics import edge_mask
+
 __all__ = ["fingerprint", "as_rgba", "edge_mask", "Verdict", "judge", "read_golden",
            "write_golden", "FINGERPRINT_KEYS"]
 
@@ -61,30 +63,6 @@ def as_rgba(image: Any) -> np.ndarray:
     if a.shape[2] == 3:
         a = np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2)
     return a
-
-
-def edge_mask(face_id: np.ndarray, width: int = 1) -> np.ndarray:
-    """``(H, W) bool``: pixels within ``width`` pixels (8-neighbourhood) of a place where the
-    polygon id changes -- a polygon's edge, or the silhouette against the background."""
-    ids = np.asarray(face_id)
-    if ids.ndim != 2:
-        raise ValueError(f"face_id must be (H, W), got {ids.shape}")
-    change = np.zeros(ids.shape, bool)
-    horizontal = ids[:, 1:] != ids[:, :-1]
-    vertical = ids[1:, :] != ids[:-1, :]
-    change[:, 1:] |= horizontal
-    change[:, :-1] |= horizontal
-    change[1:, :] |= vertical
-    change[:-1, :] |= vertical
-    out = change
-    for _ in range(max(int(width) - 1, 0)):  # grow by one pixel (8-neighbourhood) per step
-        grown = out.copy()
-        grown[1:, :] |= out[:-1, :]
-        grown[:-1, :] |= out[1:, :]
-        grown[:, 1:] |= out[:, :-1]
-        grown[:, :-1] |= out[:, 1:]
-        out = grown
-    return out
 
 
 @dataclass

@@ -43,7 +43,10 @@ class DrawOptions:
         consistently oriented meshes wholly beyond the near plane, so seen from outside
         (from inside a mesh its back faces are what shows).
     srgb : encode the linear result as sRGB for display.
-    wireframe : draw polygon edges instead of filled polygons.
+    wireframe : draw the polygons' edges alone, in their material's colour, instead of
+        filled polygons (every edge shows: nothing is filled to hide the far ones).
+    edges : draw the polygons' edges over the filled picture (dark; hidden edges stay
+        hidden). Edges are each polygon's boundary, never its triangulation's diagonals.
     outputs : what the draw writes besides colour (:class:`Outputs`).
     """
 
@@ -53,10 +56,12 @@ class DrawOptions:
     srgb: bool = False
     wireframe: bool = False
     outputs: Outputs = Outputs.COLOR
+    edges: bool = False
 
     def __init__(self, mode: ShadingMode | str = ShadingMode.PHONG, depth_test: bool = True,
                  cull: Culling | bool | str = Culling.AUTO, srgb: bool = False,
-                 wireframe: bool = False, outputs: Outputs = Outputs.COLOR) -> None:
+                 wireframe: bool = False, outputs: Outputs = Outputs.COLOR,
+                 edges: bool = False) -> None:
         # (written out so that names are accepted where members are stored: a mode's name,
         # cull=True; the stored fields are the enums, and type checkers see both)
         put = object.__setattr__
@@ -66,10 +71,11 @@ class DrawOptions:
         put(self, "srgb", srgb)
         put(self, "wireframe", wireframe)
         put(self, "outputs", outputs)
+        put(self, "edges", edges)
         self._check()
 
     def _check(self) -> None:
-        for name in ("depth_test", "srgb", "wireframe"):
+        for name in ("depth_test", "srgb", "wireframe", "edges"):
             value = getattr(self, name)
             if not isinstance(value, bool):
                 raise OptionError(f"{name} must be True or False, got {value!r}")

@@ -61,7 +61,8 @@ def test_grid_columns_in_order_with_labels(make_renderer):
     r = make_renderer(96, 80)
     c = compare(sphere(2), CAM, ("phong", "flat"), renderer=r, size=(96, 80), diff=True)
     img = c.image
-    assert img.shape == (2 * (80 + LABEL_HEIGHT), 3 * 96, 4)
+    # (the heat maps carry two bands: the mode's mean and max, its PSNR and SSIM)
+    assert img.shape == (2 * 80 + 3 * LABEL_HEIGHT, 3 * 96, 4)
     # each label band has text (bright pixels) and each tile shows its own render
     for col in range(3):
         band = img[:LABEL_HEIGHT, col * 96:(col + 1) * 96, :3]
@@ -74,7 +75,7 @@ def test_grid_columns_in_order_with_labels(make_renderer):
                                atol=0)
     assert [m.mode for m in c.metrics] == ["phong", "flat"]
     # the diff row has the colour bar in the last column
-    bar = img[80 + 2 * LABEL_HEIGHT:, 2 * 96 + 4:2 * 96 + 18, :3]
+    bar = img[80 + 3 * LABEL_HEIGHT:, 2 * 96 + 4:2 * 96 + 18, :3]
     assert bar[0].mean() > bar[-1].mean()  # bright at the top (max), dark at 0
     assert c._repr_png_().startswith(b"\x89PNG")
 
@@ -93,13 +94,15 @@ def test_phong_fine_reference_and_given_image(make_renderer):
     covered = frame.face_id >= 0
     card = np.where(covered[..., None], 100.0, 0.0) * np.ones(3)
     given = compare(s, cam, ["phong"], renderer=r, size=(64, 64), reference=card)
-    by_hand = np.abs(frame.color[..., :3] * 255 - 100)[covered].mean()
+    shown = np.clip(frame.color[..., :3] * 255 + 0.5, 0, 255).astype(np.uint8)  # (8-bit)
+    by_hand = np.abs(shown.astype(float) - 100)[covered].mean()
     assert given.metrics[0].mean_abs == pytest.approx(by_hand, rel=1e-6)
     assert given.metrics[0].pixels == covered.sum()
     from glshade import ComparisonError
 
+    assert compare(s, cam, renderer=r, size=(64, 64)).reference_kind == "phong-fine"  # auto
     with pytest.raises(ComparisonError, match="exact surface"):
-        compare(s, cam, renderer=r, size=(64, 64))
+        compare(s, cam, renderer=r, size=(64, 64), reference="analytic")
 
 
 def test_sweep_phong_converges_fastest(make_renderer):
@@ -128,6 +131,67 @@ def test_cli_compare_and_sweep(tmp_path):
     assert out.returncode == 0, out.stderr
     assert plot.exists() and len(out.stdout.strip().splitlines()) == 6
     bad = subprocess.run([sys.executable, "-m", "glshade", "compare", "assets/teapot.obj",
-                          "-o", str(tmp_path / "x.png"), "--backend", BACKEND],
+                          "-o", str(tmp_path / "x.png"), "--backend", BACKEND, "--reference",
+                          "analytic"], capture_output=True, text=True, cwd=ROOT)
+    assert bad.returncode == 2 and "phong-fine" in bad.stderr  # (asked for; it has none)
+
+
+@pytest.mark.parametrize("mesh, reference", [("primitive:teapot", "phong-fine"),
+                                             ("assets/lprism.obj", "phong-fine"),
+                                             ("primitive:icosphere:2", "analytic")])
+def test_compare_any_mesh_with_numbers_recomputed_from_the_saved_images(mesh, reference,
+                                                                        tmp_path):
+    """The CLI compares a teapot, a CAD part (a concave prism) and a sphere with its default
+    reference (analytic where the mesh has one, else phong-fine) and exits 0; each mode's
+    numbers equal numpy's, recomputed from the images it saved."""
+    import json
+    import subprocess
+    import sys
+
+    from PIL import Image
+
+    from tests.conftest import ROOT
+
+    out = subprocess.run([sys.executable, "-m", "glshade", "compare", mesh, "-o",
+                          str(tmp_path / "grid.png"), "--size", "96x80", "--json",
+                          str(tmp_path / "m.json"), "--save-tiles", str(tmp_path / "tiles")],
                          capture_output=True, text=True, cwd=ROOT)
-    assert bad.returncode == 2 and "phong-fine" in bad.stderr
+    assert out.returncode == 0, out.stderr
+    facts = json.loads((tmp_path / "m.json").read_text())
+    assert facts["reference"] == reference
+    load = lambda name: np.asarray(Image.open(tmp_path / "tiles" / name))[..., :3]  # noqa
+    ref = load("reference.png").astype(float)
+    for m in facts["modes"]:
+        img = load(f"{m['mode']}.png").astype(float)
+        mask = load(f"{m['mode']}-mask.png")[..., 0] > 127
+        diff = np.abs(img - ref)[mask]
+        assert mask.sum() == m["pixels"] > 100
+        assert m["mean_abs"] == pytest.approx(diff.mean(), rel=1e-9)
+        assert m["max_abs"] == pytest.approx(diff.max(), rel=1e-9)
+        rmse = np.sqrt((diff ** 2).mean())
+        assert m["rmse"] == pytest.approx(rmse, rel=1e-9)
+        assert m["psnr"] == pytest.approx(20 * np.log10(255 / rmse), rel=1e-9)
+        assert 0 < m["silhouette"] < m["pixels"]
+    grid = np.asarray(Image.open(tmp_path / "grid.png"))
+    assert grid.shape[0] == 2 * 80 + 3 * LABEL_HEIGHT  # (the heat maps are there by default)
+
+
+def test_the_heat_maps_scale_is_robust_and_can_be_fixed(make_renderer):
+    """On a teapot against phong-fine the maximum error sits on the silhouette; the maps'
+    default scale is the 99th percentile off it (well below the maximum), silhouette pixels
+    are shown apart, and a given scale is used as it is."""
+    r = make_renderer(128, 96)
+    s = Scene()
+    s.add(P.teapot(4), MAT)
+    s.add_light(PointLight((3.0, 4.0, 5.0)))
+    cam = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
+    c = compare(s, cam, ("flat", "phong"), renderer=r, size=(128, 96))
+    assert c.reference_kind == "phong-fine"
+    worst = max(m.max_abs for m in c.metrics)
+    assert 1.0 <= c.scale < 0.8 * worst
+    assert all(m.silhouette > 0 for m in c.metrics)
+    heat = c.image[80 + 2 * LABEL_HEIGHT + 16 + LABEL_HEIGHT:, :128, :3]
+    magenta = (heat == np.array([200, 60, 200])).all(axis=-1)
+    assert magenta.sum() == c.metrics[0].silhouette
+    fixed = compare(s, cam, ("flat",), renderer=r, size=(128, 96), scale=40.0)
+    assert fixed.scale == 40.0

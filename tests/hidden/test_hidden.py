@@ -79,10 +79,10 @@ def gpu_frames(gl_context):
     return out
 
 
-def depth_resolution(camera, depth):
+def depth_resolution(camera, depth, bounds):
     """The view-depth step of a 24-bit depth buffer at ``depth`` (linear in depth for an
-    orthographic camera)."""
-    n, f = camera.near, camera.far
+    orthographic camera); the clip planes are the camera's as fitted to the scene."""
+    n, f = camera.planes(bounds)
     if camera.projection == "orthographic":
         return (f - n) * 2.0 ** -24 + 0 * depth
     return depth ** 2 * (f - n) / (f * n) * 2.0 ** -24
@@ -103,7 +103,8 @@ def test_every_algorithm_gives_the_gpu_ids_and_depth(algorithm, view, gpu_frames
     # surfaces apart (piercing triangles, at their line of intersection)
     off = diff & ~edges
     with np.errstate(invalid="ignore"):  # (inf - inf where one of them saw nothing)
-        tie = np.abs(result.depth - gpu.depth) <= 4 * depth_resolution(camera, gpu.depth)
+        tie = np.abs(result.depth - gpu.depth) <= 4 * depth_resolution(camera, gpu.depth,
+                                                                        scene.bounds)
     assert (off & ~tie).sum() == 0, np.argwhere(off & ~tie)[:5]
     assert (off & tie).sum() <= 2
     assert (diff & edges).sum() < 0.005 * covered

@@ -64,7 +64,8 @@ def test_a_mesh_through_a_solid_meets_it_in_one_z_buffer(make_renderer):
         s.add(plane, rotation=[np.sin(0.3), 0, 0, np.cos(0.3)])
     for s in (both, alone_solid):
         s.add(Sphere(1.0))
-    camera = Camera.look_at((0.5, 1.5, 4), (0, 0, 0))
+    # (one camera, with the clip planes of the whole scene: the same projection each time)
+    camera = Camera.look_at((0.5, 1.5, 4), (0, 0, 0)).with_planes(both.bounds)
     d_both = r.render_frame(both, camera, "flat").depth
     d_solid = r.render_frame(alone_solid, camera, "flat").depth
     d_mesh = r.render_frame(alone_mesh, camera, "flat").depth

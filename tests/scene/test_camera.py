@@ -60,7 +60,11 @@ def test_frame_fits_bounding_sphere():
     radius = np.linalg.norm(m.bounds[1] - m.bounds[0]) / 2
     d = np.linalg.norm(cam.position)
     assert np.sin(np.radians(cam.fov_y / 2)) * d == pytest.approx(radius)
-    assert cam.near < d - radius + 1e-9 and cam.far >= d + radius - 1e-9
+    near, far = cam.planes(m.bounds)  # (fitted to the box around the sphere)
+    assert cam.near is None and cam.far is None
+    view = cam.view_matrix()
+    depth = -(m.vertices @ view[2, :3] + view[2, 3])  # every vertex lies between the planes
+    assert near < depth.min() and far > depth.max()
 
 
 def test_camera_validation():

@@ -235,3 +235,82 @@ def test_six_shows_a_radiosity_solution(viewer_factory):
     assert v.options.mode is ShadingMode.RADIOSITY
     centre = v.screenshot()[45, 60, :3].astype(int)
     assert np.abs(centre - [51, 153, 102]).max() <= 1
+
+
+def test_w_draws_polygon_edges_not_triangle_diagonals_in_the_window(viewer_factory):
+    """A head-on quad in the window, edges on: its sides are dark, its diagonal is not (the
+    overlay draws each polygon's boundary, not its triangles')."""
+    s = Scene(background=(0, 0, 0))
+    s.add(P.plane(2.0), Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0))
+    cam = Camera.look_at((0, 0, 4), (0, 0, 0))
+    v = viewer_factory(s, cam, size=(128, 128), options="flat")
+    filled = v.screenshot().astype(int)
+    v.key("w")
+    assert v.options.edges
+    over = v.screenshot().astype(int)
+    dark = (filled[..., :3] - over[..., :3]).max(axis=2) > 60
+    t = np.tan(np.radians(45) / 2) * 4
+    px = lambda x, y: ((x / t + 1) * 64, (1 - y / t) * 64)  # noqa: E731
+    for (x0, y0), (x1, y1) in ((px(-1, -1), px(1, 1)), (px(1, -1), px(-1, 1))):
+        k = np.linspace(0.05, 0.95, 200)
+        assert dark[(y0 + k * (y1 - y0)).astype(int), (x0 + k * (x1 - x0)).astype(int)].sum() == 0
+    k = np.linspace(0.05, 0.95, 200)
+    x0, y0 = px(-1, -1)
+    x1, y1 = px(1, -1)
+    side = dark[np.clip((y0 + k * (y1 - y0)).astype(int), 0, 127),
+                (x0 + k * (x1 - x0)).astype(int)]
+    assert side.mean() > 0.9
+
+
+def test_compare_panes_each_hold_the_whole_model(tmp_path):
+    """glshade view --compare frames for a pane, not the window: nothing of the teapot
+    touches a pane's side (it did at 800x600: the handle and spout were cut off)."""
+    out = tmp_path / "shot.png"
+    r = subprocess.run([sys.executable, "-m", "glshade", "view", "primitive:teapot",
+                        "--compare", "--size", "480x240", "--samples", "0", "--frames", "2",
+                        "--screenshot", str(out), "--hidden"], capture_output=True, text=True,
+                       cwd=ROOT, timeout=120)
+    assert r.returncode == 0, r.stderr
+    from PIL import Image
+
+    img = np.asarray(Image.open(out)).astype(int)
+    for i in range(3):
+        pane = img[30:, i * 160:(i + 1) * 160, :3]  # (below the label)
+        lit = pane.max(axis=2) > 40
+        assert lit.mean() > 0.05, i
+        assert not lit[:, :2].any() and not lit[:, -2:].any(), i  # both sides clear
+
+
+def test_a_click_picks_with_pick_on(viewer_factory):
+    s = Scene()
+    s.add(P.cube())
+    cam = Camera.look_at((0, 0, 4), (0, 0, 0))
+    v = viewer_factory(s, cam, size=(120, 90), pick=True)
+    v.step()
+    v.mouse_down(60, 45)
+    v.mouse_up()
+    found = v.picks[-1]
+    assert found is not None and found.face_id >= 0
+    np.testing.assert_allclose(found.point, [0, 0, 0.5], atol=0.02)  # the cube's +z face
+    np.testing.assert_allclose(found.normal, [0, 0, 1], atol=1e-5)
+    assert "pick: polygon" in v.messages[-1]
+    v.mouse_down(2, 2)
+    v.mouse_up()
+    assert v.picks[-1] is None
+
+
+def test_dollying_through_the_teapot_never_clips_its_front(viewer_factory):
+    """Three and more wheel clicks towards the centre: every pixel the teapot covers in
+    a render with generous explicit clip planes is covered in the window too."""
+    s = teapot_scene()
+    v = viewer_factory(s, CAM, size=(160, 120))
+    from glshade import Renderer
+
+    for clicks in (3, 3, 3):
+        v.scroll(clicks)
+        shot = v.screenshot()
+        lit = shot[..., :3].astype(int).max(axis=2) > 40
+        wide = v.camera.replace(near=1e-3, far=1e3)
+        with Renderer(160, 120, samples=0, context=v.context) as r:
+            ref = r.render_frame(s, wide, "phong").face_id >= 0
+        assert (lit | ~ref).mean() > 0.995  # (a pixel or two of background-coloured shade)

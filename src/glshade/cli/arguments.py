@@ -43,6 +43,9 @@ class RenderArgs:
     srgb: bool | None = None
     mode: ShadingMode | None = None
     time: float | None = None
+    view: str | None = None
+    ortho: bool = False
+    edges: bool | None = None
 
     def given(self, *names: str) -> dict[str, Any]:
         """The named options that were given (not None), by name."""
@@ -86,8 +89,10 @@ class CompareArgs(RenderArgs, ExecutorArgs):
     mesh: str
     output: str
     modes: tuple[ShadingMode, ...] = ()
-    diff: bool = False
-    reference: str = "analytic"
+    diff: bool = True
+    reference: str = "auto"
+    scale: float | None = None
+    save_tiles: str | None = None
     json: str | None = None
     csv: str | None = None
     sweep: bool = False
@@ -137,6 +142,7 @@ class ViewArgs(RenderArgs):
     screenshot: str | None = None
     frames: int | None = None
     hidden: bool = False
+    pick: bool = False
 
 
 @dataclass(frozen=True, kw_only=True)

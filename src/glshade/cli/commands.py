@@ -145,7 +145,10 @@ def compare(args: a.CompareArgs) -> int:
         return _sweep(args, modes)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
     result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
-                 options=job.options, config=job.config(args.backend).replace(samples=0))
+                 options=job.options, config=job.config(args.backend).replace(samples=0),
+                 scale=args.scale)
+    if args.save_tiles:
+        result.save_tiles(args.save_tiles)
     save_image(result.image, args.output)
     print(result.table())
     if args.json:
@@ -159,10 +162,10 @@ def compare(args: a.CompareArgs) -> int:
 def view(args: a.ViewArgs) -> int:
     from ..viewer.window import Viewer
 
-    job = load_job(args, args.mesh)
+    job = load_job(args, args.mesh, pane=1 / 3 if args.compare else 1.0)
     with job.explained(), Viewer(job.scene, job.camera, size=job.size, options=job.options,
                                  samples=job.settings.samples, compare=args.compare,
-                                 visible=not args.hidden) as viewer:
+                                 visible=not args.hidden, pick=args.pick) as viewer:
         viewer.run(args.frames)
         if args.screenshot:
             viewer.screenshot(args.screenshot)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 from dataclasses import dataclass, replace
 
+
 import numpy as np
 
 from ..errors import InputError, SettingError, UsageError
@@ -75,10 +76,7 @@ def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
     if eye is not None or target is not None:  # (animate has neither: it turns round)
         eye = eye if eye is not None else (0.0, 0.0, 5.0)
         target = target if target is not None else tuple(scene.bounds.mean(0))
-        b = scene.bounds
-        reach = float(np.linalg.norm(b[1] - b[0])) + \
-            float(np.linalg.norm(np.subtract(eye, target)))
-        camera = Camera.look_at(eye, target, near=reach * 1e-3, far=reach * 2, **lens)
+        camera = Camera.look_at(eye, target, **lens)  # (clip planes: from the scene)
     else:
         camera = default_camera(scene.bounds, aspect, **lens)
     for position in args.light:  # none: the default headlight
@@ -86,7 +84,31 @@ def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
     return scene, camera
 
 
-def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None) -> Job:
+def _view(args: RenderArgs, camera: Camera, scene: Scene, aspect: float,
+          pane: float, framed: bool) -> Camera:
+    """``--view NAME`` (a named view, framed), ``--ortho`` (parallel projection, framed
+    unless --eye gave the eye), both framed for a pane ``pane`` times as wide as the image
+    is (view --compare: a third)."""
+    aspect *= pane
+    if args.view is not None:
+        lens = {"fov_y": args.fov} if args.fov is not None else {}
+        camera = Camera.named(args.view, scene.bounds, aspect, **lens)
+    if args.ortho:
+        camera = camera.replace(projection="orthographic")
+        if args.eye is None:
+            camera = camera.frame(scene.bounds, aspect)
+        else:
+            b = scene.bounds
+            camera = camera.replace(height=float(np.linalg.norm(b[1] - b[0])) * 1.1 *
+                                    max(1.0, 1.0 / aspect))
+    elif pane != 1.0 and framed and args.view is None and args.eye is None and \
+            args.target is None:
+        camera = camera.frame(scene.bounds, aspect)  # (the pane's aspect, not the window's)
+    return camera
+
+
+def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None,
+             pane: float = 1.0) -> Job:
     """Resolve ``spec`` and ``args`` into a Job: command line > scene file > ``defaults``
     (a RenderSettings; the dataclass's own when None). A name that is no file but an
     example's (``cornell-box``, ``teapot.obj``) is that example."""
@@ -116,12 +138,14 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
             scene, camera = build_scene(mesh, args, size[0] / size[1])
         except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
-    overrides = args.given("mode", "srgb")
+    overrides = args.given("mode", "srgb", "edges")
     settings = replace(settings, options=settings.options.replace(**overrides))
     origin = dict(settings.origin)
     if args.size:
         settings.width, settings.height = args.size
         origin.pop("size", None)
+    camera = _view(args, camera, scene, settings.width / settings.height, pane,
+                   framed=not is_scene_file(spec))
     if args.samples is not None:
         settings.samples = args.samples
         origin.pop("samples", None)

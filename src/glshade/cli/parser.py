@@ -79,6 +79,11 @@ def add_render_options(p: argparse.ArgumentParser, size_default: str | None = No
                    help=f"specular exponent n (default {mat['shininess']:g})")
     p.add_argument("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
                    "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
+    p.add_argument("--view", type=v.view, metavar="NAME", help="a named view, framed: " +
+                   ", ".join(v.VIEW_CHOICES) + " (default: from the front-right, above)")
+    p.add_argument("--ortho", action="store_true", help="parallel (orthographic) projection")
+    p.add_argument("--edges", action="store_true", default=None, help="draw the polygons' "
+                   "edges over the picture (their boundaries, not the triangles')")
     add_backend(p)
     p.add_argument("--srgb", action="store_true", default=None,
                    help="encode the linear result as sRGB")
@@ -166,9 +171,16 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output image: the grid (or the plot, with --sweep)")
     p.add_argument("--modes", type=v.modes, default="flat,gouraud,phong",
                    help="comma-separated modes (default flat,gouraud,phong)")
-    p.add_argument("--diff", action="store_true", help="add a row of difference heat maps")
-    p.add_argument("--reference", default="analytic", help="analytic (sphere primitives), "
-                   "phong-fine, or an image file (default analytic)")
+    p.add_argument("--diff", action=argparse.BooleanOptionalAction, default=True,
+                   help="a row of difference heat maps under the renders, each with its "
+                   "mean, max, PSNR and SSIM (default on; --no-diff: the renders alone)")
+    p.add_argument("--reference", default="auto", help="auto (analytic where the mesh knows "
+                   "its exact surface, as sphere primitives do, else phong-fine), analytic, "
+                   "phong-fine, or an image file (default auto)")
+    p.add_argument("--scale", type=v.positive_float, help="the heat maps' top, in 8-bit "
+                   "units (default: the 99th percentile of the errors off the silhouette)")
+    p.add_argument("--save-tiles", metavar="DIR", help="also write each mode's image, the "
+                   "reference and the pixels measured (MODE-mask.png) into DIR")
     p.add_argument("--json", help="write the metrics as JSON")
     p.add_argument("--csv", help="write the metrics as CSV")
     p.add_argument("--sweep", action="store_true", help="error of each mode against "
@@ -215,6 +227,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--screenshot", metavar="PATH", help="save the window's pixels after "
                    "--frames frames and exit")
     p.add_argument("--frames", type=v.count, help="draw this many frames, then exit")
+    p.add_argument("--pick", action="store_true", help="print the polygon, point, normal and "
+                   "depth under a click")
     p.add_argument("--hidden", action="store_true", help=argparse.SUPPRESS)
     add_render_options(p)
     p.set_defaults(func=c.view, arguments=a.ViewArgs)

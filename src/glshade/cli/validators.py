@@ -120,6 +120,16 @@ def radiosity_method(text: str) -> str:
     return _rule(Method.parse, text).value
 
 
+#: --view's names (glshade.View)
+VIEW_CHOICES = ("front", "back", "left", "right", "top", "bottom", "iso")
+
+
+def view(text: str) -> str:
+    from ..scene.camera import View
+
+    return _rule(View.parse, text).value
+
+
 #: --algorithms of glshade hidden: the lab's, and the GPU's z-buffer as a reference
 ALGORITHM_CHOICES = ("zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu")
 

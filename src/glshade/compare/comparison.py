@@ -2,8 +2,18 @@
 
 ``compare(scene, camera)`` renders each mode and a reference -- the exact surface ray-cast
 with the same lighting formula (``"analytic"``, for sphere primitives), a Phong render of
-the mesh refined by Phong tessellation (``"phong-fine"``), or an image you supply -- and
-measures each mode against it on the pixels both cover.
+the mesh refined by Phong tessellation (``"phong-fine"``), or an image you supply; by
+default (``"auto"``) the analytic one where every mesh knows its exact surface, else
+phong-fine -- and measures each mode against it on the pixels both cover.
+
+What is measured is what is shown: each mode's 8-bit image against the 8-bit reference
+(:meth:`Comparison.save_tiles` writes them and the pixels measured, so the numbers can be
+recomputed from the files). The heat maps share one scale: by default the
+``HEAT_PERCENTILE``-th percentile of the errors away from the silhouette, over every mode
+(silhouette pixels -- within a pixel of where a mode's or the reference's coverage ends --
+are where a tessellation legitimately differs most; they are counted apart and drawn in
+``SILHOUETTE_COLOR``), or a fixed ``scale``; larger errors saturate. Each heat map carries
+its mode's mean and max error, PSNR and SSIM.
 """
 
 from __future__ import annotations
@@ -30,7 +40,11 @@ from . import metrics
 
 __all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES"]
 
-REFERENCES = ("analytic", "phong-fine")
+REFERENCES = ("auto", "analytic", "phong-fine")
+#: the heat maps' scale by default: this percentile of the errors off the silhouette
+HEAT_PERCENTILE = 99.0
+#: how silhouette pixels show in the heat maps (they are not on the error scale)
+SILHOUETTE_COLOR = (200, 60, 200)
 
 @dataclass
 class ModeMetrics:
@@ -46,6 +60,7 @@ class ModeMetrics:
     peak: float            # brightest luminance (the specular highlight)
     reference_peak: float
     pixels: int
+    silhouette: int = 0    # of the pixels, those on the silhouette (shown apart)
 
 
 @dataclass
@@ -57,6 +72,22 @@ class Comparison:
     images: dict = field(repr=False, default_factory=dict)
     reference: np.ndarray | None = field(repr=False, default=None)
     reference_kind: str = ""
+    masks: dict = field(repr=False, default_factory=dict)
+    scale: float = 0.0     # the heat maps' (8-bit units)
+
+    def save_tiles(self, folder) -> None:
+        """Write what was measured: ``MODE.png`` per mode, ``reference.png`` and
+        ``MODE-mask.png`` (white: the pixels each mode's numbers are over)."""
+        from ..io.images import save_image
+
+        out = Path(folder)
+        out.mkdir(parents=True, exist_ok=True)
+        for name, img in self.images.items():
+            save_image(img, out / f"{name}.png")
+            save_image((self.masks[name] * 255).astype(np.uint8)[..., None].repeat(3, 2),
+                       out / f"{name}-mask.png")
+        if self.reference is not None:
+            save_image(self.reference, out / "reference.png")
 
     def table(self) -> str:
         head = ("mode", "mean", "max", "RMSE", "PSNR dB", "SSIM", "Mach band", "peak/ref")
@@ -133,13 +164,15 @@ COMPARE_CONFIG = RenderConfig(256, 256, samples=0)
 
 
 def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
-            reference="analytic", *, size=None, diff: bool = True, renderer=None,
+            reference="auto", *, size=None, diff: bool = True, renderer=None,
             backend=None, options: DrawOptions | None = None,
-            config: RenderConfig | None = None) -> Comparison:
+            config: RenderConfig | None = None, scale: float | None = None) -> Comparison:
     """Render ``modes`` and a reference; return the labelled grid and the metrics.
 
-    ``reference``: "analytic" (sphere primitives, ray-cast exactly), "phong-fine" (Phong on
-    a Phong-tessellated copy of each mesh), an image path or an ``(H, W, 3)`` array. No MSAA:
+    ``reference``: "auto" (analytic where every mesh knows its exact surface, else
+    phong-fine), "analytic" (sphere primitives, ray-cast exactly), "phong-fine" (Phong on
+    a Phong-tessellated copy of each mesh), an image path or an ``(H, W, 3)`` array.
+    ``scale``: the heat maps' top in 8-bit units (default: the module's percentile). No MSAA:
     every pixel is one sample, like the reference. ``options`` are the draw options every
     mode shares (its mode is replaced by each of ``modes``). ``config`` (or ``size``,
     ``backend``): the renderer made when none is given (default 256x256; ``samples`` 0).
@@ -160,6 +193,10 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
         if (r.width, r.height) != (w, h):
             raise ComparisonError(f"the renderer is {r.width}x{r.height}, size asks {w}x{h}")
         base = DrawOptions.of(options)
+        if isinstance(reference, str) and reference == "auto":
+            from ..cpu.raycast import has_analytic_surfaces
+
+            reference = "analytic" if has_analytic_surfaces(scene) else "phong-fine"
         ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base)
         frames = {m: r.render_frame(scene, camera, base.replace(mode=m),
                                     outputs=Outputs.FACE_ID, color_dtype="f4")
@@ -167,13 +204,18 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     finally:
         if own:
             r.close()
-    results, images, errors = [], {}, {}
+    results, images, errors, masks, silhouettes = [], {}, {}, {}, {}
+    ref = _u8(ref)  # (what is measured is what is shown: the 8-bit images)
     ref_lum = metrics.luminance(ref)
     for m, f in frames.items():
-        img = f.color[..., :3].astype(np.float64) * 255
+        img = _u8(f.color[..., :3] * 255.0)
         assert f.face_id is not None  # (asked for)
-        mask = ref_mask & (f.face_id >= 0)
-        images[m.value] = img
+        covered = f.face_id >= 0
+        mask = ref_mask & covered
+        # the silhouette: within a pixel of where the mode's or the reference's coverage ends
+        silhouette = mask & (metrics.edge_mask(covered.astype(np.int8)) |
+                             metrics.edge_mask(ref_mask.astype(np.int8)))
+        images[m.value], masks[m.value], silhouettes[m.value] = img, mask, silhouette
         errors[m.value] = np.where(mask, metrics.abs_error(img, ref), 0.0)
         results.append(ModeMetrics(
             mode=m.value, mean_abs=metrics.mae(img, ref, mask),
@@ -181,32 +223,44 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             psnr=metrics.psnr(img, ref, mask), ssim=metrics.ssim(img, ref, mask),
             mach_band=metrics.mach_band_strength(img, f.face_id, ref),
             peak=float(metrics.luminance(img)[mask].max(initial=0)),
-            reference_peak=float(ref_lum[ref_mask].max(initial=0)), pixels=int(mask.sum())))
-    grid = _grid(images, ref, ref_kind, errors if diff else None)
-    return Comparison(grid, results, images, ref, ref_kind)
+            reference_peak=float(ref_lum[ref_mask].max(initial=0)), pixels=int(mask.sum()),
+            silhouette=int(silhouette.sum())))
+    if scale is None:
+        inner = np.concatenate([errors[k][masks[k] & ~silhouettes[k]] for k in errors])
+        scale = float(np.percentile(inner, HEAT_PERCENTILE)) if inner.size else 1.0
+    elif not float(scale) > 0:
+        raise ComparisonError(f"scale must be a positive number of 8-bit units, got {scale!r}")
+    scale = max(float(scale), 1.0)
+    grid = _grid(images, ref, ref_kind, errors if diff else None, silhouettes, results, scale)
+    return Comparison(grid, results, images, ref, ref_kind, masks, scale)
 
 
-def _grid(images: dict, ref: np.ndarray, ref_kind: str, errors: dict | None) -> np.ndarray:
+def _u8(image: np.ndarray) -> np.ndarray:
+    return np.clip(np.asarray(image, np.float64) + 0.5, 0, 255).astype(np.uint8)
+
+
+def _grid(images: dict, ref: np.ndarray, ref_kind: str, errors: dict | None,
+          silhouettes: dict, results: list, scale: float) -> np.ndarray:
     """Each mode and the reference under their labels; below, each mode's error heat map
-    and the colour bar's key in the reference's column."""
-    def u8(a):
-        return np.clip(a + 0.5, 0, 255).astype(np.uint8)
-
-    tiles = {name: u8(img) for name, img in images.items()}
-    tiles[f"reference: {ref_kind}"] = u8(ref)
+    (silhouette pixels in SILHOUETTE_COLOR) under its numbers, and the colour bar's key in
+    the reference's column."""
+    tiles = dict(images)
+    tiles[f"reference: {ref_kind}"] = ref
     top = labelled_row(tiles)[..., :3]
     rows = [top]
     if errors is not None:
-        vmax = max(max(float(e.max()) for e in errors.values()), 1.0)
-        bottom = [label(heatmap(e, vmax), f"|{name} - reference|")
-                  for name, e in errors.items()]
-        bar = colour_bar(bottom[0].shape[0] - LABEL_HEIGHT, vmax)
-        pad = np.full((LABEL_HEIGHT, bar.shape[1], 3), BACKGROUND, np.uint8)
-        tile_w = ref.shape[1]
-        key = np.hstack([np.vstack([pad, bar]),
-                         np.full((bottom[0].shape[0], tile_w - bar.shape[1], 3), BACKGROUND,
-                                 np.uint8)])
+        bottom = []
+        for m in results:
+            heat = heatmap(errors[m.mode], scale)
+            heat[silhouettes[m.mode]] = SILHOUETTE_COLOR
+            psnr = "inf" if m.psnr == float("inf") else f"{m.psnr:.1f}"
+            tile = label(label(heat, f"PSNR {psnr} dB, SSIM {m.ssim:.3f}"),
+                         f"{m.mode}: mean {m.mean_abs:.2f}, max {m.max_abs:.0f}")
+            bottom.append(tile)
+        h = bottom[0].shape[0]
+        bar = colour_bar(h - 2 * LABEL_HEIGHT, scale)
+        key = np.full((h, ref.shape[1], 3), BACKGROUND, np.uint8)
+        key[2 * LABEL_HEIGHT:, :bar.shape[1]] = bar
+        key = label(key[LABEL_HEIGHT:], "silhouette: magenta")
         rows.append(np.hstack([*bottom, key]))
     return opaque(np.vstack(rows))
-
-

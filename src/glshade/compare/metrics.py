@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 from ..errors import InputError
 
 __all__ = ["abs_error", "mae", "max_error", "rmse", "psnr", "ssim", "mach_band_strength",
-           "luminance"]
+           "luminance", "edge_mask"]
 
 
 def _pair(a, b, mask=None):
@@ -121,3 +121,27 @@ def mach_band_strength(img, face_id, reference=None) -> float:
     if ref is None:
         return float(j.mean())
     return float(max(j.mean() - np.concatenate(base).mean(), 0.0))
+
+
+def edge_mask(face_id: np.ndarray, width: int = 1) -> np.ndarray:
+    """``(H, W) bool``: pixels within ``width`` pixels (8-neighbourhood) of a place where the
+    polygon id changes -- a polygon's edge, or the silhouette against the background."""
+    ids = np.asarray(face_id)
+    if ids.ndim != 2:
+        raise ValueError(f"face_id must be (H, W), got {ids.shape}")
+    change = np.zeros(ids.shape, bool)
+    horizontal = ids[:, 1:] != ids[:, :-1]
+    vertical = ids[1:, :] != ids[:-1, :]
+    change[:, 1:] |= horizontal
+    change[:, :-1] |= horizontal
+    change[1:, :] |= vertical
+    change[:-1, :] |= vertical
+    out = change
+    for _ in range(max(int(width) - 1, 0)):  # grow by one pixel (8-neighbourhood) per step
+        grown = out.copy()
+        grown[1:, :] |= out[:-1, :]
+        grown[:-1, :] |= out[1:, :]
+        grown[:, 1:] |= out[:, :-1]
+        grown[:, :-1] |= out[:, 1:]
+        out = grown
+    return out

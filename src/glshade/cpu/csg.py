@@ -18,6 +18,7 @@ def render_solids(scene: Scene, camera, size=(256, 256)):
     from ..hidden.common import prepare
 
     width, height = size
+    camera = camera.with_planes(scene.bounds)  # (as the renderer fits them)
     p = prepare(Scene(), camera, size)
     view = camera.view_matrix()
     inv = np.linalg.inv(view)  # the rays, from view space to the world's

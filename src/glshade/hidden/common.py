@@ -191,6 +191,8 @@ def prepare(scene_or_mesh, camera, size=(256, 256)) -> Prepared:
     width, height = (int(size[0]), int(size[1]))
     if width < 1 or height < 1:
         raise GeometryError(f"image size must be at least 1x1, got {size!r}")
+    if hasattr(scene_or_mesh, "bounds"):  # (clip planes not given: fitted, as the GPU's)
+        camera = camera.with_planes(scene_or_mesh.bounds)
     view = camera.view_matrix()
     proj = np.asarray(camera.projection_matrix(width / height), np.float64)
     tris, ids, n_polygons = _scene_triangles(scene_or_mesh, view)

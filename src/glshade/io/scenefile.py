@@ -368,11 +368,7 @@ def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
     if not cam:
         base = default_camera(scene.bounds, aspect)
         return CameraPath([Keyframe(0.0, base.position, base.orientation)], camera=base)
-    lens = {k: cam[k] for k in ("fov_y", "near", "far") if k in cam}
-    b = scene.bounds
-    reach = float(np.linalg.norm(b[1] - b[0])) * 4 + 1
-    lens.setdefault("near", reach * 1e-4)
-    lens.setdefault("far", reach * 4)
+    lens = {k: cam[k] for k in ("fov_y", "near", "far") if k in cam}  # (planes: the scene's)
     try:
         base = Camera(**lens)
     except GlshadeError as exc:
@@ -387,7 +383,7 @@ def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
         one = {k: raw[k] for k in ("eye", "target", "up", "position", "orientation")
                if k in raw}
         if not one:
-            view = default_camera(b, aspect)
+            view = default_camera(scene.bounds, aspect)
             return CameraPath([Keyframe(0.0, view.position, view.orientation)], camera=base)
         keys = [dict(one, time=0.0)]
     if not isinstance(keys, list):

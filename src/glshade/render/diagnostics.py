@@ -37,7 +37,7 @@ def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str
     if Culling.parse(cull) is Culling.ON:  # from inside (or cut by the near plane): all back
         view = camera.view_matrix()
         for m in drawn:
-            if (m.corners @ view[2, :3] + view[2, 3] >= -camera.near).any():
+            if (m.corners @ view[2, :3] + view[2, 3] >= -camera.planes(b)[0]).any():
                 return ("the render is blank: back faces are culled (cull=True) and the "
                         "camera may be inside a mesh, where every face turns its back to it "
                         "(use cull='auto' or False)")

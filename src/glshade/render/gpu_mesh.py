@@ -39,7 +39,7 @@ class GpuMesh(GLResource):
 
     def __init__(self, context, mesh: Mesh):
         super().__init__(context)
-        self._vaos: dict[int, Any] = {}
+        self._vaos: dict[Any, Any] = {}
         self._flat_vbo: Any = None
         # (colour array, vbo, ibo, {program id: vao}) of the radiosity mode
         self._colors: Any = None
@@ -126,6 +126,23 @@ class GpuMesh(GLResource):
             vbo.release()
             ibo.release()
             self._colors = None
+
+    def edge_array(self, program):
+        """The VAO of the mesh's polygon edges (each polygon's boundary, never its
+        triangulation's diagonals) as lines, for ``edges.vert``; made on first use."""
+        self._check()
+        key = ("edges", id(program))
+        vao = self._vaos.get(key)
+        if vao is None:
+            m = self._mesh()
+            if m is None:
+                raise GlshadeError("the mesh of this GpuMesh no longer exists")
+            ctx = self.context.ctx
+            vbo = self._keep(ctx.buffer(m.vertices.astype("f4").tobytes()))
+            ibo = self._keep(ctx.buffer(m.edges.astype("u4").tobytes()))
+            vao = self._vaos[key] = ctx.vertex_array(program, [(vbo, "3f", "in_position")],
+                                                     ibo, 4)
+        return vao
 
     def vertex_array(self, program, mode: ShadingMode):
         """The VAO binding this mesh's buffers to ``program`` (cached)."""

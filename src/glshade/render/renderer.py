@@ -37,10 +37,27 @@ from .programs import (
 from .shaders import ShaderLibrary
 from .state import DrawState
 from .csg import CsgPass
+from .edges import EdgePass
 from .diagnostics import why_blank
 from .target import OffscreenTarget
 
-__all__ = ["Renderer", "Frame"]
+__all__ = ["Renderer", "Frame", "Pick"]
+
+
+@dataclass(frozen=True)
+class Pick:
+    """What a pixel shows (:meth:`Renderer.pick`): ``face_id`` (as :class:`Frame` numbers
+    polygons: the scene's mesh polygons in order, then its solids' leaves), the world
+    ``point (3,)``, the unit world ``normal (3,)`` and the view ``depth``."""
+
+    face_id: int
+    point: np.ndarray
+    normal: np.ndarray
+    depth: float
+
+    def __str__(self) -> str:
+        p, n = (", ".join(f"{v:.4g}" for v in a) for a in (self.point, self.normal))
+        return f"polygon {self.face_id} at ({p}), normal ({n}), depth {self.depth:.4g}"
 
 
 @dataclass
@@ -145,12 +162,14 @@ class Renderer:
         self._uniforms = UniformWriter()
         self._materials = MaterialUniforms()
         self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
+        self._edges = EdgePass(self.context, self.shaders, self._uniforms)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query: Any = None
         self._normal_cache: dict[bytes, tuple[np.ndarray, bool]] = {}
         self._programs: dict[tuple, Any] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
+        self._warned: set[int] = set()  # scenes told that the radiosity mode needs a solve
         # (shaders/include/constants.glsl; per model: programs.FLAT_CONSTANTS_PIXELS)
         self.flat_constants = self.context.software
         self._max_varyings = int(self.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
@@ -172,6 +191,7 @@ class Renderer:
         for t in self._targets.values():
             t.release()
         self._csg.release()
+        self._edges.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
@@ -244,6 +264,10 @@ class Renderer:
             raise OptionError(f"expected a Scene, got {type(scene).__name__}")
         if not isinstance(camera, Camera):
             raise OptionError(f"expected a Camera, got {type(camera).__name__}")
+        camera = camera.with_planes(scene.bounds)  # (planes not given: fitted to the scene)
+        if options.mode is ShadingMode.RADIOSITY:
+            self._warn_unsolved(scene)
+        near = camera.planes()[0]
         if len(scene.lights) > MAX_LIGHTS:
             raise SceneError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")
@@ -262,8 +286,6 @@ class Renderer:
         else:
             target.bind(outputs)
         ctx.viewport = (vx, vy, vw, vh)
-        if options.wireframe:  # (set only when used: a polygon-mode change costs llvmpipe)
-            ctx.wireframe = True
         if options.depth_test:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
@@ -279,16 +301,22 @@ class Renderer:
         put = self._uniforms.put
         view3 = view[:3, :3]
         id_base = 0
+        outlined = []  # (GpuMesh, model matrix, colour) of the models whose edges are drawn
         for model in scene.models:
             if not model.visible or len(model.mesh.triangles[0]) == 0:
                 id_base += model.mesh.n_faces
                 continue
             gpu = self._gpu_mesh(model.mesh)
+            if options.edges or options.wireframe:
+                outlined.append((gpu, model.transform, model.material.color))
+            if options.wireframe:  # (edges alone: nothing filled)
+                id_base += gpu.n_polygons
+                continue
             m = model.transform
             model_view = view @ m
             cull = options.cull is Culling.ON or (
                 options.cull is Culling.AUTO and gpu.closed
-                and gpu.beyond(model_view, camera.near))  # (seen from outside)
+                and gpu.beyond(model_view, near))  # (seen from outside)
             flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
             prog = self._program(variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used
@@ -321,14 +349,28 @@ class Renderer:
                 vao = gpu.vertex_array(prog, options.mode)
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
-        if scene.solids:  # CSG solids, ray cast into the same z-buffer
+        if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
             self._csg.draw(state, id_base)
+        if outlined:
+            self._edges.draw(state, target, [(g, m) for g, m, _ in outlined],
+                             [c for _, _, c in outlined] if options.wireframe else None)
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
-        if options.wireframe:
-            ctx.wireframe = False
         if clear:
             target.resolve(outputs)
+
+    def _warn_unsolved(self, scene: Scene) -> None:
+        """The radiosity mode shows solved radiosities; say so, once per scene, when the
+        scene has none (it would show only emitters and the ambient term: nearly black)."""
+        unsolved = [m for m in scene.models if m.visible and m.vertex_colors is None]
+        if not unsolved or id(scene) in self._warned:
+            return
+        self._warned.add(id(scene))
+        warnings.warn("the radiosity mode shows a solved scene's radiosities, and this one "
+                      f"has none (unsolved models: {len(unsolved)}; only emitters and the "
+                      "ambient term show); solve it first: glshade radiosity SCENE.toml -o "
+                      "out.png, or glshade.radiosity.solve(scene).scene()",
+                      UserWarning, stacklevel=4)
 
     def _normal_matrix(self, model: np.ndarray, key: bytes) -> tuple[np.ndarray, bool]:
         """Inverse transpose of a model matrix's 3x3 part, and whether it mirrors (its
@@ -364,7 +406,8 @@ class Renderer:
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)
             d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]
-            near, far = max(camera.near, d.min()), min(camera.far, d.max())
+            planes = camera.planes()
+            near, far = max(planes[0], d.min()), min(planes[1], d.max())
             out.append(("u_depth_range", (float(near), float(max(far, near + 1e-6)))))
         return out
 
@@ -377,7 +420,8 @@ class Renderer:
         with self._query:
             self.draw(target, scene, camera, options)
         if self._query.samples == 0:
-            warnings.warn(why_blank(scene, camera, options.cull), RenderWarning, stacklevel=3)
+            warnings.warn(why_blank(scene, camera.with_planes(scene.bounds), options.cull),
+                          RenderWarning, stacklevel=3)
 
     def render(self, scene: Scene, camera: Camera, options=None, **changes) -> np.ndarray:
         """The colour image ``(H, W, 4) uint8``, row 0 at the top.
@@ -408,6 +452,40 @@ class Renderer:
                      target.read_depth() if want & Outputs.DEPTH else None,
                      target.read_normal() if want & Outputs.NORMAL else None,
                      target.read_face_id() if want & Outputs.FACE_ID else None)
+
+    def pick(self, scene: Scene, camera: Camera, x: float, y: float,
+             options=None) -> Pick | None:
+        """What is under pixel ``(x, y)`` of this renderer's image (x right, y down, in
+        pixels; the pixel whose centre is nearest): the polygon id (as ``Frame.face_id``
+        numbers them), the world point, the world normal and the view depth -- read from
+        the id, depth and normal buffers of one draw. None where the pixel shows background.
+        The normal is the polygon's own (a flat draw) unless ``options`` say another mode
+        (Phong's: the interpolated normal there)."""
+        px, py = int(np.floor(x)), int(np.floor(y))
+        if not (0 <= px < self.width and 0 <= py < self.height):
+            raise OptionError(f"pixel ({x}, {y}) is outside the {self.width}x{self.height} "
+                              "image")
+        o = DrawOptions.of(options if options is not None else ShadingMode.FLAT)
+        camera = camera.with_planes(scene.bounds)
+        frame = self.render_frame(scene, camera, o, outputs=Outputs.ALL)
+        assert frame.face_id is not None and frame.depth is not None
+        assert frame.normal is not None
+        face = int(frame.face_id[py, px])
+        if face < 0:
+            return None
+        depth = float(frame.depth[py, px])
+        # the pixel centre's ray, in view space, to the depth drawn there
+        ndc_x = 2 * (px + 0.5) / self.width - 1
+        ndc_y = 1 - 2 * (py + 0.5) / self.height
+        aspect = self.width / self.height
+        if camera.projection is Projection.PERSPECTIVE:
+            t = np.tan(np.radians(camera.fov_y) / 2)
+            p_view = np.array([ndc_x * t * aspect * depth, ndc_y * t * depth, -depth])
+        else:
+            half = camera.height / 2
+            p_view = np.array([ndc_x * half * aspect, ndc_y * half, -depth])
+        p_world = camera.rotation @ p_view + camera.position
+        return Pick(face, p_world, np.asarray(frame.normal[py, px], np.float64), depth)
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""

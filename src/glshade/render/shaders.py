@@ -171,7 +171,8 @@ class ShaderLibrary(GLResource):
         return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,
-                defines: tuple[str, ...] = (), insert: tuple[str, str] | None = None):
+                defines: tuple[str, ...] = (), insert: tuple[str, str] | None = None,
+                geom: str | None = None):
         """Compile and link one program; a failure raises ShaderError naming file and line.
         ``insert``: (a marker line of the fragment source, generated code to put there),
         spliced with ``#line`` directives (:func:`splice`) so errors name the right line."""
@@ -181,12 +182,16 @@ class ShaderLibrary(GLResource):
             marker, code = insert
             frag_src = splice(frag_src, marker, code, GENERATED)
             generated[GENERATED] = code
+        gs = assemble(geom, root, defines) if geom else None
         try:
-            return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0])
+            return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0],
+                                            geometry_shader=gs[0] if gs else None)
         except Exception as exc:  # moderngl raises a bare Error with the driver's log
             text = str(exc)
-            stage = {"vertex_shader": vs, "fragment_shader": frag_src}
-            found = re.search(r"^(vertex_shader|fragment_shader)\s*$", text, re.M)
+            stage = {"vertex_shader": vs, "fragment_shader": frag_src,
+                     "geometry_shader": gs or vs}
+            found = re.search(r"^(vertex_shader|fragment_shader|geometry_shader)\s*$", text,
+                              re.M)
             which = found.group(1) if found else "fragment_shader"
             detail = explain_compile_error(text, {which: stage[which]}, root, generated)
             head = f"{vert} + {frag}: GLSL {which.replace('_', ' ')} failed to compile"

@@ -1,11 +1,11 @@
 """What is drawn and from where: cameras, key-frame paths, materials, lights and scenes.
 Plain data; no GL."""
 
-from .camera import Camera, default_camera
+from .camera import Camera, View, default_camera
 from .keyframes import CameraPath, Keyframe
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material
 from .scene import Model, Scene
 
-__all__ = ["Camera", "default_camera", "CameraPath", "Keyframe", "Material", "PointLight",
+__all__ = ["Camera", "View", "default_camera", "CameraPath", "Keyframe", "Material", "PointLight",
            "DirectionalLight", "lights_for", "MAX_LIGHTS", "Model", "Scene"]

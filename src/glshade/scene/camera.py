@@ -6,17 +6,19 @@ The orientation takes camera axes to world axes: the camera looks down its local
 
 from __future__ import annotations
 
+import enum
+
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SceneError
-from ..modes import Projection
+from ..modes import Projection, parse_enum
 from .. import quaternion as quat
 from ..geometry.transforms import look_at, orthographic, perspective
 
-__all__ = ["Camera", "default_camera"]
+__all__ = ["Camera", "View", "default_camera"]
 
 PROJECTIONS = tuple(p.value for p in Projection)
 
@@ -48,7 +50,9 @@ class Camera:
     position : (3,) world position of the eye.
     orientation : (4,) unit quaternion [x, y, z, w], camera axes to world axes.
     fov_y : vertical field of view in degrees (perspective).
-    near, far : clip distances along the view axis.
+    near, far : clip distances along the view axis; None (the default): from the scene's
+        bounds at every draw (:meth:`with_planes`), so nothing in front of the camera is
+        ever clipped away, wherever it moves.
     projection : :class:`~glshade.Projection` (or "perspective", "orthographic").
     height : view height in world units (orthographic).
     """
@@ -56,8 +60,8 @@ class Camera:
     position: NDArray[np.float64] = field(default_factory=lambda: np.array([0.0, 0.0, 3.0]))
     orientation: NDArray[np.float64] = field(default_factory=lambda: quat.identity())
     fov_y: float = 45.0
-    near: float = 0.1
-    far: float = 100.0
+    near: float | None = None
+    far: float | None = None
     projection: Projection = Projection.PERSPECTIVE
     height: float = 2.0
 
@@ -72,7 +76,15 @@ class Camera:
             getattr(self, name).setflags(write=False)
         object.__setattr__(self, "projection", Projection.parse(self.projection))
         object.__setattr__(self, "fov_y", check_fov(self.fov_y))
-        if not 0 < self.near < self.far:
+        for name in ("near", "far"):
+            value = getattr(self, name)
+            if value is not None:
+                if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) \
+                        or not 0 < float(value) < float("inf"):
+                    raise SceneError(f"{name} must be a positive number (or None: from the "
+                                     f"scene), got {value!r}")
+                object.__setattr__(self, name, float(value))
+        if self.near is not None and self.far is not None and not self.near < self.far:
             raise SceneError(f"need 0 < near < far, got near={self.near}, far={self.far}")
 
     # ------------------------------------------------------------------ construction
@@ -123,10 +135,51 @@ class Camera:
         return m
 
     def projection_matrix(self, aspect: float) -> NDArray[np.float64]:
-        """View-to-clip ``(4, 4)`` for column vectors; ``aspect`` = width / height."""
+        """View-to-clip ``(4, 4)`` for column vectors; ``aspect`` = width / height. (Planes
+        not given and not yet fitted to a scene by :meth:`with_planes`: 0.1 and 100.)"""
+        near, far = self.planes()
         if self.projection is Projection.PERSPECTIVE:
-            return perspective(self.fov_y, aspect, self.near, self.far)
-        return orthographic(self.height, aspect, self.near, self.far)
+            return perspective(self.fov_y, aspect, near, far)
+        return orthographic(self.height, aspect, near, far)
+
+    def planes(self, bounds: ArrayLike | None = None) -> tuple[float, float]:
+        """``(near, far)``: the camera's own, else fitted to ``bounds`` ``(2, 3)`` -- the far
+        plane just beyond the farthest corner of the box, the near plane just before the
+        nearest (``PLANE_RATIO`` of the far one when the camera is inside the box) -- else
+        (no bounds) 0.1 and 100."""
+        if self.near is not None and self.far is not None:
+            return self.near, self.far
+        if bounds is None:
+            near, far = FALLBACK_PLANES
+        else:
+            b = np.asarray(bounds, np.float64)
+            corners = np.array([[b[i, 0], b[j, 1], b[k, 2]] for i in (0, 1) for j in (0, 1)
+                                for k in (0, 1)])
+            view = self.view_matrix()
+            depth = -(corners @ view[2, :3] + view[2, 3])
+            extent = float(np.linalg.norm(b[1] - b[0])) or 1.0
+            far = max(float(depth.max()), 0.0) * 1.01 + extent * 1e-3
+            near = max(float(depth.min()) * 0.99, far * PLANE_RATIO)
+        if self.far is not None:
+            far = self.far
+        if self.near is not None:
+            near = self.near
+        if not near < far:  # (one plane given, the scene's other beyond it)
+            far = near * 1e4 if self.far is None else far
+            near = far * PLANE_RATIO if self.near is None else near
+        return near, far
+
+    def with_planes(self, bounds: ArrayLike) -> Camera:
+        """This camera with its missing clip planes fitted to ``bounds`` (itself when it has
+        both): what every draw uses, so a camera made by :meth:`frame` or :meth:`look_at`
+        never clips the scene in front of it, however it is moved."""
+        if self.near is not None and self.far is not None:
+            return self
+        near, far = self.planes(bounds)
+        fitted = replace(self, near=near, far=far)
+        if "_view" in self.__dict__:
+            fitted.__dict__["_view"] = self.__dict__["_view"]
+        return fitted
 
     # ------------------------------------------------------------------ moves
     def orbit(self, q: ArrayLike, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
@@ -139,8 +192,8 @@ class Camera:
 
     def frame(self, target, aspect: float = 1.0, margin: float = 1.1) -> Camera:
         """Move the camera along its view axis so that the bounding sphere of ``target`` (a
-        Mesh, or bounds ``(2, 3)``) fits in view with the given ``margin``; the near and far
-        planes are set around it."""
+        Mesh, or bounds ``(2, 3)``) fits in view with the given ``margin``; the clip planes
+        are left to each draw (None: fitted to the scene then)."""
         bounds = getattr(target, "bounds", target)
         b = np.asarray(bounds, dtype=np.float64)
         if b.shape != (2, 3):
@@ -151,13 +204,56 @@ class Camera:
             half_y = np.radians(self.fov_y) / 2
             half_x = np.arctan(np.tan(half_y) * aspect)
             distance = radius / np.sin(min(half_x, half_y))
-            return self.replace(position=center - self.forward * distance,
-                                near=max(distance - radius, distance * 1e-3),
-                                far=distance + radius)
+            return self.replace(position=center - self.forward * distance, near=None,
+                                far=None)
         distance = 2 * radius
-        return self.replace(position=center - self.forward * distance, near=radius * 1e-3,
-                            far=distance + radius,
+        return self.replace(position=center - self.forward * distance, near=None, far=None,
                             height=2 * radius * max(1.0, 1.0 / aspect))
+
+    # ------------------------------------------------------------------ the usual moves
+    def azimuth(self, degrees: float, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
+        """Orbit ``degrees`` about the world's up axis (+y) through ``center``
+        (counter-clockwise seen from above)."""
+        return self.orbit(quat.from_axis_angle((0.0, 1.0, 0.0), np.radians(degrees)), center)
+
+    def elevation(self, degrees: float, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
+        """Orbit ``degrees`` up (positive) or down about the camera's right axis through
+        ``center``."""
+        return self.orbit(quat.from_axis_angle(self.right, -np.radians(degrees)), center)
+
+    def roll(self, degrees: float) -> Camera:
+        """Turn ``degrees`` about the view axis (counter-clockwise on screen)."""
+        q = quat.from_axis_angle(self.forward, -np.radians(degrees))
+        return self.replace(orientation=quat.multiply(q, self.orientation))
+
+    def dolly(self, distance: float) -> Camera:
+        """Move ``distance`` along the view axis (positive: forward), looking the same way;
+        the clip planes follow at the next draw (None planes are fitted to the scene)."""
+        return self.replace(position=self.position + self.forward * float(distance))
+
+    def zoom(self, factor: float) -> Camera:
+        """Magnify by ``factor`` (> 1: closer) without moving: a narrower field of view, or
+        a smaller orthographic view height."""
+        f = float(factor)
+        if not 0 < f < float("inf"):
+            raise SceneError(f"zoom factor must be a positive number, got {factor!r}")
+        if self.projection is Projection.ORTHOGRAPHIC:
+            return self.replace(height=self.height / f)
+        half = np.arctan(np.tan(np.radians(self.fov_y) / 2) / f)
+        return self.replace(fov_y=float(np.degrees(2 * half)))
+
+    @classmethod
+    def named(cls, view: View | str, bounds, aspect: float = 1.0, *,
+              margin: float = 1.1, **lens) -> Camera:
+        """A camera looking at the centre of ``bounds`` (a Mesh, a Scene or ``(2, 3)``) from
+        one of the named views (:class:`View`), framed to fit: front looks down -z, right
+        down -x, top down -y (with -z up on screen), iso from (+x, +y, +z)."""
+        chosen = View.parse(view)
+        b = np.asarray(getattr(bounds, "bounds", bounds), np.float64)
+        direction, up = _VIEWS[chosen]
+        center = b.mean(axis=0)
+        eye = center + np.asarray(direction, np.float64)
+        return cls.look_at(eye, center, up=up, **lens).frame(b, aspect=aspect, margin=margin)
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Camera):
@@ -169,6 +265,34 @@ class Camera:
 
     __hash__ = None  # type: ignore[assignment]
 
+
+class View(str, enum.Enum):
+    """The named views: where the camera looks from, towards the scene's centre."""
+
+    FRONT = "front"
+    BACK = "back"
+    LEFT = "left"
+    RIGHT = "right"
+    TOP = "top"
+    BOTTOM = "bottom"
+    ISO = "iso"
+
+    @classmethod
+    def parse(cls, value: object) -> View:
+        return parse_enum(cls, value, "view")
+
+
+#: each view: (from where, relative to the centre; up on screen)
+_VIEWS = {View.FRONT: ((0, 0, 1), (0, 1, 0)), View.BACK: ((0, 0, -1), (0, 1, 0)),
+          View.LEFT: ((-1, 0, 0), (0, 1, 0)), View.RIGHT: ((1, 0, 0), (0, 1, 0)),
+          View.TOP: ((0, 1, 0), (0, 0, -1)), View.BOTTOM: ((0, -1, 0), (0, 0, 1)),
+          View.ISO: ((1, 1, 1), (0, 1, 0))}
+
+#: the near plane of a camera inside the scene's box, as a fraction of the far plane (a
+#: 24-bit depth buffer then still resolves 1/1600 of the far distance there)
+PLANE_RATIO = 1e-4
+#: the clip planes of a camera with none, before a draw fits them to a scene
+FALLBACK_PLANES = (0.1, 100.0)
 
 #: the direction the default camera looks from (towards the centre): front, right, above
 DEFAULT_VIEW_FROM = (0.55, 0.45, 1.0)

@@ -3,10 +3,12 @@ Renderer's programs and buffers; this module only supplies the framebuffer and t
 camera control.
 
 Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth, 6 radiosity; z depth test; w
-wireframe; c back-face culling (auto / on / off); l light at the camera; k add a key frame;
-p play/pause the path; P save the path as TOML; s screenshot; r reset; h or ? help; Esc or
-q quit. Left-drag: arcball; right- or shift-drag: pan; wheel: dolly; double-click:
-re-centre on the surface.
+polygon edges; c back-face culling (auto / on / off); v the named views in turn (front,
+back, left, right, top, bottom, iso); o orthographic / perspective; l light at the camera;
+k add a key frame; p play/pause the path; P save the path as TOML; s screenshot; r reset;
+h or ? help; Esc or q quit. Left-drag: arcball; right- or shift-drag: pan; wheel: dolly
+(the clip planes follow: nothing in front of the camera is cut away); double-click:
+re-centre on the surface; with --pick a click prints the polygon under it.
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from ..errors import DisplayError
 from .. import quaternion as quat
 from ..modes import Culling, ShadingMode
 from ..options import DrawOptions
-from ..scene import Camera, CameraPath, Keyframe, Material, PointLight, Scene, default_camera
+from ..scene import Camera, CameraPath, Keyframe, PointLight, Scene, default_camera
 from .arcball import Arcball
 
 __all__ = ["Viewer", "HELP"]
@@ -49,12 +51,13 @@ class Viewer:
     ``glshade render``). size : window size in screen coordinates. options : the initial
     DrawOptions (or a mode's name); keys change them. samples : MSAA samples of the window
     (0 = off). compare : flat | Gouraud | Phong side by side with one camera. visible :
-    False for a hidden window (tests).
+    False for a hidden window (tests). pick : print what a click lands on
+    (:meth:`pick`).
     """
 
     def __init__(self, scene: Scene, camera: Camera | None = None, *, size=(960, 720),
                  options=None, samples: int = 4, compare: bool = False, visible: bool = True,
-                 title: str = "glshade", screenshot_dir: str | Path = "."):
+                 title: str = "glshade", screenshot_dir: str | Path = ".", pick: bool = False):
         if not _has_display():
             raise DisplayError("no display to open a window on (DISPLAY is not set); use "
                                "'glshade render' for images, or run under 'xvfb-run'")
@@ -90,6 +93,9 @@ class Viewer:
         self.scene = scene
         self.title = title
         self.compare = bool(compare)
+        self.picking = bool(pick)
+        self.picks: list = []
+        self._view = -1  # (the last named view the v key chose)
         self.options = DrawOptions.of(options)
         self.screenshot_dir = Path(screenshot_dir)
         self.center = scene.bounds.mean(axis=0)
@@ -130,23 +136,19 @@ class Viewer:
 
     # ------------------------------------------------------------------ drawing
     def draw(self) -> None:
-        """Draw one frame into the back buffer (no swap)."""
+        """Draw one frame into the back buffer (no swap). The edge overlay (``w``) is the
+        renderer's own (``DrawOptions.edges``): the polygons' edges, not the triangles'."""
         self._glfw.make_context_current(self.window)
         r, t = self.renderer, self.target
-        filled = self.options.replace(wireframe=False)
         if self.compare:
             w3 = t.width // 3
             for i, m in enumerate((ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)):
                 viewport = (i * w3, 0, w3, t.height)
-                r.draw(t, self.scene, self.camera, filled.replace(mode=m), viewport=viewport,
-                       clear=(i == 0))
-                if self.options.wireframe:
-                    self._draw_wire(viewport)
+                r.draw(t, self.scene, self.camera, self.options.replace(mode=m),
+                       viewport=viewport, clear=(i == 0))
                 self._labels().draw(m.value, viewport)  # named like the compare grid's tiles
         else:
-            r.draw(t, self.scene, self.camera, filled)
-            if self.options.wireframe:
-                self._draw_wire(None)
+            r.draw(t, self.scene, self.camera, self.options)
 
     def _labels(self):
         if getattr(self, "_label_overlay", None) is None:
@@ -154,26 +156,6 @@ class Viewer:
 
             self._label_overlay = LabelOverlay(self.context, self.renderer.shaders)
         return self._label_overlay
-
-    def _wire_overlay(self) -> Scene:
-        """The scene's meshes in one dark unlit material, built once per set of models
-        (the meshes themselves are shared, so nothing is uploaded again)."""
-        key = [(id(m.mesh), m.transform.tobytes(), m.visible) for m in self.scene.models]
-        if getattr(self, "_overlay_key", None) != key:
-            overlay = Scene(ambient=(1, 1, 1), background=self.scene.background)
-            dark = Material(color=(0.05, 0.05, 0.05), ka=1.0, kd=0.0, ks=0.0)
-            for m in self.scene.models:
-                overlay.add(m.mesh, dark, m.transform).visible = m.visible
-            self._overlay, self._overlay_key = overlay, key
-        return self._overlay
-
-    def _draw_wire(self, viewport) -> None:
-        ctx = self.context.ctx
-        ctx.depth_func = "<="  # the edges lie exactly on the filled polygons
-        self.renderer.draw(self.target, self._wire_overlay(), self.camera,
-                           self.options.replace(mode=ShadingMode.FLAT), viewport=viewport,
-                           clear=False)
-        ctx.depth_func = "<"
 
     def screenshot(self, path=None) -> np.ndarray:
         """The window's pixels now ``(H, W, 4) uint8``; saved as PNG when ``path`` is given."""
@@ -252,7 +234,7 @@ class Viewer:
         elif char == "z":
             self.options = o.replace(depth_test=not o.depth_test)
         elif char == "w":
-            self.options = o.replace(wireframe=not o.wireframe)
+            self.options = o.replace(edges=not o.edges)
         elif char == "c":
             turn = {Culling.AUTO: Culling.ON, Culling.ON: Culling.OFF, Culling.OFF: Culling.AUTO}
             self.options = o.replace(cull=turn[o.cull])
@@ -283,6 +265,27 @@ class Viewer:
             self.camera = self.home
             self.center = self.scene.bounds.mean(axis=0)
             self.playing = False
+        elif char == "v":  # the named views in turn, framed
+            from ..scene.camera import View
+
+            self._view = (self._view + 1) % len(View)
+            chosen = list(View)[self._view]
+            self.camera = Camera.named(chosen, self.scene.bounds, self._aspect(),
+                                       fov_y=self.camera.fov_y).replace(
+                projection=self.camera.projection)
+            if self.camera.projection.value == "orthographic":
+                self.camera = self.camera.frame(self.scene.bounds, self._aspect())
+            self.center = self.scene.bounds.mean(axis=0)
+            self._say(f"view: {chosen.value}")
+        elif char == "o":  # perspective <-> orthographic, the view's centre kept in frame
+            ortho = self.camera.projection.value == "perspective"
+            self.camera = self.camera.replace(
+                projection="orthographic" if ortho else "perspective")
+            if ortho:
+                distance = float(np.linalg.norm(self.center - self.camera.position))
+                self.camera = self.camera.replace(
+                    height=2 * distance * np.tan(np.radians(self.camera.fov_y) / 2))
+            self._say(f"projection: {self.camera.projection.value}")
         elif char in ("h", "?"):
             self._say(HELP)
         elif char in ("q", "escape"):
@@ -327,7 +330,12 @@ class Viewer:
             self.center = center0 + shift
 
     def mouse_up(self) -> None:
-        """The button let go: the drag ends. (``close()`` frees the window and its GL.)"""
+        """The button let go: the drag ends (a click that did not move picks, with
+        ``pick=True``). (``close()`` frees the window and its GL.)"""
+        if self.picking and self._drag is not None:
+            _, start, x0, y0, _ = self._drag
+            if start is self.camera:  # (nothing moved: a click)
+                self.pick(x0, y0)
         self._drag = None
         self.arcball.end()
 
@@ -336,6 +344,18 @@ class Viewer:
         to_center = self.center - self.camera.position
         self.camera = self.camera.replace(position=self.camera.position +
                                           to_center * (1 - 0.9 ** dy))
+
+    def pick(self, x: float, y: float):
+        """What is under window point (x, y): polygon id, world point, normal and depth
+        (:meth:`Renderer.pick`), printed and kept in ``picks``; None over the background."""
+        if self.compare:
+            self._say("picking works in the single view (press 1, 2 or 3)")
+            return None
+        s = self._scale()
+        found = self.renderer.pick(self.scene, self.camera, x * s, y * s)
+        self.picks.append(found)
+        self._say(f"pick: {found}" if found is not None else "pick: background")
+        return found
 
     def recentre(self, x: float, y: float) -> bool:
         """Re-centre the view on the surface point under (x, y), from the depth buffer."""
@@ -349,7 +369,8 @@ class Viewer:
             return False
         ndc = np.array([2 * (px + 0.5) / self.target.width - 1,
                         1 - 2 * (py + 0.5) / self.target.height, 2 * depth - 1, 1.0])
-        m = self.camera.projection_matrix(self._aspect()) @ self.camera.view_matrix()
+        camera = self.camera.with_planes(self.scene.bounds)  # (the planes it was drawn with)
+        m = camera.projection_matrix(self._aspect()) @ camera.view_matrix()
         p = np.linalg.inv(m) @ ndc
         point = p[:3] / p[3]
         self.camera = self.camera.replace(position=self.camera.position + point - self.center)

@@ -1,0 +1,74 @@
+"""The polygon-edge overlay: each polygon's boundary (its Newell polygon, not the
+triangulation) drawn as lines a few pixels wide, on top of the filled picture or alone
+(``DrawOptions.edges`` / ``wireframe``).
+
+Lines are widened into screen-aligned quads by a geometry shader (``edges.geom``): GL core
+profiles promise no line width above 1, and a 1-pixel line vanishes on a large image, so the
+width grows with the image (:func:`edge_width`). Edges are drawn a little in front of their
+surface (a bias in normalised depth) with the depth test on, so the z-buffer hides the edges
+behind other surfaces and keeps those on the visible ones. They go to the colour only: the
+auxiliary outputs (ids, depth, normals) stay the surfaces'.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import moderngl
+
+from ..modes import Outputs
+from .base import GLResource
+from .state import DrawState
+
+__all__ = ["EdgePass", "edge_width", "EDGE_COLOR"]
+
+#: the overlay's colour (linear RGB): dark, readable on every shading
+EDGE_COLOR = (0.06, 0.06, 0.07)
+#: depth bias of an edge towards the eye, in normalised depth (keeps it off its surface)
+EDGE_BIAS = 2e-4
+
+
+def edge_width(width: int, height: int) -> float:
+    """Line width in pixels for a ``width`` x ``height`` image: 1 pixel up to 400 pixels a
+    side, then half a pixel more per 200 (1.5 at 512, 2.5 at 1024, 4.5 at 2048)."""
+    side = min(int(width), int(height))
+    return max(1.0, round(side / 400 * 2) / 2)
+
+
+class EdgePass(GLResource):
+    """The edge program and its drawing, for one Renderer (released with it)."""
+
+    def __init__(self, context, shaders, uniforms):
+        super().__init__(context)
+        self.shaders, self.uniforms = shaders, uniforms
+        self._program: Any = None
+
+    def program(self):
+        self._check()
+        if self._program is None:
+            self._program = self._keep(self.shaders.compile("edges.vert", "edges.frag",
+                                                            geom="edges.geom"))
+        return self._program
+
+    def draw(self, state: DrawState, target, gpu_meshes, colors=None) -> None:
+        """Draw the edges of ``gpu_meshes`` (``(GpuMesh, model matrix)`` pairs) into
+        ``target``'s colour, in ``EDGE_COLOR`` or one colour per mesh (``colors``)."""
+        prog = self.program()
+        ctx = self.context.ctx
+        target.bind(Outputs.COLOR)
+        put = self.uniforms.put
+        x, y, w, h = state.viewport
+        from ..geometry.transforms import gl_bytes
+
+        put(prog, "u_proj", gl_bytes(state.proj))
+        put(prog, "u_viewport_size", (float(w), float(h)))
+        put(prog, "u_edge_width", float(edge_width(w, h)))
+        put(prog, "u_edge_bias", EDGE_BIAS)
+        ctx.disable(moderngl.CULL_FACE)
+        if state.options.depth_test:
+            ctx.enable(moderngl.DEPTH_TEST)
+        for i, (gpu, model) in enumerate(gpu_meshes):
+            put(prog, "u_model_view", gl_bytes(state.view @ model))
+            put(prog, "u_edge_color", tuple(float(c) for c in
+                                            (colors[i] if colors is not None else EDGE_COLOR)))
+            gpu.edge_array(prog).render(moderngl.LINES)

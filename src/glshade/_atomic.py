@@ -98,13 +98,14 @@ def writing(path):
 
 
 @contextlib.contextmanager
-def atomic_write(path, mode: str = "wb"):
-    """Yield a file object; on success it replaces ``path``, on failure it is deleted."""
+def atomic_write(path, mode: str = "wb", **text):
+    """Yield a file object; on success it replaces ``path``, on failure it is deleted.
+    ``text``: ``encoding`` and ``errors`` of a text file."""
     path = Path(path)
     with writing(path):
         tmp = temporary(path)
         try:
-            with open(tmp, mode) as f:
+            with open(tmp, mode, **text) as f:
                 yield f
             publish(tmp, path)
         except BaseException:  # interrupted or failed: remove the partial file, re-raise

@@ -438,3 +438,35 @@ def test_specialised_programs_match_the_formula_for_every_light_kind(make_render
         r.render(scene, FRONT.orbit([0, 0.1, 0, 0.995]), "phong")
         r.render(scene, FRONT, "phong")
     assert len(r.shaders._programs) == programs + 1  # phong without auxiliary outputs
+
+
+@pytest.mark.parametrize("samples", [0, 2, 4])
+def test_auxiliary_outputs_are_exact_whatever_the_colours_samples(gl_context, samples):
+    """render_frame with MSAA: normals unit where a polygon is drawn and zero elsewhere,
+    depth inf exactly where the id is -1, and ids and depth equal to the single-sampled
+    render's -- no blend of a silhouette's samples (it gave normals as short as 0.25 and
+    background pixels with normals); the colour keeps its MSAA."""
+    from glshade import Renderer
+    from glshade.geometry import primitives as P
+
+    scene = Scene(background=(0.3, 0.2, 0.1))
+    scene.add(P.icosphere(2))
+    scene.add(P.cube(), translation=(0.9, 0.2, -0.6))
+    camera = Camera.look_at((0.5, 1.0, 3.5), (0.3, 0, 0))
+    with Renderer(80, 64, samples=0, context=gl_context) as r0, \
+            Renderer(80, 64, samples=samples, context=gl_context) as r:
+        ref = r0.render_frame(scene, camera, "phong")
+        f = r.render_frame(scene, camera, "phong")
+        color_only = r.render(scene, camera, "phong")
+    drawn = f.face_id >= 0
+    assert drawn.any() and (~drawn).any()
+    lengths = np.linalg.norm(f.normal, axis=2)
+    np.testing.assert_allclose(lengths[drawn], 1.0, atol=1e-5)
+    assert (f.normal[~drawn] == 0).all()
+    assert np.isinf(f.depth[~drawn]).all() and np.isfinite(f.depth[drawn]).all()
+    assert np.array_equal(f.face_id, ref.face_id)
+    assert np.array_equal(f.depth, ref.depth)
+    np.testing.assert_allclose(f.normal, ref.normal, atol=1e-6)
+    assert np.array_equal(f.color, color_only)  # (the colour is the MSAA render's)
+    if samples:
+        assert not np.array_equal(f.color, ref.color)  # (it really is multisampled)

@@ -55,26 +55,32 @@ def batch(inputs, outdir, spec: BatchSpec | None = None, *, jobs: int = 1,
     """
     start = time.perf_counter()
     spec = spec or BatchSpec()
+    _ = spec.config  # (a setting the renderer refuses -- MSAA samples -- fails first)
     tasks = plan(find_inputs(inputs), outdir, spec.modes, spec.outputs, spec.views)
     outdir = Path(outdir)
-    with writing(outdir):
-        outdir.mkdir(parents=True, exist_ok=True)
-    remove_stale(outdir, recursive=True)  # left by a run that was killed
     manifest = outdir / MANIFEST
     earlier = read_manifest(manifest)
     rows: dict[int, Row] = {}
     todo: list[int] = []
     for i, t in enumerate(tasks):
-        if not overwrite and t.done():
+        fault = t.fault()  # (a name too long, a link out of OUTDIR: that input's error)
+        if fault is not None:
+            rows[i] = Row(t.input, "error", message=f"{t.input}: {fault}")
+        elif not overwrite and t.done():
             rows[i] = kept(t, earlier)
         else:
             todo.append(i)
+    # where the work runs is settled before anything is written (a missing extra, an
+    # unknown scheduler: no folder, no manifest)
+    executor = make_executor(BatchWorker, (spec,), jobs, items=len(todo),
+                             scheduler=scheduler) if todo else None
+    with writing(outdir):
+        outdir.mkdir(parents=True, exist_ok=True)
+    remove_stale(outdir, recursive=True)  # left by a run that was killed
     bar = Progress(len(todo), enabled=progress, unit="meshes") if progress is not False \
         else None
     try:
-        if todo:
-            executor = make_executor(BatchWorker, (spec,), jobs, items=len(todo),
-                                     scheduler=scheduler)
+        if executor is not None:
             with contextlib.closing(executor.map([tasks[i] for i in todo])) as results:
                 for i, row in zip(todo, results):
                     rows[i] = row

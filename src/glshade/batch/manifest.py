@@ -29,7 +29,8 @@ def write_manifest(rows: list[Row], path) -> None:
                     "" if r.seconds is None else f"{r.seconds:.4f}",
                     ";".join(os.path.relpath(o, base) for o in r.outputs),
                     r.message])
-    with atomic_write(path, "w") as f:
+    # (file names are bytes: one that is not UTF-8 is written back as the bytes it was)
+    with atomic_write(path, "w", encoding="utf-8", errors="surrogateescape") as f:
         f.write(buf.getvalue())
 
 
@@ -37,7 +38,7 @@ def read_manifest(path) -> dict[str, Row]:
     """The rows of an earlier manifest by input (empty if there is none, or it is not ours)."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8", errors="surrogateescape")
     except (OSError, UnicodeDecodeError):
         return {}
     rows = {}

@@ -15,7 +15,7 @@ import zipfile
 import numpy as np
 
 from .._atomic import atomic_write, writing
-from ..errors import EnvironmentFailure, GlshadeError
+from ..errors import EnvironmentFailure, GlshadeError, UsageError
 from ..modes import Backend, Outputs
 from ..options import DrawOptions, RenderConfig
 from ._plan import Task
@@ -117,6 +117,9 @@ class BatchWorker:
         scene.add(mesh, Material.from_values(s.material), crease=s.crease)
         for position in s.lights:
             scene.add_light(PointLight(position))
+        fault = task.fault()  # (checked again where the files are made: links can change)
+        if fault is not None:
+            raise UsageError(f"{task.input}: {fault}")
         for p in task.outputs:
             with writing(p):
                 os.makedirs(os.path.dirname(p), exist_ok=True)

@@ -66,6 +66,17 @@ def hidden(args: HiddenArgs) -> int:
                            if k not in ("polygons", "triangles"))
         rows.append((name, f"{r.seconds * 1000:.1f}", counts, str(a.differ),
                      str(a.near_edges), f"{a.depth_error:.1e}"))
+    if not (ref_ids >= 0).any():  # a blank view: a background image, and why, in one line
+        import warnings
+
+        from ..errors import RenderWarning
+        from ..render.diagnostics import why_blank
+
+        reason = why_blank(job.scene, job.camera.with_planes(job.scene.bounds))
+        if "no part of the scene lies in the camera's view" in reason:
+            reason = (f"the render is blank: no polygon covers a pixel centre of the {w}x{h} "
+                      "image (out of view, too small, or edge on)")
+        warnings.warn(reason, RenderWarning, stacklevel=2)
     grid = opaque(np.vstack([np.hstack(top), np.hstack(bottom)]))
     save_image(grid, args.output)
     print(f"{p.n_polygons:,} polygons ({len(p.tris):,} triangles) at {w}x{h}; reference: "
@@ -85,7 +96,13 @@ def _gpu(job, w, h, backend):
     from ..options import RenderConfig
     from ..render.renderer import Renderer
 
-    with Renderer(config=RenderConfig(w, h, samples=0, backend=backend)) as r:
+    import warnings
+
+    from ..errors import RenderWarning
+
+    with Renderer(config=RenderConfig(w, h, samples=0, backend=backend)) as r, \
+            warnings.catch_warnings():
+        warnings.simplefilter("ignore", RenderWarning)  # (the lab says it once, below)
         start = time.perf_counter()
         frame = r.render_frame(job.scene, job.camera, "flat", cull=False,
                                outputs=Outputs.FACE_ID | Outputs.DEPTH)

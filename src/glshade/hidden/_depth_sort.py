@@ -93,7 +93,8 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
             # bound: a true cycle always has a polygon that straddles another's plane)
             moved.add(Q)
             counters["moves"] += 1
-            if counters["moves"] > 20 * len(t_all) + 100:
+            # (the bound grows with the pieces that splitting makes: each may move)
+            if counters["moves"] > 20 * pieces.size + 100:
                 raise DepthSortCycle("depth sort keeps reordering the same polygons (an "
                                      "unresolved cycle); use the BSP or the z-buffer")
             todo.remove(Q)

@@ -38,9 +38,10 @@ def _inverse_depth_planes(p: Prepared) -> tuple[np.ndarray, bool]:
     normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
     offset = np.einsum("nd,nd->n", normal, t[:, 0])
     # depth at the three points, for every triangle
-    s = (offset[:, None] - normal @ a.T) / (normal @ direction.T)  # (T, 3)
-    depth = -(a[None, :, 2] + s * direction[None, :, 2])
-    q = 1.0 / depth if perspective else depth
+    with np.errstate(divide="ignore", invalid="ignore"):  # (a triangle seen edge on: its
+        s = (offset[:, None] - normal @ a.T) / (normal @ direction.T)  # plane has no depth
+        depth = -(a[None, :, 2] + s * direction[None, :, 2])         # there; it covers no
+        q = 1.0 / depth if perspective else depth                   # pixel centre either)
     coeff = np.stack([q[:, 1] - q[:, 0], q[:, 2] - q[:, 0], q[:, 0]], 1)
     return coeff, perspective
 

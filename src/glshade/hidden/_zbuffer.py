@@ -41,15 +41,17 @@ def zbuffer(p: Prepared) -> HiddenResult:
                 "pixels written": 0}
 
     def run(result: HiddenResult):
-        exact = np.full(p.n_pixels, np.inf)
+        # (the float64 depths resolve_nearest keeps: one array, there from the start, so a
+        # view where no fragment falls on a pixel centre is simply blank)
+        exact = result.__dict__.setdefault("_depth64", np.full(p.n_pixels, np.inf))
         for pix, tri, depth in fragments(p, p.screen, p.tris, counters):
             order = p.order[tri]
             counters["fragments"] += len(pix)
             counters["pixels written"] += _writes(pix, depth, order, exact)
             resolve_nearest(p, result, pix, tri, depth, order)
-            exact = result.__dict__["_depth64"]
         counters["depth tests"] = counters.pop("fragments")
         counters["inside tests"] = counters.pop("inside tests", 0)
+        counters.pop("inside", None)
 
     result = timed("zbuffer", p, run)
     result.counters = counters

@@ -249,7 +249,7 @@ def fragments(p: Prepared, tris_screen: np.ndarray, tris_view: np.ndarray, count
     box = tris_screen if piece_screen is None else piece_screen
     margin = 0.0 if piece_screen is None else 1 / SUBPIXEL
     lo = np.floor(box.min(1) - margin - 0.5).astype(np.int64) + 1  # first centre >= min
-    hi = np.ceil(box.max(1) + margin - 0.5).astype(np.int64)       # last centre <= max
+    hi = np.floor(box.max(1) + margin - 0.5).astype(np.int64)      # last centre <= max
     lo = np.maximum(lo, 0)
     hi = np.minimum(hi, [width - 1, height - 1])
     span = np.maximum(hi - lo + 1, 0)
@@ -293,8 +293,9 @@ def fragments(p: Prepared, tris_screen: np.ndarray, tris_view: np.ndarray, count
                 a, b = q[:, k], q[:, (k + 1) % 3]
                 f = ((b[:, 0] - a[:, 0]) * (cy - a[:, 1]) - (b[:, 1] - a[:, 1]) * (cx - a[:, 0]))
                 inside &= ~cut[tri, k] | (f * qsign >= 0)
-        if counters is not None:
+        if counters is not None:  # (what was done: pairs tested, pairs found inside)
             counters["inside tests"] = counters.get("inside tests", 0) + len(tri)
+            counters["inside"] = counters.get("inside", 0) + int(inside.sum())
         tri, pix = tri[inside], (py * width + px)[inside]
         o, dvec = p.ray_origin[pix], p.ray_dir[pix]
         denom = np.einsum("nd,nd->n", normal[tri], dvec)

@@ -213,13 +213,15 @@ class Renderer:
             raise GlshadeError("this Renderer was closed; make a new one")
 
     # ------------------------------------------------------------------ caches
-    def _target(self, color_dtype: str) -> OffscreenTarget:
+    def _target(self, color_dtype: str, samples: int | None = None) -> OffscreenTarget:
         self._check()
         self.context.make_current()
-        t = self._targets.get(color_dtype)
+        samples = self.samples if samples is None else samples
+        key = f"{color_dtype}/{samples}"
+        t = self._targets.get(key)
         if t is None:
             try:
-                t = OffscreenTarget(self.context, self.width, self.height, self.samples,
+                t = OffscreenTarget(self.context, self.width, self.height, samples,
                                     color_dtype)
             except GlshadeError:
                 raise
@@ -227,7 +229,7 @@ class Renderer:
                 raise EnvironmentFailure(f"this GL could not make a {self.width}x"
                                          f"{self.height} framebuffer with {self.samples} "
                                          f"samples: {exc}") from None
-            self._targets[color_dtype] = t
+            self._targets[key] = t
         return t
 
     def _gpu_mesh(self, mesh) -> GpuMesh:
@@ -439,16 +441,29 @@ class Renderer:
     def render_frame(self, scene: Scene, camera: Camera, options=None, *,
                      outputs: Outputs = Outputs.ALL, color_dtype: str = "u1",
                      **changes) -> Frame:
-        """Colour and the ``outputs`` asked for (depth, world normals, polygon ids) from one
-        pass (several render targets). ``color_dtype="f4"`` returns unquantised float
-        colour, for tests of the formula."""
+        """Colour and the ``outputs`` asked for (depth, world normals, polygon ids).
+        ``color_dtype="f4"`` returns unquantised float colour, for tests of the formula.
+
+        The auxiliary outputs are exact whatever the renderer's MSAA samples: each pixel's
+        id, depth and unit normal are those of the surface its centre sees (zero normal,
+        ``inf`` depth and id -1 where nothing is drawn), never a blend of a silhouette's
+        samples. Without MSAA they come from the colour's own pass (several render
+        targets); with it, from a second, single-sampled pass of the same draw."""
         if color_dtype not in ("u1", "f4"):
             raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
-        target = self._target("f1" if color_dtype == "u1" else "f4")
-        self._counted_draw(target, scene, camera, options)
+        dtype = "f1" if color_dtype == "u1" else "f4"
+        target = self._target(dtype)
         want = options.outputs
-        return Frame(target.read_color(),
+        if self.samples and want.auxiliary:  # colour multisampled, the rest exact
+            self._counted_draw(target, scene, camera, options.replace(outputs=Outputs.COLOR))
+            color = target.read_color()
+            target = self._target(dtype, samples=0)
+            self.draw(target, scene, camera, options)
+        else:
+            self._counted_draw(target, scene, camera, options)
+            color = target.read_color()
+        return Frame(color,
                      target.read_depth() if want & Outputs.DEPTH else None,
                      target.read_normal() if want & Outputs.NORMAL else None,
                      target.read_face_id() if want & Outputs.FACE_ID else None)

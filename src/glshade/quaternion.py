@@ -103,15 +103,18 @@ def normalize(q: ArrayLike) -> Array:
     if isinstance(q, np.ndarray) and q.shape == (4,) or \
             isinstance(q, (list, tuple)) and len(q) == 4:  # one (a camera's): plain floats
         x, y, z, w = (float(c) for c in q)
-        n = math.sqrt(x * x + y * y + z * z + w * w)
+        n = math.hypot(x, y, z, w)  # (no overflow for huge components)
         if not 0 < n < math.inf:
             raise GeometryError("cannot normalize a zero or non-finite quaternion")
         return np.array([x / n, y / n, z / n, w / n])
     q = _q(q)
-    lengths = norm(q)
+    with np.errstate(over="ignore", invalid="ignore"):
+        big = np.abs(q).max(axis=-1, keepdims=True)  # (scaled first: no overflow)
+        scaled = q / np.where(big > 0, big, 1.0)
+        lengths = norm(scaled)
     if np.any(lengths == 0) or not np.all(np.isfinite(lengths)):
         raise GeometryError("cannot normalize a zero or non-finite quaternion")
-    return q / lengths[..., None]
+    return scaled / lengths[..., None]
 
 
 def inverse(q: ArrayLike) -> Array:
@@ -217,7 +220,7 @@ def to_matrix(q: ArrayLike, convention: str = "column") -> Array:
     a = np.asarray(q, dtype=np.float64)
     if a.shape == (4,):  # one quaternion (a camera's, every frame): plain floats
         x, y, z, w = a.tolist()
-        n = math.sqrt(x * x + y * y + z * z + w * w)
+        n = math.hypot(x, y, z, w)
         if not 0 < n < math.inf:
             raise GeometryError("cannot normalize a zero or non-finite quaternion")
         x, y, z, w = x / n, y / n, z / n, w / n

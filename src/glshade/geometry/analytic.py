@@ -21,7 +21,11 @@ __all__ = ["AnalyticSurface", "AnalyticSphere", "affine_matrix"]
 def affine_matrix(matrix: ArrayLike, what: str = "matrix") -> NDArray[np.float64]:
     """A finite, nonsingular affine ``(4, 4)`` (a ``(3, 3)`` is widened); else a clear
     error."""
-    m = np.asarray(matrix, dtype=np.float64)
+    try:
+        m = np.asarray(matrix, dtype=np.float64)
+    except (TypeError, ValueError):  # ragged, or not numbers
+        raise GeometryError(f"{what} must be a 4x4 (or 3x3) array of numbers, got "
+                            f"{matrix!r}") from None
     if m.shape == (3, 3):
         m = np.block([[m, np.zeros((3, 1))], [np.zeros((1, 3)), np.ones((1, 1))]])
     if m.shape != (4, 4):
@@ -30,9 +34,20 @@ def affine_matrix(matrix: ArrayLike, what: str = "matrix") -> NDArray[np.float64
         raise GeometryError(f"{what} has a non-finite entry")
     if not np.allclose(m[3], (0, 0, 0, 1)):
         raise GeometryError(f"{what} must be affine (last row 0, 0, 0, 1), got {m[3].tolist()}")
-    det = np.linalg.det(m[:3, :3])
-    if not np.isfinite(det) or abs(det) < 1e-300:
-        raise GeometryError(f"{what} is singular (determinant {det:g}): a zero scale?")
+    a = m[:3, :3]
+    big = float(np.abs(a).max())
+    if 0 < big < 1e-150:
+        raise GeometryError(f"{what} has entries no larger than {big:g}, too small to work "
+                            "with (its products underflow): keep its scale above 1e-150")
+    if big > 1e150:
+        raise GeometryError(f"{what} has an entry of {big:g}, too large to work with (its "
+                            "products overflow): keep its scale under 1e150")
+    with np.errstate(all="ignore"):
+        singular = big == 0 or not np.isfinite(np.linalg.cond(a / big)) or \
+            np.linalg.cond(a / big) > 1e12
+    if singular:
+        raise GeometryError(f"{what} is singular or nearly (it flattens space: a zero scale, "
+                            "or one tiny next to the others), so it cannot be inverted")
     return m
 
 

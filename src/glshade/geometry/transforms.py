@@ -34,13 +34,22 @@ def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Arr
             [float(c) for c in a] for a in (eye, target, up))  # type: ignore[union-attr,arg-type]
     except (TypeError, ValueError):
         raise GeometryError("look_at: eye, target and up must be 3 numbers each") from None
+    if not all(map(math.isfinite, (ex, ey, ez, tx, ty, tz, ux, uy, uz))):
+        raise GeometryError("look_at: eye, target and up must be finite numbers")
     fx, fy, fz = tx - ex, ty - ey, tz - ez
-    length = math.sqrt(fx * fx + fy * fy + fz * fz)
+    length = math.hypot(fx, fy, fz)  # (no overflow: a camera 1e300 away still has a view)
     if length == 0:
         raise GeometryError("look_at: eye and target are the same point")
+    if not math.isfinite(length):
+        raise GeometryError("look_at: eye and target are too far apart to subtract "
+                            f"({length:g}): keep coordinates within 1e300")
     fx, fy, fz = fx / length, fy / length, fz / length
+    up_length = math.hypot(ux, uy, uz)
+    if up_length == 0:
+        raise GeometryError("look_at: up must not be zero")
+    ux, uy, uz = ux / up_length, uy / up_length, uz / up_length
     sx, sy, sz = fy * uz - fz * uy, fz * ux - fx * uz, fx * uy - fy * ux
-    side = math.sqrt(sx * sx + sy * sy + sz * sz)
+    side = math.hypot(sx, sy, sz)
     if side < 1e-12:
         raise GeometryError(f"look_at: up {[ux, uy, uz]} is parallel to the view direction")
     sx, sy, sz = sx / side, sy / side, sz / side

@@ -199,6 +199,9 @@ def _check(kind: str, value, where: str):
         if not isinstance(value, list) or len(value) != 4 or \
                 not all(isinstance(r, list) and len(r) == 4 for r in value):
             fail("a 4x4 list of lists")
+        if not all(isinstance(v, NUMBER) and not isinstance(v, bool) and np.isfinite(v)
+                   for r in value for v in r):
+            fail("a 4x4 list of lists of finite numbers")
         return np.array(value, dtype=float)
     if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull"):
         try:

@@ -41,7 +41,11 @@ from .edges import EdgePass
 from .diagnostics import why_blank
 from .target import OffscreenTarget
 
-__all__ = ["Renderer", "Frame", "Pick"]
+__all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH"]
+
+#: how far a camera may be from the origin or its scene (beyond, the view and projection
+#: matrices overflow float64 products)
+MAX_CAMERA_REACH = 1e150
 
 
 @dataclass(frozen=True)
@@ -269,7 +273,12 @@ class Renderer:
         camera = camera.with_planes(scene.bounds)  # (planes not given: fitted to the scene)
         if options.mode is ShadingMode.RADIOSITY:
             self._warn_unsolved(scene)
-        near = camera.planes()[0]
+        near, far = camera.planes()
+        reach = max(far, float(np.abs(camera.position).max()))
+        if not reach <= MAX_CAMERA_REACH:  # (a far camera that sees nothing is just blank)
+            raise SceneError(f"the camera is {reach:.3g} from the origin or its scene, too "
+                             f"far to compute its projection (at most {MAX_CAMERA_REACH:g}): "
+                             "move it closer")
         if len(scene.lights) > MAX_LIGHTS:
             raise SceneError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")

@@ -369,3 +369,42 @@ def test_examples_by_name_in_the_api_and_the_cli(tmp_path):
     out = subprocess.run([sys.executable, "-m", "glshade", "info", "teapot.obj", "--json"],
                          capture_output=True, text=True, cwd=tmp_path)
     assert '"faces": 1' in out.stdout  # a file of that name wins over the example
+
+
+@pytest.mark.parametrize("ext", ["gif", "png"])
+def test_n_frames_asked_n_frames_written_even_when_they_repeat(tmp_path, ext):
+    """A still camera gives identical frames; Pillow merged them (6 asked, 1 written):
+    now every frame is in the file, each with its own duration and the picture it had."""
+    from PIL import Image
+
+    from glshade.animate import write_animation
+
+    a = np.zeros((12, 16, 4), np.uint8)
+    a[..., 3] = 255
+    a[:6, :, :3] = (200, 60, 20)
+    b = a.copy()
+    b[:, :8, :3] = (10, 220, 90)
+    frames = [a, a, a, b, b, a]
+    out = tmp_path / f"x.{ext}"
+    assert write_animation(frames, out, fps=10) == 6
+    with Image.open(out) as im:
+        assert im.n_frames == 6
+        for k, f in enumerate(frames):
+            im.seek(k)
+            assert np.array_equal(np.asarray(im.convert("RGB")), f[..., :3]), k
+            assert im.info["duration"] == 100
+
+
+def test_an_odd_sized_mp4_is_refused_before_any_frame(tmp_path):
+    start = time.perf_counter()
+    r = glshade("animate", "primitive:cube", "-o", str(tmp_path / "x.mp4"), "--frames", "200",
+                "--size", "255x255")
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.strip().splitlines() == [
+        f"glshade: error: {tmp_path / 'x.mp4'}: MP4 (H.264) needs an even width and height, "
+        "and the frames would be 255x255; make the size even (e.g. --size 256x256, or a "
+        ".gif / .png output)"]
+    assert list(tmp_path.iterdir()) == [] and time.perf_counter() - start < 30
+    ok = glshade("animate", "primitive:cube", "-o", str(tmp_path / "y.mp4"), "--frames", "3",
+                 "--size", "64x48")
+    assert ok.returncode == 0, ok.stderr

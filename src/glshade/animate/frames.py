@@ -9,7 +9,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, OutputError
 from ..io.images import LABEL_HEIGHT, labelled_row
 from ..io.scenefile import SceneFile
 from ..options import DrawOptions, RenderConfig
@@ -115,6 +115,18 @@ def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
         shutil.rmtree(folder, ignore_errors=True)
 
 
+def _check_output(output, shape) -> None:
+    """Refuse, before any frame is drawn, what the output's format cannot hold: H.264 (MP4,
+    yuv420p) stores colour at half resolution, so it needs an even width and height."""
+    from .writers import output_format
+
+    if output_format(output) == "mp4" and (shape[0] % 2 or shape[1] % 2):
+        h, w = shape[:2]
+        raise OutputError(f"{output}: MP4 (H.264) needs an even width and height, and the "
+                          f"frames would be {w}x{h}; make the size even (e.g. --size "
+                          f"{w + w % 2}x{h + h % 2}, or a .gif / .png output)")
+
+
 def animate(scene, path: CameraPath | None = None, frames: int | None = None, options=None,
             *, modes=None, output=None, fps: float | None = None,
             config: RenderConfig | None = None, size=None, samples: int | None = None,
@@ -146,6 +158,9 @@ def animate(scene, path: CameraPath | None = None, frames: int | None = None, op
         raise InputError("animate needs a camera path and a number of frames (or a loaded "
                          "scene file, which has both)")
     fps = 30.0 if fps is None else fps
+    config = RenderConfig.of(config, size=size, samples=samples, backend=backend)
+    if output is not None:
+        _check_output(output, frame_shape(config.size, len(modes or [None])))
     jobs = (os.cpu_count() or 1) if jobs is None else jobs
     bar = Progress(frames, enabled=progress) if progress is not False else None
     spool = None

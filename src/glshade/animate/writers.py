@@ -45,14 +45,45 @@ def write_animation(frames, output, fps: float = 30.0) -> int:
     if not images:
         raise OutputError("no frames to write")
     duration = int(round(1000 / fps))
+    # (Pillow merges a frame identical to the one before into it, lengthening its
+    # duration: N frames asked would be fewer written. So no two neighbours are the same
+    # bytes to it: in a GIF a repeated frame names one colour by a spare palette entry, in
+    # an APNG neighbours alternate their blend operation -- the same pictures either way.)
     with atomic_write(out, "wb") as f:
         if fmt == "gif":
-            images[0].save(f, format="GIF", save_all=True, append_images=images[1:],
-                           duration=duration, loop=0, optimize=False, disposal=1)
+            frames_p = _gif_frames(images)
+            frames_p[0].save(f, format="GIF", save_all=True, append_images=frames_p[1:],
+                             duration=duration, loop=0, optimize=False, disposal=1)
         else:
             images[0].save(f, format="PNG", save_all=True, append_images=images[1:],
-                           duration=duration, loop=0)
+                           duration=duration, loop=0,
+                           blend=[k % 2 for k in range(len(images))])
     return len(images)
+
+
+def _gif_frames(images):
+    """Palette frames, each palette with a spare copy of the first pixel's colour; a frame
+    identical to the one before draws that colour with the copy, so the GIF writer keeps it
+    as a frame of its own (its pixels are the same colours)."""
+    from PIL import Image
+
+    out, prev, flip = [], None, False
+    for im in images:
+        raw = np.asarray(im)
+        flip = (not flip) if prev is not None and np.array_equal(raw, prev) else False
+        prev = raw
+        p = im.quantize(255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        idx = np.asarray(p)
+        palette = p.getpalette()[: 3 * (int(idx.max()) + 1)]
+        first = int(idx.flat[0])
+        spare = len(palette) // 3
+        palette += palette[3 * first: 3 * first + 3]
+        if flip:
+            idx = np.where(idx == first, spare, idx).astype(np.uint8)
+        frame = Image.fromarray(idx, "P")
+        frame.putpalette(palette)
+        out.append(frame)
+    return out
 
 
 def _write_dir(frames, out: Path) -> int:

@@ -408,3 +408,20 @@ def test_an_odd_sized_mp4_is_refused_before_any_frame(tmp_path):
     ok = glshade("animate", "primitive:cube", "-o", str(tmp_path / "y.mp4"), "--frames", "3",
                  "--size", "64x48")
     assert ok.returncode == 0, ok.stderr
+
+
+def test_ctrl_c_while_writing_an_mp4_ends_promptly(tmp_path):
+    """Interrupting an MP4 in the making ends the run (status 130, one line, no file) and
+    never waits on the encoder: ffmpeg is killed, not asked to finish."""
+    out = tmp_path / "long.mp4"
+    for delay in (0.8, 1.6):
+        proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+                                 "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
+                                 "5000", "--size", "64x48", "--backend", BACKEND], cwd=ROOT,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+        assert proc.returncode in (130, -signal.SIGINT), err
+        assert "Traceback" not in err
+        assert list(tmp_path.iterdir()) == []

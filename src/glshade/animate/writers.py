@@ -129,6 +129,12 @@ def _write_mp4(frames, out: Path, fps: float) -> int:
                 with _encoder_errors(out):
                     writer.append_data(np.ascontiguousarray(f[..., :3]))
                 n += 1
+        except BaseException as exc:
+            # Ctrl-C: kill ffmpeg now. Closed gracefully, the writer waits without a bound
+            # for ffmpeg to finish, and an interrupt landing in that wait could hang the run.
+            if not isinstance(exc, Exception):
+                _kill_encoder(writer)
+            raise
         finally:
             with _encoder_errors(out):
                 writer.close()
@@ -142,6 +148,15 @@ def _write_mp4(frames, out: Path, fps: float) -> int:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+def _kill_encoder(writer) -> None:
+    """End the ffmpeg process behind an imageio writer at once (an interrupt: its output
+    is thrown away anyway), so that closing the writer cannot wait on it."""
+    gen = getattr(writer, "_write_gen", None)
+    if gen is not None:
+        with contextlib.suppress(BaseException):
+            gen.throw(KeyboardInterrupt)  # (imageio-ffmpeg kills ffmpeg on this)
 
 
 @contextlib.contextmanager

@@ -293,3 +293,63 @@ def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
     assert {m["status"] for m in manifest(out)} == {"ok", "error"}
     assert tree(out) == tree(tmp_path / "ref")
     assert parts(out) == []
+
+
+def test_ctrl_c_on_a_cluster_waits_for_running_tasks_and_accounts_for_them(tmp_path,
+                                                                          dask_cluster):
+    """After Ctrl-C the tasks a worker already runs cannot be stopped: glshade waits for
+    them before writing the manifest (and says so), so no output appears after it exits
+    and every input whose outputs exist is 'ok' in the manifest."""
+    src = make_collection(tmp_path / "in", extra=14)
+    out = tmp_path / "out"
+    proc = _start([str(src), "-o", str(out), "--size", "320x240", "--views", "3", "--modes",
+                   "flat,phong", "--scheduler", dask_cluster.address, "--backend", BACKEND])
+    _wait_for_outputs(out, 6, proc)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=180)
+    assert proc.returncode == 130, err
+    at_exit = tree(out)
+    time.sleep(3.0)  # (were a task still running, its outputs would appear now)
+    assert tree(out) == at_exit
+    rows = manifest(out)
+    finished = {t.input for t in plan(find_inputs([str(src)]), out, ("flat", "phong"),
+                                      Outputs.COLOR, 3) if t.done()}
+    assert {m["input"] for m in rows if m["status"] == "ok"} == finished
+    assert any(m["status"] == "not run" for m in rows)
+    assert parts(out) == []
+
+
+def test_a_scheduler_that_never_answers_is_given_up_on_in_one_line(tmp_path, dask_cluster):
+    """A real scheduler, stopped (SIGSTOP): it accepts the connection and never answers.
+    glshade gives up at its deadline with one line and status 1 (it used to hang)."""
+    import json
+
+    folder = tmp_path / "sched"
+    folder.mkdir()
+    file = folder / "scheduler.json"
+    dask = str(Path(sys.executable).with_name("dask"))
+    sched = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", "0",
+                              "--no-dashboard", "--scheduler-file", str(file)], cwd=folder,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.time() + 60
+        while not file.exists() or not file.read_text().strip():
+            assert time.time() < deadline and sched.poll() is None
+            time.sleep(0.1)
+        address = json.loads(file.read_text())["address"]
+        os.kill(sched.pid, signal.SIGSTOP)
+        src = make_collection(tmp_path / "in")
+        start = time.time()
+        r = subprocess.run([sys.executable, "-m", "glshade", "batch", str(src), "-o",
+                            str(tmp_path / "out"), "--scheduler", address],
+                           capture_output=True, text=True, cwd=ROOT, timeout=120,
+                           env={**os.environ, "GLSHADE_SCHEDULER_TIMEOUT": "4"})
+        assert r.returncode == 1, r.stderr
+        assert r.stderr.strip().splitlines() == [
+            f"glshade: error: the Dask scheduler at {address} did not answer within 4 s "
+            "(stopped, wedged or overloaded?); GLSHADE_SCHEDULER_TIMEOUT sets the wait"]
+        assert time.time() - start < 60
+    finally:
+        os.kill(sched.pid, signal.SIGCONT)
+        sched.kill()
+        sched.wait(timeout=30)

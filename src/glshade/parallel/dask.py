@@ -60,11 +60,7 @@ def connect(scheduler: str, workers: int | None = None):
             if "://" not in scheduler:
                 raise InputError(f"--scheduler: expected tcp://HOST:PORT or 'local', got "
                                  f"{scheduler!r}")
-            try:
-                client = distributed.Client(scheduler, timeout="10s")
-            except OSError as exc:  # unreachable, refused, timed out
-                raise ClusterError(f"cannot reach the Dask scheduler at {scheduler}: "
-                                   f"{exc}") from None
+            client = _client_within(distributed, scheduler, _deadline())
         try:
             yield client
         finally:
@@ -72,6 +68,82 @@ def connect(scheduler: str, workers: int | None = None):
     finally:
         if cluster is not None:
             cluster.close()
+
+
+#: seconds a scheduler has to answer (GLSHADE_SCHEDULER_TIMEOUT overrides)
+SCHEDULER_TIMEOUT = 20.0
+
+
+def _deadline() -> float:
+    text = os.environ.get("GLSHADE_SCHEDULER_TIMEOUT", "")
+    try:
+        value = float(text) if text else SCHEDULER_TIMEOUT
+    except ValueError:
+        raise InputError(f"GLSHADE_SCHEDULER_TIMEOUT must be a number of seconds, got "
+                         f"{text!r}") from None
+    if not value > 0:
+        raise InputError(f"GLSHADE_SCHEDULER_TIMEOUT must be > 0, got {text!r}")
+    return value
+
+
+def _client_within(distributed, scheduler: str, seconds: float):
+    """A Client of ``scheduler`` that has answered (its workers listed) within ``seconds``:
+    Client(timeout=) does not bound a scheduler that accepts the connection and never
+    answers (stopped, wedged), so the handshake runs in a thread of its own, abandoned at
+    the deadline with one line that says so."""
+    box: dict = {}
+
+    def handshake():
+        try:
+            client = distributed.Client(scheduler, timeout=f"{seconds}s")
+            client.scheduler_info()
+            box["client"] = client
+        except BaseException as exc:  # (reported by the caller, below)
+            box["error"] = exc
+
+    thread = threading.Thread(target=handshake, name="glshade-dask-connect", daemon=True)
+    thread.start()
+    thread.join(seconds)
+    if thread.is_alive():
+        raise ClusterError(f"the Dask scheduler at {scheduler} did not answer within "
+                           f"{seconds:g} s (stopped, wedged or overloaded?); "
+                           "GLSHADE_SCHEDULER_TIMEOUT sets the wait")
+    error = box.get("error")
+    if error is not None:
+        if isinstance(error, (OSError, TimeoutError)) or "Timed out" in str(error):
+            raise ClusterError(f"cannot reach the Dask scheduler at {scheduler}: "
+                               f"{error}") from None
+        raise error
+    return box["client"]
+
+
+#: how long, after an interrupt, tasks already running may take to finish (a task cannot be
+#: stopped once a worker runs it: its outputs would appear after glshade had reported)
+DRAIN_TIMEOUT = 120.0
+
+
+def _drain(client, futures) -> None:
+    """Cancel the tasks no worker has started and wait for those it has (a running task
+    cannot be stopped: its outputs would appear after the caller had reported), so that
+    what the caller reports next -- a batch's manifest -- sees every output they write.
+    Says how many it waits for; a second Ctrl-C stops the wait."""
+    import warnings
+
+    import distributed
+
+    try:  # (the tasks the scheduler has handed to workers: running, or next in line)
+        busy = {k for keys in client.processing().values() for k in keys}
+    except Exception:  # the scheduler went away: nothing more can be learnt or waited for
+        return
+    started = [f for f in futures if f.key in busy and not f.done()]
+    client.cancel([f for f in futures if f.key not in busy])
+    if not started:
+        return
+    warnings.warn(f"waiting for the {len(started)} task(s) already running on the cluster "
+                  "to finish (they cannot be stopped; their outputs will be accounted for)",
+                  UserWarning, stacklevel=2)
+    with contextlib.suppress(Exception):
+        distributed.wait(started, timeout=DRAIN_TIMEOUT)
 
 
 def _host(address: str) -> str:
@@ -140,10 +212,14 @@ class DaskExecutor(Executor):
             job = uuid.uuid4().hex
             futures = client.map(_run, items, spec=spec, job=job, pure=False,
                                  key=[f"glshade-{job}-{i}" for i in range(len(items))])
+            finished = False
             try:
                 for future in futures:
                     check()
                     yield future.result()
+                finished = True
             finally:
+                if not finished:  # interrupted, or an error: let what runs finish first
+                    _drain(client, futures)
                 client.cancel(futures)
 

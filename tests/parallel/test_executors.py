@@ -62,6 +62,7 @@ def test_a_task_error_arrives_as_raised(tmp_path, dask_cluster):
     assert str(blocked) in str(info.value)
 
 
+@pytest.mark.filterwarnings("ignore:waiting for the")  # (the drain after the error)
 def test_a_worker_that_cannot_start_reports_every_item(dask_cluster):
     executor = make_executor(BatchWorker, (BatchSpec(size=(16, 16), samples=-1,
                                                      backend=BACKEND),),

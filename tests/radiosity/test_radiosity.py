@@ -185,7 +185,7 @@ def test_vertex_values_are_area_weighted_and_crack_free():
     mesh = primitives.box((2.0, 1.0, 1.0))
     p = subdivide(mesh, 0.3)
     assert np.isclose(p.areas.sum(), mesh.face_areas.sum())
-    assert p.mesh().closed_and_oriented  # welded: no cracks between patches
+    assert p.mesh(180.0).closed_and_oriented  # welded: no cracks between patches
     values = np.arange(p.n_patches, dtype=float)[:, None]
     v = p.vertex_values(values)
     assert v.min() >= 0 and v.max() <= p.n_patches - 1
@@ -242,3 +242,21 @@ def test_radiosity_mode_shows_vertex_colors(make_renderer):
     assert np.all(np.abs(image[8:24, 8:24, :3].astype(int) - 128) <= 1)
     with pytest.raises(SceneError, match="one per vertex"):
         scene.add(plane, vertex_colors=np.zeros((3, 3)))
+
+
+def test_the_display_keeps_creases_a_box_stays_a_box():
+    """Vertex radiosities are averaged only across patches of one smooth surface: at a
+    box's edges each face keeps its own value (averaged across the 90-degree crease, the
+    faces' colours ran into each other and the box looked bevelled)."""
+    mesh = primitives.box((2.0, 1.0, 1.0))
+    p = subdivide(mesh, 0.3)
+    face_of_patch = p.source
+    values = face_of_patch.astype(float)[:, None] * 10.0  # one value per box face
+    display = p.mesh()
+    v = p.vertex_values(values)
+    corners = display.face_indices.reshape(-1, 3)
+    # every corner of a triangle shows its own face's value, edges and corners included
+    np.testing.assert_allclose(v[corners][..., 0], values[p.triangle_patch][:, [0, 0, 0]])
+    assert display.n_vertices > p.mesh(180.0).n_vertices  # split along the 12 edges
+    smooth = subdivide(primitives.icosphere(2), 0.3)  # a sphere's gentle bends: still shared
+    assert smooth.mesh().n_vertices == smooth.mesh(180.0).n_vertices

@@ -23,6 +23,8 @@ __all__ = ["Patches", "subdivide"]
 
 #: a quad whose corners leave its plane by more than this fraction of its size is split
 PLANARITY = 1e-4
+#: degrees: a solution's display averages vertex radiosities only across gentler bends
+DISPLAY_CREASE = 30.0
 
 
 @dataclass
@@ -48,23 +50,31 @@ class Patches:
     def n_patches(self) -> int:
         return len(self.areas)
 
-    def mesh(self) -> Mesh:
-        """The display mesh: one polygon per triangle, over the welded vertices."""
-        return Mesh(self.vertices, self.triangles)
+    def mesh(self, crease: float = DISPLAY_CREASE) -> Mesh:
+        """The display mesh: one polygon per triangle, its vertices shared only across
+        edges where the surface bends by less than ``crease`` degrees (the rule of
+        ``--crease``), so a box's faces keep their own vertices and their own radiosity at
+        its edges."""
+        cache = self.__dict__.setdefault("_display", {})
+        found = cache.get(crease)
+        if found is None:
+            found = cache[crease] = Mesh(self.vertices, self.triangles).split_creases(crease)
+        return found
 
-    def vertex_values(self, values: np.ndarray) -> np.ndarray:
-        """Per-vertex values ``(V, C)`` from per-patch ``values (P, C)``: the area-weighted
-        mean over the patches touching each vertex (Gouraud display of a radiosity
-        solution)."""
+    def vertex_values(self, values: np.ndarray, crease: float = DISPLAY_CREASE) -> np.ndarray:
+        """Per-vertex values ``(V, C)`` of :meth:`mesh` from per-patch ``values (P, C)``:
+        the area-weighted mean over the patches of one smooth surface touching each vertex
+        (the Gouraud display of a radiosity solution: never averaged across a crease)."""
         values = np.asarray(values, np.float64).reshape(self.n_patches, -1)
+        display = self.mesh(crease)
         tri_area = self.areas[self.triangle_patch] / np.bincount(
             self.triangle_patch, minlength=self.n_patches)[self.triangle_patch]
-        corner = self.triangles.ravel()
+        corner = display.face_indices  # (one triangle per face, in the patches' order)
         w = np.repeat(tri_area, 3)
-        total = np.bincount(corner, weights=w, minlength=len(self.vertices))
+        total = np.bincount(corner, weights=w, minlength=display.n_vertices)
         per_tri = values[self.triangle_patch]
         out = np.stack([np.bincount(corner, weights=w * np.repeat(per_tri[:, c], 3),
-                                    minlength=len(self.vertices))
+                                    minlength=display.n_vertices)
                         for c in range(values.shape[1])], axis=1)
         return out / np.maximum(total, 1e-300)[:, None]
 

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import InputError
 from .formfactors import FormFactors
+from .patches import DISPLAY_CREASE
 from .problem import PatchScene
 
 __all__ = ["Solution", "progressive", "gauss_seidel"]
@@ -63,21 +64,24 @@ class Solution:
             return self.radiosity
         return self.radiosity + self.problem.rho * self.ambient
 
-    def vertex_colors(self, exposure: float = 1.0, ambient: bool = True) -> np.ndarray:
+    def vertex_colors(self, exposure: float = 1.0, ambient: bool = True,
+                      crease: float = DISPLAY_CREASE) -> np.ndarray:
         """(V, 3) radiosities at the display mesh's vertices, times ``exposure``."""
-        return self.problem.patches.vertex_values(self.displayed(ambient)) * exposure
+        return self.problem.patches.vertex_values(self.displayed(ambient), crease) * exposure
 
-    def scene(self, exposure: float | None = None, ambient: bool = True, background=(0, 0, 0)):
+    def scene(self, exposure: float | None = None, ambient: bool = True, background=(0, 0, 0),
+              crease: float = DISPLAY_CREASE):
         """A Scene showing the solution in the ``radiosity`` mode: one mesh of patches with
-        its vertex radiosities. ``exposure`` scales them for display (default: the
+        its vertex radiosities, averaged only across bends gentler than ``crease`` degrees
+        (so a box stays a box). ``exposure`` scales them for display (default: the
         brightest non-emitting patch maps to 1)."""
         from ..scene import Scene
 
         if exposure is None:
             exposure = self.auto_exposure(ambient)
         s = Scene(background=background)
-        s.add(self.problem.patches.mesh(), vertex_colors=self.vertex_colors(exposure, ambient),
-              name="radiosity")
+        s.add(self.problem.patches.mesh(crease),
+              vertex_colors=self.vertex_colors(exposure, ambient, crease), name="radiosity")
         return s
 
     def auto_exposure(self, ambient: bool = True) -> float:

@@ -271,7 +271,8 @@ def add_radiosity(sub) -> None:
                    "(default: the brightest lit surface shows as white)")
     p.add_argument("--no-ambient", action="store_true", help="show only the energy shot so "
                    "far (no ambient estimate of the rest)")
-    p.add_argument("--seed", type=int, default=0, help="of the hemicubes' random turns")
+    p.add_argument("--seed", type=v.seed, default=0, help="of the hemicubes' random turns "
+                   "(a whole number >= 0; default 0)")
     p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default: the "
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")

@@ -7,7 +7,7 @@ import time
 
 from dataclasses import replace
 
-from ..errors import EXIT_OK, UsageError
+from ..errors import EXIT_OK, InputError, UsageError
 from .arguments import RadiosityArgs
 from .inputs import is_scene_file, load_job
 
@@ -35,10 +35,14 @@ def radiosity(args: RadiosityArgs) -> int:
                          "give emission, such as assets/scenes/cornell-box.toml")
     if args.steps:
         output_format(args.steps)  # a bad extension fails before the work
+    plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"
+    _check_outputs(args.output, plot_path, args.steps)  # before the solve, not after it
     job = load_job(replace(args, mode=None), args.scene)
     options = job.options.replace(mode=ShadingMode.RADIOSITY)
-    problem = PatchScene.from_scene(job.scene, args.patch_size)
-    plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"
+    try:
+        problem = PatchScene.from_scene(job.scene, args.patch_size)
+    except InputError as exc:  # (say which scene: the message names a model or a size)
+        raise UsageError(f"{args.scene}: {exc}") from None
     quiet = args.quiet
     if not quiet:
         print(problem.summary())
@@ -69,6 +73,7 @@ def radiosity(args: RadiosityArgs) -> int:
         exposure = args.exposure or solution.auto_exposure(not args.no_ambient)
         image = renderer.render(solution.scene(exposure, not args.no_ambient), job.camera,
                                 options)
+        _exposure_warning(image, exposure)
         # (the steps show the energy shot so far: light spreading through the scene)
         frames = [renderer.render(Solution(problem, b, u, "").scene(exposure, False),
                                   job.camera, options) for b, u in snapshots]
@@ -83,7 +88,7 @@ def radiosity(args: RadiosityArgs) -> int:
 
         write_animation(frames + [image] * 6, args.steps, fps=8)
     if not quiet:
-        steps = len(solution.history) - 1
+        steps = solution.history[-1][1] if solution.history else 0  # (shots or sweeps made)
         unit = "shots" if args.method == "progressive" else "sweeps"
         print(f"{solution.method}: {steps} {unit}, {solution.hemicubes:,} hemicubes of "
               f"{ff.resolution}x{ff.resolution}, {seconds:.2f} s, unshot "
@@ -91,6 +96,34 @@ def radiosity(args: RadiosityArgs) -> int:
         print(f"{args.output}: {w}x{h}; convergence: {plot_path}"
               + (f"; steps: {args.steps} ({len(frames) + 1} frames)" if args.steps else ""))
     return EXIT_OK
+
+
+def _check_outputs(*paths) -> None:
+    """The outputs asked for: distinct, each in a folder that exists (checked before the
+    solve, so a typo does not cost the run)."""
+    given = [os.path.abspath(p) for p in paths if p]
+    if len(set(given)) != len(given):
+        raise UsageError("the image, --plot and --steps must be different files, got "
+                         f"{', '.join(p for p in paths if p)}")
+    for p in paths:
+        if p:
+            folder = os.path.dirname(os.path.abspath(p.rstrip("/")))
+            if not os.path.isdir(folder):
+                raise UsageError(f"{p}: the folder {folder} does not exist")
+
+
+def _exposure_warning(image, exposure: float) -> None:
+    """Say so when the exposure makes the picture black or white."""
+    import warnings
+
+    lum = image[..., :3].astype(float).mean(axis=2)
+    if (lum <= 2).mean() > 0.98:
+        warnings.warn(f"the picture is black at exposure {exposure:.4g}: raise --exposure "
+                      "(or leave it out: the brightest lit surface then shows as white)",
+                      UserWarning, stacklevel=2)
+    elif (lum >= 253).mean() > 0.9:
+        warnings.warn(f"the picture is white at exposure {exposure:.4g}: lower --exposure",
+                      UserWarning, stacklevel=2)
 
 
 def _log10(x: float) -> float:

@@ -45,6 +45,13 @@ def vec3(text: str) -> tuple[float, float, float]:
     return values
 
 
+def seed(text: str) -> int:
+    if not text.strip().isdigit():
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0 such as 7, got "
+                                         f"{text!r}")
+    return int(text)
+
+
 def count(text: str) -> int:
     if not text.strip().isdigit() or int(text) < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number >= 1 such as 4, got "

@@ -31,6 +31,56 @@ def concatenate_patches(parts: list[Patches]) -> Patches:
         sum(p.split for p in parts))
 
 
+#: the most patches a solve takes (each costs memory for its form-factor row, its
+#: quadrature points and its display); about 1,300 make the Cornell box at 50 mm
+MAX_PATCHES = 200_000
+#: a patch's share of the memory a solve needs, for the estimate in the refusal (bytes)
+BYTES_PER_PATCH = 4096
+#: a polygon whose area is below this fraction of the scene's diagonal squared has none
+ZERO_AREA = 1e-12
+
+
+def polygon_extents(mesh) -> np.ndarray:
+    """``(F,)`` each polygon's largest distance from its first corner (about its longest
+    side): what the number of its patches follows."""
+    if mesh.n_faces == 0:
+        return np.zeros(0)
+    lo, hi = mesh.face_offsets[:-1], mesh.face_offsets[1:]
+    first = mesh.vertices[mesh.face_indices[lo]]
+    longest = np.zeros(mesh.n_faces)
+    for k in range(int((hi - lo).max())):  # (per corner position: a handful of passes)
+        has = lo + k < hi
+        idx = np.where(has, lo + k, lo)
+        d = np.linalg.norm(mesh.vertices[mesh.face_indices[idx]] - first, axis=1)
+        longest = np.maximum(longest, np.where(has, d, 0.0))
+    return longest
+
+
+def estimated_patches(mesh, patch_size: float) -> float:
+    """About how many patches ``mesh`` is cut into at ``patch_size``, from its polygons'
+    extents, before anything is allocated (an upper estimate: a square grid per polygon)."""
+    per_side = np.maximum(np.ceil(polygon_extents(mesh) / patch_size), 1.0)
+    return float(np.square(per_side).sum())
+
+
+def _without_zero_area(mesh, name: str, diagonal: float):
+    """``mesh`` without the polygons of (relatively) zero area, which can neither give nor
+    receive light (an emitter of zero area would count as one; a receiver's radiosity is
+    divided by its area); dropped with a warning."""
+    area = mesh.face_areas
+    zero = area <= ZERO_AREA * diagonal ** 2
+    if not zero.any():
+        return mesh, ""
+    note = (f"{name}: {int(zero.sum())} of its {mesh.n_faces} polygons have no area "
+            "(collinear or repeated corners) and are left out")
+    keep = np.flatnonzero(~zero)
+    faces = [mesh.face_indices[mesh.face_offsets[f]:mesh.face_offsets[f + 1]] for f in keep]
+    from ..geometry.mesh import Mesh
+
+    return (Mesh(mesh.vertices, faces, name=mesh.name) if faces else
+            Mesh(np.zeros((0, 3)), np.zeros((0, 3), np.int64), name=mesh.name)), note
+
+
 @dataclass
 class PatchScene:
     """Patches in world space with ``emission`` and ``rho`` (P, 3), the ``model`` (P,) each
@@ -67,27 +117,52 @@ class PatchScene:
             patch_size = float(np.linalg.norm(b[1] - b[0])) / 24
         if not np.isfinite(patch_size) or patch_size <= 0:
             raise InputError(f"patch size must be a positive number, got {patch_size!r}")
+        b = scene.bounds
+        diagonal = float(np.linalg.norm(b[1] - b[0])) or 1.0
+        cleaned = [_without_zero_area(m.mesh.transformed(m.transform), m.name or
+                                      f"mesh {i + 1}", diagonal) for i, m in models]
+        meshes = [mesh for mesh, _ in cleaned]
+        notes = [note for _, note in cleaned if note]
+        with np.errstate(over="ignore"):
+            estimate = sum(estimated_patches(mesh, patch_size) for mesh in meshes)
+        if not estimate <= MAX_PATCHES:
+            extents = np.concatenate([polygon_extents(mesh) for mesh in meshes])
+            smallest = float(np.sqrt(np.square(extents).sum() / MAX_PATCHES))
+            gib = estimate * BYTES_PER_PATCH / 2 ** 30
+            many = (f"about {estimate:.3g} patches (about {gib:.3g} GiB)"
+                    if np.isfinite(estimate) else "more patches than can be counted")
+            raise InputError(f"a patch size of {patch_size:g} would cut the scene into "
+                             f"{many}, more than the {MAX_PATCHES:,} glshade solves: use a "
+                             f"patch size of at least {smallest:.3g}")
         names, parts, emission, rho, owner = [], [], [], [], []
-        for k, (i, m) in enumerate(models):
+        for k, ((i, m), mesh) in enumerate(zip(models, meshes)):
             name = m.name or f"mesh {i + 1}"
             names.append(name)
             r = np.asarray(m.material.rho)
             if (r > 1).any():
                 raise InputError(f"{name}: diffuse reflectance kd * color = "
-                                 f"{tuple(round(x, 4) for x in r)} exceeds 1 (radiosity "
-                                 "needs 0 <= rho <= 1: lower kd or color, or give "
+                                 f"({', '.join(f'{float(x):.4g}' for x in r)}) exceeds 1 "
+                                 "(radiosity needs 0 <= rho <= 1: lower kd or color, or give "
                                  "reflectance)")
-            p = subdivide(m.mesh.transformed(m.transform), patch_size)
+            if mesh.n_faces == 0:
+                continue
+            p = subdivide(mesh, patch_size)
             parts.append(p)
             emission.append(np.broadcast_to(m.material.emission, (p.n_patches, 3)))
             rho.append(np.broadcast_to(r, (p.n_patches, 3)))
             owner.append(np.full(p.n_patches, k))
-        patches = concatenate_patches(parts)
-        emitted = np.concatenate(emission).astype(np.float64)
+        emitted = np.concatenate(emission).astype(np.float64) if emission else np.zeros((0, 3))
         if not (emitted > 0).any():
-            raise InputError("the scene has no emitter: radiosity moves light that surfaces "
-                             "give off; set a material's emission (e.g. emission = [15, 15, "
-                             "15] on the light's mesh)")
+            gone = f" ({'; '.join(notes)})" if notes else ""
+            raise InputError(f"the scene has no emitter{gone}: radiosity moves light that "
+                             "surfaces give off; set a material's emission (e.g. emission = "
+                             "[15, 15, 15] on the light's mesh)")
+        if notes:
+            import warnings
+
+            for note in notes:
+                warnings.warn(note, UserWarning, stacklevel=2)
+        patches = concatenate_patches(parts)
         return cls(patches, emitted, np.concatenate(rho).astype(np.float64),
                    np.concatenate(owner), names, float(patch_size))
 

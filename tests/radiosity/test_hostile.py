@@ -1,0 +1,116 @@
+"""Hostile radiosity scenes and arguments, through the command line: refused up front in
+one line naming the scene file (exit 2), with nothing written."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import ROOT
+
+pytestmark = pytest.mark.gl
+
+BOX = str(ROOT / "assets" / "scenes" / "cornell-box.toml")
+
+WALLS = """
+[[mesh]]
+source = "{wall}"
+name = "wall"
+reflectance = [0.5, 0.5, 0.5]
+"""
+LIGHT = """
+[[mesh]]
+source = "{light}"
+name = "light"
+emission = [10, 10, 10]
+"""
+
+
+def _files(tmp_path):
+    wall = tmp_path / "wall.obj"
+    wall.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")
+    flat = tmp_path / "flat.obj"  # a quad of collinear corners: no area
+    flat.write_text("v 0 0 1\nv 1 0 1\nv 2 0 1\nv 3 0 1\nf 1 2 3 4\n")
+    lamp = tmp_path / "lamp.obj"
+    lamp.write_text("v 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\nf 1 2 3 4\n")
+    return wall, flat, lamp
+
+
+def _run(tmp_path, *args):
+    out = tmp_path / "out"
+    out.mkdir(exist_ok=True)
+    r = subprocess.run([sys.executable, "-m", "glshade", "radiosity", *args, "-o",
+                        str(out / "r.png"), "--size", "32x32", "-q"], capture_output=True,
+                       text=True, cwd=tmp_path)
+    return r, out
+
+
+@pytest.mark.parametrize("case, extra, words", [
+    ("a microscopic patch size", ["--patch-size", "1e-6"], "more than the 200,000"),
+    ("an absurd patch size", ["--patch-size", "1e-300"], "more patches than can be counted"),
+    ("a patch size of 1e-3 mm", ["--patch-size", "1e-3"], "use a patch size of at least"),
+    ("a negative seed", ["--seed", "-1"], "argument --seed: expected a whole number >= 0"),
+    ("a plot into a missing folder", ["--plot", "nowhere/p.png"], "does not exist"),
+    ("steps into a missing folder", ["--steps", "nowhere/s.gif"], "does not exist"),
+])
+def test_hostile_arguments_are_refused_before_the_solve(tmp_path, case, extra, words):
+    r, out = _run(tmp_path, BOX, *extra)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0], r.stderr
+    assert "np.float64" not in lines[0]
+    assert list(out.iterdir()) == []
+
+
+def test_the_plot_may_not_replace_the_image(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    r = subprocess.run([sys.executable, "-m", "glshade", "radiosity", BOX, "-o",
+                        str(out / "r.png"), "--plot", str(out / "r.png"), "-q"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "must be different files" in r.stderr
+    assert list(out.iterdir()) == []
+
+
+def test_zero_area_polygons_are_left_out_and_a_vanished_emitter_is_no_emitter(tmp_path):
+    wall, flat, lamp = _files(tmp_path)
+    only_flat = tmp_path / "a.toml"
+    only_flat.write_text(WALLS.format(wall=wall) + LIGHT.format(light=flat))
+    r, out = _run(tmp_path, str(only_flat))
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"glshade: error: {only_flat}: the scene "
+                                                   "has no emitter (light: 1 of its 1 "), r.stderr
+    assert list(out.iterdir()) == []
+    # a flat receiver beside a real lamp: left out with a warning; the solve goes on
+    both = tmp_path / "b.toml"
+    both.write_text(WALLS.format(wall=wall) + LIGHT.format(light=lamp) +
+                    WALLS.format(wall=flat).replace('"wall"', '"sliver"'))
+    r, out = _run(tmp_path, str(both))
+    assert r.returncode == 0, r.stderr
+    assert "sliver: 1 of its 1 polygons have no area" in r.stderr
+    assert (out / "r.png").exists()
+
+
+def test_a_scene_with_a_reflectance_above_one_says_it_in_plain_numbers(tmp_path):
+    wall, _, lamp = _files(tmp_path)
+    scene = tmp_path / "c.toml"
+    scene.write_text(WALLS.format(wall=wall).replace("reflectance = [0.5, 0.5, 0.5]",
+                                                     "color = [1.2, 1.08, 1.08]\nkd = 1")
+                     + LIGHT.format(light=lamp))
+    r, _ = _run(tmp_path, str(scene))
+    assert r.returncode == 2
+    assert f"{scene}: wall: diffuse reflectance kd * color = (1.2, 1.08, 1.08) exceeds 1" \
+        in r.stderr, r.stderr
+
+
+def test_gauss_seidel_reports_the_sweeps_it_made_and_a_dark_exposure_is_said(tmp_path):
+    out = tmp_path / "r.png"
+    r = subprocess.run([sys.executable, "-m", "glshade", "radiosity", BOX, "-o", str(out),
+                        "--size", "32x32", "--patch-size", "200", "--method", "gauss-seidel",
+                        "--iterations", "3", "--exposure", "1e-9"], capture_output=True,
+                       text=True)
+    assert r.returncode == 0, r.stderr
+    assert "3 sweeps" in r.stdout, r.stdout
+    assert "the picture is black at exposure 1e-09" in r.stderr

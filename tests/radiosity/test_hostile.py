@@ -3,7 +3,6 @@ one line naming the scene file (exit 2), with nothing written."""
 
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 

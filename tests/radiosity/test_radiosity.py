@@ -260,3 +260,37 @@ def test_the_display_keeps_creases_a_box_stays_a_box():
     assert display.n_vertices > p.mesh(180.0).n_vertices  # split along the 12 edges
     smooth = subdivide(primitives.icosphere(2), 0.3)  # a sphere's gentle bends: still shared
     assert smooth.mesh().n_vertices == smooth.mesh(180.0).n_vertices
+
+
+def _furnace(emission=1.0, rho=0.5):
+    """The inside of a closed cube, every wall emitting E and reflecting rho: B = E/(1-rho)
+    everywhere (the closed form)."""
+    s = Scene()
+    s.add(primitives.cube().flipped(), Material(color=(rho, rho, rho), kd=1.0, ka=0.0,
+                                                ks=0.0, reflectance=(rho,) * 3,
+                                                emission=(emission,) * 3))
+    return s
+
+
+def test_the_monte_carlo_solution_meets_the_furnace_closed_form():
+    """Light tracing (no form factors, no GL) in the furnace: every patch's radiosity is
+    E/(1 - rho) = 2 within 4 of its standard errors, and the errors are honest (small)."""
+    from glshade.radiosity import solve
+
+    sol = solve(_furnace(), 0.5, method="monte-carlo", particles=60_000, seed=3)
+    assert sol.method == "Monte Carlo light tracing"
+    z = (sol.radiosity - 2.0) / sol.se
+    assert np.abs(z).max() < 4.5, np.abs(z).max()
+    assert (sol.se / 2.0).max() < 0.05
+    total = (sol.radiosity * sol.problem.patches.areas[:, None]).sum() / \
+        sol.problem.patches.areas.sum() / 3
+    assert total == pytest.approx(2.0, rel=0.01)
+
+
+def test_the_hemicube_solution_meets_the_furnace_closed_form(factors):
+    """Rows of form factors in a closed room sum to 1, so gathering gives E/(1 - rho) on
+    every patch."""
+    problem = PatchScene.from_scene(_furnace(rho=0.3), 0.5)
+    ff = factors(problem, 64)
+    sol = gauss_seidel(ff, tol=1e-7)
+    np.testing.assert_allclose(sol.radiosity, 1 / 0.7, rtol=2e-3)

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import enum
 
+import numpy as np
+
 from ..modes import Backend, parse_enum
 from .cornell import CORNELL_CAMERA, CORNELL_MATERIALS, cornell_parts, cornell_scene
 from .formfactors import FormFactors, quadrature_counts
@@ -28,6 +30,7 @@ class Method(str, enum.Enum):
 
     PROGRESSIVE = "progressive"    # shoot the most unshot energy first (Cohen et al. 1988)
     GAUSS_SEIDEL = "gauss-seidel"  # gather over the full matrix (small scenes)
+    MONTE_CARLO = "monte-carlo"    # light tracing, no form factors (montecarlo.py)
 
     @classmethod
     def parse(cls, value: object) -> Method:
@@ -37,13 +40,25 @@ class Method(str, enum.Enum):
 def solve(scene, patch_size: float | None = None, *, method: Method | str = Method.PROGRESSIVE,
           until: float = 0.01, max_shots: int | None = None, hemicube: int = 128,
           quadrature: int | str = "auto", seed: int = 0, context=None,
-          backend: Backend | str = Backend.AUTO, progress=None, on_shot=None) -> Solution:
+          backend: Backend | str = Backend.AUTO, progress=None, on_shot=None,
+          particles: int | None = None) -> Solution:
     """Patch ``scene``, compute form factors on the GPU and solve: ``method`` is
     PROGRESSIVE (until the unshot fraction is below ``until``, or ``max_shots``) or
     GAUSS_SEIDEL (the full matrix; small scenes). ``quadrature``: Gauss points a side per
-    shooter (:func:`quadrature_counts`)."""
+    shooter (:func:`quadrature_counts`). MONTE_CARLO traces ``particles`` light particles
+    (default 200,000) instead, sharing no form-factor code with the others; its
+    ``Solution.se`` is each patch's standard error."""
     chosen = Method.parse(method)
     problem = PatchScene.from_scene(scene, patch_size)
+    if chosen is Method.MONTE_CARLO:  # (no GL, no form factors: the independent solution)
+        from .montecarlo import light_trace
+
+        mc = light_trace(problem, particles or 200_000, seed=seed, progress=progress)
+        solution = Solution(problem, mc.radiosity, np.zeros_like(mc.radiosity),
+                            "Monte Carlo light tracing")
+        solution.history.append((0.0, mc.particles, 0.0))
+        solution.se = mc.se
+        return solution
     with FormFactors(problem, hemicube, quadrature, seed, context, backend) as ff:
         if chosen is Method.PROGRESSIVE:
             return progressive(ff, until, max_shots, progress, on_shot)

@@ -3,7 +3,7 @@ and the diffuse reflectance rho of its model's material (RGB)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -92,6 +92,9 @@ class PatchScene:
     model: np.ndarray
     names: list[str]
     patch_size: float
+    #: the models' polygons in world space, as they were cut (what a ray tracer of the same
+    #: problem meets: :mod:`glshade.radiosity.montecarlo`)
+    meshes: list = field(default_factory=list, repr=False)
 
     @property
     def n_patches(self) -> int:
@@ -164,7 +167,7 @@ class PatchScene:
                 warnings.warn(note, UserWarning, stacklevel=2)
         patches = concatenate_patches(parts)
         return cls(patches, emitted, np.concatenate(rho).astype(np.float64),
-                   np.concatenate(owner), names, float(patch_size))
+                   np.concatenate(owner), names, float(patch_size), meshes)
 
     def summary(self) -> str:
         p = self.patches

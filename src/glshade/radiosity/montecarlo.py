@@ -1,0 +1,179 @@
+"""The radiosity equation solved a second, independent way: light tracing (a random walk of
+light particles) over the same patches, in numpy, sharing no form-factor code with the
+hemicube path -- the oracle the hemicube solution is held to, and ``method="monte-carlo"``.
+
+Particles leave the emitting patches with the emitted power shared out among them (patch
+chosen by its power, point uniform on it, direction by the cosine law); each flies to the
+nearest polygon of the scene's meshes, where its power arriving is tallied on the patch it
+lands on, and goes on reflected by the cosine law with its power times the patch's
+reflectance; Russian roulette (survival by the mean reflectance) ends walks without bias.
+A patch's radiosity is then ``B = E + rho H / A`` with ``H`` the power arriving on it. The
+particles run in batches; the standard error of each patch's (and each model's) radiosity
+is the spread of the batch means. Patches are found within the polygon a particle hits by
+the nearest patch centre (exact for the grids quads are cut into; per model the tallies
+are exact whatever the patches).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["MonteCarlo", "light_trace"]
+
+
+class MonteCarlo:
+    """What :func:`light_trace` estimates: radiosity ``B (P, 3)``, its standard error
+    ``se (P, 3)``, and per model the area-weighted mean radiosity and its error."""
+
+    def __init__(self, problem, b, se, model_b, model_se, particles: int):
+        self.problem, self.radiosity, self.se = problem, b, se
+        self.model_radiosity, self.model_se, self.particles = model_b, model_se, particles
+
+
+def _triangles(meshes):
+    tris, owner = [], []
+    for k, mesh in enumerate(meshes):
+        if mesh.n_faces == 0:
+            continue
+        t, face = mesh.triangles
+        tris.append(mesh.vertices[t])
+        owner.append(np.stack([np.full(len(t), k), face], 1))
+    return np.concatenate(tris), np.concatenate(owner)
+
+
+def _hit(o, d, tris, eps):
+    """Nearest triangle along each ray (Moller-Trumbore over all triangles): (t, index)."""
+    a, e1, e2 = tris[:, 0], tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+    best_t = np.full(len(o), np.inf)
+    best = np.full(len(o), -1)
+    for start in range(0, len(tris), 256):
+        sl = slice(start, start + 256)
+        p = np.cross(d[:, None, :], e2[None, sl])
+        det = np.einsum("rtk,tk->rt", p, e1[sl])
+        ok = np.abs(det) > 1e-300
+        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        s = o[:, None, :] - a[None, sl]
+        u = np.einsum("rtk,rtk->rt", s, p) * inv
+        q = np.cross(s, e1[None, sl])
+        v = np.einsum("rk,rtk->rt", d, q) * inv
+        t = np.einsum("rtk,tk->rt", q, e2[sl]) * inv
+        good = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > eps)
+        t = np.where(good, t, np.inf)
+        k = np.argmin(t, axis=1)
+        tk = t[np.arange(len(o)), k]
+        closer = tk < best_t
+        best_t[closer], best[closer] = tk[closer], start + k[closer]
+    return best_t, best
+
+
+def _cosine(normals, rng):
+    """Directions by the cosine law about each unit normal ``(N, 3)``."""
+    n = len(normals)
+    r1, r2 = rng.random(n), rng.random(n)
+    phi, r = 2 * np.pi * r1, np.sqrt(r2)
+    local = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(1 - r2)], 1)
+    helper = np.where(np.abs(normals[:, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]])
+    t1 = np.cross(normals, helper)
+    t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
+    t2 = np.cross(normals, t1)
+    return local[:, :1] * t1 + local[:, 1:2] * t2 + local[:, 2:] * normals
+
+
+def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int = 0,
+                chunk: int = 4096, progress=None) -> MonteCarlo:
+    """Estimate the radiosity of ``problem`` (a :class:`~glshade.radiosity.PatchScene`)
+    from ``particles`` light particles in ``batches`` (see the module)."""
+    if int(particles) != particles or particles < batches or batches < 2:
+        raise InputError(f"particles must be a whole number >= batches >= 2, got {particles!r}")
+    if not problem.meshes:
+        raise InputError("the problem has no meshes to trace (make it with "
+                         "PatchScene.from_scene)")
+    rng = np.random.default_rng(seed)
+    p = problem.patches
+    tris, owner = _triangles(problem.meshes)
+    scale = float(np.abs(tris).max()) or 1.0
+    eps = 1e-9 * scale
+    # the polygons' patches, for finding a hit's patch: (model, polygon) -> patch indices
+    key = problem.model.astype(np.int64) * (int(p.source.max()) + 1) + p.source
+    width = int(p.source.max()) + 1
+    order = np.argsort(key, kind="stable")
+    sorted_key = key[order]
+    lum = (problem.emission * p.areas[:, None]).sum(1)
+    if not lum.sum() > 0:
+        raise InputError("the scene has no emitter")
+    pick = lum / lum.sum()
+    tri_area = 0.5 * np.linalg.norm(np.cross(
+        p.vertices[p.triangles[:, 1]] - p.vertices[p.triangles[:, 0]],
+        p.vertices[p.triangles[:, 2]] - p.vertices[p.triangles[:, 0]]), axis=1)
+    n_batch = int(particles) // batches
+    arrived = np.zeros((batches, p.n_patches, 3))
+    for batch in range(batches):
+        for start in range(0, n_batch, chunk):
+            n = min(chunk, n_batch - start)
+            src = rng.choice(p.n_patches, n, p=pick)
+            # a point uniform on the patch: one of its triangles by area, then uniform in it
+            tri_of = np.flatnonzero(np.isin(p.triangle_patch, np.unique(src)))
+            choice = np.empty(n, np.int64)
+            for patch in np.unique(src):  # (emitting patches: a handful)
+                mine = tri_of[p.triangle_patch[tri_of] == patch]
+                sel = src == patch
+                w = tri_area[mine] / tri_area[mine].sum()
+                choice[sel] = rng.choice(mine, int(sel.sum()), p=w)
+            c = p.vertices[p.triangles[choice]]
+            r1, r2 = rng.random(n), rng.random(n)
+            flip = r1 + r2 > 1
+            r1, r2 = np.where(flip, 1 - r1, r1), np.where(flip, 1 - r2, r2)
+            o = c[:, 0] + r1[:, None] * (c[:, 1] - c[:, 0]) + r2[:, None] * (c[:, 2] - c[:, 0])
+            normal = p.normals[src]
+            d = _cosine(normal, rng)
+            power = problem.emission[src] * p.areas[src, None] / (pick[src, None] * n_batch)
+            o = o + normal * eps * 10
+            while len(o):
+                t, k = _hit(o, d, tris, eps)
+                going = np.isfinite(t)
+                o, d, power, t, k = o[going], d[going], power[going], t[going], k[going]
+                if not len(o):
+                    break
+                x = o + t[:, None] * d
+                model, face = owner[k, 0], owner[k, 1]
+                patch = _patch_of(x, model * width + face, sorted_key, order, p.centers)
+                np.add.at(arrived[batch], patch, power)
+                rho = problem.rho[patch]
+                survive = rho.mean(axis=1)
+                alive = rng.random(len(o)) < survive
+                keep = alive & (survive > 0)
+                n_hit = p.normals[patch][keep]
+                facing = np.einsum("nk,nk->n", n_hit, d[keep]) > 0
+                n_hit[facing] *= -1  # (reflected to the side the particle came from)
+                power = power[keep] * rho[keep] / survive[keep, None]
+                o = x[keep] + n_hit * eps * 10
+                d = _cosine(n_hit, rng)
+        if progress is not None:
+            progress.update(1)
+    per_batch = problem.emission[None] + problem.rho[None] * arrived / p.areas[None, :, None]
+    b = per_batch.mean(0)
+    se = per_batch.std(0, ddof=1) / np.sqrt(batches)
+    models = int(problem.model.max()) + 1
+    area = np.bincount(problem.model, weights=p.areas, minlength=models)
+    means = np.stack([np.stack([np.bincount(problem.model, weights=per_batch[j, :, c] *
+                                            p.areas, minlength=models) / area
+                                for c in range(3)], 1) for j in range(batches)])
+    return MonteCarlo(problem, b, se, means.mean(0),
+                      means.std(0, ddof=1) / np.sqrt(batches), n_batch * batches)
+
+
+def _patch_of(x, polygon, sorted_key, order, centers):
+    """The patch of each hit point: the nearest patch centre within its polygon."""
+    out = np.empty(len(x), np.int64)
+    for key in np.unique(polygon):
+        lo, hi = np.searchsorted(sorted_key, [key, key + 1])
+        candidates = order[lo:hi]
+        sel = polygon == key
+        if len(candidates) == 1:
+            out[sel] = candidates[0]
+            continue
+        dist = np.linalg.norm(x[sel, None, :] - centers[candidates][None], axis=2)
+        out[sel] = candidates[np.argmin(dist, axis=1)]
+    return out

@@ -43,6 +43,8 @@ class Solution:
     method: str
     history: list = field(default_factory=list)
     hemicubes: int = 0
+    #: (P, 3) each patch's standard error, for a Monte Carlo solution (None otherwise)
+    se: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def unshot_fraction(self) -> float:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import math
 import warnings
 import weakref
 from collections.abc import Iterable, Iterator
@@ -274,7 +275,7 @@ class Renderer:
         if options.mode is ShadingMode.RADIOSITY:
             self._warn_unsolved(scene)
         near, far = camera.planes()
-        reach = max(far, float(np.abs(camera.position).max()))
+        reach = max(far, math.hypot(*camera.position))
         if not reach <= MAX_CAMERA_REACH:  # (a far camera that sees nothing is just blank)
             raise SceneError(f"the camera is {reach:.3g} from the origin or its scene, too "
                              f"far to compute its projection (at most {MAX_CAMERA_REACH:g}): "

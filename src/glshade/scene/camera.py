@@ -6,7 +6,9 @@ The orientation takes camera axes to world axes: the camera looks down its local
 
 from __future__ import annotations
 
+import copy
 import enum
+import math
 
 from dataclasses import dataclass, field, replace
 
@@ -153,13 +155,15 @@ class Camera:
             near, far = FALLBACK_PLANES
         else:
             b = np.asarray(bounds, np.float64)
-            corners = np.array([[b[i, 0], b[j, 1], b[k, 2]] for i in (0, 1) for j in (0, 1)
-                                for k in (0, 1)])
-            view = self.view_matrix()
-            depth = -(corners @ view[2, :3] + view[2, 3])
-            extent = float(np.linalg.norm(b[1] - b[0])) or 1.0
-            far = max(float(depth.max()), 0.0) * 1.01 + extent * 1e-3
-            near = max(float(depth.min()) * 0.99, far * PLANE_RATIO)
+            row = self.view_matrix()[2]
+            # the view depth of a box's corners: the nearest and farthest are its extremes
+            # along the view axis, one coordinate at a time (no corner list, per frame)
+            lo, hi = b[0] * row[:3], b[1] * row[:3]
+            d_near = -(float(np.maximum(lo, hi).sum()) + row[3])
+            d_far = -(float(np.minimum(lo, hi).sum()) + row[3])
+            extent = math.dist(b[0], b[1]) or 1.0
+            far = max(d_far, 0.0) * 1.01 + extent * 1e-3
+            near = max(d_near * 0.99, far * PLANE_RATIO)
         if self.far is not None:
             far = self.far
         if self.near is not None:
@@ -176,9 +180,9 @@ class Camera:
         if self.near is not None and self.far is not None:
             return self
         near, far = self.planes(bounds)
-        fitted = replace(self, near=near, far=far)
-        if "_view" in self.__dict__:
-            fitted.__dict__["_view"] = self.__dict__["_view"]
+        fitted = copy.copy(self)  # (a copy, not replace(): nothing to check again, per frame)
+        object.__setattr__(fitted, "near", near)
+        object.__setattr__(fitted, "far", far)
         return fitted
 
     # ------------------------------------------------------------------ moves

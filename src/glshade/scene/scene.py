@@ -39,8 +39,14 @@ class Model:
 
     @property
     def corners(self) -> NDArray[np.float64]:
-        """The mesh's bounding-box corners ``(8, 3)`` placed in the world."""
-        return box_corners(self.mesh.bounds) @ self.transform[:3, :3].T + self.transform[:3, 3]
+        """The mesh's bounding-box corners ``(8, 3)`` placed in the world (kept while the
+        mesh and the transform are the ones they were made from: a draw asks every frame)."""
+        key = (id(self.mesh), id(self.transform), self.transform.tobytes())
+        found = self.__dict__.get("_corners")
+        if found is None or found[0] != key:
+            c = box_corners(self.mesh.bounds) @ self.transform[:3, :3].T + self.transform[:3, 3]
+            found = self.__dict__["_corners"] = (key, c)
+        return found[1]
 
     def display_colors(self, ambient) -> np.ndarray:
         """What the ``radiosity`` mode shows at each vertex: ``vertex_colors``, or without

@@ -27,6 +27,8 @@ MAX_QUADRATURE = 8
 
 
 FACTOR = 1.5
+#: a quadrature point whose hemicube meets back faces over more than this share is covered
+COVERED = 0.5
 
 
 def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
@@ -111,7 +113,14 @@ class FormFactors:
         n = self.problem.patches.normals[i]
         a, b = self._first[i], self._first[i + 1]
         turns = [self._tangent(n) for _ in range(a, b)]  # (one random turn per cube)
-        out = self._weights[a:b] @ self.hemicube.rows(self._points[a:b], n, turns)
+        back = np.zeros(b - a)
+        rows = self.hemicube.rows(self._points[a:b], n, turns, back)
+        # a point of the patch that sees mostly back faces is covered (under a block that
+        # stands on the floor, above a light hung under the ceiling): light neither reaches
+        # nor leaves it, so the patch's energy leaves from its other points
+        weights = np.where(back > COVERED, 0.0, self._weights[a:b])
+        total = weights.sum()
+        out = (weights / total if total > 0 else self._weights[a:b]) @ rows
         self.hemicubes_drawn += b - a
         out[i] = 0.0
         self._cache[i] = out

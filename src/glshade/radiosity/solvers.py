@@ -134,11 +134,15 @@ def gauss_seidel(ff: FormFactors, iterations: int | None = None, tol: float = 1e
     ``tol`` of the largest, or for ``iterations`` sweeps."""
     p = ff.problem
     start = time.perf_counter()
-    f = ff.matrix(progress)
+    areas = p.patches.areas
+    # what patch i receives is what each patch j sends it, by j's own row (the rows are the
+    # shooters': their energy leaves from their uncovered points), so i gathers through
+    # F_ji A_j / A_i -- equal to F_ij where reciprocity holds, right where it cannot (a patch
+    # partly under a block sends from its open part, but its whole area counts)
+    f = ff.matrix(progress).T * areas[None, :] / areas[:, None]
     e, rho = p.emission, p.rho
     b = e.copy()
     sol = Solution(p, b, np.zeros_like(b), "Gauss-Seidel gathering")
-    areas = p.patches.areas
     emitted = _energy(e, areas)
     sweeps = 0
     while iterations is None or sweeps < iterations:

@@ -118,8 +118,10 @@ class Hemicube(GLResource):
                                                   "in_patch")]))
         self.n_patches = int(n_patches)
         # patch ids of the k-th atlas of a batch counted from k (P + 1): one histogram
-        self._offsets = np.repeat(np.arange(self.batch, dtype=np.int32) * (self.n_patches + 1),
+        self._offsets = np.repeat(np.arange(self.batch, dtype=np.int32) * (self.n_patches + 2),
                                   3 * self.resolution ** 2)
+        if "u_back_id" in self.program:
+            self.program["u_back_id"].value = self.n_patches + 1
         lo, hi = corners.min(0), corners.max(0)
         self.extent = float(np.linalg.norm(hi - lo)) or 1.0
 
@@ -146,9 +148,11 @@ class Hemicube(GLResource):
         ``tangent`` turns the cube about it) to every patch."""
         return self.rows([origin], normal, [tangent])[0]
 
-    def rows(self, origins, normal, tangents) -> np.ndarray:
+    def rows(self, origins, normal, tangents, back: np.ndarray | None = None) -> np.ndarray:
         """Form factors ``(K, P)`` from each of the points ``origins`` on one patch, the
-        cube at point k turned by ``tangents[k]``: drawn ``batch`` at a time, one read each."""
+        cube at point k turned by ``tangents[k]``: drawn ``batch`` at a time, one read each.
+        ``back`` (K,), when given, receives the share of each point's hemicube that meets
+        patches from behind (1 for a point inside a closed solid, under a block)."""
         import moderngl
 
         self._check()
@@ -158,7 +162,7 @@ class Hemicube(GLResource):
         normal = np.asarray(normal, np.float64)
         ctx = self.context.ctx
         self.context.make_current()
-        n, p1 = self.resolution, self.n_patches + 1
+        n, p1 = self.resolution, self.n_patches + 2
         out = np.empty((len(origins), self.n_patches))
         member = self.program["u_view_proj"]
         try:
@@ -179,7 +183,10 @@ class Hemicube(GLResource):
                 self.fbo.read_into(self._buffer, viewport=used, components=1, dtype="i4")
                 hist = np.bincount(self._buffer[:m] + self._offsets[:m],
                                    weights=self.weights[:m], minlength=len(chunk) * p1)
-                out[start:start + len(chunk)] = hist.reshape(len(chunk), p1)[:, 1:]
+                per = hist.reshape(len(chunk), p1)
+                out[start:start + len(chunk)] = per[:, 1:-1]
+                if back is not None:
+                    back[start:start + len(chunk)] = per[:, -1]
         finally:
             self.context.rest()  # (never leave a framebuffer bound that may be released)
         return out

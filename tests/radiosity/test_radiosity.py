@@ -315,3 +315,23 @@ def test_the_cornell_box_meets_the_independent_light_tracing_solution(factors):
         theirs, se = mc.model_radiosity[k], mc.model_se[k]
         ok = (np.abs(ours - theirs) <= 0.005 * theirs) | (np.abs(ours - theirs) <= 3 * se)
         assert ok.all(), (name, ours, theirs, se)
+
+
+def test_energy_balance_in_a_closed_room_with_unequal_reflectances(factors):
+    """Six walls reflecting 0.8 to 0.2, one of them emitting: at convergence every watt
+    emitted is absorbed somewhere -- sum over patches of (1 - rho) times the power arriving
+    equals the power emitted, within 0.5%."""
+    cube = primitives.cube().flipped()
+    faces = cube.face_indices.reshape(-1, 4)
+    scene = Scene()
+    for k, r in enumerate((0.8, 0.3, 0.6, 0.2, 0.5, 0.7)):
+        scene.add(Mesh(cube.vertices, faces[k:k + 1]),
+                  Material(color=(r,) * 3, kd=1.0, ka=0.0, ks=0.0, reflectance=(r,) * 3,
+                           emission=(5.0,) * 3 if k == 0 else (0.0,) * 3), name=f"wall {k}")
+    problem = PatchScene.from_scene(scene, 0.25)
+    sol = progressive(factors(problem), until=1e-5)
+    a = problem.patches.areas[:, None]
+    arriving = (sol.radiosity - problem.emission) / problem.rho * a  # (rho > 0 everywhere)
+    absorbed = ((1 - problem.rho) * arriving).sum()
+    emitted = (problem.emission * a).sum()
+    assert absorbed == pytest.approx(emitted, rel=0.005)

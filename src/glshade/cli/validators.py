@@ -10,7 +10,9 @@ import math
 import re
 
 from ..errors import InputError
+from ..hidden import Algorithm
 from ..modes import ShadingMode
+from ..scene.camera import View
 
 __all__ = ["size", "vec3", "count", "unit_float", "nonnegative_float", "mode", "modes",
            "levels", "samples", "fov", "degrees"]
@@ -132,18 +134,16 @@ def radiosity_method(text: str) -> str:
     return method.value
 
 
-#: --view's names (glshade.View)
-VIEW_CHOICES = ("front", "back", "left", "right", "top", "bottom", "iso")
+#: --view's names: glshade.View's
+VIEW_CHOICES = tuple(v.value for v in View)
 
 
 def view(text: str) -> str:
-    from ..scene.camera import View
-
     return _rule(View.parse, text).value
 
 
 #: --algorithms of glshade hidden: the lab's, and the GPU's z-buffer as a reference
-ALGORITHM_CHOICES = ("zbuffer", "scanline", "depth-sort", "bsp", "raycast", "gpu")
+ALGORITHM_CHOICES = (*(a.value for a in Algorithm), "gpu")
 
 
 def algorithms(text: str) -> list[str]:

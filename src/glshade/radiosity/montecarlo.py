@@ -95,11 +95,17 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
     tris, owner = _triangles(problem.meshes)
     scale = float(np.abs(tris).max()) or 1.0
     eps = 1e-9 * scale
-    # the polygons' patches, for finding a hit's patch: (model, polygon) -> patch indices
-    key = problem.model.astype(np.int64) * (int(p.source.max()) + 1) + p.source
-    width = int(p.source.max()) + 1
+    # the polygons' patches, for finding a hit's patch: a table (polygon, k) -> patch, each
+    # polygon's row padded with its first patch (a pad repeats a candidate: harmless)
+    first_polygon = np.cumsum([0] + [mesh.n_faces for mesh in problem.meshes])
+    key = first_polygon[problem.model] + p.source
     order = np.argsort(key, kind="stable")
-    sorted_key = key[order]
+    counts = np.bincount(key, minlength=first_polygon[-1])
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    slot = np.arange(len(order)) - starts[key[order]]
+    table = np.repeat(order[starts[:-1].clip(max=len(order) - 1)][:, None],
+                      max(int(counts.max()), 1), axis=1)
+    table[key[order], slot] = order
     lum = (problem.emission * p.areas[:, None]).sum(1)
     if not lum.sum() > 0:
         raise InputError("the scene has no emitter")
@@ -107,20 +113,20 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
     tri_area = 0.5 * np.linalg.norm(np.cross(
         p.vertices[p.triangles[:, 1]] - p.vertices[p.triangles[:, 0]],
         p.vertices[p.triangles[:, 2]] - p.vertices[p.triangles[:, 0]]), axis=1)
+    # the emitting patches' triangles, and each one's share of its patch's area
+    emitters = np.flatnonzero(lum > 0)
+    etri = np.flatnonzero(np.isin(p.triangle_patch, emitters))
+    share = tri_area[etri] / np.bincount(p.triangle_patch[etri], weights=tri_area[etri],
+                                         minlength=p.n_patches)[p.triangle_patch[etri]]
     n_batch = int(particles) // batches
     arrived = np.zeros((batches, p.n_patches, 3))
     for batch in range(batches):
         for start in range(0, n_batch, chunk):
             n = min(chunk, n_batch - start)
-            src = rng.choice(p.n_patches, n, p=pick)
-            # a point uniform on the patch: one of its triangles by area, then uniform in it
-            tri_of = np.flatnonzero(np.isin(p.triangle_patch, np.unique(src)))
-            choice = np.empty(n, np.int64)
-            for patch in np.unique(src):  # (emitting patches: a handful)
-                mine = tri_of[p.triangle_patch[tri_of] == patch]
-                sel = src == patch
-                w = tri_area[mine] / tri_area[mine].sum()
-                choice[sel] = rng.choice(mine, int(sel.sum()), p=w)
+            # a patch by its power, then one of its triangles by area (together: a triangle
+            # by patch power times area share), then a point uniform in it
+            choice = etri[rng.choice(len(etri), n, p=pick[p.triangle_patch[etri]] * share)]
+            src = p.triangle_patch[choice]
             c = p.vertices[p.triangles[choice]]
             r1, r2 = rng.random(n), rng.random(n)
             flip = r1 + r2 > 1
@@ -138,7 +144,7 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
                     break
                 x = o + t[:, None] * d
                 model, face = owner[k, 0], owner[k, 1]
-                patch = _patch_of(x, model * width + face, sorted_key, order, p.centers)
+                patch = _patch_of(x, first_polygon[model] + face, table, counts, p.centers)
                 np.add.at(arrived[batch], patch, power)
                 rho = problem.rho[patch]
                 survive = rho.mean(axis=1)
@@ -164,16 +170,15 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
                       means.std(0, ddof=1) / np.sqrt(batches), n_batch * batches)
 
 
-def _patch_of(x, polygon, sorted_key, order, centers):
-    """The patch of each hit point: the nearest patch centre within its polygon."""
+def _patch_of(x, polygon, table, counts, centers):
+    """The patch of each hit point: the nearest patch centre among its polygon's patches
+    (row ``polygon`` of ``table``, ``counts`` long), the hits of polygons with as many
+    patches at once (a loop over the few patch counts, not over polygons)."""
     out = np.empty(len(x), np.int64)
-    for key in np.unique(polygon):
-        lo, hi = np.searchsorted(sorted_key, [key, key + 1])
-        candidates = order[lo:hi]
-        sel = polygon == key
-        if len(candidates) == 1:
-            out[sel] = candidates[0]
-            continue
-        dist = np.linalg.norm(x[sel, None, :] - centers[candidates][None], axis=2)
-        out[sel] = candidates[np.argmin(dist, axis=1)]
+    n = counts[polygon]
+    for k in np.unique(n):
+        sel = np.flatnonzero(n == k)
+        cand = table[polygon[sel], :k]
+        gap = centers[cand] - x[sel, None]
+        out[sel] = cand[np.arange(len(sel)), np.argmin(np.einsum("nkd,nkd->nk", gap, gap), 1)]
     return out

@@ -73,12 +73,14 @@ def _without_zero_area(mesh, name: str, diagonal: float):
         return mesh, ""
     note = (f"{name}: {int(zero.sum())} of its {mesh.n_faces} polygons have no area "
             "(collinear or repeated corners) and are left out")
-    keep = np.flatnonzero(~zero)
-    faces = [mesh.face_indices[mesh.face_offsets[f]:mesh.face_offsets[f + 1]] for f in keep]
     from ..geometry.mesh import Mesh
 
-    return (Mesh(mesh.vertices, faces, name=mesh.name) if faces else
-            Mesh(np.zeros((0, 3)), np.zeros((0, 3), np.int64), name=mesh.name)), note
+    keep = np.flatnonzero(~zero)
+    sizes = np.diff(mesh.face_offsets)[keep]
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    # (the kept faces' index runs, gathered at once: their old starts, shifted to the new)
+    at = np.repeat(mesh.face_offsets[keep] - offsets[:-1], sizes) + np.arange(offsets[-1])
+    return Mesh.from_csr(mesh.vertices, mesh.face_indices[at], offsets, name=mesh.name), note
 
 
 @dataclass

@@ -26,7 +26,7 @@ from ..solids.tree import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode
 from .base import GLResource
-from .programs import MaterialUniforms, UniformWriter
+from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
 __all__ = ["CsgPass", "tree_code", "leaf_uniforms", "shape_key", "box_matrix"]
@@ -210,8 +210,6 @@ class CsgPass(GLResource):
         """Draw the scene's visible solids (after its meshes: their ids follow from
         ``id_base``, the meshes' polygon count)."""
         import moderngl
-
-        from .programs import ProgramKey
 
         self._check()
         ctx = self.context.ctx

@@ -16,6 +16,7 @@ from typing import Any
 
 import moderngl
 
+from ..geometry.transforms import gl_bytes
 from ..modes import Outputs
 from .base import GLResource
 from .state import DrawState
@@ -58,8 +59,6 @@ class EdgePass(GLResource):
         target.bind(Outputs.COLOR)
         put = self.uniforms.put
         x, y, w, h = state.viewport
-        from ..geometry.transforms import gl_bytes
-
         put(prog, "u_proj", gl_bytes(state.proj))
         put(prog, "u_viewport_size", (float(w), float(h)))
         put(prog, "u_edge_width", float(edge_width(w, h)))

@@ -491,7 +491,6 @@ class Renderer:
             raise OptionError(f"pixel ({x}, {y}) is outside the {self.width}x{self.height} "
                               "image")
         o = DrawOptions.of(options if options is not None else ShadingMode.FLAT)
-        camera = camera.with_planes(scene.bounds)
         frame = self.render_frame(scene, camera, o, outputs=Outputs.ALL)
         assert frame.face_id is not None and frame.depth is not None
         assert frame.normal is not None

@@ -103,8 +103,6 @@ class Scene:
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
         added with its vertices split there (:meth:`Mesh.split_creases`). ``vertex_colors``
         (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display)."""
-        from ..solids.tree import Solid
-
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)

@@ -30,3 +30,28 @@ def coaxial_disks(r1: float, r2: float, d: float) -> float:
     a, b = r1 / d, r2 / d
     x = 1 + (1 + b * b) / (a * a)
     return (x - sqrt(x * x - 4 * (b / a) ** 2)) / 2
+
+
+def parallel_offset_rectangles(first, second, z: float) -> float:
+    """From the rectangle ``first = (x1, x2, y1, y2)`` to ``second = (xi1, xi2, eta1,
+    eta2)`` in a parallel plane ``z`` away, sides along the same axes, anywhere in their
+    planes (Howell's catalogue C-11: a signed sum of G over the 16 corner pairings)."""
+    def g(x, y, eta, xi):
+        u, v = x - xi, y - eta
+        a, b = sqrt(u * u + z * z), sqrt(v * v + z * z)
+        return (v * a * atan(v / a) + u * b * atan(u / b)
+                - z * z / 2 * log(u * u + v * v + z * z)) / (2 * pi)
+
+    (x1, x2, y1, y2), (xi1, xi2, e1, e2) = first, second
+    total = sum((-1) ** (i + j + k + m) * g(x, y, e, xi)
+                for i, x in enumerate((x1, x2)) for j, y in enumerate((y1, y2))
+                for k, e in enumerate((e1, e2)) for m, xi in enumerate((xi1, xi2)))
+    return total / ((x2 - x1) * (y2 - y1))
+
+
+def point_to_rectangle(a: float, b: float, c: float) -> float:
+    """From a point to an ``a x b`` rectangle parallel to its plane, ``c`` above the point,
+    with one corner straight above it."""
+    x, y = a / c, b / c
+    return (x / sqrt(1 + x * x) * atan(y / sqrt(1 + x * x))
+            + y / sqrt(1 + y * y) * atan(x / sqrt(1 + y * y))) / (2 * pi)

@@ -8,16 +8,15 @@ from glshade import Mesh
 from glshade.errors import GeometryError, InputError, SceneError
 from glshade.geometry import primitives
 from glshade.radiosity.patches import subdivide
-from glshade.radiosity import (FormFactors, PatchScene, cornell_scene, gauss_seidel,
+from glshade.radiosity import (PatchScene, cornell_scene, gauss_seidel,
                                progressive)
 from glshade.render.hemicube import delta_form_factors
 from glshade.scene import Material, Scene
 
 from ..oracle.formfactors import coaxial_disks, parallel_rectangles, perpendicular_rectangles
+from .pairs import LIGHT, group_factor, pair
 
 
-LIGHT = Material(emission=(1.0, 1.0, 1.0), reflectance=(0.0, 0.0, 0.0))
-BLACK = Material(reflectance=(0.0, 0.0, 0.0))
 
 #: (two facing polygons, the form factor from the first to the second)
 PARALLEL = ([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
@@ -29,33 +28,6 @@ _T = np.linspace(0, 2 * np.pi, 129)[:-1]
 _RING = np.c_[np.cos(_T), np.sin(_T), np.zeros(128)]
 # coaxial unit disks one apart (a 128-gon: 0.04% less area than the disk)
 DISKS = (_RING.tolist(), (_RING[::-1] + [0, 0, 1]).tolist(), coaxial_disks(1, 1, 1))
-
-
-def pair(first, second, patch_size=100.0) -> PatchScene:
-    scene = Scene()
-    scene.add(Mesh(first, [list(range(len(first)))]), LIGHT, name="a")
-    scene.add(Mesh(second, [list(range(len(second)))]), BLACK, name="b")
-    return PatchScene.from_scene(scene, patch_size)
-
-
-def group_factor(problem, ff) -> float:
-    """F from model 0 to model 1: the area-weighted sum over their patches."""
-    a = problem.patches.areas
-    src, dst = np.flatnonzero(problem.model == 0), np.flatnonzero(problem.model == 1)
-    return sum(a[i] * ff.row(i)[dst].sum() for i in src) / a[src].sum()
-
-
-@pytest.fixture
-def factors(gl_context):
-    made = []
-
-    def make(problem, *args, **kwargs):
-        made.append(FormFactors(problem, *args, context=gl_context, **kwargs))
-        return made[-1]
-
-    yield make
-    for ff in made:
-        ff.close()
 
 
 def test_the_closed_forms_are_the_published_values():

@@ -9,6 +9,22 @@ neighbour: ``s = ceil(FACTOR diameter / d)``, at most 8; one point is the centre
 rows averaged with the quadrature weights.
 Each hemicube is turned about the normal by a random angle (seeded), so that aliasing
 against the pixel grid does not repeat from one patch to the next.
+
+The near field. Those few points integrate a receiver's factor over the shooter well only
+where it varies slowly across the shooter: where the receiver's distance ``g`` from it (the
+gap of their bounding spheres, or the receiver's height above the shooter's plane, the
+larger) is at least ``NEAR`` times the spacing of the points, ``D / s``. A receiver nearer
+than that -- a small patch close over a large emitter, rectangles sharing an edge, the
+Cornell box's light just under its ceiling -- gets its factor again from the exact
+point-to-polygon factor (:mod:`.contour`) at ``m^2`` Gauss points, ``m = ceil(NEAR D /
+max(g, D / MAX_NEAR_POINTS))`` in ``[2 s, MAX_NEAR_POINTS]``, times the share of it the
+hemicubes saw unoccluded (their value over the contour factor at their own points: the
+hemicubes keep the visibility, the contour integral the geometry). Measured against closed
+forms (tests/radiosity: the near-field family), that leaves under 0.3% where the hemicubes
+alone were off by up to 85% (a 0.05-high square over an emitter 40 times its size); the
+bound of an ``m``-point Gauss rule on a factor whose width is ``g`` over a shooter ``D``
+across is about ``rho^(-2m)``, ``rho = (g + sqrt(D^2/4 + g^2)) / (D / 2)``. A shooter with
+covered points keeps its hemicube values (its open part is not known finely enough).
 """
 
 from __future__ import annotations
@@ -19,9 +35,10 @@ import numpy as np
 
 from ..errors import InputError, OptionError
 from ..modes import Backend
+from .contour import clip_to_plane, point_polygon_factors
 from .problem import PatchScene
 
-__all__ = ["FormFactors", "quadrature_counts"]
+__all__ = ["FormFactors", "quadrature_counts", "near_pairs"]
 
 MAX_QUADRATURE = 8
 
@@ -29,6 +46,68 @@ MAX_QUADRATURE = 8
 FACTOR = 1.5
 #: a quadrature point whose hemicube meets back faces over more than this share is covered
 COVERED = 0.5
+#: a receiver nearer than NEAR point spacings of a shooter's quadrature is near
+NEAR = 1.5
+#: Gauss points a side at most for a near pair
+MAX_NEAR_POINTS = 64
+#: Gauss points a side at least where the receiver touches the shooter's plane (the factor's
+#: slope is unbounded at the line where they meet)
+TOUCHING_POINTS = 8
+
+
+def _extents(p) -> tuple[np.ndarray, np.ndarray]:
+    """Each patch's diameter D and circumradius about its centre R, (P,) each."""
+    corners = p.vertices[p.corners]  # (P, 4, 3); a triangle's -1 picks some vertex: masked
+    corners = np.where((p.corners >= 0)[..., None], corners, corners[:, :1])
+    extent = np.linalg.norm(corners[:, :, None] - corners[:, None, :], axis=3).max((1, 2))
+    radius = np.linalg.norm(corners - p.centers[:, None], axis=2).max(1)
+    return extent, radius
+
+
+def polygons(p) -> np.ndarray:
+    """Each patch's corners (P, 4, 3), a triangle's last one repeated (an edge of length 0)."""
+    c = np.where(p.corners >= 0, p.corners, p.corners[:, 2:3])
+    return p.vertices[c]
+
+
+def near_pairs(problem: PatchScene, counts: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The receivers too near each shooter for its ``counts`` (P,) quadrature points (see
+    the module's docstring): (first (P+1,), receiver (N,), points a side (N,)), the
+    receivers of shooter i at ``receiver[first[i]:first[i+1]]``. Receivers wholly behind
+    or in the shooter's plane get nothing and are not listed."""
+    p = problem.patches
+    c, n = p.centers, p.normals
+    extent, radius = _extents(p)
+    corners = polygons(p)
+    spacing = extent / counts
+    rows, cols, widths = [], [], []
+    step = max(1, 2_000_000 // max(p.n_patches, 1))
+    for a in range(0, p.n_patches, step):  # (chunks of rows: memory, not speed)
+        b = min(a + step, p.n_patches)
+        gap = np.linalg.norm(c[None, :] - c[a:b, None], axis=2) - radius[a:b, None] - radius
+        # heights of every receiver's corners above each shooter's plane: (rows, P, 4)
+        height = np.einsum("jkd,id->ijk", corners, n[a:b]) - \
+            np.einsum("id,id->i", c[a:b], n[a:b])[:, None, None]
+        tol = 1e-9 * extent[a:b, None]
+        above = height.max(axis=2) > tol
+        low = height.min(axis=2)
+        width = np.maximum(gap, low)
+        near = above & (width < NEAR * spacing[a:b, None])
+        width[low <= tol] = -1.0  # (touching the shooter's plane: marked for the rule below)
+        near[np.arange(b - a), np.arange(a, b)] = False
+        i, j = np.nonzero(near)
+        rows.append(i + a)
+        cols.append(j)
+        widths.append(width[i, j])
+    i, j, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(widths)
+    d = extent[i]
+    m = np.ceil(NEAR * d / np.maximum(w, d / MAX_NEAR_POINTS))
+    m = np.where(w < 0, TOUCHING_POINTS, m)
+    m = np.maximum(m, 2 * counts[i])
+    m = np.clip(m, 1, MAX_NEAR_POINTS).astype(np.int64)
+    first = np.searchsorted(i, np.arange(p.n_patches + 1))
+    return first, j, m
 
 
 def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
@@ -46,9 +125,7 @@ def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray
         coplanar = (off_plane <= 1e-6 * (dist + 1e-300)) | (dist == 0)
         dist[coplanar] = np.inf
         nearest[a:a + step] = dist.min(axis=1)
-    corners = p.vertices[p.corners]  # (P, 4, 3); a triangle's -1 picks some vertex: masked
-    corners = np.where((p.corners >= 0)[..., None], corners, corners[:, :1])
-    extent = np.linalg.norm(corners[:, :, None] - corners[:, None, :], axis=3).max((1, 2))
+    extent = _extents(p)[0]
     s = np.ceil(factor * extent / nearest)
     return np.clip(np.nan_to_num(s, nan=1.0, posinf=1.0), 1, MAX_QUADRATURE).astype(np.int64)
 
@@ -79,6 +156,9 @@ class FormFactors:
         points, owner, weight = p.sample_points(self.quadrature)
         self._points, self._weights = points, weight
         self._first = np.searchsorted(owner, np.arange(p.n_patches + 1))
+        self._near = near_pairs(problem, self.quadrature)
+        self._polygons = polygons(p)
+        self.near_corrected = 0
         self._rng = np.random.default_rng(seed)
         self._owns = context is None
         self.context = context or create_context(backend)
@@ -96,12 +176,13 @@ class FormFactors:
     def resolution(self) -> int:
         return self.hemicube.resolution
 
-    def _tangent(self, normal: np.ndarray) -> np.ndarray:
+    def _tangents(self, normal: np.ndarray, count: int) -> np.ndarray:
+        """(count, 3) unit tangents of ``normal``, each turned by its own random angle."""
         a = np.array([1.0, 0.0, 0.0]) if abs(normal[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
         t = np.cross(normal, a)
         t /= np.linalg.norm(t)
         b = np.cross(normal, t)
-        angle = self._rng.uniform(0, 2 * np.pi)
+        angle = self._rng.uniform(0, 2 * np.pi, count)[:, None]
         return np.cos(angle) * t + np.sin(angle) * b
 
     def row(self, i: int) -> np.ndarray:
@@ -112,7 +193,7 @@ class FormFactors:
             return found
         n = self.problem.patches.normals[i]
         a, b = self._first[i], self._first[i + 1]
-        turns = [self._tangent(n) for _ in range(a, b)]  # (one random turn per cube)
+        turns = self._tangents(n, b - a)  # (one random turn per cube)
         back = np.zeros(b - a)
         rows = self.hemicube.rows(self._points[a:b], n, turns, back)
         # a point of the patch that sees mostly back faces is covered (under a block that
@@ -120,13 +201,40 @@ class FormFactors:
         # nor leaves it, so the patch's energy leaves from its other points
         weights = np.where(back > COVERED, 0.0, self._weights[a:b])
         total = weights.sum()
-        out = (weights / total if total > 0 else self._weights[a:b]) @ rows
+        weights = weights / total if total > 0 else self._weights[a:b]
+        out = weights @ rows
+        if not (back > COVERED).any():
+            self._near_field(i, out, weights)
         self.hemicubes_drawn += b - a
         out[i] = 0.0
         self._cache[i] = out
         if len(self._cache) > self._cache_rows:
             self._cache.popitem(last=False)
         return out
+
+    def _near_field(self, i: int, out: np.ndarray, weights: np.ndarray) -> None:
+        """Replace ``out[j]`` for shooter i's near receivers j by the contour factor over
+        finely spaced points times the visible share the hemicubes saw (in place)."""
+        first, receiver, m = self._near
+        lo, hi = first[i], first[i + 1]
+        if lo == hi:
+            return
+        p = self.problem.patches
+        js, ms = receiver[lo:hi], m[lo:hi]
+        n = p.normals[i]
+        clipped = clip_to_plane(self._polygons[js], np.broadcast_to(p.centers[i], (len(js), 3)),
+                                np.broadcast_to(n, (len(js), 3)))
+        coarse_pts = self._points[self._first[i]:self._first[i + 1]]
+        coarse = point_polygon_factors(coarse_pts, n, clipped, p.normals[js]) @ weights
+        seen = out[js]
+        fine = np.zeros(len(js))
+        for size in np.unique(ms):  # (a handful of distinct point counts)
+            pts, _, w = p.sample_points(np.array([size]), only=np.array([i]))
+            k = ms == size
+            fine[k] = point_polygon_factors(pts, n, clipped[k], p.normals[js[k]]) @ w
+        ok = (coarse > 0) & (seen > 0)
+        out[js[ok]] = fine[ok] * (seen[ok] / coarse[ok])
+        self.near_corrected += int(ok.sum())
 
     def matrix(self, progress=None) -> np.ndarray:
         """The whole ``(P, P)`` matrix (small scenes: P^2 numbers)."""

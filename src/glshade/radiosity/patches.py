@@ -13,6 +13,7 @@ over polygons.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -78,54 +79,70 @@ class Patches:
                         for c in range(values.shape[1])], axis=1)
         return out / np.maximum(total, 1e-300)[:, None]
 
-    def sample_points(self, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def sample_points(self, counts: np.ndarray, only: np.ndarray | None = None,
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Quadrature points over each patch, about ``counts[i]^2`` of them: on a quad patch
         the ``s x s`` Gauss-Legendre points of its bilinear map, on a triangle patch the
         3-point (degree 2) rule on each of ``k^2`` pieces, ``k = ceil(s / sqrt(3))``; the
         centre for 1. Returns (points (S, 3), patch (S,), weight (S,)), each patch's
-        weights summing to 1: ``sum w f(x)`` is the mean of ``f`` over the patch."""
+        weights summing to 1: ``sum w f(x)`` is the mean of ``f`` over the patch. ``only``:
+        the patches to sample (``counts`` then one per listed patch)."""
         counts = np.asarray(counts, np.int64)
-        quad = self.corners[:, 3] >= 0
+        index = np.arange(self.n_patches) if only is None else np.asarray(only, np.int64)
+        quad = self.corners[index, 3] >= 0
         pts, owner, weight = [], [], []
         for s in np.unique(counts[quad]):
             sel = np.flatnonzero(quad & (counts == s))
-            x, w = np.polynomial.legendre.leggauss(int(s))
-            uu, vv = np.meshgrid((x + 1) / 2, (x + 1) / 2, indexing="ij")
-            u, v = uu.ravel(), vv.ravel()
-            w2 = np.outer(w, w).ravel() / 4
-            c = self.vertices[self.corners[sel]]  # (n, 4, 3)
-            basis = np.stack([(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v], 1)
-            du = np.stack([-(1 - v), 1 - v, v, -v], 1)
-            dv = np.stack([-(1 - u), -u, u, 1 - u], 1)
+            c = self.vertices[self.corners[index[sel]]]  # (n, 4, 3)
+            basis, du, dv, w2 = _square_rule(int(s))
             jac = np.linalg.norm(np.cross(np.einsum("sk,nkd->nsd", du, c),
                                           np.einsum("sk,nkd->nsd", dv, c)), axis=2)
             pts.append(np.einsum("sk,nkd->nsd", basis, c).reshape(-1, 3))
-            owner.append(np.repeat(sel, len(u)))
+            owner.append(np.repeat(sel, len(w2)))
             weight.append((jac * w2).ravel())
         tri_k = np.where(counts <= 1, 1, np.ceil(counts / np.sqrt(3)).astype(np.int64))
         for k in np.unique(tri_k[~quad]):
             sel = np.flatnonzero(~quad & (tri_k == k))
             rule = _centre_rule() if counts[sel[0]] <= 1 else _pieces_rule(int(k))
-            c = self.vertices[self.corners[sel, :3]]  # (n, 3, 3)
+            c = self.vertices[self.corners[index[sel], :3]]  # (n, 3, 3)
             pts.append(np.einsum("sc,ncd->nsd", rule, c).reshape(-1, 3))
             owner.append(np.repeat(sel, len(rule)))
-            weight.append(np.repeat(self.areas[sel] / len(rule), len(rule)))
+            weight.append(np.repeat(self.areas[index[sel]] / len(rule), len(rule)))
         p, o, w = np.concatenate(pts), np.concatenate(owner), np.concatenate(weight)
-        w = w / np.maximum(np.bincount(o, weights=w, minlength=self.n_patches)[o], 1e-300)
+        w = w / np.maximum(np.bincount(o, weights=w, minlength=len(index))[o], 1e-300)
         order = np.argsort(o, kind="stable")
-        return p[order], o[order], w[order]
+        return p[order], index[o[order]], w[order]
 
 
 def _centre_rule() -> np.ndarray:
     return np.full((1, 3), 1 / 3)
 
 
+@lru_cache(maxsize=64)
+def _square_rule(s: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The s x s Gauss-Legendre rule on the unit square as bilinear corner weights:
+    (basis, d/du, d/dv (s^2, 4) each, weights (s^2,))."""
+    x, w = np.polynomial.legendre.leggauss(s)
+    uu, vv = np.meshgrid((x + 1) / 2, (x + 1) / 2, indexing="ij")
+    u, v = uu.ravel(), vv.ravel()
+    basis = np.stack([(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v], 1)
+    du = np.stack([-(1 - v), 1 - v, v, -v], 1)
+    dv = np.stack([-(1 - u), -u, u, 1 - u], 1)
+    out = (basis, du, dv, np.outer(w, w).ravel() / 4)
+    for a in out:
+        a.flags.writeable = False
+    return out
+
+
+@lru_cache(maxsize=64)
 def _pieces_rule(k: int) -> np.ndarray:
     """Barycentric points of the 3-point degree-2 rule on each of k^2 equal pieces."""
     bary, tris = _triangle_grid(k)
     sub = bary[tris]  # (k^2, 3 corners, 3)
     rule = np.array([[2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]])
-    return np.einsum("rc,tcb->trb", rule, sub).reshape(-1, 3)
+    out = np.einsum("rc,tcb->trb", rule, sub).reshape(-1, 3)
+    out.flags.writeable = False
+    return out
 
 
 def _tri_areas(corners: np.ndarray) -> np.ndarray:

@@ -22,18 +22,13 @@ layout(location = 2) out int frag_face_id;
 layout(location = 3) out uint frag_depth_bits;
 #endif
 
-// the tree, generated: void csg_tree(vec3 ro, vec3 rd, out Ev events[WIDTH])
-// GLSHADE_CSG_TREE
-
 #ifdef FLAT_FACES
 // Flat shading: a planar leaf face is lit once, at its centre (as a mesh polygon at its
 // centroid); a curved face has no centre and is lit where the ray hits it.
-const int LEAF_KINDS[LEAVES] = int[LEAVES](LEAF_KINDS_LIST);
-
 vec3 face_centre(int i, vec3 p_world) {
-    vec3 p = (u_leaf_inverse[i] * vec4(p_world, 1.0)).xyz;
-    vec4 q = u_leaf_param[i];
-    int kind = LEAF_KINDS[i];
+    vec3 p = to_leaf(i, vec4(p_world, 1.0));
+    vec4 q = leaf_param(i);
+    int kind = leaf_kind(i);
     vec3 c;
     if (kind == 1) {                       // box: the face of the largest p / h
         vec3 r = abs(p / q.xyz);
@@ -46,7 +41,9 @@ vec3 face_centre(int i, vec3 p_world) {
     } else {
         return p_world;
     }
-    vec4 w = inverse(u_leaf_inverse[i]) * vec4(c, 1.0);
+    mat4 m = transpose(mat4(csg_texel(8 * i), csg_texel(8 * i + 1), csg_texel(8 * i + 2),
+                            vec4(0.0, 0.0, 0.0, 1.0)));
+    vec4 w = inverse(m) * vec4(c, 1.0);
     return w.xyz / w.w;
 }
 #endif
@@ -61,19 +58,15 @@ void main() {
     vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
     vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 ro = a.xyz / a.w, rd = normalize(b.xyz / b.w - ro);
-    Ev ev[WIDTH];
-    csg_tree(ro, rd, ev);
-    int hit = -1;
-    for (int k = 0; k < WIDTH; ++k) {
-        if (ev[k].kind != 0 && ev[k].t > 0.0) { hit = k; break; }
-    }
-    if (hit < 0) discard;
-    vec3 p = ro + ev[hit].t * rd;
+    float t;
+    int leaf = csg_first_hit(ro, rd, t);
+    if (leaf < 0) discard;
+    vec3 p = ro + t * rd;
     vec4 clip = u_solid_view_proj * vec4(p, 1.0);
     float z = clip.z / clip.w;
     if (z > 1.0) discard;  // beyond the far plane
     gl_FragDepth = 0.5 * z + 0.5;
-    vec3 n_world = normalize(ev[hit].n);
+    vec3 n_world = normalize(csg_normal(leaf, p));
     vec3 p_view = (u_view * vec4(p, 1.0)).xyz;
     vec3 n_view = normalize(u_view_normal * n_world);
     vec3 v = view_dir(p_view);
@@ -88,7 +81,7 @@ void main() {
                                   (u_depth_range.y - u_depth_range.x), 0.0, 1.0));
 #else
 #ifdef FLAT_FACES
-    vec3 centre_view = (u_view * vec4(face_centre(ev[hit].leaf, p), 1.0)).xyz;
+    vec3 centre_view = (u_view * vec4(face_centre(leaf, p), 1.0)).xyz;
     if (dot(n_view, view_dir(centre_view)) < 0.0) n_view = -n_view;  // (seen from inside)
     vec3 color = light_intensity(centre_view, n_view, view_dir(centre_view));
 #else
@@ -102,7 +95,7 @@ void main() {
     frag_color = vec4(color, 1.0);
 #ifdef GLSHADE_AUX_OUTPUTS
     frag_normal = vec4(n_world, 1.0);
-    frag_face_id = u_face_id_base + ev[hit].leaf + 1;
+    frag_face_id = u_face_id_base + leaf + 1;
     frag_depth_bits = floatBitsToUint(-p_view.z);
 #endif
 }

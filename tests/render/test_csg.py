@@ -125,7 +125,7 @@ def test_editing_sizes_reuses_the_program(make_renderer):
         s = Scene()
         s.add(Box(2.0) - Sphere(radius).translated((0, 1, 0)))
         r.render(s, OUTSIDE)
-    assert len(r._csg._programs) == 1
+    assert len(r._csg._programs) == 1  # (one program, whatever the tree)
 
 
 def test_unbounded_solids_are_refused():

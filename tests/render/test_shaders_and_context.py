@@ -64,52 +64,6 @@ def test_broken_shader_names_file_and_line(gl_context, tmp_path):
         lib.release()
 
 
-def test_code_spliced_into_csg_frag_keeps_line_numbers_true(gl_context, tmp_path):
-    """The CSG tree's generated GLSL goes where csg.frag's marker is, between #line
-    directives: an error after the marker names csg.frag's own line, and an error inside
-    the generated code names that code's line (before, both were off by the code's length)."""
-    from glshade.render.csg import tree_code
-    from glshade.render.shaders import GENERATED
-    from glshade.solids import Box, Sphere, Torus
-
-    code = tree_code((Box(2) - Sphere(1.2)) | Torus(1.0, 0.2))[0]
-    assert len(code.splitlines()) > 20  # (a shift that would show)
-    root = tmp_path / "shaders"
-    shutil.copytree(shader_dir(), root)
-    src = (root / "csg.frag").read_text().splitlines()
-    marker = src.index("// GLSHADE_CSG_TREE")
-    line = next(i for i, text in enumerate(src) if "vec2 ndc =" in text)  # (in main)
-    assert line > marker
-    src[line] = src[line] + " this_is_not_glsl;"
-    (root / "csg.frag").write_text("\n".join(src) + "\n")
-    lib = ShaderLibrary(gl_context)
-    try:
-        with pytest.raises(ShaderError) as info:
-            lib.compile("csg.vert", "csg.frag", root=root, defines=("LEAVES 3", "WIDTH 8"),
-                        insert=("// GLSHADE_CSG_TREE", code))
-        assert f"csg.frag:{line + 1}:" in str(info.value), str(info.value)
-        assert "this_is_not_glsl" in str(info.value)
-        # an error in the generated code names its own line there, and shows it
-        broken = code.splitlines()
-        broken[2] += " ) also_not_glsl"  # (a syntax error: Mesa reports it where it is)
-        with pytest.raises(ShaderError) as info:
-            lib.compile("csg.vert", "csg.frag", defines=("LEAVES 3", "WIDTH 8"),
-                        insert=("// GLSHADE_CSG_TREE", "\n".join(broken)))
-        assert f"{GENERATED}:3:" in str(info.value), str(info.value)
-        assert "also_not_glsl" in str(info.value)
-    finally:
-        lib.release()
-
-
-def test_splice_directives():
-    from glshade.render.shaders import splice
-
-    text, files = splice(("#version 330 core\n#line 2 0\na\n#line 1 1\nb\nMARK\nc",
-                          ["f.frag", "include/x.glsl"]), "MARK", "g1\ng2", "<gen>")
-    assert files == ["f.frag", "include/x.glsl", "<gen>"]
-    assert text.split("\n")[5:] == ["#line 1 2", "g1", "g2", "#line 3 1", "c"]
-
-
 def test_missing_version_line(tmp_path):
     (tmp_path / "bad.frag").write_text("void main() {}\n")
     with pytest.raises(ShaderError, match="bad.frag:1: the first line must be #version"):

@@ -1,9 +1,25 @@
-"""Drawing CSG solids on the GPU: the tree becomes generated GLSL (one event array per
-node, sized from its leaves; the leaves and the merge of csg.glsl), compiled once per tree
-*shape* and cached -- sizes and transforms are uniforms, so editing them recompiles
-nothing. Each solid is drawn as the back faces of its bounding box; the fragment program
-casts the pixel's ray through the tree and writes the first surface's depth to
-gl_FragDepth, so solids and meshes share one z-buffer.
+"""Drawing CSG solids on the GPU with one program for every tree: the tree is *data*.
+
+Why: generated GLSL (one merge function per node) made Mesa's compile time grow with the
+tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float texture
+(:func:`tree_data`), written once per solid and cached; the fragment program
+(shaders/include/csg.glsl) reads it:
+
+- per leaf, its world -> leaf matrix, its normal matrix (negated under a difference's right
+  side), its sizes and its kind;
+- a bounding-volume hierarchy over the leaves' world boxes, in pre-order with each node's
+  skip index (the node after its subtree): a ray visits only the leaves whose boxes it
+  meets, and none beyond the nearest boundary found so far;
+- the tree as a post-order program on a stack of bits, each boolean evaluating its deeper
+  operand first (so the stack never holds more than log2(leaves) + 1 bits: 32 are enough
+  for any tree up to the cap).
+
+Along a pixel's ray the program keeps every leaf's inside-bit, steps from one leaf
+boundary to the next (ties by leaf order: the left operand's face shows), flips that leaf's
+bit and runs the tree; the first boundary where the tree's answer changes is the surface.
+Its cost grows with the leaf boundaries a ray crosses before it, not with the tree. Each
+solid is drawn as the back faces of its bounding box; the fragment program writes the
+surface's depth to gl_FragDepth, so solids and meshes share one z-buffer.
 
 Shading: the lighting function of the meshes with the exact normal at every pixel.
 Gouraud and Phong both light per pixel (a solid has no vertices to hold an intensity);
@@ -15,12 +31,14 @@ faces (and a half-space's unbounded plane) have no centre and stay lit per pixel
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import weakref
 
 import numpy as np
 
+from ..errors import SceneError
 from ..solids import leaves as L  # (the leaves: L.Box ...)
 from ..solids.tree import Difference, Intersection, Solid, Transformed, Union
 from ..geometry.transforms import box_corners, gl_bytes
@@ -29,110 +47,128 @@ from .base import GLResource
 from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
-__all__ = ["CsgPass", "tree_code", "leaf_uniforms", "shape_key", "box_matrix"]
+__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "MAX_LEAVES"]
 
-_KIND: dict[type, str] = {L.Sphere: "sphere", L.Box: "box", L.Cylinder: "cylinder", L.Cone: "cone",
-         L.Torus: "torus", L.HalfSpace: "halfspace"}
-#: leaf kinds as the fragment program's flat shading numbers them (csg.frag's face_centre)
-_KIND_CODE = {kind: code for code, kind in enumerate(_KIND)}
-_OPS: dict[type, tuple[str, str]] = {
-    Union: ("U", "ca > 0 || cb > 0"), Intersection: ("I", "ca > 0 && cb > 0"),
-    Difference: ("D", "ca > 0 && !(cb > 0)")}
-
-
-def shape_key(solid: Solid) -> str:
-    """The tree's shape (what the generated code depends on), e.g. ``D(U(sphere,box),...)``."""
-    if isinstance(solid, Transformed):
-        return shape_key(solid.child)
-    if type(solid) in _OPS:
-        node: Any = solid  # (a boolean: it has a and b)
-        return f"{_OPS[type(solid)][0]}({shape_key(node.a)},{shape_key(node.b)})"
-    return _KIND[type(solid)]
+#: leaves a solid may have on the GPU (the program keeps one bit per leaf in 32 words)
+MAX_LEAVES = 1024
+#: the leaf kinds as the program numbers them (csg.glsl's leaf_contains)
+_KIND_CODE: dict[type, int] = {L.Sphere: 0, L.Box: 1, L.Cylinder: 2, L.Cone: 3, L.Torus: 4,
+                               L.HalfSpace: 5}
+_UNION, _INTERSECTION, _DIFFERENCE, _DIFFERENCE_SWAPPED = -1, -2, -3, -4
+_ROW = 64  # texels a row of the data texture
+_FAR = 1e30  # an unbounded leaf's box
 
 
-def tree_code(solid: Solid) -> tuple[str, int, int]:
-    """(GLSL defining ``csg_tree``, number of leaves, events width)."""
-    lines: list[str] = []
-    helpers: dict[str, str] = {}
-    counter = [0, 0]
+@dataclass(frozen=True)
+class TreeData:
+    """A solid as the program reads it: ``texels (T, 4) float32`` and where each part
+    starts. ``leaves`` in ``solid.leaves()`` order; ``stack`` the bits the program needs."""
 
-    def visit(node) -> tuple[str, int]:
-        if isinstance(node, Transformed):
-            return visit(node.child)
-        if type(node) in _OPS:
-            a, wa = visit(node.a)
-            b, wb = visit(node.b)
-            letter, test = _OPS[type(node)]
-            name = f"comb_{letter}_{wa}_{wb}"
-            helpers.setdefault(name, _combine(name, wa, wb, test))
-            out = f"n{counter[1]}"
-            counter[1] += 1
-            lines.append(f"    Ev {out}[{wa + wb}]; {name}({a}, {b}, {out});")
-            return out, wa + wb
-        i = counter[0]
-        counter[0] += 1
-        width = 4 if isinstance(node, L.Torus) else 2
-        out = f"l{i}"
-        lines.append(f"    Ev {out}[{width}]; leaf_{_KIND[type(node)]}({i}, "
-                     f"(u_leaf_inverse[{i}] * vec4(ro, 1.0)).xyz, "
-                     f"mat3(u_leaf_inverse[{i}]) * rd, {out});")
-        return out, width
-
-    root, width = visit(solid)
-    body = "\n".join(lines)
-    code = "\n".join(helpers.values()) + (
-        f"\nvoid csg_tree(vec3 ro, vec3 rd, out Ev events[{width}]) {{\n{body}\n"
-        f"    events = {root};\n}}\n")
-    return code, counter[0], width
+    texels: np.ndarray
+    leaves: int
+    nodes: int
+    ops: int
+    bvh: int
+    program: int
+    stack: int
 
 
-def _combine(name: str, wa: int, wb: int, test: str) -> str:
-    """Merge two sorted event lists; keep the events where ``test`` (in A, in B) changes."""
-    n = wa + wb
-    return f"""
-void {name}(Ev A[{wa}], Ev B[{wb}], out Ev C[{n}]) {{
-    int i = 0, j = 0, m = 0, ca = 0, cb = 0;
-    bool before = false;
-    for (int k = 0; k < {n}; ++k) C[k] = pad_event();
-    for (int k = 0; k < {n}; ++k) {{
-        Ev a = A[min(i, {wa - 1})], b = B[min(j, {wb - 1})];
-        bool take_a = j >= {wb} || (i < {wa} && a.t <= b.t);
-        Ev e = take_a ? a : b;
-        if (take_a) {{ ca += a.kind; i++; }} else {{ cb += b.kind; j++; }}
-        if (e.kind == 0) continue;
-        bool inside = {test};
-        if (inside != before) {{
-            C[m] = Ev(e.t, inside ? 1 : -1, e.n, e.leaf);
-            m++;
-            before = inside;
-        }}
-    }}
-}}"""
+def _flatten(solid: Solid):
+    """Leaves (with their world matrices and normal signs) and booleans, iteratively (no
+    recursion limit): ``leaves`` [(leaf, matrix, sign)], ``ops`` {node id: (op, a, b)},
+    ``root`` id; a node id is ("L", leaf number) or ("B", boolean number)."""
+    leaves: list = []
+    booleans: list = []
+    root: list = []
+    stack: list = [(solid, np.eye(4), 1.0, root, 0)]
+    while stack:
+        node, matrix, sign, slot, pos = stack.pop()
+        while isinstance(node, Transformed):
+            matrix = matrix @ node.matrix
+            node = node.child
+        if isinstance(node, (Union, Intersection, Difference)):
+            entry = [type(node), None, None]
+            booleans.append(entry)
+            _put(slot, pos, ("B", len(booleans) - 1))
+            sub = -sign if isinstance(node, Difference) else sign
+            stack.append((node.b, matrix, sub, entry, 2))
+            stack.append((node.a, matrix, sign, entry, 1))
+        else:
+            leaves.append((node, matrix, sign))
+            _put(slot, pos, ("L", len(leaves) - 1))
+    return leaves, booleans, root[0]
 
 
-def leaf_uniforms(solid: Solid) -> dict:
-    """Per leaf, in ``solid.leaves()`` order: world-to-leaf matrices, normal matrices
-    (negated under a difference's right side) and size parameters."""
-    inverse, normal, params = [], [], []
+def _put(slot: list, pos: int, value) -> None:
+    if pos == 0:
+        slot.append(value)
+    else:
+        slot[pos] = value
 
-    def visit(node, matrix, sign):
-        if isinstance(node, Transformed):
-            visit(node.child, matrix @ node.matrix, sign)
-            return
-        if type(node) in _OPS:
-            visit(node.a, matrix, sign)
-            visit(node.b, matrix, -sign if isinstance(node, Difference) else sign)
-            return
-        inv = np.linalg.inv(matrix)
-        inverse.append(inv)
-        normal.append(sign * inv[:3, :3].T)
-        params.append(_params(node))
 
-    visit(solid, np.eye(4), 1.0)
-    mats = np.array(inverse)
-    return {"u_leaf_inverse": np.ascontiguousarray(mats.transpose(0, 2, 1), "f4"),
-            "u_leaf_normal": np.ascontiguousarray(np.array(normal).transpose(0, 2, 1), "f4"),
-            "u_leaf_param": np.array(params, "f4")}
+def _program(booleans: list, root) -> tuple[list[int], int]:
+    """The post-order program (codes) and its stack depth, deeper operand first."""
+    need: dict = {}
+    for b in range(len(booleans) - 1, -1, -1):  # (children come after parents)
+        _, a, c = booleans[b]
+        na = need.get(a, 1) if a[0] == "B" else 1
+        nc = need.get(c, 1) if c[0] == "B" else 1
+        need[("B", b)] = max(na, nc) if na != nc else na + 1
+    codes: list[int] = []
+    stack: list = [(root, False)]
+    while stack:
+        node, done = stack.pop()
+        if node[0] == "L":
+            codes.append(node[1])
+            continue
+        op, a, b = booleans[node[1]]
+        depth = lambda x: need[x] if x[0] == "B" else 1  # noqa: E731
+        swapped = depth(b) > depth(a)
+        if done:
+            codes.append(_UNION if op is Union else _INTERSECTION if op is Intersection
+                         else _DIFFERENCE_SWAPPED if swapped else _DIFFERENCE)
+            continue
+        stack.append((node, True))
+        first, second = (b, a) if swapped else (a, b)
+        stack.append((second, False))
+        stack.append((first, False))
+    return codes, need.get(root, 1)
+
+
+def _leaf_box(leaf, matrix) -> np.ndarray:
+    b = leaf.bounds
+    if b is None:
+        return np.array([[-_FAR] * 3, [_FAR] * 3])
+    c = box_corners(b) @ matrix[:3, :3].T + matrix[:3, 3]
+    lo, hi = c.min(0), c.max(0)
+    pad = 1e-5 * (hi - lo) + 1e-6 * np.abs(c).max() + 1e-30
+    return np.array([lo - pad, hi + pad])
+
+
+def _hierarchy(boxes: np.ndarray) -> np.ndarray:
+    """A BVH over leaf boxes (N, 2, 3), pre-order: (nodes, 8) rows of lo, skip, hi, leaf."""
+    rows: list = []
+    centre = np.clip(boxes.mean(1), -_FAR, _FAR)
+    work: list = [("open", np.arange(len(boxes)))]
+    while work:
+        what, item = work.pop()
+        if what == "close":
+            rows[item][3] = len(rows)
+            continue
+        idx = item
+        lo, hi = boxes[idx, 0].min(0), boxes[idx, 1].max(0)
+        me = len(rows)
+        rows.append([*lo, me + 1, *hi, idx[0] if len(idx) == 1 else -1])
+        if len(idx) == 1:
+            continue
+        c = centre[idx]
+        axis = int(np.argmax(c.max(0) - c.min(0)))
+        order = idx[np.argsort(c[:, axis], kind="stable")]
+        half = len(order) // 2
+        work.append(("close", me))
+        work.append(("open", order[half:]))
+        work.append(("open", order[:half]))
+    return np.array(rows, np.float64)
 
 
 def _params(leaf) -> list:
@@ -149,10 +185,40 @@ def _params(leaf) -> list:
     return [*leaf.normal, leaf.offset]
 
 
+def tree_data(solid: Solid) -> TreeData:
+    """The texture data of ``solid`` (see the module docstring); a SceneError past
+    MAX_LEAVES."""
+    leaves, booleans, root = _flatten(solid)
+    if len(leaves) > MAX_LEAVES:
+        raise SceneError(f"a solid of {len(leaves):,} leaves is more than the {MAX_LEAVES:,} "
+                         "the GPU program serves")
+    codes, stack = _program(booleans, root)
+    leaf_rows = np.zeros((len(leaves), 8, 4))
+    for k, (leaf, matrix, sign) in enumerate(leaves):  # (at most MAX_LEAVES)
+        inv = np.linalg.inv(matrix)
+        leaf_rows[k, 0:3] = inv[:3]
+        leaf_rows[k, 3:6, :3] = sign * inv[:3, :3].T
+        leaf_rows[k, 6] = _params(leaf)
+        leaf_rows[k, 7, 0] = _KIND_CODE[type(leaf)]
+    boxes = np.array([_leaf_box(leaf, m) for leaf, m, _ in leaves])
+    bvh = _hierarchy(boxes).reshape(-1, 2, 4)
+    ops = np.full(-(-len(codes) // 4) * 4, _UNION, np.float64)
+    ops[:len(codes)] = codes
+    parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops.reshape(-1, 4)]
+    texels = np.concatenate(parts)
+    texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
+    return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(codes),
+                    len(parts[0]), len(parts[0]) + len(parts[1]), stack)
+
+
 class CsgPass(GLResource):
-    """Programs (per tree shape and variant), the unit box and the drawing of solids, for
-    one Renderer: a GL owner of the renderer's context, released with it. Shares the
-    renderer's uniform writer and material cache (public collaborators, handed in)."""
+    """The program (one per shading variant, whatever the tree), each solid's data texture,
+    the unit box and the drawing of solids, for one Renderer: a GL owner of the renderer's
+    context, released with it. Shares the renderer's uniform writer and material cache
+    (public collaborators, handed in)."""
+
+    #: the texture unit the tree data is bound to
+    UNIT = 7
 
     def __init__(self, context, shaders, uniforms: UniformWriter,
                  materials: MaterialUniforms):
@@ -160,34 +226,39 @@ class CsgPass(GLResource):
         self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
         self._programs: dict = {}
         self._box: Any = None
-        # per solid (solids are values: a new tree is a new object), what each frame reuses
-        self._solids: weakref.WeakKeyDictionary[Solid, tuple] = weakref.WeakKeyDictionary()
+        # per solid (solids are values: a new tree is a new object): its data and texture,
+        # dropped (and the texture released) once the solid is gone
+        self._data: dict[int, tuple] = {}
 
-    def _facts(self, solid: Solid):
-        """(shape key, leaf uniforms) of a solid, made once."""
-        found = self._solids.get(solid)
-        if found is None:
-            found = self._solids[solid] = (shape_key(solid), {
-                name: value.tobytes() for name, value in leaf_uniforms(solid).items()})
-        return found
-
-    def program(self, solid: Solid, key):
+    def data(self, solid: Solid) -> tuple[TreeData, Any]:
+        """(tree data, texture) of a solid, made once while it lives."""
         self._check()
-        shape = self._facts(solid)[0]
-        found = self._programs.get((shape, key))
+        for key in [k for k, v in self._data.items() if v[0]() is None]:
+            self._data.pop(key)[2].release()
+        found = self._data.get(id(solid))
+        if found is None or found[0]() is not solid:
+            if found is not None:
+                found[2].release()
+            data = tree_data(solid)
+            rows = len(data.texels) // _ROW
+            tex = self.context.ctx.texture((_ROW, rows), 4, data.texels.tobytes(), dtype="f4")
+            tex.filter = (0x2600, 0x2600)  # NEAREST (texelFetch reads it anyway)
+            found = self._data[id(solid)] = (weakref.ref(solid), data, tex)
+        return found[1], found[2]
+
+    def program(self, key):
+        self._check()
+        found = self._programs.get(key)
         if found is None:
-            code, leaves, width = tree_code(solid)
-            defines = (*key.defines(), f"LEAVES {leaves}", f"WIDTH {width}")
+            defines = tuple(key.defines())
             if key.mode is ShadingMode.NORMALS:
                 defines += ("SHOW_NORMALS",)
             elif key.mode is ShadingMode.DEPTH:
                 defines += ("SHOW_DEPTH",)
             elif key.mode is ShadingMode.FLAT:
-                kinds = ", ".join(str(_KIND_CODE[type(leaf)]) for leaf in solid.leaves())
-                defines += ("FLAT_FACES", f"LEAF_KINDS_LIST {kinds}")
-            found = self.shaders.compile("csg.vert", "csg.frag", defines=defines,
-                                         insert=("// GLSHADE_CSG_TREE", code))
-            self._programs[(shape, key)] = found
+                defines += ("FLAT_FACES",)
+            found = self._programs[key] = self.shaders.compile("csg.vert", "csg.frag",
+                                                               defines=defines)
         return found
 
     def vertex_array(self, program):
@@ -219,14 +290,19 @@ class CsgPass(GLResource):
         for model in state.scene.solids:
             if not model.visible:
                 continue
-            prog = self.program(model.solid, ProgramKey.of(state.variant, two_sided=False))
+            prog = self.program(ProgramKey.of(state.variant, two_sided=False))
+            data, texture = self.data(model.solid)
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
                                               state.scene.ambient):
                 put(prog, name, value)
-            for name, value in self._facts(model.solid)[1].items():
-                put(prog, name, value)
+            texture.use(location=self.UNIT)
+            put(prog, "u_csg", self.UNIT)
+            put(prog, "u_csg_nodes", data.nodes)
+            put(prog, "u_csg_ops", data.ops)
+            put(prog, "u_csg_bvh", data.bvh)
+            put(prog, "u_csg_program", data.program)
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
             put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))
@@ -242,13 +318,17 @@ class CsgPass(GLResource):
             ctx.cull_face = "front"  # the box's back faces: inside it or outside, every pixel
             self.vertex_array(prog).render(moderngl.TRIANGLES)
             ctx.cull_face = "back"
-            n_polygons += len(model.solid.leaves())
+            n_polygons += data.leaves
 
     def _release_extra(self) -> None:
-        """The programs and vertex arrays (the box's buffers are in ``_objects``)."""
+        """The programs, textures and vertex arrays (the box's buffers are in
+        ``_objects``)."""
         for p in self._programs.values():
             p.release()
         self._programs.clear()
+        for _, _, tex in self._data.values():
+            tex.release()
+        self._data.clear()
         if self._box is not None:
             for vao in self._box[2].values():
                 vao.release()

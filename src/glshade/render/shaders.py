@@ -18,7 +18,7 @@ from ..modes import ShadingMode
 from .base import GLResource
 from .programs import ProgramKey
 
-__all__ = ["shader_dir", "ShaderLibrary", "assemble", "splice", "PROGRAMS"]
+__all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS"]
 
 #: program of each mode: (vertex shader file, fragment shader file) under shaders/
 PROGRAMS = {
@@ -30,8 +30,6 @@ PROGRAMS = {
     ShadingMode.RADIOSITY: ("radiosity.vert", "radiosity.frag"),
 }
 
-#: how a compile error names code spliced into a fragment program (the CSG tree)
-GENERATED = "<generated code>"
 _INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')
 _MAX_DEPTH = 8
 
@@ -92,30 +90,6 @@ def assemble(name: str, root: Path | None = None,
     return "\n".join(expand(name, 0, root)) + "\n", files
 
 
-_LINE = re.compile(r"^\s*#line\s+(\d+)\s+(\d+)\s*$")
-
-
-def splice(source: tuple[str, list[str]], marker: str, code: str,
-           name: str = "<generated>") -> tuple[str, list[str]]:
-    """Put generated ``code`` where the ``marker`` line is in an assembled ``source``, with
-    ``#line`` directives on both sides: the code counts as a source string of its own
-    (``name``, from line 1), and the file resumes at the marker's next line, so a driver's
-    line numbers stay true on either side (moderngl-window's ShaderSource does the same)."""
-    text, files = source
-    lines = text.split("\n")
-    at = next((i for i, text in enumerate(lines) if text.strip() == marker.strip()), None)
-    if at is None:
-        raise ShaderError(f"{files[0]}: no line {marker!r} to put the generated code at")
-    number, line = 0, 1  # the file and the line number the next source line has
-    for current in lines[:at]:
-        found = _LINE.match(current)
-        if found:
-            line, number = int(found.group(1)), int(found.group(2))
-        else:
-            line += 1
-    generated = len(files)
-    lines[at:at + 1] = [f"#line 1 {generated}", *code.split("\n"), f"#line {line + 1} {number}"]
-    return "\n".join(lines), [*files, name]
 
 
 # Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C0000: ..."; others "ERROR: 0:12: ..."
@@ -123,10 +97,8 @@ _ERROR_LINE = re.compile(r"(?:ERROR:\s*)?(\d+)[:(](\d+)\)?(?:\(\d+\))?\s*:?\s*(.
 
 
 def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[str]]],
-                          root: Path | None = None,
-                          generated: dict[str, str] | None = None) -> str:
-    """Turn a driver's compile log into ``file:line: message`` lines with the source line
-    (``generated``: the text of spliced source strings, by name)."""
+                          root: Path | None = None) -> str:
+    """Turn a driver's compile log into ``file:line: message`` lines with the source line."""
     out = []
     for raw in driver_text.splitlines():
         m = _ERROR_LINE.search(raw)
@@ -137,10 +109,7 @@ def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[s
             if number < len(files):
                 file = files[number]
                 try:
-                    if generated and file in generated:
-                        whole = generated[file]
-                    else:
-                        whole = ((root or shader_dir()) / file).read_text(encoding="utf-8")
+                    whole = ((root or shader_dir()) / file).read_text(encoding="utf-8")
                     src = whole.splitlines()[line - 1].strip()
                 except (OSError, IndexError):
                     src = ""
@@ -171,17 +140,9 @@ class ShaderLibrary(GLResource):
         return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,
-                defines: tuple[str, ...] = (), insert: tuple[str, str] | None = None,
-                geom: str | None = None):
-        """Compile and link one program; a failure raises ShaderError naming file and line.
-        ``insert``: (a marker line of the fragment source, generated code to put there),
-        spliced with ``#line`` directives (:func:`splice`) so errors name the right line."""
+                defines: tuple[str, ...] = (), geom: str | None = None):
+        """Compile and link one program; a failure raises ShaderError naming file and line."""
         vs, frag_src = assemble(vert, root, defines), assemble(frag, root, defines)
-        generated = {}
-        if insert is not None:
-            marker, code = insert
-            frag_src = splice(frag_src, marker, code, GENERATED)
-            generated[GENERATED] = code
         gs = assemble(geom, root, defines) if geom else None
         try:
             return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0],
@@ -193,7 +154,7 @@ class ShaderLibrary(GLResource):
             found = re.search(r"^(vertex_shader|fragment_shader|geometry_shader)\s*$", text,
                               re.M)
             which = found.group(1) if found else "fragment_shader"
-            detail = explain_compile_error(text, {which: stage[which]}, root, generated)
+            detail = explain_compile_error(text, {which: stage[which]}, root)
             head = f"{vert} + {frag}: GLSL {which.replace('_', ' ')} failed to compile"
             raise ShaderError(head + ("\n" + detail if detail else "") +
                               "\n--- driver log ---\n" + text.strip()) from None

@@ -14,17 +14,27 @@
 // by bisection on a sign computed without cancellation.
 
 const float INF = 1e30;
-const int MAX_LEAVES = 1024;          // 32 words of leaf bits (csg.py refuses more)
+#ifndef CSG_WORDS
+#define CSG_WORDS 32                   // words of leaf bits: 32 leaves each (csg.py picks)
+#endif
+const int MAX_LEAVES = 32 * CSG_WORDS;
 
+#ifdef CSG_BLOCK
+// a small tree: the data in a uniform block (a plain load per read, where a texture read
+// costs a sampler's work)
+layout(std140) uniform CsgData { vec4 csg_data[CSG_BLOCK]; };
+vec4 csg_texel(int i) { return csg_data[i]; }
+#else
 uniform sampler2D u_csg;               // RGBA32F, 64 texels a row
+vec4 csg_texel(int i) { return texelFetch(u_csg, ivec2(i & 63, i >> 6), 0); }
+#endif
 uniform int u_csg_nodes;               // hierarchy nodes
 uniform int u_csg_ops;                 // tree program codes
 uniform int u_csg_bvh;                 // first texel of the hierarchy
 uniform int u_csg_program;             // first texel of the program (4 codes a texel)
 
-vec4 csg_texel(int i) { return texelFetch(u_csg, ivec2(i & 63, i >> 6), 0); }
-
-// leaf k: texels 8k .. 8k+7: inverse rows 0-2, normal matrix rows 3-5, params 6, kind 7
+// leaf k: texels 8k .. 8k+7: inverse rows 0-2, normal matrix rows 3-5 (kind in 3.w),
+// params 6
 vec3 to_leaf(int k, vec4 p) {
     return vec3(dot(csg_texel(8 * k), p), dot(csg_texel(8 * k + 1), p),
                 dot(csg_texel(8 * k + 2), p));
@@ -34,7 +44,7 @@ vec3 normal_to_world(int k, vec3 n) {
                 dot(csg_texel(8 * k + 5).xyz, n));
 }
 vec4 leaf_param(int k) { return csg_texel(8 * k + 6); }
-int leaf_kind(int k) { return int(csg_texel(8 * k + 7).x); }
+int leaf_kind(int k) { return int(csg_texel(8 * k + 3).w); }
 
 // kinds: 0 sphere, 1 box, 2 cylinder, 3 cone, 4 torus, 5 half-space
 bool leaf_contains(int kind, vec4 q, vec3 p) {
@@ -181,7 +191,10 @@ void leaf_offer(int k, vec3 ro, vec3 rd, float t_cur, int leaf_cur,
                 inout float best, inout int best_leaf) {
     int kind = leaf_kind(k);
     vec4 q = leaf_param(k);
-    vec3 o = to_leaf(k, vec4(ro, 1.0)), d = to_leaf(k, vec4(rd, 0.0));
+    vec4 m0 = csg_texel(8 * k), m1 = csg_texel(8 * k + 1), m2 = csg_texel(8 * k + 2);
+    vec4 ro1 = vec4(ro, 1.0);
+    vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
+    vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
     float t0, t1;
     if (kind == 0) {
         if (quadratic(dot(d, d), 2.0 * dot(o, d), dot(o, o) - q.x * q.x, t0, t1)) {
@@ -229,7 +242,19 @@ bool box_span(vec3 ro, vec3 inv, vec3 lo, vec3 hi, out float t0, out float t1) {
     return t0 <= t1;
 }
 
-uint leaf_bits[MAX_LEAVES / 32];
+#if CSG_WORDS == 1
+uint leaf_bits0;
+#define LEAF_BIT(k) ((leaf_bits0 >> uint(k)) & 1u)
+#define SET_LEAF(k) leaf_bits0 |= 1u << uint(k)
+#define FLIP_LEAF(k) leaf_bits0 ^= 1u << uint(k)
+#define CLEAR_LEAVES() leaf_bits0 = 0u
+#else
+uint leaf_bits[CSG_WORDS];
+#define LEAF_BIT(k) ((leaf_bits[(k) >> 5] >> uint((k) & 31)) & 1u)
+#define SET_LEAF(k) leaf_bits[(k) >> 5] |= 1u << uint((k) & 31)
+#define FLIP_LEAF(k) leaf_bits[(k) >> 5] ^= 1u << uint((k) & 31)
+#define CLEAR_LEAVES() for (int w = 0; w < CSG_WORDS; ++w) leaf_bits[w] = 0u
+#endif
 
 bool tree_inside() {
     uint stack = 0u;
@@ -238,7 +263,7 @@ bool tree_inside() {
         for (int c = 0; c < 4 && j + c < u_csg_ops; ++c) {
             int code = int(codes[c]);
             if (code >= 0) {
-                stack = (stack << 1) | ((leaf_bits[code >> 5] >> uint(code & 31)) & 1u);
+                stack = (stack << 1) | LEAF_BIT(code);
             } else {
                 bool x = (stack & 1u) != 0u, y = (stack & 2u) != 0u;
                 stack >>= 2;
@@ -254,14 +279,14 @@ bool tree_inside() {
 // the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
-    for (int w = 0; w < MAX_LEAVES / 32; ++w) leaf_bits[w] = 0u;
+    CLEAR_LEAVES();
     // the leaves the ray starts in: only those whose boxes hold the start
     for (int i = 0; i < u_csg_nodes;) {
         vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
         if (any(lessThan(ro, a.xyz)) || any(greaterThan(ro, b.xyz))) { i = int(a.w); continue; }
         int k = int(b.w);
         if (k >= 0 && leaf_contains(leaf_kind(k), leaf_param(k), to_leaf(k, vec4(ro, 1.0))))
-            leaf_bits[k >> 5] |= 1u << uint(k & 31);
+            SET_LEAF(k);
         i++;
     }
     bool start = tree_inside();
@@ -282,7 +307,7 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
             i++;
         }
         if (best_leaf < 0) return -1;
-        leaf_bits[best_leaf >> 5] ^= 1u << uint(best_leaf & 31);
+        FLIP_LEAF(best_leaf);
         if (tree_inside() != start) { t_hit = best; return best_leaf; }
         t_cur = best;
         leaf_cur = best_leaf;

@@ -56,6 +56,9 @@ _KIND_CODE: dict[type, int] = {L.Sphere: 0, L.Box: 1, L.Cylinder: 2, L.Cone: 3, 
                                L.HalfSpace: 5}
 _UNION, _INTERSECTION, _DIFFERENCE, _DIFFERENCE_SWAPPED = -1, -2, -3, -4
 _ROW = 64  # texels a row of the data texture
+#: the programs' size classes: (leaves at most, words of leaf bits, vec4s of a uniform
+#: block holding the data, or 0: a texture). 1,024 vec4s are the 16 KiB every GL 3.3 has.
+_CLASSES = ((32, 1, 1024), (64, 2, 1024), (256, 8, 0), (1024, 32, 0))
 _FAR = 1e30  # an unbounded leaf's box
 
 
@@ -135,6 +138,10 @@ def _program(booleans: list, root) -> tuple[list[int], int]:
     return codes, need.get(root, 1)
 
 
+def _size_class(leaves: int) -> tuple[int, int, int]:
+    return next(c for c in _CLASSES if c[0] >= leaves)
+
+
 def _leaf_box(leaf, matrix) -> np.ndarray:
     b = leaf.bounds
     if b is None:
@@ -199,7 +206,7 @@ def tree_data(solid: Solid) -> TreeData:
         leaf_rows[k, 0:3] = inv[:3]
         leaf_rows[k, 3:6, :3] = sign * inv[:3, :3].T
         leaf_rows[k, 6] = _params(leaf)
-        leaf_rows[k, 7, 0] = _KIND_CODE[type(leaf)]
+        leaf_rows[k, 3, 3] = _KIND_CODE[type(leaf)]
     boxes = np.array([_leaf_box(leaf, m) for leaf, m, _ in leaves])
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
     ops = np.full(-(-len(codes) // 4) * 4, _UNION, np.float64)
@@ -231,7 +238,8 @@ class CsgPass(GLResource):
         self._data: dict[int, tuple] = {}
 
     def data(self, solid: Solid) -> tuple[TreeData, Any]:
-        """(tree data, texture) of a solid, made once while it lives."""
+        """(tree data, its texture or uniform buffer) of a solid, made once while it
+        lives."""
         self._check()
         for key in [k for k, v in self._data.items() if v[0]() is None]:
             self._data.pop(key)[2].release()
@@ -240,24 +248,34 @@ class CsgPass(GLResource):
             if found is not None:
                 found[2].release()
             data = tree_data(solid)
-            rows = len(data.texels) // _ROW
-            tex = self.context.ctx.texture((_ROW, rows), 4, data.texels.tobytes(), dtype="f4")
-            tex.filter = (0x2600, 0x2600)  # NEAREST (texelFetch reads it anyway)
-            found = self._data[id(solid)] = (weakref.ref(solid), data, tex)
+            block = _size_class(data.leaves)[2]
+            ctx = self.context.ctx
+            if block:
+                store = ctx.buffer(data.texels.tobytes().ljust(16 * block, b"\0"))
+            else:
+                store = ctx.texture((_ROW, len(data.texels) // _ROW), 4,
+                                    data.texels.tobytes(), dtype="f4")
+                store.filter = (0x2600, 0x2600)  # NEAREST (texelFetch reads it anyway)
+            found = self._data[id(solid)] = (weakref.ref(solid), data, store)
         return found[1], found[2]
 
-    def program(self, key):
+    def program(self, key, leaves: int):
+        """The program of a variant for a tree of ``leaves``: one per size class (32, 256 or
+        1,024 leaves: the words of leaf bits it keeps), never per tree."""
         self._check()
-        found = self._programs.get(key)
+        _, words, block = _size_class(leaves)
+        found = self._programs.get((key, words))
         if found is None:
-            defines = tuple(key.defines())
+            defines = (*key.defines(), f"CSG_WORDS {words}")
+            if block:
+                defines += (f"CSG_BLOCK {block}",)
             if key.mode is ShadingMode.NORMALS:
                 defines += ("SHOW_NORMALS",)
             elif key.mode is ShadingMode.DEPTH:
                 defines += ("SHOW_DEPTH",)
             elif key.mode is ShadingMode.FLAT:
                 defines += ("FLAT_FACES",)
-            found = self._programs[key] = self.shaders.compile("csg.vert", "csg.frag",
+            found = self._programs[(key, words)] = self.shaders.compile("csg.vert", "csg.frag",
                                                                defines=defines)
         return found
 
@@ -290,15 +308,19 @@ class CsgPass(GLResource):
         for model in state.scene.solids:
             if not model.visible:
                 continue
-            prog = self.program(ProgramKey.of(state.variant, two_sided=False))
             data, texture = self.data(model.solid)
+            prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves)
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
                                               state.scene.ambient):
                 put(prog, name, value)
-            texture.use(location=self.UNIT)
-            put(prog, "u_csg", self.UNIT)
+            if _size_class(data.leaves)[2]:
+                prog["CsgData"].binding = self.UNIT
+                texture.bind_to_uniform_block(self.UNIT)
+            else:
+                texture.use(location=self.UNIT)
+                put(prog, "u_csg", self.UNIT)
             put(prog, "u_csg_nodes", data.nodes)
             put(prog, "u_csg_ops", data.ops)
             put(prog, "u_csg_bvh", data.bvh)

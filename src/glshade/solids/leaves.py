@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import GeometryError
-from .tree import (Events, Solid, _by_distance, _convex, _interval, _positive, _quadratic,
-                     _vec)
+from .tree import (Events, Solid, _by_distance, _convex, _finite, _interval, _positive,
+                   _quadratic, _vec)
 
 __all__ = ["Sphere", "Box", "Cylinder", "Cone", "Torus", "HalfSpace"]
 
@@ -246,7 +246,7 @@ class HalfSpace(_Leaf):
         length = np.linalg.norm(n)
         if length == 0:
             raise GeometryError("half-space normal must not be zero")
-        self.normal, self.offset = n / length, float(offset) / length
+        self.normal, self.offset = n / length, _finite(offset, "half-space offset") / length
 
     def _contains(self, p):
         return p @ self.normal <= self.offset

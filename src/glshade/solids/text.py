@@ -58,6 +58,9 @@ def parse_solid(text: str, where: str = "solid"):
     try:
         # (in parentheses: a tree may run over several lines)
         tree = ast.parse(f"(\n{text.strip()}\n)", mode="eval")
+    except (RecursionError, MemoryError):
+        raise InputError(f"{where}: the expression is nested too deeply to read (parentheses "
+                         "inside parentheses); write long runs flat: a | b | c ...") from None
     except SyntaxError as exc:
         lines = text.strip().splitlines()
         line = (exc.lineno or 0) - 1  # (line 0 and the last are the wrapping parentheses)
@@ -82,18 +85,39 @@ def parse_solid(text: str, where: str = "solid"):
         raise InputError(f"{where}: expected a number or a list of numbers, got "
                          f"{ast.unparse(node)!r}")
 
-    def solid(node):
-        if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
-            return getattr(solid(node.left), _OPS[type(node.op)])(solid(node.right))
-        if isinstance(node, ast.Call) and not node.keywords:
-            f = node.func
-            if isinstance(f, ast.Name) and f.id in leaves:
-                return leaves[f.id](*[value(a) for a in node.args])
-            if isinstance(f, ast.Attribute) and f.attr in _METHODS:
-                return _METHODS[f.attr](solid(f.value), *[value(a) for a in node.args])
-        raise InputError(f"{where}: {ast.unparse(node)!r} is not a solid: use "
-                         f"{', '.join(leaves)}(...), |, &, -, and .move/.scale/.turn/"
-                         ".transform")
+    def not_a_solid(node):
+        return InputError(f"{where}: {ast.unparse(node)!r} is not a solid: use "
+                          f"{', '.join(leaves)}(...), |, &, -, and .move/.scale/.turn/"
+                          ".transform")
+
+    def solid(root):
+        """Evaluated without recursion (a 1,000-long chain of | or .move is fine): a
+        post-order walk with an explicit stack of pending nodes and a stack of values."""
+        values: list = []
+        work: list = [(root, False)]
+        while work:
+            node, ready = work.pop()
+            if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
+                if ready:
+                    right, left = values.pop(), values.pop()
+                    values.append(getattr(left, _OPS[type(node.op)])(right))
+                else:
+                    work += [(node, True), (node.right, False), (node.left, False)]
+                continue
+            if isinstance(node, ast.Call) and not node.keywords:
+                f = node.func
+                if isinstance(f, ast.Name) and f.id in leaves:
+                    values.append(leaves[f.id](*[value(a) for a in node.args]))
+                    continue
+                if isinstance(f, ast.Attribute) and f.attr in _METHODS:
+                    if ready:
+                        values.append(_METHODS[f.attr](values.pop(),
+                                                       *[value(a) for a in node.args]))
+                    else:
+                        work += [(node, True), (f.value, False)]
+                    continue
+            raise not_a_solid(node)
+        return values[0]
 
     try:
         return solid(tree.body)

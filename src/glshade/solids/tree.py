@@ -26,7 +26,16 @@ from numpy.typing import ArrayLike
 from ..errors import GeometryError
 from ..geometry.analytic import affine_matrix
 
-__all__ = ["Solid", "Union", "Intersection", "Difference", "Transformed", "Events"]
+__all__ = ["Solid", "Union", "Intersection", "Difference", "Transformed", "Events",
+           "MAX_DEPTH", "SIZE_RANGE"]
+
+#: sizes, offsets and translations within (1 / SIZE_RANGE, SIZE_RANGE) in magnitude: their
+#: squares stay finite and normal in float32 (the GPU's numbers)
+SIZE_RANGE = 1e15
+#: the deepest a tree may be after rebalancing (its runs of one operator rebuilt balanced;
+#: a move folds into the transform below it): well inside Python's recursion limit, which
+#: the numpy reference's walk down the tree uses
+MAX_DEPTH = 200
 
 
 class Events:
@@ -52,6 +61,8 @@ class Solid:
     """A node of a CSG tree."""
 
     width = 2  # events per ray (a leaf with one interval)
+    depth = 1  # levels, the node's own included
+    n_leaves = 1
 
     def __or__(self, other):
         return Union(self, _solid(other))
@@ -83,7 +94,17 @@ class Solid:
 
     # the tree
     def leaves(self) -> list:
-        return [self]
+        """The leaves, left to right (iterative: any depth)."""
+        out, stack = [], [self]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, Transformed):
+                stack.append(node.child)
+            elif isinstance(node, _Boolean):
+                stack += [node.b, node.a]
+            else:
+                out.append(node)
+        return out
 
     def contains(self, points: ArrayLike) -> np.ndarray:
         """``(N,) bool``: which points lie in the solid (its boundary included)."""
@@ -161,10 +182,31 @@ def _solid(x) -> Solid:
 
 
 def _vec(v, what) -> np.ndarray:
-    a = np.asarray(v, np.float64)
+    try:
+        a = np.asarray(v, np.float64)
+    except (TypeError, ValueError):
+        raise GeometryError(f"{what} must be 3 finite numbers, got {v!r}") from None
     if a.shape != (3,) or not np.isfinite(a).all():
         raise GeometryError(f"{what} must be 3 finite numbers, got {v!r}")
+    if np.abs(a).max() >= SIZE_RANGE:
+        raise GeometryError(f"{what} {_plain(a)} is too large: keep it under "
+                            f"{SIZE_RANGE:g}")
     return a
+
+
+def _plain(a) -> str:
+    return "(" + ", ".join(f"{float(x):g}" for x in np.ravel(a)) + ")"
+
+
+def _finite(value, what) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise GeometryError(f"{what} must be a number, got {value!r}") from None
+    if not np.isfinite(v) or abs(v) >= SIZE_RANGE:
+        raise GeometryError(f"{what} must be a finite number under {SIZE_RANGE:g}, got "
+                            f"{v:g}")
+    return v
 
 
 def _points(p) -> np.ndarray:
@@ -175,9 +217,15 @@ def _points(p) -> np.ndarray:
 
 
 def _positive(value, what) -> float:
-    v = float(value)
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise GeometryError(f"{what} must be a positive number, got {value!r}") from None
     if not np.isfinite(v) or v <= 0:
-        raise GeometryError(f"{what} must be a positive number, got {value!r}")
+        raise GeometryError(f"{what} must be a positive number, got {v:g}")
+    if not 1 / SIZE_RANGE < v < SIZE_RANGE:
+        raise GeometryError(f"{what} {v:g} is out of range: sizes lie between "
+                            f"{1 / SIZE_RANGE:g} and {SIZE_RANGE:g}")
     return v
 
 
@@ -249,6 +297,53 @@ class _Boolean(Solid):
     def __init__(self, a: Solid, b: Solid):
         self.a, self.b = _solid(a), _solid(b)
         self.width = a.width + b.width
+        self.n_leaves = a.n_leaves + b.n_leaves
+        self.depth = 1 + max(a.depth, b.depth)
+        if self.depth > int(self.n_leaves).bit_length() + 4:
+            self._rebalance()
+        if self.depth > MAX_DEPTH:
+            raise GeometryError(f"this CSG tree is {self.depth} levels deep even rebalanced "
+                                f"(its {self.n_leaves:,} leaves alternate operators); the "
+                                f"limit is {MAX_DEPTH}: group them, e.g. (a | b) & (c | d)")
+
+    def _run(self) -> list[Solid]:
+        """The operands of the run of this operator below (and including) this node, left
+        to right; for a difference, the left spine's base and then its subtracted operands
+        (``((a - b) - c)`` is ``a - (b | c)``)."""
+        kind = type(self)
+        if kind is Difference:
+            spine: Solid = self
+            rights: list[Solid] = []
+            while type(spine) is Difference:
+                rights.append(spine.b)  # type: ignore[attr-defined]
+                spine = spine.a  # type: ignore[attr-defined]
+            return [spine, *reversed(rights)]
+        out: list[Solid] = []
+        stack: list[Solid] = [self]
+        while stack:
+            node = stack.pop()
+            if type(node) is kind:
+                stack += [node.b, node.a]  # type: ignore[attr-defined]
+            else:
+                out.append(node)
+        return out
+
+    def _rebalance(self) -> None:
+        """Rebuild this node's run of one operator as a balanced tree, in place, keeping
+        the leaves' order (and so their ids and the tie rule)."""
+        operands = self._run()
+        if isinstance(self, Difference):
+            base = operands[0]
+            cut = [x for op in operands[1:]
+                   for x in (op._run() if type(op) is Union else [op])]  # type: ignore
+            if len(cut) < 2:
+                return
+            a, b = base, _balanced(Union, cut)
+        else:
+            half = len(operands) // 2
+            a, b = _balanced(type(self), operands[:half]), _balanced(type(self), operands[half:])
+        self.a, self.b = a, b
+        self.depth = 1 + max(a.depth, b.depth)
 
     def leaves(self) -> list:
         return [*self.a.leaves(), *self.b.leaves()]
@@ -277,6 +372,19 @@ class _Boolean(Solid):
                      .astype(np.int8), np.where(change[..., None], ev.normal, 0.0),
                      np.where(change, ev.leaf, -1))
         return out.sorted()
+
+
+def _balanced(kind, operands: list[Solid]) -> Solid:
+    """``operands[0] op operands[1] op ...`` as a balanced tree (log2 levels)."""
+    if len(operands) == 1:
+        return operands[0]
+    half = len(operands) // 2
+    node = kind.__new__(kind)
+    a, b = _balanced(kind, operands[:half]), _balanced(kind, operands[half:])
+    node.a, node.b = a, b
+    node.width, node.n_leaves = a.width + b.width, a.n_leaves + b.n_leaves
+    node.depth = 1 + max(a.depth, b.depth)
+    return node
 
 
 OUT, IN, MAYBE = 0, 1, 2
@@ -331,10 +439,19 @@ class Transformed(Solid):
     """A solid moved by a nonsingular affine matrix (column vectors)."""
 
     def __init__(self, child: Solid, matrix):
-        self.child = _solid(child)
-        self.matrix = affine_matrix(matrix, "CSG transform")
+        child = _solid(child)
+        m = affine_matrix(matrix, "CSG transform")
+        if isinstance(child, Transformed):  # (a chain of moves is one move: no depth)
+            m = affine_matrix(m @ child.matrix, "CSG transform (composed)")
+            child = child.child
+        if np.abs(m[:3, 3]).max() >= SIZE_RANGE:
+            raise GeometryError(f"CSG translation {_plain(m[:3, 3])} is too large: keep it "
+                                f"under {SIZE_RANGE:g}")
+        self.child, self.matrix = child, m
         self.inverse = np.linalg.inv(self.matrix)
         self.width = child.width
+        self.n_leaves = child.n_leaves
+        self.depth = child.depth + 1
 
     def leaves(self) -> list:
         return self.child.leaves()

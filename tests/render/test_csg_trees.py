@@ -65,7 +65,7 @@ def test_random_trees_match_the_numpy_reference(leaves, make_renderer):
 
 
 def test_a_thousand_long_union_is_rebalanced_and_exact(make_renderer):
-    """1,000 balls joined one by one: depth 14 at most after rebalancing, and on the GPU every pixel's
+    """1,000 balls joined one by one: 14 deep at most, rebalanced; on the GPU every pixel's
     depth is the nearest ray-sphere entry, computed here in closed form."""
     rng = np.random.default_rng(5)
     centres, radii = rng.uniform(-3, 3, (1000, 3)), rng.uniform(0.15, 0.35, 1000)

@@ -315,15 +315,15 @@ class _Boolean(Solid):
             spine: Solid = self
             rights: list[Solid] = []
             while type(spine) is Difference:
-                rights.append(spine.b)  # type: ignore[attr-defined]
-                spine = spine.a  # type: ignore[attr-defined]
+                rights.append(spine.b)
+                spine = spine.a
             return [spine, *reversed(rights)]
         out: list[Solid] = []
         stack: list[Solid] = [self]
         while stack:
             node = stack.pop()
             if type(node) is kind:
-                stack += [node.b, node.a]  # type: ignore[attr-defined]
+                stack += [node.b, node.a]
             else:
                 out.append(node)
         return out
@@ -335,7 +335,7 @@ class _Boolean(Solid):
         if isinstance(self, Difference):
             base = operands[0]
             cut = [x for op in operands[1:]
-                   for x in (op._run() if type(op) is Union else [op])]  # type: ignore
+                   for x in (op._run() if isinstance(op, Union) else [op])]
             if len(cut) < 2:
                 return
             a, b = base, _balanced(Union, cut)
@@ -437,6 +437,9 @@ class Difference(_Boolean):
 
 class Transformed(Solid):
     """A solid moved by a nonsingular affine matrix (column vectors)."""
+
+    child: Solid
+    matrix: np.ndarray
 
     def __init__(self, child: Solid, matrix):
         child = _solid(child)

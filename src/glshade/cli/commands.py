@@ -30,9 +30,22 @@ def render(args: a.RenderCommandArgs) -> int:
         image = renderer.render(job.scene, job.camera, options)
     save_image(image, args.output)
     if not args.quiet:
-        print(f"{args.output}: {width}x{height} {options.mode.value}, {job.polygons:,} "
-              f"polygons ({renderer.backend})")
+        print(f"{args.output}: {width}x{height} {options.mode.value}, "
+              f"{_contents(job.scene)} ({renderer.backend})")
     return EXIT_OK
+
+
+def _contents(scene) -> str:
+    """What a scene holds, in words: "1,200 polygons", "1 solid, 7 leaves", or both."""
+    parts = []
+    polygons = sum(m.mesh.n_faces for m in scene.models)
+    if scene.models:
+        parts.append(f"{polygons:,} polygon{'s' if polygons != 1 else ''}")
+    if scene.solids:
+        n, leaves = len(scene.solids), sum(s.solid.n_leaves for s in scene.solids)
+        parts.append(f"{n} solid{'s' if n != 1 else ''}, {leaves:,} "
+                     f"lea{'ves' if leaves != 1 else 'f'}")
+    return ", ".join(parts) or "nothing"
 
 
 #: seconds of a mesh's turntable when neither --frames nor --duration is given

@@ -40,19 +40,40 @@ def topology_summary(mesh) -> dict:
     return out
 
 
-def solid_summary(solid, depth: int = 6) -> dict:
-    """Volume (Monte Carlo, and the octree's bounds), bounds, leaves and the octree's
-    cells and memory per level."""
+#: leaf tests an ``info`` octree may make (cells classified times leaves): its depth is
+#: the deepest that stays within it, so a large tree stays quick
+OCTREE_BUDGET = 3_000_000
+
+
+def octree_depth(leaves: int, deepest: int = 6) -> int:
+    """The octree depth for a tree of ``leaves``: boundary cells grow about 4x a level, so
+    each level deeper costs 4x; at least 2."""
+    depth = deepest
+    while depth > 2 and 8 * 6 * 4 ** (depth - 1) * leaves > OCTREE_BUDGET:
+        depth -= 1
+    return depth
+
+
+def solid_summary(solid, depth: int | None = None) -> dict:
+    """Volume (Monte Carlo, and the octree's bounds), bounds, leaves, tree depth and the
+    octree's cells and memory per level (its depth from :func:`octree_depth` unless
+    given), with the seconds it took."""
+    import time
+
     from ..octree import Octree
 
+    start = time.perf_counter()
+    leaves = solid.n_leaves
+    depth = octree_depth(leaves) if depth is None else depth
     volume, error = solid.volume()
     tree = Octree.from_solid(solid, depth)
     inner, outer = tree.volume_bounds()
     b = solid.bounds
-    return {"kind": "CSG solid", "leaves": len(solid.leaves()),
+    return {"kind": "CSG solid", "leaves": leaves, "tree_depth": solid.depth,
             "bounds": {"min": b[0].tolist(), "max": b[1].tolist()},
             "volume": volume, "volume_error": error, "octree_depth": depth,
-            "octree_volume_bounds": [inner, outer], "octree_levels": tree.counts()}
+            "octree_volume_bounds": [inner, outer], "octree_levels": tree.counts(),
+            "seconds": time.perf_counter() - start}
 
 
 def _solid_info(args: InfoArgs, solid) -> int:
@@ -62,8 +83,10 @@ def _solid_info(args: InfoArgs, solid) -> int:
         print(json.dumps(s, indent=2))
         return EXIT_OK
     lo, hi = s["bounds"]["min"], s["bounds"]["max"]
-    print(f"source        {args.mesh}")
-    print(f"kind          CSG solid, {s['leaves']} leaves")
+    source = args.mesh if len(args.mesh) <= 90 else \
+        f"{args.mesh[:80]}... ({len(args.mesh):,} characters)"
+    print(f"source        {source}")
+    print(f"kind          CSG solid, {s['leaves']:,} leaves, {s['tree_depth']} levels deep")
     print(f"bounding box  [{', '.join(f'{x:.4g}' for x in lo)}] .. "
           f"[{', '.join(f'{x:.4g}' for x in hi)}]")
     print(f"volume        {s['volume']:.6g} +- {s['volume_error']:.2g} (Monte Carlo); "
@@ -73,6 +96,7 @@ def _solid_info(args: InfoArgs, solid) -> int:
     for c in s["octree_levels"]:
         print(f"         {c['level']:>5} {c['inside']:>9,} {c['outside']:>9,} "
               f"{c['boundary']:>9,} {c['bytes']:>9,}")
+    print(f"({s['seconds']:.2f} s)")
     return EXIT_OK
 
 

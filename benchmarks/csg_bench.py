@@ -1,5 +1,7 @@
-"""CSG and octrees: rays per second of the GLSL ray-casting pass at 512x512 for a 7-leaf
-tree, against rasterising the same tree's manifold3d mesh (when the ``csg`` extra is
+"""CSG and octrees: first-frame and steady frame time of the GLSL ray-casting pass at
+512x512 against leaf count (a plate with n - 1 holes, 1..1,024 leaves: one program for
+every tree, so the first frame is the data upload, not a compile); rays per second for a
+7-leaf tree, against rasterising the same tree's manifold3d mesh (when the ``csg`` extra is
 installed; its meshing time apart) and against the numpy reference; then octree build
 time and cells per level at depths 4..9 (boundary cells should grow ~4x a level, not 8x).
 
@@ -51,7 +53,41 @@ def manifold_of(radial: int = 96):
     return Mesh(np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts))
 
 
+def plate(leaves: int):
+    """A plate with ``leaves - 1`` holes in a grid (the holes a balanced union)."""
+    n = leaves - 1
+    side = max(int(np.ceil(np.sqrt(n))), 1)
+    holes = [Cylinder(0.9 / side, 1.0).translated(((i % side + 0.5) * 3 / side - 1.5, 0,
+                                                   (i // side + 0.5) * 3 / side - 1.5))
+             for i in range(n)]
+    solid = Box((3.2, 0.3, 3.2))
+    if holes:
+        cut = holes[0]
+        for h in holes[1:]:
+            cut = cut | h
+        solid = solid - cut
+    return solid
+
+
+def by_leaves() -> None:
+    rows = []
+    with Renderer(*SIZE, samples=0) as r:
+        r.render(Scene(), CAMERA)  # (the context and the mesh programs, apart)
+        for leaves in (1, 4, 16, 64, 256, 1024):
+            scene = Scene()
+            scene.add(plate(leaves))
+            t = time.perf_counter()
+            r.render(scene, CAMERA)
+            first = time.perf_counter() - t
+            steady = interleaved({"s": lambda s=scene: r.render(s, CAMERA)}, repeats=3)["s"]
+            rows.append((f"{leaves:,}", f"{1000 * first:.0f}", f"{1000 * steady:.1f}"))
+    print(f"a plate with holes at {SIZE[0]}x{SIZE[1]}: one program for every tree")
+    print(table(rows, ("leaves", "first frame ms", "steady ms")))
+    print()
+
+
 def main() -> None:
+    by_leaves()
     solid = tree()
     scene = Scene()
     scene.add(solid)

@@ -7,7 +7,7 @@
 // Along the pixel's ray the state of every leaf (inside or not) is kept in a bit set. The
 // walk: find the next leaf boundary after the current one (the hierarchy skips leaves whose
 // box the ray misses or meets only beyond the best so far); flip that leaf's bit; run the
-// tree program on the bits; the first boundary where the tree's answer changes is the
+// tree program on the bits (skipping subtrees the ray is in none of the leaves of); the first boundary where the tree's answer changes is the
 // surface. Ties (coincident faces) go by leaf order: the left operand's face shows.
 // Leaf boundaries are exact: closed-form roots, the torus's quartic split at the roots of its
 // derivative (a cubic, in closed form) into monotone pieces, each root bracketed and refined
@@ -31,7 +31,9 @@ vec4 csg_texel(int i) { return texelFetch(u_csg, ivec2(i & 63, i >> 6), 0); }
 uniform int u_csg_nodes;               // hierarchy nodes
 uniform int u_csg_ops;                 // tree program codes
 uniform int u_csg_bvh;                 // first texel of the hierarchy
-uniform int u_csg_program;             // first texel of the program (4 codes a texel)
+uniform int u_csg_program;             // first texel of the program (code, first record)
+uniform int u_csg_records;             // first texel of the skip records
+                                       // (end position, first leaf, last leaf, next)
 
 // leaf k: texels 8k .. 8k+7: inverse rows 0-2, normal matrix rows 3-5 (kind in 3.w),
 // params 6
@@ -256,22 +258,46 @@ uint leaf_bits[CSG_WORDS];
 #define CLEAR_LEAVES() for (int w = 0; w < CSG_WORDS; ++w) leaf_bits[w] = 0u
 #endif
 
+// is the ray inside any of the leaves first .. last?
+bool any_inside(int first, int last) {
+    for (int w = first >> 5; w <= (last >> 5); ++w) {
+        int a = max(first - 32 * w, 0), b = min(last - 32 * w, 31);
+        uint mask = (b - a == 31 ? 0xffffffffu : ((1u << uint(b - a + 1)) - 1u)) << uint(a);
+#if CSG_WORDS == 1
+        if ((leaf_bits0 & mask) != 0u) return true;
+#else
+        if ((leaf_bits[w] & mask) != 0u) return true;
+#endif
+    }
+    return false;
+}
+
 bool tree_inside() {
     uint stack = 0u;
-    for (int j = 0; j < u_csg_ops; j += 4) {
-        vec4 codes = csg_texel(u_csg_program + j / 4);
-        for (int c = 0; c < 4 && j + c < u_csg_ops; ++c) {
-            int code = int(codes[c]);
-            if (code >= 0) {
-                stack = (stack << 1) | LEAF_BIT(code);
-            } else {
-                bool x = (stack & 1u) != 0u, y = (stack & 2u) != 0u;
-                stack >>= 2;
-                bool v = code == -1 ? x || y : code == -2 ? x && y
-                       : code == -3 ? y && !x : x && !y;   // -3: y - x, -4: x - y
-                stack = (stack << 1) | (v ? 1u : 0u);
-            }
+    for (int j = 0; j < u_csg_ops;) {
+        vec4 e = csg_texel(u_csg_program + j);
+        int r = int(e.y);
+        while (r >= 0) {               // the largest subtree starting here the ray is not in
+            vec4 rec = csg_texel(u_csg_records + r);
+            if (!any_inside(int(rec.y), int(rec.z))) break;
+            r = int(rec.w);
         }
+        if (r >= 0) {                  // skipped: it is empty along the ray here
+            stack <<= 1;
+            j = int(csg_texel(u_csg_records + r).x) + 1;
+            continue;
+        }
+        int code = int(e.x);
+        if (code >= 0) {
+            stack = (stack << 1) | LEAF_BIT(code);
+        } else {
+            bool x = (stack & 1u) != 0u, y = (stack & 2u) != 0u;
+            stack >>= 2;
+            bool v = code == -1 ? x || y : code == -2 ? x && y
+                   : code == -3 ? y && !x : x && !y;   // -3: y - x, -4: x - y
+            stack = (stack << 1) | (v ? 1u : 0u);
+        }
+        j++;
     }
     return (stack & 1u) != 0u;
 }

@@ -12,7 +12,9 @@ tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float textur
   meets, and none beyond the nearest boundary found so far;
 - the tree as a post-order program on a stack of bits, each boolean evaluating its deeper
   operand first (so the stack never holds more than log2(leaves) + 1 bits: 32 are enough
-  for any tree up to the cap).
+  for any tree up to the cap), with skip records: a subtree none of whose leaves the ray
+  is inside is empty there (booleans of empty sets are empty), so the program jumps over
+  it -- its cost follows the leaves a ray is in, not the tree.
 
 Along a pixel's ray the program keeps every leaf's inside-bit, steps from one leaf
 boundary to the next (ties by leaf order: the left operand's face shows), flips that leaf's
@@ -73,6 +75,7 @@ class TreeData:
     ops: int
     bvh: int
     program: int
+    records: int
     stack: int
 
 
@@ -109,25 +112,37 @@ def _put(slot: list, pos: int, value) -> None:
         slot[pos] = value
 
 
-def _program(booleans: list, root) -> tuple[list[int], int]:
-    """The post-order program (codes) and its stack depth, deeper operand first."""
+def _program(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
+    """The post-order program, deeper operand first: ``(program (M, 2): code and first skip
+    record per position, records (B, 4): end position, first and last leaf, next record,
+    stack depth)``. A boolean's subtree starts at a leaf's position; the records of the
+    subtrees starting at one position, largest first, let the program skip a subtree none of
+    whose leaves the ray is inside (its value is then 0: booleans of empty sets are empty)."""
     need: dict = {}
     for b in range(len(booleans) - 1, -1, -1):  # (children come after parents)
         _, a, c = booleans[b]
         na = need.get(a, 1) if a[0] == "B" else 1
         nc = need.get(c, 1) if c[0] == "B" else 1
         need[("B", b)] = max(na, nc) if na != nc else na + 1
+    depth = lambda x: need[x] if x[0] == "B" else 1  # noqa: E731
     codes: list[int] = []
+    span: dict = {}  # node -> (start position, first leaf, last leaf)
+    starts: dict[int, list] = {}
     stack: list = [(root, False)]
     while stack:
         node, done = stack.pop()
         if node[0] == "L":
+            span[node] = (len(codes), node[1], node[1])
             codes.append(node[1])
             continue
         op, a, b = booleans[node[1]]
-        depth = lambda x: need[x] if x[0] == "B" else 1  # noqa: E731
         swapped = depth(b) > depth(a)
         if done:
+            first = b if swapped else a
+            lo = min(span[a][1], span[b][1])
+            hi = max(span[a][2], span[b][2])
+            span[node] = (span[first][0], lo, hi)
+            starts.setdefault(span[first][0], []).append((len(codes), lo, hi))
             codes.append(_UNION if op is Union else _INTERSECTION if op is Intersection
                          else _DIFFERENCE_SWAPPED if swapped else _DIFFERENCE)
             continue
@@ -135,7 +150,16 @@ def _program(booleans: list, root) -> tuple[list[int], int]:
         first, second = (b, a) if swapped else (a, b)
         stack.append((second, False))
         stack.append((first, False))
-    return codes, need.get(root, 1)
+    program = np.full((len(codes), 2), -1.0)
+    program[:, 0] = codes
+    records = []
+    for pos, subtrees in starts.items():  # (one per boolean)
+        subtrees.sort(key=lambda r: -r[0])  # the largest (latest end) first
+        program[pos, 1] = len(records)
+        for k, (end, lo, hi) in enumerate(subtrees):
+            nxt = len(records) + 1 if k + 1 < len(subtrees) else -1
+            records.append((end, lo, hi, nxt))
+    return program, np.array(records, np.float64).reshape(-1, 4), need.get(root, 1)
 
 
 def _size_class(leaves: int) -> tuple[int, int, int]:
@@ -199,7 +223,7 @@ def tree_data(solid: Solid) -> TreeData:
     if len(leaves) > MAX_LEAVES:
         raise SceneError(f"a solid of {len(leaves):,} leaves is more than the {MAX_LEAVES:,} "
                          "the GPU program serves")
-    codes, stack = _program(booleans, root)
+    program, records, stack = _program(booleans, root)
     leaf_rows = np.zeros((len(leaves), 8, 4))
     for k, (leaf, matrix, sign) in enumerate(leaves):  # (at most MAX_LEAVES)
         inv = np.linalg.inv(matrix)
@@ -209,13 +233,14 @@ def tree_data(solid: Solid) -> TreeData:
         leaf_rows[k, 3, 3] = _KIND_CODE[type(leaf)]
     boxes = np.array([_leaf_box(leaf, m) for leaf, m, _ in leaves])
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
-    ops = np.full(-(-len(codes) // 4) * 4, _UNION, np.float64)
-    ops[:len(codes)] = codes
-    parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops.reshape(-1, 4)]
+    ops = np.zeros((len(program), 4))
+    ops[:, :2] = program
+    parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records]
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
-    return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(codes),
-                    len(parts[0]), len(parts[0]) + len(parts[1]), stack)
+    return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
+                    len(parts[0]), len(parts[0]) + len(parts[1]),
+                    len(parts[0]) + len(parts[1]) + len(parts[2]), stack)
 
 
 class CsgPass(GLResource):
@@ -325,6 +350,7 @@ class CsgPass(GLResource):
             put(prog, "u_csg_ops", data.ops)
             put(prog, "u_csg_bvh", data.bvh)
             put(prog, "u_csg_program", data.program)
+            put(prog, "u_csg_records", data.records)
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
             put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))

@@ -152,7 +152,7 @@ def _program(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
         stack.append((first, False))
     program = np.full((len(codes), 2), -1.0)
     program[:, 0] = codes
-    records = []
+    records: list[tuple] = []
     for pos, subtrees in starts.items():  # (one per boolean)
         subtrees.sort(key=lambda r: -r[0])  # the largest (latest end) first
         program[pos, 1] = len(records)

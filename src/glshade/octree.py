@@ -101,6 +101,26 @@ class Octree:
     def cell_size(self, level: int) -> float:
         return self.size / 2 ** level
 
+    def __repr__(self) -> str:
+        inner, outer = self.volume_bounds()
+        return (f"<Octree: depth {self.depth}, {self.counts()[-1]['boundary']:,} boundary "
+                f"cells at the deepest; volume {inner:.4g} .. {outer:.4g}>")
+
+    def _repr_html_(self) -> str:
+        """In a notebook: its inside cells drawn, and the cells per level."""
+        from .display import facts_html, thumbnail
+        from .scene import Scene
+
+        inside = self.to_mesh("inside")
+        image = None
+        if inside.n_faces:
+            scene = Scene()
+            scene.add(inside)
+            image = thumbnail(scene, mode="flat")
+        facts = [f"level {c['level']}: {c['inside']:,} in, {c['boundary']:,} boundary"
+                 for c in self.counts()]
+        return facts_html(repr(self), facts, image)
+
     def counts(self) -> list[dict]:
         """Per level: cells inside, outside, boundary and the bytes they take."""
         return [{"level": k, "inside": int((lv.state == INSIDE).sum()),

@@ -155,6 +155,19 @@ class Mesh:
         name = f" {self.name!r}" if self.name else ""
         return f"<Mesh{name}: {self.n_vertices} vertices, {self.n_faces} faces>"
 
+    def _repr_html_(self) -> str:
+        """In a notebook: a thumbnail and the counts (:mod:`glshade.display`)."""
+        from ..display import _bounds_fact, facts_html, thumbnail
+        from ..scene import Scene
+
+        scene = Scene()
+        if self.n_faces:
+            scene.add(self)
+        facts = [f"{self.n_vertices:,} vertices, {self.n_faces:,} polygons",
+                 "closed and oriented" if self.closed_and_oriented else "open or unoriented",
+                 _bounds_fact(self.bounds if self.n_vertices else None)]
+        return facts_html(repr(self), facts, thumbnail(scene) if self.n_faces else None)
+
     @cached_property
     def size_groups(self) -> dict[int, tuple[NDArray[np.int64], NDArray[np.int64]]]:
         """``{k: (face_ids (n,), indices (n, k))}`` for every polygon size k present."""

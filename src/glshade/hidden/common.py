@@ -45,6 +45,19 @@ class HiddenResult:
     #: the object-space algorithms' paint order (depth sort, BSP), for their steps
     painted: Any = None
 
+    def __repr__(self) -> str:
+        h, w = self.face_id.shape
+        return (f"<HiddenResult {self.name} {w}x{h}: {self.seconds:.3g} s, "
+                f"{int((self.face_id >= 0).sum()):,} pixels drawn>")
+
+    def _repr_html_(self) -> str:
+        """In a notebook: the polygon ids it found, and its counters."""
+        from ..display import _id_colours, facts_html
+
+        facts = [f"{k}: {v:,}" if isinstance(v, int) else f"{k}: {v}"
+                 for k, v in self.counters.items()]
+        return facts_html(repr(self), facts, _id_colours(self.face_id))
+
 
 @dataclass
 class Prepared:

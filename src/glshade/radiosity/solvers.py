@@ -46,6 +46,20 @@ class Solution:
     #: (P, 3) each patch's standard error, for a Monte Carlo solution (None otherwise)
     se: np.ndarray | None = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        steps = self.history[-1][1] if self.history else 0
+        return (f"<Solution {self.method}: {self.problem.n_patches:,} patches, {steps:,} "
+                f"steps, unshot {self.unshot_fraction:.2%}>")
+
+    def _repr_html_(self) -> str:
+        """In a notebook: the solution drawn in the radiosity mode, and its figures."""
+        from ..display import facts_html, thumbnail
+
+        facts = [f"{self.hemicubes:,} hemicubes",
+                 f"radiosity {float(self.radiosity.min()):.4g} .. "
+                 f"{float(self.radiosity.max()):.4g}"]
+        return facts_html(repr(self), facts, thumbnail(self.scene(), mode="radiosity"))
+
     @property
     def unshot_fraction(self) -> float:
         p = self.problem

@@ -81,6 +81,26 @@ class Frame:
     normal: np.ndarray | None = None
     face_id: np.ndarray | None = None
 
+    def __repr__(self) -> str:
+        h, w = self.color.shape[:2]
+        outputs = [n for n in ("color", "depth", "normal", "face_id")
+                   if getattr(self, n) is not None]
+        drawn = "" if self.face_id is None else \
+            f"; {int((self.face_id >= 0).sum()):,} pixels drawn"
+        return f"<Frame {w}x{h}: {', '.join(outputs)}{drawn}>"
+
+    def _repr_html_(self) -> str:
+        """In a notebook: its buffers side by side (colour, depth, normals, ids)."""
+        from ..display import buffers_image, facts_html
+
+        facts = []
+        if self.depth is not None and np.isfinite(self.depth).any():
+            d = self.depth[np.isfinite(self.depth)]
+            facts.append(f"depth {float(d.min()):.4g} .. {float(d.max()):.4g}")
+        if self.face_id is not None:
+            facts.append(f"{len(np.unique(self.face_id[self.face_id >= 0])):,} polygons seen")
+        return facts_html(repr(self), facts, buffers_image(self))
+
 
 _FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
 

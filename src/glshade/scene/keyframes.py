@@ -163,6 +163,30 @@ class CameraPath:
     def end(self) -> float:
         return float(self.times[-1])
 
+    def __repr__(self) -> str:
+        return (f"<CameraPath: {len(self.keyframes)} keys over {self.duration:g} s, "
+                f"{self.orientation_interp.value} / {self.position_interp.value}>")
+
+    def _repr_html_(self) -> str:
+        """In a notebook: the eye's track seen from above (x right, z down) and the keys."""
+        from ..display import facts_html
+
+        eyes = np.array([c.position for c in self.sample(200)])
+        keys = np.array([k.position for k in self.keyframes])
+        image = np.full((160, 160, 3), 255, np.uint8)
+        lo, hi = eyes[:, [0, 2]].min(0), eyes[:, [0, 2]].max(0)
+        scale = 140 / max(float((hi - lo).max()), 1e-12)
+        for pts, colour, r in ((eyes, (60, 90, 200), 0), (keys, (220, 60, 40), 2)):
+            xy = np.round((pts[:, [0, 2]] - lo) * scale + 10).astype(int)
+            for dx in range(-r, r + 1):
+                for dy in range(-r, r + 1):  # (a few offsets: a dot of radius r)
+                    image[np.clip(xy[:, 1] + dy, 0, 159), np.clip(xy[:, 0] + dx, 0, 159)] = \
+                        colour
+        facts = [f"key {i + 1} at {k.time:g} s: eye "
+                 f"({', '.join(f'{x:.3g}' for x in k.position)})"
+                 for i, k in enumerate(self.keyframes[:8])]
+        return facts_html(repr(self), facts, image)
+
     @property
     def duration(self) -> float:
         return self.end - self.start

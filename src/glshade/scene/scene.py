@@ -93,7 +93,20 @@ class Scene:
         self.solids: list[SolidModel] = []
         self.lights: list = []
 
-    def add(self, mesh: Mesh, material: Material | None = None, transform: ArrayLike | None = None,
+    def __repr__(self) -> str:
+        polygons = sum(m.mesh.n_faces for m in self.models)
+        leaves = sum(s.solid.n_leaves for s in self.solids)
+        return (f"<Scene: {len(self.models)} models ({polygons:,} polygons), "
+                f"{len(self.solids)} solids ({leaves:,} leaves), {len(self.lights)} lights>")
+
+    def _repr_html_(self) -> str:
+        """In a notebook: a thumbnail from the iso view and the counts."""
+        from ..display import _bounds_fact, facts_html, thumbnail
+
+        return facts_html(repr(self), [_bounds_fact(self.bounds)], thumbnail(self))
+
+    def add(self, mesh: Mesh | Solid, material: Material | None = None,
+            transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None) -> Model:

@@ -157,7 +157,20 @@ class Solid:
         return box * frac, box * np.sqrt(frac * (1 - frac) / samples)
 
     def __repr__(self) -> str:
-        return type(self).__name__
+        return f"<{type(self).__name__}: {self.n_leaves:,} leaves, {self.depth} levels>"
+
+    def _repr_html_(self) -> str:
+        """In a notebook: a thumbnail (ray cast on the GPU) and the tree's counts."""
+        from ..display import _bounds_fact, facts_html, thumbnail
+
+        image = None
+        if self.bounds is not None:
+            from ..scene import Scene
+
+            scene = Scene()
+            scene.add(self)
+            image = thumbnail(scene)
+        return facts_html(repr(self), [_bounds_fact(self.bounds)], image)
 
     # what every node implements (points, rays and boxes already as float64 arrays)
     def _contains(self, p: np.ndarray) -> np.ndarray:

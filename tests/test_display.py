@@ -1,0 +1,119 @@
+"""Notebook display: every displayable object has a short repr and an HTML view whose
+inline picture decodes to an image of the stated size; show() refuses what it cannot show.
+(The pictures are glshade's own renders; here they are checked to be real images of the
+object -- not blank, the right size -- not compared to themselves.)"""
+
+import base64
+import io
+import re
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import glshade
+from glshade import Camera, CameraPath, Keyframe, Scene
+from glshade.display import THUMBNAIL, buffers_image, png_bytes, show
+from glshade.geometry import primitives
+from glshade.octree import Octree
+from glshade.solids import Box, Sphere
+
+SHORT = 160  # characters a repr may take
+
+
+def pictures(text: str) -> list[np.ndarray]:
+    """The inline PNGs of an HTML view, decoded, each checked against its stated size."""
+    out = []
+    for data, w, h in re.findall(r'src="data:image/png;base64,([^"]+)" width="(\d+)" '
+                                 r'height="(\d+)"', text):
+        image = np.asarray(Image.open(io.BytesIO(base64.b64decode(data))))
+        assert image.shape[1] == int(w) and image.shape[0] == int(h)
+        out.append(image)
+    return out
+
+
+def objects(renderer):
+    cube = primitives.cube()
+    scene = Scene()
+    scene.add(cube)
+    frame = renderer.render_frame(scene, Camera.look_at((3, 2, 4), (0, 0, 0)))
+    from glshade.hidden import zbuffer
+
+    hidden = zbuffer(scene, Camera.look_at((3, 2, 4), (0, 0, 0)), (64, 48))
+    path = CameraPath([Keyframe.look_at(0, (4, 1, 0), (0, 0, 0)),
+                       Keyframe.look_at(2, (0, 1, 4), (0, 0, 0)),
+                       Keyframe.look_at(3, (-4, 2, 0), (0, 0, 0))])
+    from glshade.radiosity import cornell_scene, solve
+
+    box, _ = cornell_scene()
+    solution = solve(box, patch_size=250, until=0.2, context=renderer.context)
+    return {"mesh": (cube, True), "scene": (scene, True),
+            "solid": (Box(2) - Sphere(1.2), True),
+            "octree": (Octree.from_solid(Box(2) - Sphere(1.2), 4), True),
+            "frame": (frame, True), "hidden": (hidden, True), "path": (path, True),
+            "solution": (solution, True)}
+
+
+def test_every_object_has_a_short_repr_and_a_picture(make_renderer):
+    r = make_renderer(64, 48)
+    for name, (obj, has_picture) in objects(r).items():
+        text = repr(obj)
+        assert len(text) <= SHORT and "array(" not in text, (name, text)
+        view = obj._repr_html_()
+        images = pictures(view)
+        assert len(images) == (1 if has_picture else 0), name
+        image = images[0]
+        # a real picture: more than one colour
+        flat = image.reshape(-1, image.shape[-1] if image.ndim == 3 else 1)
+        assert len(np.unique(flat, axis=0)) > 2, name
+
+
+def test_thumbnails_have_the_thumbnail_size_and_show_the_object(gl_context):
+    view = primitives.cube()._repr_html_()
+    (image,) = pictures(view)
+    assert image.shape[:2] == (THUMBNAIL[1], THUMBNAIL[0])
+    # the cube covers the middle of the picture, the corners are background
+    h, w = image.shape[:2]
+    assert image[h // 2, w // 2, :3].max() > 0 and image[0, 0, :3].max() == 0
+
+
+def test_a_frames_buffers_side_by_side(make_renderer):
+    scene = Scene()
+    scene.add(primitives.uv_sphere(16, 32))
+    frame = make_renderer(40, 30).render_frame(scene, Camera.look_at((0, 0, 4), (0, 0, 0)))
+    tiles = buffers_image(frame)
+    assert tiles.shape == (30, 4 * 40, 3)
+    # the normal tile at the sphere's centre faces the eye: (0.5, 0.5, 1) * 255
+    assert np.abs(tiles[15, 2 * 40 + 20].astype(int) - [128, 128, 255]).max() <= 12
+    # the depth tile: nearest is brightest
+    depth_tile = tiles[:, 40:80, 0]
+    assert depth_tile[15, 20] == depth_tile.max()
+
+
+def test_show_refuses_what_it_cannot_show(tmp_path):
+    with pytest.raises(ValueError, match=r"\(H, W\)"):
+        show(np.zeros((2, 3, 5)))
+    with pytest.raises(ValueError, match="no file"):
+        show(tmp_path / "missing.gif")
+    with pytest.raises(ValueError, match="cannot show"):
+        show(object())
+    show(np.zeros((4, 4, 3)))  # (outside IPython: nothing shown, nothing raised)
+
+
+def test_png_bytes_round_trip():
+    image = (np.arange(48, dtype=np.uint8).reshape(4, 4, 3) * 5)
+    back = np.asarray(Image.open(io.BytesIO(png_bytes(image))))
+    assert (back == image).all()
+
+
+def test_nothing_imports_ipython():
+    import subprocess
+    import sys
+
+    code = ("import sys, glshade, glshade.display; glshade.display.show(__import__('numpy')"
+            ".zeros((2, 2, 3))); print('IPython' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip() == "False", out.stderr
+
+
+assert glshade  # (the package, as users import it)

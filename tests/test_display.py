@@ -106,6 +106,19 @@ def test_png_bytes_round_trip():
     assert (back == image).all()
 
 
+def test_without_the_display_module_the_facts_show_alone():
+    """In a script (no IPython, glshade.display never imported) a repr draws nothing: the
+    lower layers cannot reach the renderer except through the hook display installs."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from glshade.geometry import primitives; "
+            "h = primitives.cube()._repr_html_(); "
+            "print('<img' in h, 'glshade.display' in sys.modules, 'moderngl' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.split() == ["False", "False", "False"], out.stderr
+
+
 def test_nothing_imports_ipython():
     import subprocess
     import sys

@@ -17,8 +17,8 @@ PACKAGE = Path(glshade.__file__).parent
 #: the layers, lowest first: a module may import its own layer and those below it. Each
 #: chapter of the notes is one package (or module) at its public import path.
 LAYERS = [
-    {"_version", "_atomic", "_callable", "_interrupt", "_vec", "errors", "modes", "options",
-     "examples"},
+    {"_version", "_atomic", "_callable", "_interrupt", "_vec", "_display", "errors", "modes",
+     "options", "examples"},
     {"parallel"},
     {"quaternion", "masspoint"},
     {"geometry"},
@@ -32,7 +32,7 @@ LAYERS = [
     {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
-    {"cli", "testing", "golden", "pytest_plugin", "__init__", "__main__"},
+    {"cli", "testing", "golden", "pytest_plugin", "display", "__init__", "__main__"},
 ]
 RANK = {name: i for i, layer in enumerate(LAYERS) for name in layer}
 #: the import circles allowed: Mesh's methods that hand over to the modules built on Mesh

@@ -5,6 +5,7 @@ heavy: each name below is imported on first use (``glshade.Renderer`` loads mode
 then), so ``import glshade`` and ``glshade --help`` are instant.
 """
 
+import sys
 from typing import TYPE_CHECKING
 
 from ._version import __version__
@@ -44,6 +45,8 @@ _EXPORTS = {
     # comparing and animating
     "compare": ("compare", None),  # (callable packages: glshade.compare(...) is the function)
     "Comparison": ("compare.comparison", "Comparison"), "animate": ("animate", None),
+    # notebooks
+    "show": ("display", "show"),
     # errors
     **{name: ("errors", name) for name in (
         "GlshadeError", "InputError", "EnvironmentFailure", "GeometryError", "OptionError",
@@ -58,6 +61,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
                    solids)
     from .compare.comparison import Comparison, compare
     from .animate.frames import animate
+    from .display import show
     from .errors import (ComparisonError, ContextError, DisplayError, EnvironmentFailure,
                          GeometryError, GlshadeError, InputError, MeshFormatError,
                          OptionError, RenderWarning, SceneError, SceneFormatError,
@@ -78,6 +82,10 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .scene.lights import DirectionalLight, PointLight
     from .scene.material import Material
     from .scene.scene import Scene
+
+
+if "IPython" in sys.modules:  # (in a notebook: objects' reprs draw their thumbnails)
+    from . import display as _display_hook  # noqa: F401
 
 
 def __getattr__(name: str):

@@ -108,15 +108,10 @@ class Octree:
 
     def _repr_html_(self) -> str:
         """In a notebook: its inside cells drawn, and the cells per level."""
-        from .display import facts_html, thumbnail
-        from .scene import Scene
+        from ._display import facts_html, picture
 
         inside = self.to_mesh("inside")
-        image = None
-        if inside.n_faces:
-            scene = Scene()
-            scene.add(inside)
-            image = thumbnail(scene, mode="flat")
+        image = picture(inside, mode="flat") if inside.n_faces else None
         facts = [f"level {c['level']}: {c['inside']:,} in, {c['boundary']:,} boundary"
                  for c in self.counts()]
         return facts_html(repr(self), facts, image)

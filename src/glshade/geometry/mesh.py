@@ -157,16 +157,12 @@ class Mesh:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail and the counts (:mod:`glshade.display`)."""
-        from ..display import _bounds_fact, facts_html, thumbnail
-        from ..scene import Scene
+        from .._display import bounds_fact, facts_html, picture
 
-        scene = Scene()
-        if self.n_faces:
-            scene.add(self)
         facts = [f"{self.n_vertices:,} vertices, {self.n_faces:,} polygons",
                  "closed and oriented" if self.closed_and_oriented else "open or unoriented",
-                 _bounds_fact(self.bounds if self.n_vertices else None)]
-        return facts_html(repr(self), facts, thumbnail(scene) if self.n_faces else None)
+                 bounds_fact(self.bounds if self.n_vertices else None)]
+        return facts_html(repr(self), facts, picture(self) if self.n_faces else None)
 
     @cached_property
     def size_groups(self) -> dict[int, tuple[NDArray[np.int64], NDArray[np.int64]]]:

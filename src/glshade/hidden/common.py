@@ -52,11 +52,11 @@ class HiddenResult:
 
     def _repr_html_(self) -> str:
         """In a notebook: the polygon ids it found, and its counters."""
-        from ..display import _id_colours, facts_html
+        from .._display import id_colours, facts_html
 
         facts = [f"{k}: {v:,}" if isinstance(v, int) else f"{k}: {v}"
                  for k, v in self.counters.items()]
-        return facts_html(repr(self), facts, _id_colours(self.face_id))
+        return facts_html(repr(self), facts, id_colours(self.face_id))
 
 
 @dataclass

@@ -53,12 +53,12 @@ class Solution:
 
     def _repr_html_(self) -> str:
         """In a notebook: the solution drawn in the radiosity mode, and its figures."""
-        from ..display import facts_html, thumbnail
+        from .._display import facts_html, picture
 
         facts = [f"{self.hemicubes:,} hemicubes",
                  f"radiosity {float(self.radiosity.min()):.4g} .. "
                  f"{float(self.radiosity.max()):.4g}"]
-        return facts_html(repr(self), facts, thumbnail(self.scene(), mode="radiosity"))
+        return facts_html(repr(self), facts, picture(self.scene(), mode="radiosity"))
 
     @property
     def unshot_fraction(self) -> float:

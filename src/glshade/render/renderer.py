@@ -91,7 +91,7 @@ class Frame:
 
     def _repr_html_(self) -> str:
         """In a notebook: its buffers side by side (colour, depth, normals, ids)."""
-        from ..display import buffers_image, facts_html
+        from .._display import buffers_image, facts_html
 
         facts = []
         if self.depth is not None and np.isfinite(self.depth).any():

@@ -101,9 +101,9 @@ class Scene:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail from the iso view and the counts."""
-        from ..display import _bounds_fact, facts_html, thumbnail
+        from .._display import bounds_fact, facts_html, picture
 
-        return facts_html(repr(self), [_bounds_fact(self.bounds)], thumbnail(self))
+        return facts_html(repr(self), [bounds_fact(self.bounds)], picture(self))
 
     def add(self, mesh: Mesh | Solid, material: Material | None = None,
             transform: ArrayLike | None = None,

@@ -161,16 +161,10 @@ class Solid:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail (ray cast on the GPU) and the tree's counts."""
-        from ..display import _bounds_fact, facts_html, thumbnail
+        from .._display import bounds_fact, facts_html, picture
 
-        image = None
-        if self.bounds is not None:
-            from ..scene import Scene
-
-            scene = Scene()
-            scene.add(self)
-            image = thumbnail(scene)
-        return facts_html(repr(self), [_bounds_fact(self.bounds)], image)
+        image = picture(self) if self.bounds is not None else None
+        return facts_html(repr(self), [bounds_fact(self.bounds)], image)
 
     # what every node implements (points, rays and boxes already as float64 arrays)
     def _contains(self, p: np.ndarray) -> np.ndarray:

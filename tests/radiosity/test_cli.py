@@ -41,3 +41,26 @@ def test_bad_input_is_one_line(tmp_path):
     r = glshade("radiosity", SCENE, "-o", str(tmp_path / "x.png"), "--hemicube", "33")
     assert r.returncode == 2 and "even whole number" in r.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_monte_carlo_from_the_command_line_agrees_with_the_hemicubes(tmp_path):
+    """--method monte-carlo: the independent solution, drawn at the same exposure as the
+    hemicube one, shows the same walls (means within 3%); --steps is refused with it."""
+    images = {}
+    for method in ("progressive", "monte-carlo"):
+        out = tmp_path / f"{method}.png"
+        extra = ["--particles", "150000"] if method == "monte-carlo" else []
+        r = glshade("radiosity", SCENE, "-o", str(out), "--patch-size", "150", "--size",
+                    "64x64", "--exposure", "1", "--method", method, "--no-ambient",
+                    "--until", "0.001", *extra, "--backend", BACKEND)
+        assert r.returncode == 0, r.stderr
+        images[method] = np.asarray(Image.open(out).convert("RGB")).astype(float)
+    assert "particles" in r.stdout and "standard error" in r.stdout
+    a, b = images["progressive"], images["monte-carlo"]
+    for rows, cols in ((slice(25, 40), slice(2, 6)), (slice(25, 40), slice(-6, -2)),
+                       (slice(8, 14), slice(24, 40))):  # red wall, green wall, ceiling
+        ma, mb = a[rows, cols].mean((0, 1)), b[rows, cols].mean((0, 1))
+        assert np.abs(ma - mb).max() <= 0.03 * ma.max() + 2, (ma, mb)
+    r = glshade("radiosity", SCENE, "-o", str(tmp_path / "x.png"), "--method",
+                "monte-carlo", "--steps", str(tmp_path / "s.gif"))
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "monte-carlo" in r.stderr

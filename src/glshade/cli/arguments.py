@@ -117,6 +117,7 @@ class RadiosityArgs(RenderArgs):
     patch_size: float | None = None
     hemicube: int = 128
     method: str = "progressive"
+    particles: int = 200_000
     until: float = 0.01
     iterations: int | None = None
     steps: str | None = None

@@ -255,8 +255,11 @@ def add_radiosity(sub) -> None:
     p.add_argument("--hemicube", type=v.hemicube, default=128, metavar="N",
                    help="hemicube resolution, the top face's pixels a side (default 128)")
     p.add_argument("--method", type=v.radiosity_method, default="progressive",
-                   help="progressive refinement (default) or gauss-seidel gathering over the "
-                   "full matrix (small scenes)")
+                   help="progressive refinement (default), gauss-seidel gathering over the "
+                   "full matrix (small scenes), or monte-carlo light tracing (no form "
+                   "factors: the independent check; --particles)")
+    p.add_argument("--particles", type=v.count, default=200_000, metavar="N",
+                   help="light particles of --method monte-carlo (default 200,000)")
     stop = p.add_mutually_exclusive_group()
     stop.add_argument("--until", type=v.fraction, default=0.01, metavar="F",
                       help="stop when the unshot fraction of the emitted energy is below F "

@@ -33,6 +33,9 @@ def radiosity(args: RadiosityArgs) -> int:
     if not is_scene_file(args.scene):
         raise UsageError(f"{args.scene}: radiosity needs a scene file (.toml) whose materials "
                          "give emission, such as assets/scenes/cornell-box.toml")
+    if args.method == "monte-carlo" and (args.steps or args.plot):
+        raise UsageError("--steps and --plot show a convergence, and monte-carlo light "
+                         "tracing has none: leave them out")
     if args.steps:
         output_format(args.steps)  # a bad extension fails before the work
     plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"
@@ -46,6 +49,8 @@ def radiosity(args: RadiosityArgs) -> int:
     quiet = args.quiet
     if not quiet:
         print(problem.summary())
+    if args.method == "monte-carlo":
+        return _monte_carlo(args, job, problem, options)
     snapshots: list = []
     levels = iter([10 ** (k / STEP_FRAMES * _log10(args.until)) for k in
                    range(1, STEP_FRAMES + 1)])
@@ -95,6 +100,34 @@ def radiosity(args: RadiosityArgs) -> int:
               f"{solution.unshot_fraction:.2%}, exposure {exposure:.4g}")
         print(f"{args.output}: {w}x{h}; convergence: {plot_path}"
               + (f"; steps: {args.steps} ({len(frames) + 1} frames)" if args.steps else ""))
+    return EXIT_OK
+
+
+def _monte_carlo(args: RadiosityArgs, job, problem, options) -> int:
+    """The scene solved by light tracing (no GL until the picture) and rendered."""
+    from ..io.images import save_image
+    from ..parallel import Progress
+    from ..radiosity import Solution
+    from ..radiosity.montecarlo import light_trace
+    from ..render.renderer import Renderer
+
+    start = time.perf_counter()
+    with Progress(None, enabled=None if not args.quiet else False, unit="batches") as bar:
+        mc = light_trace(problem, args.particles, seed=args.seed, progress=bar)
+    seconds = time.perf_counter() - start
+    solution = Solution(problem, mc.radiosity, 0 * mc.radiosity, "Monte Carlo light tracing")
+    exposure = args.exposure or solution.auto_exposure(False)
+    with Renderer(config=job.config(args.backend)) as renderer:
+        image = renderer.render(solution.scene(exposure, False), job.camera, options)
+    _exposure_warning(image, exposure)
+    save_image(image, args.output)
+    if not args.quiet:
+        lit = mc.model_radiosity > 0
+        worst = float((mc.model_se[lit] / mc.model_radiosity[lit]).max()) if lit.any() else 0.0
+        w, h = job.size
+        print(f"{solution.method}: {mc.particles:,} particles, {seconds:.2f} s, largest "
+              f"relative standard error of a surface {worst:.2%}, exposure {exposure:.4g}")
+        print(f"{args.output}: {w}x{h}")
     return EXIT_OK
 
 

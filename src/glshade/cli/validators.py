@@ -126,12 +126,7 @@ def fov(text: str) -> float:
 def radiosity_method(text: str) -> str:
     from ..radiosity import Method
 
-    method = _rule(Method.parse, text)
-    if method is Method.MONTE_CARLO:
-        raise argparse.ArgumentTypeError("monte-carlo is the API's independent check "
-                                          "(glshade.radiosity.solve(scene, method="
-                                          "'monte-carlo')); here: progressive or gauss-seidel")
-    return method.value
+    return _rule(Method.parse, text).value
 
 
 #: --view's names: glshade.View's

@@ -236,3 +236,23 @@ def test_wheel_contains_shaders(tmp_path):
                      for p in (ROOT / "shaders").rglob("*") if p.is_file())
     assert on_disk and shaders == on_disk
     assert "glshade/py.typed" in names
+
+
+@pytest.mark.parametrize("module", ["glshade", "glshade.solids", "glshade.hidden",
+                                    "glshade.radiosity", "glshade.octree", "glshade.brep",
+                                    "glshade.quaternion", "glshade.masspoint",
+                                    "glshade.geometry.primitives", "glshade.scene",
+                                    "glshade.display"])
+def test_public_classes_and_functions_say_what_they_are(module):
+    """Every class and function a module exports has a docstring (the API reference is made
+    from them)."""
+    import importlib
+    import inspect
+
+    mod = importlib.import_module(module)
+    bare = []
+    for name in getattr(mod, "__all__", []):
+        obj = getattr(mod, name)
+        if (inspect.isclass(obj) or inspect.isfunction(obj)) and not (obj.__doc__ or "").strip():
+            bare.append(name)
+    assert bare == []

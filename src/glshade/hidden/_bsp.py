@@ -166,6 +166,9 @@ def paint(p: Prepared, result: HiddenResult, pieces: Pieces, sequence, counters=
 
 @takes_scene
 def bsp(p: Prepared) -> HiddenResult:
+    """A BSP tree of the polygons (split where a plane cuts them), walked back to front from
+    the eye and painted. Same inputs and result as :func:`zbuffer`, counting nodes and
+    splits."""
     extent = float(np.abs(p.tris).max()) if len(p.tris) else 1.0
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris)}
 

@@ -19,6 +19,9 @@ __all__ = ["raycast"]
 
 @takes_scene
 def raycast(p: Prepared) -> HiddenResult:
+    """Ray casting (the notes' image-space classic): one ray a pixel, tested against every
+    polygon whose screen box holds the pixel; the nearest hit wins. Same inputs and result as
+    :func:`zbuffer`, counting bounding-box and ray-polygon tests."""
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "bounding boxes": 0,
                 "ray-polygon tests": 0, "plane intersections": 0, "hits": 0}
 

@@ -37,6 +37,9 @@ def _writes(pix, depth, order, held) -> int:
 
 @takes_scene
 def zbuffer(p: Prepared) -> HiddenResult:
+    """The notes' z-buffer in numpy: every triangle's pixels, nearest depth kept per pixel.
+    Takes a :class:`Prepared` view or ``(scene or mesh, camera, size (W, H))``; returns ids
+    (H, W), depth (view units) and the counts of fragments and pixels written."""
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "fragments": 0,
                 "pixels written": 0}
 

@@ -25,6 +25,8 @@ class _Leaf(Solid):
 
 
 class Sphere(_Leaf):
+    """A ball of ``radius`` about the origin."""
+
     def __init__(self, radius: float = 1.0):
         self.radius = _positive(radius, "sphere radius")
 
@@ -46,6 +48,9 @@ class Sphere(_Leaf):
 
 
 class Box(_Leaf):
+    """An axis-aligned box centred at the origin: ``size`` one edge length or three (x, y,
+    z)."""
+
     def __init__(self, size=1.0):
         s = np.broadcast_to(np.asarray(size, np.float64), (3,))
         for v in s:

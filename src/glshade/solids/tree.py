@@ -398,6 +398,8 @@ OUT, IN, MAYBE = 0, 1, 2
 
 
 class Union(_Boolean):
+    """``a | b``: inside either."""
+
     op = staticmethod(np.logical_or)
 
     def _classify(self, lo, hi):
@@ -413,6 +415,8 @@ class Union(_Boolean):
 
 
 class Intersection(_Boolean):
+    """``a & b``: inside both."""
+
     op = staticmethod(np.logical_and)
 
     def _classify(self, lo, hi):
@@ -429,6 +433,8 @@ class Intersection(_Boolean):
 
 
 class Difference(_Boolean):
+    """``a - b``: inside a and not b (b's surfaces face the other way)."""
+
     @staticmethod
     def op(a, b):
         return a & ~b

@@ -53,7 +53,7 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
         return None
 
 
-def show(x, **kwargs) -> None:
+def show(x) -> None:
     """Display ``x`` in a notebook: an image array, a Frame (its buffers side by side), an
     animation file (.gif, .png, .mp4) or anything with ``_repr_html_``. Outside IPython
     nothing is displayed and a ValueError says so only for what cannot be shown at all."""

@@ -105,6 +105,8 @@ def radiosity(args: RadiosityArgs) -> int:
 
 def _monte_carlo(args: RadiosityArgs, job, problem, options) -> int:
     """The scene solved by light tracing (no GL until the picture) and rendered."""
+    import numpy as np
+
     from ..io.images import save_image
     from ..parallel import Progress
     from ..radiosity import Solution
@@ -115,7 +117,8 @@ def _monte_carlo(args: RadiosityArgs, job, problem, options) -> int:
     with Progress(None, enabled=None if not args.quiet else False, unit="batches") as bar:
         mc = light_trace(problem, args.particles, seed=args.seed, progress=bar)
     seconds = time.perf_counter() - start
-    solution = Solution(problem, mc.radiosity, 0 * mc.radiosity, "Monte Carlo light tracing")
+    solution = Solution(problem, mc.radiosity, np.zeros_like(mc.radiosity),
+                        "Monte Carlo light tracing")
     exposure = args.exposure or solution.auto_exposure(False)
     with Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(solution.scene(exposure, False), job.camera, options)

@@ -57,8 +57,7 @@ TOUCHING_POINTS = 8
 
 def _extents(p) -> tuple[np.ndarray, np.ndarray]:
     """Each patch's diameter D and circumradius about its centre R, (P,) each."""
-    corners = p.vertices[p.corners]  # (P, 4, 3); a triangle's -1 picks some vertex: masked
-    corners = np.where((p.corners >= 0)[..., None], corners, corners[:, :1])
+    corners = polygons(p)  # (P, 4, 3)
     extent = np.linalg.norm(corners[:, :, None] - corners[:, None, :], axis=3).max((1, 2))
     radius = np.linalg.norm(corners - p.centers[:, None], axis=2).max(1)
     return extent, radius

@@ -42,7 +42,7 @@ import numpy as np
 
 from ..errors import SceneError
 from ..solids import leaves as L  # (the leaves: L.Box ...)
-from ..solids.tree import Difference, Intersection, Solid, Transformed, Union
+from ..solids.tree import Difference, Intersection, Solid, Transformed, Union, _corners
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode
 from .base import GLResource
@@ -166,14 +166,19 @@ def _size_class(leaves: int) -> tuple[int, int, int]:
     return next(c for c in _CLASSES if c[0] >= leaves)
 
 
-def _leaf_box(leaf, matrix) -> np.ndarray:
-    b = leaf.bounds
-    if b is None:
-        return np.array([[-_FAR] * 3, [_FAR] * 3])
-    c = box_corners(b) @ matrix[:3, :3].T + matrix[:3, 3]
-    lo, hi = c.min(0), c.max(0)
-    pad = 1e-5 * (hi - lo) + 1e-6 * np.abs(c).max() + 1e-30
-    return np.array([lo - pad, hi + pad])
+def _leaf_boxes(leaves: list, matrices: np.ndarray) -> np.ndarray:
+    """World boxes (L, 2, 3) of leaves placed by ``matrices`` (L, 4, 4), padded for float32;
+    an unbounded leaf (a half-space) gets the whole of space."""
+    local = [leaf.bounds for leaf in leaves]
+    bounded = np.array([b is not None for b in local])
+    b = np.array([x if x is not None else np.zeros((2, 3)) for x in local])  # (L, 2, 3)
+    corners = _corners(b[:, 0], b[:, 1])  # (L, 8, 3)
+    c = np.einsum("lij,lkj->lki", matrices[:, :3, :3], corners) + matrices[:, None, :3, 3]
+    lo, hi = c.min(1), c.max(1)
+    pad = 1e-5 * (hi - lo) + 1e-6 * np.abs(c).max((1, 2))[:, None] + 1e-30
+    out = np.stack([lo - pad, hi + pad], 1)
+    out[~bounded] = [[-_FAR] * 3, [_FAR] * 3]
+    return out
 
 
 def _hierarchy(boxes: np.ndarray) -> np.ndarray:
@@ -224,14 +229,15 @@ def tree_data(solid: Solid) -> TreeData:
         raise SceneError(f"a solid of {len(leaves):,} leaves is more than the {MAX_LEAVES:,} "
                          "the GPU program serves")
     program, records, stack = _program(booleans, root)
+    matrices = np.array([m for _, m, _ in leaves])  # (L, 4, 4) leaf -> world
+    inv = np.linalg.inv(matrices)
+    signs = np.array([s for _, _, s in leaves])
     leaf_rows = np.zeros((len(leaves), 8, 4))
-    for k, (leaf, matrix, sign) in enumerate(leaves):  # (at most MAX_LEAVES)
-        inv = np.linalg.inv(matrix)
-        leaf_rows[k, 0:3] = inv[:3]
-        leaf_rows[k, 3:6, :3] = sign * inv[:3, :3].T
-        leaf_rows[k, 6] = _params(leaf)
-        leaf_rows[k, 3, 3] = _KIND_CODE[type(leaf)]
-    boxes = np.array([_leaf_box(leaf, m) for leaf, m, _ in leaves])
+    leaf_rows[:, 0:3] = inv[:, :3]
+    leaf_rows[:, 3:6, :3] = signs[:, None, None] * inv[:, :3, :3].transpose(0, 2, 1)
+    leaf_rows[:, 6] = [_params(leaf) for leaf, _, _ in leaves]
+    leaf_rows[:, 3, 3] = [_KIND_CODE[type(leaf)] for leaf, _, _ in leaves]
+    boxes = _leaf_boxes([leaf for leaf, _, _ in leaves], matrices)
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
     ops = np.zeros((len(program), 4))
     ops[:, :2] = program

@@ -302,16 +302,20 @@ class _Boolean(Solid):
     op: Any
 
     def __init__(self, a: Solid, b: Solid):
-        self.a, self.b = _solid(a), _solid(b)
-        self.width = a.width + b.width
-        self.n_leaves = a.n_leaves + b.n_leaves
-        self.depth = 1 + max(a.depth, b.depth)
+        self._link(_solid(a), _solid(b))
         if self.depth > int(self.n_leaves).bit_length() + 4:
             self._rebalance()
         if self.depth > MAX_DEPTH:
             raise GeometryError(f"this CSG tree is {self.depth} levels deep even rebalanced "
                                 f"(its {self.n_leaves:,} leaves alternate operators); the "
                                 f"limit is {MAX_DEPTH}: group them, e.g. (a | b) & (c | d)")
+
+    def _link(self, a: Solid, b: Solid) -> None:
+        """Make a and b this node's operands (and its counts follow)."""
+        self.a, self.b = a, b
+        self.width = a.width + b.width
+        self.n_leaves = a.n_leaves + b.n_leaves
+        self.depth = 1 + max(a.depth, b.depth)
 
     def _run(self) -> list[Solid]:
         """The operands of the run of this operator below (and including) this node, left
@@ -349,8 +353,7 @@ class _Boolean(Solid):
         else:
             half = len(operands) // 2
             a, b = _balanced(type(self), operands[:half]), _balanced(type(self), operands[half:])
-        self.a, self.b = a, b
-        self.depth = 1 + max(a.depth, b.depth)
+        self._link(a, b)
 
     def leaves(self) -> list:
         return [*self.a.leaves(), *self.b.leaves()]
@@ -386,11 +389,8 @@ def _balanced(kind, operands: list[Solid]) -> Solid:
     if len(operands) == 1:
         return operands[0]
     half = len(operands) // 2
-    node = kind.__new__(kind)
-    a, b = _balanced(kind, operands[:half]), _balanced(kind, operands[half:])
-    node.a, node.b = a, b
-    node.width, node.n_leaves = a.width + b.width, a.n_leaves + b.n_leaves
-    node.depth = 1 + max(a.depth, b.depth)
+    node = kind.__new__(kind)  # (not __init__: the halves are balanced already)
+    node._link(_balanced(kind, operands[:half]), _balanced(kind, operands[half:]))
     return node
 
 

@@ -30,13 +30,13 @@ vec3 face_centre(int i, vec3 p_world) {
     vec4 q = leaf_param(i);
     int kind = leaf_kind(i);
     vec3 c;
-    if (kind == 1) {                       // box: the face of the largest p / h
+    if (IS(kind, 1)) {                       // box: the face of the largest p / h
         vec3 r = abs(p / q.xyz);
         c = r.x >= r.y && r.x >= r.z ? vec3(sign(p.x) * q.x, 0.0, 0.0) :
             r.y >= r.z ? vec3(0.0, sign(p.y) * q.y, 0.0) : vec3(0.0, 0.0, sign(p.z) * q.z);
-    } else if (kind == 2 && abs(abs(p.y) - q.y) < abs(length(p.xz) - q.x)) {
+    } else if (IS(kind, 2) && abs(abs(p.y) - q.y) < abs(length(p.xz) - q.x)) {
         c = vec3(0.0, sign(p.y) * q.y, 0.0);   // a cylinder's cap
-    } else if (kind == 3 && abs(p.y + q.y) < abs(length(p.xz) - q.z * (q.y - p.y))) {
+    } else if (IS(kind, 3) && abs(p.y + q.y) < abs(length(p.xz) - q.z * (q.y - p.y))) {
         c = vec3(0.0, -q.y, 0.0);              // a cone's base
     } else {
         return p_world;

@@ -12,12 +12,20 @@
 // Leaf boundaries are exact: closed-form roots, the torus's quartic split at the roots of its
 // derivative (a cubic, in closed form) into monotone pieces, each root bracketed and refined
 // by bisection on a sign computed without cancellation.
+// Built per size class and per set of leaf kinds (CSG_KINDS): on a SIMD rasteriser a branch
+// no pixel takes still runs, so only the kinds present are compiled in (see csg.py).
 
 const float INF = 1e30;
 #ifndef CSG_WORDS
 #define CSG_WORDS 32                   // words of leaf bits: 32 leaves each (csg.py picks)
 #endif
 const int MAX_LEAVES = 32 * CSG_WORDS;
+#ifndef CSG_KINDS
+#define CSG_KINDS 63                   // the leaf kinds the program serves, a bit each
+#endif
+// Why: on a SIMD rasteriser (llvmpipe) a branch no pixel takes still runs, masked, so a
+// kind's code costs every leaf visit unless the program is built without it.
+#define IS(kind, n) ((CSG_KINDS & (1 << (n))) != 0 && (kind) == (n))
 
 #ifdef CSG_BLOCK
 // a small tree: the data in a uniform block (a plain load per read, where a texture read
@@ -29,6 +37,8 @@ uniform sampler2D u_csg;               // RGBA32F, 64 texels a row
 vec4 csg_texel(int i) { return texelFetch(u_csg, ivec2(i & 63, i >> 6), 0); }
 #endif
 uniform int u_csg_nodes;               // hierarchy nodes
+uniform int u_csg_start;               // the nodes to look through for the leaves a ray
+                                       // starts in: 0 where none can hold a ray's start
 uniform int u_csg_ops;                 // tree program codes
 uniform int u_csg_bvh;                 // first texel of the hierarchy
 uniform int u_csg_program;             // first texel of the program (code, first record)
@@ -48,16 +58,18 @@ vec3 normal_to_world(int k, vec3 n) {
 vec4 leaf_param(int k) { return csg_texel(8 * k + 6); }
 int leaf_kind(int k) { return int(csg_texel(8 * k + 3).w); }
 
+bool cone_contains(vec4 q, vec3 p) {
+    float k = q.z * (q.y - p.y);
+    return dot(p.xz, p.xz) <= k * k && p.y <= q.y && p.y >= -q.y;
+}
+
 // kinds: 0 sphere, 1 box, 2 cylinder, 3 cone, 4 torus, 5 half-space
 bool leaf_contains(int kind, vec4 q, vec3 p) {
-    if (kind == 0) return dot(p, p) <= q.x * q.x;
-    if (kind == 1) return all(lessThanEqual(abs(p), q.xyz));
-    if (kind == 2) return dot(p.xz, p.xz) <= q.x * q.x && abs(p.y) <= q.y;
-    if (kind == 3) {
-        float k = q.z * (q.y - p.y);
-        return dot(p.xz, p.xz) <= k * k && p.y <= q.y && p.y >= -q.y;
-    }
-    if (kind == 4) {
+    if (IS(kind, 0)) return dot(p, p) <= q.x * q.x;
+    if (IS(kind, 1)) return all(lessThanEqual(abs(p), q.xyz));
+    if (IS(kind, 2)) return dot(p.xz, p.xz) <= q.x * q.x && abs(p.y) <= q.y;
+    if (IS(kind, 3)) return cone_contains(q, p);
+    if (IS(kind, 4)) {
         float w = length(p.xz) - q.x;
         return w * w + p.y * p.y <= q.y * q.y;
     }
@@ -65,23 +77,23 @@ bool leaf_contains(int kind, vec4 q, vec3 p) {
 }
 
 vec3 leaf_gradient(int kind, vec4 q, vec3 p) {
-    if (kind == 0) return p;
-    if (kind == 1) {
+    if (IS(kind, 0)) return p;
+    if (IS(kind, 1)) {
         vec3 r = abs(p / q.xyz);
         return r.x >= r.y && r.x >= r.z ? vec3(sign(p.x), 0.0, 0.0) :
                r.y >= r.z ? vec3(0.0, sign(p.y), 0.0) : vec3(0.0, 0.0, sign(p.z));
     }
     float rho = length(p.xz);
-    if (kind == 2) {
+    if (IS(kind, 2)) {
         return abs(rho - q.x) <= abs(abs(p.y) - q.y) ? vec3(p.x, 0.0, p.z)
                                                        : vec3(0.0, sign(p.y), 0.0);
     }
-    if (kind == 3) {
+    if (IS(kind, 3)) {
         float side = abs(rho - q.z * (q.y - p.y)), base = abs(p.y + q.y);
         vec3 radial = vec3(p.x, 0.0, p.z) / max(rho, 1e-30);
         return side <= base ? radial + vec3(0.0, q.z, 0.0) : vec3(0.0, -1.0, 0.0);
     }
-    if (kind == 4) return p - vec3(p.x, 0.0, p.z) * (q.x / max(rho, 1e-30));
+    if (IS(kind, 4)) return p - vec3(p.x, 0.0, p.z) * (q.x / max(rho, 1e-30));
     return q.xyz;
 }
 
@@ -102,21 +114,6 @@ void offer(float t, int k, float t_cur, int leaf_cur, inout float best, inout in
     bool after = t > t_cur || (t == t_cur && k > leaf_cur);
     bool before = t < best || (t == best && k < best_leaf);
     if (after && before) { best = t; best_leaf = k; }
-}
-
-// the boundary of a convex leaf between its candidate parameters: the inside run
-void convex_run(int kind, vec4 q, vec3 o, vec3 d, float c[4], out float lo, out float hi) {
-    for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 3; ++b)
-            if (c[b] > c[b + 1]) { float s = c[b]; c[b] = c[b + 1]; c[b + 1] = s; }
-    lo = INF; hi = -INF;
-    float edges[6] = float[6](-INF, c[0], c[1], c[2], c[3], INF);
-    for (int s = 0; s < 5; ++s) {
-        float a = edges[s], b = edges[s + 1];
-        if (a >= INF * 0.5 || b <= -INF * 0.5 || a == b) continue;
-        float m = a <= -INF * 0.5 ? b - 1.0 : (b >= INF * 0.5 ? a + 1.0 : 0.5 * (a + b));
-        if (leaf_contains(kind, q, o + m * d)) { lo = min(lo, a); hi = max(hi, b); }
-    }
 }
 
 // the sign of the torus's implicit function without cancellation: (rho - R)^2 + y^2 - r^2
@@ -157,8 +154,9 @@ void cubic_roots(float p, float r, out float s[3]) {
     }
 }
 
-void torus_offer(int k, vec4 q, vec3 o, vec3 d, float t_cur, int leaf_cur,
-                 inout float best, inout int best_leaf) {
+// the torus's boundaries along o + t d (up to four; the rest INF)
+vec4 torus_bounds(vec4 q, vec3 o, vec3 d) {
+    vec4 out_t = vec4(INF);
     // centre the ray at its point nearest the torus's centre, unit direction: the quartic
     // is then s^4 + A s^2 + B s + C (no cubic term), its slope 4 s^3 + 2 A s + B
     float len = length(d);
@@ -166,7 +164,7 @@ void torus_offer(int k, vec4 q, vec3 o, vec3 d, float t_cur, int leaf_cur,
     float s0 = -dot(o, u);
     vec3 c = o + s0 * u;
     float big = q.x + q.y, h2 = big * big - dot(c, c);
-    if (h2 <= 0.0) return;                         // misses the bounding sphere
+    if (h2 <= 0.0) return out_t;                   // misses the bounding sphere
     float h = sqrt(h2);
     float R2 = q.x * q.x;
     float k0 = dot(c, c) + R2 - q.y * q.y;
@@ -177,64 +175,140 @@ void torus_offer(int k, vec4 q, vec3 o, vec3 d, float t_cur, int leaf_cur,
     float cuts[5] = float[5](-h, INF, INF, INF, h);
     for (int j = 0; j < 3; ++j) cuts[j + 1] = clamp(crit[j], -h, h);
     float a = cuts[0], ga = torus_g(q, c, u, a);
+    int n = 0;
     for (int j = 1; j < 5; ++j) {
         float b = cuts[j];
         if (b >= INF * 0.5) continue;
         float gb = torus_g(q, c, u, b);
         if (b > a && (ga < 0.0) != (gb < 0.0)) {
             float s = torus_root(q, c, u, a, b, ga);
-            offer((s + s0) / len, k, t_cur, leaf_cur, best, best_leaf);
+            out_t[n++] = (s + s0) / len;
         }
         if (b > a) { a = b; ga = gb; }
     }
+    return out_t;
 }
 
-void leaf_offer(int k, vec3 ro, vec3 rd, float t_cur, int leaf_cur,
-                inout float best, inout int best_leaf) {
-    int kind = leaf_kind(k);
+// leaf k's boundaries along ro + t rd (up to four; the rest INF); `kind` its kind (a
+// constant where the caller knows it, so that only that kind's code is compiled in)
+vec4 leaf_bounds_as(int kind, int k, vec3 ro, vec3 rd) {
+    vec4 out_t = vec4(INF);
     vec4 q = leaf_param(k);
     vec4 m0 = csg_texel(8 * k), m1 = csg_texel(8 * k + 1), m2 = csg_texel(8 * k + 2);
     vec4 ro1 = vec4(ro, 1.0);
     vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
     vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
     float t0, t1;
-    if (kind == 0) {
+    if (IS(kind, 0)) {
         if (quadratic(dot(d, d), 2.0 * dot(o, d), dot(o, o) - q.x * q.x, t0, t1)) {
-            offer(t0, k, t_cur, leaf_cur, best, best_leaf);
-            offer(t1, k, t_cur, leaf_cur, best, best_leaf);
+            out_t.xy = vec2(t0, t1);
         }
-    } else if (kind == 1) {
+    } else if (IS(kind, 1)) {
         vec3 dd = mix(d, vec3(1e-30), equal(d, vec3(0.0)));
         vec3 a = (-q.xyz - o) / dd, b = (q.xyz - o) / dd;
         vec3 lo = min(a, b), hi = max(a, b);
         t0 = max(max(lo.x, lo.y), lo.z); t1 = min(min(hi.x, hi.y), hi.z);
         if (t0 < t1) {
-            offer(t0, k, t_cur, leaf_cur, best, best_leaf);
-            offer(t1, k, t_cur, leaf_cur, best, best_leaf);
+            out_t.xy = vec2(t0, t1);
         }
-    } else if (kind == 2 || kind == 3) {
-        float c[4] = float[4](INF, INF, INF, INF);
-        if (kind == 2) {
-            if (quadratic(dot(d.xz, d.xz), 2.0 * dot(o.xz, d.xz), dot(o.xz, o.xz) - q.x * q.x,
-                          t0, t1)) { c[0] = t0; c[1] = t1; }
-        } else {
-            float k2 = q.z * q.z, w = q.y - o.y;
-            if (quadratic(dot(d.xz, d.xz) - k2 * d.y * d.y, 2.0 * (dot(o.xz, d.xz) + k2 * w * d.y),
-                          dot(o.xz, o.xz) - k2 * w * w, t0, t1)) { c[0] = t0; c[1] = t1; }
+    } else if (IS(kind, 2)) {
+        // the infinite cylinder's run (all of the line when it runs along the axis inside)
+        // cut to the slab |y| <= h
+        float lo = -INF, hi = INF;
+        float a = dot(d.xz, d.xz), c = dot(o.xz, o.xz) - q.x * q.x;
+        if (a > 0.0) {
+            if (!quadratic(a, 2.0 * dot(o.xz, d.xz), c, lo, hi)) { lo = INF; hi = -INF; }
+        } else if (c > 0.0) { lo = INF; hi = -INF; }
+        if (d.y != 0.0) {
+            float y0 = (-q.y - o.y) / d.y, y1 = (q.y - o.y) / d.y;
+            lo = max(lo, min(y0, y1));
+            hi = min(hi, max(y0, y1));
+        } else if (abs(o.y) > q.y) { lo = INF; hi = -INF; }
+        if (lo < hi) {
+            out_t.xy = vec2(lo, hi);
         }
-        if (d.y != 0.0) { c[2] = (-q.y - o.y) / d.y; c[3] = (q.y - o.y) / d.y; }
-        convex_run(kind, q, o, d, c, t0, t1);
-        if (t0 < t1) {
-            if (t0 > -INF * 0.5) offer(t0, k, t_cur, leaf_cur, best, best_leaf);
-            if (t1 < INF * 0.5) offer(t1, k, t_cur, leaf_cur, best, best_leaf);
+    } else if (IS(kind, 3)) {
+        // the double cone rho^2 <= k^2 (apex - y)^2 gives a run (a > 0: the ray shallower
+        // than the cone) or a run's complement (a < 0), one part in each nappe; the slab
+        // |y| <= h keeps the lower nappe's
+        float lo = -INF, hi = INF;
+        if (d.y != 0.0) {
+            float y0 = (-q.y - o.y) / d.y, y1 = (q.y - o.y) / d.y;
+            lo = min(y0, y1);
+            hi = max(y0, y1);
+        } else if (abs(o.y) > q.y) { lo = INF; hi = -INF; }
+        float k2 = q.z * q.z, w = q.y - o.y;
+        float a = dot(d.xz, d.xz) - k2 * d.y * d.y;
+        float b = 2.0 * (dot(o.xz, d.xz) + k2 * w * d.y), c = dot(o.xz, o.xz) - k2 * w * w;
+        if (quadratic(a, b, c, t0, t1)) {
+            if (a > 0.0) {
+                lo = max(lo, t0);
+                hi = min(hi, t1);
+            } else {                           // the longer of the two parts in the slab
+                float h0 = min(hi, t0), l1 = max(lo, t1);
+                if (h0 - lo >= hi - l1) hi = h0; else lo = l1;
+            }
+        } else if (a == 0.0 && b != 0.0) {     // parallel to a generator: a half-line
+            if (b > 0.0) hi = min(hi, -c / b); else lo = max(lo, -c / b);
+        } else if (c > 0.0 || a > 0.0) {
+            lo = INF; hi = -INF;               // (a < 0 and no root: inside all along)
         }
-    } else if (kind == 4) {
-        torus_offer(k, q, o, d, t_cur, leaf_cur, best, best_leaf);
+        if (lo < hi) {
+            out_t.xy = vec2(lo, hi);
+        }
+    } else if (IS(kind, 4)) {
+        out_t = torus_bounds(q, o, d);
     } else {
         float nd = dot(q.xyz, d);
-        if (nd != 0.0) offer((q.w - dot(q.xyz, o)) / nd, k, t_cur, leaf_cur, best, best_leaf);
+        if (nd != 0.0) out_t.x = (q.w - dot(q.xyz, o)) / nd;
     }
+    return out_t;
 }
+
+// offer each of a leaf's boundaries
+void offer4(vec4 t, int k, float t_cur, int leaf_cur, inout float best, inout int best_leaf) {
+    offer(t.x, k, t_cur, leaf_cur, best, best_leaf);
+    offer(t.y, k, t_cur, leaf_cur, best, best_leaf);
+    offer(t.z, k, t_cur, leaf_cur, best, best_leaf);
+    offer(t.w, k, t_cur, leaf_cur, best, best_leaf);
+}
+
+#ifdef CSG_LEAF_LOOP
+uniform int u_csg_kinds;               // first texel of the leaves listed by kind
+uniform int u_csg_kind_start[7];       // where each kind's list starts (and the end)
+
+// every leaf of one kind in turn: the loop's body is that kind's code alone
+#define KIND_LOOP(n) \
+    for (int j = u_csg_kind_start[n]; j < u_csg_kind_start[n + 1]; ++j) { \
+        int k = int(csg_texel(u_csg_kinds + j).x); \
+        offer4(leaf_bounds_as(n, k, ro, rd), k, t_cur, leaf_cur, best, best_leaf); \
+    }
+
+// a small tree: every leaf in turn, kind by kind (where each pass of a loop costs its
+// whole body, as on a SIMD rasteriser, a hierarchy's inner nodes cost as much as its
+// leaves, and a leaf as much as every kind's code)
+void every_leaf_offer(vec3 ro, vec3 rd, float t_cur, int leaf_cur,
+                      inout float best, inout int best_leaf) {
+#if (CSG_KINDS & 1) != 0
+    KIND_LOOP(0)
+#endif
+#if (CSG_KINDS & 2) != 0
+    KIND_LOOP(1)
+#endif
+#if (CSG_KINDS & 4) != 0
+    KIND_LOOP(2)
+#endif
+#if (CSG_KINDS & 8) != 0
+    KIND_LOOP(3)
+#endif
+#if (CSG_KINDS & 16) != 0
+    KIND_LOOP(4)
+#endif
+#if (CSG_KINDS & 32) != 0
+    KIND_LOOP(5)
+#endif
+}
+#endif
 
 bool box_span(vec3 ro, vec3 inv, vec3 lo, vec3 hi, out float t0, out float t1) {
     vec3 a = (lo - ro) * inv, b = (hi - ro) * inv;
@@ -272,9 +346,20 @@ bool any_inside(int first, int last) {
     return false;
 }
 
-bool tree_inside() {
+bool tree_inside(int ops) {
     uint stack = 0u;
-    for (int j = 0; j < u_csg_ops;) {
+#ifdef CSG_LEAF_LOOP
+    // a small tree: every position in turn (skipping would cost more than it saves)
+    for (int j = 0; j < ops; ++j) {
+        int code = int(csg_texel(u_csg_program + j).x);
+        bool x = (stack & 1u) != 0u, y = (stack & 2u) != 0u;
+        bool v = code == -1 ? x || y : code == -2 ? x && y
+               : code == -3 ? y && !x : x && !y;   // -3: y - x, -4: x - y
+        stack = code >= 0 ? (stack << 1) | LEAF_BIT(max(code, 0)) : ((stack >> 2) << 1) | uint(v);
+    }
+    return (stack & 1u) != 0u;
+#endif
+    for (int j = 0; j < ops;) {
         vec4 e = csg_texel(u_csg_program + j);
         int r = int(e.y);
         while (r >= 0) {               // the largest subtree starting here the ray is not in
@@ -306,8 +391,9 @@ bool tree_inside() {
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
     CLEAR_LEAVES();
-    // the leaves the ray starts in: only those whose boxes hold the start
-    for (int i = 0; i < u_csg_nodes;) {
+    // the leaves the ray starts in: only those whose boxes hold the start (none where no
+    // leaf's box meets the near plane: the loop is then not run at all)
+    for (int i = 0; i < u_csg_start;) {
         vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
         if (any(lessThan(ro, a.xyz)) || any(greaterThan(ro, b.xyz))) { i = int(a.w); continue; }
         int k = int(b.w);
@@ -315,12 +401,15 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
             SET_LEAF(k);
         i++;
     }
-    bool start = tree_inside();
+    bool start = tree_inside(u_csg_start > 0 ? u_csg_ops : 0);
     float t_cur = 0.0;
     int leaf_cur = -1;
     for (int step = 0; step < 4 * MAX_LEAVES; ++step) {
         float best = INF;
         int best_leaf = -1;
+#ifdef CSG_LEAF_LOOP
+        every_leaf_offer(ro, rd, t_cur, leaf_cur, best, best_leaf);
+#else
         for (int i = 0; i < u_csg_nodes;) {
             vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
             float t0, t1;
@@ -329,12 +418,14 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
                 continue;
             }
             int k = int(b.w);
-            if (k >= 0) leaf_offer(k, ro, rd, t_cur, leaf_cur, best, best_leaf);
+            if (k >= 0) offer4(leaf_bounds_as(leaf_kind(k), k, ro, rd), k, t_cur, leaf_cur,
+                               best, best_leaf);
             i++;
         }
+#endif
         if (best_leaf < 0) return -1;
         FLIP_LEAF(best_leaf);
-        if (tree_inside() != start) { t_hit = best; return best_leaf; }
+        if (tree_inside(u_csg_ops) != start) { t_hit = best; return best_leaf; }
         t_cur = best;
         leaf_cur = best_leaf;
     }

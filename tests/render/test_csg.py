@@ -159,3 +159,39 @@ def test_flat_lights_each_planar_face_once_at_its_centre(make_renderer):
         assert np.abs(got - np.clip(expected, 0, 1)).max() < 1e-4
     ball = frame.color[frame.face_id == 1][:, :3]
     assert ball.std(0).max() > 0.01  # a curved face stays lit per pixel
+
+
+# Cones and cylinders from every side: along the axis (rays parallel to it: the quadratic
+# degenerates), along a generator (the cone's quadratic loses its square term), from inside,
+# from below the base, from beyond the apex; each against the numpy reference.
+CONE = Cone(0.8, 1.2)  # apex at y = 0.6, base radius 0.8 at y = -0.6
+SIDES = {
+    "cone from the side": (CONE, (3.0, 0.2, 2.0), (0, 0, 0)),
+    "cone down the axis": (CONE, (0.0, 4.0, 0.001), (0, 0, 0)),
+    "cone up the axis": (CONE, (0.001, -4.0, 0.0), (0, 0, 0)),
+    # the slope of a generator is 0.8 / 1.2: an eye on the generator's line, looking along it
+    "cone along a generator": (CONE, (0.8 * 2.5, 0.6 - 1.2 * 2.5, 0.0), (0, 0.6, 0)),
+    "cone from inside": (CONE, (0.1, -0.4, 0.1), (1, 0.3, 0.5)),
+    "cone beyond the apex": (CONE | Sphere(0.2).translated((0.5, -0.5, 0)),
+                             (0.3, 2.5, 0.4), (0, -0.5, 0)),
+    "cylinder down the axis": (Cylinder(0.6, 1.0) - Cylinder(0.3, 2.0), (0.0, 3.0, 0.0005),
+                               (0, 0, 0)),
+    "cylinder from inside": (Cylinder(0.8, 1.0) - Sphere(0.3).translated((0.4, 0, 0)),
+                             (-0.2, 0.1, 0.1), (1, 0, 0.2)),
+}
+
+
+@pytest.mark.parametrize("name", [*SIDES, "orthographic, down the axes"])
+def test_cones_and_cylinders_from_every_side(name, make_renderer):
+    if name in SIDES:
+        solid, eye, target = SIDES[name]
+        camera = Camera.look_at(eye, target, near=0.01)
+    else:  # every ray parallel to the axes, some outside the cylinder, some in the bore
+        solid = ((Cylinder(0.6, 1.0) - Cylinder(0.3, 2.0)).translated((-0.7, 0, 0))
+                 | Cone(0.5, 1.0).translated((0.7, 0, 0)))
+        camera = Camera.look_at((0, 4, 0), (0, 0, 0), up=(0, 0, -1),
+                                projection="orthographic", height=2.5)
+    scene = Scene()
+    scene.add(solid)
+    frame = make_renderer(*SIZE).render_frame(scene, camera, "phong")
+    check_against_reference(frame, scene, camera)

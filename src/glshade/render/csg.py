@@ -16,6 +16,15 @@ tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float textur
   is inside is empty there (booleans of empty sets are empty), so the program jumps over
   it -- its cost follows the leaves a ray is in, not the tree.
 
+Cost on a SIMD rasteriser (llvmpipe runs 8 or 16 pixels in lock-step, and a branch none of
+them takes still runs, masked; only a loop none of them enters is skipped): so a program is
+built per size class *and* per set of leaf kinds present (a tree without a torus carries no
+quartic solver); a small tree (<= 32 leaves) visits its leaves kind by kind, each loop's
+body one kind's code, rather than through the hierarchy, whose inner nodes would cost as
+much as leaves, and runs its tree program whole (skipping costs more than it saves there);
+and where no leaf's box meets the near plane (the camera outside every
+leaf's box, the usual case) the search for the leaves a ray starts in is not run.
+
 Along a pixel's ray the program keeps every leaf's inside-bit, steps from one leaf
 boundary to the next (ties by leaf order: the left operand's face shows), flips that leaf's
 bit and runs the tree; the first boundary where the tree's answer changes is the surface.
@@ -49,7 +58,7 @@ from .base import GLResource
 from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
-__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "MAX_LEAVES"]
+__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "may_start_inside", "MAX_LEAVES"]
 
 #: leaves a solid may have on the GPU (the program keeps one bit per leaf in 32 words)
 MAX_LEAVES = 1024
@@ -67,7 +76,10 @@ _FAR = 1e30  # an unbounded leaf's box
 @dataclass(frozen=True)
 class TreeData:
     """A solid as the program reads it: ``texels (T, 4) float32`` and where each part
-    starts. ``leaves`` in ``solid.leaves()`` order; ``stack`` the bits the program needs."""
+    starts. ``leaves`` in ``solid.leaves()`` order; ``stack`` the bits the program needs;
+    ``kinds`` a bit per leaf kind present (the program is built with only those kinds' code);
+    ``by_kind`` the first texel of the leaves listed kind by kind, ``kind_start`` (7,) where
+    each kind's list starts; ``boxes (L, 2, 3)`` the leaves' world boxes (float64)."""
 
     texels: np.ndarray
     leaves: int
@@ -77,6 +89,10 @@ class TreeData:
     program: int
     records: int
     stack: int
+    kinds: int
+    by_kind: int
+    kind_start: tuple
+    boxes: np.ndarray
 
 
 def _flatten(solid: Solid):
@@ -236,17 +252,22 @@ def tree_data(solid: Solid) -> TreeData:
     leaf_rows[:, 0:3] = inv[:, :3]
     leaf_rows[:, 3:6, :3] = signs[:, None, None] * inv[:, :3, :3].transpose(0, 2, 1)
     leaf_rows[:, 6] = [_params(leaf) for leaf, _, _ in leaves]
-    leaf_rows[:, 3, 3] = [_KIND_CODE[type(leaf)] for leaf, _, _ in leaves]
+    codes = [_KIND_CODE[type(leaf)] for leaf, _, _ in leaves]
+    leaf_rows[:, 3, 3] = codes
     boxes = _leaf_boxes([leaf for leaf, _, _ in leaves], matrices)
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
     ops = np.zeros((len(program), 4))
     ops[:, :2] = program
-    parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records]
+    by_kind = np.zeros((len(leaves), 4))
+    by_kind[:, 0] = np.argsort(codes, kind="stable")
+    parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records, by_kind]
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
     return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
                     len(parts[0]), len(parts[0]) + len(parts[1]),
-                    len(parts[0]) + len(parts[1]) + len(parts[2]), stack)
+                    len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
+                    sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
+                    tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes)
 
 
 class CsgPass(GLResource):
@@ -282,6 +303,7 @@ class CsgPass(GLResource):
             block = _size_class(data.leaves)[2]
             ctx = self.context.ctx
             if block:
+                assert len(data.texels) <= block  # (16 L - 4 texels: 1,020 at 64 leaves)
                 store = ctx.buffer(data.texels.tobytes().ljust(16 * block, b"\0"))
             else:
                 store = ctx.texture((_ROW, len(data.texels) // _ROW), 4,
@@ -290,24 +312,27 @@ class CsgPass(GLResource):
             found = self._data[id(solid)] = (weakref.ref(solid), data, store)
         return found[1], found[2]
 
-    def program(self, key, leaves: int):
-        """The program of a variant for a tree of ``leaves``: one per size class (32, 256 or
-        1,024 leaves: the words of leaf bits it keeps), never per tree."""
+    def program(self, key, leaves: int, kinds: int = 63):
+        """The program of a variant for a tree of ``leaves`` whose leaf kinds are the bits
+        of ``kinds``: one per size class (32, 64, 256 or 1,024 leaves: the words of leaf bits
+        it keeps) and set of kinds, never per tree."""
         self._check()
         _, words, block = _size_class(leaves)
-        found = self._programs.get((key, words))
+        found = self._programs.get((key, words, kinds))
         if found is None:
-            defines = (*key.defines(), f"CSG_WORDS {words}")
+            defines = (*key.defines(), f"CSG_WORDS {words}", f"CSG_KINDS {kinds}")
             if block:
                 defines += (f"CSG_BLOCK {block}",)
+            if words == 1:
+                defines += ("CSG_LEAF_LOOP",)
             if key.mode is ShadingMode.NORMALS:
                 defines += ("SHOW_NORMALS",)
             elif key.mode is ShadingMode.DEPTH:
                 defines += ("SHOW_DEPTH",)
             elif key.mode is ShadingMode.FLAT:
                 defines += ("FLAT_FACES",)
-            found = self._programs[(key, words)] = self.shaders.compile("csg.vert", "csg.frag",
-                                                               defines=defines)
+            found = self.shaders.compile("csg.vert", "csg.frag", defines=defines)
+            self._programs[(key, words, kinds)] = found
         return found
 
     def vertex_array(self, program):
@@ -340,7 +365,8 @@ class CsgPass(GLResource):
             if not model.visible:
                 continue
             data, texture = self.data(model.solid)
-            prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves)
+            prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves,
+                                data.kinds)
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
@@ -353,10 +379,13 @@ class CsgPass(GLResource):
                 texture.use(location=self.UNIT)
                 put(prog, "u_csg", self.UNIT)
             put(prog, "u_csg_nodes", data.nodes)
+            put(prog, "u_csg_start", data.nodes if may_start_inside(data, view_proj) else 0)
             put(prog, "u_csg_ops", data.ops)
             put(prog, "u_csg_bvh", data.bvh)
             put(prog, "u_csg_program", data.program)
             put(prog, "u_csg_records", data.records)
+            put(prog, "u_csg_kinds", data.by_kind)
+            put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
             put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))
@@ -387,6 +416,17 @@ class CsgPass(GLResource):
             for vao in self._box[2].values():
                 vao.release()
             self._box = None
+
+
+def may_start_inside(data: TreeData, view_proj: np.ndarray) -> bool:
+    """Whether any leaf's world box meets the box of the near plane's rectangle, where the
+    pixels' rays start: where none does, no ray starts inside a leaf, and the program skips
+    finding which leaves each starts in."""
+    corners = np.array([[x, y, -1.0, 1.0] for x in (-1, 1) for y in (-1, 1)])
+    world = corners @ np.linalg.inv(view_proj).T
+    near = world[:, :3] / world[:, 3:]
+    lo, hi = near.min(0), near.max(0)
+    return bool(((data.boxes[:, 0] <= hi) & (data.boxes[:, 1] >= lo)).all(1).any())
 
 
 def box_matrix(bounds: np.ndarray) -> np.ndarray:

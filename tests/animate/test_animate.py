@@ -244,10 +244,11 @@ def test_unknown_output_format(tmp_path):
     assert r.returncode == 2 and ".gif, .png, .apng, .mp4" in r.stderr
 
 
-def test_progress_bar_on_a_terminal_and_quiet_otherwise():
+def test_progress_bar_on_a_terminal_lines_in_a_log_and_quiet_for_short_work(monkeypatch):
     import io
 
     from glshade.animate import Progress
+    from glshade.parallel import progress
 
     class Tty(io.StringIO):
         def isatty(self):
@@ -259,10 +260,20 @@ def test_progress_bar_on_a_terminal_and_quiet_otherwise():
         bar.update()
     bar.close()
     text = out.getvalue()
-    assert "4/4 frames" in text and "fps" in text and "s left" in text
-    quiet = io.StringIO()  # not a terminal
+    assert "4/4" in text and "frames" in text and "100%" in text
+    quiet = io.StringIO()  # not a terminal, and the work ends at once
     Progress(4, stream=quiet).update()
     assert quiet.getvalue() == ""
+    # a log of long work: a plain line at each tenth, no carriage returns
+    monkeypatch.setattr(progress, "LOG_AFTER_S", 0.0)
+    log = io.StringIO()
+    bar = Progress(20, stream=log, unit="meshes")
+    for _ in range(20):
+        bar.update()
+    lines = log.getvalue().splitlines()
+    assert len(lines) == 10 and "\r" not in log.getvalue()
+    assert lines[0].startswith("2/20 meshes (10%)") and lines[-1].startswith("20/20 meshes")
+    assert "meshes/s" in lines[0] and "s left" in lines[0]
 
 
 def test_compare_takes_a_scene_file(tmp_path):

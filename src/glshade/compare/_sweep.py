@@ -24,21 +24,28 @@ def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "goura
     ``[{"level": k, "faces": F, "flat": ModeMetrics, ...}, ...]``. Levels render in
     ``jobs`` worker processes or on a Dask ``scheduler`` (then ``make_mesh`` must be
     picklable: a module-level function or a ``functools.partial`` of one). ``config`` (or
-    ``size``, ``backend``): what each worker's Renderer is built with (192x192, no MSAA)."""
+    ``size``, ``backend``): what each worker's Renderer is built with (192x192, no MSAA).
+    ``progress``: a bar (a notebook's widget, a terminal's line), None to decide by where
+    output goes, False for none, or an object with ``update()``."""
     config = RenderConfig.of(config, size=size, backend=backend, base=SWEEP_CONFIG)
     args = (make_mesh, camera, tuple(modes), material, lights, config)
     if renderer is not None:
         worker = SweepLevel(*args, renderer=renderer)
         return [worker(k) for k in levels]
-    from ..parallel import make_executor
+    from ..parallel import as_progress, make_executor
 
     levels = list(levels)
     executor = make_executor(SweepLevel, args, jobs, items=len(levels), scheduler=scheduler)
+    bar, owned = as_progress(progress, len(levels), "levels")
     rows = []
-    for row in executor.map(levels):
-        rows.append(row)
-        if progress:
-            progress.update()
+    try:
+        for row in executor.map(levels):
+            rows.append(row)
+            if bar is not None:
+                bar.update()
+    finally:
+        if owned:
+            bar.close()
     return rows
 
 

@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from .executors import Executor, ProcessExecutor, SerialExecutor
-from .progress import Progress
+from .progress import Progress, as_progress
 
 if TYPE_CHECKING:
     from .dask import DaskExecutor
 
 __all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "make_executor", "Progress",
-           "DaskExecutor"]
+           "as_progress", "DaskExecutor"]
 
 
 def __getattr__(name: str) -> Any:  # the Dask executor imports dask only when asked for

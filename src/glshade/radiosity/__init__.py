@@ -47,9 +47,26 @@ def solve(scene, patch_size: float | None = None, *, method: Method | str = Meth
     GAUSS_SEIDEL (the full matrix; small scenes). ``quadrature``: Gauss points a side per
     shooter (:func:`quadrature_counts`). MONTE_CARLO traces ``particles`` light particles
     (default 200,000) instead, sharing no form-factor code with the others; its
-    ``Solution.se`` is each patch's standard error."""
+    ``Solution.se`` is each patch's standard error. ``progress``: a bar (a notebook's
+    widget, a terminal's line), None to decide by where output goes, False for none, or an
+    object with ``update(n, note)``."""
+    from ..parallel.progress import as_progress
+
     chosen = Method.parse(method)
     problem = PatchScene.from_scene(scene, patch_size)
+    unit = "batches" if chosen is Method.MONTE_CARLO else "shots" \
+        if chosen is Method.PROGRESSIVE else "shooters"
+    bar, owned = as_progress(progress, None, unit)
+    try:
+        return _solve(problem, chosen, until, max_shots, hemicube, quadrature, seed, context,
+                      backend, bar, on_shot, particles)
+    finally:
+        if owned:
+            bar.close()
+
+
+def _solve(problem, chosen, until, max_shots, hemicube, quadrature, seed, context, backend,
+           progress, on_shot, particles) -> Solution:
     if chosen is Method.MONTE_CARLO:  # (no GL, no form factors: the independent solution)
         from .montecarlo import light_trace
 

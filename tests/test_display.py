@@ -128,3 +128,17 @@ def test_nothing_imports_ipython():
 
 
 assert glshade  # (the package, as users import it)
+
+
+@pytest.mark.parametrize("side", [96, 24], ids=["tiles", "tiles narrower than the key"])
+def test_a_comparison_shows_its_grid_and_has_a_short_repr(side, make_renderer):
+    import glshade
+
+    scene = Scene()
+    scene.add(primitives.icosphere(1))
+    result = glshade.compare(scene, Camera.look_at((0, 0, 3), (0, 0, 0)), size=(side, side),
+                             renderer=make_renderer(side, side))
+    text = repr(result)
+    assert len(text) <= SHORT and "array(" not in text and "analytic" in text, text
+    image = np.asarray(Image.open(io.BytesIO(result._repr_png_())))
+    assert image.shape[:2] == result.image.shape[:2] and len(np.unique(image)) > 2

@@ -112,6 +112,13 @@ class Comparison:
             w.writeheader()
             w.writerows(rows)
 
+    def __repr__(self) -> str:
+        h, w = self.image.shape[:2]
+        best = min(self.metrics, key=lambda m: m.mean_abs) if self.metrics else None
+        closest = f"; closest {best.mode} (mean {best.mean_abs:.3g})" if best else ""
+        return (f"<Comparison of {', '.join(m.mode for m in self.metrics)} against the "
+                f"{self.reference_kind} reference: {w}x{h} grid{closest}>")
+
     def _repr_png_(self) -> bytes:
         from PIL import Image
 
@@ -259,8 +266,14 @@ def _grid(images: dict, ref: np.ndarray, ref_kind: str, errors: dict | None,
             bottom.append(tile)
         h = bottom[0].shape[0]
         bar = colour_bar(h - 2 * LABEL_HEIGHT, scale)
-        key = np.full((h, ref.shape[1], 3), BACKGROUND, np.uint8)
+        key = np.full((h, max(ref.shape[1], bar.shape[1]), 3), BACKGROUND, np.uint8)
         key[2 * LABEL_HEIGHT:, :bar.shape[1]] = bar
         key = label(key[LABEL_HEIGHT:], "silhouette: magenta")
         rows.append(np.hstack([*bottom, key]))
-    return opaque(np.vstack(rows))
+    width = max(r.shape[1] for r in rows)  # (small tiles: the key is wider than a tile)
+    padded = []
+    for r in rows:
+        wide = np.full((r.shape[0], width, 3), BACKGROUND, np.uint8)
+        wide[:, :r.shape[1]] = r
+        padded.append(wide)
+    return opaque(np.vstack(padded))

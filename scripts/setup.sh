@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Create or reuse .venv and install glshade with its test extras; as root, also the Debian
-# packages the headless and window tests need (xvfb, libosmesa6). Safe to run again.
+# packages the headless, window and browser tests need (xvfb, libosmesa6, chromium and
+# chromium-driver). Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VENV=${VENV:-.venv}
@@ -11,6 +12,9 @@ if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
     command -v Xvfb >/dev/null || need_apt+=(xvfb)
     ldconfig -p 2>/dev/null | grep -q 'libOSMesa.so' || need_apt+=(libosmesa6)
     ldconfig -p 2>/dev/null | grep -q 'libEGL_mesa.so' || need_apt+=(libegl-mesa0 libgl1-mesa-dri)
+    # the notebook viewer's browser test: headless Chromium and its WebDriver
+    command -v chromium >/dev/null || need_apt+=(chromium)
+    command -v chromedriver >/dev/null || need_apt+=(chromium-driver)
     if [ ${#need_apt[@]} -gt 0 ]; then
         echo "setup: installing ${need_apt[*]}" >&2
         (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \

@@ -32,7 +32,8 @@ LAYERS = [
     {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
-    {"cli", "testing", "golden", "pytest_plugin", "display", "__init__", "__main__"},
+    {"cli", "testing", "golden", "pytest_plugin", "display", "notebook", "__init__",
+     "__main__"},
 ]
 RANK = {name: i for i, layer in enumerate(LAYERS) for name in layer}
 #: the import circles allowed: Mesh's methods that hand over to the modules built on Mesh

@@ -44,8 +44,8 @@ def test_every_readme_python_block_runs_as_written_in_order(tmp_path):
 
 @pytest.mark.slow
 def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
-    """Build the wheel, install it (and its dependencies) into a new venv outside the
-    repository, and run the README's blocks there, from an empty folder."""
+    """Build the wheel, install it (and its dependencies, with the notebook extra) into a
+    new venv outside the repository, and run the README's blocks there, from an empty folder."""
     wheels = tmp_path / "wheels"
     out = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps",
                           "--no-build-isolation", "-q", "-w", str(wheels), str(ROOT)],
@@ -54,13 +54,14 @@ def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
     wheel = next(wheels.glob("glshade-*.whl"))
     names = zipfile.ZipFile(wheel).namelist()
     assert "glshade/examples/scenes/cornell-box.toml" in names
+    assert "glshade/notebook_static/viewer.js" in names  # (the widget's front end)
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     python = venv / "bin" / "python"
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     out = subprocess.run([str(python), "-m", "pip", "install", "-q",
-                          "--disable-pip-version-check", str(wheel)],
+                          "--disable-pip-version-check", f"{wheel}[notebook]"],
                          capture_output=True, text=True, env=env, timeout=900)
     assert out.returncode == 0, out.stderr[-3000:]
     work = tmp_path / "work"

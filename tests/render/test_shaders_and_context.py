@@ -142,3 +142,33 @@ def test_doctor_reports_backends():
     assert out.returncode == 0, out.stdout + out.stderr
     assert "renderer" in out.stdout and f"{BACKEND}" in out.stdout
     assert "egl      ok" in out.stdout
+
+
+def test_a_context_used_from_another_thread_is_refused_with_the_reason(gl_context):
+    """A GL context stays current on the thread that made it (EGL cannot make it current on
+    a second one: draws there would go nowhere), so a draw from another thread -- a
+    notebook kernel answers widget messages on one -- is a clear error, not a blank image."""
+    import threading
+
+    from glshade import Camera, Scene
+    from glshade.errors import ContextError
+    from glshade.geometry import primitives
+    from glshade.render.renderer import Renderer
+
+    scene = Scene()
+    scene.add(primitives.cube())
+    camera = Camera.look_at((3, 2, 4), (0, 0, 0))
+    with Renderer(32, 32, samples=0, context=gl_context) as r:
+        errors = []
+
+        def draw():
+            try:
+                r.render(scene, camera)
+            except ContextError as exc:
+                errors.append(str(exc))
+
+        t = threading.Thread(target=draw)
+        t.start()
+        t.join()
+        assert len(errors) == 1 and "belongs to the thread that made it" in errors[0]
+        assert (r.render(scene, camera)[..., :3] > 0).any()  # its own thread still draws

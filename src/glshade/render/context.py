@@ -16,6 +16,7 @@ from __future__ import annotations
 from typing import Any
 
 import ctypes
+import threading
 import ctypes.util
 import os
 import re
@@ -143,11 +144,20 @@ class RenderContext:
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
         self._idle = ctx.simple_framebuffer((1, 1))
+        self.thread = threading.get_ident()  # (the thread it is current on)
 
     def make_current(self) -> None:
         """Make this context current on the calling thread: with several contexts in one
-        process, whichever was made or used last is current, and GL calls go there."""
+        process, whichever was made or used last is current, and GL calls go there. A
+        context stays current on the thread that made it, so another thread is refused
+        (EGL cannot make it current there: its draws would go nowhere)."""
         self.check()
+        if threading.get_ident() != self.thread:
+            raise ContextError(
+                f"this GL context ({self.backend.value}) was made on thread {self.thread} "
+                f"and is used from thread {threading.get_ident()}: a context belongs to "
+                "the thread that made it; make the Renderer (or context) in the thread that "
+                "draws with it")
         self.ctx.__enter__()
 
     def rest(self) -> None:

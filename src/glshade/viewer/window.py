@@ -23,26 +23,20 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import DisplayError
-from .. import quaternion as quat
-from ..modes import Culling, ShadingMode
-from ..options import DrawOptions
-from ..scene import Camera, CameraPath, Keyframe, PointLight, Scene, default_camera
-from .arcball import Arcball
+from ..modes import ShadingMode
+from ..scene import Camera, CameraPath, Keyframe, Scene
+from .controls import Controls
 
 __all__ = ["Viewer", "HELP"]
 
 HELP = __doc__.split("\n\n", 1)[1].strip()
-
-_MODE_KEYS = {"1": ShadingMode.FLAT, "2": ShadingMode.GOURAUD, "3": ShadingMode.PHONG,
-              "4": ShadingMode.NORMALS, "5": ShadingMode.DEPTH, "6": ShadingMode.RADIOSITY}
-DOUBLE_CLICK_S = 0.3
 
 
 def _has_display() -> bool:
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
-class Viewer:
+class Viewer(Controls):
     """A window showing ``scene``; ``run()`` until closed, or ``step()`` frame by frame.
 
     Parameters
@@ -90,27 +84,16 @@ class Viewer:
         fb_w, fb_h = glfw.get_framebuffer_size(self.window)
         self.target = WindowTarget(self.context, fb_w, fb_h)
         self.renderer = Renderer(fb_w, fb_h, samples=0, context=self.context)
-        self.scene = scene
+        super().__init__(scene, camera, glfw.get_window_size(self.window), options, compare,
+                         pick)
         self.title = title
-        self.compare = bool(compare)
-        self.picking = bool(pick)
-        self.picks: list = []
-        self._view = -1  # (the last named view the v key chose)
-        self.options = DrawOptions.of(options)
         self.screenshot_dir = Path(screenshot_dir)
-        self.center = scene.bounds.mean(axis=0)
-        self.home = camera or default_camera(scene.bounds, self._aspect())
-        self.camera = self.home
         self.keyframes: list[Keyframe] = []
         self.playing = False
         self.play_time = 0.0
         self.path: CameraPath | None = None
-        self.arcball = Arcball(*glfw.get_window_size(self.window))
-        self._drag: tuple | None = None  # ("rotate" | "pan", start camera, start x, start y)
-        self._last_click = 0.0
         self._cursor = (0.0, 0.0)
         self._fps, self._frames, self._t0 = 0.0, 0, time.perf_counter()
-        self.messages: list[str] = []
         self.frame_count = 0
         self.closed = False
         glfw.set_key_callback(self.window, self._key_event)
@@ -225,23 +208,14 @@ class Viewer:
         self.close()
 
     # ------------------------------------------------------------------ actions
-    def key(self, char: str) -> None:
-        """Act on a key as typed (what the key callback calls; tests call it directly)."""
-        o = self.options
-        if char in _MODE_KEYS:
-            self.options = o.replace(mode=_MODE_KEYS[char])
-            self.compare = False
-        elif char == "z":
-            self.options = o.replace(depth_test=not o.depth_test)
-        elif char == "w":
-            self.options = o.replace(edges=not o.edges)
-        elif char == "c":
-            turn = {Culling.AUTO: Culling.ON, Culling.ON: Culling.OFF, Culling.OFF: Culling.AUTO}
-            self.options = o.replace(cull=turn[o.cull])
-            self._say(f"back-face culling: {self.options.cull.value}")
-        elif char == "l":
-            self.scene.lights = [PointLight(tuple(self.camera.position))]
-        elif char == "k":
+    def key(self, char: str) -> bool:
+        """Act on a key as typed (what the key callback calls; tests call it directly):
+        the view's and options' keys (:meth:`Controls.key`), then the window's own."""
+        if char == "r":
+            self.playing = False
+        if super().key(char):
+            return True
+        if char == "k":
             t = self.keyframes[-1].time + 1.0 if self.keyframes else 0.0
             self.keyframes.append(Keyframe(t, self.camera.position, self.camera.orientation,
                                            self.camera.fov_y))
@@ -261,89 +235,24 @@ class Viewer:
             out = self.screenshot_dir / f"glshade-{time.strftime('%Y%m%d-%H%M%S')}-" \
                                         f"{self.frame_count}.png"
             self.screenshot(out)
-        elif char == "r":
-            self.camera = self.home
-            self.center = self.scene.bounds.mean(axis=0)
-            self.playing = False
-        elif char == "v":  # the named views in turn, framed
-            from ..scene.camera import View
-
-            self._view = (self._view + 1) % len(View)
-            chosen = list(View)[self._view]
-            self.camera = Camera.named(chosen, self.scene.bounds, self._aspect(),
-                                       fov_y=self.camera.fov_y).replace(
-                projection=self.camera.projection)
-            if self.camera.projection.value == "orthographic":
-                self.camera = self.camera.frame(self.scene.bounds, self._aspect())
-            self.center = self.scene.bounds.mean(axis=0)
-            self._say(f"view: {chosen.value}")
-        elif char == "o":  # perspective <-> orthographic, the view's centre kept in frame
-            ortho = self.camera.projection.value == "perspective"
-            self.camera = self.camera.replace(
-                projection="orthographic" if ortho else "perspective")
-            if ortho:
-                distance = float(np.linalg.norm(self.center - self.camera.position))
-                self.camera = self.camera.replace(
-                    height=2 * distance * np.tan(np.radians(self.camera.fov_y) / 2))
-            self._say(f"projection: {self.camera.projection.value}")
         elif char in ("h", "?"):
             self._say(HELP)
         elif char in ("q", "escape"):
             self._glfw.set_window_should_close(self.window, True)
             self.closed = True
+        else:
+            return False
+        return True
 
     def _say(self, text: str) -> None:
         """A message for the user, on the terminal (the title shows the state)."""
-        self.messages.append(text)
+        super()._say(text)
         print(text, file=sys.stderr)
-
-    def mouse_down(self, x: float, y: float, button: str = "left",
-                   shift: bool = False) -> None:
-        """A mouse button pressed at window coordinates (what the button callback calls)."""
-        now = time.perf_counter()
-        if button == "left" and now - self._last_click < DOUBLE_CLICK_S:
-            self.recentre(x, y)
-        self._last_click = now if button == "left" else 0.0
-        kind = "pan" if button == "right" or shift else "rotate"
-        self._drag = (kind, self.camera, x, y, self.center.copy())
-        if kind == "rotate":
-            self.arcball.begin(x, y)
 
     def mouse_move(self, x: float, y: float) -> None:
         """The cursor moved to window coordinates: drags turn or pan the view."""
         self._cursor = (x, y)
-        if self._drag is None:
-            return
-        kind, start, x0, y0, center0 = self._drag
-        if kind == "rotate":
-            q_view = self.arcball.drag(x, y)
-            # the object turns by q_view in view space: the camera orbits the other way
-            q_world = quat.multiply(quat.multiply(start.orientation, q_view),
-                                    quat.conjugate(start.orientation))
-            self.camera = start.orbit(quat.conjugate(q_world), self.center)
-        else:
-            distance = float(np.linalg.norm(start.position - self.center))
-            per_px = 2 * distance * np.tan(np.radians(start.fov_y) / 2) / \
-                max(self.arcball.height, 1)
-            shift = (-(x - x0) * start.right + (y - y0) * start.up) * per_px
-            self.camera = start.replace(position=start.position + shift)
-            self.center = center0 + shift
-
-    def mouse_up(self) -> None:
-        """The button let go: the drag ends (a click that did not move picks, with
-        ``pick=True``). (``close()`` frees the window and its GL.)"""
-        if self.picking and self._drag is not None:
-            _, start, x0, y0, _ = self._drag
-            if start is self.camera:  # (nothing moved: a click)
-                self.pick(x0, y0)
-        self._drag = None
-        self.arcball.end()
-
-    def scroll(self, dy: float) -> None:
-        """Dolly towards (dy > 0) or away from the centre."""
-        to_center = self.center - self.camera.position
-        self.camera = self.camera.replace(position=self.camera.position +
-                                          to_center * (1 - 0.9 ** dy))
+        super().mouse_move(x, y)
 
     def pick(self, x: float, y: float):
         """What is under window point (x, y): polygon id, world point, normal and depth

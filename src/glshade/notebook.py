@@ -1,0 +1,231 @@
+"""An interactive viewer in a notebook: a widget (anywidget) whose kernel side renders with
+glshade's own headless renderer and whose browser side shows the frames on a canvas and
+sends the gestures back -- the same controls as the window (:mod:`glshade.viewer.controls`):
+drag to turn (arcball), right- or shift-drag to pan, the wheel to dolly, keys 1-5 for the
+modes, ``v`` the named views, ``o`` orthographic, ``r`` reset; buttons for the modes, a split
+compare of two modes, and a click to pick (``pick=True``). No display is needed, so it works
+on a remote kernel; the picture is the one ``glshade render`` makes of the same view.
+
+Needs the ``notebook`` extra (``pip install 'glshade[notebook]'``: anywidget).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import UsageError
+from .modes import ShadingMode
+from .scene import Camera, Scene
+from .viewer.controls import Controls
+
+__all__ = ["NotebookViewer", "view", "camera_from_view", "view_of"]
+
+_STATIC = Path(__file__).with_name("notebook_static")
+#: the widget class, made on first use (anywidget imported then: ``__getattr__``)
+NotebookViewer: Any
+
+
+def view_of(camera: Camera) -> dict:
+    """A camera as plain numbers (what the widget syncs to the browser as ``view``)."""
+    return {"position": [float(x) for x in camera.position],
+            "orientation": [float(x) for x in camera.orientation],
+            "fov_y": float(camera.fov_y), "projection": camera.projection.value,
+            "height": float(camera.height), "near": camera.near, "far": camera.far}
+
+
+def camera_from_view(view: dict) -> Camera:
+    """The camera of a widget's ``view`` (the inverse of :func:`view_of`)."""
+    return Camera(position=view["position"], orientation=view["orientation"],
+                  fov_y=view["fov_y"], projection=view["projection"], height=view["height"],
+                  near=view.get("near"), far=view.get("far"))
+
+
+def _widget_class():
+    try:
+        import anywidget
+        import traitlets
+    except ImportError as exc:
+        raise UsageError("the notebook viewer needs anywidget: pip install "
+                         "'glshade[notebook]'") from exc
+
+    class NotebookViewer(anywidget.AnyWidget):
+        """The widget; see the module docstring. ``size`` ``(w, h)`` pixels; ``samples``
+        MSAA samples (4, as ``glshade render``); ``backend`` the renderer's (auto, egl,
+        osmesa); ``mode`` the shading mode; ``compare`` a
+        second mode shown right of the middle (the ``split`` trait), or "" for none."""
+
+        _esm = _STATIC / "viewer.js"
+        _css = _STATIC / "viewer.css"
+        png = traitlets.Bytes(b"").tag(sync=True)
+        width = traitlets.Int(480).tag(sync=True)
+        height = traitlets.Int(360).tag(sync=True)
+        mode = traitlets.Unicode("phong").tag(sync=True)
+        split = traitlets.Unicode("").tag(sync=True)
+        view = traitlets.Dict().tag(sync=True)
+        status = traitlets.Unicode("").tag(sync=True)
+        picked = traitlets.Dict().tag(sync=True)
+        revision = traitlets.Int(0).tag(sync=True)
+
+        def __init__(self, scene: Scene, camera: Camera | None = None, *,
+                     size=(480, 360), mode="phong", compare: str = "", samples: int = 4,
+                     pick: bool = False, backend=None, **kwargs):
+            from concurrent.futures import ThreadPoolExecutor
+
+            from .render.renderer import Renderer
+
+            w, h = int(size[0]), int(size[1])
+            super().__init__(width=w, height=h, **kwargs)
+            self.controls = _Controls(self, scene, camera, (w, h), mode, pick=pick)
+            self.split = _mode_name(compare) if compare else ""
+            # A GL context belongs to one thread, and a kernel answers widget messages on
+            # another than the one that runs cells: every GL call goes to a thread of its own.
+            self._gl = ThreadPoolExecutor(1, thread_name_prefix="glshade-notebook-gl")
+            self.renderer = self._on_gl(Renderer, w, h, samples=samples,
+                                        backend=backend or "auto")
+            self.on_msg(self._on_message)
+            self.refresh()
+
+        def _on_gl(self, fn, *args, **kwargs):
+            """``fn(*args, **kwargs)`` on the widget's GL thread (its result, or its error)."""
+            return self._gl.submit(fn, *args, **kwargs).result()
+
+        @property
+        def scene(self) -> Scene:
+            return self.controls.scene
+
+        @property
+        def camera(self) -> Camera:
+            """The view now shown."""
+            return self.controls.camera
+
+        @camera.setter
+        def camera(self, camera: Camera) -> None:
+            self.controls.camera = camera
+            self.refresh()
+
+        def image(self) -> np.ndarray:
+            """The frame now shown ``(H, W, 3) uint8``: the mode, and right of the middle
+            the compared mode when there is one."""
+            r, c = self.renderer, self.controls
+            left = self._on_gl(r.render, c.scene, c.camera, c.options)[..., :3]
+            if not self.split:
+                return left
+            right = self._on_gl(r.render, c.scene, c.camera,
+                                c.options.replace(mode=self.split))[..., :3]
+            out = left.copy()
+            out[:, self.width // 2:] = right[:, self.width // 2:]
+            return out
+
+        def refresh(self) -> None:
+            """Render the current view and send it to the browser."""
+            from ._display import png_bytes
+
+            png = png_bytes(self.image())
+            c = self.controls
+            with self.hold_sync():  # (one message: the frame and what it shows)
+                self.mode = c.options.mode.value
+                self.view = view_of(c.camera)
+                self.png = png
+                self.status = c.messages[-1] if c.messages else ""
+                self.revision += 1
+
+        def pick(self, x: float, y: float):
+            """What pixel (x, y) of the view shows (:meth:`Renderer.pick`), kept in
+            ``picked`` and said in the status line; None over the background."""
+            c = self.controls
+            found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
+            c.picks.append(found)
+            if found is None:
+                self.picked = {}
+                c._say("pick: background")
+            else:
+                self.picked = {"face": found.face_id, "point": [float(v) for v in found.point],
+                               "normal": [float(v) for v in found.normal],
+                               "depth": float(found.depth)}
+                c._say(f"pick: {found}")
+            return found
+
+        def recentre(self, x: float, y: float) -> bool:
+            """Orbit about the surface point under (x, y) from now on (a double-click)."""
+            c = self.controls
+            found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
+            if found is None:
+                return False
+            point = np.asarray(found.point, np.float64)
+            c.camera = c.camera.replace(position=c.camera.position + point - c.center)
+            c.center = point
+            return True
+
+        def _on_message(self, _widget, content: dict, _buffers) -> None:
+            event, c = content.get("event"), self.controls
+            if event == "down":
+                c.mouse_down(float(content["x"]), float(content["y"]),
+                             str(content.get("button", "left")), bool(content.get("shift")))
+            elif event == "move":
+                c.mouse_move(float(content["x"]), float(content["y"]))
+            elif event == "up":
+                c.mouse_up()
+            elif event == "wheel":
+                c.scroll(float(content.get("dy", 0)))
+            elif event == "key":
+                c.key(str(content.get("key", "")))
+            elif event == "mode":
+                c.options = c.options.replace(mode=_mode_name(content["mode"]))
+            elif event == "compare":
+                self.split = _mode_name(content["mode"]) if content.get("mode") else ""
+            else:
+                return
+            self.refresh()  # (every gesture is answered by a frame: the browser's pacing)
+
+        def close(self) -> None:
+            """Close the widget and release its renderer (on its GL thread)."""
+            if getattr(self, "renderer", None) is not None:
+                self._on_gl(self.renderer.close)
+                self._gl.shutdown()
+                self.renderer = None
+            super().close()
+
+    return NotebookViewer
+
+
+class _Controls(Controls):
+    """The window's controls, picking and re-centring through the widget's renderer."""
+
+    def __init__(self, widget, *args, **kwargs):
+        self.widget = widget
+        super().__init__(*args, **kwargs)
+
+    def pick(self, x: float, y: float):
+        return self.widget.pick(x, y)
+
+    def recentre(self, x: float, y: float) -> bool:
+        return self.widget.recentre(x, y)
+
+
+def _mode_name(mode) -> str:
+    return ShadingMode.parse(mode).value
+
+
+_CLASS: Any = None
+
+
+def __getattr__(name: str):
+    if name == "NotebookViewer":
+        global _CLASS
+        if _CLASS is None:
+            _CLASS = _widget_class()
+        return _CLASS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def view(scene_or_mesh, camera: Camera | None = None, **kwargs):
+    """An interactive viewer widget of a scene or mesh (``NotebookViewer``'s keywords:
+    size, mode, compare, samples, pick); display it by leaving it last in a cell."""
+    scene = scene_or_mesh
+    if not isinstance(scene, Scene):
+        scene = Scene()
+        scene.add(scene_or_mesh)
+    return __getattr__("NotebookViewer")(scene, camera, **kwargs)

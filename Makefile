@@ -2,7 +2,7 @@
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: setup demo test lint bench assets clean
+.PHONY: setup demo test lint bench assets docs clean
 
 setup:
 	@scripts/setup.sh
@@ -34,6 +34,11 @@ bench: setup
 	$(PY) benchmarks/brep_bench.py
 	$(PY) benchmarks/animate_bench.py
 	$(PY) benchmarks/startup_bench.py
+
+# The documentation site: the README, the chapter notebooks (executed) and the API reference
+# from the docstrings, warnings as errors; open docs/_build/html/index.html
+docs: setup
+	$(PY) -m sphinx -W --keep-going -b html docs docs/_build/html
 
 assets: setup
 	$(PY) scripts/make_assets.py

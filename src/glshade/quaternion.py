@@ -71,8 +71,8 @@ def multiply(p: ArrayLike, q: ArrayLike) -> Array:
 
 
 def compose(*qs: ArrayLike) -> Array:
-    """The product ``qs[0] qs[1] ... qs[-1]``: sandwiching with it applies the LAST one first,
-    as with matrix products."""
+    """The product ``qs[0] qs[1]`` and so on to ``qs[-1]``: sandwiching with it applies
+    the LAST one first, as with matrix products."""
     if not qs:
         return identity()
     out = _q(qs[0])

@@ -20,6 +20,8 @@ FORMATS = ("gif", "png", "apng", "mp4", "dir")
 
 
 def output_format(output) -> str:
+    """The writer an output path asks for: "gif", "png" (APNG), "apng", "mp4", or "dir" (a
+    folder of PNG frames); an OutputError for any other suffix."""
     p = Path(output)
     if str(output).endswith(("/", os.sep)) or p.is_dir() or not p.suffix:
         return "dir"

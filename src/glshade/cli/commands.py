@@ -21,6 +21,7 @@ COMPARE_DEFAULTS = RenderSettings(width=256, height=256, samples=0)
 
 
 def render(args: a.RenderCommandArgs) -> int:
+    """``glshade render``: one image of a mesh, scene or solid."""
     from ..io.images import save_image
     from ..render.renderer import Renderer
 
@@ -53,6 +54,7 @@ TURNTABLE_SECONDS = 4.0
 
 
 def animate(args: a.AnimateArgs) -> int:
+    """``glshade animate``: a scene along its camera path, to GIF, APNG, MP4 or frames."""
     from ..animate import animate as run, output_format
 
     output_format(args.output)  # a bad extension fails before any rendering
@@ -89,6 +91,7 @@ def animate(args: a.AnimateArgs) -> int:
 
 
 def batch(args: a.BatchArgs) -> int:
+    """``glshade batch``: every mesh under the inputs to images, resumably."""
     from ..batch import BatchSpec, batch as run
     from ..scene import Material
 
@@ -150,6 +153,7 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
 
 
 def compare(args: a.CompareArgs) -> int:
+    """``glshade compare``: the modes against a reference, as a grid and numbers."""
     from ..compare import compare as run
     from ..io.images import save_image
 
@@ -173,6 +177,7 @@ def compare(args: a.CompareArgs) -> int:
 
 
 def view(args: a.ViewArgs) -> int:
+    """``glshade view``: the interactive window."""
     from ..viewer.window import Viewer
 
     job = load_job(args, args.mesh, pane=1 / 3 if args.compare else 1.0)
@@ -186,6 +191,7 @@ def view(args: a.ViewArgs) -> int:
 
 
 def doctor(args: a.DoctorArgs) -> int:
+    """``glshade doctor``: which GL backends work here, and what they are."""
     from ..render.context import create_context, probe_backends
 
     ok = True

@@ -11,6 +11,7 @@ from .inputs import load_job
 __all__ = ["hidden"]
 
 def hidden(args: HiddenArgs) -> int:
+    """``glshade hidden``: the hidden-surface lab on a mesh or scene."""
     import numpy as np
 
     from ..animate import output_format

@@ -157,6 +157,7 @@ def _scene_info(args: InfoArgs) -> int:
 
 
 def info(args: InfoArgs) -> int:
+    """``glshade info``: counts, sizes, bounds, area and topology of a mesh, scene or solid."""
     from dataclasses import replace
 
     from .. import examples

@@ -24,6 +24,7 @@ __all__ = ["Job", "load_job", "is_scene_file", "build_scene"]
 
 
 def is_scene_file(spec: str) -> bool:
+    """Whether a MESH argument names a scene file (``.toml``)."""
     return spec.lower().endswith(".toml")
 
 

@@ -100,6 +100,7 @@ def add_executor_options(p: argparse.ArgumentParser, default_jobs: str = "the nu
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of every command."""
     parser = _Parser(prog="glshade", description="Classic shading on the GPU, headless or in a "
                      "window; and the geometry that goes with it.")
     parser.add_argument("--version", action="version", version=f"glshade {__version__}")

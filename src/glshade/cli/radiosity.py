@@ -18,6 +18,7 @@ STEP_FRAMES = 36
 
 
 def radiosity(args: RadiosityArgs) -> int:
+    """``glshade radiosity``: solve a scene file for radiosity and draw it."""
     from ..animate import output_format
     from ..io.images import save_image
     from ..modes import ShadingMode

@@ -27,6 +27,7 @@ def _rule(check, *values):
 
 
 def size(text: str) -> tuple[int, int]:
+    """``WxH`` (e.g. 800x600) as (width, height) pixels."""
     from ..options import check_size
 
     m = re.fullmatch(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", text)
@@ -37,6 +38,7 @@ def size(text: str) -> tuple[int, int]:
 
 
 def vec3(text: str) -> tuple[float, float, float]:
+    """``x,y,z`` as three finite numbers."""
     try:
         values = tuple(float(v) for v in text.split(","))
     except ValueError:
@@ -55,6 +57,7 @@ def seed(text: str) -> int:
 
 
 def count(text: str) -> int:
+    """A positive integer."""
     if not text.strip().isdigit() or int(text) < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number >= 1 such as 4, got "
                                          f"{text!r}")
@@ -73,18 +76,22 @@ def _number(text: str, ok, expected: str) -> float:
 
 
 def unit_float(text: str) -> float:
+    """A number in [0, 1]."""
     return _number(text, lambda x: 0 <= x <= 1, "a number in [0, 1] such as 0.5")
 
 
 def nonnegative_float(text: str) -> float:
+    """A finite number >= 0."""
     return _number(text, lambda x: x >= 0, "a non-negative number such as 32")
 
 
 def mode(text: str) -> ShadingMode:
+    """A shading mode by name."""
     return _rule(ShadingMode.parse, text)
 
 
 def levels(text: str) -> list[int]:
+    """``a..b`` or ``a,b,c`` as a list of tessellation levels."""
     m = re.fullmatch(r"\s*(\d+)\s*\.\.\s*(\d+)\s*", text)
     if m and int(m.group(1)) <= int(m.group(2)) <= 8:
         return list(range(int(m.group(1)), int(m.group(2)) + 1))
@@ -99,11 +106,13 @@ def levels(text: str) -> list[int]:
 
 
 def modes(text: str) -> list[ShadingMode]:
+    """A comma-separated list of shading modes."""
     return [mode(t.strip()) for t in text.split(",") if t.strip()] or \
         [mode("")]  # an empty list reports the choices
 
 
 def samples(text: str) -> int:
+    """MSAA samples: 0 (off) or a power of two."""
     from ..options import check_samples
 
     if not text.strip().isdigit():
@@ -113,6 +122,7 @@ def samples(text: str) -> int:
 
 
 def fov(text: str) -> float:
+    """A vertical field of view in degrees, in (0, 180)."""
     from ..scene.camera import check_fov
 
     try:
@@ -134,6 +144,7 @@ VIEW_CHOICES = tuple(v.value for v in View)
 
 
 def view(text: str) -> str:
+    """A named view (front, back, left, right, top, bottom, iso)."""
     return _rule(View.parse, text).value
 
 
@@ -151,6 +162,7 @@ def algorithms(text: str) -> list[str]:
 
 
 def degrees(text: str) -> float:
+    """An angle in degrees, in [0, 180]."""
     return _number(text, lambda x: 0 <= x <= 180, "an angle from 0 to 180 such as 30")
 
 

@@ -56,12 +56,14 @@ def mae(a, b, mask=None) -> float:
 
 
 def max_error(a, b, mask=None) -> float:
+    """Largest absolute difference (8-bit units) over ``mask`` (every pixel when None)."""
     a, b, mask = _pair(a, b, mask)
     e = _select(np.abs(a[..., :3] - b[..., :3]), mask)
     return float(e.max()) if e.size else 0.0
 
 
 def rmse(a, b, mask=None) -> float:
+    """Root-mean-square difference (8-bit units) over ``mask`` (every pixel when None)."""
     a, b, mask = _pair(a, b, mask)
     e = _select((a[..., :3] - b[..., :3]) ** 2, mask)
     return float(np.sqrt(e.mean())) if e.size else 0.0

@@ -22,10 +22,10 @@ Int = NDArray[np.int64]
 class EdgeGroups:
     """Half-edges grouped by undirected edge.
 
-    order : (H,) half-edge indices sorted by undirected key (stable: input order within a
-        group). start : (E,) position in ``order`` of each edge's first half-edge.
-    count : (E,) half-edges of each edge (2 for an interior manifold edge).
-    group : (H,) edge of each half-edge. lo, hi : (E,) the edge's end points, lo < hi.
+    ``order (H,)``: half-edge indices sorted by undirected key (stable: input order within
+    a group); ``start (E,)``: position in ``order`` of each edge's first half-edge;
+    ``count (E,)``: half-edges of each edge (2 for an interior manifold edge); ``group
+    (H,)``: edge of each half-edge; ``lo, hi (E,)``: the edge's end points, lo < hi.
     """
 
     order: Int

@@ -15,6 +15,7 @@ HINT = "pip install 'glshade[formats]'"
 
 
 def trimesh_module():
+    """trimesh, imported on first use, or an InputError saying how to install it."""
     try:
         import trimesh
     except ImportError:

@@ -141,7 +141,7 @@ def _scene_triangles(scene_or_mesh, view: np.ndarray):
 
 def split_by_plane(tris: np.ndarray, normal: np.ndarray, offset: np.ndarray, eps: float = 0.0,
                    cut: np.ndarray | None = None):
-    """Split triangles (n, 3, 3) by planes ``normal . p = offset`` (one per triangle, or one
+    """Split triangles (n, 3, 3) by planes ``dot(normal, p) = offset`` (one per triangle, or one
     for all). Returns (front, front_src, front_cut, back, back_src, back_cut): the pieces
     on each side (re-triangulated), the index of the triangle each came from, and for each
     piece's edges (k to k+1) whether it is a cut (a split line or a diagonal) rather than

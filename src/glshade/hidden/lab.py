@@ -32,6 +32,8 @@ class Agreement:
 
 
 def agreement(result: HiddenResult, reference_ids, reference_depth, edges) -> Agreement:
+    """How far a result's ids and depth agree with the reference's: the pixels that differ
+    off and on the ``edges`` pixels, and the depth error where the ids agree."""
     diff = result.face_id != reference_ids
     same = ~diff & (reference_ids >= 0)
     rel = np.abs(result.depth[same].astype(np.float64) - reference_depth[same]) / \

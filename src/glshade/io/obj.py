@@ -78,6 +78,7 @@ def _obj_diagnose(path, data: bytes) -> None:
 
 
 def read(path, data: bytes) -> Mesh:
+    """The Mesh in OBJ bytes ``data`` (``path`` names it in errors: file and line)."""
     if b"\0" in data[:4096]:
         raise MeshFormatError(path, "binary data in a text OBJ file", byte=data.index(b"\0"))
     lead = data[:1] in (b" ", b"\t")
@@ -177,6 +178,7 @@ def read(path, data: bytes) -> Mesh:
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
+    """Write ``mesh`` as OBJ to the open file ``f`` (text; ``binary`` is ignored)."""
     f.write(f"# glshade: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n".encode())
     write_vertices(f, mesh.vertices, "v ")
     write_faces(f, mesh, "f ", 1, with_count=False)

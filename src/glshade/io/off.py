@@ -18,6 +18,7 @@ from ._text import line_starts, normalize_whitespace, parse_numbers, ragged_take
 __all__ = ["read", "write"]
 
 def read(path, data: bytes) -> Mesh:
+    """The Mesh in OFF bytes ``data`` (``path`` names it in errors: file and line)."""
     if b"#" in data:
         data = COMMENT.sub(b"", data)
     text = normalize_whitespace(data)
@@ -123,6 +124,7 @@ def _header(path, first: list[bytes]):
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
+    """Write ``mesh`` as OFF to the open file ``f`` (text; ``binary`` is ignored)."""
     f.write(f"OFF\n{mesh.n_vertices} {mesh.n_faces} {mesh.n_edges}\n".encode())
     write_vertices(f, mesh.vertices, "")
     write_faces(f, mesh, "", 0, with_count=True)

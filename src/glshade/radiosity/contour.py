@@ -1,9 +1,9 @@
 """The exact factor from a point to a polygon (Lambert's contour integral), for the pairs of
 patches too near each other for a few hemicubes to integrate over the shooter.
 
-From a point x with unit normal n, a planar polygon with corners v_k subtends
+From a point x with unit normal n, a planar polygon with corners v_k subtends::
 
-    F = 1/(2 pi) |sum_k theta_k  n . (a_k x a_k+1) / |a_k x a_k+1||,   a_k = v_k - x,
+    F = 1/(2 pi) abs(sum_k theta_k  n . (a_k x a_k+1) / norm(a_k x a_k+1)),   a_k = v_k - x,
 
 theta_k the angle between a_k and a_k+1 (Sparrow; Cohen and Wallace 4.3). It holds for a
 polygon wholly on the front side of x's plane, seen from its own front; so the polygon is

@@ -1,4 +1,4 @@
-"""Specialised programs: what a draw needs is compiled into its program as ``#define``s --
+"""Specialised programs: what a draw needs is compiled into its program as ``#define`` lines --
 the number and kinds of lights, sRGB encoding, an orthographic view, two-sided lighting,
 auxiliary outputs -- so no shader pays at every pixel for a branch on a uniform (which a
 software rasterizer evaluates on both sides). Programs are compiled lazily and cached by

@@ -72,8 +72,8 @@ class Frame:
     color : (H, W, 4) uint8 (float32 with ``color_dtype="f4"``), linear unless ``srgb``.
     depth : (H, W) float32 distance along the view axis; ``inf`` where nothing was drawn.
     normal : (H, W, 3) float32 world-space unit normal (zero where nothing was drawn).
-    face_id : (H, W) int32 id of the source polygon (not the triangle); -1 for background.
-        With several models, ids continue from one model to the next in scene order.
+    face_id : (H, W) int32 id of the source polygon (not the triangle); -1 for background;
+    with several models, ids continue from one model to the next in scene order.
     """
 
     color: np.ndarray

@@ -13,6 +13,7 @@ __all__ = ["Material", "color3", "nonnegative"]
 
 
 def color3(value, name) -> tuple[float, float, float]:
+    """An RGB triple of finite numbers in [0, 1], or a SceneError naming ``name``."""
     c = np.asarray(value, dtype=np.float64)
     if c.shape == ():
         c = np.repeat(c, 3)
@@ -22,6 +23,7 @@ def color3(value, name) -> tuple[float, float, float]:
 
 
 def nonnegative(value, name) -> float:
+    """A finite number >= 0, or a SceneError naming ``name``."""
     v = float(value)
     if not np.isfinite(v) or v < 0:
         raise SceneError(f"{name} must be a non-negative number, got {value!r}")

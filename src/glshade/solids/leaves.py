@@ -244,7 +244,7 @@ class Torus(_Leaf):
 
 
 class HalfSpace(_Leaf):
-    """Everything on the side of the plane ``normal . p = offset`` away from ``normal``."""
+    """Everything on the side of the plane ``dot(normal, p) = offset`` away from ``normal``."""
 
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0):
         n = _vec(normal, "half-space normal")

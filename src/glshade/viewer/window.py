@@ -41,12 +41,22 @@ class Viewer(Controls):
 
     Parameters
     ----------
-    scene : what to show. camera : the initial view (default: the auto-framed camera of
-    ``glshade render``). size : window size in screen coordinates. options : the initial
-    DrawOptions (or a mode's name); keys change them. samples : MSAA samples of the window
-    (0 = off). compare : flat | Gouraud | Phong side by side with one camera. visible :
-    False for a hidden window (tests). pick : print what a click lands on
-    (:meth:`pick`).
+    scene
+        What to show.
+    camera
+        The initial view (default: the auto-framed camera of ``glshade render``).
+    size
+        Window size in screen coordinates.
+    options
+        The initial DrawOptions (or a mode's name); keys change them.
+    samples
+        MSAA samples of the window (0 = off).
+    compare
+        Flat, Gouraud and Phong side by side with one camera.
+    visible
+        False for a hidden window (tests).
+    pick
+        Print what a click lands on (:meth:`pick`).
     """
 
     def __init__(self, scene: Scene, camera: Camera | None = None, *, size=(960, 720),

@@ -1,0 +1,60 @@
+"""The documentation site builds with warnings as errors (what ``make docs`` runs): the
+README as its front page with its pictures, the chapter notebooks executed into tutorials,
+and an API page for every public module, each documenting its objects."""
+
+import re
+import subprocess
+import sys
+
+import pytest
+
+from tests.conftest import BACKEND, ROOT
+
+pytest.importorskip("sphinx")
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    out = tmp_path_factory.mktemp("docs")
+    generated = tmp_path_factory.mktemp("doctrees")
+    r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
+                        "html", "-d", str(generated), str(ROOT / "docs"), str(out)],
+                       capture_output=True, text=True, timeout=900,
+                       env={**__import__("os").environ, "GLSHADE_BACKEND": BACKEND})
+    assert r.returncode == 0, (r.stdout + r.stderr)[-4000:]
+    return out
+
+
+def test_the_front_page_is_the_readme_with_its_pictures(site):
+    page = (site / "index.html").read_text(encoding="utf-8")
+    assert "The two commands" in page and "Python API" in page
+    for image in re.findall(r'<img[^>]+src="([^"]+)"', page):
+        assert (site / image).is_file(), image
+    assert "teapot-modes.png" in page
+
+
+def test_the_tutorials_are_the_executed_notebooks(site):
+    pages = sorted((site / "notebooks").glob("*.html"))
+    assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 7
+    for page in pages:
+        html = page.read_text(encoding="utf-8")
+        assert "<img" in html or "data:image/png" in html, page.name  # (its outputs)
+        assert "Traceback" not in html, page.name
+
+
+def test_every_public_module_has_an_api_page_with_its_objects(site):
+    import glshade.radiosity
+    import glshade.solids
+
+    api = site / "api" / "generated"
+    for module in ("glshade.quaternion", "glshade.solids.leaves", "glshade.radiosity.solvers",
+                   "glshade.notebook", "glshade.hidden.common", "glshade.scene.camera"):
+        page = (api / f"{module}.html").read_text(encoding="utf-8")
+        assert 'class="sig-name descname"' in page, module
+    camera = (api / "glshade.scene.camera.html").read_text(encoding="utf-8")
+    assert "A pinhole (or orthographic) camera." in camera
+    solvers = (api / "glshade.radiosity.solvers.html").read_text(encoding="utf-8")
+    assert "progressive" in solvers and glshade.radiosity.progressive.__doc__.split()[0] \
+        in solvers
+    assert glshade.solids.Torus.__doc__.split()[0] in \
+        (api / "glshade.solids.leaves.html").read_text(encoding="utf-8")

@@ -41,3 +41,31 @@ def test_the_notebook_runs_and_checks_its_numbers(path, tmp_path, monkeypatch):
                                         for o in outputs), kinds
     text = json.dumps([o.get("text", "") for o in outputs])
     assert "Traceback" not in text
+
+
+def test_progress_in_a_notebook_is_tqdms_widget_and_in_a_log_plain_lines(tmp_path,
+                                                                          monkeypatch):
+    """In a kernel, long work's bar is a widget (tqdm.notebook: an ipywidgets view), not
+    carriage-return text; the radiosity solver's default bar is one too."""
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(
+        "from glshade.parallel import Progress\n"
+        "bar = Progress(5, unit='frames')\n"
+        "for _ in range(5):\n"
+        "    bar.update()\n"
+        "bar.close()"), nbformat.v4.new_code_cell(
+        "from glshade.geometry import primitives\n"
+        "import glshade\n"
+        "from glshade.radiosity import solve\n"
+        "s = glshade.Scene()\n"
+        "s.add(primitives.cube().flipped(), glshade.Material(reflectance=(0.5,) * 3,\n"
+        "      emission=(1.0,) * 3))\n"
+        "solution = solve(s, 1.0, until=0.05)")]
+    monkeypatch.setenv("GLSHADE_BACKEND", BACKEND)
+    NotebookClient(nb, timeout=300, kernel_name="python3",
+                   resources={"metadata": {"path": str(tmp_path)}}).execute()
+    for cell in nb.cells:
+        kinds = {k for o in cell.outputs for k in o.get("data", {})}
+        assert "application/vnd.jupyter.widget-view+json" in kinds, cell.outputs
+        text = "".join(o.get("text", "") for o in cell.outputs)
+        assert "\r" not in text

@@ -23,6 +23,7 @@ LAYERS = [
     {"quaternion", "masspoint"},
     {"geometry"},
     {"brep"},
+    {"patches"},
     {"solids"},
     {"octree"},
     {"scene"},

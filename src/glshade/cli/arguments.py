@@ -39,6 +39,7 @@ class RenderArgs:
     ks: float | None = None
     shininess: float | None = None
     crease: float | None = None
+    tolerance: float | None = None
     backend: Backend = Backend.AUTO
     srgb: bool | None = None
     mode: ShadingMode | None = None
@@ -56,6 +57,7 @@ class RenderArgs:
 class InfoArgs:
     mesh: str
     json: bool = False
+    tolerance: float | None = None
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ..errors import EXIT_OK
+from ..errors import EXIT_OK, UsageError
 from ..io.meshes import load_source
 from .arguments import InfoArgs
 
@@ -156,6 +156,52 @@ def _scene_info(args: InfoArgs) -> int:
     return EXIT_OK
 
 
+def _patch_info(args: InfoArgs, surface) -> int:
+    """Patches, degree, the adaptive tessellation's size and Euler's formula on the
+    patches' B-Rep."""
+    import time
+
+    import numpy as np
+
+    from ..patches import tessellate
+
+    b = surface.patches.bounds()
+    lo, hi = b[:, 0].min(0), b[:, 1].max(0)
+    tol = args.tolerance or 1e-3 * float((hi - lo).max())
+    t0 = time.perf_counter()
+    tess = tessellate(surface, tolerance=tol)
+    seconds = time.perf_counter() - t0
+    e = surface.euler()
+    m, n = surface.patches.degree
+    info = {"source": args.mesh, "patches": len(surface.patches), "degree": [m, n],
+            "rational": surface.patches.rational,
+            "tolerance": tol, "triangles": tess.n_triangles,
+            "samples_per_side": {"min": int(tess.levels.min()), "max": int(tess.levels.max())},
+            "seconds": seconds, "bounds": {"min": lo.tolist(), "max": hi.tolist()},
+            "topology": e.as_dict()}
+    if args.json:
+        print(json.dumps(info, indent=2))
+        return EXIT_OK
+    rows = [("source", args.mesh),
+            ("patches", f"{len(surface.patches)} of degree {m}x{n}"
+                        f"{' (rational)' if surface.patches.rational else ''}"),
+            ("adaptive mesh", f"{tess.n_triangles:,} triangles within {tol:.3g} "
+                              f"({int(tess.levels.min())}..{int(tess.levels.max())} samples a "
+                              f"patch side; {seconds:.2f} s)"),
+            ("bounding box", f"[{', '.join(f'{x:.4g}' for x in lo)}] .. "
+                             f"[{', '.join(f'{x:.4g}' for x in hi)}]"),
+            ("B-Rep", f"V {e.V}, E {e.E} boundary curves, F {e.F} patches"),
+            ("Euler", e.formula + ("" if e.holds else "  (does not hold)")),
+            ("surface", ("closed" if e.is_closed else f"open: {e.B} boundary loops") +
+             f", {e.C} component{'s' if e.C != 1 else ''}, genus "
+             f"{'?' if e.G is None else e.G}")]
+    width = max(len(k) for k, _ in rows)
+    for k, v in rows:
+        print(f"{k:<{width}}  {v}")
+    del np
+    return EXIT_OK
+
+
 def info(args: InfoArgs) -> int:
     """``glshade info``: counts, sizes, bounds, area and topology of a mesh, scene or solid."""
     from dataclasses import replace
@@ -170,6 +216,12 @@ def info(args: InfoArgs) -> int:
     mesh = load_source(args.mesh)
     if isinstance(mesh, Solid):
         return _solid_info(args, mesh)
+    from ..patches import PatchSurface
+
+    if isinstance(mesh, PatchSurface):
+        return _patch_info(args, mesh)
+    if args.tolerance is not None:
+        raise UsageError(f"--tolerance is for patches:NAME, not {args.mesh}")
     info = mesh_summary(mesh)
     info["source"] = args.mesh
     info["topology"] = topology_summary(mesh)

@@ -135,6 +135,12 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
         settings, path = base, None
         size = args.size or base.size
         mesh = load_source(spec)  # (its errors name the file and line)
+        if args.tolerance is not None:
+            from ..patches import PatchSurface, tessellate
+
+            if not isinstance(mesh, PatchSurface):
+                raise UsageError(f"--tolerance is for patches:NAME, not {spec}")
+            mesh = tessellate(mesh, tolerance=args.tolerance).mesh
         try:
             scene, camera = build_scene(mesh, args, size[0] / size[1])
         except InputError as exc:  # a mesh the options cannot place: say which mesh

@@ -45,7 +45,8 @@ def add_quiet(p: argparse.ArgumentParser, what: str = "no summary line") -> None
 
 MESH_HELP = ("a mesh file (.obj .off .ply .stl; glTF and others with glshade[formats]), "
              "primitive:NAME[:ARGS] (e.g. primitive:icosphere:3), solid:TEXT (a CSG tree, "
-             "e.g. \"solid:box(2) - sphere(1.2)\") or a scene file (.toml)")
+             "e.g. \"solid:box(2) - sphere(1.2)\"), patches:NAME (Bezier patches: teapot, "
+             "sphere, cylinder, cone, torus) or a scene file (.toml)")
 
 
 def _defaults(cls) -> dict:
@@ -77,6 +78,9 @@ def add_render_options(p: argparse.ArgumentParser, size_default: str | None = No
                        f"(default {mat[name]:g})")
     p.add_argument("--shininess", type=v.nonnegative_float,
                    help=f"specular exponent n (default {mat['shininess']:g})")
+    p.add_argument("--tolerance", type=v.positive_float, metavar="T", help="patches:NAME: "
+                   "tessellate to within T world units of the exact surface (default: a "
+                   "thousandth of its size)")
     p.add_argument("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
                    "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
     p.add_argument("--view", type=v.view, metavar="NAME", help="a named view, framed: " +
@@ -114,6 +118,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "glshade info assets/scenes/cornell-box.toml"))
     p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("--json", action="store_true", help="machine-readable output")
+    p.add_argument("--tolerance", type=v.positive_float, metavar="T", help="patches:NAME: "
+                   "the tolerance whose adaptive triangle count is reported (default: a "
+                   "thousandth of its size)")
     p.set_defaults(func=c.info, arguments=a.InfoArgs)
 
     p = sub.add_parser("render", help="render a mesh, solid or scene headless to an image",

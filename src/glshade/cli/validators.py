@@ -190,6 +190,7 @@ def scheduler(text: str) -> str:
 
 
 def positive_float(text: str) -> float:
+    """A finite number > 0."""
     return _number(text, lambda x: x > 0, "a number > 0")
 
 

@@ -8,6 +8,8 @@ and what was wrong.
 
 from __future__ import annotations
 
+from typing import Any
+
 from pathlib import Path
 
 from .._atomic import atomic_write
@@ -67,9 +69,10 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     return mesh
 
 
-def load_source(spec: str) -> Mesh:
+def load_source(spec: str) -> Any:
     """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
-    MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`)."""
+    MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`),
+    ``patches:NAME`` a :class:`~glshade.patches.PatchSurface`."""
     if spec.startswith("solid:"):
         from ..solids.text import parse_solid
 
@@ -78,6 +81,10 @@ def load_source(spec: str) -> Mesh:
         from ..geometry import primitives
 
         return primitives.from_spec(spec)
+    if spec.startswith("patches:"):
+        from .. import patches
+
+        return patches.named(spec[len("patches:"):])
     return load_mesh(spec)
 
 

@@ -110,7 +110,9 @@ class Scene:
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None) -> Model:
-        """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU). Place
+        """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
+        :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
+        normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
         it with a 4x4 ``transform`` (column vectors), or with a
         quaternion ``rotation``, ``translation`` and ``scale`` (T R S). ``crease`` (degrees)
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
@@ -119,8 +121,12 @@ class Scene:
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
+        from ..patches import PatchSet, PatchSurface
+
+        if isinstance(mesh, (PatchSurface, PatchSet)):  # (a tessellation, exact normals)
+            mesh = _tessellated(mesh)
         if not isinstance(mesh, Mesh):
-            raise SceneError(f"scene.add needs a Mesh or a Solid, got "
+            raise SceneError(f"scene.add needs a Mesh, a Solid or patches, got "
                                 f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
@@ -190,3 +196,17 @@ class Scene:
             return np.zeros((2, 3))
         p = np.vstack(pts)
         return np.stack([p.min(0), p.max(0)])
+
+
+#: patches a scene tessellates itself: to this fraction of their size
+PATCH_TOLERANCE = 1e-3
+
+
+def _tessellated(patches) -> Mesh:
+    from ..patches import PatchSet, PatchSurface, tessellate
+
+    surface = patches if isinstance(patches, PatchSurface) else PatchSurface(patches)
+    b = surface.patches.bounds()
+    size = float(np.ptp(np.concatenate([b[:, 0], b[:, 1]]), 0).max()) or 1.0
+    assert isinstance(surface.patches, PatchSet)
+    return tessellate(surface, tolerance=PATCH_TOLERANCE * size).mesh

@@ -1,0 +1,103 @@
+"""Patch data sets in the classic format of Newell's teapot files: the number of patches,
+one line per patch with its 16 control-point indices (1-based, commas or spaces), the number
+of vertices, then one ``x, y, z`` line per vertex. Bicubic patches, z up in the file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from .bezier import PatchSet
+
+__all__ = ["read_patches", "parse_patches", "write_patches", "teapot"]
+
+
+def _numbers(line: str, kind, path, number: int, count: int | None = None) -> list:
+    parts = line.replace(",", " ").split()
+    try:
+        values = [kind(p) for p in parts]
+    except ValueError:
+        raise InputError(f"{path}:{number}: expected {'integers' if kind is int else 'numbers'}"
+                         f", got {line.strip()!r}") from None
+    if count is not None and len(values) != count:
+        raise InputError(f"{path}:{number}: expected {count} values, got {len(values)}")
+    return values
+
+
+def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet:
+    """The bicubic patches of a file's text (``up``: the file's up axis; glshade's is y)."""
+    lines = [(i + 1, s) for i, s in enumerate(text.splitlines()) if s.strip()]
+    if not lines:
+        raise InputError(f"{path}: empty")
+    it = iter(lines)
+
+    def take(what: str):
+        try:
+            return next(it)
+        except StopIteration:
+            raise InputError(f"{path}: ended before {what}") from None
+
+    number, line = take("the patch count")
+    (n_patches,) = _numbers(line, int, path, number, 1)
+    if n_patches < 1:
+        raise InputError(f"{path}:{number}: a patch count must be positive, got {n_patches}")
+    index = np.array([_numbers(take(f"patch {k + 1}")[1], int, path, lines[k + 1][0], 16)
+                      for k in range(n_patches)])
+    number, line = take("the vertex count")
+    (n_vertices,) = _numbers(line, int, path, number, 1)
+    rows = []
+    for k in range(n_vertices):
+        number, line = take(f"vertex {k + 1}")
+        rows.append(_numbers(line, float, path, number, 3))
+    points = np.array(rows, np.float64).reshape(-1, 3)
+    if not np.isfinite(points).all():
+        raise InputError(f"{path}: a vertex is not finite")
+    bad = (index < 1) | (index > n_vertices)
+    if bad.any():
+        k = int(np.argwhere(bad)[0, 0])
+        raise InputError(f"{path}:{lines[k + 1][0]}: a control-point index is outside 1.."
+                         f"{n_vertices}")
+    cp = points[index - 1].reshape(-1, 4, 4, 3)
+    if up == "z":
+        cp = cp[..., [0, 2, 1]] * [1, 1, -1]  # z up -> y up, keeping handedness
+    return PatchSet(cp)
+
+
+def read_patches(path, up: str = "z") -> PatchSet:
+    """The patches of a file in the classic format (errors name the file and line)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{p}: cannot read: {exc}") from None
+    return parse_patches(text, str(p), up)
+
+
+def write_patches(patches: PatchSet) -> str:
+    """Bicubic polynomial patches in the classic format (y up as z up, as the files are)."""
+    if patches.degree != (3, 3) or patches.rational:
+        raise InputError("the classic patch format holds bicubic polynomial patches only")
+    pts = patches.points[..., [0, 2, 1]] * [1, -1, 1]  # y up -> z up
+    flat, index = np.unique(pts.reshape(-1, 3), axis=0, return_inverse=True)
+    out = [str(len(patches))]
+    out += [",".join(str(int(i) + 1) for i in row) for row in index.reshape(-1, 16)]
+    out.append(str(len(flat)))
+    out += [",".join(repr(float(x)) for x in p) for p in flat]
+    return "\n".join(out) + "\n"
+
+
+def teapot() -> PatchSet:
+    """Newell's teapot: 32 bicubic patches, y up, resting on y = 0, oriented outward (the
+    data winds the body one way and the rest the other: :meth:`PatchSurface.oriented`)."""
+    from ..geometry.data.teapot import PATCHES, VERTICES
+
+    text = "\n".join([str(len(PATCHES.split()) // 16)]
+                     + [",".join(str(int(i) + 1) for i in row)
+                        for row in np.array(PATCHES.split(), int).reshape(-1, 16)])
+    rows = [p.split() for line in VERTICES.strip().splitlines() for p in line.split(";")]
+    text += f"\n{len(rows)}\n" + "\n".join(",".join(r) for r in rows)
+    from .surface import PatchSurface
+
+    return PatchSurface(parse_patches(text, "teapot"), "teapot").oriented().patches

@@ -1,0 +1,103 @@
+"""The exact quadrics as rational Bezier patches: surfaces of revolution about the y axis,
+each the tensor product of a profile in the (r, y) plane and four quarter circles (the
+rational quadratic with middle weight cos 45 degrees is exactly a circular arc). Every
+point evaluated lies on the exact surface (to rounding); normals point outward.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError
+from .bezier import PatchSet
+
+__all__ = ["revolve", "sphere", "cylinder", "cone", "torus", "QUARTER"]
+
+_H = np.sqrt(0.5)
+#: a quarter of the unit circle from +x to +z: control points (cos, sin) and weights
+QUARTER = (np.array([[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]), np.array([1.0, _H, 1.0]))
+
+
+def _positive(name: str, value) -> float:
+    v = float(value)
+    if not (np.isfinite(v) and v > 0):
+        raise GeometryError(f"{name} must be a positive number, got {value!r}")
+    return v
+
+
+def revolve(profile, weights=None) -> PatchSet:
+    """The surface swept by profile curves about the y axis: ``profile (S, m+1, 2)`` Bezier
+    control points ``(r, y)`` (r >= 0) with ``weights (S, m+1)``; 4 S patches of degree
+    (m, 2), u along the profile, v around the axis (from +x towards +z). The normal
+    ``Su x Sv`` points away from the axis where the profile rises."""
+    prof = np.asarray(profile, dtype=np.float64)
+    if prof.ndim == 2:
+        prof = prof[None]
+    w = np.ones(prof.shape[:2]) if weights is None else \
+        np.asarray(weights, dtype=np.float64).reshape(prof.shape[:2])
+    if (prof[..., 0] < 0).any():
+        raise GeometryError("a profile's radii must be >= 0")
+    ring, ring_w = QUARTER
+    patches, pw = [], []
+    for quarter in range(4):  # turn the quarter by 90 degrees each time
+        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter]  # (exact quarter turns)
+        rot = ring @ np.array([[c, s], [-s, c]])  # (3, 2): (cos, sin) of the arc's points
+        for k in range(len(prof)):
+            r, y = prof[k, :, 0], prof[k, :, 1]
+            pts = np.stack([r[:, None] * rot[None, :, 0],
+                            np.broadcast_to(y[:, None], (len(r), 3)),
+                            r[:, None] * rot[None, :, 1]], -1)
+            patches.append(pts)
+            pw.append(w[k][:, None] * ring_w[None, :])
+    return PatchSet(np.array(patches), np.array(pw))
+
+
+def _arcs(centre, radius, start_quarter: int, quarters: int):
+    """Quarter arcs of a circle in the (r, y) plane, counter-clockwise from ``start_quarter``
+    (0: from +r): ``(quarters, 3, 2)`` and weights."""
+    ring, ring_w = QUARTER
+    out = []
+    for q in range(start_quarter, start_quarter + quarters):
+        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][q % 4]
+        # (cos, sin) in (r, y): the ring's (x, z) read as (r, y), turned by q quarters
+        pts = ring @ np.array([[c, s], [-s, c]])
+        out.append(np.asarray(centre) + radius * pts)
+    return np.array(out), np.tile(ring_w, (quarters, 1))
+
+
+def sphere(radius: float = 1.0) -> PatchSet:
+    """8 biquadratic rational patches; the poles are collapsed edges."""
+    r = _positive("radius", radius)
+    arcs, w = _arcs((0.0, 0.0), r, 3, 2)  # from the south pole up to the north pole
+    return revolve(arcs, w)
+
+
+def _segments(points):
+    p = np.asarray(points, dtype=np.float64)
+    return np.stack([p[:-1], p[1:]], 1)  # (S, 2, 2): degree-1 profiles
+
+
+def cylinder(radius: float = 1.0, height: float = 2.0, caps: bool = True) -> PatchSet:
+    """The side (4 patches) and, with ``caps``, the two discs (4 each, collapsed at their
+    centres), closed; degree (1, 2); centred on the origin along y."""
+    r, h = _positive("radius", radius), _positive("height", height) / 2
+    chain = [(r, -h), (r, h)] if not caps else [(0, -h), (r, -h), (r, h), (0, h)]
+    return revolve(_segments(chain))
+
+
+def cone(radius: float = 1.0, height: float = 2.0, cap: bool = True) -> PatchSet:
+    """A cone with its apex at y = height/2 over a base of ``radius`` at y = -height/2 (the
+    same placement as :class:`glshade.solids.Cone`); degree (1, 2)."""
+    r, h = _positive("radius", radius), _positive("height", height) / 2
+    chain = [(r, -h), (0, h)] if not cap else [(0, -h), (r, -h), (0, h)]
+    return revolve(_segments(chain))
+
+
+def torus(R: float = 1.0, r: float = 0.25) -> PatchSet:
+    """16 biquadratic rational patches: a tube of radius ``r`` about a circle of radius
+    ``R`` in the xz plane."""
+    R, r = _positive("R", R), _positive("r", r)
+    if r >= R:
+        raise GeometryError(f"a ring torus needs r < R, got R={R}, r={r}")
+    arcs, w = _arcs((R, 0.0), r, 0, 4)
+    return revolve(arcs, w)

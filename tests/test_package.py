@@ -44,7 +44,8 @@ FACADE = {frozenset({"glshade.geometry.mesh", "glshade.geometry.merge"}),
           frozenset({"glshade.geometry.mesh", "glshade.geometry.trimesh_bridge"})}
 #: GL-free packages: they never import moderngl, glfw or glcontext
 GL_FREE = ["glshade", "glshade.geometry", "glshade.quaternion", "glshade.masspoint",
-           "glshade.brep", "glshade.solids", "glshade.octree", "glshade.scene", "glshade.io",
+           "glshade.brep", "glshade.patches", "glshade.solids", "glshade.octree",
+           "glshade.scene", "glshade.io", "glshade.viewer.controls",
            "glshade.cpu", "glshade.hidden", "glshade.compare", "glshade.animate",
            "glshade.batch", "glshade.parallel", "glshade.cli.parser"]
 

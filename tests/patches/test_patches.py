@@ -221,3 +221,27 @@ def test_a_scene_takes_patches_and_bad_requests_are_refused():
         tessellate(G.teapot(), tolerance=1e-12)
     with pytest.raises(GeometryError, match="weights must be positive"):
         PatchSet(np.zeros((1, 2, 2, 3)), -np.ones((1, 2, 2)))
+
+
+def test_the_command_line_renders_and_describes_patches(tmp_path):
+    import json
+
+    from tests.conftest import BACKEND, glshade
+
+    out = tmp_path / "pot.png"
+    r = glshade("render", "patches:teapot", "--tolerance", "1e-2", "-o", str(out),
+                "--size", "96x72", "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert out.stat().st_size > 0
+    r = glshade("info", "patches:teapot", "--json")
+    assert r.returncode == 0, r.stderr
+    info = json.loads(r.stdout)
+    assert (info["patches"], info["degree"], info["topology"]["C"]) == (32, [3, 3], 4)
+    assert info["topology"]["euler_holds"] and info["triangles"] > 1000
+    for args, message in ((("info", "patches:kettle"), "unknown patch model 'kettle'"),
+                          (("info", "primitive:cube", "--tolerance", "0.1"),
+                           "--tolerance is for patches:NAME"),
+                          (("info", "patches:teapot", "--tolerance", "-1"), "--tolerance")):
+        r = glshade(*args)
+        assert r.returncode == 2 and message in r.stderr, (args, r.stderr)
+        assert "Traceback" not in r.stderr

@@ -3,10 +3,13 @@ chapter notebooks as tutorials (executed at build time by myst-nb), and the API 
 generated from the docstrings (autodoc + autosummary). Built with warnings as errors."""
 
 import os
+import shutil
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+# the API pages are made anew each build (a renamed module must not leave a stale page)
+shutil.rmtree(ROOT / "docs" / "api" / "generated", ignore_errors=True)
 sys.path.insert(0, str(ROOT / "src"))
 os.environ.setdefault("GLSHADE_BACKEND", "auto")
 

@@ -93,3 +93,25 @@ def test_phong_with_exact_normals_is_nearer_the_reference_than_with_averaged(mak
     err = {k: np.abs(images[k] - images["fine"])[both].mean() for k in ("exact", "averaged")}
     assert both.sum() > 5000
     assert err["exact"] < 0.7 * err["averaged"], err
+
+
+def test_the_patch_sweep_puts_exact_normals_below_averaged_ones(make_renderer, tmp_path):
+    import json
+
+    from glshade.compare import patch_sweep
+    from tests.conftest import BACKEND, glshade
+
+    rows = patch_sweep(G.named("teapot"), levels=(3, 6, 12), modes=("phong",),
+                       renderer=make_renderer(160, 160), reference_level=48)
+    exact = [r["phong exact"].mean_abs for r in rows]
+    averaged = [r["phong averaged"].mean_abs for r in rows]
+    assert all(e < a for e, a in zip(exact, averaged)), (exact, averaged)
+    assert exact[0] > exact[1] > exact[2]  # (finer is nearer)
+    out = tmp_path / "sweep.png"
+    r = glshade("compare", "patches:torus", "--sweep", "--levels", "2,4", "--modes", "phong",
+                "-o", str(out), "--json", str(tmp_path / "s.json"), "--size", "96x96",
+                "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    data = json.loads((tmp_path / "s.json").read_text())
+    assert [d["level"] for d in data] == [2, 4] and "phong exact" in data[0]
+    assert out.stat().st_size > 0

@@ -125,10 +125,12 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
     from ..io.images import save_image
     from ..parallel import Progress
 
+    if args.mesh.startswith("patches:"):
+        return _patch_sweep(args, modes)
     spec = args.mesh.removeprefix("primitive:").split(":")[0]
     if spec not in ("icosphere", "uv_sphere"):
-        raise UsageError("--sweep needs a sphere primitive: primitive:icosphere or "
-                         "primitive:uv_sphere")
+        raise UsageError("--sweep needs a sphere primitive (primitive:icosphere or "
+                         "primitive:uv_sphere) or patches:NAME")
     make = icosphere_level if spec == "icosphere" else uv_sphere_level
     with Progress(len(args.levels), unit="levels") as bar:
         config = RenderConfig(*(args.size or COMPARE_DEFAULTS.size), samples=0,
@@ -148,6 +150,36 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
         with atomic_write(args.json, "w") as f:
             json.dump([{"level": r["level"], "faces": r["faces"],
                         **{m: r[m].__dict__ for m in modes}} for r in rows], f, indent=2)
+    print(f"plot: {args.output}")
+    return EXIT_OK
+
+
+def _patch_sweep(args: a.CompareArgs, modes: list[str]) -> int:
+    """``compare patches:NAME --sweep``: exact against averaged normals, level by level."""
+    from .._atomic import atomic_write
+    from ..compare import patch_sweep, sweep_plot
+    from ..io.images import save_image
+    from ..io.meshes import load_source
+
+    surface = load_source(args.mesh)
+    # (flat shading lights each polygon by its own normal: the vertex normals do not show)
+    modes = [m for m in modes if m in ("gouraud", "phong")] or ["phong"]
+    size = args.size or COMPARE_DEFAULTS.size
+    rows = patch_sweep(surface, levels=args.levels, modes=modes, size=size,
+                       backend=args.backend, progress=None)
+    series = [f"{m} {k}" for m in modes for k in ("exact", "averaged")]
+    print(f"mean |error| against Phong on a fine tessellation with exact normals (8-bit "
+          f"units), {args.mesh}")
+    print("level  triangles  " + "  ".join(f"{s:>17}" for s in series))
+    for r in rows:
+        print(f"{r['level']:>5}  {r['faces']:>9,}  " +
+              "  ".join(f"{r[s].mean_abs:>17.3f}" for s in series))
+    save_image(sweep_plot(rows, series, title="error vs exact normals, finely tessellated"),
+               args.output)
+    if args.json:
+        with atomic_write(args.json, "w") as f:
+            json.dump([{"level": r["level"], "faces": r["faces"],
+                        **{s: r[s].__dict__ for s in series}} for r in rows], f, indent=2)
     print(f"plot: {args.output}")
     return EXIT_OK
 

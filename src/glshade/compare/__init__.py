@@ -4,9 +4,9 @@ analytic or refined reference, and tessellation sweeps."""
 from .._callable import callable_package
 from . import metrics
 from .comparison import REFERENCES, Comparison, ModeMetrics, compare
-from ._sweep import sweep, sweep_plot
+from ._sweep import patch_sweep, sweep, sweep_plot
 
 __all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES", "sweep", "sweep_plot",
-           "metrics"]
+           "patch_sweep", "metrics"]
 
 callable_package(__name__, compare)  # glshade.compare(...) calls the function, whatever is bound

@@ -1,5 +1,6 @@
-"""How each shading mode's error falls as a sphere is tessellated more finely: the numbers
-(against the analytic sphere) and a log-scale plot drawn with Pillow."""
+"""How each shading mode's error falls as a sphere is tessellated more finely (against the
+analytic sphere), or a patch model (against a fine tessellation with exact normals, with
+exact and with averaged normals): the numbers and a log-scale plot drawn with Pillow."""
 
 from __future__ import annotations
 
@@ -7,10 +8,11 @@ import numpy as np
 
 from ..io.images import font
 from ..options import RenderConfig
-from ..scene import Camera, Material, PointLight, Scene
+from ..scene import Camera, Material, PointLight, Scene, default_camera
 from .comparison import compare
 
-__all__ = ["sweep", "sweep_plot", "SweepLevel", "icosphere_level", "uv_sphere_level"]
+__all__ = ["sweep", "sweep_plot", "patch_sweep", "SweepLevel", "icosphere_level",
+           "uv_sphere_level"]
 
 #: a sweep's tiles: small, one sample per pixel like the analytic reference
 SWEEP_CONFIG = RenderConfig(192, 192, samples=0)
@@ -94,12 +96,20 @@ def uv_sphere_level(k: int):
     return primitives.uv_sphere(4 * 2**k, 8 * 2**k)
 
 
-def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420)) -> np.ndarray:
-    """A log-scale line plot of ``metric`` against level, drawn with Pillow."""
+#: the series' colours in a sweep plot (others: the palette, in turn)
+SERIES_COLORS = {"flat": (230, 120, 60), "gouraud": (90, 170, 240), "phong": (120, 220, 120),
+                 "normals": (200, 200, 200), "depth": (160, 160, 160)}
+PALETTE = [(40, 150, 60), (230, 120, 60), (60, 110, 220), (190, 70, 170), (120, 120, 120),
+           (200, 170, 40)]
+
+
+def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420),
+               title: str = "error vs the analytic sphere") -> np.ndarray:
+    """A log-scale line plot of ``metric`` of each series (``modes``: the rows' keys)
+    against level, drawn with Pillow."""
     from PIL import Image, ImageDraw
 
-    colors = {"flat": (230, 120, 60), "gouraud": (90, 170, 240), "phong": (120, 220, 120),
-              "normals": (200, 200, 200), "depth": (160, 160, 160)}
+    colors = {m: SERIES_COLORS.get(m, PALETTE[i % len(PALETTE)]) for i, m in enumerate(modes)}
     w, h = size
     left, right, top, bottom = 70, 20, 40, 50
     img = Image.new("RGB", (w, h), (250, 250, 250))
@@ -125,13 +135,65 @@ def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420
         x, _ = px(level, 10**lo)
         d.text((x - 4, h - bottom + 6), str(level), fill=(60, 60, 60), font=small)
     d.text((w / 2 - 60, h - 22), "tessellation level", fill=(30, 30, 30), font=face)
-    d.text((left, 10), f"{metric.replace('_', ' ')} error vs the analytic sphere (8-bit, log)",
+    d.text((left, 10), f"{metric.replace('_', ' ')} {title} (8-bit, log)",
            fill=(30, 30, 30), font=face)
     for i, m in enumerate(modes):
         pts = [px(r["level"], getattr(r[m], metric)) for r in rows]
         d.line(pts, fill=colors.get(m, (0, 0, 0)), width=3)
         for x, y in pts:
             d.ellipse([x - 3, y - 3, x + 3, y + 3], fill=colors.get(m, (0, 0, 0)))
-        d.text((w - right - 90, top + 8 + 16 * i), m, fill=colors.get(m, (0, 0, 0)),
-               font=face)
+        label_w = d.textlength(m, font=face)
+        d.text((w - right - 10 - label_w, top + 8 + 16 * i), m,
+               fill=colors.get(m, (0, 0, 0)), font=face)
     return np.asarray(img)
+
+
+def patch_sweep(surface, camera: Camera | None = None, levels=(2, 3, 4, 6, 8, 12, 16),
+                modes=("gouraud", "phong"), *, reference_level: int = 96, size=(256, 256),
+                material=None, renderer=None, backend=None, progress=None) -> list[dict]:
+    """Shading error of a patch model's tessellations against an exact per-pixel reference
+    (Phong on a ``reference_level`` tessellation with exact normals), per level: each of
+    ``modes`` with the patches' exact normals and with normals averaged over the welded mesh
+    (the notes' formula). Rows ``{"level", "faces", "<mode> exact": ModeMetrics,
+    "<mode> averaged": ModeMetrics}``, in 8-bit units."""
+    from ..geometry.mesh import Mesh
+    from ..parallel import as_progress
+    from ..patches import PatchSurface, tessellate
+    from ..render.renderer import Renderer
+
+    surface = surface if isinstance(surface, PatchSurface) else PatchSurface(surface)
+    material = material or Material(color=(0.85, 0.55, 0.3), ks=0.5, shininess=40)
+    owned = renderer is None
+    r = renderer or Renderer(int(size[0]), int(size[1]), samples=0, backend=backend or "auto")
+    bar, own_bar = as_progress(progress, len(levels) + 1, "levels")
+    try:
+        def scene_of(mesh):
+            scene = Scene()
+            scene.add(mesh, material)
+            scene.add_light(PointLight((5.0, 7.0, 8.0)))
+            return scene
+
+        fine = scene_of(tessellate(surface, reference_level).mesh)
+        camera = camera or default_camera(fine.bounds, r.width / r.height)
+        reference = r.render(fine, camera, "phong")[..., :3]
+        if bar is not None:
+            bar.update()
+        rows = []
+        for k in levels:
+            tess = tessellate(surface, int(k))
+            exact = scene_of(tess.mesh)
+            averaged = scene_of(Mesh(tess.mesh.vertices, tess.mesh.faces).weld())
+            row: dict = {"level": int(k), "faces": tess.n_triangles}
+            for kind, scene in (("exact", exact), ("averaged", averaged)):
+                c = compare(scene, camera, modes, reference, diff=False, renderer=r,
+                            size=(r.width, r.height))
+                row.update({f"{m.mode} {kind}": m for m in c.metrics})
+            rows.append(row)
+            if bar is not None:
+                bar.update()
+        return rows
+    finally:
+        if own_bar:
+            bar.close()
+        if owned:
+            r.close()

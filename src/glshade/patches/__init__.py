@@ -1,13 +1,13 @@
 """Parametric patches (the notes' B-Reps whose faces are surfaces): Bezier and rational
 Bezier curves and tensor-product patches of any degree over mass-points (:mod:`.bezier`),
 the exact quadrics as rational patches (:mod:`.quadrics`), the classic patch data sets
-(:mod:`.io`: Newell's teapot), patches as a B-Rep with Euler's formula (:mod:`.surface`) and
+(:mod:`.files`: Newell's teapot), patches as a B-Rep with Euler's formula (:mod:`.surface`) and
 crack-free tessellation with exact normals, uniform or to an error bound
 (:mod:`.tessellation`). Pure numpy: nothing here imports GL.
 """
 
 from .bezier import PatchSet, bernstein, curve_point, de_casteljau
-from .io import parse_patches, read_patches, teapot, write_patches
+from .files import parse_patches, read_patches, teapot, write_patches
 from .quadrics import cone, cylinder, revolve, sphere, torus
 from .surface import PatchSurface
 from .tessellation import Tessellation, flatness_levels, tessellate

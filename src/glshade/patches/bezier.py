@@ -22,7 +22,7 @@ from ..errors import GeometryError
 
 __all__ = ["bernstein", "curve_point", "de_casteljau", "PatchSet", "elevate"]
 
-#: |Su x Sv| below this fraction of the patch's size squared counts as degenerate (a
+#: ``norm(Su x Sv)`` below this fraction of the patch's size squared counts as degenerate (a
 #: collapsed edge or pole, where the normal is taken as its limit)
 DEGENERATE = 1e-12
 

@@ -47,7 +47,10 @@ def objects(renderer):
 
     box, _ = cornell_scene()
     solution = solve(box, patch_size=250, until=0.2, context=renderer.context)
+    from glshade import patches
+
     return {"mesh": cube, "scene": scene, "solid": Box(2) - Sphere(1.2),
+            "patches": patches.named("teapot"),
             "octree": Octree.from_solid(Box(2) - Sphere(1.2), 4), "frame": frame,
             "hidden": hidden, "path": path, "solution": solution}
 

@@ -58,6 +58,22 @@ class PatchSurface:
         return (f"<PatchSurface {self.name!r}: {len(self.patches)} patches of degree "
                 f"{m}x{n}{' (rational)' if self.patches.rational else ''}>")
 
+    def _repr_html_(self) -> str:
+        """In a notebook: a thumbnail of a tessellation (exact normals) and the B-Rep's
+        counts."""
+        from .._display import bounds_fact, facts_html, picture
+        from .tessellation import tessellate
+
+        e = self.euler()
+        b = self.patches.bounds()
+        lo, hi = b[:, 0].min(0), b[:, 1].max(0)
+        facts = [f"V {e.V}, E {e.E} boundary curves, F {e.F} patches",
+                 e.formula, ("closed" if e.is_closed else f"{e.B} boundary loops") +
+                 f", {e.C} component{'s' if e.C != 1 else ''}",
+                 bounds_fact(np.stack([lo, hi]))]
+        mesh = tessellate(self, tolerance=2e-3 * float((hi - lo).max() or 1.0)).mesh
+        return facts_html(repr(self), facts, picture(mesh))
+
     def _key(self, pts: np.ndarray) -> np.ndarray:
         scale = float(np.ptp(self.patches.points.reshape(-1, 3), 0).max()) or 1.0
         return np.round(pts / (MATCH * scale)).astype(np.int64)

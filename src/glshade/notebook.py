@@ -160,6 +160,17 @@ def _widget_class():
             return True
 
         def _on_message(self, _widget, content: dict, _buffers) -> None:
+            """A gesture from the browser (an unknown mode or key is said in the status
+            line: a kernel would only log an exception raised here)."""
+            from .errors import GlshadeError
+
+            try:
+                self._gesture(content)
+            except GlshadeError as exc:
+                self.controls._say(f"error: {exc}")
+                self.refresh()
+
+        def _gesture(self, content: dict) -> None:
             event, c = content.get("event"), self.controls
             if event == "down":
                 c.mouse_down(float(content["x"]), float(content["y"]),

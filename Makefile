@@ -15,11 +15,12 @@ demo: setup
 			--color 0.85,0.55,0.3 --background 0.12,0.12,0.14 -o out/teapot-$$mode.png || exit 1; \
 	done
 
-# Everything on EGL, the GL tests (marked gl) again on OSMesa (one backend per process), then
-# the viewer in a real window under Xvfb.
+# Everything on EGL, the GL tests (marked gl) again on OSMesa (one backend per process; the
+# slow ones -- the wheel in a fresh environment, the Cornell box against light tracing --
+# once, on EGL), then the viewer in a real window under Xvfb.
 test: setup
 	$(PY) -m pytest -q --ignore=tests/viewer
-	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q -m gl --ignore=tests/viewer
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q -m "gl and not slow" --ignore=tests/viewer
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

@@ -35,7 +35,7 @@ def test_the_front_page_is_the_readme_with_its_pictures(site):
 
 def test_the_tutorials_are_the_executed_notebooks(site):
     pages = sorted((site / "notebooks").glob("*.html"))
-    assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 7
+    assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 8
     for page in pages:
         html = page.read_text(encoding="utf-8")
         assert "<img" in html or "data:image/png" in html, page.name  # (its outputs)

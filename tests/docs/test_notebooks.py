@@ -12,7 +12,8 @@ from tests.conftest import BACKEND, ROOT
 
 pytestmark = pytest.mark.gl
 NOTEBOOKS = sorted((ROOT / "docs" / "notebooks").glob("*.ipynb"))
-CHAPTERS = ("shading", "newell", "quaternions", "brep", "csg", "hidden", "radiosity")
+CHAPTERS = ("shading", "newell", "quaternions", "brep", "csg", "hidden", "radiosity",
+            "patches")
 
 
 def test_every_chapter_has_a_notebook():

@@ -62,7 +62,6 @@ class PatchSurface:
         """In a notebook: a thumbnail of a tessellation (exact normals) and the B-Rep's
         counts."""
         from .._display import bounds_fact, facts_html, picture
-        from .tessellation import tessellate
 
         e = self.euler()
         b = self.patches.bounds()
@@ -71,8 +70,7 @@ class PatchSurface:
                  e.formula, ("closed" if e.is_closed else f"{e.B} boundary loops") +
                  f", {e.C} component{'s' if e.C != 1 else ''}",
                  bounds_fact(np.stack([lo, hi]))]
-        mesh = tessellate(self, tolerance=2e-3 * float((hi - lo).max() or 1.0)).mesh
-        return facts_html(repr(self), facts, picture(mesh))
+        return facts_html(repr(self), facts, picture(self))  # (a scene tessellates it)
 
     def _key(self, pts: np.ndarray) -> np.ndarray:
         scale = float(np.ptp(self.patches.points.reshape(-1, 3), 0).max()) or 1.0

@@ -145,3 +145,6 @@ def test_a_comparison_shows_its_grid_and_has_a_short_repr(side, make_renderer):
     assert len(text) <= SHORT and "array(" not in text and "analytic" in text, text
     image = np.asarray(Image.open(io.BytesIO(result._repr_png_())))
     assert image.shape[:2] == result.image.shape[:2] and len(np.unique(image)) > 2
+    view = result._repr_html_()
+    (shown,) = pictures(view)
+    assert shown.shape[:2] == result.image.shape[:2] and "phong: mean" in view

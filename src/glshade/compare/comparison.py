@@ -119,6 +119,14 @@ class Comparison:
         return (f"<Comparison of {', '.join(m.mode for m in self.metrics)} against the "
                 f"{self.reference_kind} reference: {w}x{h} grid{closest}>")
 
+    def _repr_html_(self) -> str:
+        """In a notebook: the grid and each mode's numbers."""
+        from .._display import facts_html
+
+        facts = [f"{m.mode}: mean {m.mean_abs:.3g}, max {m.max_abs:.0f}, PSNR {m.psnr:.1f} dB,"
+                 f" SSIM {m.ssim:.3f}, Mach band {m.mach_band:.2f}" for m in self.metrics]
+        return facts_html(repr(self), facts, self.image)
+
     def _repr_png_(self) -> bytes:
         from PIL import Image
 

@@ -10,8 +10,6 @@ import pytest
 
 from tests.conftest import BACKEND, ROOT
 
-pytest.importorskip("sphinx")
-
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):

@@ -161,8 +161,6 @@ def _patch_info(args: InfoArgs, surface) -> int:
     patches' B-Rep."""
     import time
 
-    import numpy as np
-
     from ..patches import tessellate
 
     b = surface.patches.bounds()
@@ -198,7 +196,6 @@ def _patch_info(args: InfoArgs, surface) -> int:
     width = max(len(k) for k, _ in rows)
     for k, v in rows:
         print(f"{k:<{width}}  {v}")
-    del np
     return EXIT_OK
 
 

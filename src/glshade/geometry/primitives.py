@@ -213,31 +213,28 @@ def _bernstein(t: np.ndarray) -> np.ndarray:
 def teapot(tessellation: int = 8) -> Mesh:
     """The Utah teapot from Newell's 32 Bezier patches, ``tessellation`` quads per patch
     side, welded along patch seams; y up, resting on y = 0."""
-    from .data.teapot import PATCHES, VERTICES
+    from .data.teapot import control_nets
 
     k = _check_int("tessellation", tessellation, 1, 256)
-    cp = np.array([p.split() for line in VERTICES.strip().splitlines()
-                   for p in line.split(";")], float)
-    patches = np.array(PATCHES.split(), int).reshape(-1, 4, 4)
+    nets = control_nets()  # (32, 4, 4, 3), y up
     b = _bernstein(np.linspace(0, 1, k + 1))  # (k+1, 4)
     # surface points of every patch at once: (32, k+1, k+1, 3)
-    pts = np.einsum("ui,vj,pijc->puvc", b, b, cp[patches])
+    pts = np.einsum("ui,vj,pijc->puvc", b, b, nets)
     n_per = (k + 1) ** 2
     i = np.arange(k)[:, None]
     j = np.arange(k)[None, :]
     local = np.stack([i * (k + 1) + j, (i + 1) * (k + 1) + j,
                       (i + 1) * (k + 1) + j + 1, i * (k + 1) + j + 1], -1).reshape(-1, 4)
-    quads = (local[None] + n_per * np.arange(len(patches))[:, None, None]).reshape(-1, 4)
-    # z-up to y-up, keeping handedness: (x, y, z) -> (x, z, -y)
-    v = pts.reshape(-1, 3)[:, [0, 2, 1]] * [1, 1, -1]
+    quads = (local[None] + n_per * np.arange(len(nets))[:, None, None]).reshape(-1, 4)
+    v = pts.reshape(-1, 3)
     m = Mesh(v, quads)
     # The patch data winds the body one way and the rest the other: take each patch's
     # orientation from its agreement with the outward direction of its points.
     per_patch = k * k
-    normal = m.face_normals.reshape(len(patches), per_patch, 3)
-    out = (m.face_centroids - [0, 1.2, 0]).reshape(len(patches), per_patch, 3)
+    normal = m.face_normals.reshape(len(nets), per_patch, 3)
+    out = (m.face_centroids - [0, 1.2, 0]).reshape(len(nets), per_patch, 3)
     agree = np.einsum("pfc,pfc->p", normal, out)
-    q = quads.reshape(len(patches), per_patch, 4)
+    q = quads.reshape(len(nets), per_patch, 4)
     q = np.where((agree < 0)[:, None, None], q[..., ::-1], q).reshape(-1, 4)  # type: ignore[assignment]
     # weld the patch seams; the handle's and spout's ends touch the body at single points,
     # which welding would pinch together: those pieces keep their own vertices there

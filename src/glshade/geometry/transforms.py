@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import GeometryError
 
 __all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_transform",
-           "gl_bytes", "box_corners"]
+           "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up"]
 
 Array = NDArray[np.float64]
 
@@ -114,3 +114,14 @@ def box_corners(bounds) -> NDArray[np.float64]:
     b = np.asarray(bounds, np.float64)
     index = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)])
     return b[index, [0, 1, 2]]
+
+
+def z_up_to_y_up(points: np.ndarray) -> np.ndarray:
+    """Points ``(..., 3)`` of a z-up data set (Newell's teapot) in glshade's y-up world,
+    keeping handedness: ``(x, y, z) -> (x, z, -y)`` (exact: a permutation and a sign)."""
+    return np.asarray(points, dtype=np.float64)[..., [0, 2, 1]] * [1.0, 1.0, -1.0]
+
+
+def y_up_to_z_up(points: np.ndarray) -> np.ndarray:
+    """The inverse of :func:`z_up_to_y_up`: ``(x, y, z) -> (x, -z, y)``."""
+    return np.asarray(points, dtype=np.float64)[..., [0, 2, 1]] * [1.0, -1.0, 1.0]

@@ -194,12 +194,15 @@ class PatchSet:
         column (the same surface as :meth:`evaluate`, by another algorithm)."""
         uu, vv = self._params(u, v)
         h = self.homogeneous  # (P, m+1, n+1, 4)
-        out = np.empty(uu.shape + (4,))
-        for k in range(uu.shape[1]):  # (per parameter column: de Casteljau is per point)
-            rows = np.stack([de_casteljau(h[p], [vv[p, k]], axis=1)[:, 0]
-                             for p in range(len(self))])  # (P, m+1, 4)
-            out[:, k] = np.stack([de_casteljau(rows[p], [uu[p, k]], axis=0)[0]
-                                  for p in range(len(self))])
+        pts = np.broadcast_to(h[:, None], uu.shape + h.shape[1:])  # (P, K, m+1, n+1, 4)
+        tv = vv[..., None, None, None]
+        for r in range(h.shape[2] - 1, 0, -1):  # along v: each row to one point
+            pts = (1 - tv) * pts[..., :r, :] + tv * pts[..., 1:r + 1, :]
+        pts = pts[..., 0, :]  # (P, K, m+1, 4)
+        tu = uu[..., None, None]
+        for r in range(h.shape[1] - 1, 0, -1):  # then the column
+            pts = (1 - tu) * pts[..., :r, :] + tu * pts[..., 1:r + 1, :]
+        out = pts[..., 0, :]
         return out[..., :3] / out[..., 3:]
 
     def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> dict:

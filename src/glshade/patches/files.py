@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..geometry.transforms import y_up_to_z_up, z_up_to_y_up
 from .bezier import PatchSet
 
 __all__ = ["read_patches", "parse_patches", "write_patches", "teapot"]
@@ -61,7 +62,7 @@ def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet
                          f"{n_vertices}")
     cp = points[index - 1].reshape(-1, 4, 4, 3)
     if up == "z":
-        cp = cp[..., [0, 2, 1]] * [1, 1, -1]  # z up -> y up, keeping handedness
+        cp = z_up_to_y_up(cp)
     return PatchSet(cp)
 
 
@@ -79,7 +80,7 @@ def write_patches(patches: PatchSet) -> str:
     """Bicubic polynomial patches in the classic format (y up as z up, as the files are)."""
     if patches.degree != (3, 3) or patches.rational:
         raise InputError("the classic patch format holds bicubic polynomial patches only")
-    pts = patches.points[..., [0, 2, 1]] * [1, -1, 1]  # y up -> z up
+    pts = y_up_to_z_up(patches.points)
     flat, index = np.unique(pts.reshape(-1, 3), axis=0, return_inverse=True)
     out = [str(len(patches))]
     out += [",".join(str(int(i) + 1) for i in row) for row in index.reshape(-1, 16)]
@@ -91,13 +92,7 @@ def write_patches(patches: PatchSet) -> str:
 def teapot() -> PatchSet:
     """Newell's teapot: 32 bicubic patches, y up, resting on y = 0, oriented outward (the
     data winds the body one way and the rest the other: :meth:`PatchSurface.oriented`)."""
-    from ..geometry.data.teapot import PATCHES, VERTICES
-
-    text = "\n".join([str(len(PATCHES.split()) // 16)]
-                     + [",".join(str(int(i) + 1) for i in row)
-                        for row in np.array(PATCHES.split(), int).reshape(-1, 16)])
-    rows = [p.split() for line in VERTICES.strip().splitlines() for p in line.split(";")]
-    text += f"\n{len(rows)}\n" + "\n".join(",".join(r) for r in rows)
+    from ..geometry.data.teapot import control_nets
     from .surface import PatchSurface
 
-    return PatchSurface(parse_patches(text, "teapot"), "teapot").oriented().patches
+    return PatchSurface(PatchSet(control_nets()), "teapot").oriented().patches

@@ -25,6 +25,12 @@ def _positive(name: str, value) -> float:
     return v
 
 
+def _quarter(q: int) -> np.ndarray:
+    """The quarter circle's control points ``(3, 2)`` turned by ``q`` exact quarter turns."""
+    c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][q % 4]
+    return QUARTER[0] @ np.array([[c, s], [-s, c]])
+
+
 def revolve(profile, weights=None) -> PatchSet:
     """The surface swept by profile curves about the y axis: ``profile (S, m+1, 2)`` Bezier
     control points ``(r, y)`` (r >= 0) with ``weights (S, m+1)``; 4 S patches of degree
@@ -37,32 +43,24 @@ def revolve(profile, weights=None) -> PatchSet:
         np.asarray(weights, dtype=np.float64).reshape(prof.shape[:2])
     if (prof[..., 0] < 0).any():
         raise GeometryError("a profile's radii must be >= 0")
-    ring, ring_w = QUARTER
-    patches, pw = [], []
-    for quarter in range(4):  # turn the quarter by 90 degrees each time
-        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][quarter]  # (exact quarter turns)
-        rot = ring @ np.array([[c, s], [-s, c]])  # (3, 2): (cos, sin) of the arc's points
-        for k in range(len(prof)):
-            r, y = prof[k, :, 0], prof[k, :, 1]
-            pts = np.stack([r[:, None] * rot[None, :, 0],
-                            np.broadcast_to(y[:, None], (len(r), 3)),
-                            r[:, None] * rot[None, :, 1]], -1)
-            patches.append(pts)
-            pw.append(w[k][:, None] * ring_w[None, :])
-    return PatchSet(np.array(patches), np.array(pw))
+    rot = np.stack([_quarter(q) for q in range(4)])  # (4, 3, 2): (cos, sin) around
+    r, y = prof[..., 0], prof[..., 1]  # (S, m+1)
+    # patch (quarter, profile): P_ij = (r_i cos_j, y_i, r_i sin_j), weight w_i times the arc's
+    pts = np.stack([r[None, :, :, None] * rot[:, None, None, :, 0],
+                    np.broadcast_to(y[None, :, :, None], (4,) + r.shape + (3,)),
+                    r[None, :, :, None] * rot[:, None, None, :, 1]], -1)
+    pw = w[None, :, :, None] * QUARTER[1][None, None, None, :]
+    return PatchSet(pts.reshape((-1,) + pts.shape[2:]),
+                    np.broadcast_to(pw, pts.shape[:-1]).reshape((-1,) + pts.shape[2:4]))
 
 
 def _arcs(centre, radius, start_quarter: int, quarters: int):
     """Quarter arcs of a circle in the (r, y) plane, counter-clockwise from ``start_quarter``
     (0: from +r): ``(quarters, 3, 2)`` and weights."""
-    ring, ring_w = QUARTER
-    out = []
-    for q in range(start_quarter, start_quarter + quarters):
-        c, s = [(1, 0), (0, 1), (-1, 0), (0, -1)][q % 4]
-        # (cos, sin) in (r, y): the ring's (x, z) read as (r, y), turned by q quarters
-        pts = ring @ np.array([[c, s], [-s, c]])
-        out.append(np.asarray(centre) + radius * pts)
-    return np.array(out), np.tile(ring_w, (quarters, 1))
+    # (the ring's (cos, sin) read as (r, y), turned by q quarters)
+    arcs = [np.asarray(centre) + radius * _quarter(q)
+            for q in range(start_quarter, start_quarter + quarters)]
+    return np.array(arcs), np.tile(QUARTER[1], (quarters, 1))
 
 
 def sphere(radius: float = 1.0) -> PatchSet:

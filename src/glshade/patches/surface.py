@@ -122,33 +122,13 @@ class PatchSurface:
         return Edges(side_edge, side_rev, uses, control, vertex,
                      int(vertex.max()) + 1 if P else 0, ev)
 
-    def _components(self) -> np.ndarray:
-        """``(P,)`` component label of each patch: patches joined by shared edges (labels
-        spread along the edges until they settle)."""
+    @cached_property
+    def _neighbours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The patches meeting at each shared edge ``(a, b)`` and whether they run it in the
+        same direction around their boundaries (v0 and u1 forward, v1 and u0 backward, times
+        each side's own reversal): then one of them is turned against the other."""
         e = self.edges
         P = len(self.patches)
-        sides = e.side_edge.ravel()
-        patch_of = np.repeat(np.arange(P), 4)[sides >= 0]
-        edge_of = sides[sides >= 0]
-        label = np.arange(P)
-        while True:
-            low = np.full(len(e.uses), P)
-            np.minimum.at(low, edge_of, label[patch_of])
-            new = label.copy()
-            np.minimum.at(new, patch_of, low[edge_of])
-            if (new == label).all():
-                return label
-            label = new
-
-    def oriented(self) -> PatchSurface:
-        """The same surface with every patch turned (v reversed where needed) so that
-        neighbours run their shared edges in opposite directions and each component's
-        normals point outward. Data sets wind patches either way (the teapot's body one way,
-        the rest the other)."""
-        e = self.edges
-        P = len(self.patches)
-        # the direction each side runs its edge along the patch's boundary loop 0-1-2-3
-        # (v0 and u1 forward, v1 and u0 backward), times the side's own reversal
         loop = np.array([-1, 1, 1, -1])  # u0, u1, v0, v1
         d = np.where(e.side_reversed, -1, 1) * loop  # (P, 4)
         sides = e.side_edge.ravel()
@@ -158,8 +138,20 @@ class PatchSurface:
         order = np.argsort(edge_of, kind="stable")
         edge_of, patch_of, dir_of = edge_of[order], patch_of[order], dir_of[order]
         pair = np.flatnonzero(edge_of[1:] == edge_of[:-1])  # (consecutive uses of an edge)
-        a, b = patch_of[pair], patch_of[pair + 1]
-        must_differ = dir_of[pair] == dir_of[pair + 1]  # same direction: one must turn
+        return patch_of[pair], patch_of[pair + 1], dir_of[pair] == dir_of[pair + 1]
+
+    def _components(self) -> np.ndarray:
+        """``(P,)`` component label of each patch: patches joined by shared edges."""
+        a, b, _ = self._neighbours
+        return _labels(len(self.patches), np.stack([a, b], 1))
+
+    def oriented(self) -> PatchSurface:
+        """The same surface with every patch turned (v reversed where needed) so that
+        neighbours run their shared edges in opposite directions and each component's
+        normals point outward. Data sets wind patches either way (the teapot's body one way,
+        the rest the other)."""
+        P = len(self.patches)
+        a, b, must_differ = self._neighbours
         flip = np.zeros(P, bool)
         known = np.zeros(P, bool)
         component = np.unique(self._components(), return_inverse=True)[1].ravel()
@@ -227,18 +219,24 @@ class PatchSurface:
                            bool((e.uses <= 2).all()), True, genus)
 
 
+def _labels(n: int, pairs: np.ndarray) -> np.ndarray:
+    """``(n,)`` connected-component labels of a graph given by its edges ``pairs (k, 2)``:
+    each node's label is spread along the edges until nothing changes (the smallest wins)."""
+    label = np.arange(n)
+    while len(pairs):
+        low = np.minimum(label[pairs[:, 0]], label[pairs[:, 1]])
+        new = label.copy()
+        np.minimum.at(new, pairs[:, 0], low)
+        np.minimum.at(new, pairs[:, 1], low)
+        if (new == label).all():
+            break
+        label = new
+    return label
+
+
 def _loops(edges: np.ndarray) -> int:
     """Loops formed by boundary edges ``(k, 2)``: the components of their graph."""
     if len(edges) == 0:
         return 0
     nodes, idx = np.unique(edges, return_inverse=True)
-    idx = idx.reshape(-1, 2)
-    label = np.arange(len(nodes))
-    while True:
-        low = np.minimum(label[idx[:, 0]], label[idx[:, 1]])
-        new = label.copy()
-        np.minimum.at(new, idx[:, 0], low)
-        np.minimum.at(new, idx[:, 1], low)
-        if (new == label).all():
-            return len(np.unique(label))
-        label = new
+    return len(np.unique(_labels(len(nodes), idx.reshape(-1, 2))))

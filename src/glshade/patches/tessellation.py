@@ -29,7 +29,7 @@ import numpy as np
 
 from ..errors import GeometryError
 from ..geometry.mesh import Mesh
-from .bezier import PatchSet
+from .bezier import PatchSet, de_casteljau
 from .surface import PatchSurface
 
 __all__ = ["Tessellation", "tessellate", "flatness_levels", "MAX_LEVEL", "MAX_TRIANGLES"]
@@ -70,9 +70,9 @@ def flatness_levels(patches: PatchSet, tolerance) -> np.ndarray:
         return np.linalg.norm(d, axis=-1).reshape(len(h), -1).max(1) if d.size else \
             np.zeros(len(h))
 
-    muu = m * (m - 1) * most(h[:, 2:] - 2 * h[:, 1:-1] + h[:, :-2]) if m > 1 else 0 * tol
-    mvv = n * (n - 1) * most(h[:, :, 2:] - 2 * h[:, :, 1:-1] + h[:, :, :-2]) if n > 1 \
-        else 0 * tol
+    # (a degree-1 direction has no second differences: empty, so zero)
+    muu = m * (m - 1) * most(h[:, 2:] - 2 * h[:, 1:-1] + h[:, :-2])
+    mvv = n * (n - 1) * most(h[:, :, 2:] - 2 * h[:, :, 1:-1] + h[:, :, :-2])
     muv = m * n * most(h[:, 1:, 1:] - h[:, 1:, :-1] - h[:, :-1, 1:] + h[:, :-1, :-1])
     wmin = patches.weights.reshape(len(h), -1).min(1)
     scale = 1.0 / wmin
@@ -164,11 +164,7 @@ def _edge_samples(surface: PatchSurface, levels: np.ndarray):
     for k, n in {(int(k), int(n)) for k, n in zip(count, lengths)}:  # (edges by size)
         which = np.flatnonzero((count == k) & (lengths == n))
         nets = np.stack([e.control[w] for w in which])  # (W, n, 4)
-        t = np.arange(k + 1) / k
-        pts = np.broadcast_to(nets[:, :, None], (len(which), n, k + 1, 4)).copy()
-        for r in range(n - 1, 0, -1):  # de Casteljau on the mass-points
-            pts = (1 - t[:, None]) * pts[:, :r] + t[:, None] * pts[:, 1:r + 1]
-        h = pts[:, 0]  # (W, k+1, 4)
+        h = de_casteljau(nets, np.arange(k + 1) / k, axis=1)  # (W, k+1, 4): mass-points
         rows = offset[which][:, None] + np.arange(k + 1)
         flat[rows.ravel()] = (h[..., :3] / h[..., 3:]).reshape(-1, 3)
     return flat, offset

@@ -379,7 +379,8 @@ class CsgPass(GLResource):
                 texture.use(location=self.UNIT)
                 put(prog, "u_csg", self.UNIT)
             put(prog, "u_csg_nodes", data.nodes)
-            put(prog, "u_csg_start", data.nodes if may_start_inside(data, view_proj) else 0)
+            inverse = np.linalg.inv(view_proj)
+            put(prog, "u_csg_start", data.nodes if may_start_inside(data, inverse) else 0)
             put(prog, "u_csg_ops", data.ops)
             put(prog, "u_csg_bvh", data.bvh)
             put(prog, "u_csg_program", data.program)
@@ -390,7 +391,7 @@ class CsgPass(GLResource):
             assert bounds is not None  # (Scene.add refuses unbounded solids)
             put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))
             put(prog, "u_solid_view_proj", gl_bytes(view_proj))
-            put(prog, "u_inverse_view_proj", gl_bytes(np.linalg.inv(view_proj)))
+            put(prog, "u_inverse_view_proj", gl_bytes(inverse))
             put(prog, "u_view", gl_bytes(view))
             put(prog, "u_view_normal", np.ascontiguousarray(view[:3, :3].T, "f4").tobytes())
             put(prog, "u_viewport_origin", (float(viewport[0]), float(viewport[1])))
@@ -418,12 +419,12 @@ class CsgPass(GLResource):
             self._box = None
 
 
-def may_start_inside(data: TreeData, view_proj: np.ndarray) -> bool:
-    """Whether any leaf's world box meets the box of the near plane's rectangle, where the
-    pixels' rays start: where none does, no ray starts inside a leaf, and the program skips
-    finding which leaves each starts in."""
+def may_start_inside(data: TreeData, inverse_view_proj: np.ndarray) -> bool:
+    """Whether any leaf's world box meets the box of the near plane's rectangle (clip to
+    world: ``inverse_view_proj``), where the pixels' rays start: where none does, no ray
+    starts inside a leaf, and the program skips finding which leaves each starts in."""
     corners = np.array([[x, y, -1.0, 1.0] for x in (-1, 1) for y in (-1, 1)])
-    world = corners @ np.linalg.inv(view_proj).T
+    world = corners @ inverse_view_proj.T
     near = world[:, :3] / world[:, 3:]
     lo, hi = near.min(0), near.max(0)
     return bool(((data.boxes[:, 0] <= hi) & (data.boxes[:, 1] >= lo)).all(1).any())

@@ -1,7 +1,7 @@
 """Martin Newell's Utah teapot (1975): 32 bicubic Bezier patches over 306 control points.
 
 The data set is in the public domain. Indices are zero-based; coordinates are z-up as in the
-original (the primitive turns them y-up).
+original (:func:`control_nets` turns them y-up).
 """
 
 PATCHES = """
@@ -144,3 +144,14 @@ VERTICES = """
 0.84 -1.5 0.075; 1.5 -0.84 0.075
 0.798 -1.425 0; 1.425 -0.798 0
 """
+
+
+def control_nets():
+    """The 32 patches' control points ``(32, 4, 4, 3)``, y up (glshade's world)."""
+    import numpy as np
+
+    from ..transforms import z_up_to_y_up
+
+    points = np.array([p.split() for line in VERTICES.strip().splitlines()
+                       for p in line.split(";")], float)
+    return z_up_to_y_up(points[np.array(PATCHES.split(), int).reshape(-1, 4, 4)])

@@ -4,20 +4,28 @@ that an error or an interrupt never leaves a half-written output behind.
 A temporary name says who writes it: ``.NAME.HOST-PID.RANDOM.part``. A process killed
 outright (SIGKILL, a lost machine) cannot remove its own; the next writer of the same
 output, or :func:`remove_stale` over a folder, removes those whose process is gone (on this
-host; another host's are left alone, they may be in use)."""
+host; another host's are left alone, they may be in use).
+
+A Ctrl-C can land between any two steps, so a temporary's creation and its removal never
+have a gap between them: :func:`part` creates it with interrupts held and removes it on any
+exception, and :func:`held_interrupts` does the same for a child process (the encoder)
+that must be started and reaped as one step."""
 
 from __future__ import annotations
 
 import contextlib
 import os
 import re
+import shutil
+import signal
 import socket
 import tempfile
 from pathlib import Path
 
 from .errors import OutputWriteError
 
-__all__ = ["atomic_write", "publish", "writing", "temporary", "remove_stale"]
+__all__ = ["atomic_write", "publish", "writing", "temporary", "part", "held_interrupts",
+           "remove_stale"]
 
 _HOST = re.sub(r"[^A-Za-z0-9_-]", "_", socket.gethostname()) or "host"
 _PART = re.compile(r"^\.(?P<name>.+)\.(?P<host>[A-Za-z0-9_-]+)-(?P<pid>\d+)\.[^.]+\.part"
@@ -41,6 +49,43 @@ def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
     return tmp
 
 
+@contextlib.contextmanager
+def held_interrupts():
+    """Hold SIGINT (Ctrl-C) for the block: one arriving waits and is raised as
+    KeyboardInterrupt at its end, so a step like "create a file and keep its name" or "start
+    a process and keep its handle" is never cut in half. (No-op where signal masks are not
+    available.)"""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def _remove(path) -> None:
+    with contextlib.suppress(OSError):
+        shutil.rmtree(path) if os.path.isdir(path) else os.unlink(path)
+
+
+@contextlib.contextmanager
+def part(path, *, folder: bool = False, suffix: str = ""):
+    """Yield a new temporary file (or folder) beside ``path``, removed if the block raises
+    anything, a Ctrl-C included, at whatever moment it lands; the block publishes it. An
+    OSError creating it is an OutputWriteError naming ``path``."""
+    tmp = None
+    try:
+        with writing(path), held_interrupts():
+            tmp = temporary(path, folder=folder, suffix=suffix)
+        yield tmp
+    except BaseException:
+        if tmp is not None:
+            _remove(tmp)
+        raise
+
+
 def _alive(pid: int) -> bool:
     try:
         os.kill(pid, 0)
@@ -54,8 +99,6 @@ def _alive(pid: int) -> bool:
 def remove_stale(folder, *, name: str | None = None, recursive: bool = False) -> int:
     """Remove the temporary files and folders in ``folder`` (of output ``name`` only, if
     given) left by processes of this host that no longer run. Returns how many."""
-    import shutil
-
     folder = Path(folder)
     if not folder.is_dir():
         return 0
@@ -102,13 +145,7 @@ def atomic_write(path, mode: str = "wb", **text):
     """Yield a file object; on success it replaces ``path``, on failure it is deleted.
     ``text``: ``encoding`` and ``errors`` of a text file."""
     path = Path(path)
-    with writing(path):
-        tmp = temporary(path)
-        try:
-            with open(tmp, mode, **text) as f:
-                yield f
-            publish(tmp, path)
-        except BaseException:  # interrupted or failed: remove the partial file, re-raise
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
-            raise
+    with writing(path), part(path) as tmp:
+        with open(tmp, mode, **text) as f:
+            yield f
+        publish(tmp, path)

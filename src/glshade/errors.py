@@ -165,7 +165,7 @@ class OutputWriteError(EnvironmentFailure):
 
 
 class VideoUnavailable(EnvironmentFailure):
-    """MP4 output needs imageio and imageio-ffmpeg (the ``video`` extra)."""
+    """MP4 output needs imageio-ffmpeg (the ``video`` extra), which ships ffmpeg."""
 
 
 class ClusterError(EnvironmentFailure):

@@ -98,10 +98,13 @@ def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
 
     from PIL import Image
 
-    from .._atomic import temporary
+    from .._atomic import held_interrupts, temporary
 
-    folder = temporary(spool, folder=True) if spool else tempfile.mkdtemp(prefix="glshade-")
+    folder = None
     try:
+        with held_interrupts():  # (a Ctrl-C cannot land between making it and keeping its name)
+            folder = (temporary(spool, folder=True) if spool
+                      else tempfile.mkdtemp(prefix="glshade-"))
         args = (scene, path, times, options, modes, config, folder)
         executor = make_executor(FrameMaker, args, jobs, scheduler=scheduler)
         for file in executor.map(range(len(times))):
@@ -112,7 +115,8 @@ def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
                 progress.update()
             yield frame
     finally:
-        shutil.rmtree(folder, ignore_errors=True)
+        if folder is not None:
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def _check_output(output, shape) -> None:

@@ -1,17 +1,17 @@
-"""Writing frames: GIF and animated PNG (Pillow), MP4 (imageio with ffmpeg, the ``video``
-extra) or a folder of PNG frames. The output appears only when every frame is written
+"""Writing frames: GIF and animated PNG (Pillow), MP4 (ffmpeg from imageio-ffmpeg, the
+``video`` extra) or a folder of PNG frames. The output appears only when every frame is written
 (temporary name, then rename), so an error or Ctrl-C never leaves a partial file."""
 
 from __future__ import annotations
 
 import contextlib
 import os
-import shutil
+from typing import Any
 from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write, publish, temporary, writing
+from .._atomic import atomic_write, held_interrupts, part, publish, writing
 from ..errors import OutputError, OutputWriteError, VideoUnavailable
 
 __all__ = ["output_format", "write_animation", "FORMATS"]
@@ -93,83 +93,122 @@ def _write_dir(frames, out: Path) -> int:
 
     if out.exists() and any(out.iterdir()):
         raise OutputError(f"{out}: the folder exists and is not empty")
-    with writing(out):
-        tmp = Path(temporary(out, folder=True))
-    try:
+    with writing(out), part(out, folder=True) as name:
+        tmp = Path(name)
         n = 0
         for n, f in enumerate(frames, start=1):
-            with writing(out):
-                save_image(f, tmp / f"frame_{n - 1:05d}.png")
-        with writing(out):
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700
-            if out.exists():
-                out.rmdir()
-            os.replace(tmp, out)
+            save_image(f, tmp / f"frame_{n - 1:05d}.png")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700
+        if out.exists():
+            out.rmdir()
+        os.replace(tmp, out)
         return n
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
 
 
 def _write_mp4(frames, out: Path, fps: float) -> int:
     try:
-        import imageio.v2 as imageio
-        import imageio_ffmpeg  # noqa: F401
+        import imageio_ffmpeg
     except ImportError:
-        raise VideoUnavailable("MP4 output needs imageio and its ffmpeg plugin: "
+        raise VideoUnavailable("MP4 output needs imageio-ffmpeg (it ships ffmpeg): "
                                "pip install 'glshade[video]' (or write .gif or .png)") from None
-    with writing(out):
-        tmp = temporary(out, suffix=".mp4")
     n = 0
-    try:
-        writer = imageio.get_writer(tmp, fps=fps, codec="libx264", quality=8,
-                                    macro_block_size=1, ffmpeg_log_level="error")
+    with writing(out), part(out, suffix=".mp4") as tmp:
+        encoder = None
         try:
             for f in frames:
-                with _encoder_errors(out):
-                    writer.append_data(np.ascontiguousarray(f[..., :3]))
+                rgb = np.ascontiguousarray(f[..., :3])
+                if encoder is None:
+                    encoder = _Encoder(tmp, rgb.shape, fps, out)
+                    encoder.start(imageio_ffmpeg)
+                encoder.write(rgb)
                 n += 1
-        except BaseException as exc:
-            # Ctrl-C: kill ffmpeg now. Closed gracefully, the writer waits without a bound
-            # for ffmpeg to finish, and an interrupt landing in that wait could hang the run.
-            if not isinstance(exc, Exception):
-                _kill_encoder(writer)
+            if encoder is None:
+                raise OutputError("no frames to write")
+            encoder.finish()
+        except BaseException:
+            # A Ctrl-C or a failure: kill ffmpeg and reap it before the temporary file goes
+            # (asked to finish, it would encode what it has; alive, it could write it again)
+            if encoder is not None:
+                encoder.kill()
             raise
-        finally:
-            with _encoder_errors(out):
-                writer.close()
         if not _mp4_complete(tmp):  # ffmpeg can exit 0 after a failed write
             raise OutputWriteError(out, "the video encoder wrote an incomplete file (is the "
                                    "disk full?)")
-        with writing(out):
-            publish(tmp, out)
-        return n
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+        publish(tmp, out)
+    return n
 
 
-def _kill_encoder(writer) -> None:
-    """End the ffmpeg process behind an imageio writer at once (an interrupt: its output
-    is thrown away anyway), so that closing the writer cannot wait on it."""
-    gen = getattr(writer, "_write_gen", None)
-    if gen is not None:
-        with contextlib.suppress(BaseException):
-            gen.throw(KeyboardInterrupt)  # (imageio-ffmpeg kills ffmpeg on this)
+class _Encoder:
+    """ffmpeg reading raw RGB frames ``(H, W, 3) uint8`` on a pipe and writing H.264
+    (yuv420p, CRF 10) to ``path``. Started with interrupts held, so a Ctrl-C leaves either
+    no process or one this object holds; in its own session, so a terminal's Ctrl-C does
+    not reach it: it is killed and reaped here, never left behind."""
 
+    def __init__(self, path: str, shape, fps: float, out: Path):
+        self.path, self.shape, self.fps, self.out = path, tuple(shape), fps, out
+        self.proc: Any = None
 
-@contextlib.contextmanager
-def _encoder_errors(out: Path):
-    """ffmpeg's failures (a broken pipe, a full disk) as one line naming the output."""
-    try:
-        yield
-    except (OSError, RuntimeError, ValueError) as exc:
-        lines = [x.strip() for x in str(exc).splitlines() if x.strip()]
-        reason = getattr(exc, "strerror", None) or (lines[-1] if lines else type(exc).__name__)
-        raise OutputWriteError(out, f"the video encoder failed: {reason}") from None
+    def start(self, imageio_ffmpeg) -> None:
+        """Find ffmpeg (it runs ``ffmpeg -version`` once) and start it, interrupts held:
+        afterwards either no process runs or ``self.proc`` holds it."""
+        import subprocess
+        import tempfile
+        from fractions import Fraction
+
+        h, w = self.shape[:2]
+        rate = Fraction(self.fps).limit_denominator(1001)
+        self.log = tempfile.TemporaryFile()
+        with held_interrupts():
+            cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-nostdin", "-y", "-loglevel", "error",
+                   "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", f"{w}x{h}", "-r", str(rate),
+                   "-i", "pipe:0", "-an", "-c:v", "libx264", "-pix_fmt", "yuv420p",
+                   "-crf", "10", "-f", "mp4", self.path]
+            self.proc = subprocess.Popen(cmd, stdin=subprocess.PIPE,
+                                         stdout=subprocess.DEVNULL, stderr=self.log,
+                                         start_new_session=True)
+
+    def write(self, rgb: np.ndarray) -> None:
+        """Send one frame; a frame of another size, or an encoder gone, is an error."""
+        if rgb.shape != self.shape:
+            raise OutputError(f"{self.out}: frame of {rgb.shape[1]}x{rgb.shape[0]} in a video "
+                              f"of {self.shape[1]}x{self.shape[0]}")
+        try:
+            self.proc.stdin.write(rgb.tobytes())
+        except OSError:
+            self.proc.wait()
+            raise self._failure() from None
+
+    def finish(self) -> None:
+        """Close the pipe, let ffmpeg write the index, and check that it succeeded."""
+        try:
+            self.proc.stdin.close()
+        except OSError:
+            pass
+        if self.proc.wait() != 0:
+            raise self._failure()
+        self.log.close()
+
+    def kill(self) -> None:
+        """End ffmpeg at once and reap it (interrupts held: a second Ctrl-C cannot leave
+        it running)."""
+        if self.proc is None:
+            return
+        with held_interrupts():
+            with contextlib.suppress(OSError):
+                self.proc.kill()
+            with contextlib.suppress(OSError, ValueError):
+                self.proc.stdin.close()
+            self.proc.wait()
+            self.log.close()
+
+    def _failure(self) -> OutputWriteError:
+        self.log.seek(0)
+        lines = [x.strip() for x in self.log.read().decode(errors="replace").splitlines()
+                 if x.strip()]
+        reason = lines[-1] if lines else f"ffmpeg exited with status {self.proc.returncode}"
+        return OutputWriteError(self.out, f"the video encoder failed: {reason}")
 
 
 def _mp4_complete(path) -> bool:

@@ -30,6 +30,7 @@ LAYERS = [
     {"io"},
     {"cpu", "hidden"},
     {"render"},
+    {"pathtrace"},
     {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
@@ -47,7 +48,7 @@ GL_FREE = ["glshade", "glshade.geometry", "glshade.quaternion", "glshade.masspoi
            "glshade.brep", "glshade.patches", "glshade.solids", "glshade.octree",
            "glshade.scene", "glshade.io", "glshade.viewer.controls",
            "glshade.cpu", "glshade.hidden", "glshade.compare", "glshade.animate",
-           "glshade.batch", "glshade.parallel", "glshade.cli.parser"]
+           "glshade.batch", "glshade.parallel", "glshade.cli.parser", "glshade.pathtrace"]
 
 
 @pytest.mark.parametrize("modules", GL_FREE)

@@ -131,6 +131,19 @@ class RadiosityArgs(RenderArgs):
 
 
 @dataclass(frozen=True, kw_only=True)
+class PathtraceArgs(RenderArgs):
+    scene: str
+    output: str
+    spp: int | None = None
+    until: float | None = None
+    seed: int = 0
+    max_depth: int = 64
+    exposure: float | None = None
+    no_lights: bool = False
+    quiet: bool = False
+
+
+@dataclass(frozen=True, kw_only=True)
 class HiddenArgs(RenderArgs):
     mesh: str
     output: str

@@ -16,6 +16,7 @@ from ..scene import Camera, Material
 from . import arguments as a
 from . import commands as c
 from . import hidden as hidden_command
+from . import pathtrace as pathtrace_command
 from . import radiosity as radiosity_command
 from . import validators as v
 
@@ -222,6 +223,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=c.batch, arguments=a.BatchArgs)
 
     add_radiosity(sub)
+    add_pathtrace(sub)
     add_hidden(sub)
 
     p = sub.add_parser("view", help="explore a mesh in a window (keys: h)",
@@ -291,6 +293,35 @@ def add_radiosity(sub) -> None:
     add_backend(p)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=radiosity_command.radiosity, arguments=a.RadiosityArgs)
+
+
+def add_pathtrace(sub) -> None:
+    p = sub.add_parser("pathtrace", help="solve the rendering equation by Monte Carlo path "
+                       "tracing on the GPU (diffuse and Phong reflection, progressive)",
+                       **_examples("glshade pathtrace assets/scenes/cornell-box.toml -o box.png "
+                                   "--spp 256",
+                                   "glshade pathtrace cornell-box -o box.png --until 0.02"))
+    p.add_argument("scene", metavar="SCENE|MESH", help="a scene file (emitting materials or "
+                   "lights), or a mesh lit by a headlight: " + MESH_HELP)
+    p.add_argument("-o", "--output", required=True, type=v.image_output,
+                   help="the image (.png)")
+    stop = p.add_mutually_exclusive_group()
+    stop.add_argument("--spp", type=v.count, metavar="N", help="samples (paths) a pixel "
+                      "(default 64)")
+    stop.add_argument("--until", type=v.fraction, metavar="F", help="trace until the "
+                      "pixels' RMS standard error is F of the image's mean (e.g. 0.01)")
+    p.add_argument("--seed", type=v.seed, default=0, help="of the random numbers (a whole "
+                   "number >= 0; default 0: the same picture every run)")
+    p.add_argument("--max-depth", type=v.count, default=64, metavar="N",
+                   help="bounces at most (default 64; Russian roulette ends most paths "
+                   "sooner)")
+    p.add_argument("--exposure", type=v.positive_float, help="scale of radiosity units to "
+                   "display (default: the brightest lit surface shows as white)")
+    p.add_argument("--no-lights", action="store_true", help="only emitting surfaces give "
+                   "light (the scene's lights left out, as radiosity sees it)")
+    add_render_options(p)
+    add_quiet(p, "no progress bar or summary")
+    p.set_defaults(func=pathtrace_command.pathtrace, arguments=a.PathtraceArgs)
 
 
 def add_hidden(sub) -> None:

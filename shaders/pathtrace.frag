@@ -1,0 +1,252 @@
+#version 330 core
+// A progressive Monte Carlo path tracer for the rendering equation (notes, 23.1): each pass
+// adds SAMPLES paths per pixel to two float targets (blended by addition): the sum of the
+// samples' values with their count, and the sum of their squares (for a per-pixel variance).
+// Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
+//
+// Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
+//   BVH nodes at u_nodes, 2 texels each: (lo, first as int bits), (hi, count as int bits);
+//     an inner node (count 0) has children first and first + 1, a leaf triangles
+//     [first, first + count).
+//   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -)
+//   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
+//   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
+// BRDF: rho_d / pi + k_s (n + 2) / (2 pi) cos^n(alpha), two-sided; emission one-sided.
+// Next-event estimation to the emitters and the lights, then a BRDF-sampled bounce (lobe
+// chosen by albedo); emission found by a bounce is not counted again (no double counting);
+// Russian roulette after 3 bounces. Random numbers: PCG, seeded by (seed, pixel, sample).
+
+#define PI 3.14159265358979
+#ifndef SAMPLES
+#define SAMPLES 1
+#endif
+#ifndef DATA_WIDTH
+#define DATA_WIDTH 1024
+#endif
+#define STACK 48
+
+uniform sampler2D u_data;
+uniform int u_nodes;
+uniform int u_tris;
+uniform int u_mats;
+uniform int u_emit;
+uniform int u_n_emit;
+uniform mat4 u_inverse_view_proj;
+uniform vec2 u_size;
+uniform uint u_seed;
+uniform uint u_pass;
+uniform int u_max_depth;
+uniform float u_eps;
+uniform int u_n_lights;
+uniform vec4 u_light_pos[8];   // (position or direction to the light, kind: 0 dir, 1 point)
+uniform vec3 u_light_irr[8];
+uniform vec3 u_light_att[8];
+#ifdef PROBES
+// rays given per pixel (PROBES: origin at u_rays row 2y, direction at row 2y + 1)
+uniform sampler2D u_rays;
+#endif
+
+layout(location = 0) out vec4 out_sum;
+layout(location = 1) out vec4 out_square;
+
+uint g_state;
+
+uint pcg(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+float rand() {
+    g_state = g_state * 747796405u + 2891336453u;
+    uint word = ((g_state >> ((g_state >> 28u) + 4u)) ^ g_state) * 277803737u;
+    word = (word >> 22u) ^ word;
+    return float(word >> 8u) * (1.0 / 16777216.0);
+}
+
+vec4 fetch(int i) {
+    return texelFetch(u_data, ivec2(i % DATA_WIDTH, i / DATA_WIDTH), 0);
+}
+
+// nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
+bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
+    vec3 inv = 1.0 / d;
+    int stack[STACK];
+    int top = 0;
+    stack[top++] = 0;
+    t_hit = t_max;
+    tri_hit = -1;
+    while (top > 0) {
+        int node = stack[--top];
+        vec4 a = fetch(u_nodes + 2 * node);
+        vec4 b = fetch(u_nodes + 2 * node + 1);
+        vec3 t0 = (a.xyz - o) * inv, t1 = (b.xyz - o) * inv;
+        vec3 tn = min(t0, t1), tf = max(t0, t1);
+        float near = max(max(tn.x, tn.y), max(tn.z, 0.0));
+        float far = min(min(tf.x, tf.y), min(tf.z, t_hit));
+        if (near > far) continue;
+        int first = floatBitsToInt(a.w), count = floatBitsToInt(b.w);
+        if (count == 0) {
+            if (top < STACK - 1) {
+                stack[top++] = first + 1;
+                stack[top++] = first;
+            }
+            continue;
+        }
+        for (int k = first; k < first + count; ++k) {
+            vec4 p0 = fetch(u_tris + 3 * k);
+            vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+            vec3 pv = cross(d, e2);
+            float det = dot(e1, pv);
+            if (abs(det) < 1e-30) continue;
+            float f = 1.0 / det;
+            vec3 s = o - p0.xyz;
+            float u = f * dot(s, pv);
+            if (u < 0.0 || u > 1.0) continue;
+            vec3 q = cross(s, e1);
+            float v = f * dot(d, q);
+            if (v < 0.0 || u + v > 1.0) continue;
+            float t = f * dot(e2, q);
+            if (t > 0.0 && t < t_hit) {
+                t_hit = t;
+                tri_hit = k;
+            }
+        }
+    }
+    return tri_hit >= 0;
+}
+
+bool visible(vec3 o, vec3 d, float dist) {
+    float t;
+    int k;
+    return !intersect(o, d, dist, t, k);
+}
+
+// a unit vector around n with density cos^e / normalisation (e = 1: cosine-weighted)
+vec3 around(vec3 n, float cos_t, float phi) {
+    vec3 a = abs(n.x) > 0.5 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 u = normalize(cross(a, n)), v = cross(n, u);
+    float sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
+    return normalize(u * (cos(phi) * sin_t) + v * (sin(phi) * sin_t) + n * cos_t);
+}
+
+// pi x BRDF for light arriving from wi, leaving along wo, at normal n
+vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
+    vec3 r = reflect(-wo, n);
+    float ca = max(dot(r, wi), 0.0);
+    return rho + vec3(ks * 0.5 * (shin + 2.0) * pow(ca, shin));
+}
+
+vec3 trace(vec3 o, vec3 d, out float first_emits) {
+    vec3 sum = vec3(0.0), beta = vec3(1.0);
+    first_emits = 0.0;
+    for (int depth = 0; depth < u_max_depth; ++depth) {
+        float t;
+        int k;
+        if (!intersect(o, d, 1e30, t, k)) break;
+        vec4 p0 = fetch(u_tris + 3 * k);
+        vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+        int m = floatBitsToInt(p0.w);
+        vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
+        vec3 ng = normalize(cross(e1, e2));
+        vec3 x = o + t * d;
+        if (depth == 0 && dot(ng, d) < 0.0) {
+            sum += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
+            first_emits = float(dot(mb.xyz, vec3(1.0)) > 0.0);
+        }
+        vec3 n = dot(ng, d) < 0.0 ? ng : -ng;
+        vec3 wo = -d;
+        vec3 rho = ma.xyz;
+        float ks = ma.w, shin = mb.w;
+        vec3 xo = x + n * u_eps;
+        // next-event estimation: one emitter triangle by power, a point uniform on it
+        if (u_n_emit > 0) {
+            float r = rand();
+            int lo = 0, hi = u_n_emit - 1;
+            while (lo < hi) {
+                int mid = (lo + hi) / 2;
+                if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
+            }
+            vec4 em = fetch(u_emit + lo);
+            float p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
+            int ek = floatBitsToInt(em.y);
+            vec4 q0 = fetch(u_tris + 3 * ek);
+            vec3 q1 = fetch(u_tris + 3 * ek + 1).xyz, q2 = fetch(u_tris + 3 * ek + 2).xyz;
+            float a = rand(), b = rand();
+            if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+            vec3 y = q0.xyz + a * q1 + b * q2;
+            vec3 ny = normalize(cross(q1, q2));
+            vec3 to = y - xo;
+            float dist2 = dot(to, to), dist = sqrt(dist2);
+            vec3 wi = to / dist;
+            float cx = dot(n, wi), cy = -dot(ny, wi);
+            if (cx > 0.0 && cy > 0.0 && p > 0.0 && visible(xo, wi, dist * (1.0 - 1e-4))) {
+                vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
+                sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2)
+                       * (em.z / p);
+            }
+        }
+        for (int i = 0; i < u_n_lights; ++i) {
+            vec3 wi = u_light_pos[i].xyz;
+            float dist = 1e30, att = 1.0;
+            if (u_light_pos[i].w > 0.5) {
+                vec3 to = u_light_pos[i].xyz - xo;
+                dist = length(to);
+                wi = to / dist;
+                vec3 c = u_light_att[i];
+                att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+            }
+            float cx = dot(n, wi);
+            if (cx > 0.0 && visible(xo, wi, dist)) {
+                sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
+            }
+        }
+        // the next direction: a lobe by albedo, then the BRDF-weighted throughput
+        float wd = (rho.x + rho.y + rho.z) / 3.0;
+        if (wd + ks <= 0.0) break;
+        float pd = wd / (wd + ks);
+        vec3 r = reflect(d, n);
+        vec3 wi = rand() < pd ? around(n, sqrt(rand()), 2.0 * PI * rand())
+                              : around(r, pow(rand(), 1.0 / (shin + 1.0)), 2.0 * PI * rand());
+        float cx = dot(wi, n);
+        if (cx <= 0.0) break;
+        float ca = max(dot(wi, r), 0.0);
+        float pdf = pd * cx / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) * pow(ca, shin);
+        beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
+        if (depth >= 3) {
+            float q = min(max(beta.x, max(beta.y, beta.z)), 0.95);
+            if (rand() >= q) break;
+            beta /= q;
+        }
+        o = xo;
+        d = wi;
+    }
+    return sum;
+}
+
+void main() {
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
+    vec3 sum = vec3(0.0), square = vec3(0.0);
+    float emits = 0.0;
+    for (int s = 0; s < SAMPLES; ++s) {
+        g_state = pcg(pcg(pcg(u_seed) ^ (pixel.x + 65536u * pixel.y)) ^
+                      (u_pass * uint(SAMPLES) + uint(s)));
+#ifdef PROBES
+        vec3 o = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y)), 0).xyz;
+        vec3 d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
+#else
+        vec2 ndc = 2.0 * (gl_FragCoord.xy - 0.5 + vec2(rand(), rand())) / u_size - 1.0;
+        vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
+        vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
+        vec3 o = a.xyz / a.w;
+        vec3 d = normalize(b.xyz / b.w - o);
+#endif
+        float e;
+        vec3 value = trace(o, d, e);
+        sum += value;
+        square += value * value;
+        emits += e;
+    }
+    out_sum = vec4(sum, float(SAMPLES));
+    out_square = vec4(square, emits);
+}

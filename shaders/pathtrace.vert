@@ -1,0 +1,6 @@
+#version 330 core
+// One triangle covering the viewport: the path tracer's every pixel runs pathtrace.frag.
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}

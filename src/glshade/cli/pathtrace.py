@@ -1,0 +1,51 @@
+"""``glshade pathtrace``: the rendering equation by Monte Carlo path tracing on the GPU."""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import replace
+
+from ..errors import EXIT_OK, InputError, UsageError
+from .arguments import PathtraceArgs
+from .inputs import load_job
+
+__all__ = ["pathtrace"]
+
+EXIT_INTERRUPTED = 130
+
+
+def pathtrace(args: PathtraceArgs) -> int:
+    """Path-trace a scene file or mesh to an image; a Ctrl-C writes the image so far."""
+    from .. import pathtrace as pt
+    from ..io.images import save_image
+
+    for given, name in ((args.samples, "--samples (MSAA)"), (args.edges, "--edges")):
+        if given is not None:
+            raise UsageError(f"{name} is an option of the raster modes; the path tracer "
+                             "antialiases by its samples (--spp) and draws no edges")
+    job = load_job(replace(args, mode=None), args.scene)
+    w, h = job.size
+    try:
+        scene = pt.TraceScene.from_scene(job.scene, lights=not args.no_lights,
+                                         camera=job.camera)
+    except InputError as exc:  # (say which scene: the message names a model or a value)
+        raise UsageError(f"{args.scene}: {exc}") from None
+    spp = None if args.until is not None else (args.spp or 64)
+    result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
+                      max_depth=args.max_depth, backend=args.backend.value,
+                      progress=False if args.quiet else None)
+    exposure = args.exposure or result.auto_exposure()
+    srgb = args.srgb if args.srgb is not None else job.settings.options.srgb
+    image = result.rgba8(exposure, srgb=bool(srgb))
+    save_image(image, args.output)
+    rays = result.samples * w * h
+    line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
+            f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s), relative error "
+            f"{result.relative_error:.2%}, exposure {exposure:.4g} -> {args.output}")
+    if result.interrupted:
+        print(f"glshade: interrupted after {result.samples:,} samples a pixel; the image so "
+              f"far is in {args.output}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    if not args.quiet:
+        print(line)
+    return EXIT_OK

@@ -1,0 +1,163 @@
+"""The GPU half of the path tracer: the scene packed into one float texture, the program
+(``shaders/pathtrace.frag``) and the two accumulation targets it adds to pass after pass."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry.transforms import gl_bytes
+from ..render.base import GLResource
+from ..render.shaders import ShaderLibrary
+from .bvh import build
+from .scene import TraceScene
+
+__all__ = ["GpuPathTracer", "pack", "DATA_WIDTH"]
+
+#: texels a row of the scene texture
+DATA_WIDTH = 1024
+
+
+def _bits(values) -> np.ndarray:
+    """Integers carried in float32 texels as their bit patterns (floatBitsToInt reads them)."""
+    return np.asarray(values, np.int32).view(np.float32)
+
+
+def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
+    """The scene as RGBA32F texels ``(rows * DATA_WIDTH, 4)`` and the offset of each table
+    (see the shader's header): BVH nodes, triangles in BVH order, materials, emitters."""
+    bvh = build(scene.triangles)
+    order = bvh.order
+    tri = scene.triangles[order]
+    n_nodes, n_tris = bvh.n_nodes, len(tri)
+    nodes = np.zeros((2 * n_nodes, 4), np.float32)
+    nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
+    nodes[0::2, 3], nodes[1::2, 3] = _bits(bvh.first), _bits(bvh.count)
+    tris = np.zeros((3 * n_tris, 4), np.float32)
+    tris[0::3, :3] = tri[:, 0]
+    tris[0::3, 3] = _bits(scene.material[order])
+    tris[1::3, :3] = tri[:, 1] - tri[:, 0]
+    tris[2::3, :3] = tri[:, 2] - tri[:, 0]
+    m = scene.materials
+    mats = np.zeros((2 * len(m), 4), np.float32)
+    mats[0::2, :3], mats[0::2, 3] = m[:, :3], m[:, 3]
+    mats[1::2, :3], mats[1::2, 3] = m[:, 5:8], m[:, 4]
+    where = np.empty(n_tris, np.int64)
+    where[order] = np.arange(n_tris)  # (a triangle's place in BVH order)
+    emit = np.zeros((max(len(scene.emitters), 1), 4), np.float32)
+    emit[:len(scene.emitters), 0] = scene.emitter_cdf
+    emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
+    emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
+    tables = [nodes, tris, mats, emit]
+    offsets = np.cumsum([0] + [len(t) for t in tables])
+    data = np.concatenate(tables)
+    rows = -(-len(data) // DATA_WIDTH)
+    data = np.concatenate([data, np.zeros((rows * DATA_WIDTH - len(data), 4), np.float32)])
+    layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
+              "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
+              "depth": bvh.depth, "nodes": n_nodes}
+    return data, layout
+
+
+class GpuPathTracer(GLResource):
+    """Path-trace ``scene`` (a :class:`TraceScene`) at ``width x height``: each
+    :meth:`run` adds passes of ``samples`` paths per pixel; :meth:`read` returns the sums.
+    The pass number seeds each sample, so a pixel's k-th sample is the same whatever the
+    passes are grouped into."""
+
+    def __init__(self, context, scene: TraceScene, width: int, height: int, *,
+                 samples: int = 1, max_depth: int = 64, shaders: ShaderLibrary | None = None,
+                 rays: np.ndarray | None = None):
+        super().__init__(context)
+        ctx = context.ctx
+        self.scene, self.width, self.height = scene, int(width), int(height)
+        self.samples, self.max_depth = int(samples), int(max_depth)
+        self._shaders = shaders or self._keep(ShaderLibrary(context))
+        defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {DATA_WIDTH}")
+        self._rays = None
+        if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction
+            texels = np.zeros((self.height, 2, self.width, 4), np.float32)
+            texels[:, :, :, :3] = np.asarray(rays, np.float32).transpose(0, 2, 1, 3)
+            self._rays = self._keep(ctx.texture((self.width, 2 * self.height), 4,
+                                                texels.tobytes(), dtype="f4"))
+            self._rays.filter = (0x2600, 0x2600)
+            defines += ("PROBES",)
+        self.program = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace.frag",
+                                                        defines=defines))
+        data, self.layout = pack(scene)
+        self.texture = self._keep(ctx.texture((DATA_WIDTH, len(data) // DATA_WIDTH), 4,
+                                              data.tobytes(), dtype="f4"))
+        self.texture.filter = (0x2600, 0x2600)  # NEAREST
+        self._sum = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
+        self._square = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
+        self.fbo = self._keep(ctx.framebuffer([self._sum, self._square]))
+        self.vao = self._keep(ctx.vertex_array(self.program, []))
+        self.passes = 0
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget every sample (a new camera)."""
+        self._check()
+        self.fbo.clear(0.0, 0.0, 0.0, 0.0)
+        self.passes = 0
+
+    def run(self, camera, passes: int = 1, seed: int = 0) -> None:
+        """Add ``passes`` passes of samples seen from ``camera`` (None for given rays)."""
+        import moderngl
+
+        self._check()
+        ctx = self.context.ctx
+        prog = self.program
+        aspect = self.width / self.height
+        values: dict = {"u_size": (float(self.width), float(self.height)),
+                        "u_seed": int(seed) & 0xFFFFFFFF, "u_max_depth": self.max_depth,
+                        "u_eps": 1e-5 * self.scene.size, "u_data": 0, "u_rays": 1,
+                        "u_n_lights": len(self.scene.lights)}
+        values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
+        if camera is not None:
+            vp = camera.projection_matrix(aspect) @ camera.view_matrix()
+            values["u_inverse_view_proj"] = gl_bytes(np.linalg.inv(vp))
+        lights = self.scene.lights
+        if len(lights):
+            pos = np.zeros((8, 4), np.float32)
+            pos[:len(lights), :3], pos[:len(lights), 3] = lights[:, 1:4], lights[:, 0]
+            irr = np.zeros((8, 3), np.float32)
+            irr[:len(lights)] = lights[:, 4:7]
+            att = np.zeros((8, 3), np.float32)
+            att[:len(lights)] = lights[:, 7:10]
+            values.update(u_light_pos=pos.tobytes(), u_light_irr=irr.tobytes(),
+                          u_light_att=att.tobytes())
+        for name, value in values.items():
+            if name in prog:  # (the compiler drops what a variant does not use)
+                if isinstance(value, bytes):
+                    prog[name].write(value)
+                else:
+                    prog[name].value = value
+        self.texture.use(location=0)
+        if self._rays is not None:
+            self._rays.use(location=1)
+        self.fbo.use()
+        ctx.viewport = (0, 0, self.width, self.height)
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = moderngl.ONE, moderngl.ONE
+        try:
+            for _ in range(int(passes)):
+                prog["u_pass"].value = self.passes
+                self.vao.render(moderngl.TRIANGLES, vertices=3)
+                self.passes += 1
+        finally:
+            ctx.disable(moderngl.BLEND)
+            ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+
+    def _release_extra(self) -> None:
+        self.context.rest()  # (never release the bound framebuffer)
+
+    def read(self) -> tuple[np.ndarray, np.ndarray]:
+        """(sum, square): ``(H, W, 4)`` float64, top row first: the samples' sum (RGB)
+        and count (A); the sum of their squares (RGB) and of first hits on an emitter (A)."""
+        self._check()
+        out = []
+        for tex in (self._sum, self._square):
+            a = np.frombuffer(tex.read(), np.float32).reshape(self.height, self.width, 4)
+            out.append(a[::-1].astype(np.float64))
+        return out[0], out[1]

@@ -1,0 +1,218 @@
+"""Progressive path tracing: samples added pass by pass until a sample count or a relative
+error is reached, with a per-pixel variance estimate from the sums of the samples and of
+their squares; a Ctrl-C keeps the image made so far."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import OptionError
+from .scene import TraceScene
+
+__all__ = ["PathTraced", "PathTracer", "trace", "relative_error"]
+
+
+def relative_error(image: np.ndarray, se: np.ndarray) -> float:
+    """The stop rule's figure: the pixels' root-mean-square standard error over the
+    image's mean, both averaged over channels (``inf`` for a black image)."""
+    mean = float(image.mean())
+    return float(np.sqrt((se ** 2).mean())) / mean if mean > 0 else float("inf")
+
+
+@dataclass
+class PathTraced:
+    """A path-traced picture: ``image`` (H, W, 3) float64 in radiosity units (pi x
+    radiance), ``se`` (H, W, 3) each pixel's standard error, ``samples`` per pixel,
+    ``emitting`` (H, W) the fraction of a pixel's first hits on an emitter, ``seconds`` of
+    tracing, and whether a Ctrl-C ended it early."""
+
+    image: np.ndarray
+    se: np.ndarray
+    samples: int
+    emitting: np.ndarray
+    seconds: float
+    interrupted: bool = False
+    method: str = "GPU path tracing"
+    history: list = field(default_factory=list)
+
+    @property
+    def relative_error(self) -> float:
+        return relative_error(self.image, self.se)
+
+    def __repr__(self) -> str:
+        h, w = self.image.shape[:2]
+        return (f"<PathTraced {w}x{h}, {self.samples:,} samples a pixel, relative error "
+                f"{self.relative_error:.2%}, {self.seconds:.1f} s>")
+
+    def auto_exposure(self) -> float:
+        """1 / the brightest lit surface (the 99.5th percentile of the pixels that see no
+        emitter), as radiosity's display does."""
+        lit = self.image[self.emitting < 0.5]
+        peak = float(np.percentile(lit.max(-1), 99.5)) if lit.size else float(self.image.max())
+        return 1.0 / peak if peak > 0 else 1.0
+
+    def rgba8(self, exposure: float | None = None, srgb: bool = False) -> np.ndarray:
+        """(H, W, 4) uint8 for display: the image times ``exposure`` (default
+        :meth:`auto_exposure`), clipped, sRGB-encoded if asked."""
+        k = self.auto_exposure() if exposure is None else exposure
+        linear = np.clip(self.image * k, 0, 1)
+        if srgb:
+            from ..cpu.lighting import encode_srgb
+
+            linear = encode_srgb(linear)
+        rgb = np.clip(linear * 255 + 0.5, 0, 255).astype(np.uint8)
+        return np.dstack([rgb, np.full(rgb.shape[:2], 255, np.uint8)])
+
+    def _repr_html_(self) -> str:
+        from .._display import facts_html, picture
+
+        return facts_html(repr(self), [f"{self.method}", f"exposure {self.auto_exposure():.4g}"],
+                          picture(self.rgba8()))
+
+
+def _moments(total: np.ndarray, square: np.ndarray):
+    n = np.maximum(total[..., 3:4], 1)
+    mean = total[..., :3] / n
+    var = np.maximum(square[..., :3] / n - mean ** 2, 0) * n / np.maximum(n - 1, 1)
+    return mean, np.sqrt(var / n)
+
+
+class PathTracer:
+    """A GPU path tracer for one scene and image size: ``add`` samples seen from a
+    camera (a new camera starts over), ``result`` the picture so far. Owns its GL objects
+    (and its context when it made one): use it in a ``with`` block or ``close`` it."""
+
+    def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int = 64,
+                 samples_per_pass: int = 1, context=None, backend: str = "auto",
+                 lights: bool = True):
+        from ..render.context import create_context
+        from .gpu import GpuPathTracer
+
+        w, h = _size(size)
+        if int(max_depth) != max_depth or max_depth < 1:
+            raise OptionError(f"max_depth must be a whole number >= 1, got {max_depth!r}")
+        self.trace_scene = scene if isinstance(scene, TraceScene) else \
+            TraceScene.from_scene(scene, lights=lights)
+        self.seed = int(seed)
+        self._own = context is None
+        self.context = create_context(backend) if context is None else context
+        try:
+            self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h,
+                                     samples=samples_per_pass, max_depth=max_depth)
+        except BaseException:
+            self.close()
+            raise
+        self.camera = None
+        self.seconds = 0.0
+
+    @property
+    def samples(self) -> int:
+        return self.gpu.passes * self.gpu.samples
+
+    def add(self, camera, samples: int = 1) -> None:
+        """Add at least ``samples`` paths per pixel (whole passes) seen from ``camera``."""
+        if self.camera is not None and camera != self.camera:
+            self.gpu.reset()
+            self.seconds = 0.0
+        self.camera = camera
+        passes = -(-int(samples) // self.gpu.samples)
+        t0 = time.perf_counter()
+        self.gpu.run(camera, passes, self.seed)
+        self.context.ctx.finish()
+        self.seconds += time.perf_counter() - t0
+
+    def result(self, interrupted: bool = False) -> PathTraced:
+        total, square = self.gpu.read()
+        mean, se = _moments(total, square)
+        n = max(int(total[0, 0, 3]), 1)
+        return PathTraced(mean, se, self.samples, square[..., 3] / n, self.seconds,
+                          interrupted)
+
+    def close(self) -> None:
+        gpu = getattr(self, "gpu", None)
+        if gpu is not None:
+            gpu.release()
+        if self._own and getattr(self, "context", None) is not None:
+            self.context.release()
+            self.context = None
+
+    def __enter__(self) -> PathTracer:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _size(size) -> tuple[int, int]:
+    try:
+        w, h = (int(size), int(size)) if np.ndim(size) == 0 else (int(size[0]), int(size[1]))
+    except (TypeError, ValueError, IndexError):
+        raise OptionError(f"size must be a width and height in pixels, got {size!r}") from None
+    if not (1 <= w <= 16384 and 1 <= h <= 16384):
+        raise OptionError(f"size must be 1..16384 pixels a side, got {w}x{h}")
+    return w, h
+
+
+def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
+          until: float | None = None, max_samples: int = 65536, seed: int = 0,
+          max_depth: int = 64, samples_per_pass: int | None = None, backend: str = "auto",
+          context=None, lights: bool = True, progress=None) -> PathTraced:
+    """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
+    ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
+    :func:`relative_error`; checked after each doubling, at most ``max_samples``). A
+    Ctrl-C returns the picture so far (``interrupted`` set). Seeded: the same call gives
+    the same picture."""
+    from .._interrupt import check
+    from ..parallel.progress import as_progress
+    from ..scene.camera import default_camera
+
+    if spp is not None and until is not None:
+        raise OptionError("give spp (samples a pixel) or until (a relative error), not both")
+    if until is not None and not (0 < float(until) < 1):
+        raise OptionError(f"until must be a relative error in (0, 1), got {until!r}")
+    if spp is None and until is None:
+        spp = 64
+    if spp is not None and (int(spp) != spp or spp < 1):
+        raise OptionError(f"spp must be a whole number >= 1, got {spp!r}")
+    w, h = _size(size)
+    if camera is None:
+        camera = default_camera(scene.bounds, w / h)
+    per_pass = samples_per_pass or _per_pass(w * h)
+    goal = int(spp) if spp is not None else int(max_samples)
+    bar, owned = as_progress(progress, goal, "samples")
+    with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, samples_per_pass=per_pass,
+                    context=context, backend=backend, lights=lights) as tracer:
+        history: list = []
+        interrupted = False
+        try:
+            step = per_pass
+            while tracer.samples < goal:
+                n = min(step, goal - tracer.samples)
+                tracer.add(camera, n)
+                if bar is not None:
+                    bar.update(tracer.samples - getattr(bar, "_done", 0))
+                    bar._done = tracer.samples
+                check()
+                if until is not None:
+                    result = tracer.result()
+                    history.append((tracer.seconds, tracer.samples, result.relative_error))
+                    if result.relative_error <= until:
+                        break
+                    step = tracer.samples  # (doubling: a check costs a read-back)
+        except KeyboardInterrupt:
+            interrupted = True
+        finally:
+            if owned and bar is not None:
+                bar.close()
+        out = tracer.result(interrupted)
+        out.history = history
+        return out
+
+
+def _per_pass(pixels: int) -> int:
+    """Samples a pixel per draw: about a million paths a draw (a draw is the unit a
+    progress bar and a Ctrl-C see), at least 1 and at most 16."""
+    return int(np.clip(2**20 // max(pixels, 1), 1, 16))

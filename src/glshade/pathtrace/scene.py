@@ -1,0 +1,139 @@
+"""A scene as a path tracer sees it: world-space triangles, a material per triangle, the
+emitting triangles to sample and the scene's lights. Pure numpy, shared by the GPU tracer
+and its numpy twin (and nothing else is: each traces rays its own way).
+
+Units: the tracer works in *radiosity units*, pi times radiance, so that a diffuse surface's
+pixel is its radiosity B and an emitter's is its ``Material.emission`` E. Reflection follows
+the notes' lighting model made energy-conserving: the BRDF is ``rho_d / pi + k_s (n + 2) /
+(2 pi) cos^n(alpha)`` (alpha between the mirror direction and the outgoing one), with
+``rho_d = Material.rho`` (``kd * color`` unless a reflectance is given). A scene light adds
+what the raster formula's diffuse and specular terms take from it: its ``color *
+intensity`` is the irradiance it gives a surface facing it (times its attenuation), so the
+direct diffuse term equals the renderer's ``kd Ip C (N.L)`` exactly. Ambient light is
+ignored: interreflection replaces it. Emission is one-sided (along the polygon's normal, as
+radiosity's patches emit); reflection is two-sided."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import SceneError
+from ..scene.lights import DirectionalLight
+
+__all__ = ["TraceScene", "MAX_LIGHTS"]
+
+#: scene lights a trace takes (directional and point, each a uniform of the program)
+MAX_LIGHTS = 8
+
+
+@dataclass(frozen=True)
+class TraceScene:
+    """triangles ``(T, 3, 3)`` world positions (float64), their unit normals ``(T, 3)`` (by
+    the winding), areas ``(T,)``, material index ``(T,)``; materials ``(M, 8)`` rows of
+    rho_d (RGB), k_s, n, E (RGB); ``emitters`` (K,) triangle indices with ``emitter_cdf``
+    (K,) by emitted power; lights ``(L, 10)`` rows of kind (0 directional, 1 point),
+    position or direction to the light (3), irradiance RGB (3), attenuation (3); names of
+    the models, and ``model`` (T,) of each triangle."""
+
+    triangles: np.ndarray
+    normals: np.ndarray
+    areas: np.ndarray
+    material: np.ndarray
+    materials: np.ndarray
+    emitters: np.ndarray
+    emitter_cdf: np.ndarray
+    lights: np.ndarray
+    model: np.ndarray
+    names: tuple
+
+    @property
+    def n_triangles(self) -> int:
+        return len(self.triangles)
+
+    @property
+    def size(self) -> float:
+        """The diagonal of the triangles' bounding box (for offsets and epsilons)."""
+        t = self.triangles.reshape(-1, 3)
+        return float(np.linalg.norm(t.max(0) - t.min(0))) or 1.0
+
+    @classmethod
+    def from_scene(cls, scene, *, lights: bool = True, camera=None) -> TraceScene:
+        """Flatten ``scene``'s visible meshes into world triangles and check that they can
+        be traced: something emits (an emitting material or a light), every reflectance
+        is at most 1 and ``max(rho_d) + k_s <= 1`` (a surface reflects at most what
+        arrives). Patch models are taken as their tessellation; CSG solids are refused.
+        ``lights=False`` leaves out the scene's lights (emitting surfaces only, as
+        radiosity sees it); given a ``camera``, a scene with neither lights nor emitters
+        gets the renderer's headlight (a light at the eye), as ``glshade render`` does."""
+        if scene.solids:
+            raise SceneError("the path tracer traces meshes and patch models; this scene "
+                             "has CSG solids, which it does not trace yet")
+        tris: list = []
+        mats: list = []
+        models: list = []
+        names: list = []
+        rows: list = []
+        for k, model in enumerate(m for m in scene.models if m.visible):
+            mesh = model.mesh
+            name = model.name or f"model {k}"
+            t, _ = mesh.triangles
+            if not len(t):
+                continue
+            v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
+            tris.append(v[t])
+            mats.append(np.full(len(t), len(rows)))
+            models.append(np.full(len(t), len(names)))
+            names.append(name)
+            rows.append(_material_row(model.material, name))
+        if not tris:
+            raise SceneError("the scene has nothing to trace (no visible meshes)")
+        triangles = np.concatenate(tris).astype(np.float64)
+        if not np.isfinite(triangles).all():
+            raise SceneError("the scene has vertices that are not finite numbers")
+        cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+        length = np.linalg.norm(cross, axis=1)
+        keep = length > 1e-12 * max(float(np.abs(triangles).max()), 1e-300) ** 2
+        triangles, cross, length = triangles[keep], cross[keep], length[keep]
+        material = np.concatenate(mats)[keep]
+        model = np.concatenate(models)[keep]
+        materials = np.array(rows, np.float64)
+        areas = 0.5 * length
+        power = areas * materials[material, 5:8].mean(1)
+        emitters = np.flatnonzero(power > 0)
+        cdf = np.cumsum(power[emitters])
+        cdf = cdf / cdf[-1] if len(cdf) else cdf
+        chosen = list(scene.lights) if lights else []
+        if lights and not chosen and not len(emitters) and camera is not None:
+            chosen = scene.lights_for(camera)
+        light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 10)
+        if len(light_rows) > MAX_LIGHTS:
+            raise SceneError(f"the path tracer takes at most {MAX_LIGHTS} lights, the scene "
+                             f"has {len(light_rows)}")
+        if not len(emitters) and not len(light_rows):
+            raise SceneError("the scene has no emitter: give a material an emission (or add "
+                             "a light); nothing would be lit")
+        return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
+                   cdf, light_rows, model, tuple(names))
+
+
+def _material_row(material, name: str) -> list:
+    rho = np.asarray(material.rho, np.float64)
+    ks, n = float(material.ks), float(material.shininess)
+    if rho.max() > 1:
+        raise SceneError(f"{name}: diffuse reflectance rho_d = {tuple(rho.round(4))} is above "
+                         "1 (it would reflect more light than arrives)")
+    if rho.max() + ks > 1 + 1e-9:
+        raise SceneError(f"{name}: rho_d + k_s = {rho.max():.4g} + {ks:.4g} > 1: the Phong "
+                         "lobe would not conserve energy (lower kd, ks or the colour)")
+    return [*rho, ks, n, *np.asarray(material.emission, np.float64)]
+
+
+def _light_row(light) -> list:
+    irradiance = np.asarray(light.color, np.float64) * light.intensity
+    if isinstance(light, DirectionalLight):
+        d = -np.asarray(light.direction, np.float64)
+        return [0.0, *(d / np.linalg.norm(d)), *irradiance, 1.0, 0.0, 0.0]
+    return [1.0, *np.asarray(light.position, np.float64), *irradiance,
+            *np.asarray(light.attenuation, np.float64)]

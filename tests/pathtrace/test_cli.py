@@ -1,0 +1,50 @@
+"""``glshade pathtrace`` from the command line: a picture and its numbers, one line for a
+refused scene, and a Ctrl-C that keeps the image made so far."""
+
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from ..conftest import BACKEND, ROOT, glshade
+
+pytestmark = pytest.mark.gl
+
+
+def test_the_cornell_box_from_the_command_line(tmp_path):
+    out = tmp_path / "box.png"
+    r = glshade("pathtrace", "cornell-box", "-o", str(out), "--spp", "8", "--size", "48x48",
+                "--backend", BACKEND, "-q")
+    assert r.returncode == 0, r.stderr
+    img = np.asarray(Image.open(out))
+    assert img.shape[:2] == (48, 48)
+    red, green = img[24, 2, :3].astype(int), img[24, 45, :3].astype(int)
+    assert red[0] > red[1] and green[1] > green[0]  # (the walls bleed their colours)
+
+
+def test_an_energy_making_material_is_one_line_naming_the_scene(tmp_path):
+    r = glshade("pathtrace", "primitive:cube", "-o", str(tmp_path / "x.png"), "--kd", "0.9",
+                "--ks", "0.5", "--color", "1,1,1", "--backend", BACKEND)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "primitive:cube" in lines[0] and "rho_d + k_s" in lines[0]
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_ctrl_c_keeps_the_image_so_far(tmp_path):
+    out = tmp_path / "long.png"
+    proc = subprocess.Popen([sys.executable, "-m", "glshade", "pathtrace", "cornell-box", "-o",
+                             str(out), "--spp", "1000000", "--size", "64x64", "--backend",
+                             BACKEND, "-q"], cwd=ROOT, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    time.sleep(6)
+    assert proc.poll() is None, proc.stderr.read()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "the image so far is in" in err, err
+    assert np.asarray(Image.open(out)).mean() > 10  # (a picture, not a blank)

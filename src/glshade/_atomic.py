@@ -51,18 +51,28 @@ def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
 
 @contextlib.contextmanager
 def held_interrupts():
-    """Hold SIGINT (Ctrl-C) for the block: one arriving waits and is raised as
+    """Hold Ctrl-C for the block: a SIGINT arriving waits and is raised as
     KeyboardInterrupt at its end, so a step like "create a file and keep its name" or "start
-    a process and keep its handle" is never cut in half. (No-op where signal masks are not
-    available.)"""
-    if not hasattr(signal, "pthread_sigmask"):
+    a process and keep its handle" is never cut in half. A Python-level handler, not a
+    signal mask: the kernel hands a process's signal to any thread that does not block it,
+    and Python raises it in the main thread at once. (Only the main thread ever gets a
+    KeyboardInterrupt, so elsewhere there is nothing to hold.)"""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    caught: list = []
+    old = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        signal.signal(signal.SIGINT, old)
+    if caught:
+        if callable(old):
+            old(signal.SIGINT, None)  # (the default handler raises KeyboardInterrupt)
+        elif old != signal.SIG_IGN:
+            raise KeyboardInterrupt
 
 
 def _remove(path) -> None:

@@ -166,3 +166,37 @@ def test_a_factory_the_workers_cannot_load_is_an_error_not_a_hang():
     done = subprocess.run([sys.executable, "-c", _UNLOADABLE], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.stdout.strip() == "AttributeError True", done.stdout + done.stderr
+
+
+def test_a_pool_whose_stop_hangs_is_left_behind_with_its_workers_killed():
+    """Pool.terminate can wait forever on a half-written message; the stop is bounded and
+    the workers are killed instead (a stand-in pool, so the hang is certain)."""
+    import threading
+    import time
+
+    from glshade.parallel.executors import _terminate
+
+    class Worker:
+        killed = False
+
+        def kill(self):
+            self.killed = True
+
+    class HangingPool:
+        _pool = [Worker(), Worker()]
+
+        def terminate(self):
+            threading.Event().wait()  # (forever)
+
+    pool = HangingPool()
+    t0 = time.perf_counter()
+    assert _terminate(pool, timeout=0.3) is False
+    assert time.perf_counter() - t0 < 2 and all(w.killed for w in pool._pool)
+
+    class QuickPool:
+        _pool: list = []
+
+        def terminate(self):
+            pass
+
+    assert _terminate(QuickPool(), timeout=5) is True

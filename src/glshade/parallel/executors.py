@@ -13,8 +13,10 @@ import os
 import pickle
 import signal
 import sys
+import threading
 from collections.abc import Generator, Iterable
 
+from .._atomic import held_interrupts
 from .._interrupt import check
 
 __all__ = ["Executor", "SerialExecutor", "ProcessExecutor"]
@@ -97,7 +99,8 @@ class _WorkerProcess(mp.context.SpawnProcess):
     process of the group, and a worker still importing would print its own traceback; a
     blocked signal stays blocked through fork and exec, so the worker's Python never turns
     it into KeyboardInterrupt. Only the starting thread blocks it, and only while the child
-    is launched; the parent's own Ctrl-C is held back meanwhile (:func:`_held_sigint`), not
+    is launched; the parent's own Ctrl-C is held back meanwhile
+    (:func:`~glshade._atomic.held_interrupts`), not
     lost."""
 
     @staticmethod
@@ -111,24 +114,20 @@ class _WorkerProcess(mp.context.SpawnProcess):
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
-@contextlib.contextmanager
-def _held_sigint():
-    """Hold a Ctrl-C that arrives while the pool starts its workers and raise it once the
-    pool exists, so that it is stopped like a running one (a KeyboardInterrupt in the middle
-    of the pool's own start would leave workers behind)."""
-    import threading
-
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    caught = []
-    old = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, old)
-    if caught:
-        raise KeyboardInterrupt
+def _terminate(pool, timeout: float = 10.0) -> bool:
+    """``pool.terminate()``, bounded: whether it finished. (CPython's result handler can
+    wait forever on a message a worker was killed in the middle of writing -- seen about
+    once in a hundred Ctrl-Cs -- and terminate waits for that thread.) On a timeout the
+    workers are killed outright."""
+    t = threading.Thread(target=pool.terminate, daemon=True, name="glshade-pool-stop")
+    t.start()
+    t.join(timeout)
+    if not t.is_alive():
+        return True
+    for worker in list(getattr(pool, "_pool", ())):
+        with contextlib.suppress(Exception):
+            worker.kill()
+    return False
 
 
 class _WorkerContext(mp.context.SpawnContext):
@@ -149,7 +148,7 @@ class ProcessExecutor(Executor):
         pool = None
         try:
             payload = pickle.dumps((self.factory, self.args))
-            with _without_main_reimport(), _held_sigint():  # the pool starts its workers
+            with _without_main_reimport(), held_interrupts():  # the pool starts its workers
                 pool = _WorkerContext().Pool(self.jobs, initializer=_init_worker,
                                              initargs=(payload, threads))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
@@ -158,8 +157,8 @@ class ProcessExecutor(Executor):
                 yield result
             pool.close()
         except BaseException:
-            if pool is not None:
-                pool.terminate()
+            if pool is not None and not _terminate(pool):
+                pool = None  # (its threads are daemons, left behind; its workers are gone)
             raise
         finally:
             if pool is not None:

@@ -11,6 +11,7 @@
 //   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -)
 //   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
 //   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
+//   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
 // BRDF: rho_d / pi + k_s (n + 2) / (2 pi) cos^n(alpha), two-sided; emission one-sided.
 // Next-event estimation to the emitters and the lights, then a BRDF-sampled bounce (lobe
 // chosen by albedo); emission found by a bounce is not counted again (no double counting);
@@ -31,6 +32,7 @@ uniform int u_tris;
 uniform int u_mats;
 uniform int u_emit;
 uniform int u_n_emit;
+uniform int u_norms;
 uniform mat4 u_inverse_view_proj;
 uniform vec2 u_size;
 uniform uint u_seed;
@@ -48,6 +50,7 @@ uniform sampler2D u_rays;
 
 layout(location = 0) out vec4 out_sum;
 layout(location = 1) out vec4 out_square;
+layout(location = 2) out vec4 out_hit;  // (camera rays that hit anything, for a coverage mask)
 
 uint g_state;
 
@@ -69,6 +72,8 @@ vec4 fetch(int i) {
 }
 
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
+vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
+
 bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     vec3 inv = 1.0 / d;
     int stack[STACK];
@@ -110,6 +115,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
             if (t > 0.0 && t < t_hit) {
                 t_hit = t;
                 tri_hit = k;
+                g_uv = vec2(u, v);
             }
         }
     }
@@ -137,6 +143,8 @@ vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
     return rho + vec3(ks * 0.5 * (shin + 2.0) * pow(ca, shin));
 }
 
+float g_hit;
+
 vec3 trace(vec3 o, vec3 d, out float first_emits) {
     vec3 sum = vec3(0.0), beta = vec3(1.0);
     first_emits = 0.0;
@@ -144,6 +152,7 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
         float t;
         int k;
         if (!intersect(o, d, 1e30, t, k)) break;
+        if (depth == 0) g_hit += 1.0;
         vec4 p0 = fetch(u_tris + 3 * k);
         vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
         int m = floatBitsToInt(p0.w);
@@ -155,10 +164,19 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
             first_emits = float(dot(mb.xyz, vec3(1.0)) > 0.0);
         }
         vec3 n = dot(ng, d) < 0.0 ? ng : -ng;
+        vec3 xo = x + n * u_eps;  // (offsets along the true surface)
+#ifdef SMOOTH_NORMALS
+        vec3 ns = normalize((1.0 - g_uv.x - g_uv.y) * fetch(u_norms + 3 * k).xyz +
+                            g_uv.x * fetch(u_norms + 3 * k + 1).xyz +
+                            g_uv.y * fetch(u_norms + 3 * k + 2).xyz);
+        vec3 n_geo = n;
+        n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the side the ray came from)
+#else
+        vec3 n_geo = n;
+#endif
         vec3 wo = -d;
         vec3 rho = ma.xyz;
         float ks = ma.w, shin = mb.w;
-        vec3 xo = x + n * u_eps;
         // next-event estimation: one emitter triangle by power, a point uniform on it
         if (u_n_emit > 0) {
             float r = rand();
@@ -180,7 +198,8 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
             float dist2 = dot(to, to), dist = sqrt(dist2);
             vec3 wi = to / dist;
             float cx = dot(n, wi), cy = -dot(ny, wi);
-            if (cx > 0.0 && cy > 0.0 && p > 0.0 && visible(xo, wi, dist * (1.0 - 1e-4))) {
+            if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
+                visible(xo, wi, dist * (1.0 - 1e-4))) {
                 vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
                 sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2)
                        * (em.z / p);
@@ -197,7 +216,7 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
                 att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
             }
             float cx = dot(n, wi);
-            if (cx > 0.0 && visible(xo, wi, dist)) {
+            if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
                 sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
             }
         }
@@ -209,7 +228,7 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
         vec3 wi = rand() < pd ? around(n, sqrt(rand()), 2.0 * PI * rand())
                               : around(r, pow(rand(), 1.0 / (shin + 1.0)), 2.0 * PI * rand());
         float cx = dot(wi, n);
-        if (cx <= 0.0) break;
+        if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) break;
         float ca = max(dot(wi, r), 0.0);
         float pdf = pd * cx / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) * pow(ca, shin);
         beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
@@ -228,6 +247,7 @@ void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy);
     vec3 sum = vec3(0.0), square = vec3(0.0);
     float emits = 0.0;
+    g_hit = 0.0;
     for (int s = 0; s < SAMPLES; ++s) {
         g_state = pcg(pcg(pcg(u_seed) ^ (pixel.x + 65536u * pixel.y)) ^
                       (u_pass * uint(SAMPLES) + uint(s)));
@@ -249,4 +269,5 @@ void main() {
     }
     out_sum = vec4(sum, float(SAMPLES));
     out_square = vec4(square, emits);
+    out_hit = vec4(g_hit, 0.0, 0.0, 0.0);
 }

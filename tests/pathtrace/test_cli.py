@@ -48,3 +48,13 @@ def test_ctrl_c_keeps_the_image_so_far(tmp_path):
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "the image so far is in" in err, err
     assert np.asarray(Image.open(out)).mean() > 10  # (a picture, not a blank)
+
+
+def test_compare_against_the_path_tracer(tmp_path):
+    out = tmp_path / "grid.png"
+    r = glshade("compare", "primitive:icosphere:3", "-o", str(out), "--reference", "pathtrace",
+                "--spp", "4", "--size", "64x64", "--modes", "gouraud,phong", "--backend",
+                BACKEND)
+    assert r.returncode == 0, r.stderr
+    assert "phong" in r.stdout and out.exists()
+    assert np.asarray(Image.open(out)).shape[1] >= 3 * 64  # (two modes and the reference)

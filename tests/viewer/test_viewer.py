@@ -314,3 +314,41 @@ def test_dollying_through_the_teapot_never_clips_its_front(viewer_factory):
         with Renderer(160, 120, samples=0, context=v.context) as r:
             ref = r.render_frame(s, wide, "phong").face_id >= 0
         assert (lit | ~ref).mean() > 0.995  # (a pixel or two of background-coloured shade)
+
+
+def test_t_path_traces_and_refines_while_the_camera_rests(viewer_factory):
+    """Key t: each frame adds one sample a pixel; after N frames the window shows what
+    pathtrace.trace gives for N samples with the same seed and the renderer's smooth
+    normals (the k-th sample of a pixel is
+    seeded by k, however the passes are grouped), at the viewer's exposure. A move starts
+    over; a mode key ends it."""
+    from glshade import pathtrace
+    from glshade.radiosity import cornell_scene
+
+    scene, cam = cornell_scene()
+    v = viewer_factory(scene, cam, size=(96, 96))
+    v.key("t")
+    assert v.tracer is not None
+    for _ in range(8):
+        v.draw()  # (what step draws, without the swap: the back buffer stays readable)
+    assert v.tracer.samples == 8 and "8 samples a pixel" in v.status()
+    shown = v.target.read_color()[..., :3].astype(int)
+    smooth = pathtrace.TraceScene.from_scene(scene, smooth=True)  # (the viewer's normals)
+    ref = pathtrace.trace(smooth, cam, (96, 96), spp=8, samples_per_pass=1, progress=False,
+                          context=v.context)
+    want = ref.rgba8(v._trace_exposure)[..., :3].astype(int)
+    assert np.abs(shown - want).max() <= 1
+    v.camera = v.camera.dolly(10.0)
+    v.step()
+    assert v.tracer.samples == 1
+    v.key("3")
+    assert v.tracer is None
+
+
+def test_t_on_a_scene_it_cannot_trace_says_why(viewer_factory, capsys):
+    scene = Scene()
+    scene.add(P.cube(), Material(kd=0.9, ks=0.5, color=(1, 1, 1)), name="cube")
+    v = viewer_factory(scene, CAM, size=(64, 48))
+    v.key("t")
+    assert v.tracer is None and "rho_d + k_s" in capsys.readouterr().err
+    v.step()

@@ -93,6 +93,7 @@ class CompareArgs(RenderArgs, ExecutorArgs):
     modes: tuple[ShadingMode, ...] = ()
     diff: bool = True
     reference: str = "auto"
+    spp: int = 64
     scale: float | None = None
     save_tiles: str | None = None
     json: str | None = None

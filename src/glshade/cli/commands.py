@@ -195,7 +195,7 @@ def compare(args: a.CompareArgs) -> int:
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
     result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
                  options=job.options, config=job.config(args.backend).replace(samples=0),
-                 scale=args.scale)
+                 scale=args.scale, spp=args.spp)
     if args.save_tiles:
         result.save_tiles(args.save_tiles)
     save_image(result.image, args.output)

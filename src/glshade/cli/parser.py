@@ -185,7 +185,10 @@ def build_parser() -> argparse.ArgumentParser:
                    "mean, max, PSNR and SSIM (default on; --no-diff: the renders alone)")
     p.add_argument("--reference", default="auto", help="auto (analytic where the mesh knows "
                    "its exact surface, as sphere primitives do, else phong-fine), analytic, "
-                   "phong-fine, or an image file (default auto)")
+                   "phong-fine, pathtrace (the rendering equation: interreflection, the "
+                   "energy-conserving Phong lobe; --spp), or an image file (default auto)")
+    p.add_argument("--spp", type=v.count, default=64, metavar="N", help="samples a pixel of "
+                   "--reference pathtrace (default 64)")
     p.add_argument("--scale", type=v.positive_float, help="the heat maps' top, in 8-bit "
                    "units (default: the 99th percentile of the errors off the silhouette)")
     p.add_argument("--save-tiles", metavar="DIR", help="also write each mode's image, the "

@@ -40,7 +40,7 @@ from . import metrics
 
 __all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES"]
 
-REFERENCES = ("auto", "analytic", "phong-fine")
+REFERENCES = ("auto", "analytic", "phong-fine", "pathtrace")
 #: the heat maps' scale by default: this percentile of the errors off the silhouette
 HEAT_PERCENTILE = 99.0
 #: how silhouette pixels show in the heat maps (they are not on the error scale)
@@ -135,10 +135,23 @@ class Comparison:
         return buf.getvalue()
 
 
-def _reference(scene, camera, kind, renderer, size, options):
+def _reference(scene, camera, kind, renderer, size, options, spp=64):
     from ..cpu.raycast import raycast_scene
 
     w, h = size
+    if isinstance(kind, (str, Path)) and str(kind) == "pathtrace":
+        from ..cpu.lighting import encode_srgb
+        from ..pathtrace import TraceScene, trace
+
+        traced = trace(TraceScene.from_scene(scene, camera=camera, smooth=True), camera, size,
+                       spp=spp, context=renderer.context, progress=False)
+        assert traced.coverage is not None
+        mask = traced.coverage > 0.5
+        color = np.clip(traced.image, 0, 1)
+        if options.srgb:
+            color = encode_srgb(color)
+        bg = np.asarray(scene.background[:3])
+        return np.where(mask[..., None], color, bg) * 255, mask, f"path traced ({spp} spp)"
     if isinstance(kind, (str, Path)) and str(kind) == "analytic":
         color, mask = raycast_scene(scene, camera, w, h)
         bg = np.asarray(scene.background[:3])
@@ -181,12 +194,16 @@ COMPARE_CONFIG = RenderConfig(256, 256, samples=0)
 def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             reference="auto", *, size=None, diff: bool = True, renderer=None,
             backend=None, options: DrawOptions | None = None,
-            config: RenderConfig | None = None, scale: float | None = None) -> Comparison:
+            config: RenderConfig | None = None, scale: float | None = None,
+            spp: int = 64) -> Comparison:
     """Render ``modes`` and a reference; return the labelled grid and the metrics.
 
     ``reference``: "auto" (analytic where every mesh knows its exact surface, else
     phong-fine), "analytic" (sphere primitives, ray-cast exactly), "phong-fine" (Phong on
-    a Phong-tessellated copy of each mesh), an image path or an ``(H, W, 3)`` array.
+    a Phong-tessellated copy of each mesh), "pathtrace" (the rendering equation by path
+    tracing, ``spp`` samples a pixel: interreflection instead of the ambient term, the
+    Phong lobe energy-conserving; in the same units as the modes, so the heat maps show
+    what the local model leaves out), an image path or an ``(H, W, 3)`` array.
     ``scale``: the heat maps' top in 8-bit units (default: the module's percentile). No MSAA:
     every pixel is one sample, like the reference. ``options`` are the draw options every
     mode shares (its mode is replaced by each of ``modes``). ``config`` (or ``size``,
@@ -212,7 +229,7 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             from ..cpu.raycast import has_analytic_surfaces
 
             reference = "analytic" if has_analytic_surfaces(scene) else "phong-fine"
-        ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base)
+        ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base, spp)
         frames = {m: r.render_frame(scene, camera, base.replace(mode=m),
                                     outputs=Outputs.FACE_ID, color_dtype="f4")
                   for m in modes}

@@ -43,17 +43,21 @@ def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
     mats[1::2, :3], mats[1::2, 3] = m[:, 5:8], m[:, 4]
     where = np.empty(n_tris, np.int64)
     where[order] = np.arange(n_tris)  # (a triangle's place in BVH order)
+    norms = np.zeros((3 * n_tris if scene.shading is not None else 1, 4), np.float32)
+    if scene.shading is not None:
+        norms[:, :3] = scene.shading[order].reshape(-1, 3)
     emit = np.zeros((max(len(scene.emitters), 1), 4), np.float32)
     emit[:len(scene.emitters), 0] = scene.emitter_cdf
     emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
     emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
-    tables = [nodes, tris, mats, emit]
+    tables = [nodes, tris, mats, emit, norms]
     offsets = np.cumsum([0] + [len(t) for t in tables])
     data = np.concatenate(tables)
     rows = -(-len(data) // DATA_WIDTH)
     data = np.concatenate([data, np.zeros((rows * DATA_WIDTH - len(data), 4), np.float32)])
     layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
               "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
+              "u_norms": int(offsets[4]),
               "depth": bvh.depth, "nodes": n_nodes}
     return data, layout
 
@@ -73,6 +77,8 @@ class GpuPathTracer(GLResource):
         self.samples, self.max_depth = int(samples), int(max_depth)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
         defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {DATA_WIDTH}")
+        if scene.shading is not None:
+            defines += ("SMOOTH_NORMALS",)
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction
             texels = np.zeros((self.height, 2, self.width, 4), np.float32)
@@ -89,7 +95,8 @@ class GpuPathTracer(GLResource):
         self.texture.filter = (0x2600, 0x2600)  # NEAREST
         self._sum = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
         self._square = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
-        self.fbo = self._keep(ctx.framebuffer([self._sum, self._square]))
+        self._hit = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
+        self.fbo = self._keep(ctx.framebuffer([self._sum, self._square, self._hit]))
         self.vao = self._keep(ctx.vertex_array(self.program, []))
         self.passes = 0
         self.reset()
@@ -149,15 +156,36 @@ class GpuPathTracer(GLResource):
             ctx.disable(moderngl.BLEND)
             ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
 
+    def show(self, fbo, exposure: float, srgb: bool = False) -> None:
+        """Draw the picture so far (mean times ``exposure``, clipped) into ``fbo``, a
+        framebuffer of this size (a window's): what the viewer's progressive mode shows."""
+        import moderngl
+
+        self._check()
+        if getattr(self, "_show", None) is None:
+            self._show = self._keep(self._shaders.compile("pathtrace.vert",
+                                                          "pathtrace_show.frag"))
+            self._show_vao = self._keep(self.context.ctx.vertex_array(self._show, []))
+        fbo.use()
+        ctx = self.context.ctx
+        ctx.viewport = (0, 0, self.width, self.height)
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
+        self._sum.use(location=0)
+        self._show["u_sum"].value = 0
+        self._show["u_exposure"].value = float(exposure)
+        self._show["u_srgb"].value = bool(srgb)
+        self._show_vao.render(moderngl.TRIANGLES, vertices=3)
+
     def _release_extra(self) -> None:
         self.context.rest()  # (never release the bound framebuffer)
 
-    def read(self) -> tuple[np.ndarray, np.ndarray]:
-        """(sum, square): ``(H, W, 4)`` float64, top row first: the samples' sum (RGB)
-        and count (A); the sum of their squares (RGB) and of first hits on an emitter (A)."""
+    def read(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(sum, square, hits): ``(H, W, 4)`` float64, top row first: the samples' sum
+        (RGB) and count (A); the sum of their squares (RGB) and of first hits on an
+        emitter (A); the count of camera rays that hit anything (R)."""
         self._check()
         out = []
-        for tex in (self._sum, self._square):
+        for tex in (self._sum, self._square, self._hit):
             a = np.frombuffer(tex.read(), np.float32).reshape(self.height, self.width, 4)
             out.append(a[::-1].astype(np.float64))
-        return out[0], out[1]
+        return out[0], out[1], out[2]

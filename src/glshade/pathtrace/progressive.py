@@ -27,7 +27,8 @@ class PathTraced:
     """A path-traced picture: ``image`` (H, W, 3) float64 in radiosity units (pi x
     radiance), ``se`` (H, W, 3) each pixel's standard error, ``samples`` per pixel,
     ``emitting`` (H, W) the fraction of a pixel's first hits on an emitter, ``seconds`` of
-    tracing, and whether a Ctrl-C ended it early."""
+    tracing, whether a Ctrl-C ended it early, and ``coverage`` (H, W) the fraction of a
+    pixel's camera rays that hit the scene."""
 
     image: np.ndarray
     se: np.ndarray
@@ -37,6 +38,7 @@ class PathTraced:
     interrupted: bool = False
     method: str = "GPU path tracing"
     history: list = field(default_factory=list)
+    coverage: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def relative_error(self) -> float:
@@ -83,11 +85,13 @@ def _moments(total: np.ndarray, square: np.ndarray):
 class PathTracer:
     """A GPU path tracer for one scene and image size: ``add`` samples seen from a
     camera (a new camera starts over), ``result`` the picture so far. Owns its GL objects
-    (and its context when it made one): use it in a ``with`` block or ``close`` it."""
+    (and its context when it made one): use it in a ``with`` block or ``close`` it.
+    ``camera``: the headlight's place for a scene with no lights or emitters; ``smooth``:
+    shade with the renderer's vertex normals (see :class:`TraceScene`)."""
 
     def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int = 64,
                  samples_per_pass: int = 1, context=None, backend: str = "auto",
-                 lights: bool = True):
+                 lights: bool = True, camera=None, smooth: bool = False):
         from ..render.context import create_context
         from .gpu import GpuPathTracer
 
@@ -95,7 +99,7 @@ class PathTracer:
         if int(max_depth) != max_depth or max_depth < 1:
             raise OptionError(f"max_depth must be a whole number >= 1, got {max_depth!r}")
         self.trace_scene = scene if isinstance(scene, TraceScene) else \
-            TraceScene.from_scene(scene, lights=lights)
+            TraceScene.from_scene(scene, lights=lights, camera=camera, smooth=smooth)
         self.seed = int(seed)
         self._own = context is None
         self.context = create_context(backend) if context is None else context
@@ -125,11 +129,11 @@ class PathTracer:
         self.seconds += time.perf_counter() - t0
 
     def result(self, interrupted: bool = False) -> PathTraced:
-        total, square = self.gpu.read()
+        total, square, hits = self.gpu.read()
         mean, se = _moments(total, square)
         n = max(int(total[0, 0, 3]), 1)
         return PathTraced(mean, se, self.samples, square[..., 3] / n, self.seconds,
-                          interrupted)
+                          interrupted, coverage=hits[..., 0] / n)
 
     def close(self) -> None:
         gpu = getattr(self, "gpu", None)

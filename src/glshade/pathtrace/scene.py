@@ -35,7 +35,9 @@ class TraceScene:
     rho_d (RGB), k_s, n, E (RGB); ``emitters`` (K,) triangle indices with ``emitter_cdf``
     (K,) by emitted power; lights ``(L, 10)`` rows of kind (0 directional, 1 point),
     position or direction to the light (3), irradiance RGB (3), attenuation (3); names of
-    the models, and ``model`` (T,) of each triangle."""
+    the models, and ``model`` (T,) of each triangle; ``shading`` (T, 3, 3) unit normals at
+    the corners (smooth shading, the renderer's vertex normals) or None (flat: the
+    triangles' own normals)."""
 
     triangles: np.ndarray
     normals: np.ndarray
@@ -47,6 +49,7 @@ class TraceScene:
     lights: np.ndarray
     model: np.ndarray
     names: tuple
+    shading: np.ndarray | None = None
 
     @property
     def n_triangles(self) -> int:
@@ -59,18 +62,22 @@ class TraceScene:
         return float(np.linalg.norm(t.max(0) - t.min(0))) or 1.0
 
     @classmethod
-    def from_scene(cls, scene, *, lights: bool = True, camera=None) -> TraceScene:
+    def from_scene(cls, scene, *, lights: bool = True, camera=None,
+                   smooth: bool = False) -> TraceScene:
         """Flatten ``scene``'s visible meshes into world triangles and check that they can
         be traced: something emits (an emitting material or a light), every reflectance
         is at most 1 and ``max(rho_d) + k_s <= 1`` (a surface reflects at most what
         arrives). Patch models are taken as their tessellation; CSG solids are refused.
         ``lights=False`` leaves out the scene's lights (emitting surfaces only, as
         radiosity sees it); given a ``camera``, a scene with neither lights nor emitters
-        gets the renderer's headlight (a light at the eye), as ``glshade render`` does."""
+        gets the renderer's headlight (a light at the eye), as ``glshade render`` does.
+        ``smooth``: shade with the vertex normals the renderer's Gouraud and Phong modes
+        interpolate (what a comparison with them wants), not the flat triangles'."""
         if scene.solids:
             raise SceneError("the path tracer traces meshes and patch models; this scene "
                              "has CSG solids, which it does not trace yet")
         tris: list = []
+        corner_normals: list = []
         mats: list = []
         models: list = []
         names: list = []
@@ -83,6 +90,12 @@ class TraceScene:
                 continue
             v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
             tris.append(v[t])
+            if smooth:
+                from ..render.gpu_mesh import drawable_normals
+
+                inverse_t = np.linalg.inv(model.transform[:3, :3]).T
+                n = drawable_normals(mesh) @ inverse_t.T
+                corner_normals.append(n[t])
             mats.append(np.full(len(t), len(rows)))
             models.append(np.full(len(t), len(names)))
             names.append(name)
@@ -114,8 +127,12 @@ class TraceScene:
         if not len(emitters) and not len(light_rows):
             raise SceneError("the scene has no emitter: give a material an emission (or add "
                              "a light); nothing would be lit")
+        shading = None
+        if smooth:
+            shading = np.concatenate(corner_normals)[keep]
+            shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
-                   cdf, light_rows, model, tuple(names))
+                   cdf, light_rows, model, tuple(names), shading)
 
 
 def _material_row(material, name: str) -> list:

@@ -74,7 +74,7 @@ def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0
         with GpuPathTracer(ctx, ts, int(points), len(ts.names), samples=per_pass,
                            max_depth=max_depth, rays=rays[::-1]) as gpu:
             gpu.run(None, -(-int(spp) // per_pass), seed)
-            total, _ = gpu.read()
+            total, _, _ = gpu.read()
     finally:
         if own:
             ctx.release()

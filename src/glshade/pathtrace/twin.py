@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import OptionError
 from .progressive import PathTraced, _size
 from .scene import TraceScene
 
@@ -60,8 +61,9 @@ def _brdf_pi(rho, ks, shin, n, wi, wo):
     return rho + (ks * 0.5 * (shin + 2) * ca ** shin)[:, None]
 
 
-def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64):
-    """pi x radiance along each ray (R, 3): one path each."""
+def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64, hits=None):
+    """pi x radiance along each ray (R, 3): one path each (``hits`` (R,), if given, counts
+    the rays whose first hit exists)."""
     tri, mats = ts.triangles, ts.materials
     eps = 1e-5 * ts.size
     out = np.zeros((len(o), 3))
@@ -80,6 +82,8 @@ def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64):
         front = np.einsum("rk,rk->r", ng, d) < 0
         if depth == 0:
             np.add.at(out, alive, np.where(front[:, None], m[:, 5:8], 0))
+            if hits is not None:
+                hits[alive] += 1
         n = np.where(front[:, None], ng, -ng)
         x = o + t[:, None] * d + n * eps
         wo = -d
@@ -155,6 +159,9 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
 
     w, h = _size(size)
     ts = scene if isinstance(scene, TraceScene) else TraceScene.from_scene(scene, lights=lights)
+    if ts.shading is not None:
+        raise OptionError("the numpy twin shades with the triangles' own normals; make the "
+                          "TraceScene with smooth=False")
     if camera is None:
         camera = default_camera(scene.bounds, w / h)
     rng = np.random.default_rng(seed)
@@ -163,6 +170,7 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
     ys, xs = np.mgrid[h - 1:-1:-1, 0:w]  # (top row first, as images are)
     total = np.zeros((h * w, 3))
     square = np.zeros((h * w, 3))
+    hits = np.zeros(h * w)
     for _ in range(int(spp)):
         px = (xs.ravel() + rng.random(h * w)) / w * 2 - 1
         py = (ys.ravel() + rng.random(h * w)) / h * 2 - 1
@@ -170,11 +178,12 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
         b = np.stack([px, py, np.ones_like(px), np.ones_like(px)], 1) @ inv.T
         o, far = a[:, :3] / a[:, 3:], b[:, :3] / b[:, 3:]
         d = (far - o) / np.linalg.norm(far - o, axis=1, keepdims=True)
-        value = radiance(ts, o, d, rng, max_depth)
+        value = radiance(ts, o, d, rng, max_depth, hits)
         total += value
         square += value ** 2
     mean = total / spp
     var = np.maximum(square / spp - mean ** 2, 0) * spp / max(spp - 1, 1)
     se = np.sqrt(var / spp)
     return PathTraced(mean.reshape(h, w, 3), se.reshape(h, w, 3), int(spp),
-                      np.zeros((h, w)), time.perf_counter() - t0, method="numpy path tracing")
+                      np.zeros((h, w)), time.perf_counter() - t0, method="numpy path tracing",
+                      coverage=(hits / spp).reshape(h, w))

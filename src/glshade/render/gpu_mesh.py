@@ -16,12 +16,12 @@ from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
 from .base import GLResource
 
-__all__ = ["GpuMesh"]
+__all__ = ["GpuMesh", "drawable_normals"]
 
 _ID_TEXTURE_WIDTH = 4096
 
 
-def _drawable_normals(mesh: Mesh) -> np.ndarray:
+def drawable_normals(mesh: Mesh) -> np.ndarray:
     """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
     pixels): file normals where usable, computed ones elsewhere, +z for a vertex that only
     degenerate faces use (their triangles cover no pixel)."""
@@ -63,7 +63,7 @@ class GpuMesh(GLResource):
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
         self._corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])  # (homogeneous)
-        normals = _drawable_normals(mesh)
+        normals = drawable_normals(mesh)
         interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
@@ -103,7 +103,7 @@ class GpuMesh(GLResource):
             m = self._mesh()
             if m is None:
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
-            data = np.hstack([m.vertices, _drawable_normals(m), colors]).astype("f4")
+            data = np.hstack([m.vertices, drawable_normals(m), colors]).astype("f4")
             ctx = self.context.ctx
             vbo = ctx.buffer(data.tobytes())
             ibo = ctx.buffer(m.triangles[0].astype("u4").tobytes())

@@ -5,7 +5,9 @@ camera control.
 Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth, 6 radiosity; z depth test; w
 polygon edges; c back-face culling (auto / on / off); v the named views in turn (front,
 back, left, right, top, bottom, iso); o orthographic / perspective; l light at the camera;
-k add a key frame; p play/pause the path; P save the path as TOML; s screenshot; r reset;
+t path tracing (the rendering equation, refined while the camera rests; t again or a mode
+key: back); k add a key frame; p play/pause the path; P save the path as TOML; s
+screenshot; r reset;
 h or ? help; Esc or q quit. Left-drag: arcball; right- or shift-drag: pan; wheel: dolly
 (the clip planes follow: nothing in front of the camera is cut away); double-click:
 re-centre on the surface; with --pick a click prints the polygon under it.
@@ -25,7 +27,7 @@ import numpy as np
 from ..errors import DisplayError
 from ..modes import ShadingMode
 from ..scene import Camera, CameraPath, Keyframe, Scene
-from .controls import Controls
+from .controls import MODE_KEYS, Controls
 
 __all__ = ["Viewer", "HELP"]
 
@@ -106,6 +108,8 @@ class Viewer(Controls):
         self._fps, self._frames, self._t0 = 0.0, 0, time.perf_counter()
         self.frame_count = 0
         self.closed = False
+        self.tracer: Any = None  # (a PathTracer while the t mode is on)
+        self._trace_exposure: float | None = None
         glfw.set_key_callback(self.window, self._key_event)
         glfw.set_mouse_button_callback(self.window, self._button_event)
         glfw.set_cursor_pos_callback(self.window, self._cursor_event)
@@ -133,7 +137,9 @@ class Viewer(Controls):
         renderer's own (``DrawOptions.edges``): the polygons' edges, not the triangles'."""
         self._glfw.make_context_current(self.window)
         r, t = self.renderer, self.target
-        if self.compare:
+        if self.tracer is not None:
+            self._draw_traced()
+        elif self.compare:
             w3 = t.width // 3
             for i, m in enumerate((ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)):
                 viewport = (i * w3, 0, w3, t.height)
@@ -142,6 +148,39 @@ class Viewer(Controls):
                 self._labels().draw(m.value, viewport)  # named like the compare grid's tiles
         else:
             r.draw(t, self.scene, self.camera, self.options)
+
+    def _draw_traced(self) -> None:
+        """One more sample a pixel of the path tracer, shown; a new view (or size) starts
+        it over, with an exposure taken from its first sample."""
+        t = self.target
+        if (self.tracer.gpu.width, self.tracer.gpu.height) != (t.width, t.height):
+            self._start_tracing()
+            if self.tracer is None:
+                return
+        if self.tracer.camera is not None and self.camera != self.tracer.camera:
+            self._trace_exposure = None
+        self.tracer.add(self.camera, 1)
+        if self._trace_exposure is None:
+            self._trace_exposure = self.tracer.result().auto_exposure()
+        self.tracer.gpu.show(t._fbo(), self._trace_exposure, bool(self.options.srgb))
+
+    def _start_tracing(self) -> None:
+        from ..errors import GlshadeError
+        from ..pathtrace import PathTracer
+
+        self._stop_tracing()
+        try:
+            self.tracer = PathTracer(self.scene, (self.target.width, self.target.height),
+                                     context=self.context, camera=self.camera, smooth=True)
+        except GlshadeError as exc:  # (a scene it cannot trace: no emitter, rho > 1 ...)
+            self._say(f"cannot path-trace this scene: {exc}")
+            return
+        self._trace_exposure = None
+
+    def _stop_tracing(self) -> None:
+        if self.tracer is not None:
+            self.tracer.close()
+            self.tracer = None
 
     def _labels(self):
         if getattr(self, "_label_overlay", None) is None:
@@ -185,6 +224,8 @@ class Viewer(Controls):
 
     def status(self) -> str:
         mode = "flat | gouraud | phong" if self.compare else self.options.mode.value
+        if self.tracer is not None:
+            mode = f"path tracing, {self.tracer.samples:,} samples a pixel"
         extra = "" if self.options.depth_test else "  [no depth test]"
         if self.playing:
             extra += "  [playing]"
@@ -205,6 +246,7 @@ class Viewer(Controls):
         if getattr(self, "window", None) is None:
             return
         self._glfw.make_context_current(self.window)
+        self._stop_tracing()
         self.renderer.close()
         self.context.release()
         self._glfw.destroy_window(self.window)
@@ -223,7 +265,18 @@ class Viewer(Controls):
         the view's and options' keys (:meth:`Controls.key`), then the window's own."""
         if char == "r":
             self.playing = False
+        if char == "t":
+            if self.tracer is None:
+                self._start_tracing()
+                if self.tracer is not None:
+                    self._say("path tracing: the picture refines while the camera rests "
+                              "(t or a mode key: back)")
+            else:
+                self._stop_tracing()
+            return True
         if super().key(char):
+            if char in MODE_KEYS:
+                self._stop_tracing()
             return True
         if char == "k":
             t = self.keyframes[-1].time + 1.0 if self.keyframes else 0.0

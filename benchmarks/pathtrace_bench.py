@@ -53,6 +53,22 @@ def main() -> None:
         import mitsuba  # noqa: F401
     except ImportError:
         rows.append(["Mitsuba 3 scalar_rgb", "not installed", "", "", "", ""])
+    else:
+        import tempfile
+
+        sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+        from tests.oracle import mitsuba_scene
+        from glshade.pathtrace import TraceScene
+        from glshade.radiosity.cornell import CORNELL_CAMERA
+
+        ts = TraceScene.from_scene(scene)
+        with tempfile.TemporaryDirectory() as folder:
+            mitsuba_scene.render(ts, CORNELL_CAMERA, 16, 1, folder)  # (loads its plugins)
+            t0 = time.perf_counter()
+            mitsuba_scene.render(ts, CORNELL_CAMERA, n, 32, folder)
+            tm = time.perf_counter() - t0
+        rows.append(["Mitsuba 3 scalar_rgb", f"{n}x{n}", 32, f"{tm:.2f}",
+                     f"{32 * n * n / tm / 1e6:.2f}", ""])
     print(table(rows, ("tracer", "size", "spp", "seconds", "M paths/s", "rel. error")))
 
 

@@ -269,17 +269,22 @@ def test_the_hemicube_solution_meets_the_furnace_closed_form(factors):
 
 
 @pytest.mark.slow
-def test_the_cornell_box_meets_the_independent_light_tracing_solution(factors):
+def test_the_cornell_box_meets_the_independent_light_tracing_solution(factors, gl_context):
     """Per surface, the hemicube solution (default patch size, 99.9% shot) against light
     tracing over the same patches (600k particles, seeded): within 0.5% or 3 standard
-    errors on every surface and channel. (It was 1-4% low at 4-9 standard errors: points of
-    patches under the blocks and above the light sent their energy into them.)"""
+    errors on every surface and channel; and against path tracing, within 1% or 4. (It was
+    1-4% low at 4-9 standard errors: points of patches under the blocks and above the light
+    sent their energy into them.)"""
+    from glshade.pathtrace.surfaces import surface_radiosity
     from glshade.radiosity.montecarlo import light_trace
 
     scene, _ = cornell_scene()
     problem = PatchScene.from_scene(scene)
     mc = light_trace(problem, 600_000, 16, seed=11)
     sol = progressive(factors(problem), until=1e-3)
+    # and path tracing (no patches, no form factors: paths from points uniform over each
+    # surface): within 1% or 4 standard errors
+    traced = surface_radiosity(scene, points=2048, spp=64, seed=7, context=gl_context)
     a = problem.patches.areas
     for k, name in enumerate(problem.names):
         m = problem.model == k
@@ -287,6 +292,9 @@ def test_the_cornell_box_meets_the_independent_light_tracing_solution(factors):
         theirs, se = mc.model_radiosity[k], mc.model_se[k]
         ok = (np.abs(ours - theirs) <= 0.005 * theirs) | (np.abs(ours - theirs) <= 3 * se)
         assert ok.all(), (name, ours, theirs, se)
+        path, path_se = traced[name]
+        ok = (np.abs(ours - path) <= 0.01 * path) | (np.abs(ours - path) <= 4 * path_se)
+        assert ok.all(), (name, ours, path, path_se)
 
 
 def test_energy_balance_in_a_closed_room_with_unequal_reflectances(factors):
@@ -307,3 +315,4 @@ def test_energy_balance_in_a_closed_room_with_unequal_reflectances(factors):
     absorbed = ((1 - problem.rho) * arriving).sum()
     emitted = (problem.emission * a).sum()
     assert absorbed == pytest.approx(emitted, rel=0.005)
+

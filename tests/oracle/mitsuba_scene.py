@@ -1,0 +1,44 @@
+"""A glshade scene as Mitsuba 3 sees it (for the path tracer's third-party oracle): each
+material's triangles as an OBJ, diffuse BSDFs of rho_d, area emitters of radiance E / pi
+(glshade's emission is a radiosity), the same pinhole camera. Shares nothing with glshade's
+tracer but the TraceScene's triangles and numbers."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+
+def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0):
+    """Mitsuba's ``scalar_rgb`` picture ``(size, size, 3)`` in radiosity units (pi x its
+    radiance). ``camera``: eye, target, up, fov_y (degrees)."""
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": 64},
+             "sensor": {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
+                        "to_world": mi.ScalarTransform4f().look_at(
+                            origin=list(camera["eye"]), target=list(camera["target"]),
+                            up=list(camera["up"])),
+                        "film": {"type": "hdrfilm", "width": size, "height": size,
+                                 "rfilter": {"type": "box"}},
+                        "sampler": {"type": "independent", "sample_count": spp,
+                                    "seed": seed}}}
+    ts = trace_scene
+    for m, row in enumerate(ts.materials):
+        tri = ts.triangles[ts.material == m]
+        if not len(tri):
+            continue
+        path = os.path.join(folder, f"material{m}.obj")
+        with open(path, "w") as f:
+            f.write("".join(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in tri.reshape(-1, 3)))
+            f.write("".join(f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}\n" for k in range(len(tri))))
+        entry = {"type": "obj", "filename": path, "face_normals": True,
+                 "bsdf": {"type": "diffuse",
+                          "reflectance": {"type": "rgb", "value": row[:3].tolist()}}}
+        if row[5:8].sum() > 0:
+            entry["emitter"] = {"type": "area",
+                                "radiance": {"type": "rgb", "value": (row[5:8] / np.pi).tolist()}}
+        scene[f"material{m}"] = entry
+    return np.array(mi.render(mi.load_dict(scene)), np.float64)[..., :3] * np.pi

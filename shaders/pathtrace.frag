@@ -12,6 +12,8 @@
 //   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
 //   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
 //   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
+// CSG_SOLID: one CSG solid, ray cast exactly by csg.glsl (the raster pass's code) from its
+// own texture; a hit on its leaf L is "triangle" -2 - L, of material u_csg_material.
 // BRDF: rho_d / pi + k_s (n + 2) / (2 pi) cos^n(alpha), two-sided; emission one-sided.
 // Next-event estimation to the emitters and the lights, then a BRDF-sampled bounce (lobe
 // chosen by albedo); emission found by a bounce is not counted again (no double counting);
@@ -25,6 +27,10 @@
 #define DATA_WIDTH 1024
 #endif
 #define STACK 48
+#ifdef CSG_SOLID
+#include "csg.glsl"
+uniform int u_csg_material;
+#endif
 
 uniform sampler2D u_data;
 uniform int u_nodes;
@@ -119,7 +125,15 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
             }
         }
     }
-    return tri_hit >= 0;
+#ifdef CSG_SOLID
+    float tc;
+    int leaf = csg_first_hit(o, d, tc);
+    if (leaf >= 0 && tc > 0.0 && tc < t_hit) {
+        t_hit = tc;
+        tri_hit = -2 - leaf;
+    }
+#endif
+    return tri_hit != -1;
 }
 
 bool visible(vec3 o, vec3 d, float dist) {
@@ -153,26 +167,40 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
         int k;
         if (!intersect(o, d, 1e30, t, k)) break;
         if (depth == 0) g_hit += 1.0;
-        vec4 p0 = fetch(u_tris + 3 * k);
-        vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
-        int m = floatBitsToInt(p0.w);
-        vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
-        vec3 ng = normalize(cross(e1, e2));
         vec3 x = o + t * d;
+        int m;
+        vec3 ng;
+#ifdef CSG_SOLID
+        bool on_solid = k <= -2;
+        if (on_solid) {
+            m = u_csg_material;
+            ng = normalize(csg_normal(-2 - k, x));
+        } else
+#endif
+        {
+            vec4 p0 = fetch(u_tris + 3 * k);
+            vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+            m = floatBitsToInt(p0.w);
+            ng = normalize(cross(e1, e2));
+        }
+        vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
         if (depth == 0 && dot(ng, d) < 0.0) {
             sum += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
             first_emits = float(dot(mb.xyz, vec3(1.0)) > 0.0);
         }
         vec3 n = dot(ng, d) < 0.0 ? ng : -ng;
         vec3 xo = x + n * u_eps;  // (offsets along the true surface)
+        vec3 n_geo = n;
 #ifdef SMOOTH_NORMALS
-        vec3 ns = normalize((1.0 - g_uv.x - g_uv.y) * fetch(u_norms + 3 * k).xyz +
-                            g_uv.x * fetch(u_norms + 3 * k + 1).xyz +
-                            g_uv.y * fetch(u_norms + 3 * k + 2).xyz);
-        vec3 n_geo = n;
-        n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the side the ray came from)
-#else
-        vec3 n_geo = n;
+#ifdef CSG_SOLID
+        if (!on_solid)
+#endif
+        {
+            vec3 ns = normalize((1.0 - g_uv.x - g_uv.y) * fetch(u_norms + 3 * k).xyz +
+                                g_uv.x * fetch(u_norms + 3 * k + 1).xyz +
+                                g_uv.y * fetch(u_norms + 3 * k + 2).xyz);
+            n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the ray's side)
+        }
 #endif
         vec3 wo = -d;
         vec3 rho = ma.xyz;

@@ -7,6 +7,7 @@ import pytest
 
 from glshade.compare import compare
 from glshade.geometry import primitives
+from glshade.modes import Outputs
 from glshade.pathtrace import TraceScene, trace
 from glshade.scene import Camera, DirectionalLight, Material, Scene
 
@@ -74,3 +75,49 @@ def test_smooth_shading_normals_follow_the_renderer(gl_context):
 
     assert constant(flat.image) > 0.4 and constant(smooth.image) < 0.05, (
         constant(flat.image), constant(smooth.image))
+
+
+def test_a_csg_solid_is_traced_by_the_raster_pass_s_own_ray_casting(make_renderer):
+    """A convex CSG solid (a box and a sphere intersected) under a directional light: the
+    path tracer's direct light (the exact normals of csg.glsl, its hits the raster pass's)
+    equals Phong's picture of it away from the silhouette. Over a floor, its shadow is
+    darker than Phong draws it (the raster has no shadows)."""
+    from glshade.solids import Box, Sphere
+
+    solid = Box((1.6, 1.6, 1.6)) & Sphere(1.0)
+    matte = Material(color=(0.9, 0.8, 0.7), ka=0.0, kd=0.8, ks=0.0)
+    alone = Scene(ambient=(0.0, 0.0, 0.0))
+    alone.add(solid, matte)
+    alone.add_light(DirectionalLight(direction=(-0.4, -0.7, -0.6)))
+    r = make_renderer(96, 96, samples=0)
+    result = compare(alone, CAMERA, ("phong",), "pathtrace", renderer=r, size=(96, 96),
+                     spp=16)
+    m = result.metrics[0]
+    assert m.pixels > 1500 and m.mean_abs < 2.5, m
+
+    floor = primitives.plane(6.0)
+    scene = _lit(floor)
+    scene.models[0].transform = np.array([[1, 0, 0, 0], [0, 0, 1, -1.0], [0, -1, 0, 0],
+                                          [0, 0, 0, 1.0]])  # (y = -1, facing up)
+    scene.add(solid, matte)
+    result = compare(scene, CAMERA, ("phong",), "pathtrace", renderer=r, size=(96, 96),
+                     spp=16)
+    frame = r.render_frame(scene, CAMERA, "phong", outputs=Outputs.FACE_ID)
+    on_floor = frame.face_id == 0
+    ours, theirs = result.images["phong"].astype(float), result.reference.astype(float)
+    assert ((theirs - ours)[on_floor].mean(-1) < -20).sum() > 30  # (its shadow, in view)
+
+
+def test_two_solids_or_an_emitting_solid_are_refused():
+    from glshade.errors import SceneError
+    from glshade.solids import Sphere
+
+    scene = _lit(primitives.cube())
+    scene.add(Sphere(1.0), Material(emission=(1, 1, 1)), name="lamp")
+    with pytest.raises(SceneError, match="lamp: a CSG solid cannot emit"):
+        TraceScene.from_scene(scene)
+    scene = _lit(primitives.cube())
+    scene.add(Sphere(1.0))
+    scene.add(Sphere(0.5))
+    with pytest.raises(SceneError, match=r"one CSG solid, the scene has 2: make them one"):
+        TraceScene.from_scene(scene)

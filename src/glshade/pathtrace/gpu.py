@@ -25,13 +25,18 @@ def _bits(values) -> np.ndarray:
 def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
     """The scene as RGBA32F texels ``(rows * DATA_WIDTH, 4)`` and the offset of each table
     (see the shader's header): BVH nodes, triangles in BVH order, materials, emitters."""
-    bvh = build(scene.triangles)
-    order = bvh.order
+    if len(scene.triangles):
+        bvh = build(scene.triangles)
+        order, depth = bvh.order, bvh.depth
+        n_nodes = bvh.n_nodes
+        nodes = np.zeros((2 * n_nodes, 4), np.float32)
+        nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
+        nodes[0::2, 3], nodes[1::2, 3] = _bits(bvh.first), _bits(bvh.count)
+    else:  # (a solid alone: one empty box no ray enters)
+        order, depth, n_nodes = np.zeros(0, np.int64), 0, 1
+        nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)
     tri = scene.triangles[order]
-    n_nodes, n_tris = bvh.n_nodes, len(tri)
-    nodes = np.zeros((2 * n_nodes, 4), np.float32)
-    nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
-    nodes[0::2, 3], nodes[1::2, 3] = _bits(bvh.first), _bits(bvh.count)
+    n_tris = len(tri)
     tris = np.zeros((3 * n_tris, 4), np.float32)
     tris[0::3, :3] = tri[:, 0]
     tris[0::3, 3] = _bits(scene.material[order])
@@ -58,7 +63,7 @@ def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
     layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
               "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
               "u_norms": int(offsets[4]),
-              "depth": bvh.depth, "nodes": n_nodes}
+              "depth": depth, "nodes": n_nodes}
     return data, layout
 
 
@@ -79,6 +84,25 @@ class GpuPathTracer(GLResource):
         defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {DATA_WIDTH}")
         if scene.shading is not None:
             defines += ("SMOOTH_NORMALS",)
+        self._csg = None
+        if scene.solids:
+            from ..render.csg import leaf_words, tree_data
+
+            solid, material = scene.solids[0]
+            tree = tree_data(solid)
+            words = leaf_words(tree.leaves)
+            defines += ("CSG_SOLID", f"CSG_WORDS {words}", f"CSG_KINDS {tree.kinds}")
+            if words == 1:
+                defines += ("CSG_LEAF_LOOP",)
+            self._csg = self._keep(ctx.texture((64, len(tree.texels) // 64), 4,
+                                               tree.texels.tobytes(), dtype="f4"))
+            self._csg.filter = (0x2600, 0x2600)
+            self._csg_values = {
+                "u_csg": 2, "u_csg_material": material, "u_csg_nodes": tree.nodes,
+                "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
+                "u_csg_ops": tree.ops, "u_csg_bvh": tree.bvh, "u_csg_program": tree.program,
+                "u_csg_records": tree.records, "u_csg_kinds": tree.by_kind,
+                "u_csg_kind_start": np.array(tree.kind_start, "i4")}
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction
             texels = np.zeros((self.height, 2, self.width, 4), np.float32)
@@ -123,6 +147,9 @@ class GpuPathTracer(GLResource):
         if camera is not None:
             vp = camera.projection_matrix(aspect) @ camera.view_matrix()
             values["u_inverse_view_proj"] = gl_bytes(np.linalg.inv(vp))
+        if self._csg is not None:
+            values.update(self._csg_values)
+            self._csg.use(location=2)
         lights = self.scene.lights
         if len(lights):
             pos = np.zeros((8, 4), np.float32)
@@ -135,7 +162,9 @@ class GpuPathTracer(GLResource):
                           u_light_att=att.tobytes())
         for name, value in values.items():
             if name in prog:  # (the compiler drops what a variant does not use)
-                if isinstance(value, bytes):
+                if isinstance(value, np.ndarray):  # (an int array; the compiler may trim it)
+                    prog[name].write(value[:prog[name].array_length].tobytes())
+                elif isinstance(value, bytes):
                     prog[name].write(value)
                 else:
                     prog[name].value = value

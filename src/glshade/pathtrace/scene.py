@@ -50,6 +50,8 @@ class TraceScene:
     model: np.ndarray
     names: tuple
     shading: np.ndarray | None = None
+    #: ((solid, material index),): a CSG solid ray cast exactly (at most one: union them)
+    solids: tuple = ()
 
     @property
     def n_triangles(self) -> int:
@@ -58,7 +60,8 @@ class TraceScene:
     @property
     def size(self) -> float:
         """The diagonal of the triangles' bounding box (for offsets and epsilons)."""
-        t = self.triangles.reshape(-1, 3)
+        pts = [self.triangles.reshape(-1, 3)] + [s.bounds for s, _ in self.solids]
+        t = np.concatenate(pts)
         return float(np.linalg.norm(t.max(0) - t.min(0))) or 1.0
 
     @classmethod
@@ -67,15 +70,17 @@ class TraceScene:
         """Flatten ``scene``'s visible meshes into world triangles and check that they can
         be traced: something emits (an emitting material or a light), every reflectance
         is at most 1 and ``max(rho_d) + k_s <= 1`` (a surface reflects at most what
-        arrives). Patch models are taken as their tessellation; CSG solids are refused.
+        arrives). Patch models are taken as their tessellation; a CSG solid (one: union
+        several) is ray cast exactly, as its raster pass does, and may not emit.
         ``lights=False`` leaves out the scene's lights (emitting surfaces only, as
         radiosity sees it); given a ``camera``, a scene with neither lights nor emitters
         gets the renderer's headlight (a light at the eye), as ``glshade render`` does.
         ``smooth``: shade with the vertex normals the renderer's Gouraud and Phong modes
         interpolate (what a comparison with them wants), not the flat triangles'."""
-        if scene.solids:
-            raise SceneError("the path tracer traces meshes and patch models; this scene "
-                             "has CSG solids, which it does not trace yet")
+        solid_models = [m for m in scene.solids if m.visible]
+        if len(solid_models) > 1:
+            raise SceneError(f"the path tracer takes one CSG solid, the scene has "
+                             f"{len(solid_models)}: make them one (a | b)")
         tris: list = []
         corner_normals: list = []
         mats: list = []
@@ -100,17 +105,25 @@ class TraceScene:
             models.append(np.full(len(t), len(names)))
             names.append(name)
             rows.append(_material_row(model.material, name))
-        if not tris:
-            raise SceneError("the scene has nothing to trace (no visible meshes)")
-        triangles = np.concatenate(tris).astype(np.float64)
-        if not np.isfinite(triangles).all():
+        solids = []
+        for k, model in enumerate(solid_models):
+            name = model.name or f"solid {k}"
+            if max(model.material.emission) > 0:
+                raise SceneError(f"{name}: a CSG solid cannot emit here (its surface is not "
+                                 "sampled for light); give the emission to a mesh")
+            solids.append((model.solid, len(rows)))
+            rows.append(_material_row(model.material, name))
+        if not tris and not solids:
+            raise SceneError("the scene has nothing to trace (no visible meshes or solids)")
+        triangles = (np.concatenate(tris) if tris else np.zeros((0, 3, 3))).astype(np.float64)
+        if not np.isfinite(triangles).all():  # (a solid's numbers are checked when made)
             raise SceneError("the scene has vertices that are not finite numbers")
         cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
         length = np.linalg.norm(cross, axis=1)
-        keep = length > 1e-12 * max(float(np.abs(triangles).max()), 1e-300) ** 2
+        keep = length > 1e-12 * max(float(np.abs(triangles).max(initial=0)), 1e-300) ** 2
         triangles, cross, length = triangles[keep], cross[keep], length[keep]
-        material = np.concatenate(mats)[keep]
-        model = np.concatenate(models)[keep]
+        material = np.concatenate(mats)[keep] if mats else np.zeros(0, np.int64)
+        model = np.concatenate(models)[keep] if models else np.zeros(0, np.int64)
         materials = np.array(rows, np.float64)
         areas = 0.5 * length
         power = areas * materials[material, 5:8].mean(1)
@@ -128,11 +141,11 @@ class TraceScene:
             raise SceneError("the scene has no emitter: give a material an emission (or add "
                              "a light); nothing would be lit")
         shading = None
-        if smooth:
+        if smooth and corner_normals:
             shading = np.concatenate(corner_normals)[keep]
             shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
-                   cdf, light_rows, model, tuple(names), shading)
+                   cdf, light_rows, model, tuple(names), shading, tuple(solids))
 
 
 def _material_row(material, name: str) -> list:

@@ -159,6 +159,9 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
 
     w, h = _size(size)
     ts = scene if isinstance(scene, TraceScene) else TraceScene.from_scene(scene, lights=lights)
+    if ts.solids:
+        raise OptionError("the numpy twin traces triangles; a CSG solid is the GPU tracer's "
+                          "(csg.glsl)")
     if ts.shading is not None:
         raise OptionError("the numpy twin shades with the triangles' own normals; make the "
                           "TraceScene with smooth=False")

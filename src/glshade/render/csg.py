@@ -58,7 +58,8 @@ from .base import GLResource
 from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
-__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "may_start_inside", "MAX_LEAVES"]
+__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "may_start_inside", "MAX_LEAVES",
+           "leaf_words"]
 
 #: leaves a solid may have on the GPU (the program keeps one bit per leaf in 32 words)
 MAX_LEAVES = 1024
@@ -180,6 +181,12 @@ def _program(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
 
 def _size_class(leaves: int) -> tuple[int, int, int]:
     return next(c for c in _CLASSES if c[0] >= leaves)
+
+
+def leaf_words(leaves: int) -> int:
+    """The words of leaf bits (``CSG_WORDS``) the program keeps for a tree of ``leaves``:
+    its size class, for another program that includes csg.glsl (the path tracer)."""
+    return _size_class(leaves)[1]
 
 
 def _leaf_boxes(leaves: list, matrices: np.ndarray) -> np.ndarray:

@@ -58,3 +58,18 @@ def test_compare_against_the_path_tracer(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "phong" in r.stdout and out.exists()
     assert np.asarray(Image.open(out)).shape[1] >= 3 * 64  # (two modes and the reference)
+
+
+@pytest.mark.slow
+def test_radiosity_and_phong_against_the_path_tracer_with_per_surface_numbers(tmp_path):
+    """compare --modes radiosity,phong --reference pathtrace on the Cornell box: the
+    radiosity solution (drawn at exposure 1: radiosities) is far closer to the path tracer
+    than Phong's local model, and per surface the two solutions agree within 10%."""
+    r = glshade("compare", "cornell-box", "-o", str(tmp_path / "grid.png"), "--reference",
+                "pathtrace", "--modes", "radiosity,phong", "--spp", "16", "--size", "64x64",
+                "--backend", BACKEND, timeout=300)
+    assert r.returncode == 0, r.stderr
+    rows = {line.split()[0]: line.split() for line in r.stdout.splitlines() if line.strip()}
+    assert float(rows["radiosity"][1]) < 0.5 * float(rows["phong"][1])
+    for surface in ("floor", "ceiling", "back_wall", "red_wall", "green_wall"):
+        assert abs(float(rows[surface][-1].rstrip("%"))) < 10, rows[surface]

@@ -7,7 +7,7 @@ import json
 import os
 import sys
 
-from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, UsageError
+from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, InputError, UsageError
 from ..io.scenefile import RenderSettings
 from ..options import RenderConfig
 from . import arguments as a
@@ -193,19 +193,53 @@ def compare(args: a.CompareArgs) -> int:
     if args.sweep:
         return _sweep(args, modes)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
+    scenes, surfaces = {}, None
+    if "radiosity" in modes:
+        scenes["radiosity"], surfaces = _radiosity_for_compare(args, job)
     result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
                  options=job.options, config=job.config(args.backend).replace(samples=0),
-                 scale=args.scale, spp=args.spp)
+                 scale=args.scale, spp=args.spp, scenes=scenes)
     if args.save_tiles:
         result.save_tiles(args.save_tiles)
     save_image(result.image, args.output)
     print(result.table())
+    if surfaces is not None:
+        print(surfaces)
     if args.json:
         result.write_json(args.json)
     if args.csv:
         result.write_csv(args.csv)
     print(f"grid: {args.output}")
     return EXIT_OK
+
+
+def _radiosity_for_compare(args: a.CompareArgs, job):
+    """The radiosity mode's scene for compare -- the scene's solution at exposure 1, so its
+    pixels are radiosities (the path-traced reference's units) -- and, against a pathtrace
+    reference, the per-surface table: the solution's area means beside path tracing's."""
+    from ..io.tables import format_table
+    from ..radiosity import solve
+
+    try:
+        solution = solve(job.scene, backend=args.backend, progress=False)
+    except InputError as exc:
+        raise UsageError(f"{args.mesh}: the radiosity mode needs a solution: {exc}") from None
+    scene = solution.scene(exposure=1.0, background=job.scene.background)
+    if args.reference != "pathtrace":
+        return scene, None
+    from ..pathtrace.surfaces import surface_radiosity
+
+    names, means = solution.surface_means()
+    traced = surface_radiosity(job.scene, points=1024, spp=max(args.spp, 16),
+                               backend=args.backend.value)
+    rows = []
+    for name, b in zip(names, means):
+        p, se = traced[name]
+        gap = (b.mean() - p.mean()) / p.mean() if p.mean() > 0 else float("nan")
+        rows.append((name, " ".join(f"{x:.4g}" for x in b), " ".join(f"{x:.4g}" for x in p),
+                     f"{se.mean():.2g}", f"{gap:+.1%}"))
+    head = ("surface", "radiosity B (RGB)", "path traced B (RGB)", "its SE", "radiosity vs")
+    return scene, ("per surface, area means (radiosity units)\n" + format_table(rows, head))
 
 
 def view(args: a.ViewArgs) -> int:

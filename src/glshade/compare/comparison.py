@@ -195,7 +195,7 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             reference="auto", *, size=None, diff: bool = True, renderer=None,
             backend=None, options: DrawOptions | None = None,
             config: RenderConfig | None = None, scale: float | None = None,
-            spp: int = 64) -> Comparison:
+            spp: int = 64, scenes: dict | None = None) -> Comparison:
     """Render ``modes`` and a reference; return the labelled grid and the metrics.
 
     ``reference``: "auto" (analytic where every mesh knows its exact surface, else
@@ -208,6 +208,9 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     every pixel is one sample, like the reference. ``options`` are the draw options every
     mode shares (its mode is replaced by each of ``modes``). ``config`` (or ``size``,
     ``backend``): the renderer made when none is given (default 256x256; ``samples`` 0).
+    ``scenes``: a scene per mode to draw instead of ``scene`` (the ``radiosity`` mode's is
+    a solution's, :meth:`~glshade.radiosity.Solution.scene`: at exposure 1 its pixels are
+    radiosities, the path-traced reference's units).
     """
     from ..render.renderer import Renderer
 
@@ -230,7 +233,8 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
 
             reference = "analytic" if has_analytic_surfaces(scene) else "phong-fine"
         ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base, spp)
-        frames = {m: r.render_frame(scene, camera, base.replace(mode=m),
+        drawn = {ShadingMode.parse(k): v for k, v in (scenes or {}).items()}
+        frames = {m: r.render_frame(drawn.get(m, scene), camera, base.replace(mode=m),
                                     outputs=Outputs.FACE_ID, color_dtype="f4")
                   for m in modes}
     finally:

@@ -100,6 +100,18 @@ class Solution:
               vertex_colors=self.vertex_colors(exposure, ambient, crease), name="radiosity")
         return s
 
+    def surface_means(self) -> tuple[tuple, np.ndarray]:
+        """The models' names and each one's area-mean radiosity ``(M, 3)``: the per-surface
+        numbers a path tracer's :func:`~glshade.pathtrace.surfaces.surface_radiosity`
+        estimates too."""
+        p = self.problem
+        a = p.patches.areas
+        models = len(p.names)
+        area = np.bincount(p.model, weights=a, minlength=models)
+        means = np.stack([np.bincount(p.model, weights=self.radiosity[:, c] * a,
+                                      minlength=models) for c in range(3)], 1)
+        return tuple(p.names), means / np.maximum(area, 1e-300)[:, None]
+
     def auto_exposure(self, ambient: bool = True) -> float:
         b = self.displayed(ambient)
         lit = self.problem.emission.sum(1) == 0

@@ -2,7 +2,7 @@
 Casteljau for comparison), triangles tessellated per second (uniform levels and adaptive
 tolerances, crack-free with exact normals), the adaptive triangle count against the
 uniform one that meets the same tolerance, and the frame time of the tessellated teapot on
-this GL (the CPU tessellation is the one glshade draws).
+this GL: the CPU tessellation (the default) against the GL 4.0 tessellation shaders.
 
 Run: ``.venv/bin/python benchmarks/patch_bench.py``.
 """
@@ -63,18 +63,29 @@ def tessellation() -> None:
 
 
 def frames() -> None:
+    """A frame of the teapot at each level: the CPU's mesh (tessellated once, then drawn)
+    and the GPU's tessellation shaders (tessellating at every draw), interleaved; and the
+    CPU's tessellation time itself."""
     camera = Camera.look_at((4.5, 3.5, 6.0), (0, 1.2, 0))
+    teapot = G.teapot()
     rows = []
     with Renderer(512, 512, samples=0) as r:
-        for level in (4, 16, 64):
-            scene = Scene()
-            scene.add(G.tessellate(G.teapot(), level).mesh)
-            r.render(scene, camera)
-            s = interleaved({"f": lambda s=scene: r.render(s, camera)}, repeats=5)["f"]
-            rows.append((str(level), f"{2 * 32 * level * level:,}", f"{1000 * s:.1f}"))
-    print("the tessellated teapot at 512x512, phong (GL tessellation shaders: not used; the "
-          "CPU mesh is drawn)")
-    print(table(rows, ("level", "triangles", "ms a frame")))
+        for level in (4, 8, 16, 32, 64):
+            cpu, gpu = Scene(), Scene()
+            cpu.add(G.tessellate(teapot, level).mesh)
+            gpu.add(teapot, tessellation="gpu", level=level)
+            r.render(cpu, camera)
+            r.render(gpu, camera)
+            t = interleaved({"cpu": lambda s=cpu: r.render(s, camera),
+                             "gpu": lambda s=gpu: r.render(s, camera),
+                             "tess": lambda lv=level: G.tessellate(teapot, lv)}, repeats=5)
+            rows.append((str(level), f"{2 * 32 * level * level:,}", f"{1000 * t['tess']:.1f}",
+                         f"{1000 * t['cpu']:.1f}", f"{1000 * t['gpu']:.1f}",
+                         f"{t['gpu'] / t['cpu']:.2f}"))
+    print("the teapot at 512x512, phong: CPU tessellation (once) and its frame, against GL 4.0 "
+          "tessellation shaders (every frame)")
+    print(table(rows, ("level", "triangles", "CPU tess ms", "CPU mesh frame ms",
+                       "GPU tess frame ms", "GPU / CPU")))
 
 
 if __name__ == "__main__":

@@ -25,9 +25,13 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
 #endif
     frag_color = vec4(color, 1.0);
 #ifdef GLSHADE_AUX_OUTPUTS
+#ifdef PATCH_IDS
+    int polygon = gl_PrimitiveID;  // (tessellated on the GPU: the patch's number)
+#else
     int width = textureSize(u_face_ids, 0).x;
     int tri = gl_PrimitiveID;
     int polygon = texelFetch(u_face_ids, ivec2(tri % width, tri / width), 0).r;
+#endif
     frag_normal = vec4(normalize(n_world), 1.0);
     frag_face_id = u_face_id_base + polygon + 1;
     frag_depth_bits = floatBitsToUint(depth_view);

@@ -87,7 +87,14 @@ class TraceScene:
         models: list = []
         names: list = []
         rows: list = []
-        for k, model in enumerate(m for m in scene.models if m.visible):
+        visible = [m for m in scene.models if m.visible]
+        if getattr(scene, "patch_models", None):  # (GPU-tessellated: the same grid here)
+            from ..patches import tessellate
+            from ..scene.scene import Model
+
+            visible += [Model(tessellate(p.patches, level=p.level).mesh, p.material,
+                              p.transform, p.name) for p in scene.patch_models if p.visible]
+        for k, model in enumerate(visible):
             mesh = model.mesh
             name = model.name or f"model {k}"
             t, _ = mesh.triangles

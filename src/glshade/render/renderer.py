@@ -188,6 +188,7 @@ class Renderer:
         self._materials = MaterialUniforms()
         self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
         self._edges = EdgePass(self.context, self.shaders, self._uniforms)
+        self._patches: Any = None  # (a PatchPass, made for the first GPU patch model)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query: Any = None
@@ -217,6 +218,8 @@ class Renderer:
             t.release()
         self._csg.release()
         self._edges.release()
+        if self._patches is not None:
+            self._patches.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
@@ -381,6 +384,13 @@ class Renderer:
                 vao = gpu.vertex_array(prog, options.mode)
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
+        if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
+            if self._patches is None:
+                from .gpu_patches import PatchPass
+
+                self._patches = PatchPass(self.context, self.shaders, self._uniforms,
+                                          self._materials)
+            id_base = self._patches.draw(state, id_base, self._normal_matrix)
         if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
             self._csg.draw(state, id_base)
         if outlined:

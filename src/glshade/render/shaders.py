@@ -140,21 +140,24 @@ class ShaderLibrary(GLResource):
         return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,
-                defines: tuple[str, ...] = (), geom: str | None = None):
-        """Compile and link one program; a failure raises ShaderError naming file and line."""
-        vs, frag_src = assemble(vert, root, defines), assemble(frag, root, defines)
-        gs = assemble(geom, root, defines) if geom else None
+                defines: tuple[str, ...] = (), geom: str | None = None,
+                tess: tuple[str, str] | None = None):
+        """Compile and link one program (``tess``: the tessellation control and evaluation
+        shaders' files); a failure raises ShaderError naming file and line."""
+        stages = {"vertex_shader": assemble(vert, root, defines),
+                  "fragment_shader": assemble(frag, root, defines)}
+        if geom:
+            stages["geometry_shader"] = assemble(geom, root, defines)
+        if tess:
+            stages["tess_control_shader"] = assemble(tess[0], root, defines)
+            stages["tess_evaluation_shader"] = assemble(tess[1], root, defines)
         try:
-            return self.context.ctx.program(vertex_shader=vs[0], fragment_shader=frag_src[0],
-                                            geometry_shader=gs[0] if gs else None)
+            return self.context.ctx.program(**{k: v[0] for k, v in stages.items()})
         except Exception as exc:  # moderngl raises a bare Error with the driver's log
             text = str(exc)
-            stage = {"vertex_shader": vs, "fragment_shader": frag_src,
-                     "geometry_shader": gs or vs}
-            found = re.search(r"^(vertex_shader|fragment_shader|geometry_shader)\s*$", text,
-                              re.M)
+            found = re.search(r"^(" + "|".join(stages) + r")\s*$", text, re.M)
             which = found.group(1) if found else "fragment_shader"
-            detail = explain_compile_error(text, {which: stage[which]}, root)
+            detail = explain_compile_error(text, {which: stages[which]}, root)
             head = f"{vert} + {frag}: GLSL {which.replace('_', ' ')} failed to compile"
             raise ShaderError(head + ("\n" + detail if detail else "") +
                               "\n--- driver log ---\n" + text.strip()) from None

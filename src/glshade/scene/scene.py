@@ -5,6 +5,8 @@ Plain data (numpy arrays), no GL handles: the renderer keeps the GPU copies.
 
 from __future__ import annotations
 
+from typing import Any
+
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,7 +20,7 @@ from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "SolidModel", "Scene", "MAX_DRAWABLE_COORDINATE"]
+__all__ = ["Model", "SolidModel", "PatchModel", "Scene", "MAX_DRAWABLE_COORDINATE"]
 
 #: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
 MAX_DRAWABLE_COORDINATE = 1e18
@@ -72,6 +74,27 @@ class SolidModel:
     visible: bool = True
 
 
+@dataclass(eq=False)
+class PatchModel:
+    """Patches tessellated on the GPU at draw time (GL 4.0 tessellation shaders), ``level``
+    segments a patch side; placed by ``transform`` (4x4)."""
+
+    patches: Any
+    material: Material = field(default_factory=Material)
+    transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
+    level: int = 16
+    name: str | None = None
+    visible: bool = True
+
+    @property
+    def corners(self) -> NDArray[np.float64]:
+        """The control points' box corners ``(8, 3)`` placed in the world (the surface
+        lies inside its control points' hull)."""
+        b = self.patches.bounds()
+        box = np.stack([b[:, 0].min(0), b[:, 1].max(0)])
+        return box_corners(box) @ self.transform[:3, :3].T + self.transform[:3, 3]
+
+
 class Scene:
     """Meshes, lights, ambient intensity ``Ia`` and background colour.
 
@@ -91,13 +114,17 @@ class Scene:
         self.background = tuple(float(x) for x in bg)
         self.models: list[Model] = []
         self.solids: list[SolidModel] = []
+        self.patch_models: list[PatchModel] = []
         self.lights: list = []
 
     def __repr__(self) -> str:
         polygons = sum(m.mesh.n_faces for m in self.models)
         leaves = sum(s.solid.n_leaves for s in self.solids)
+        gpu = (f", {len(self.patch_models)} patch models (GPU tessellation)"
+               if self.patch_models else "")
         return (f"<Scene: {len(self.models)} models ({polygons:,} polygons), "
-                f"{len(self.solids)} solids ({leaves:,} leaves), {len(self.lights)} lights>")
+                f"{len(self.solids)} solids ({leaves:,} leaves){gpu}, "
+                f"{len(self.lights)} lights>")
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail from the iso view and the counts."""
@@ -109,7 +136,8 @@ class Scene:
             transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
-            crease: float | None = None, vertex_colors: ArrayLike | None = None) -> Model:
+            crease: float | None = None, vertex_colors: ArrayLike | None = None,
+            tessellation: str = "cpu", level: int = 16):
         """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
         :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
         normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
@@ -117,12 +145,19 @@ class Scene:
         quaternion ``rotation``, ``translation`` and ``scale`` (T R S). ``crease`` (degrees)
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
         added with its vertices split there (:meth:`Mesh.split_creases`). ``vertex_colors``
-        (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display)."""
+        (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display).
+        Patches with ``tessellation="gpu"`` are kept as patches and tessellated by the GPU
+        at every draw, ``level`` segments a side (1..64): a :class:`PatchModel`."""
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
         from ..patches import PatchSet, PatchSurface
 
+        if tessellation not in ("cpu", "gpu"):
+            raise SceneError(f"tessellation must be 'cpu' or 'gpu', got {tessellation!r}")
+        if isinstance(mesh, (PatchSurface, PatchSet)) and tessellation == "gpu":
+            return self._add_patches(mesh, material, transform, rotation, translation, scale,
+                                     name, level)
         if isinstance(mesh, (PatchSurface, PatchSet)):  # (a tessellation, exact normals)
             mesh = _tessellated(mesh)
         if not isinstance(mesh, Mesh):
@@ -154,6 +189,31 @@ class Scene:
         model = Model(mesh, material or Material(), m, name or mesh.name,
                       vertex_colors=colors)
         self.models.append(model)
+        return model
+
+    def _add_patches(self, patches, material, transform, rotation, translation, scale, name,
+                     level):
+        """Patches for the GPU's tessellator (see :class:`PatchModel`)."""
+        from ..patches import PatchSurface
+
+        if isinstance(patches, PatchSurface):
+            patches = patches.patches
+        if isinstance(level, bool) or not isinstance(level, (int, np.integer)) or \
+                not 1 <= level <= 64:
+            raise SceneError(f"level must be a whole number from 1 to 64 (GL 4.0's "
+                             f"tessellation limit) for tessellation='gpu', got {level!r}")
+        m, n = patches.degree
+        if (m + 1) * (n + 1) > 32 or max(m, n) > 7:
+            raise SceneError(f"patches of degree {m}x{n} have {(m + 1) * (n + 1)} control "
+                             "points; the GPU's tessellator takes at most 32 (degree 7): "
+                             "use tessellation='cpu'")
+        if transform is not None:
+            t = affine_matrix(transform, "transform")
+        else:
+            t = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        model = PatchModel(patches, material or Material(), t, int(level),
+                           name or "patches")
+        self.patch_models.append(model)
         return model
 
     def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
@@ -192,6 +252,7 @@ class Scene:
                 continue
             pts.append(m.corners)
         pts += [box_corners(s.solid.bounds) for s in self.solids if s.visible]
+        pts += [p.corners for p in self.patch_models if p.visible]
         if not pts:
             return np.zeros((2, 3))
         p = np.vstack(pts)

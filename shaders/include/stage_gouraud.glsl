@@ -1,0 +1,30 @@
+// Gouraud's vertex work for one vertex (``position``, ``normal`` in model space): the
+// lighting formula evaluated there, front (and with TWO_SIDED back) intensities out, to be
+// interpolated linearly. gouraud.vert calls it per mesh vertex, patch.tese per tessellated
+// vertex.
+#include "transforms.glsl"
+#include "lighting.glsl"
+
+out vec3 v_color_front;
+#ifdef TWO_SIDED
+out vec3 v_color_back;
+#endif
+out vec3 v_position_view;
+#ifdef WORLD_NORMALS
+out vec3 v_normal_world;
+#endif
+
+void gouraud_stage(vec3 position, vec3 normal) {
+    vec4 p_view = u_model_view * vec4(position, 1.0);
+    vec3 n = normalize(u_normal_view * normal);
+    vec3 v = view_dir(p_view.xyz);
+    v_color_front = light_intensity(p_view.xyz, n, v);
+#ifdef TWO_SIDED
+    v_color_back = light_intensity(p_view.xyz, -n, v);
+#endif
+    v_position_view = p_view.xyz;
+#ifdef WORLD_NORMALS
+    v_normal_world = u_normal_world * normal;
+#endif
+    gl_Position = u_proj * p_view;
+}

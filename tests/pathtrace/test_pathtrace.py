@@ -192,3 +192,17 @@ def test_the_hierarchy_bounds_every_triangle_and_child(rng):
         else:
             for c in (b.first[i], b.first[i] + 1):
                 assert (b.lo[c] >= b.lo[i]).all() and (b.hi[c] <= b.hi[i]).all()
+
+
+def test_progress_counts_every_sample(gl_context):
+    class Counter:
+        total = 0
+
+        def update(self, n=1, note=None):
+            self.total += n
+
+    counter = Counter()
+    scene, camera = cornell_scene()
+    trace(scene, camera, (16, 16), spp=12, samples_per_pass=4, context=gl_context,
+          progress=counter)
+    assert counter.total == 12

@@ -192,13 +192,13 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
         history: list = []
         interrupted = False
         try:
-            step = per_pass
+            step, shown = per_pass, 0
             while tracer.samples < goal:
                 n = min(step, goal - tracer.samples)
                 tracer.add(camera, n)
                 if bar is not None:
-                    bar.update(tracer.samples - getattr(bar, "_done", 0))
-                    bar._done = tracer.samples
+                    bar.update(tracer.samples - shown)
+                    shown = tracer.samples
                 check()
                 if until is not None:
                     result = tracer.result()

@@ -78,23 +78,15 @@ def test_ctrl_c_just_after_the_temporary_is_made(tmp_path, monkeypatch, fmt):
     _after(tmp_path, before)
 
 
-def test_ctrl_c_while_ffmpeg_is_looked_for(tmp_path, monkeypatch):
-    """Finding ffmpeg runs it once (``-version``); interrupted there, nothing is left."""
+@pytest.mark.parametrize("marker", ["-version", "pipe:0"])
+def test_ctrl_c_just_after_ffmpeg_starts(tmp_path, monkeypatch, marker):
+    """Finding ffmpeg runs it once (``-version``), then the encoder starts (``pipe:0``);
+    each is started and its handle kept as one step, so interrupted there nothing is left:
+    the encoder, killed and reaped, cannot write the abandoned temporary file again."""
     import imageio_ffmpeg
 
     imageio_ffmpeg._utils._get_ffmpeg_exe.cache_clear()  # (found once, then remembered)
-    _signal_after(monkeypatch, subprocess, "Popen", when=lambda cmd, *_: "-version" in cmd)
-    before = _children()
-    with pytest.raises(KeyboardInterrupt):
-        write_animation(_frames(3), tmp_path / "a.mp4", fps=10)
-    monkeypatch.undo()
-    _after(tmp_path, before)
-
-
-def test_ctrl_c_just_after_the_encoder_starts(tmp_path, monkeypatch):
-    """The encoder is started and its handle kept as one step: killed and reaped, it
-    cannot write the (abandoned) temporary file again after it is removed."""
-    _signal_after(monkeypatch, subprocess, "Popen", when=lambda cmd, *_: "pipe:0" in cmd)
+    _signal_after(monkeypatch, subprocess, "Popen", when=lambda cmd, *_: marker in cmd)
     before = _children()
     with pytest.raises(KeyboardInterrupt):
         write_animation(_frames(3), tmp_path / "a.mp4", fps=10)

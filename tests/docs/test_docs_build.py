@@ -33,7 +33,7 @@ def test_the_front_page_is_the_readme_with_its_pictures(site):
 
 def test_the_tutorials_are_the_executed_notebooks(site):
     pages = sorted((site / "notebooks").glob("*.html"))
-    assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 8
+    assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 9
     for page in pages:
         html = page.read_text(encoding="utf-8")
         assert "<img" in html or "data:image/png" in html, page.name  # (its outputs)
@@ -46,6 +46,7 @@ def test_every_public_module_has_an_api_page_with_its_objects(site):
 
     api = site / "api" / "generated"
     for module in ("glshade.quaternion", "glshade.solids.leaves", "glshade.radiosity.solvers",
+                   "glshade.pathtrace.progressive",
                    "glshade.notebook", "glshade.hidden.common", "glshade.scene.camera"):
         page = (api / f"{module}.html").read_text(encoding="utf-8")
         assert 'class="sig-name descname"' in page, module

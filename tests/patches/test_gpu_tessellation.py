@@ -85,6 +85,8 @@ def test_what_the_gpu_cannot_draw_is_refused(make_renderer):
         Scene().add(teapot, tessellation="gpu", level=65)
     with pytest.raises(SceneError, match="'cpu' or 'gpu'"):
         Scene().add(teapot, tessellation="shader")
+    with pytest.raises(SceneError, match="tessellation='gpu' is for patches"):
+        Scene().add(G.tessellate(teapot, level=2).mesh, tessellation="gpu")
     r = make_renderer(64, 48)
     with pytest.raises(SceneError, match="the flat mode needs its CPU tessellation"):
         r.render(_scene(teapot, tessellation="gpu"), CAM, "flat")

@@ -145,6 +145,15 @@ def test_the_gpu_tracer_agrees_with_its_numpy_twin(gl_context):
     assert gpu.image.mean() == pytest.approx(cpu.image.mean(), rel=0.03)
 
 
+def test_a_trace_scene_frames_itself(gl_context):
+    """Without a camera a TraceScene is framed by its own bounds, as a Scene is."""
+    scene, _ = cornell_scene()
+    ts = TraceScene.from_scene(scene)
+    np.testing.assert_allclose(ts.bounds, scene.bounds)
+    r = trace(ts, size=(8, 8), spp=2, context=gl_context, progress=False)
+    assert r.coverage is not None and r.coverage.mean() > 0.3  # (the box, in view)
+
+
 def test_seeded_and_reproducible(gl_context):
     scene, camera = cornell_scene()
     a = trace(scene, camera, (16, 16), spp=8, seed=3, context=gl_context, progress=False)

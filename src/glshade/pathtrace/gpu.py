@@ -114,6 +114,7 @@ class GpuPathTracer(GLResource):
         self.program = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace.frag",
                                                         defines=defines))
         data, self.layout = pack(scene)
+        self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
         self.texture = self._keep(ctx.texture((DATA_WIDTH, len(data) // DATA_WIDTH), 4,
                                               data.tobytes(), dtype="f4"))
         self.texture.filter = (0x2600, 0x2600)  # NEAREST
@@ -124,6 +125,37 @@ class GpuPathTracer(GLResource):
         self.vao = self._keep(ctx.vertex_array(self.program, []))
         self.passes = 0
         self.reset()
+
+    def _write(self, values: dict) -> None:
+        prog = self.program
+        for name, value in values.items():
+            if name in prog:  # (the compiler drops what a variant does not use)
+                if isinstance(value, np.ndarray):  # (an int array; the compiler may trim it)
+                    prog[name].write(value[:prog[name].array_length].tobytes())
+                elif isinstance(value, bytes):
+                    prog[name].write(value)
+                else:
+                    prog[name].value = value
+
+    def _static_uniforms(self) -> dict:
+        """The uniforms that stay for this tracer's life: sizes, tables, lights, the solid."""
+        values: dict = {"u_size": (float(self.width), float(self.height)),
+                        "u_max_depth": self.max_depth, "u_eps": 1e-5 * self.scene.size,
+                        "u_data": 0, "u_rays": 1, "u_n_lights": len(self.scene.lights)}
+        values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
+        if self._csg is not None:
+            values.update(self._csg_values)
+        lights = self.scene.lights
+        if len(lights):
+            pos = np.zeros((8, 4), np.float32)
+            pos[:len(lights), :3], pos[:len(lights), 3] = lights[:, 1:4], lights[:, 0]
+            irr = np.zeros((8, 3), np.float32)
+            irr[:len(lights)] = lights[:, 4:7]
+            att = np.zeros((8, 3), np.float32)
+            att[:len(lights)] = lights[:, 7:10]
+            values.update(u_light_pos=pos.tobytes(), u_light_irr=irr.tobytes(),
+                          u_light_att=att.tobytes())
+        return values
 
     def reset(self) -> None:
         """Forget every sample (a new camera)."""
@@ -139,35 +171,13 @@ class GpuPathTracer(GLResource):
         ctx = self.context.ctx
         prog = self.program
         aspect = self.width / self.height
-        values: dict = {"u_size": (float(self.width), float(self.height)),
-                        "u_seed": int(seed) & 0xFFFFFFFF, "u_max_depth": self.max_depth,
-                        "u_eps": 1e-5 * self.scene.size, "u_data": 0, "u_rays": 1,
-                        "u_n_lights": len(self.scene.lights)}
-        values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
+        values: dict = {"u_seed": int(seed) & 0xFFFFFFFF}
         if camera is not None:
             vp = camera.projection_matrix(aspect) @ camera.view_matrix()
             values["u_inverse_view_proj"] = gl_bytes(np.linalg.inv(vp))
+        self._write(values)
         if self._csg is not None:
-            values.update(self._csg_values)
             self._csg.use(location=2)
-        lights = self.scene.lights
-        if len(lights):
-            pos = np.zeros((8, 4), np.float32)
-            pos[:len(lights), :3], pos[:len(lights), 3] = lights[:, 1:4], lights[:, 0]
-            irr = np.zeros((8, 3), np.float32)
-            irr[:len(lights)] = lights[:, 4:7]
-            att = np.zeros((8, 3), np.float32)
-            att[:len(lights)] = lights[:, 7:10]
-            values.update(u_light_pos=pos.tobytes(), u_light_irr=irr.tobytes(),
-                          u_light_att=att.tobytes())
-        for name, value in values.items():
-            if name in prog:  # (the compiler drops what a variant does not use)
-                if isinstance(value, np.ndarray):  # (an int array; the compiler may trim it)
-                    prog[name].write(value[:prog[name].array_length].tobytes())
-                elif isinstance(value, bytes):
-                    prog[name].write(value)
-                else:
-                    prog[name].value = value
         self.texture.use(location=0)
         if self._rays is not None:
             self._rays.use(location=1)

@@ -95,9 +95,10 @@ class PathTracer:
         from ..render.context import create_context
         from .gpu import GpuPathTracer
 
+        from ..options import check_whole
+
         w, h = _size(size)
-        if int(max_depth) != max_depth or max_depth < 1:
-            raise OptionError(f"max_depth must be a whole number >= 1, got {max_depth!r}")
+        max_depth = check_whole("max_depth", max_depth, 1)
         self.trace_scene = scene if isinstance(scene, TraceScene) else \
             TraceScene.from_scene(scene, lights=lights, camera=camera, smooth=smooth)
         self.seed = int(seed)
@@ -116,9 +117,11 @@ class PathTracer:
     def samples(self) -> int:
         return self.gpu.passes * self.gpu.samples
 
-    def add(self, camera, samples: int = 1) -> None:
-        """Add at least ``samples`` paths per pixel (whole passes) seen from ``camera``."""
-        if self.camera is not None and camera != self.camera:
+    def add(self, camera, samples: int = 1) -> bool:
+        """Add at least ``samples`` paths per pixel (whole passes) seen from ``camera``;
+        whether that started the picture over (a new camera)."""
+        restarted = self.camera is not None and camera != self.camera
+        if restarted:
             self.gpu.reset()
             self.seconds = 0.0
         self.camera = camera
@@ -127,6 +130,7 @@ class PathTracer:
         self.gpu.run(camera, passes, self.seed)
         self.context.ctx.finish()
         self.seconds += time.perf_counter() - t0
+        return restarted
 
     def result(self, interrupted: bool = False) -> PathTraced:
         total, square, hits = self.gpu.read()
@@ -151,13 +155,13 @@ class PathTracer:
 
 
 def _size(size) -> tuple[int, int]:
-    try:
-        w, h = (int(size), int(size)) if np.ndim(size) == 0 else (int(size[0]), int(size[1]))
-    except (TypeError, ValueError, IndexError):
-        raise OptionError(f"size must be a width and height in pixels, got {size!r}") from None
-    if not (1 <= w <= 16384 and 1 <= h <= 16384):
-        raise OptionError(f"size must be 1..16384 pixels a side, got {w}x{h}")
-    return w, h
+    """``size`` as (width, height): a number for a square, or a pair (options.check_size)."""
+    from ..options import check_size
+
+    pair = (size, size) if np.ndim(size) == 0 else tuple(size)
+    if len(pair) != 2:
+        raise OptionError(f"size must be a width and height in pixels, got {size!r}")
+    return check_size(*pair)
 
 
 def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
@@ -170,6 +174,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     Ctrl-C returns the picture so far (``interrupted`` set). Seeded: the same call gives
     the same picture."""
     from .._interrupt import check
+    from ..options import check_whole
     from ..parallel.progress import as_progress
     from ..scene.camera import default_camera
 
@@ -179,10 +184,10 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
         raise OptionError(f"until must be a relative error in (0, 1), got {until!r}")
     if spp is None and until is None:
         spp = 64
-    if spp is not None and (int(spp) != spp or spp < 1):
-        raise OptionError(f"spp must be a whole number >= 1, got {spp!r}")
+    if spp is not None:
+        spp = check_whole("spp", spp, 1)
     w, h = _size(size)
-    if camera is None:
+    if camera is None:  # (a Scene's bounds, or a TraceScene's)
         camera = default_camera(scene.bounds, w / h)
     per_pass = samples_per_pass or _per_pass(w * h)
     goal = int(spp) if spp is not None else int(max_samples)

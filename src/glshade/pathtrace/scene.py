@@ -58,11 +58,15 @@ class TraceScene:
         return len(self.triangles)
 
     @property
+    def bounds(self) -> np.ndarray:
+        """``(2, 3)`` box of the triangles and the solid (a camera frames it)."""
+        t = np.concatenate([self.triangles.reshape(-1, 3)] + [s.bounds for s, _ in self.solids])
+        return np.stack([t.min(0), t.max(0)])
+
+    @property
     def size(self) -> float:
-        """The diagonal of the triangles' bounding box (for offsets and epsilons)."""
-        pts = [self.triangles.reshape(-1, 3)] + [s.bounds for s, _ in self.solids]
-        t = np.concatenate(pts)
-        return float(np.linalg.norm(t.max(0) - t.min(0))) or 1.0
+        """The diagonal of :attr:`bounds` (for offsets and epsilons)."""
+        return float(np.linalg.norm(np.ptp(self.bounds, 0))) or 1.0
 
     @classmethod
     def from_scene(cls, scene, *, lights: bool = True, camera=None,
@@ -88,7 +92,7 @@ class TraceScene:
         names: list = []
         rows: list = []
         visible = [m for m in scene.models if m.visible]
-        if getattr(scene, "patch_models", None):  # (GPU-tessellated: the same grid here)
+        if scene.patch_models:  # (GPU-tessellated there: the same grid here)
             from ..patches import tessellate
             from ..scene.scene import Model
 

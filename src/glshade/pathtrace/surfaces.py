@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import OptionError
+from ..options import check_whole
 from .scene import TraceScene
 
 __all__ = ["SurfaceRadiosity", "surface_radiosity"]
@@ -62,9 +62,7 @@ def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0
     from ..render.context import create_context
     from .gpu import GpuPathTracer
 
-    for name, value in (("points", points), ("spp", spp)):
-        if int(value) != value or value < 2:
-            raise OptionError(f"{name} must be a whole number >= 2, got {value!r}")
+    points, spp = check_whole("points", points, 2), check_whole("spp", spp, 2)
     ts = scene if isinstance(scene, TraceScene) else TraceScene.from_scene(scene, lights=lights)
     rays = probe_rays(ts, int(points), seed)
     own = context is None

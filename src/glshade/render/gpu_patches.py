@@ -17,10 +17,8 @@ from ..modes import ShadingMode
 from .base import GLResource
 from .programs import ProgramKey
 
-__all__ = ["PatchPass", "MAX_GPU_LEVEL", "GPU_MODES"]
+__all__ = ["PatchPass", "GPU_MODES"]
 
-#: the largest level (segments a side): GL 4.0's guaranteed GL_MAX_TESS_GEN_LEVEL
-MAX_GPU_LEVEL = 64
 #: tessellated vertices one draw may make: llvmpipe silently drops patches past about 64k
 #: (the teapot at level 48 lost its lid and spout), so larger jobs are drawn in batches
 DRAW_VERTICES = 32768

@@ -20,10 +20,14 @@ from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "SolidModel", "PatchModel", "Scene", "MAX_DRAWABLE_COORDINATE"]
+__all__ = ["Model", "SolidModel", "PatchModel", "Scene", "MAX_DRAWABLE_COORDINATE",
+           "MAX_GPU_LEVEL", "MAX_GPU_PATCH_POINTS"]
 
 #: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
 MAX_DRAWABLE_COORDINATE = 1e18
+#: GPU tessellation: the largest level (GL 4.0's guaranteed GL_MAX_TESS_GEN_LEVEL) and
+#: control points a patch (GL_MAX_PATCH_VERTICES' guaranteed 32)
+MAX_GPU_LEVEL, MAX_GPU_PATCH_POINTS = 64, 32
 
 
 @dataclass(eq=False)
@@ -155,7 +159,10 @@ class Scene:
 
         if tessellation not in ("cpu", "gpu"):
             raise SceneError(f"tessellation must be 'cpu' or 'gpu', got {tessellation!r}")
-        if isinstance(mesh, (PatchSurface, PatchSet)) and tessellation == "gpu":
+        if tessellation == "gpu":
+            if not isinstance(mesh, (PatchSurface, PatchSet)):
+                raise SceneError(f"tessellation='gpu' is for patches (glshade.patches), not "
+                                 f"a {type(mesh).__name__}")
             return self._add_patches(mesh, material, transform, rotation, translation, scale,
                                      name, level)
         if isinstance(mesh, (PatchSurface, PatchSet)):  # (a tessellation, exact normals)
@@ -165,10 +172,7 @@ class Scene:
                                 f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
-        if transform is not None:
-            m = affine_matrix(transform, "transform")
-        else:
-            m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        m = _placement(transform, rotation, translation, scale)
         corners = box_corners(mesh.bounds) @ m[:3, :3].T + m[:3, 3]
         if mesh.n_vertices and np.abs(corners).max() > MAX_DRAWABLE_COORDINATE:
             raise SceneError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
@@ -199,18 +203,15 @@ class Scene:
         if isinstance(patches, PatchSurface):
             patches = patches.patches
         if isinstance(level, bool) or not isinstance(level, (int, np.integer)) or \
-                not 1 <= level <= 64:
-            raise SceneError(f"level must be a whole number from 1 to 64 (GL 4.0's "
-                             f"tessellation limit) for tessellation='gpu', got {level!r}")
+                not 1 <= level <= MAX_GPU_LEVEL:
+            raise SceneError(f"level must be a whole number from 1 to {MAX_GPU_LEVEL} (GL "
+                             f"4.0's tessellation limit) for tessellation='gpu', got {level!r}")
         m, n = patches.degree
-        if (m + 1) * (n + 1) > 32 or max(m, n) > 7:
+        if (m + 1) * (n + 1) > MAX_GPU_PATCH_POINTS or max(m, n) > 7:
             raise SceneError(f"patches of degree {m}x{n} have {(m + 1) * (n + 1)} control "
-                             "points; the GPU's tessellator takes at most 32 (degree 7): "
-                             "use tessellation='cpu'")
-        if transform is not None:
-            t = affine_matrix(transform, "transform")
-        else:
-            t = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+                             f"points; the GPU's tessellator takes at most "
+                             f"{MAX_GPU_PATCH_POINTS} (degree 7): use tessellation='cpu'")
+        t = _placement(transform, rotation, translation, scale)
         model = PatchModel(patches, material or Material(), t, int(level),
                            name or "patches")
         self.patch_models.append(model)
@@ -218,10 +219,7 @@ class Scene:
 
     def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
         """A CSG solid, ray cast on the GPU (its placement becomes a Transformed node)."""
-        if transform is not None:
-            m = affine_matrix(transform, "transform")
-        else:
-            m = affine_matrix(compose_transform(rotation, translation, scale), "transform")
+        m = _placement(transform, rotation, translation, scale)
         if not np.allclose(m, np.eye(4)):
             solid = solid.transformed(m)
         if solid.bounds is None:
@@ -261,6 +259,13 @@ class Scene:
 
 #: patches a scene tessellates itself: to this fraction of their size
 PATCH_TOLERANCE = 1e-3
+
+
+def _placement(transform, rotation, translation, scale) -> NDArray[np.float64]:
+    """A model's 4x4 matrix: ``transform`` as given, or T R S from the rest."""
+    if transform is not None:
+        return affine_matrix(transform, "transform")
+    return affine_matrix(compose_transform(rotation, translation, scale), "transform")
 
 
 def _tessellated(patches) -> Mesh:

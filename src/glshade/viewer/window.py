@@ -157,10 +157,7 @@ class Viewer(Controls):
             self._start_tracing()
             if self.tracer is None:
                 return
-        if self.tracer.camera is not None and self.camera != self.tracer.camera:
-            self._trace_exposure = None
-        self.tracer.add(self.camera, 1)
-        if self._trace_exposure is None:
+        if self.tracer.add(self.camera, 1) or self._trace_exposure is None:
             self._trace_exposure = self.tracer.result().auto_exposure()
         self.tracer.gpu.show(t._fbo(), self._trace_exposure, bool(self.options.srgb))
 

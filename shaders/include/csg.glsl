@@ -7,8 +7,10 @@
 // Along the pixel's ray the state of every leaf (inside or not) is kept in a bit set. The
 // walk: find the next leaf boundary after the current one (the hierarchy skips leaves whose
 // box the ray misses or meets only beyond the best so far); flip that leaf's bit; run the
-// tree program on the bits (skipping subtrees the ray is in none of the leaves of); the first boundary where the tree's answer changes is the
-// surface. Ties (coincident faces) go by leaf order: the left operand's face shows.
+// tree on the bits (a small tree: one lookup in its truth table; else its program, skipping
+// subtrees the ray is in none of the leaves of); the first boundary where the tree's answer
+// changes is the surface. One pass over the leaves yields the next four boundaries in order.
+// Ties (coincident faces) go by leaf order: the left operand's face shows.
 // Leaf boundaries are exact: closed-form roots, the torus's quartic split at the roots of its
 // derivative (a cubic, in closed form) into monotone pieces, each root bracketed and refined
 // by bisection on a sign computed without cancellation.
@@ -44,6 +46,8 @@ uniform int u_csg_bvh;                 // first texel of the hierarchy
 uniform int u_csg_program;             // first texel of the program (code, first record)
 uniform int u_csg_records;             // first texel of the skip records
                                        // (end position, first leaf, last leaf, next)
+uniform int u_csg_table;               // first texel of the truth table (16 bits a
+                                       // component), or -1: the tree runs as its program
 
 // leaf k: texels 8k .. 8k+7: inverse rows 0-2, normal matrix rows 3-5 (kind in 3.w),
 // params 6
@@ -109,11 +113,20 @@ bool quadratic(float a, float b, float c, out float t0, out float t1) {
     return t0 < t1;
 }
 
-// the next boundary (t, leaf) after (t_cur, leaf_cur) and before (best, best_leaf)
-void offer(float t, int k, float t_cur, int leaf_cur, inout float best, inout int best_leaf) {
-    bool after = t > t_cur || (t == t_cur && k > leaf_cur);
-    bool before = t < best || (t == best && k < best_leaf);
-    if (after && before) { best = t; best_leaf = k; }
+// The next CSG_BATCH boundaries (t, leaf) after (t_cur, leaf_cur), in order, ties by leaf:
+// ``bt`` their distances, ``bk`` their leaves (as floats; -1 an empty slot, INF its t). One
+// pass over the leaves finds several events, so a ray crossing a few boundaries before
+// its surface intersects each leaf once, not once an event.
+void offer(float t, float k, float t_cur, float leaf_cur, inout vec4 bt, inout vec4 bk) {
+    if (!(t > t_cur || (t == t_cur && k > leaf_cur))) return;
+    // the slots the event goes before (a run to the end: the list is sorted)
+    bvec4 less = bvec4(lessThan(vec4(t), bt).x || (t == bt.x && k < bk.x),
+                       lessThan(vec4(t), bt).y || (t == bt.y && k < bk.y),
+                       lessThan(vec4(t), bt).z || (t == bt.z && k < bk.z),
+                       lessThan(vec4(t), bt).w || (t == bt.w && k < bk.w));
+    bvec4 after_new = bvec4(false, less.xyz);  // slots that take their neighbour's event
+    bt = mix(bt, mix(vec4(t), vec4(0.0, bt.xyz), after_new), less);
+    bk = mix(bk, mix(vec4(k), vec4(0.0, bk.xyz), after_new), less);
 }
 
 // the sign of the torus's implicit function without cancellation: (rho - R)^2 + y^2 - r^2
@@ -266,29 +279,38 @@ vec4 leaf_bounds_as(int kind, int k, vec3 ro, vec3 rd) {
 }
 
 // offer each of a leaf's boundaries
-void offer4(vec4 t, int k, float t_cur, int leaf_cur, inout float best, inout int best_leaf) {
-    offer(t.x, k, t_cur, leaf_cur, best, best_leaf);
-    offer(t.y, k, t_cur, leaf_cur, best, best_leaf);
-    offer(t.z, k, t_cur, leaf_cur, best, best_leaf);
-    offer(t.w, k, t_cur, leaf_cur, best, best_leaf);
+void offer4(vec4 t, int k, float t_cur, float leaf_cur, inout vec4 bt, inout vec4 bk) {
+    float kf = float(k);
+    offer(t.x, kf, t_cur, leaf_cur, bt, bk);
+    offer(t.y, kf, t_cur, leaf_cur, bt, bk);
+    offer(t.z, kf, t_cur, leaf_cur, bt, bk);
+    offer(t.w, kf, t_cur, leaf_cur, bt, bk);
 }
 
 #ifdef CSG_LEAF_LOOP
 uniform int u_csg_kinds;               // first texel of the leaves listed by kind
 uniform int u_csg_kind_start[7];       // where each kind's list starts (and the end)
 
-// every leaf of one kind in turn: the loop's body is that kind's code alone
+// every leaf of one kind in turn: the loop's body is that kind's code alone (its
+// boundaries: two, one for a half-space, four for a torus)
 #define KIND_LOOP(n) \
     for (int j = u_csg_kind_start[n]; j < u_csg_kind_start[n + 1]; ++j) { \
         int k = int(csg_texel(u_csg_kinds + j).x); \
-        offer4(leaf_bounds_as(n, k, ro, rd), k, t_cur, leaf_cur, best, best_leaf); \
+        vec4 t = leaf_bounds_as(n, k, ro, rd); \
+        float kf = float(k); \
+        offer(t.x, kf, t_cur, leaf_cur, bt, bk); \
+        if (n != 5) offer(t.y, kf, t_cur, leaf_cur, bt, bk); \
+        if (n == 4) { \
+            offer(t.z, kf, t_cur, leaf_cur, bt, bk); \
+            offer(t.w, kf, t_cur, leaf_cur, bt, bk); \
+        } \
     }
 
-// a small tree: every leaf in turn, kind by kind (where each pass of a loop costs its
+// a small tree: its leaves in turn, kind by kind (where each pass of a loop costs its
 // whole body, as on a SIMD rasteriser, a hierarchy's inner nodes cost as much as its
 // leaves, and a leaf as much as every kind's code)
-void every_leaf_offer(vec3 ro, vec3 rd, float t_cur, int leaf_cur,
-                      inout float best, inout int best_leaf) {
+void every_leaf_offer(vec3 ro, vec3 rd, float t_cur, float leaf_cur,
+                      inout vec4 bt, inout vec4 bk) {
 #if (CSG_KINDS & 1) != 0
     KIND_LOOP(0)
 #endif
@@ -348,6 +370,16 @@ bool any_inside(int first, int last) {
 
 bool tree_inside(int ops) {
     uint stack = 0u;
+#if CSG_WORDS == 1
+    // a small tree: its value for the leaves' bits is one lookup in its table (a loop
+    // rather than an if, so a SIMD rasteriser skips the rest when every pixel returned)
+    for (int once = u_csg_table >= 0 ? 0 : 1; once < 1; ++once) {
+        uint word = leaf_bits0 >> 4u;
+        vec4 texel = csg_texel(u_csg_table + int(word >> 2u));
+        uint chunk = uint(texel[int(word & 3u)]);
+        return ((chunk >> (leaf_bits0 & 15u)) & 1u) != 0u;
+    }
+#endif
 #ifdef CSG_LEAF_LOOP
     // a small tree: every position in turn (skipping would cost more than it saves)
     for (int j = 0; j < ops; ++j) {
@@ -387,6 +419,12 @@ bool tree_inside(int ops) {
     return (stack & 1u) != 0u;
 }
 
+// an event of the batch: flip its leaf's bit; the surface if the tree's answer changes
+#define EVENT(c) \
+    if (bk.c < 0.0) return -1; \
+    FLIP_LEAF(int(bk.c)); \
+    if (tree_inside(u_csg_ops) != start) { t_hit = bt.c; return int(bk.c); }
+
 // the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
@@ -402,32 +440,29 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
         i++;
     }
     bool start = tree_inside(u_csg_start > 0 ? u_csg_ops : 0);
-    float t_cur = 0.0;
-    int leaf_cur = -1;
+    float t_cur = 0.0, leaf_cur = -1.0;
     for (int step = 0; step < 4 * MAX_LEAVES; ++step) {
-        float best = INF;
-        int best_leaf = -1;
+        vec4 bt = vec4(INF), bk = vec4(-1.0);
 #ifdef CSG_LEAF_LOOP
-        every_leaf_offer(ro, rd, t_cur, leaf_cur, best, best_leaf);
+        every_leaf_offer(ro, rd, t_cur, leaf_cur, bt, bk);
 #else
         for (int i = 0; i < u_csg_nodes;) {
             vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
             float t0, t1;
-            if (!box_span(ro, inv, a.xyz, b.xyz, t0, t1) || t1 < t_cur || t0 > best) {
+            if (!box_span(ro, inv, a.xyz, b.xyz, t0, t1) || t1 < t_cur || t0 > bt.w) {
                 i = int(a.w);
                 continue;
             }
             int k = int(b.w);
             if (k >= 0) offer4(leaf_bounds_as(leaf_kind(k), k, ro, rd), k, t_cur, leaf_cur,
-                               best, best_leaf);
+                               bt, bk);
             i++;
         }
 #endif
-        if (best_leaf < 0) return -1;
-        FLIP_LEAF(best_leaf);
-        if (tree_inside(u_csg_ops) != start) { t_hit = best; return best_leaf; }
-        t_cur = best;
-        leaf_cur = best_leaf;
+        // the events in order: the first where the tree's answer changes is the surface
+        EVENT(x) EVENT(y) EVENT(z) EVENT(w)
+        t_cur = bt.w;
+        leaf_cur = bk.w;
     }
     return -1;
 }

@@ -8,6 +8,8 @@ import pytest
 
 from glshade import Camera, Scene
 from glshade.cpu.csg import render_solids
+from glshade.render.csg import _flatten, _program, truth_table
+from glshade.solids.tree import Difference, Intersection, Transformed, Union
 from glshade.solids import Box, Cone, Cylinder, Sphere, Torus
 
 from .test_csg import away_from_silhouettes
@@ -49,7 +51,8 @@ def compare(frame, scene, camera, size, mismatch=0.0):
     return ids
 
 
-@pytest.mark.parametrize("leaves", [1, 8, 64, 256])
+# 8: the truth-table class; 24: a small tree run as its program; 64, 256: the hierarchy
+@pytest.mark.parametrize("leaves", [1, 8, 24, 64, 256])
 def test_random_trees_match_the_numpy_reference(leaves, make_renderer):
     size = (96, 72) if leaves <= 64 else (64, 48)
     scene = Scene()
@@ -170,3 +173,38 @@ def test_the_reference_agrees_with_bisection_on_contains(seed):
     agree = np.isclose(found, t_ref, rtol=0, atol=1e-7) | (np.isinf(found) & np.isinf(t_ref))
     assert agree.mean() >= 0.98, (found[~agree][:5], t_ref[~agree][:5])
     assert has.sum() > 50
+
+
+def walk_tree(solid, bits, leaves):
+    """The tree's value for leaf inside-bits, by walking the solid's own nodes (a stack of
+    (node, children done) -- the test's own evaluator, sharing nothing with the program)."""
+    values: list = []
+    stack: list = [(solid, False)]
+    ops = {Union: np.logical_or, Intersection: np.logical_and,
+           Difference: lambda a, b: a & ~b}
+    while stack:
+        node, done = stack.pop()
+        while isinstance(node, Transformed):
+            node = node.child
+        if type(node) in ops:
+            if done:
+                b, a = values.pop(), values.pop()
+                values.append(ops[type(node)](a, b))
+            else:
+                stack += [(node, True), (node.b, False), (node.a, False)]
+        else:
+            values.append(((bits >> next(leaves)) & 1).astype(bool))
+    return values[0]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_truth_table_is_the_tree(seed):
+    solid = random_tree([1, 3, 6, 8, 10, 12][seed], seed=100 + seed)
+    n = len(solid.leaves())  # (with the balls some intersections add)
+    assert n <= 14
+    _, booleans, root = _flatten(solid)
+    program, _, _ = _program(booleans, root)
+    bits = np.arange(2 ** n)
+    expected = walk_tree(solid, bits, iter(range(n)))
+    assert (truth_table(program, n) == expected).all()
+    assert 0 < expected.sum() < 2 ** n or n == 1

@@ -102,6 +102,7 @@ class GpuPathTracer(GLResource):
                 "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
                 "u_csg_ops": tree.ops, "u_csg_bvh": tree.bvh, "u_csg_program": tree.program,
                 "u_csg_records": tree.records, "u_csg_kinds": tree.by_kind,
+                "u_csg_table": tree.table,
                 "u_csg_kind_start": np.array(tree.kind_start, "i4")}
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction

@@ -10,6 +10,9 @@ tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float textur
 - a bounding-volume hierarchy over the leaves' world boxes, in pre-order with each node's
   skip index (the node after its subtree): a ray visits only the leaves whose boxes it
   meets, and none beyond the nearest boundary found so far;
+- a tree of at most TABLE_LEAVES (14) leaves as its truth table (bit ``b`` of the table:
+  the tree's value when the leaves inside are the bits of ``b``), so the tree costs one
+  lookup an event (:func:`truth_table` makes it by running the program on every pattern);
 - the tree as a post-order program on a stack of bits, each boolean evaluating its deeper
   operand first (so the stack never holds more than log2(leaves) + 1 bits: 32 are enough
   for any tree up to the cap), with skip records: a subtree none of whose leaves the ray
@@ -28,7 +31,15 @@ leaf's box, the usual case) the search for the leaves a ray starts in is not run
 Along a pixel's ray the program keeps every leaf's inside-bit, steps from one leaf
 boundary to the next (ties by leaf order: the left operand's face shows), flips that leaf's
 bit and runs the tree; the first boundary where the tree's answer changes is the surface.
-Its cost grows with the leaf boundaries a ray crosses before it, not with the tree. Each
+One pass over the leaves finds the next four boundaries in order, so a ray meeting its
+surface within four intersects each leaf once. Its cost grows with the leaf boundaries a
+ray crosses before it, not with the tree.
+
+Measured on llvmpipe (benchmarks/csg_bench.py): the cost is the leaves' data, read with an
+index the rasteriser cannot prove the same for every pixel (a gather per value); code
+compiled for one tree's leaves reads constants, which is why generated code was faster per
+frame and slow to compile. Binning leaves into screen tiles (a leaf mask per 16-64 pixel
+tile) was tried and was slower: more pixels shaded, and a per-pixel loop over mask bits. Each
 solid is drawn as the back faces of its bounding box; the fragment program writes the
 surface's depth to gl_FragDepth, so solids and meshes share one z-buffer.
 
@@ -59,7 +70,7 @@ from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
 __all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "may_start_inside", "MAX_LEAVES",
-           "leaf_words"]
+           "leaf_words", "truth_table"]
 
 #: leaves a solid may have on the GPU (the program keeps one bit per leaf in 32 words)
 MAX_LEAVES = 1024
@@ -72,6 +83,9 @@ _ROW = 64  # texels a row of the data texture
 #: block holding the data, or 0: a texture). 1,024 vec4s are the 16 KiB every GL 3.3 has.
 _CLASSES = ((32, 1, 1024), (64, 2, 1024), (256, 8, 0), (1024, 32, 0))
 _FAR = 1e30  # an unbounded leaf's box
+#: trees of at most this many leaves carry their truth table (2^L bits, 16 to a component:
+#: 256 texels at 14 leaves), so an event costs one lookup instead of a run of the program
+TABLE_LEAVES = 14
 
 
 @dataclass(frozen=True)
@@ -79,6 +93,7 @@ class TreeData:
     """A solid as the program reads it: ``texels (T, 4) float32`` and where each part
     starts. ``leaves`` in ``solid.leaves()`` order; ``stack`` the bits the program needs;
     ``kinds`` a bit per leaf kind present (the program is built with only those kinds' code);
+    ``table`` the first texel of the truth table (-1: none, the tree is over TABLE_LEAVES);
     ``by_kind`` the first texel of the leaves listed kind by kind, ``kind_start`` (7,) where
     each kind's list starts; ``boxes (L, 2, 3)`` the leaves' world boxes (float64)."""
 
@@ -94,6 +109,7 @@ class TreeData:
     by_kind: int
     kind_start: tuple
     boxes: np.ndarray
+    table: int = -1
 
 
 def _flatten(solid: Solid):
@@ -177,6 +193,30 @@ def _program(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
             nxt = len(records) + 1 if k + 1 < len(subtrees) else -1
             records.append((end, lo, hi, nxt))
     return program, np.array(records, np.float64).reshape(-1, 4), need.get(root, 1)
+
+
+def truth_table(program: np.ndarray, leaves: int) -> np.ndarray:
+    """The tree's value (2^leaves,) bool for every pattern of leaf inside-bits (bit k of
+    the index: inside leaf k), by running the post-order ``program`` on all of them at
+    once -- the shader's tree_inside, as a table."""
+    index = np.arange(2 ** leaves, dtype=np.int64)
+    stack: list = []
+    for code in program[:, 0].astype(int):
+        if code >= 0:
+            stack.append(((index >> code) & 1).astype(bool))
+            continue
+        x, y = stack.pop(), stack.pop()  # (x the later operand, on top)
+        stack.append(x | y if code == _UNION else x & y if code == _INTERSECTION
+                     else y & ~x if code == _DIFFERENCE else x & ~y)
+    return stack[0]
+
+
+def _table_texels(table: np.ndarray) -> np.ndarray:
+    """A truth table as texels (T, 4): 16 bits a component (exact in float32 anywhere)."""
+    bits = np.zeros(-(-len(table) // 64) * 64, bool)
+    bits[:len(table)] = table
+    chunks = (bits.reshape(-1, 16) << np.arange(16)).sum(1)
+    return chunks.reshape(-1, 4).astype(np.float64)
 
 
 def _size_class(leaves: int) -> tuple[int, int, int]:
@@ -268,13 +308,18 @@ def tree_data(solid: Solid) -> TreeData:
     by_kind = np.zeros((len(leaves), 4))
     by_kind[:, 0] = np.argsort(codes, kind="stable")
     parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records, by_kind]
+    table = -1
+    if len(leaves) <= TABLE_LEAVES:
+        table = sum(len(p) for p in parts)
+        parts.append(_table_texels(truth_table(program, len(leaves))))
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
     return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
                     len(parts[0]), len(parts[0]) + len(parts[1]),
                     len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
                     sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
-                    tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes)
+                    tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes,
+                    table)
 
 
 class CsgPass(GLResource):
@@ -285,6 +330,9 @@ class CsgPass(GLResource):
 
     #: the texture unit the tree data is bound to
     UNIT = 7
+    #: the side of a screen tile, pixels (small trees are drawn tile by tile: see
+    #: tile_masks)
+    TILE = 64
 
     def __init__(self, context, shaders, uniforms: UniformWriter,
                  materials: MaterialUniforms):
@@ -393,6 +441,7 @@ class CsgPass(GLResource):
             put(prog, "u_csg_program", data.program)
             put(prog, "u_csg_records", data.records)
             put(prog, "u_csg_kinds", data.by_kind)
+            put(prog, "u_csg_table", data.table)
             put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)

@@ -17,10 +17,12 @@ demo: setup
 
 # Everything on EGL, the GL tests (marked gl) again on OSMesa (one backend per process; the
 # slow ones -- the wheel in a fresh environment, the Cornell box against light tracing --
+# and those whose point does not depend on the backend (marked once: the chapter notebooks,
+# which the docs build also runs, clusters, interrupts, the golden-image plugin, Mitsuba)
 # once, on EGL), then the viewer in a real window under Xvfb.
 test: setup
 	$(PY) -m pytest -q --ignore=tests/viewer
-	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q -m "gl and not slow" --ignore=tests/viewer
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q -m "gl and not slow and not once" --ignore=tests/viewer
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

@@ -201,6 +201,7 @@ def _wait_for_outputs(folder: Path, n: int, proc, timeout=120):
         time.sleep(0.05)
 
 
+@pytest.mark.once
 def test_interrupted_run_resumes_with_only_the_missing_outputs(tmp_path):
     src = make_collection(tmp_path / "in", extra=12)
     args = [str(src), "--size", "160x120", "--views", "2", "--modes", "flat,phong",
@@ -269,6 +270,7 @@ def test_the_same_bytes_on_a_dask_cluster(tmp_path, dask_cluster):
         [m["input"] for m in manifest(tmp_path / "local")]
 
 
+@pytest.mark.once
 def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
     src = make_collection(tmp_path / "in", extra=16)
     args = [str(src), "--size", "200x150", "--views", "3", "--backend", BACKEND, "-q"]
@@ -295,6 +297,7 @@ def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
     assert parts(out) == []
 
 
+@pytest.mark.once
 def test_ctrl_c_on_a_cluster_waits_for_running_tasks_and_accounts_for_them(tmp_path,
                                                                           dask_cluster):
     """After Ctrl-C the tasks a worker already runs cannot be stopped: glshade waits for
@@ -319,6 +322,7 @@ def test_ctrl_c_on_a_cluster_waits_for_running_tasks_and_accounts_for_them(tmp_p
     assert parts(out) == []
 
 
+@pytest.mark.once
 def test_a_scheduler_that_never_answers_is_given_up_on_in_one_line(tmp_path, dask_cluster):
     """A real scheduler, stopped (SIGSTOP): it accepts the connection and never answers.
     glshade gives up at its deadline with one line and status 1 (it used to hang)."""

@@ -5,6 +5,7 @@ edge pixels free and interior pixels held to tolerance from another)."""
 import json
 
 import numpy as np
+import pytest
 
 from glshade.golden import as_rgba, edge_mask, judge
 
@@ -71,6 +72,7 @@ def test_rgb_and_rgba_are_compared_by_what_they_hold():
 
 PLUGIN = """
 import numpy as np
+import pytest
 from glshade import Camera, Scene
 from glshade.geometry import primitives
 
@@ -97,6 +99,7 @@ def test_shared_b(glshade_renderer, glshade_golden):
 """
 
 
+@pytest.mark.once
 def test_plugin_names_collisions_add_missing_update_and_summary(pytester, gl_context):
     backend = gl_context.backend.value
     pytester.makepyfile(test_images=PLUGIN)

@@ -43,6 +43,7 @@ def test_broken(glshade_renderer, glshade_golden):
 """
 
 
+@pytest.mark.once
 def test_pytest_plugin_golden_images(pytester, gl_context):
     backend = gl_context.backend.value
     pytester.makepyfile(test_images=PLUGIN_TEST.replace(

@@ -10,7 +10,7 @@ from nbclient import NotebookClient
 
 from tests.conftest import BACKEND, ROOT
 
-pytestmark = pytest.mark.gl
+pytestmark = [pytest.mark.gl, pytest.mark.once]  # (the docs build runs them too)
 NOTEBOOKS = sorted((ROOT / "docs" / "notebooks").glob("*.ipynb"))
 CHAPTERS = ("shading", "newell", "quaternions", "brep", "csg", "hidden", "radiosity",
             "patches")

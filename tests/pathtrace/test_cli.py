@@ -35,6 +35,7 @@ def test_an_energy_making_material_is_one_line_naming_the_scene(tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
+@pytest.mark.once
 def test_ctrl_c_keeps_the_image_so_far(tmp_path):
     out = tmp_path / "long.png"
     proc = subprocess.Popen([sys.executable, "-m", "glshade", "pathtrace", "cornell-box", "-o",

@@ -9,7 +9,7 @@ from glshade.radiosity.cornell import CORNELL_CAMERA, cornell_scene
 
 from ..oracle import mitsuba_scene
 
-pytestmark = pytest.mark.gl
+pytestmark = [pytest.mark.gl, pytest.mark.once]
 
 
 def test_the_cornell_box_agrees_with_mitsuba(gl_context, tmp_path):

@@ -110,6 +110,7 @@ def test_one_bounce_off_a_phong_plane_is_the_closed_form(gl_context):
     np.testing.assert_allclose(r.image, want, rtol=2e-4)
 
 
+@pytest.mark.once
 def test_the_cornell_box_per_surface_agrees_with_light_tracing_radiosity(gl_context):
     """Each surface's area-mean radiosity by path tracing against Monte Carlo light tracing
     over radiosity patches (a different estimator, different code): within 4 combined

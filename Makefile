@@ -20,9 +20,12 @@ demo: setup
 # and those whose point does not depend on the backend (marked once: the chapter notebooks,
 # which the docs build also runs, clusters, interrupts, the golden-image plugin, Mitsuba)
 # once, on EGL), then the viewer in a real window under Xvfb.
+# Both headless passes run on every core (pytest-xdist, at most 4 worker processes: each
+# llvmpipe context renders on all cores itself); the viewer's tests share one display.
+XDIST := -n auto --maxprocesses 4
 test: setup
-	$(PY) -m pytest -q --ignore=tests/viewer
-	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q -m "gl and not slow and not once" --ignore=tests/viewer
+	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST) -m "gl and not slow and not once" --ignore=tests/viewer
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

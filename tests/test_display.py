@@ -6,6 +6,8 @@ object -- not blank, the right size -- not compared to themselves.)"""
 import base64
 import io
 import re
+import sys
+import types
 
 import numpy as np
 import pytest
@@ -148,3 +150,55 @@ def test_a_comparison_shows_its_grid_and_has_a_short_repr(side, make_renderer):
     view = result._repr_html_()
     (shown,) = pictures(view)
     assert shown.shape[:2] == result.image.shape[:2] and "phong: mean" in view
+
+
+def _captured_display(monkeypatch) -> list:
+    """A stand-in for a running IPython's display module: what show() displays, as HTML."""
+    shown: list = []
+    fake = types.ModuleType("IPython")
+    fake.display = types.SimpleNamespace(HTML=lambda text: text, display=shown.append)
+    monkeypatch.setitem(sys.modules, "IPython", fake)
+    return shown
+
+
+def _payload(html: str, tag: str) -> bytes:
+    found = re.search(rf'<{tag}[^>]* src="data:[a-z]+/([a-z0-9]+);base64,([^"]+)"', html)
+    assert found, html[:200]
+    return base64.b64decode(found.group(2))
+
+
+@pytest.mark.parametrize("suffix", [".gif", ".png", ".mp4"])
+def test_show_plays_an_animation_inline_with_every_frame(suffix, tmp_path, monkeypatch):
+    """An animation file shows inline as the animated image or the video itself: the
+    payload decodes to the frames written (counted by Pillow / imageio, not glshade)."""
+    from glshade.animate.writers import write_animation
+
+    frames = [np.full((24, 32, 3), 40 * k, np.uint8) for k in range(5)]
+    path = tmp_path / f"clip{suffix}"
+    assert write_animation(frames, path, fps=10) == 5
+    shown = _captured_display(monkeypatch)
+    show(path)
+    assert len(shown) == 1
+    if suffix == ".mp4":
+        import imageio.v3 as iio
+
+        data = _payload(shown[0], "video")
+        decoded = iio.imread(data, extension=".mp4", index=None)
+        assert decoded.shape[0] == 5 and decoded.shape[1:3] == (24, 32)
+        assert decoded[-1].mean() > decoded[0].mean() + 100  # (the frames in order)
+    else:
+        image = Image.open(io.BytesIO(_payload(shown[0], "img")))
+        assert getattr(image, "n_frames", 1) == 5 and image.size == (32, 24)
+
+
+def test_show_displays_an_array_and_a_frames_buffers(make_renderer, monkeypatch):
+    shown = _captured_display(monkeypatch)
+    show(np.linspace(0, 1, 12 * 16).reshape(12, 16))  # (floats 0..1: grey levels)
+    grey = np.asarray(Image.open(io.BytesIO(_payload(shown[0], "img"))))
+    assert grey.shape[:2] == (12, 16) and grey[0, 0] == 0 and grey[-1, -1] == 255
+    scene = Scene()
+    scene.add(primitives.icosphere(2))
+    frame = make_renderer(40, 30).render_frame(scene, Camera.look_at((0, 0, 4), (0, 0, 0)))
+    show(frame)
+    tiles = Image.open(io.BytesIO(_payload(shown[1], "img")))
+    assert tiles.size == buffers_image(frame).shape[1::-1]

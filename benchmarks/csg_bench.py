@@ -1,10 +1,10 @@
 """CSG and octrees: first-frame and steady frame time of the GLSL ray-casting pass at
 512x512 against leaf count (a plate with n - 1 holes, 1..1,024 leaves: one program for
 every tree: past the first of its size class, a first frame is the data upload, not a
-compile); rays per second for a
-7-leaf tree, against rasterising the same tree's manifold3d mesh (when the ``csg`` extra is
-installed; its meshing time apart) and against the numpy reference; then octree build
-time and cells per level at depths 4..9 (boundary cells should grow ~4x a level, not 8x).
+compile); rays per second for a 7-leaf tree, against rasterising the same tree's
+manifold3d mesh (when the ``csg`` extra is installed; its meshing time apart) and against
+the numpy reference; then octree build time and cells per level at depths 4..9 (boundary
+cells should grow ~4x a level, not 8x).
 
 Mesa's on-disk shader cache is switched off here, so a first frame that meets a new
 size class (32, 64, 256, 1,024 leaves) or set of leaf kinds pays its compile, as in a fresh

@@ -113,7 +113,7 @@ bool quadratic(float a, float b, float c, out float t0, out float t1) {
     return t0 < t1;
 }
 
-// The next CSG_BATCH boundaries (t, leaf) after (t_cur, leaf_cur), in order, ties by leaf:
+// The next four boundaries (t, leaf) after (t_cur, leaf_cur), in order, ties by leaf:
 // ``bt`` their distances, ``bk`` their leaves (as floats; -1 an empty slot, INF its t). One
 // pass over the leaves finds several events, so a ray crossing a few boundaries before
 // its surface intersects each leaf once, not once an event.

@@ -120,10 +120,8 @@ bool quadratic(float a, float b, float c, out float t0, out float t1) {
 void offer(float t, float k, float t_cur, float leaf_cur, inout vec4 bt, inout vec4 bk) {
     if (!(t > t_cur || (t == t_cur && k > leaf_cur))) return;
     // the slots the event goes before (a run to the end: the list is sorted)
-    bvec4 less = bvec4(lessThan(vec4(t), bt).x || (t == bt.x && k < bk.x),
-                       lessThan(vec4(t), bt).y || (t == bt.y && k < bk.y),
-                       lessThan(vec4(t), bt).z || (t == bt.z && k < bk.z),
-                       lessThan(vec4(t), bt).w || (t == bt.w && k < bk.w));
+    bvec4 less = bvec4(t < bt.x || (t == bt.x && k < bk.x), t < bt.y || (t == bt.y && k < bk.y),
+                       t < bt.z || (t == bt.z && k < bk.z), t < bt.w || (t == bt.w && k < bk.w));
     bvec4 after_new = bvec4(false, less.xyz);  // slots that take their neighbour's event
     bt = mix(bt, mix(vec4(t), vec4(0.0, bt.xyz), after_new), less);
     bk = mix(bk, mix(vec4(k), vec4(0.0, bk.xyz), after_new), less);

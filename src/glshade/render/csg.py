@@ -41,7 +41,9 @@ about half, the rest its loops and offers; the data reads are ~15%, and code com
 one tree's leaves (constant indices, as generated GLSL had) is only ~7% faster. Skipping
 leaves per pixel was tried and was slower each way: screen tiles carrying a leaf mask (more
 pixels shaded, a loop over mask bits), a leaf's screen rectangle or world box tested before
-it (on a SIMD rasteriser the skip costs more than the leaf). Each solid is drawn as the back faces of its bounding box; the fragment program writes the
+it (on a SIMD rasteriser the skip costs more than the leaf).
+
+Each solid is drawn as the back faces of its bounding box; the fragment program writes the
 surface's depth to gl_FragDepth, so solids and meshes share one z-buffer.
 
 Shading: the lighting function of the meshes with the exact normal at every pixel.
@@ -331,9 +333,6 @@ class CsgPass(GLResource):
 
     #: the texture unit the tree data is bound to
     UNIT = 7
-    #: the side of a screen tile, pixels (small trees are drawn tile by tile: see
-    #: tile_masks)
-    TILE = 64
 
     def __init__(self, context, shaders, uniforms: UniformWriter,
                  materials: MaterialUniforms):

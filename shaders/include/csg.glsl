@@ -202,10 +202,15 @@ vec4 torus_bounds(vec4 q, vec3 o, vec3 d) {
 
 // leaf k's boundaries along ro + t rd (up to four; the rest INF); `kind` its kind (a
 // constant where the caller knows it, so that only that kind's code is compiled in)
+vec4 leaf_bounds_rows(int kind, vec4 m0, vec4 m1, vec4 m2, vec4 q, vec3 ro, vec3 rd);
 vec4 leaf_bounds_as(int kind, int k, vec3 ro, vec3 rd) {
+    return leaf_bounds_rows(kind, csg_texel(8 * k), csg_texel(8 * k + 1), csg_texel(8 * k + 2),
+                            leaf_param(k), ro, rd);
+}
+
+// the same for a leaf given by its world -> leaf rows ``m0..m2`` and sizes ``q``
+vec4 leaf_bounds_rows(int kind, vec4 m0, vec4 m1, vec4 m2, vec4 q, vec3 ro, vec3 rd) {
     vec4 out_t = vec4(INF);
-    vec4 q = leaf_param(k);
-    vec4 m0 = csg_texel(8 * k), m1 = csg_texel(8 * k + 1), m2 = csg_texel(8 * k + 2);
     vec4 ro1 = vec4(ro, 1.0);
     vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
     vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
@@ -423,6 +428,134 @@ bool tree_inside(int ops) {
     FLIP_LEAF(int(bk.c)); \
     if (tree_inside(u_csg_ops) != start) { t_hit = bt.c; return int(bk.c); }
 
+#ifdef CSG_SLOTS
+// A small tree (at most CSG_SLOTS leaves, 4, 8 or 16, with its truth table): every leaf's
+// runs along the whole line at once, then the surface in one step, with no walk. Each leaf
+// occurs once in the tree, under an even or odd number of right operands of differences,
+// so the tree's answer can only rise at its entries (even) or its exits (odd) -- and only
+// fall at the others: the surface is the nearest of those boundaries (t >= 0) after which
+// the tree's answer differs from the start's, one candidate a leaf (two for a torus), each
+// tested with a lookup in the table. The leaves' states just after a candidate come from
+// comparing it with every run at once (four leaves to a vector), ties by leaf order as in
+// the walk. Each slot's code is unrolled here, so its runs stay in registers.
+// slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
+// indices the compiler knows: plain loads), its leaf's number and sign by groups of four
+uniform vec4 u_csg_slot[4 * CSG_SLOTS];
+uniform vec4 u_csg_slot_leaf[CSG_SLOTS / 4];
+uniform vec4 u_csg_slot_sign[CSG_SLOTS / 4];   // +1: counts positively in the tree
+int slot_leaf(int s) { return int(u_csg_slot_leaf[s >> 2][s & 3]); }
+
+// slot s's runs [x, y) and [z, w) along the whole line ro + t rd (empty: INF, INF)
+vec4 slot_runs_as(int kind, int s, vec3 ro, vec3 rd) {
+    vec4 m0 = u_csg_slot[4 * s], m1 = u_csg_slot[4 * s + 1], m2 = u_csg_slot[4 * s + 2];
+    vec4 q = u_csg_slot[4 * s + 3];
+    if (IS(kind, 5)) {                 // a half-space: before or after its crossing
+        vec4 ro1 = vec4(ro, 1.0);
+        vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
+        vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
+        float nd = dot(q.xyz, d), t = (q.w - dot(q.xyz, o)) / nd;
+        return nd > 0.0 ? vec4(-INF, t, INF, INF) : nd < 0.0 ? vec4(t, INF, INF, INF)
+             : dot(q.xyz, o) <= q.w ? vec4(-INF, INF, INF, INF) : vec4(INF);
+    }
+    return leaf_bounds_rows(kind, m0, m1, m2, q, ro, rd);  // (a torus: its two runs)
+}
+
+// the truth table in slot order, 32 bits a word
+uniform uint u_csg_slot_table[CSG_SLOTS == 16 ? 512 : CSG_SLOTS == 8 ? 8 : 1];
+bool table_inside(uint bits) { return ((u_csg_slot_table[bits >> 5u] >> (bits & 31u)) & 1u) != 0u; }
+
+#define HAS_TORUS ((CSG_KINDS & 16) != 0)
+const vec4 BIT_VALUES = vec4(1.0, 2.0, 4.0, 8.0);
+
+// the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
+// point just after ``t``: a boundary is passed where it is below ``t`` -- per slot, t
+// itself or the next float above it, where the walk would have passed a boundary at t
+// (leaves numbered up to the candidate's: ties go by leaf order)
+float group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, float scale) {
+    vec4 inside = vec4(lessThan(a, t)) * vec4(greaterThanEqual(b, t));
+#if HAS_TORUS
+    inside = max(inside, vec4(lessThan(c, t)) * vec4(greaterThanEqual(d, t)));
+#endif
+    return scale * dot(inside, BIT_VALUES);
+}
+
+#if CSG_SLOTS == 4
+#define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 1.0)
+#elif CSG_SLOTS == 8
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 1.0) + \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 16.0))
+#else
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 1.0) + \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 16.0) + \
+                            group_bits(S(2, t, c), A2, B2, C2, D2, 256.0) + \
+                            group_bits(S(3, t, c), A3, B3, C3, D3, 4096.0))
+#endif
+// group g's thresholds for a candidate t of leaf c: the next float above t for the slots
+// whose leaves are numbered at most c (t >= 0 here), t for the others
+#define UPTO(g, t, c) mix(vec4(t), vec4(uintBitsToFloat(floatBitsToUint(t) + 1u)), \
+                          vec4(lessThanEqual(u_csg_slot_leaf[g], vec4(c))))
+// the start: the boundaries before t = 0 passed, none at it
+#define BEFORE(g, t, c) vec4(0.0)
+
+// candidate t of leaf c: the surface if the answer after it differs from the start's
+#define CANDIDATE(t, c) { \
+    float tc_ = (t); \
+    if (tc_ >= 0.0 && tc_ < t_best && \
+        table_inside(uint(GROUP_SUM(tc_, float(c), UPTO))) != start) { \
+        t_best = tc_; best = (c); } }
+
+// leaf c in component x of group (a, b, c, d): its one candidate (two for a torus)
+#define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
+    if (KIND >= 0) { \
+        int leaf_ = slot_leaf(c); \
+        bool rises = (u_csg_slot_sign[(c) >> 2][(c) & 3] > 0.0) != start; \
+        CANDIDATE(rises ? (a) : (b), leaf_) \
+        if (KIND == 4) CANDIDATE(rises ? (cc) : (dd), leaf_) \
+    }
+
+// slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
+#define SLOT(s, KIND, a, b, cc, dd) { \
+    vec4 r_ = KIND >= 0 ? slot_runs_as(KIND, s, ro, rd) : vec4(INF); \
+    a = r_.x; b = r_.y; cc = r_.z; dd = r_.w; }
+#define GROUP(g, K0, K1, K2, K3, A, B, C, D) \
+    vec4 A = vec4(INF), B = vec4(INF), C = vec4(INF), D = vec4(INF); \
+    SLOT(4 * g, K0, A.x, B.x, C.x, D.x) SLOT(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
+    SLOT(4 * g + 2, K2, A.z, B.z, C.z, D.z) SLOT(4 * g + 3, K3, A.w, B.w, C.w, D.w)
+#define GROUP_CANDIDATES(g, K0, K1, K2, K3, A, B, C, D) \
+    SLOT_CANDIDATES(4 * g, K0, A.x, B.x, C.x, D.x) \
+    SLOT_CANDIDATES(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
+    SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z) \
+    SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w)
+
+// the first surface along ro + t rd, t >= 0: (t, leaf), or leaf -1
+int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
+    GROUP(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
+#if CSG_SLOTS > 4
+    GROUP(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
+#endif
+#if CSG_SLOTS > 8
+    GROUP(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2)
+    GROUP(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
+#endif
+    // the solid holds the ray's start only where a leaf's box meets the near plane (else
+    // the lookup is skipped: a loop no pixel enters)
+    bool start = false;
+    for (int once = u_csg_start > 0 ? 0 : 1; once < 1; ++once)
+        start = table_inside(uint(GROUP_SUM(0.0, 0.0, BEFORE)));
+    float t_best = INF;
+    int best = -1;
+    GROUP_CANDIDATES(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
+#if CSG_SLOTS > 4
+    GROUP_CANDIDATES(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
+#endif
+#if CSG_SLOTS > 8
+    GROUP_CANDIDATES(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2)
+    GROUP_CANDIDATES(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
+#endif
+    t_hit = t_best;
+    return best;
+}
+#else
 // the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
@@ -464,6 +597,7 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     }
     return -1;
 }
+#endif
 
 // the surface's normal at p (world), outward from the solid
 vec3 csg_normal(int k, vec3 p) {

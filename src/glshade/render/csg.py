@@ -113,6 +113,7 @@ class TreeData:
     kind_start: tuple
     boxes: np.ndarray
     table: int = -1
+    slot_words: Any = None
 
 
 def _flatten(solid: Solid):
@@ -304,6 +305,7 @@ def tree_data(solid: Solid) -> TreeData:
     leaf_rows[:, 6] = [_params(leaf) for leaf, _, _ in leaves]
     codes = [_KIND_CODE[type(leaf)] for leaf, _, _ in leaves]
     leaf_rows[:, 3, 3] = codes
+    leaf_rows[:, 7, 0] = signs  # (+1: the leaf counts positively in the tree, -1: negatively)
     boxes = _leaf_boxes([leaf for leaf, _, _ in leaves], matrices)
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
     ops = np.zeros((len(program), 4))
@@ -311,10 +313,20 @@ def tree_data(solid: Solid) -> TreeData:
     by_kind = np.zeros((len(leaves), 4))
     by_kind[:, 0] = np.argsort(codes, kind="stable")
     parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records, by_kind]
-    table = -1
+    table, slot_words = -1, None
     if len(leaves) <= TABLE_LEAVES:
         table = sum(len(p) for p in parts)
-        parts.append(_table_texels(truth_table(program, len(leaves))))
+        values = truth_table(program, len(leaves))
+        parts.append(_table_texels(values))
+        # the same table with the leaves in kind order (the slots of the small-tree program),
+        # 32 bits a word
+        index = np.arange(len(values))
+        order = by_kind[:, 0].astype(int)
+        as_leaves = sum(((index >> s) & 1) << int(k) for s, k in enumerate(order))
+        bits = np.zeros(-(-len(values) // 32) * 32, np.uint64)
+        bits[:len(values)] = values[as_leaves]
+        slot_words = (bits.reshape(-1, 32) << np.arange(32, dtype=np.uint64)).sum(1)
+        slot_words = slot_words.astype(np.uint32)
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
     return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
@@ -322,7 +334,7 @@ def tree_data(solid: Solid) -> TreeData:
                     len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
                     sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
                     tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes,
-                    table)
+                    table, slot_words)
 
 
 class CsgPass(GLResource):
@@ -367,17 +379,20 @@ class CsgPass(GLResource):
             found = self._data[id(solid)] = (weakref.ref(solid), data, store)
         return found[1], found[2]
 
-    def program(self, key, leaves: int, kinds: int = 63):
+    def program(self, key, leaves: int, kinds: int = 63, slots: tuple = ()):
         """The program of a variant for a tree of ``leaves`` whose leaf kinds are the bits
         of ``kinds``: one per size class (32, 64, 256 or 1,024 leaves: the words of leaf bits
         it keeps) and set of kinds, never per tree."""
         self._check()
         _, words, block = _size_class(leaves)
-        found = self._programs.get((key, words, kinds))
+        found = self._programs.get((key, words, kinds, slots))
         if found is None:
             defines = (*key.defines(), f"CSG_WORDS {words}", f"CSG_KINDS {kinds}")
             if block:
                 defines += (f"CSG_BLOCK {block}",)
+            if slots:
+                defines += (f"CSG_SLOTS {len(slots)}",
+                            *(f"CSG_KIND_{i} {k}" for i, k in enumerate(slots)))
             if words == 1:
                 defines += ("CSG_LEAF_LOOP",)
             if key.mode is ShadingMode.NORMALS:
@@ -387,7 +402,7 @@ class CsgPass(GLResource):
             elif key.mode is ShadingMode.FLAT:
                 defines += ("FLAT_FACES",)
             found = self.shaders.compile("csg.vert", "csg.frag", defines=defines)
-            self._programs[(key, words, kinds)] = found
+            self._programs[(key, words, kinds, slots)] = found
         return found
 
     def vertex_array(self, program):
@@ -421,7 +436,7 @@ class CsgPass(GLResource):
                 continue
             data, texture = self.data(model.solid)
             prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves,
-                                data.kinds)
+                                data.kinds, slots_for(data))
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
@@ -441,7 +456,22 @@ class CsgPass(GLResource):
             put(prog, "u_csg_program", data.program)
             put(prog, "u_csg_records", data.records)
             put(prog, "u_csg_kinds", data.by_kind)
+            slots = slots_for(data)
             put(prog, "u_csg_table", data.table)
+            if slots:
+                order = np.full(len(slots), -1.0, "f4")
+                order[:data.leaves] = data.texels[data.by_kind:data.by_kind + data.leaves, 0]
+                put(prog, "u_csg_slot_leaf", order)
+                rows = np.zeros((len(slots), 4, 4), "f4")
+                leaf = order[:data.leaves].astype(int)
+                texels = data.texels[:8 * data.leaves].reshape(-1, 8, 4)
+                rows[:data.leaves, :3] = texels[leaf, :3]
+                rows[:data.leaves, 3] = texels[leaf, 6]
+                put(prog, "u_csg_slot", rows)
+                sign = np.zeros(len(slots), "f4")
+                sign[:data.leaves] = texels[leaf, 7, 0]
+                put(prog, "u_csg_slot_sign", sign)
+                put(prog, "u_csg_slot_table", data.slot_words)
             put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
@@ -473,6 +503,16 @@ class CsgPass(GLResource):
             for vao in self._box[2].values():
                 vao.release()
             self._box = None
+
+
+def slots_for(data: TreeData) -> tuple:
+    """The leaf kinds of the small-tree program's slots (4, 8 or 16 of them, in kind order,
+    -1 an empty slot) for a tree with a truth table; () for a larger tree (the walk)."""
+    if data.table < 0:
+        return ()
+    n = next(n for n in (4, 8, 16) if n >= data.leaves)
+    kinds = [k for k in range(6) for _ in range(data.kind_start[k + 1] - data.kind_start[k])]
+    return tuple(kinds + [-1] * (n - len(kinds)))
 
 
 def may_start_inside(data: TreeData, inverse_view_proj: np.ndarray) -> bool:

@@ -441,6 +441,7 @@ bool tree_inside(int ops) {
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
 // indices the compiler knows: plain loads), its leaf's number and sign by groups of four
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
+int csg_hit_slot;                      // the slot of csg_first_hit's surface
 uniform vec4 u_csg_slot_leaf[CSG_SLOTS / 4];
 uniform vec4 u_csg_slot_sign[CSG_SLOTS / 4];   // +1: counts positively in the tree
 int slot_leaf(int s) { return int(u_csg_slot_leaf[s >> 2][s & 3]); }
@@ -498,19 +499,19 @@ float group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, float scale) {
 #define BEFORE(g, t, c) vec4(0.0)
 
 // candidate t of leaf c: the surface if the answer after it differs from the start's
-#define CANDIDATE(t, c) { \
+#define CANDIDATE(t, c, s) { \
     float tc_ = (t); \
     if (tc_ >= 0.0 && tc_ < t_best && \
         table_inside(uint(GROUP_SUM(tc_, float(c), UPTO))) != start) { \
-        t_best = tc_; best = (c); } }
+        t_best = tc_; best = (c); csg_hit_slot = (s); } }
 
 // leaf c in component x of group (a, b, c, d): its one candidate (two for a torus)
 #define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
     if (KIND >= 0) { \
         int leaf_ = slot_leaf(c); \
         bool rises = (u_csg_slot_sign[(c) >> 2][(c) & 3] > 0.0) != start; \
-        CANDIDATE(rises ? (a) : (b), leaf_) \
-        if (KIND == 4) CANDIDATE(rises ? (cc) : (dd), leaf_) \
+        CANDIDATE(rises ? (a) : (b), leaf_, c) \
+        if (KIND == 4) CANDIDATE(rises ? (cc) : (dd), leaf_, c) \
     }
 
 // slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
@@ -601,6 +602,17 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
 
 // the surface's normal at p (world), outward from the solid
 vec3 csg_normal(int k, vec3 p) {
+#ifdef CSG_SLOTS
+    // (from the hit's slot: its rows are the world -> leaf map, whose transpose takes a
+    // gradient back to world; the sign is the caller's: it turns the normal to the eye)
+    int s = csg_hit_slot;
+    vec4 m0 = u_csg_slot[4 * s], m1 = u_csg_slot[4 * s + 1], m2 = u_csg_slot[4 * s + 2];
+    vec4 p1 = vec4(p, 1.0);
+    vec3 g = leaf_gradient(leaf_kind(k), u_csg_slot[4 * s + 3],
+                           vec3(dot(m0, p1), dot(m1, p1), dot(m2, p1)));
+    return g.x * m0.xyz + g.y * m1.xyz + g.z * m2.xyz;
+#else
     return normal_to_world(k, leaf_gradient(leaf_kind(k), leaf_param(k),
                                             to_leaf(k, vec4(p, 1.0))));
+#endif
 }

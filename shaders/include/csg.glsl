@@ -541,7 +541,7 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     // the solid holds the ray's start only where a leaf's box meets the near plane (else
     // the lookup is skipped: a loop no pixel enters)
     bool start = false;
-    for (int once = u_csg_start > 0 ? 0 : 1; once < 1; ++once)
+    if (u_csg_start > 0)
         start = table_inside(uint(GROUP_SUM(0.0, 0.0, BEFORE)));
     float t_best = INF;
     int best = -1;

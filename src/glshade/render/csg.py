@@ -65,6 +65,7 @@ import numpy as np
 
 from ..errors import SceneError
 from ..solids import leaves as L  # (the leaves: L.Box ...)
+from ..solids.proxy import DIRECTIONS, hull_points, screen_polygon
 from ..solids.tree import Difference, Intersection, Solid, Transformed, Union, _corners
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import ShadingMode
@@ -114,6 +115,7 @@ class TreeData:
     boxes: np.ndarray
     table: int = -1
     slot_words: Any = None
+    hull: Any = None
 
 
 def _flatten(solid: Solid):
@@ -334,7 +336,7 @@ def tree_data(solid: Solid) -> TreeData:
                     len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
                     sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
                     tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes,
-                    table, slot_words)
+                    table, slot_words, hull_points(leaves))
 
 
 class CsgPass(GLResource):
@@ -352,6 +354,7 @@ class CsgPass(GLResource):
         self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
         self._programs: dict = {}
         self._box: Any = None
+        self._fan: Any = None  # (buffer of the screen polygon's corners, vertex arrays)
         # per solid (solids are values: a new tree is a new object): its data and texture,
         # dropped (and the texture released) once the solid is gone
         self._data: dict[int, tuple] = {}
@@ -421,6 +424,18 @@ class CsgPass(GLResource):
                                                        ibo, 4)
         return vao
 
+    def fan(self, program, corners: np.ndarray):
+        """The vertex array of a screen polygon (K, 2) NDC, drawn as a fan at depth 0."""
+        ctx = self.context.ctx
+        if self._fan is None:
+            self._fan = (self._keep(ctx.buffer(reserve=12 * DIRECTIONS, dynamic=True)), {})
+        vbo, vaos = self._fan
+        vbo.write(np.c_[corners, np.zeros(len(corners))].astype("f4").tobytes())
+        vao = vaos.get(id(program))
+        if vao is None:
+            vao = vaos[id(program)] = ctx.vertex_array(program, [(vbo, "3f", "in_position")])
+        return vao
+
     def draw(self, state: DrawState, id_base: int) -> None:
         """Draw the scene's visible solids (after its meshes: their ids follow from
         ``id_base``, the meshes' polygon count)."""
@@ -475,7 +490,10 @@ class CsgPass(GLResource):
             put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
-            put(prog, "u_view_proj", gl_bytes(view_proj @ box_matrix(bounds)))
+            polygon = screen_polygon(view_proj, bounds, data.hull,
+                                     (int(viewport[2]), int(viewport[3])))
+            put(prog, "u_view_proj", gl_bytes(np.eye(4) if polygon is not None
+                                              else view_proj @ box_matrix(bounds)))
             put(prog, "u_solid_view_proj", gl_bytes(view_proj))
             put(prog, "u_inverse_view_proj", gl_bytes(inverse))
             put(prog, "u_view", gl_bytes(view))
@@ -483,11 +501,17 @@ class CsgPass(GLResource):
             put(prog, "u_viewport_origin", (float(viewport[0]), float(viewport[1])))
             put(prog, "u_viewport_size", (float(viewport[2]), float(viewport[3])))
             put(prog, "u_face_id_base", n_polygons)
-            ctx.enable(moderngl.CULL_FACE)
-            ctx.front_face = "cw" if state.flip_rows else "ccw"
-            ctx.cull_face = "front"  # the box's back faces: inside it or outside, every pixel
-            self.vertex_array(prog).render(moderngl.TRIANGLES)
-            ctx.cull_face = "back"
+            if polygon is not None:
+                # the screen polygon that holds the solid (solids/proxy.py): fewer pixels
+                ctx.disable(moderngl.CULL_FACE)
+                self.fan(prog, polygon).render(moderngl.TRIANGLE_FAN)
+                ctx.enable(moderngl.CULL_FACE)
+            else:
+                ctx.enable(moderngl.CULL_FACE)
+                ctx.front_face = "cw" if state.flip_rows else "ccw"
+                ctx.cull_face = "front"  # the box's back faces: inside it or out, every pixel
+                self.vertex_array(prog).render(moderngl.TRIANGLES)
+                ctx.cull_face = "back"
             n_polygons += data.leaves
 
     def _release_extra(self) -> None:
@@ -503,6 +527,10 @@ class CsgPass(GLResource):
             for vao in self._box[2].values():
                 vao.release()
             self._box = None
+        if self._fan is not None:
+            for vao in self._fan[1].values():
+                vao.release()
+            self._fan = None
 
 
 def slots_for(data: TreeData) -> tuple:

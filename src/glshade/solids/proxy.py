@@ -1,0 +1,128 @@
+"""A solid's screen proxy: the convex polygon a ray-cast solid is drawn as, so that only
+pixels whose rays can meet the solid run the ray cast.
+
+Why: on a software rasteriser every pixel of the proxy pays the whole ray cast (a
+fragment program cannot skip work for a group of pixels), and a solid's bounding box covers
+far more pixels than the solid (the benchmark's 7-leaf part: 95,000 against 70,000 at
+512x512; this polygon: about 75,000).
+
+Two facts make the polygon conservative and cheap:
+
+- a solid lies inside the union of the leaves it counts *positively* (under an even number
+  of right operands of differences): a point in none of them is in none of the booleans'
+  left sides of differences, of any union or intersection of them -- so inside the convex
+  hull of points whose hulls hold those leaves (:func:`hull_points`: a box's corners,
+  circumscribed polygons for round leaves);
+- the projection of a convex set lying wholly in front of the eye is the convex hull of
+  its projected points; its k-DOP (the polygon of K half-planes ``d_k . x <= max_p d_k . p``)
+  contains it, and two k-DOPs over the same directions intersect by taking the smaller
+  support each way -- the hull's and the bounding box's (:func:`screen_polygon`).
+
+Pure numpy; shapes in each docstring.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import leaves as L
+
+__all__ = ["hull_points", "screen_polygon", "DIRECTIONS"]
+
+#: directions of the screen polygon (its corners); the polygon is at most 1/cos(pi/K) - 1
+#: (0.5% at 32) wider than the points' hull
+DIRECTIONS = 32
+_SIDES = 24  # sides of a round leaf's circumscribed polygons
+#: more points than this (many positive leaves) and the solid's box alone is the proxy
+MAX_POINTS = 20_000
+
+
+def _ring(radius: float, y: float) -> np.ndarray:
+    """(S, 3) corners of a polygon circumscribing the circle of ``radius`` at height y."""
+    a = np.arange(_SIDES) * (2 * np.pi / _SIDES)
+    r = radius / np.cos(np.pi / _SIDES)
+    return np.c_[r * np.cos(a), np.full(_SIDES, y), r * np.sin(a)]
+
+
+def leaf_points(leaf) -> np.ndarray | None:
+    """(N, 3) points in the leaf's own frame whose convex hull holds the leaf; None for an
+    unbounded leaf (a half-space). A sphere: the circumscribed rings of a circumscribed
+    profile (the hull of the rings holds the solid of revolution of the profile, which
+    holds the ball)."""
+    if isinstance(leaf, L.Box):
+        h = leaf.half
+        return np.array([[x, y, z] for x in (-h[0], h[0]) for y in (-h[1], h[1])
+                         for z in (-h[2], h[2])], float)
+    if isinstance(leaf, L.Sphere):
+        n = 8  # profile sides from pole to pole
+        phi = np.linspace(-np.pi / 2, np.pi / 2, n + 1)
+        rho = leaf.radius / np.cos(np.pi / (2 * n))
+        return np.concatenate([_ring(rho * np.cos(p), rho * np.sin(p)) for p in phi])
+    if isinstance(leaf, L.Cylinder):
+        return np.concatenate([_ring(leaf.radius, -leaf.h), _ring(leaf.radius, leaf.h)])
+    if isinstance(leaf, L.Cone):
+        return np.concatenate([_ring(leaf.radius, -leaf.apex), [[0.0, leaf.apex, 0.0]]])
+    if isinstance(leaf, L.Torus):
+        outer = leaf.R + leaf.r
+        return np.concatenate([_ring(outer, -leaf.r), _ring(outer, leaf.r)])
+    return None
+
+
+def hull_points(leaves: list) -> np.ndarray | None:
+    """(N, 3) world points whose convex hull holds a solid, from its leaves ``[(leaf,
+    leaf -> world matrix (4, 4), sign)]`` (sign > 0: counted positively); None where a
+    positive leaf is unbounded or the points would be too many to project each frame."""
+    parts = []
+    for leaf, matrix, sign in leaves:
+        if sign <= 0:
+            continue
+        p = leaf_points(leaf)
+        if p is None:
+            return None
+        parts.append(p @ matrix[:3, :3].T + matrix[:3, 3])
+        if sum(len(x) for x in parts) > MAX_POINTS:
+            return None
+    return np.concatenate(parts) if parts else None
+
+
+def _polygon(points: np.ndarray, view_proj: np.ndarray, directions: np.ndarray,
+             grow: float) -> np.ndarray | None:
+    """The k-DOP (K, 2) of the points' projections (NDC), grown by ``grow``; None where a
+    point is not in front of the eye (the projection is not the set's) or the polygon
+    reaches past 4 (a close-up: the box is drawn instead)."""
+    clip = points @ view_proj[:, :3].T + view_proj[:, 3]
+    w = clip[:, 3]
+    if not (w > 1e-6 * max(float(np.abs(w).max()), 1e-300)).all():
+        return None
+    s = (clip[:, :2] / w[:, None] @ directions.T).max(0) + grow  # (K,) supports
+    if not (np.abs(s) <= 4.0).all():
+        return None
+    # every line touches the points' hull (at the point giving its support), so the
+    # corners are the crossings of neighbouring lines
+    nxt = np.roll(np.arange(len(s)), -1)
+    a = np.stack([directions, directions[nxt]], 1)  # (K, 2, 2)
+    return np.linalg.solve(a, np.stack([s, s[nxt]], 1)[..., None])[..., 0]
+
+
+def _area(corners: np.ndarray) -> float:
+    x, y = corners[:, 0], corners[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def screen_polygon(view_proj: np.ndarray, box: np.ndarray, points: np.ndarray | None,
+                   viewport: tuple[int, int]) -> np.ndarray | None:
+    """The proxy's corners (K, 2) in NDC, counter-clockwise: the smaller of the k-DOPs of
+    the solid's box and of its hull points; None where neither serves (a point behind the
+    eye, or a close-up: draw the box). ``view_proj (4, 4)`` world -> clip, ``box (2, 3)``
+    the solid's bounds, ``points (N, 3)`` from :func:`hull_points` or None, ``viewport``
+    (width, height) in pixels: the polygon is grown by two pixels against rounding."""
+    angles = np.arange(DIRECTIONS) * (2 * np.pi / DIRECTIONS)
+    d = np.c_[np.cos(angles), np.sin(angles)]  # (K, 2)
+    lo, hi = box
+    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                        for z in (lo[2], hi[2])], float)
+    grow = 4.0 / min(viewport)
+    found = [p for p in (_polygon(corners, view_proj, d, grow),
+                         None if points is None else _polygon(points, view_proj, d, grow))
+             if p is not None]
+    return min(found, key=_area) if found else None

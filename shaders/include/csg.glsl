@@ -441,7 +441,7 @@ bool tree_inside(int ops) {
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
 // indices the compiler knows: plain loads), its leaf's number and sign by groups of four
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
-int csg_hit_slot;                      // the slot of csg_first_hit's surface
+int csg_hit_slot, csg_hit_kind;        // the slot of csg_first_hit's surface, its kind
 uniform vec4 u_csg_slot_leaf[CSG_SLOTS / 4];
 uniform vec4 u_csg_slot_sign[CSG_SLOTS / 4];   // +1: counts positively in the tree
 int slot_leaf(int s) { return int(u_csg_slot_leaf[s >> 2][s & 3]); }
@@ -466,52 +466,51 @@ uniform uint u_csg_slot_table[CSG_SLOTS == 16 ? 512 : CSG_SLOTS == 8 ? 8 : 1];
 bool table_inside(uint bits) { return ((u_csg_slot_table[bits >> 5u] >> (bits & 31u)) & 1u) != 0u; }
 
 #define HAS_TORUS ((CSG_KINDS & 16) != 0)
-const vec4 BIT_VALUES = vec4(1.0, 2.0, 4.0, 8.0);
 
 // the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
 // point just after ``t``: a boundary is passed where it is below ``t`` -- per slot, t
 // itself or the next float above it, where the walk would have passed a boundary at t
 // (leaves numbered up to the candidate's: ties go by leaf order)
-float group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, float scale) {
-    vec4 inside = vec4(lessThan(a, t)) * vec4(greaterThanEqual(b, t));
+uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
+    uvec4 inside = uvec4(lessThan(a, t)) & uvec4(greaterThanEqual(b, t));
 #if HAS_TORUS
-    inside = max(inside, vec4(lessThan(c, t)) * vec4(greaterThanEqual(d, t)));
+    inside |= uvec4(lessThan(c, t)) & uvec4(greaterThanEqual(d, t));
 #endif
-    return scale * dot(inside, BIT_VALUES);
+    return (inside.x | (inside.y << 1u) | (inside.z << 2u) | (inside.w << 3u)) << shift;
 }
 
 #if CSG_SLOTS == 4
-#define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 1.0)
+#define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 0u)
 #elif CSG_SLOTS == 8
-#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 1.0) + \
-                            group_bits(S(1, t, c), A1, B1, C1, D1, 16.0))
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u))
 #else
-#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 1.0) + \
-                            group_bits(S(1, t, c), A1, B1, C1, D1, 16.0) + \
-                            group_bits(S(2, t, c), A2, B2, C2, D2, 256.0) + \
-                            group_bits(S(3, t, c), A3, B3, C3, D3, 4096.0))
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u) | \
+                            group_bits(S(2, t, c), A2, B2, C2, D2, 8u) | \
+                            group_bits(S(3, t, c), A3, B3, C3, D3, 12u))
 #endif
 // group g's thresholds for a candidate t of leaf c: the next float above t for the slots
 // whose leaves are numbered at most c (t >= 0 here), t for the others
 #define UPTO(g, t, c) mix(vec4(t), vec4(uintBitsToFloat(floatBitsToUint(t) + 1u)), \
-                          vec4(lessThanEqual(u_csg_slot_leaf[g], vec4(c))))
+                          lessThanEqual(u_csg_slot_leaf[g], vec4(c)))
 // the start: the boundaries before t = 0 passed, none at it
 #define BEFORE(g, t, c) vec4(0.0)
 
 // candidate t of leaf c: the surface if the answer after it differs from the start's
-#define CANDIDATE(t, c, s) { \
+#define CANDIDATE(t, c, s, KIND) { \
     float tc_ = (t); \
     if (tc_ >= 0.0 && tc_ < t_best && \
-        table_inside(uint(GROUP_SUM(tc_, float(c), UPTO))) != start) { \
-        t_best = tc_; best = (c); csg_hit_slot = (s); } }
+        table_inside(GROUP_SUM(tc_, float(c), UPTO)) != start) { \
+        t_best = tc_; best = (c); csg_hit_slot = (s); csg_hit_kind = (KIND); } }
 
 // leaf c in component x of group (a, b, c, d): its one candidate (two for a torus)
 #define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
     if (KIND >= 0) { \
         int leaf_ = slot_leaf(c); \
         bool rises = (u_csg_slot_sign[(c) >> 2][(c) & 3] > 0.0) != start; \
-        CANDIDATE(rises ? (a) : (b), leaf_, c) \
-        if (KIND == 4) CANDIDATE(rises ? (cc) : (dd), leaf_, c) \
+        CANDIDATE(rises ? (a) : (b), leaf_, c, KIND) \
+        if (KIND == 4) CANDIDATE(rises ? (cc) : (dd), leaf_, c, KIND) \
     }
 
 // slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
@@ -542,7 +541,7 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     // the lookup is skipped: a loop no pixel enters)
     bool start = false;
     if (u_csg_start > 0)
-        start = table_inside(uint(GROUP_SUM(0.0, 0.0, BEFORE)));
+        start = table_inside(GROUP_SUM(0.0, 0.0, BEFORE));
     float t_best = INF;
     int best = -1;
     GROUP_CANDIDATES(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
@@ -608,7 +607,7 @@ vec3 csg_normal(int k, vec3 p) {
     int s = csg_hit_slot;
     vec4 m0 = u_csg_slot[4 * s], m1 = u_csg_slot[4 * s + 1], m2 = u_csg_slot[4 * s + 2];
     vec4 p1 = vec4(p, 1.0);
-    vec3 g = leaf_gradient(leaf_kind(k), u_csg_slot[4 * s + 3],
+    vec3 g = leaf_gradient(csg_hit_kind, u_csg_slot[4 * s + 3],
                            vec3(dot(m0, p1), dot(m1, p1), dot(m2, p1)));
     return g.x * m0.xyz + g.y * m1.xyz + g.z * m2.xyz;
 #else

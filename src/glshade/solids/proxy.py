@@ -31,7 +31,7 @@ __all__ = ["hull_points", "screen_polygon", "DIRECTIONS"]
 
 #: directions of the screen polygon (its corners); the polygon is at most 1/cos(pi/K) - 1
 #: (0.5% at 32) wider than the points' hull
-DIRECTIONS = 32
+DIRECTIONS = 16
 _SIDES = 24  # sides of a round leaf's circumscribed polygons
 #: more points than this (many positive leaves) and the solid's box alone is the proxy
 MAX_POINTS = 20_000

@@ -1,11 +1,12 @@
-// CSG by ray casting with the tree as data (glshade/render/csg.py writes it): one program
-// for every tree. A float texture holds, for each leaf, its world -> leaf matrix, its normal
-// matrix (negated under a difference's right side), sizes and kind; a bounding-volume
-// hierarchy over the leaves' world boxes (pre-order, each node with the index past its
-// subtree); and the tree as a post-order program for a stack of bits.
+// CSG by ray casting with the tree as data (glshade/render/csg.py writes it). A float texture
+// holds, for each leaf, its world -> leaf matrix, its normal matrix (negated under a
+// difference's right side), sizes and kind; a bounding-volume hierarchy over the leaves'
+// world boxes (pre-order, each node with the index past its subtree); the truth table of a
+// tree of at most 14 leaves; and the tree as a post-order program for a stack of bits.
 //
-// Along the pixel's ray the state of every leaf (inside or not) is kept in a bit set. The
-// walk: find the next leaf boundary after the current one (the hierarchy skips leaves whose
+// A tree of at most 14 leaves (CSG_SLOTS) is cast in one step: see the CSG_SLOTS section.
+// A larger one walks. Along the pixel's ray the state of every leaf (inside or not) is
+// kept in a bit set. The walk: find the next leaf boundary after the current one (the hierarchy skips leaves whose
 // box the ray misses or meets only beyond the best so far); flip that leaf's bit; run the
 // tree on the bits (a small tree: one lookup in its truth table; else its program, skipping
 // subtrees the ray is in none of the leaves of); the first boundary where the tree's answer
@@ -15,7 +16,8 @@
 // derivative (a cubic, in closed form) into monotone pieces, each root bracketed and refined
 // by bisection on a sign computed without cancellation.
 // Built per size class and per set of leaf kinds (CSG_KINDS): on a SIMD rasteriser a branch
-// no pixel takes still runs, so only the kinds present are compiled in (see csg.py).
+// no pixel takes still runs, so only the kinds present are compiled in (see csg.py); the
+// one-step cast per count of leaves of each kind (CSG_KIND_0 ..: each slot's kind).
 
 const float INF = 1e30;
 #ifndef CSG_WORDS
@@ -433,11 +435,15 @@ bool tree_inside(int ops) {
 // runs along the whole line at once, then the surface in one step, with no walk. Each leaf
 // occurs once in the tree, under an even or odd number of right operands of differences,
 // so the tree's answer can only rise at its entries (even) or its exits (odd) -- and only
-// fall at the others: the surface is the nearest of those boundaries (t >= 0) after which
-// the tree's answer differs from the start's, one candidate a leaf (two for a torus), each
+// fall at the others: the surface is the nearest of those boundaries (the others where the
+// ray starts inside the solid) past the near plane after which the tree's answer differs
+// from the start's, one candidate a leaf (two for a torus), each
 // tested with a lookup in the table. The leaves' states just after a candidate come from
 // comparing it with every run at once (four leaves to a vector), ties by leaf order as in
-// the walk. Each slot's code is unrolled here, so its runs stay in registers.
+// the walk. Each slot's code is unrolled here, its kind a constant (CSG_KIND_s), so its
+// runs stay in registers and no code of another kind runs: no loops at all (on llvmpipe a
+// loop costs more than the straight code it would skip).
+
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
 // indices the compiler knows: plain loads), its leaf's number and sign by groups of four
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
@@ -537,8 +543,7 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     GROUP(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2)
     GROUP(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
 #endif
-    // the solid holds the ray's start only where a leaf's box meets the near plane (else
-    // the lookup is skipped: a loop no pixel enters)
+    // the solid can hold the ray's start only where a leaf's box meets the near plane
     bool start = false;
     if (u_csg_start > 0)
         start = table_inside(GROUP_SUM(0.0, 0.0, BEFORE));

@@ -21,6 +21,7 @@ TREES = {
     - Box(0.8).translated((1, 0, 0)),
     "cut cone and ball": (Cone(0.8, 1.6) & HalfSpace((1, 1, 0), 0.2))
     | Sphere(0.3).translated((0, -0.8, 0)),
+    "ball less a half-space": Sphere(1.0) - HalfSpace((-0.3, -1, -0.2), -0.3),
 }
 OUTSIDE = Camera.look_at((3, 2.5, 4), (0, 0, 0))
 
@@ -54,6 +55,34 @@ def test_gpu_equals_the_numpy_reference(name, make_renderer):
     frame = make_renderer(*SIZE).render_frame(scene, OUTSIDE, "phong")
     ids = check_against_reference(frame, scene, OUTSIDE)
     assert len(np.unique(ids[ids >= 0])) >= 2  # several leaves show
+
+
+BORED = ((Box((3, 1, 2)) - Cylinder(0.35, 3.0).rotated(QUARTER_X).translated((-0.75, 0, 0))
+          - Cylinder(0.35, 3.0).rotated(QUARTER_X).translated((0.75, 0, 0))
+          | Sphere(0.7).translated((0, 0.6, 0)) | Cone(0.3, 0.8).translated((1.2, 0.9, 0)))
+         - Cylinder(0.15, 3.0).translated((0, 0.6, 0)) - Box(0.3).translated((-1.5, 0.5, 1)))
+
+
+@pytest.mark.parametrize("name", [*TREES, "bored block"])
+def test_the_screen_polygon_cuts_no_pixel(name, make_renderer):
+    """The solid is drawn as a polygon about its positive leaves (solids/proxy.py), not its
+    box: every pixel the reference hits -- silhouettes too -- is drawn (up to the few a
+    float32 ray misses at a grazing edge)."""
+    from glshade.render.csg import tree_data
+    from glshade.solids.proxy import screen_polygon
+
+    solid = BORED if name == "bored block" else TREES[name]
+    scene = Scene()
+    scene.add(solid)
+    camera = OUTSIDE.with_planes(scene.bounds)
+    view_proj = camera.projection_matrix(SIZE[0] / SIZE[1]) @ camera.view_matrix()
+    polygon = screen_polygon(view_proj, solid.bounds, tree_data(solid).hull, SIZE)
+    assert polygon is not None  # (the polygon is drawn, not the box)
+    frame = make_renderer(*SIZE).render_frame(scene, OUTSIDE, "phong")
+    _, _, ids = render_solids(scene, OUTSIDE, SIZE)
+    missed = (ids >= 0) & (frame.face_id < 0)
+    assert (ids >= 0).sum() > 1000
+    assert missed.sum() <= 0.002 * (ids >= 0).sum(), f"{missed.sum()} pixels not drawn"
 
 
 def test_a_mesh_through_a_solid_meets_it_in_one_z_buffer(make_renderer):
@@ -119,13 +148,34 @@ def test_coincident_faces_go_to_the_left_operand(make_renderer):
         assert changes == 1
 
 
-def test_editing_sizes_reuses_the_program(make_renderer):
+def test_editing_a_tree_reuses_its_program(make_renderer):
+    """A small tree's program is keyed by how many leaves of each kind it has: sizes,
+    places and operators are data. A larger tree's walk has one program per size class."""
     r = make_renderer(*SIZE)
-    for radius in (0.5, 0.7, 0.9):
+    for radius, op in ((0.5, "-"), (0.7, "|"), (0.9, "&")):
+        ball = Sphere(radius).translated((0, radius, 0.2))
         s = Scene()
-        s.add(Box(2.0) - Sphere(radius).translated((0, 1, 0)))
+        s.add(Box(2.0) - ball if op == "-" else Box(2.0) | ball if op == "|" else
+              Box(2.0) & ball)
         r.render(s, OUTSIDE)
-    assert len(r._csg._programs) == 1  # (one program, whatever the tree)
+    assert len(r._csg._programs) == 1
+    s = Scene()
+    s.add(Box(2.0) - Sphere(0.5) - Sphere(0.3).translated((1, 1, 1)))  # one more ball
+    r.render(s, OUTSIDE)
+    assert len(r._csg._programs) == 2
+    for n in (20, 31):  # (over the 14 leaves a truth table serves: the walk)
+        s = Scene()
+        s.add(random_union(n))
+        r.render(s, OUTSIDE)
+    assert len(r._csg._programs) == 3
+
+
+def random_union(n):
+    rng = np.random.default_rng(n)
+    solid = Sphere(0.3)
+    for _ in range(n - 1):
+        solid = solid | Sphere(rng.uniform(0.1, 0.3)).translated(rng.uniform(-1, 1, 3))
+    return solid
 
 
 def test_unbounded_solids_are_refused():

@@ -1,50 +1,48 @@
-"""Drawing CSG solids on the GPU with one program for every tree: the tree is *data*.
+"""Drawing CSG solids on the GPU, the tree as *data*: sizes, places and operators never
+compile GLSL.
 
 Why: generated GLSL (one merge function per node) made Mesa's compile time grow with the
 tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float texture
 (:func:`tree_data`), written once per solid and cached; the fragment program
-(shaders/include/csg.glsl) reads it:
+(shaders/include/csg.glsl) reads it: per leaf, its world -> leaf matrix, its normal matrix
+(negated under a difference's right side), its sizes, kind and sign; a bounding-volume
+hierarchy over the leaves' world boxes; a tree of at most TABLE_LEAVES (14) leaves as its
+truth table (bit ``b``: the tree's value when the leaves inside are the bits of ``b``,
+:func:`truth_table`); and the tree as a post-order program on a stack of bits with skip
+records, for larger trees.
 
-- per leaf, its world -> leaf matrix, its normal matrix (negated under a difference's right
-  side), its sizes and its kind;
-- a bounding-volume hierarchy over the leaves' world boxes, in pre-order with each node's
-  skip index (the node after its subtree): a ray visits only the leaves whose boxes it
-  meets, and none beyond the nearest boundary found so far;
-- a tree of at most TABLE_LEAVES (14) leaves as its truth table (bit ``b`` of the table:
-  the tree's value when the leaves inside are the bits of ``b``), so the tree costs one
-  lookup an event (:func:`truth_table` makes it by running the program on every pattern);
-- the tree as a post-order program on a stack of bits, each boolean evaluating its deeper
-  operand first (so the stack never holds more than log2(leaves) + 1 bits: 32 are enough
-  for any tree up to the cap), with skip records: a subtree none of whose leaves the ray
-  is inside is empty there (booleans of empty sets are empty), so the program jumps over
-  it -- its cost follows the leaves a ray is in, not the tree.
+**A small tree (at most 14 leaves) is cast in one step.** Every leaf's runs along the
+pixel's whole line are found at once and kept in registers; then, since each leaf occurs
+once in the tree under an even or odd number of right operands of differences, the tree's
+answer can only *rise* at an entry of a positive leaf or an exit of a negative one (and
+only fall at the others): the surface is the nearest such boundary past the near plane
+after which the table says the answer differs from the start's -- one candidate a leaf, two
+for a torus, each a lookup, with the leaves' states at a candidate found by comparing it
+with every run at once (ties by leaf order: the left operand's face shows). No loops: on a
+SIMD rasteriser (llvmpipe runs 8 pixels in lock-step; an if's untaken side runs, masked,
+and loops cost far more than straight code) that is what makes it fast. Its slots hold
+the leaves in kind order and each slot's code is its kind's alone, so the program is keyed
+by how many leaves of each kind the tree has (:func:`slots_for`): editing sizes, places or
+operators reuses it; a tree with another count of a kind compiles once (about 0.3-0.7 s,
+kept by Mesa's disk cache).
 
-Cost on a SIMD rasteriser (llvmpipe runs 8 or 16 pixels in lock-step, and a branch none of
-them takes still runs, masked; only a loop none of them enters is skipped): so a program is
-built per size class *and* per set of leaf kinds present (a tree without a torus carries no
-quartic solver); a small tree (<= 32 leaves) visits its leaves kind by kind, each loop's
-body one kind's code, rather than through the hierarchy, whose inner nodes would cost as
-much as leaves, and runs its tree program whole (skipping costs more than it saves there);
-and where no leaf's box meets the near plane (the camera outside every
-leaf's box, the usual case) the search for the leaves a ray starts in is not run.
+**A larger tree walks** from one leaf boundary to the next (the hierarchy, or each kind's
+leaves in turn below 33 leaves, finding the next four boundaries in one pass), flipping
+that leaf's bit and running the tree program (skipping subtrees the ray is in none of the
+leaves of); the first boundary where its answer changes is the surface. Its cost grows
+with the boundaries a ray crosses before its surface; one program per size class (32, 64,
+256, 1,024 leaves) and set of kinds.
 
-Along a pixel's ray the program keeps every leaf's inside-bit, steps from one leaf
-boundary to the next (ties by leaf order: the left operand's face shows), flips that leaf's
-bit and runs the tree; the first boundary where the tree's answer changes is the surface.
-One pass over the leaves finds the next four boundaries in order, so a ray meeting its
-surface within four intersects each leaf once. Its cost grows with the leaf boundaries a
-ray crosses before it, not with the tree.
+**Only pixels that may show the solid run the cast.** A solid is drawn as a screen polygon
+that holds it (solids/proxy.py: the 16-sided k-DOP of the projected hull of its positive
+leaves, or of its box, the smaller) where the solid lies in front of the eye, else as the
+back faces of its box. The fragment program writes the surface's depth to gl_FragDepth, so
+solids and meshes share one z-buffer.
 
-Measured on llvmpipe (one thread, CPU time, the 7-leaf tree of benchmarks/csg_bench.py at
-512x512): of 23.5 ms, shading the hit takes 3.5 and the walk 18 -- the leaves' arithmetic
-about half, the rest its loops and offers; the data reads are ~15%, and code compiled for
-one tree's leaves (constant indices, as generated GLSL had) is only ~7% faster. Skipping
-leaves per pixel was tried and was slower each way: screen tiles carrying a leaf mask (more
-pixels shaded, a loop over mask bits), a leaf's screen rectangle or world box tested before
-it (on a SIMD rasteriser the skip costs more than the leaf).
-
-Each solid is drawn as the back faces of its bounding box; the fragment program writes the
-surface's depth to gl_FragDepth, so solids and meshes share one z-buffer.
+Measured on llvmpipe (the 7-leaf tree of benchmarks/csg_bench.py at 512x512, one thread,
+CPU time): 9.7-10.2 ms a frame against 4.8-5.1 ms for its 5,218-triangle manifold3d mesh
+(the walk this replaced: 24 ms); of it, the leaves' arithmetic ~4, the candidates ~1.2,
+shading the hit ~3.2 (lighting 1.4 of that, the same function as the mesh's).
 
 Shading: the lighting function of the meshes with the exact normal at every pixel.
 Gouraud and Phong both light per pixel (a solid has no vertices to hold an intensity);
@@ -99,7 +97,10 @@ class TreeData:
     ``kinds`` a bit per leaf kind present (the program is built with only those kinds' code);
     ``table`` the first texel of the truth table (-1: none, the tree is over TABLE_LEAVES);
     ``by_kind`` the first texel of the leaves listed kind by kind, ``kind_start`` (7,) where
-    each kind's list starts; ``boxes (L, 2, 3)`` the leaves' world boxes (float64)."""
+    each kind's list starts; ``boxes (L, 2, 3)`` the leaves' world boxes (float64);
+    ``slot_words`` the truth table with the leaves in kind order (the one-step program's
+    slots), 32 bits a uint32 word, or None; ``hull (N, 3)`` world points whose convex hull
+    holds the solid (solids/proxy.py), or None."""
 
     texels: np.ndarray
     leaves: int

@@ -1,14 +1,14 @@
 """CSG and octrees: first-frame and steady frame time of the GLSL ray-casting pass at
-512x512 against leaf count (a plate with n - 1 holes, 1..1,024 leaves: one program for
-every tree: past the first of its size class, a first frame is the data upload, not a
-compile); rays per second for a 7-leaf tree, against rasterising the same tree's
-manifold3d mesh (when the ``csg`` extra is installed; its meshing time apart) and against
-the numpy reference; then octree build time and cells per level at depths 4..9 (boundary
-cells should grow ~4x a level, not 8x).
+512x512 against leaf count (a plate with n - 1 holes, 1..1,024 leaves: past 14 leaves one
+program per size class, so a first frame is the data upload, not a compile; below, one per
+count of leaves of each kind); rays per second for a 7-leaf tree, against rasterising the
+same tree's manifold3d mesh (when the ``csg`` extra is installed; its meshing time apart,
+and the ratio also as one thread's CPU time, the steadiest measure) and against the numpy
+reference; then octree build time and cells per level at depths 4..9 (boundary cells
+should grow ~4x a level, not 8x).
 
 Mesa's on-disk shader cache is switched off here, so a first frame that meets a new
-size class (32, 64, 256, 1,024 leaves) or set of leaf kinds pays its compile, as in a fresh
-installation; trees after it in the same class compile nothing.
+program pays its compile, as in a fresh installation.
 
 Run: ``.venv/bin/python benchmarks/csg_bench.py``.
 """
@@ -77,6 +77,31 @@ def plate(leaves: int):
     return solid
 
 
+def _one_thread_cpu(series: dict) -> list[float]:
+    """The least CPU time of 30 interleaved frames of each series, in a child process with
+    one rasteriser thread: the steadiest measure on a shared machine (wall times here move
+    10-30% between runs)."""
+    import json
+    import subprocess
+
+    code = (
+        "import json, sys, time; sys.path.insert(0, %r); import csg_bench as b; "
+        "from glshade import Scene; from glshade.render.renderer import Renderer; "
+        "s = Scene(); s.add(b.tree()); m = Scene(); m.add(b.manifold_of()); "
+        "r = Renderer(*b.SIZE, samples=0); "
+        "fs = [lambda: r.render(s, b.CAMERA), lambda: r.render(m, b.CAMERA)]; "
+        "[f() for f in fs]; best = [1e9, 1e9]\n"
+        "for _ in range(30):\n"
+        "    for i, f in enumerate(fs):\n"
+        "        t = time.process_time(); f(); best[i] = min(best[i], time.process_time() - t)\n"
+        "r.close(); print(json.dumps(best))") % str(Path(__file__).resolve().parent)
+    env = {**os.environ, "LP_NUM_THREADS": "0"}
+    env.pop("MESA_SHADER_CACHE_DISABLE", None)  # (steady frames, as a user's)
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, check=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def by_leaves() -> None:
     rows = []
     with Renderer(*SIZE, samples=0) as r:
@@ -114,19 +139,24 @@ def main() -> None:
             meshing = None
         for fn in series.values():
             fn()
-        times = interleaved(series, repeats=5)
+        times = interleaved(series, repeats=15)
+        cpu = _one_thread_cpu(series)
     t = time.perf_counter()
     render_solids(scene, CAMERA, SIZE)
     times["numpy reference (float64)"] = time.perf_counter() - t
     rays = SIZE[0] * SIZE[1]
     for name, s in times.items():
         rows.append((name, f"{1000 * s:.1f}", f"{rays / s / 1e6:.2f}"))
-    print(f"7-leaf tree at {SIZE[0]}x{SIZE[1]} (medians of 5, interleaved)")
+    print(f"7-leaf tree at {SIZE[0]}x{SIZE[1]} (medians of 15, interleaved)")
     print(table(rows, ("method", "ms a frame", "Mrays/s")))
     if meshing is None:
         print("manifold3d row left out: pip install 'glshade[csg]'")
     else:
+        names = list(times)
         print(f"(manifold3d meshing the tree once: {1000 * meshing:.1f} ms)")
+        print(f"ray casting / mesh: {times[names[0]] / times[names[1]]:.2f} (wall, all threads);"
+              f" {cpu[0] / cpu[1]:.2f} (one thread, CPU time: {1000 * cpu[0]:.1f} vs "
+              f"{1000 * cpu[1]:.1f} ms, the least of 30)")
     rows = []
     for depth in range(4, 10):
         t = time.perf_counter()

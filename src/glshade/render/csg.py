@@ -22,7 +22,7 @@ with every run at once (ties by leaf order: the left operand's face shows). No l
 SIMD rasteriser (llvmpipe runs 8 pixels in lock-step; an if's untaken side runs, masked,
 and loops cost far more than straight code) that is what makes it fast. Its slots hold
 the leaves in kind order and each slot's code is its kind's alone, so the program is keyed
-by how many leaves of each kind the tree has (:func:`slots_for`): editing sizes, places or
+by how many leaves of each kind the tree has (``TreeData.slots``): editing sizes, places or
 operators reuses it; a tree with another count of a kind compiles once (about 0.3-0.7 s,
 kept by Mesa's disk cache).
 
@@ -98,9 +98,12 @@ class TreeData:
     ``table`` the first texel of the truth table (-1: none, the tree is over TABLE_LEAVES);
     ``by_kind`` the first texel of the leaves listed kind by kind, ``kind_start`` (7,) where
     each kind's list starts; ``boxes (L, 2, 3)`` the leaves' world boxes (float64);
-    ``slot_words`` the truth table with the leaves in kind order (the one-step program's
-    slots), 32 bits a uint32 word, or None; ``hull (N, 3)`` world points whose convex hull
-    holds the solid (solids/proxy.py), or None."""
+    ``hull (N, 3)`` world points whose convex hull holds the solid (solids/proxy.py), or
+    None. A tree with a truth table is cast in one step by a program with ``slots``, the
+    leaf kinds in kind order (4, 8 or 16; -1 an empty slot), whose uniforms these are:
+    ``slot_leaf (S,)`` each slot's leaf (-1 empty), ``slot_rows (S, 4, 4)`` its world ->
+    leaf rows and sizes, ``slot_sign (S,)`` +1 where it counts positively in the tree,
+    ``slot_words`` the truth table in slot order, 32 bits a uint32 word; else () and None."""
 
     texels: np.ndarray
     leaves: int
@@ -117,6 +120,10 @@ class TreeData:
     table: int = -1
     slot_words: Any = None
     hull: Any = None
+    slots: tuple = ()
+    slot_leaf: Any = None
+    slot_rows: Any = None
+    slot_sign: Any = None
 
 
 def _flatten(solid: Solid):
@@ -308,7 +315,6 @@ def tree_data(solid: Solid) -> TreeData:
     leaf_rows[:, 6] = [_params(leaf) for leaf, _, _ in leaves]
     codes = [_KIND_CODE[type(leaf)] for leaf, _, _ in leaves]
     leaf_rows[:, 3, 3] = codes
-    leaf_rows[:, 7, 0] = signs  # (+1: the leaf counts positively in the tree, -1: negatively)
     boxes = _leaf_boxes([leaf for leaf, _, _ in leaves], matrices)
     bvh = _hierarchy(boxes).reshape(-1, 2, 4)
     ops = np.zeros((len(program), 4))
@@ -332,12 +338,22 @@ def tree_data(solid: Solid) -> TreeData:
         slot_words = slot_words.astype(np.uint32)
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
+    slots: dict = {}
+    if slot_words is not None:
+        n = next(n for n in (4, 8, 16) if n >= len(leaves))
+        order = by_kind[:, 0].astype(int)
+        slots = {"slots": tuple(sorted(codes)) + (-1,) * (n - len(leaves)),
+                 "slot_leaf": np.r_[order, [-1] * (n - len(leaves))].astype("f4"),
+                 "slot_rows": np.zeros((n, 4, 4), "f4"),
+                 "slot_sign": np.r_[signs[order], [0] * (n - len(leaves))].astype("f4")}
+        slots["slot_rows"][:len(leaves), :3] = leaf_rows[order, :3]
+        slots["slot_rows"][:len(leaves), 3] = leaf_rows[order, 6]
     return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
                     len(parts[0]), len(parts[0]) + len(parts[1]),
                     len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
                     sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
                     tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes,
-                    table, slot_words, hull_points(leaves))
+                    table, slot_words, hull_points(leaves), **slots)
 
 
 class CsgPass(GLResource):
@@ -386,7 +402,8 @@ class CsgPass(GLResource):
     def program(self, key, leaves: int, kinds: int = 63, slots: tuple = ()):
         """The program of a variant for a tree of ``leaves`` whose leaf kinds are the bits
         of ``kinds``: one per size class (32, 64, 256 or 1,024 leaves: the words of leaf bits
-        it keeps) and set of kinds, never per tree."""
+        it keeps) and set of kinds -- and for a tree cast in one step, per ``slots`` (its
+        leaves' kinds in kind order, :class:`TreeData`), never per tree."""
         self._check()
         _, words, block = _size_class(leaves)
         found = self._programs.get((key, words, kinds, slots))
@@ -452,7 +469,7 @@ class CsgPass(GLResource):
                 continue
             data, texture = self.data(model.solid)
             prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves,
-                                data.kinds, slots_for(data))
+                                data.kinds, data.slots)
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
@@ -472,21 +489,11 @@ class CsgPass(GLResource):
             put(prog, "u_csg_program", data.program)
             put(prog, "u_csg_records", data.records)
             put(prog, "u_csg_kinds", data.by_kind)
-            slots = slots_for(data)
             put(prog, "u_csg_table", data.table)
-            if slots:
-                order = np.full(len(slots), -1.0, "f4")
-                order[:data.leaves] = data.texels[data.by_kind:data.by_kind + data.leaves, 0]
-                put(prog, "u_csg_slot_leaf", order)
-                rows = np.zeros((len(slots), 4, 4), "f4")
-                leaf = order[:data.leaves].astype(int)
-                texels = data.texels[:8 * data.leaves].reshape(-1, 8, 4)
-                rows[:data.leaves, :3] = texels[leaf, :3]
-                rows[:data.leaves, 3] = texels[leaf, 6]
-                put(prog, "u_csg_slot", rows)
-                sign = np.zeros(len(slots), "f4")
-                sign[:data.leaves] = texels[leaf, 7, 0]
-                put(prog, "u_csg_slot_sign", sign)
+            if data.slots:
+                put(prog, "u_csg_slot_leaf", data.slot_leaf)
+                put(prog, "u_csg_slot", data.slot_rows)
+                put(prog, "u_csg_slot_sign", data.slot_sign)
                 put(prog, "u_csg_slot_table", data.slot_words)
             put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
@@ -532,16 +539,6 @@ class CsgPass(GLResource):
             for vao in self._fan[1].values():
                 vao.release()
             self._fan = None
-
-
-def slots_for(data: TreeData) -> tuple:
-    """The leaf kinds of the small-tree program's slots (4, 8 or 16 of them, in kind order,
-    -1 an empty slot) for a tree with a truth table; () for a larger tree (the walk)."""
-    if data.table < 0:
-        return ()
-    n = next(n for n in (4, 8, 16) if n >= data.leaves)
-    kinds = [k for k in range(6) for _ in range(data.kind_start[k + 1] - data.kind_start[k])]
-    return tuple(kinds + [-1] * (n - len(kinds)))
 
 
 def may_start_inside(data: TreeData, inverse_view_proj: np.ndarray) -> bool:

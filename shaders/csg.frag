@@ -15,6 +15,11 @@ uniform vec2 u_viewport_size;
 uniform int u_face_id_base;
 uniform vec2 u_depth_range;
 
+#ifdef CSG_SLOTS
+noperspective in vec3 v_ray_origin;
+noperspective in vec3 v_ray_span;
+#endif
+
 layout(location = 0) out vec4 frag_color;
 #ifdef GLSHADE_AUX_OUTPUTS
 layout(location = 1) out vec4 frag_normal;
@@ -54,10 +59,15 @@ vec3 encode_srgb(vec3 c) {
 }
 
 void main() {
+#ifdef CSG_SLOTS
+    // (near plane to far plane, interpolated: csg.vert)
+    vec3 ro = v_ray_origin, rd = v_ray_span;
+#else
     vec2 ndc = (gl_FragCoord.xy - u_viewport_origin) / u_viewport_size * 2.0 - 1.0;
     vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
     vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
     vec3 ro = a.xyz / a.w, rd = normalize(b.xyz / b.w - ro);
+#endif
     float t;
     int leaf = csg_first_hit(ro, rd, t);
     if (leaf < 0) discard;

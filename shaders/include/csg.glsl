@@ -204,18 +204,17 @@ vec4 torus_bounds(vec4 q, vec3 o, vec3 d) {
 
 // leaf k's boundaries along ro + t rd (up to four; the rest INF); `kind` its kind (a
 // constant where the caller knows it, so that only that kind's code is compiled in)
-vec4 leaf_bounds_rows(int kind, vec4 m0, vec4 m1, vec4 m2, vec4 q, vec3 ro, vec3 rd);
+vec4 leaf_bounds_od(int kind, vec4 q, vec3 o, vec3 d);
 vec4 leaf_bounds_as(int kind, int k, vec3 ro, vec3 rd) {
-    return leaf_bounds_rows(kind, csg_texel(8 * k), csg_texel(8 * k + 1), csg_texel(8 * k + 2),
-                            leaf_param(k), ro, rd);
+    vec4 m0 = csg_texel(8 * k), m1 = csg_texel(8 * k + 1), m2 = csg_texel(8 * k + 2);
+    vec4 ro1 = vec4(ro, 1.0);
+    return leaf_bounds_od(kind, leaf_param(k), vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1)),
+                          vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd)));
 }
 
-// the same for a leaf given by its world -> leaf rows ``m0..m2`` and sizes ``q``
-vec4 leaf_bounds_rows(int kind, vec4 m0, vec4 m1, vec4 m2, vec4 q, vec3 ro, vec3 rd) {
+// the same along o + t d in the leaf's own frame (``q`` its sizes)
+vec4 leaf_bounds_od(int kind, vec4 q, vec3 o, vec3 d) {
     vec4 out_t = vec4(INF);
-    vec4 ro1 = vec4(ro, 1.0);
-    vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
-    vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
     float t0, t1;
     if (IS(kind, 0)) {
         if (quadratic(dot(d, d), 2.0 * dot(o, d), dot(o, o) - q.x * q.x, t0, t1)) {
@@ -447,24 +446,23 @@ bool tree_inside(int ops) {
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
 // indices the compiler knows: plain loads), its leaf's number and sign by groups of four
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
+noperspective in vec3 v_slot_origin[CSG_SLOTS];  // each slot's ray (csg.vert)
+noperspective in vec3 v_slot_span[CSG_SLOTS];
 int csg_hit_slot, csg_hit_kind;        // the slot of csg_first_hit's surface, its kind
 uniform vec4 u_csg_slot_leaf[CSG_SLOTS / 4];
 uniform vec4 u_csg_slot_sign[CSG_SLOTS / 4];   // +1: counts positively in the tree
 int slot_leaf(int s) { return int(u_csg_slot_leaf[s >> 2][s & 3]); }
 
-// slot s's runs [x, y) and [z, w) along the whole line ro + t rd (empty: INF, INF)
-vec4 slot_runs_as(int kind, int s, vec3 ro, vec3 rd) {
-    vec4 m0 = u_csg_slot[4 * s], m1 = u_csg_slot[4 * s + 1], m2 = u_csg_slot[4 * s + 2];
+// slot s's runs [x, y) and [z, w) along the pixel's whole line (empty: INF, INF)
+vec4 slot_runs_as(int kind, int s) {
     vec4 q = u_csg_slot[4 * s + 3];
+    vec3 o = v_slot_origin[s], d = v_slot_span[s];
     if (IS(kind, 5)) {                 // a half-space: before or after its crossing
-        vec4 ro1 = vec4(ro, 1.0);
-        vec3 o = vec3(dot(m0, ro1), dot(m1, ro1), dot(m2, ro1));
-        vec3 d = vec3(dot(m0.xyz, rd), dot(m1.xyz, rd), dot(m2.xyz, rd));
         float nd = dot(q.xyz, d), t = (q.w - dot(q.xyz, o)) / nd;
         return nd > 0.0 ? vec4(-INF, t, INF, INF) : nd < 0.0 ? vec4(t, INF, INF, INF)
              : dot(q.xyz, o) <= q.w ? vec4(-INF, INF, INF, INF) : vec4(INF);
     }
-    return leaf_bounds_rows(kind, m0, m1, m2, q, ro, rd);  // (a torus: its two runs)
+    return leaf_bounds_od(kind, q, o, d);  // (a torus: its two runs)
 }
 
 // the truth table in slot order, 32 bits a word
@@ -521,7 +519,7 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
 
 // slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
 #define SLOT(s, KIND, a, b, cc, dd) { \
-    vec4 r_ = KIND >= 0 ? slot_runs_as(KIND, s, ro, rd) : vec4(INF); \
+    vec4 r_ = KIND >= 0 ? slot_runs_as(KIND, s) : vec4(INF); \
     a = r_.x; b = r_.y; cc = r_.z; dd = r_.w; }
 #define GROUP(g, K0, K1, K2, K3, A, B, C, D) \
     vec4 A = vec4(INF), B = vec4(INF), C = vec4(INF), D = vec4(INF); \
@@ -533,7 +531,8 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
     SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z) \
     SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w)
 
-// the first surface along ro + t rd, t >= 0: (t, leaf), or leaf -1
+// the first surface along the pixel's ray (csg.vert's: ``ro`` + t ``rd``, the near plane to
+// the far one), t >= 0: (t, leaf), or leaf -1
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     GROUP(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
 #if CSG_SLOTS > 4

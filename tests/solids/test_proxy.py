@@ -106,9 +106,6 @@ def test_the_screen_polygon_holds_every_pixel_the_reference_hits(seed, view):
     view_proj = fitted.projection_matrix(size[0] / size[1]) @ fitted.view_matrix()
     leaves, _, _ = _flatten(solid)
     corners = screen_polygon(view_proj, solid.bounds, hull_points(leaves), size)
-    if corners is None:  # (a close view: the box is drawn, nothing to check here)
-        assert view == "from below, near"
-        return
     covered = in_polygon(pixel_ndc(size)[ids >= 0], corners)
     assert covered.all(), f"{(~covered).sum()} hit pixels outside the polygon"
 
@@ -130,9 +127,20 @@ def test_the_polygon_is_the_smaller_of_box_and_hull():
     assert area(box_only) > 1.2 * area(poly)
 
 
-def test_no_polygon_with_a_point_behind_the_eye():
-    camera = Camera.look_at((0, 0, 0.5), (0, 0, -1), fov_y=60)  # inside the ball's box
-    view_proj = camera.projection_matrix(1.0) @ camera.view_matrix()
+def test_behind_the_eye_and_inside():
+    """A solid behind the camera has no polygon; with the camera inside it, its box cut by
+    the near plane fills the screen; half in view, the polygon stops at the screen's edge."""
     ball = Sphere(1.0)
     leaves, _, _ = _flatten(ball)
-    assert screen_polygon(view_proj, ball.bounds, hull_points(leaves), (64, 64)) is None
+    hull = hull_points(leaves)
+    behind = Camera.look_at((0, 0, 3), (0, 0, 6), fov_y=60)
+    view_proj = behind.projection_matrix(1.0) @ behind.view_matrix()
+    assert len(screen_polygon(view_proj, ball.bounds, hull, (64, 64))) == 0
+    inside = Camera.look_at((0, 0, 0.5), (0, 0, -1), fov_y=60, near=0.01)
+    view_proj = inside.projection_matrix(1.0) @ inside.view_matrix()
+    corners = screen_polygon(view_proj, ball.bounds, hull, (64, 64))
+    assert in_polygon(pixel_ndc((64, 64)).reshape(-1, 2), corners).all()
+    aside = Camera.look_at((0, 0, 4), (1.2, 0, 0), fov_y=40)
+    view_proj = aside.projection_matrix(1.0) @ aside.view_matrix()
+    corners = screen_polygon(view_proj, ball.bounds, hull, (64, 64))
+    assert np.abs(corners).max() <= 1 + 4 / 64 + 1e-9 and corners[:, 0].min() < -0.99

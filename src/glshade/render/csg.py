@@ -33,16 +33,18 @@ leaves of); the first boundary where its answer changes is the surface. Its cost
 with the boundaries a ray crosses before its surface; one program per size class (32, 64,
 256, 1,024 leaves) and set of kinds.
 
-**Only pixels that may show the solid run the cast.** A solid is drawn as a screen polygon
-that holds it (solids/proxy.py: the 16-sided k-DOP of the projected hull of its positive
-leaves, or of its box, the smaller) where the solid lies in front of the eye, else as the
-back faces of its box. The fragment program writes the surface's depth to gl_FragDepth, so
-solids and meshes share one z-buffer.
+**Only pixels that may show the solid run the cast, each once.** A solid is drawn as a
+screen polygon that holds it (solids/proxy.py: the 16-sided k-DOP of the projected hull of
+its positive leaves, or of its box cut by the near plane, the smaller, cut to the screen),
+so the camera may be inside it or not. For a small tree the vertex stage also gives each
+pixel its ray in every slot's own frame: affine in the pixel's NDC, so interpolated exactly
+(csg.vert), where the fragment stage would spend a matrix product a slot. The fragment
+program writes the surface's depth to gl_FragDepth, so solids and meshes share one
+z-buffer.
 
 Measured on llvmpipe (the 7-leaf tree of benchmarks/csg_bench.py at 512x512, one thread,
-CPU time): 9.7-10.2 ms a frame against 4.8-5.1 ms for its 5,218-triangle manifold3d mesh
-(the walk this replaced: 24 ms); of it, the leaves' arithmetic ~4, the candidates ~1.2,
-shading the hit ~3.2 (lighting 1.4 of that, the same function as the mesh's).
+CPU time): 7.8 ms a frame against 4.9 ms for its 5,218-triangle manifold3d mesh (the walk
+this replaced: 24 ms; without the interpolated rays 9.8, drawn as its box 11.0).
 
 Shading: the lighting function of the meshes with the exact normal at every pixel.
 Gouraud and Phong both light per pixel (a solid has no vertices to hold an intensity);
@@ -65,13 +67,13 @@ from ..errors import SceneError
 from ..solids import leaves as L  # (the leaves: L.Box ...)
 from ..solids.proxy import DIRECTIONS, hull_points, screen_polygon
 from ..solids.tree import Difference, Intersection, Solid, Transformed, Union, _corners
-from ..geometry.transforms import box_corners, gl_bytes
+from ..geometry.transforms import gl_bytes
 from ..modes import ShadingMode
 from .base import GLResource
 from .programs import MaterialUniforms, ProgramKey, UniformWriter
 from .state import DrawState
 
-__all__ = ["CsgPass", "TreeData", "tree_data", "box_matrix", "may_start_inside", "MAX_LEAVES",
+__all__ = ["CsgPass", "TreeData", "tree_data", "may_start_inside", "MAX_LEAVES",
            "leaf_words", "truth_table"]
 
 #: leaves a solid may have on the GPU (the program keeps one bit per leaf in 32 words)
@@ -357,10 +359,10 @@ def tree_data(solid: Solid) -> TreeData:
 
 
 class CsgPass(GLResource):
-    """The program (one per shading variant, whatever the tree), each solid's data texture,
-    the unit box and the drawing of solids, for one Renderer: a GL owner of the renderer's
-    context, released with it. Shares the renderer's uniform writer and material cache
-    (public collaborators, handed in)."""
+    """The programs (per shading variant and tree class, :meth:`program`), each solid's data
+    texture, the screen polygon's buffer and the drawing of solids, for one Renderer: a GL
+    owner of the renderer's context, released with it. Shares the renderer's uniform writer
+    and material cache (public collaborators, handed in)."""
 
     #: the texture unit the tree data is bound to
     UNIT = 7
@@ -370,7 +372,6 @@ class CsgPass(GLResource):
         super().__init__(context)
         self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
         self._programs: dict = {}
-        self._box: Any = None
         self._fan: Any = None  # (buffer of the screen polygon's corners, vertex arrays)
         # per solid (solids are values: a new tree is a new object): its data and texture,
         # dropped (and the texture released) once the solid is gone
@@ -426,27 +427,13 @@ class CsgPass(GLResource):
             self._programs[(key, words, kinds, slots)] = found
         return found
 
-    def vertex_array(self, program):
-        ctx = self.context.ctx
-        if self._box is None:
-            corners = box_corners(np.array([[0.0] * 3, [1.0] * 3]))
-            faces = np.array([[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6],
-                              [0, 2, 6, 4], [1, 5, 7, 3]])
-            tri = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
-            self._box = (self._keep(ctx.buffer(corners.astype("f4").tobytes())),
-                         self._keep(ctx.buffer(tri.astype("u4").tobytes())), {})
-        vbo, ibo, vaos = self._box
-        vao = vaos.get(id(program))
-        if vao is None:
-            vao = vaos[id(program)] = ctx.vertex_array(program, [(vbo, "3f", "in_position")],
-                                                       ibo, 4)
-        return vao
-
     def fan(self, program, corners: np.ndarray):
-        """The vertex array of a screen polygon (K, 2) NDC, drawn as a fan at depth 0."""
+        """The vertex array of a screen polygon (M, 2) NDC (M <= DIRECTIONS + 4), drawn as
+        a fan."""
         ctx = self.context.ctx
         if self._fan is None:
-            self._fan = (self._keep(ctx.buffer(reserve=12 * DIRECTIONS, dynamic=True)), {})
+            self._fan = (self._keep(ctx.buffer(reserve=12 * (DIRECTIONS + 8), dynamic=True)),
+                         {})
         vbo, vaos = self._fan
         vbo.write(np.c_[corners, np.zeros(len(corners))].astype("f4").tobytes())
         vao = vaos.get(id(program))
@@ -498,10 +485,6 @@ class CsgPass(GLResource):
             put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
-            polygon = screen_polygon(view_proj, bounds, data.hull,
-                                     (int(viewport[2]), int(viewport[3])))
-            put(prog, "u_view_proj", gl_bytes(np.eye(4) if polygon is not None
-                                              else view_proj @ box_matrix(bounds)))
             put(prog, "u_solid_view_proj", gl_bytes(view_proj))
             put(prog, "u_inverse_view_proj", gl_bytes(inverse))
             put(prog, "u_view", gl_bytes(view))
@@ -509,21 +492,18 @@ class CsgPass(GLResource):
             put(prog, "u_viewport_origin", (float(viewport[0]), float(viewport[1])))
             put(prog, "u_viewport_size", (float(viewport[2]), float(viewport[3])))
             put(prog, "u_face_id_base", n_polygons)
-            if polygon is not None:
-                # the screen polygon that holds the solid (solids/proxy.py): fewer pixels
+            # the screen polygon that holds the solid (solids/proxy.py): only its pixels run
+            # the cast; one layer, so each pixel once, the camera inside the solid or out
+            polygon = screen_polygon(view_proj, bounds, data.hull,
+                                     (int(viewport[2]), int(viewport[3])))
+            if len(polygon):
                 ctx.disable(moderngl.CULL_FACE)
                 self.fan(prog, polygon).render(moderngl.TRIANGLE_FAN)
                 ctx.enable(moderngl.CULL_FACE)
-            else:
-                ctx.enable(moderngl.CULL_FACE)
-                ctx.front_face = "cw" if state.flip_rows else "ccw"
-                ctx.cull_face = "front"  # the box's back faces: inside it or out, every pixel
-                self.vertex_array(prog).render(moderngl.TRIANGLES)
-                ctx.cull_face = "back"
             n_polygons += data.leaves
 
     def _release_extra(self) -> None:
-        """The programs, textures and vertex arrays (the box's buffers are in
+        """The programs, textures and vertex arrays (the polygon's buffer is in
         ``_objects``)."""
         for p in self._programs.values():
             p.release()
@@ -531,10 +511,6 @@ class CsgPass(GLResource):
         for _, _, tex in self._data.values():
             tex.release()
         self._data.clear()
-        if self._box is not None:
-            for vao in self._box[2].values():
-                vao.release()
-            self._box = None
         if self._fan is not None:
             for vao in self._fan[1].values():
                 vao.release()
@@ -550,13 +526,3 @@ def may_start_inside(data: TreeData, inverse_view_proj: np.ndarray) -> bool:
     near = world[:, :3] / world[:, 3:]
     lo, hi = near.min(0), near.max(0)
     return bool(((data.boxes[:, 0] <= hi) & (data.boxes[:, 1] >= lo)).all(1).any())
-
-
-def box_matrix(bounds: np.ndarray) -> np.ndarray:
-    """The matrix taking the unit cube onto ``bounds`` (slightly enlarged)."""
-    lo, hi = bounds
-    size = np.maximum(hi - lo, 1e-9 * max(float(np.abs(bounds).max()), 1.0))
-    pad = 1e-4 * size + 1e-9
-    m = np.diag([*(size + 2 * pad), 1.0])
-    m[:3, 3] = lo - pad
-    return m

@@ -90,18 +90,29 @@ def hull_points(leaves: list) -> np.ndarray | None:
     return np.concatenate(parts) if parts else None
 
 
-def _polygon(points: np.ndarray, view_proj: np.ndarray, directions: np.ndarray,
-             grow: float) -> np.ndarray | None:
-    """The k-DOP (K, 2) of the points' projections (NDC), grown by ``grow``; None where a
-    point is not in front of the eye (the projection is not the set's) or the polygon
-    reaches past 4 (a close-up: the box is drawn instead)."""
-    clip = points @ view_proj[:, :3].T + view_proj[:, 3]
-    w = clip[:, 3]
-    if not (w > 1e-6 * max(float(np.abs(w).max()), 1e-300)).all():
+def _in_front(clip: np.ndarray, edges: np.ndarray | None) -> np.ndarray | None:
+    """Clip coordinates (N, 4) of a convex set's points, cut to the part in front of the
+    near plane (z >= -w: where the rays start, so nothing before it shows): the points in
+    front and, given the set's ``edges`` (E, 2) point indices, where edges cross the plane;
+    None where a point is behind it and no edges are given."""
+    ahead = clip[:, 2] + clip[:, 3]
+    front = ahead >= 0
+    if front.all():
+        return clip
+    if edges is None:
         return None
-    s = (clip[:, :2] / w[:, None] @ directions.T).max(0) + grow  # (K,) supports
-    if not (np.abs(s) <= 4.0).all():
-        return None
+    i, j = edges[:, 0], edges[:, 1]
+    cross = front[i] != front[j]
+    f = ahead[i[cross]] / (ahead[i[cross]] - ahead[j[cross]])
+    return np.concatenate([clip[front], clip[i[cross]]
+                           + f[:, None] * (clip[j[cross]] - clip[i[cross]])])
+
+
+def _polygon(clip: np.ndarray, directions: np.ndarray, grow: float) -> np.ndarray:
+    """The k-DOP corners (K, 2) of points' projections (clip coordinates (N, 4), all at or
+    beyond the near plane, so w > 0), grown by ``grow``."""
+    ndc = clip[:, :2] / clip[:, 3:]
+    s = (ndc @ directions.T).max(0) + grow  # (K,) supports
     # every line touches the points' hull (at the point giving its support), so the
     # corners are the crossings of neighbouring lines
     nxt = np.roll(np.arange(len(s)), -1)
@@ -109,25 +120,61 @@ def _polygon(points: np.ndarray, view_proj: np.ndarray, directions: np.ndarray,
     return np.linalg.solve(a, np.stack([s, s[nxt]], 1)[..., None])[..., 0]
 
 
+def _clip_to(corners: np.ndarray, reach: float) -> np.ndarray:
+    """A convex counter-clockwise polygon (K, 2) cut to the square |x|, |y| <= reach
+    (Sutherland-Hodgman: four cuts, each over every edge at once); (0, 2) if none is
+    left."""
+    for axis, sign in ((0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)):
+        if len(corners) == 0:
+            break
+        inside = sign * corners[:, axis] <= reach
+        if inside.all():
+            continue
+        nxt = np.roll(corners, -1, 0)
+        nxt_inside = np.roll(inside, -1)
+        with np.errstate(divide="ignore", invalid="ignore"):  # (parallel edges: unused)
+            f = (reach - sign * corners[:, axis]) / (sign * (nxt[:, axis] - corners[:, axis]))
+            crossing = corners + f[:, None] * (nxt - corners)
+        # each edge a -> b gives a where a is inside, then the crossing if it changes side
+        keep = np.stack([inside, inside != nxt_inside], 1)  # (K, 2)
+        corners = np.stack([corners, crossing], 1)[keep]
+    return corners
+
+
 def _area(corners: np.ndarray) -> float:
+    if len(corners) < 3:
+        return 0.0
     x, y = corners[:, 0], corners[:, 1]
     return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
+_BOX_EDGES = np.array([[i, i ^ b] for i in range(8) for b in (1, 2, 4) if i < i ^ b])
+_SCREEN = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
+
+
 def screen_polygon(view_proj: np.ndarray, box: np.ndarray, points: np.ndarray | None,
-                   viewport: tuple[int, int]) -> np.ndarray | None:
-    """The proxy's corners (K, 2) in NDC, counter-clockwise: the smaller of the k-DOPs of
-    the solid's box and of its hull points; None where neither serves (a point behind the
-    eye, or a close-up: draw the box). ``view_proj (4, 4)`` world -> clip, ``box (2, 3)``
-    the solid's bounds, ``points (N, 3)`` from :func:`hull_points` or None, ``viewport``
-    (width, height) in pixels: the polygon is grown by two pixels against rounding."""
+                   viewport: tuple[int, int]) -> np.ndarray:
+    """The proxy's corners (M, 2) in NDC, counter-clockwise, within the screen (grown by
+    its margin): the smaller of the k-DOPs of the solid's box (cut by the near plane) and
+    of its hull points (where all are in front of it); (0, 2) where the solid is off
+    screen. ``view_proj (4, 4)`` world -> clip, ``box (2, 3)`` the solid's bounds,
+    ``points (N, 3)`` from :func:`hull_points` or None, ``viewport`` (width, height) in
+    pixels: the polygon is grown by two pixels against rounding."""
     angles = np.arange(DIRECTIONS) * (2 * np.pi / DIRECTIONS)
     d = np.c_[np.cos(angles), np.sin(angles)]  # (K, 2)
     lo, hi = box
     corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                        for z in (lo[2], hi[2])], float)
+                        for z in (lo[2], hi[2])], float)  # (index bits: x 4, y 2, z 1)
     grow = 4.0 / min(viewport)
-    found = [p for p in (_polygon(corners, view_proj, d, grow),
-                         None if points is None else _polygon(points, view_proj, d, grow))
-             if p is not None]
-    return min(found, key=_area) if found else None
+    found = []
+    for pts, edges in ((corners, _BOX_EDGES), (points, None)):
+        if pts is None:
+            continue
+        clip = _in_front(pts @ view_proj[:, :3].T + view_proj[:, 3], edges)
+        if clip is None:
+            continue
+        if len(clip) == 0:
+            return np.zeros((0, 2))  # wholly behind the near plane
+        found.append(_clip_to(_polygon(clip, d, grow), 1.0 + grow))
+    best = min(found, key=_area)
+    return best if len(best) >= 3 and _area(best) > 0 else np.zeros((0, 2))

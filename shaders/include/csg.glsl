@@ -436,15 +436,16 @@ bool tree_inside(int ops) {
 // so the tree's answer can only rise at its entries (even) or its exits (odd) -- and only
 // fall at the others: the surface is the nearest of those boundaries (the others where the
 // ray starts inside the solid) past the near plane after which the tree's answer differs
-// from the start's, one candidate a leaf (two for a torus), each
-// tested with a lookup in the table. The leaves' states just after a candidate come from
-// comparing it with every run at once (four leaves to a vector), ties by leaf order as in
-// the walk. Each slot's code is unrolled here, its kind a constant (CSG_KIND_s), so its
+// from the start's, one candidate a leaf (two for a torus), each tested with a lookup in
+// the table. The leaves' states just after a candidate come from comparing it with every
+// run at once (four leaves to a vector), ties by leaf order as in the walk. The rays come
+// interpolated from the vertex stage, in each slot's frame (csg.vert). Each slot's code is unrolled here, its kind a constant (CSG_KIND_s), so its
 // runs stay in registers and no code of another kind runs: no loops at all (on llvmpipe a
 // loop costs more than the straight code it would skip).
 
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
-// indices the compiler knows: plain loads), its leaf's number and sign by groups of four
+// indices the compiler knows: plain loads; the rows for the hit's normal), its leaf's
+// number and sign by groups of four
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
 noperspective in vec3 v_slot_origin[CSG_SLOTS];  // each slot's ray (csg.vert)
 noperspective in vec3 v_slot_span[CSG_SLOTS];
@@ -467,7 +468,9 @@ vec4 slot_runs_as(int kind, int s) {
 
 // the truth table in slot order, 32 bits a word
 uniform uint u_csg_slot_table[CSG_SLOTS == 16 ? 512 : CSG_SLOTS == 8 ? 8 : 1];
-bool table_inside(uint bits) { return ((u_csg_slot_table[bits >> 5u] >> (bits & 31u)) & 1u) != 0u; }
+bool table_inside(uint bits) {
+    return ((u_csg_slot_table[bits >> 5u] >> (bits & 31u)) & 1u) != 0u;
+}
 
 #define HAS_TORUS ((CSG_KINDS & 16) != 0)
 

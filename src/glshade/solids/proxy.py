@@ -17,7 +17,9 @@ Two facts make the polygon conservative and cheap:
   its projected points, which their k-DOP contains (the polygon of K half-planes
   ``d_k . x <= max_p d_k . p``; every one touches the hull, so its corners are the
   crossings of neighbouring lines). The smaller of the hull's and the box's is drawn
-  (:func:`screen_polygon`).
+  (:func:`screen_polygon`), cut to the screen; the box is first cut by the near plane
+  (where the rays start: nothing before it shows), so a camera inside the solid still
+  gets a polygon -- the whole screen.
 
 Why 16 sides: a tiled rasteriser shades the pixel blocks along a triangle's inner edges
 once for each triangle, so a finer polygon's thinner fan costs more than its few pixels

@@ -534,31 +534,30 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
     SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z) \
     SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w)
 
+// M(group, its four slots' kinds, its runs' four vectors) for each group of four slots
+#define GROUP_0(M) M(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
+#define GROUP_1(M) M(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
+#define GROUPS_23(M) M(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2) \
+    M(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
+#if CSG_SLOTS == 4
+#define EACH_GROUP(M) GROUP_0(M)
+#elif CSG_SLOTS == 8
+#define EACH_GROUP(M) GROUP_0(M) GROUP_1(M)
+#else
+#define EACH_GROUP(M) GROUP_0(M) GROUP_1(M) GROUPS_23(M)
+#endif
+
 // the first surface along the pixel's ray (csg.vert's: ``ro`` + t ``rd``, the near plane to
 // the far one), t >= 0: (t, leaf), or leaf -1
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
-    GROUP(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
-#if CSG_SLOTS > 4
-    GROUP(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
-#endif
-#if CSG_SLOTS > 8
-    GROUP(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2)
-    GROUP(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
-#endif
+    EACH_GROUP(GROUP)
     // the solid can hold the ray's start only where a leaf's box meets the near plane
     bool start = false;
     if (u_csg_start > 0)
         start = table_inside(GROUP_SUM(0.0, 0.0, BEFORE));
     float t_best = INF;
     int best = -1;
-    GROUP_CANDIDATES(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
-#if CSG_SLOTS > 4
-    GROUP_CANDIDATES(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
-#endif
-#if CSG_SLOTS > 8
-    GROUP_CANDIDATES(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2)
-    GROUP_CANDIDATES(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
-#endif
+    EACH_GROUP(GROUP_CANDIDATES)
     t_hit = t_best;
     return best;
 }

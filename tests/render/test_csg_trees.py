@@ -68,6 +68,23 @@ def test_random_trees_match_the_numpy_reference(leaves, make_renderer):
     assert len(np.unique(ids[ids >= 0])) >= min(leaves, 4)
 
 
+def test_few_varyings_make_a_small_tree_walk(make_renderer):
+    """Where the driver interpolates too few floats for 16 slots (GL 3.3 promises 60), a
+    tree of 9-14 leaves walks instead -- and still matches the reference."""
+    size = (96, 72)
+    scene = Scene()
+    solid = random_tree(12, seed=12)
+    scene.add(solid)
+    lo, hi = solid.bounds
+    centre, reach = (lo + hi) / 2, np.linalg.norm(hi - lo) / 2
+    camera = Camera.look_at(centre + 2.6 * reach * np.array([0.55, 0.45, 0.7]), centre)
+    r = make_renderer(*size)
+    r._csg.max_slots = 8
+    frame = r.render_frame(scene, camera, "phong")
+    assert all(not key[3] for key in r._csg._programs)  # (no slots: the walk)
+    compare(frame, scene, camera, size, mismatch=0.002)
+
+
 def test_a_thousand_long_union_is_rebalanced_and_exact(make_renderer):
     """1,000 balls joined one by one: 14 deep at most, rebalanced; on the GPU every pixel's
     depth is the nearest ray-sphere entry, computed here in closed form."""

@@ -376,6 +376,11 @@ class CsgPass(GLResource):
         # per solid (solids are values: a new tree is a new object): its data and texture,
         # dropped (and the texture released) once the solid is gone
         self._data: dict[int, tuple] = {}
+        # the most slots the one-step cast may have here: each takes six interpolated
+        # floats (csg.vert), and GL 3.3 promises only 60 (desktop drivers give 124-128);
+        # a tree over it walks instead
+        limit = context.ctx.info.get("GL_MAX_FRAGMENT_INPUT_COMPONENTS") or 60
+        self.max_slots = max((n for n in (16, 8, 4) if 6 * n + 6 <= limit), default=0)
 
     def data(self, solid: Solid) -> tuple[TreeData, Any]:
         """(tree data, its texture or uniform buffer) of a solid, made once while it
@@ -455,8 +460,9 @@ class CsgPass(GLResource):
             if not model.visible:
                 continue
             data, texture = self.data(model.solid)
+            slots = data.slots if len(data.slots) <= self.max_slots else ()
             prog = self.program(ProgramKey.of(state.variant, two_sided=False), data.leaves,
-                                data.kinds, data.slots)
+                                data.kinds, slots)
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             for name, value in self.materials(model.material, state.lights,
@@ -477,7 +483,7 @@ class CsgPass(GLResource):
             put(prog, "u_csg_records", data.records)
             put(prog, "u_csg_kinds", data.by_kind)
             put(prog, "u_csg_table", data.table)
-            if data.slots:
+            if slots:
                 put(prog, "u_csg_slot_leaf", data.slot_leaf)
                 put(prog, "u_csg_slot", data.slot_rows)
                 put(prog, "u_csg_slot_sign", data.slot_sign)

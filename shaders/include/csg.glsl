@@ -6,8 +6,9 @@
 //
 // A tree of at most 14 leaves (CSG_SLOTS) is cast in one step: see the CSG_SLOTS section.
 // A larger one walks. Along the pixel's ray the state of every leaf (inside or not) is
-// kept in a bit set. The walk: find the next leaf boundary after the current one (the hierarchy skips leaves whose
-// box the ray misses or meets only beyond the best so far); flip that leaf's bit; run the
+// kept in a bit set. The walk: find the next leaf boundary after the current one (the
+// hierarchy skips leaves whose box the ray misses or meets only beyond the best so far);
+// flip that leaf's bit; run the
 // tree on the bits (a small tree: one lookup in its truth table; else its program, skipping
 // subtrees the ray is in none of the leaves of); the first boundary where the tree's answer
 // changes is the surface. One pass over the leaves yields the next four boundaries in order.
@@ -439,9 +440,10 @@ bool tree_inside(int ops) {
 // from the start's, one candidate a leaf (two for a torus), each tested with a lookup in
 // the table. The leaves' states just after a candidate come from comparing it with every
 // run at once (four leaves to a vector), ties by leaf order as in the walk. The rays come
-// interpolated from the vertex stage, in each slot's frame (csg.vert). Each slot's code is unrolled here, its kind a constant (CSG_KIND_s), so its
-// runs stay in registers and no code of another kind runs: no loops at all (on llvmpipe a
-// loop costs more than the straight code it would skip).
+// interpolated from the vertex stage, in each slot's frame (csg.vert). Each slot's code is
+// unrolled here, its kind a constant (CSG_KIND_s), so its runs stay in registers and no
+// code of another kind runs: no loops at all (on llvmpipe a loop costs more than the
+// straight code it would skip).
 
 // slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
 // indices the compiler knows: plain loads; the rows for the hit's normal), its leaf's
@@ -511,7 +513,7 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
         table_inside(GROUP_SUM(tc_, float(c), UPTO)) != start) { \
         t_best = tc_; best = (c); csg_hit_slot = (s); csg_hit_kind = (KIND); } }
 
-// leaf c in component x of group (a, b, c, d): its one candidate (two for a torus)
+// slot c (its runs a..dd): its one candidate (two for a torus), the leaf's own number
 #define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
     if (KIND >= 0) { \
         int leaf_ = slot_leaf(c); \

@@ -5,7 +5,7 @@ Why: generated GLSL (one merge function per node) made Mesa's compile time grow 
 tree -- 17 s at 16 leaves, a crash at 900. Here a solid becomes one float texture
 (:func:`tree_data`), written once per solid and cached; the fragment program
 (shaders/include/csg.glsl) reads it: per leaf, its world -> leaf matrix, its normal matrix
-(negated under a difference's right side), its sizes, kind and sign; a bounding-volume
+(negated under a difference's right side), its sizes and kind; a bounding-volume
 hierarchy over the leaves' world boxes; a tree of at most TABLE_LEAVES (14) leaves as its
 truth table (bit ``b``: the tree's value when the leaves inside are the bits of ``b``,
 :func:`truth_table`); and the tree as a post-order program on a stack of bits with skip
@@ -235,6 +235,29 @@ def _table_texels(table: np.ndarray) -> np.ndarray:
     return chunks.reshape(-1, 4).astype(np.float64)
 
 
+def _slot_uniforms(values: np.ndarray, order: np.ndarray, codes: list, signs: np.ndarray,
+                   leaf_rows: np.ndarray) -> dict:
+    """The one-step program's uniforms (TreeData's ``slot_*`` and ``slots``) for a tree
+    whose truth table is ``values`` (2^L,), its leaves in kind order ``order`` (L,) with
+    kinds ``codes`` and signs ``signs`` (L,), ``leaf_rows`` (L, 8, 4) its leaves' texels."""
+    leaves = len(order)
+    n = next(n for n in (4, 8, 16) if n >= leaves)
+    pad = n - leaves
+    index = np.arange(len(values))  # (bit s of a slot pattern: the leaf in slot s)
+    as_leaves = sum(((index >> s) & 1) << int(k) for s, k in enumerate(order))
+    bits = np.zeros(-(-len(values) // 32) * 32, np.uint64)
+    bits[:len(values)] = values[as_leaves]
+    rows = np.zeros((n, 4, 4), "f4")
+    rows[:leaves, :3] = leaf_rows[order, :3]
+    rows[:leaves, 3] = leaf_rows[order, 6]
+    return {"slots": tuple(sorted(codes)) + (-1,) * pad,
+            "slot_leaf": np.r_[order, [-1] * pad].astype("f4"),
+            "slot_rows": rows,
+            "slot_sign": np.r_[signs[order], [0] * pad].astype("f4"),
+            "slot_words": (bits.reshape(-1, 32) << np.arange(32, dtype=np.uint64)).sum(1)
+            .astype(np.uint32)}
+
+
 def _size_class(leaves: int) -> tuple[int, int, int]:
     return next(c for c in _CLASSES if c[0] >= leaves)
 
@@ -324,38 +347,20 @@ def tree_data(solid: Solid) -> TreeData:
     by_kind = np.zeros((len(leaves), 4))
     by_kind[:, 0] = np.argsort(codes, kind="stable")
     parts = [leaf_rows.reshape(-1, 4), bvh.reshape(-1, 4), ops, records, by_kind]
-    table, slot_words = -1, None
+    table, slots = -1, {}
     if len(leaves) <= TABLE_LEAVES:
         table = sum(len(p) for p in parts)
         values = truth_table(program, len(leaves))
         parts.append(_table_texels(values))
-        # the same table with the leaves in kind order (the slots of the small-tree program),
-        # 32 bits a word
-        index = np.arange(len(values))
-        order = by_kind[:, 0].astype(int)
-        as_leaves = sum(((index >> s) & 1) << int(k) for s, k in enumerate(order))
-        bits = np.zeros(-(-len(values) // 32) * 32, np.uint64)
-        bits[:len(values)] = values[as_leaves]
-        slot_words = (bits.reshape(-1, 32) << np.arange(32, dtype=np.uint64)).sum(1)
-        slot_words = slot_words.astype(np.uint32)
+        slots = _slot_uniforms(values, by_kind[:, 0].astype(int), codes, signs, leaf_rows)
     texels = np.concatenate(parts)
     texels = np.concatenate([texels, np.zeros((-len(texels) % _ROW, 4))])
-    slots: dict = {}
-    if slot_words is not None:
-        n = next(n for n in (4, 8, 16) if n >= len(leaves))
-        order = by_kind[:, 0].astype(int)
-        slots = {"slots": tuple(sorted(codes)) + (-1,) * (n - len(leaves)),
-                 "slot_leaf": np.r_[order, [-1] * (n - len(leaves))].astype("f4"),
-                 "slot_rows": np.zeros((n, 4, 4), "f4"),
-                 "slot_sign": np.r_[signs[order], [0] * (n - len(leaves))].astype("f4")}
-        slots["slot_rows"][:len(leaves), :3] = leaf_rows[order, :3]
-        slots["slot_rows"][:len(leaves), 3] = leaf_rows[order, 6]
     return TreeData(texels.astype(np.float32), len(leaves), len(bvh), len(program),
                     len(parts[0]), len(parts[0]) + len(parts[1]),
                     len(parts[0]) + len(parts[1]) + len(parts[2]), stack,
                     sum(1 << c for c in set(codes)), sum(len(p) for p in parts[:4]),
                     tuple(int(x) for x in np.searchsorted(np.sort(codes), np.arange(7))), boxes,
-                    table, slot_words, hull_points(leaves), **slots)
+                    table, hull=hull_points(leaves), **slots)
 
 
 class CsgPass(GLResource):

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.transforms import box_corners
 from . import leaves as L
 
 __all__ = ["hull_points", "screen_polygon", "DIRECTIONS"]
@@ -57,9 +58,7 @@ def leaf_points(leaf) -> np.ndarray | None:
     profile (the hull of the rings holds the solid of revolution of the profile, which
     holds the ball)."""
     if isinstance(leaf, L.Box):
-        h = leaf.half
-        return np.array([[x, y, z] for x in (-h[0], h[0]) for y in (-h[1], h[1])
-                         for z in (-h[2], h[2])], float)
+        return box_corners([-leaf.half, leaf.half])
     if isinstance(leaf, L.Sphere):
         n = 8  # profile sides from pole to pole
         phi = np.linspace(-np.pi / 2, np.pi / 2, n + 1)
@@ -164,9 +163,7 @@ def screen_polygon(view_proj: np.ndarray, box: np.ndarray, points: np.ndarray | 
     pixels: the polygon is grown by two pixels against rounding."""
     angles = np.arange(DIRECTIONS) * (2 * np.pi / DIRECTIONS)
     d = np.c_[np.cos(angles), np.sin(angles)]  # (K, 2)
-    lo, hi = box
-    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
-                        for z in (lo[2], hi[2])], float)  # (index bits: x 4, y 2, z 1)
+    corners = box_corners(box)  # (index bits: x 4, y 2, z 1: _BOX_EDGES)
     grow = 4.0 / min(viewport)
     found = []
     for pts, edges in ((corners, _BOX_EDGES), (points, None)):

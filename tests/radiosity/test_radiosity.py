@@ -10,7 +10,7 @@ from glshade.geometry import primitives
 from glshade.radiosity.patches import subdivide
 from glshade.radiosity import (PatchScene, cornell_scene, gauss_seidel,
                                progressive)
-from glshade.render.hemicube import delta_form_factors
+from glshade.radiosity.formfactors import delta_form_factors
 from glshade.scene import Material, Scene
 
 from ..oracle.formfactors import coaxial_disks, parallel_rectangles, perpendicular_rectangles

@@ -68,7 +68,7 @@ def test_the_screen_polygon_cuts_no_pixel(name, make_renderer):
     """The solid is drawn as a polygon about its positive leaves (solids/proxy.py): every
     pixel the reference hits -- silhouettes too -- is drawn (up to the few a float32 ray
     misses at a grazing edge)."""
-    from glshade.render.csg import tree_data
+    from glshade.solids.encoding import tree_data
     from glshade.solids.proxy import screen_polygon
 
     solid = BORED if name == "bored block" else TREES[name]

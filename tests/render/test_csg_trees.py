@@ -8,7 +8,7 @@ import pytest
 
 from glshade import Camera, Scene
 from glshade.cpu.csg import render_solids
-from glshade.render.csg import _flatten, _program, truth_table
+from glshade.solids.encoding import flatten, postorder, truth_table
 from glshade.solids.tree import Difference, Intersection, Transformed, Union
 from glshade.solids import Box, Cone, Cylinder, Sphere, Torus
 
@@ -220,8 +220,8 @@ def test_the_truth_table_is_the_tree(seed):
     solid = random_tree([1, 3, 6, 8, 10, 12][seed], seed=100 + seed)
     n = len(solid.leaves())  # (with the balls some intersections add)
     assert n <= 14
-    _, booleans, root = _flatten(solid)
-    program, _, _ = _program(booleans, root)
+    _, booleans, root = flatten(solid)
+    program, _, _ = postorder(booleans, root)
     bits = np.arange(2 ** n)
     expected = walk_tree(solid, bits, iter(range(n)))
     assert (truth_table(program, n) == expected).all()

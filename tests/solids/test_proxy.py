@@ -7,7 +7,7 @@ import pytest
 
 from glshade import Camera, Scene
 from glshade.cpu.csg import render_solids
-from glshade.render.csg import _flatten
+from glshade.solids.encoding import flatten
 from glshade.solids import Box, Cone, Cylinder, HalfSpace, Sphere, Torus
 from glshade.solids.proxy import hull_points, leaf_points, screen_polygon
 
@@ -51,16 +51,16 @@ def test_a_leafs_points_hold_it_and_hug_it(name):
 def test_a_half_space_has_no_points():
     assert leaf_points(HalfSpace((0, 1, 0), 0.5)) is None
     solid = Sphere(1.0) - HalfSpace((0, 1, 0), 0.5)  # (subtracted: the hull is the ball's)
-    leaves, _, _ = _flatten(solid)
+    leaves, _, _ = flatten(solid)
     assert hull_points(leaves) is not None
-    leaves, _, _ = _flatten(Sphere(1.0) & HalfSpace((0, 1, 0), 0.5))
+    leaves, _, _ = flatten(Sphere(1.0) & HalfSpace((0, 1, 0), 0.5))
     assert hull_points(leaves) is None
 
 
 @pytest.mark.parametrize("seed", [3, 4, 5])
 def test_the_hull_of_the_positive_leaves_holds_a_random_tree(seed):
     solid = random_tree(9, seed)
-    leaves, _, _ = _flatten(solid)
+    leaves, _, _ = flatten(solid)
     hull = hull_points(leaves)
     pts = inside_points(solid, seed=seed)
     assert len(pts) > 500
@@ -104,7 +104,7 @@ def test_the_screen_polygon_holds_every_pixel_the_reference_hits(seed, view):
     assert (ids >= 0).sum() > 100
     fitted = camera.with_planes(scene.bounds)
     view_proj = fitted.projection_matrix(size[0] / size[1]) @ fitted.view_matrix()
-    leaves, _, _ = _flatten(solid)
+    leaves, _, _ = flatten(solid)
     corners = screen_polygon(view_proj, solid.bounds, hull_points(leaves), size)
     covered = in_polygon(pixel_ndc(size)[ids >= 0], corners)
     assert covered.all(), f"{(~covered).sum()} hit pixels outside the polygon"
@@ -117,7 +117,7 @@ def test_the_polygon_is_the_smaller_of_box_and_hull():
     view_proj = camera.with_planes(np.array([[-1.0] * 3, [1.0] * 3])).projection_matrix(1.0) \
         @ camera.view_matrix()
     ball = Sphere(1.0)
-    leaves, _, _ = _flatten(ball)
+    leaves, _, _ = flatten(ball)
     poly = screen_polygon(view_proj, ball.bounds, hull_points(leaves), (256, 256))
     box_only = screen_polygon(view_proj, ball.bounds, None, (256, 256))
     area = lambda c: 0.5 * abs(np.dot(c[:, 0], np.roll(c[:, 1], -1))  # noqa: E731
@@ -131,7 +131,7 @@ def test_behind_the_eye_and_inside():
     """A solid behind the camera has no polygon; with the camera inside it, its box cut by
     the near plane fills the screen; half in view, the polygon stops at the screen's edge."""
     ball = Sphere(1.0)
-    leaves, _, _ = _flatten(ball)
+    leaves, _, _ = flatten(ball)
     hull = hull_points(leaves)
     behind = Camera.look_at((0, 0, 3), (0, 0, 6), fov_y=60)
     view_proj = behind.projection_matrix(1.0) @ behind.view_matrix()

@@ -153,7 +153,7 @@ def test_k_then_p_plays_the_path(viewer_factory):
 
 
 def test_compare_split_view_and_other_keys(viewer_factory):
-    from glshade.viewer.labels import LABEL_HEIGHT, label_image
+    from glshade.io.images import LABEL_HEIGHT, label_image
 
     v = viewer_factory(teapot_scene(), CAM, compare=True, size=(360, 120))
     img = v.screenshot()

@@ -110,10 +110,10 @@ def gl_bytes(matrix: ArrayLike) -> bytes:
 
 
 def box_corners(bounds) -> NDArray[np.float64]:
-    """The 8 corners ``(8, 3)`` of a box given as ``(2, 3)`` minimum and maximum."""
+    """The 8 corners ``(..., 8, 3)`` of boxes given as ``(..., 2, 3)`` minimum and maximum."""
     b = np.asarray(bounds, np.float64)
     index = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)])
-    return b[index, [0, 1, 2]]
+    return b[..., index, [0, 1, 2]]
 
 
 def z_up_to_y_up(points: np.ndarray) -> np.ndarray:

@@ -11,7 +11,7 @@ from ..errors import InputError
 from .._atomic import atomic_write
 
 __all__ = ["save_image", "image_format", "IMAGE_FORMATS", "heatmap", "label", "labelled_row",
-           "colour_bar", "opaque", "font", "LABEL_HEIGHT", "BACKGROUND"]
+           "colour_bar", "opaque", "font", "label_image", "LABEL_HEIGHT", "BACKGROUND"]
 
 LABEL_HEIGHT = 22
 BACKGROUND = (24, 24, 28)
@@ -119,3 +119,15 @@ def opaque(rgb: np.ndarray) -> np.ndarray:
 def labelled_row(tiles: dict) -> np.ndarray:
     """Tiles ``{label: (H, W, 3|4) uint8}`` side by side, each under its label: RGBA."""
     return opaque(np.hstack([label(t, name) for name, t in tiles.items()]))
+
+
+def label_image(text: str, width: int) -> np.ndarray:
+    """``(LABEL_HEIGHT, width, 4) uint8``: the text centred on a dark band (opaque)."""
+    from PIL import Image, ImageDraw
+
+    band = Image.new("RGBA", (width, LABEL_HEIGHT), (*BACKGROUND, 255))
+    draw = ImageDraw.Draw(band)
+    face = font(14)
+    draw.text(((width - draw.textlength(text, font=face)) / 2, 3), text,
+              fill=(235, 235, 235, 255), font=face)
+    return np.asarray(band)

@@ -93,7 +93,7 @@ class PathTracer:
                  samples_per_pass: int = 1, context=None, backend: str = "auto",
                  lights: bool = True, camera=None, smooth: bool = False):
         from ..render.context import create_context
-        from .gpu import GpuPathTracer
+        from ..render.passes.pathtrace import GpuPathTracer
 
         from ..options import check_whole
 

@@ -60,7 +60,7 @@ def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0
     each of ``points`` points. ``lights=False``: emitting surfaces only, as radiosity
     sees the scene."""
     from ..render.context import create_context
-    from .gpu import GpuPathTracer
+    from ..render.passes.pathtrace import GpuPathTracer
 
     points, spp = check_whole("points", points, 2), check_whole("spp", spp, 2)
     ts = scene if isinstance(scene, TraceScene) else TraceScene.from_scene(scene, lights=lights)

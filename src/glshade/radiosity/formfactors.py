@@ -38,12 +38,32 @@ from ..modes import Backend
 from .contour import clip_to_plane, point_polygon_factors
 from .problem import PatchScene
 
-__all__ = ["FormFactors", "quadrature_counts", "near_pairs"]
+__all__ = ["FormFactors", "quadrature_counts", "near_pairs", "delta_form_factors"]
 
 MAX_QUADRATURE = 8
 
 
 FACTOR = 1.5
+def delta_form_factors(n: int) -> np.ndarray:
+    """The atlas of delta form factors ``(N, 3N)``, row 0 at the bottom (GL's order): the
+    top face in columns ``0..N``, the side faces as ``N x N/2`` halves stacked two by two in
+    columns ``N..2N`` and ``2N..3N``. They sum to 1 as N grows."""
+    d = 2.0 / n
+    c = -1 + (np.arange(n) + 0.5) * d
+    x, y = np.meshgrid(c, c)  # (row, column)
+    top = d * d / (np.pi * (x * x + y * y + 1) ** 2)
+    z = (np.arange(n // 2) + 0.5) * d
+    xs, zs = np.meshgrid(c, z)
+    side = zs * d * d / (np.pi * (xs * xs + zs * zs + 1) ** 2)
+    atlas = np.zeros((n, 3 * n))
+    atlas[:, :n] = top
+    for k in range(4):
+        col, row = n + (k // 2) * n, (k % 2) * (n // 2)
+        atlas[row:row + n // 2, col:col + n] = side
+    return atlas
+
+
+
 #: a quadrature point whose hemicube meets back faces over more than this share is covered
 COVERED = 0.5
 #: a receiver nearer than NEAR point spacings of a shooter's quadrature is near
@@ -141,7 +161,7 @@ class FormFactors:
                  seed: int = 0, context=None, backend: Backend | str = "auto",
                  cache_mb: float = 512):
         from ..render.context import create_context
-        from ..render.hemicube import Hemicube
+        from ..render.passes.hemicube import Hemicube
 
         self.problem = problem
         p = problem.patches

@@ -24,7 +24,8 @@ import re
 from ..errors import ContextError, OptionError
 from ..modes import Backend
 
-__all__ = ["Backend", "RenderContext", "create_context", "probe_backends", "tune_malloc"]
+__all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
+           "tune_malloc"]
 
 REQUIRE = 330
 
@@ -247,6 +248,15 @@ def _make_osmesa() -> RenderContext:
         loader.release()
         raise ContextError(f"moderngl could not use the OSMesa context: {exc}") from None
     return RenderContext(ctx, Backend.OSMESA, ctx.info.get("GL_RENDERER", ""), loader)
+
+
+def window_context() -> RenderContext:
+    """The RenderContext of the window whose GL context is current (glfw's, made by the
+    viewer): moderngl wraps it; the window keeps only this."""
+    import moderngl
+
+    ctx = moderngl.create_context(require=REQUIRE)
+    return RenderContext(ctx, Backend.WINDOW, ctx.info.get("GL_RENDERER", ""))
 
 
 _MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT), Backend.OSMESA: (lambda d: _make_osmesa(),

@@ -37,8 +37,8 @@ from .programs import (
 )
 from .shaders import ShaderLibrary
 from .state import DrawState
-from .csg import CsgPass
-from .edges import EdgePass
+from .passes.csg import CsgPass
+from .passes.edges import EdgePass
 from .diagnostics import why_blank
 from .target import OffscreenTarget
 
@@ -386,7 +386,7 @@ class Renderer:
             id_base += gpu.n_polygons
         if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
             if self._patches is None:
-                from .gpu_patches import PatchPass
+                from .passes.patches import PatchPass
 
                 self._patches = PatchPass(self.context, self.shaders, self._uniforms,
                                           self._materials)

@@ -8,8 +8,11 @@ Roth's ray casting as the numpy reference.
   :class:`Torus`, :class:`HalfSpace`.
 - :mod:`.text`: the text syntax of scene files and ``solid:TEXT`` (:func:`parse_solid`).
 
-Octrees of solids are in :mod:`glshade.octree`; the GPU's ray casting pass in
-:mod:`glshade.render.csg`, its numpy twin in :mod:`glshade.cpu.csg`.
+- :mod:`.encoding`: a tree as the arrays the GPU's ray casting pass
+  (:mod:`glshade.render.passes.csg`) reads; :mod:`.proxy`: the screen polygon it draws.
+
+Octrees of solids are in :mod:`glshade.octree`; the numpy twin of the GPU's ray casting in
+:mod:`glshade.cpu.csg`.
 
     from glshade.solids import Box, Sphere
     part = Box(2) - Sphere(1.2)

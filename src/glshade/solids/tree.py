@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
 from ..geometry.analytic import affine_matrix
+from ..geometry.transforms import box_corners
 
 __all__ = ["Solid", "Union", "Intersection", "Difference", "Transformed", "Events",
            "MAX_DEPTH", "SIZE_RANGE"]
@@ -268,12 +269,6 @@ def _convex(o, d, candidates, inside, gradient, leaf) -> Events:
     return _interval(n, t0, t1, gradient(p0), gradient(p1), leaf)
 
 
-def _corners(lo, hi) -> np.ndarray:
-    """The 8 corners (N, 8, 3) of boxes."""
-    bits = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], bool)
-    return np.where(bits[None], hi[:, None, :], lo[:, None, :])
-
-
 def _by_distance(distance, lo, hi) -> np.ndarray:
     """Classify boxes by a leaf's signed distance bound at their centres (|d| never more
     than the true distance to the surface): beyond the half-diagonal, wholly out or in."""
@@ -477,12 +472,10 @@ class Transformed(Solid):
 
     def _classify(self, lo, hi):
         """(the child sees the box's image as the box around it: conservative)"""
-        c = _corners(lo, hi) @ self.inverse[:3, :3].T + self.inverse[:3, 3]
+        c = box_corners(np.stack([lo, hi], 1)) @ self.inverse[:3, :3].T + self.inverse[:3, 3]
         return self.child._classify(c.min(1), c.max(1))
 
     def _bounds(self):
-        from ..geometry.transforms import box_corners
-
         b = self.child._bounds()
         if b is None:
             return None

@@ -68,9 +68,8 @@ class Viewer(Controls):
             raise DisplayError("no display to open a window on (DISPLAY is not set); use "
                                "'glshade render' for images, or run under 'xvfb-run'")
         import glfw
-        import moderngl
 
-        from ..render.context import Backend, RenderContext
+        from ..render.context import window_context
         from ..render.renderer import Renderer
         from ..render.target import WindowTarget
 
@@ -91,8 +90,7 @@ class Viewer(Controls):
             raise DisplayError("glfw could not open a window with an OpenGL 3.3 core context")
         glfw.make_context_current(self.window)
         glfw.swap_interval(0)
-        ctx = moderngl.create_context(require=330)
-        self.context = RenderContext(ctx, Backend.WINDOW, ctx.info.get("GL_RENDERER", ""))
+        self.context = window_context()
         fb_w, fb_h = glfw.get_framebuffer_size(self.window)
         self.target = WindowTarget(self.context, fb_w, fb_h)
         self.renderer = Renderer(fb_w, fb_h, samples=0, context=self.context)
@@ -181,7 +179,7 @@ class Viewer(Controls):
 
     def _labels(self):
         if getattr(self, "_label_overlay", None) is None:
-            from .labels import LabelOverlay
+            from ..render.passes.labels import LabelOverlay
 
             self._label_overlay = LabelOverlay(self.context, self.renderer.shaders)
         return self._label_overlay

@@ -12,10 +12,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SceneError
-from ..modes import ShadingMode
-from .base import GLResource
-from .programs import ProgramKey
+from ...errors import SceneError
+from ...modes import ShadingMode
+from ..base import GLResource
+from ..programs import ProgramKey
 
 __all__ = ["PatchPass", "GPU_MODES"]
 
@@ -42,7 +42,7 @@ class PatchPass(GLResource):
 
     def program(self, key: ProgramKey, degree: tuple[int, int]):
         """The program of a variant for patches of ``degree`` (m, n)."""
-        from .shaders import PROGRAMS
+        from ..shaders import PROGRAMS
 
         found = self._programs.get((key, degree))
         if found is None:
@@ -78,7 +78,7 @@ class PatchPass(GLResource):
         ``id_base``); return the id base after them."""
         import moderngl
 
-        from ..geometry.transforms import gl_bytes
+        from ...geometry.transforms import gl_bytes
 
         self._check()
         ctx = self.context.ctx

@@ -1,5 +1,6 @@
 """Text labels over the viewer's panes ("flat", "gouraud", "phong" in the split view), as
-the compare grid labels its tiles: Pillow draws the text, one textured quad shows it."""
+the compare grid labels its tiles: Pillow draws the text (:func:`glshade.io.images.label_image`),
+one textured quad shows it."""
 
 from __future__ import annotations
 
@@ -7,22 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from ..io.images import BACKGROUND, LABEL_HEIGHT, font
-from ..render.base import GLResource
+from ...io.images import LABEL_HEIGHT, label_image
+from ..base import GLResource
 
 __all__ = ["LabelOverlay"]
-
-
-def label_image(text: str, width: int) -> np.ndarray:
-    """``(LABEL_HEIGHT, width, 4) uint8``: the text centred on a dark band (opaque)."""
-    from PIL import Image, ImageDraw
-
-    band = Image.new("RGBA", (width, LABEL_HEIGHT), (*BACKGROUND, 255))
-    draw = ImageDraw.Draw(band)
-    face = font(14)
-    draw.text(((width - draw.textlength(text, font=face)) / 2, 3), text,
-              fill=(235, 235, 235, 255), font=face)
-    return np.asarray(band)
 
 
 class LabelOverlay(GLResource):

@@ -16,10 +16,10 @@ from typing import Any
 
 import moderngl
 
-from ..geometry.transforms import gl_bytes
-from ..modes import Outputs
-from .base import GLResource
-from .state import DrawState
+from ...geometry.transforms import gl_bytes
+from ...modes import Outputs
+from ..base import GLResource
+from ..state import DrawState
 
 __all__ = ["EdgePass", "edge_width", "EDGE_COLOR"]
 

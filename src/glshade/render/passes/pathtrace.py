@@ -1,71 +1,21 @@
-"""The GPU half of the path tracer: the scene packed into one float texture, the program
-(``shaders/pathtrace.frag``) and the two accumulation targets it adds to pass after pass."""
+"""The GPU half of the path tracer: the scene's tables (:mod:`glshade.pathtrace.pack`) in one
+float texture, the program (``shaders/pathtrace.frag``) and the accumulation targets it adds
+to pass after pass."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.transforms import gl_bytes
-from ..render.base import GLResource
-from ..render.shaders import ShaderLibrary
-from .bvh import build
-from .scene import TraceScene
+from ...geometry.transforms import gl_bytes
+from ...pathtrace.pack import DATA_WIDTH, pack
+from ...pathtrace.scene import TraceScene
+from ...solids.encoding import ROW, tree_data
+from ..base import GLResource
+from ..data import data_texture
+from ..shaders import ShaderLibrary
+from .csg import csg_defines
 
-__all__ = ["GpuPathTracer", "pack", "DATA_WIDTH"]
-
-#: texels a row of the scene texture
-DATA_WIDTH = 1024
-
-
-def _bits(values) -> np.ndarray:
-    """Integers carried in float32 texels as their bit patterns (floatBitsToInt reads them)."""
-    return np.asarray(values, np.int32).view(np.float32)
-
-
-def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
-    """The scene as RGBA32F texels ``(rows * DATA_WIDTH, 4)`` and the offset of each table
-    (see the shader's header): BVH nodes, triangles in BVH order, materials, emitters."""
-    if len(scene.triangles):
-        bvh = build(scene.triangles)
-        order, depth = bvh.order, bvh.depth
-        n_nodes = bvh.n_nodes
-        nodes = np.zeros((2 * n_nodes, 4), np.float32)
-        nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
-        nodes[0::2, 3], nodes[1::2, 3] = _bits(bvh.first), _bits(bvh.count)
-    else:  # (a solid alone: one empty box no ray enters)
-        order, depth, n_nodes = np.zeros(0, np.int64), 0, 1
-        nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)
-    tri = scene.triangles[order]
-    n_tris = len(tri)
-    tris = np.zeros((3 * n_tris, 4), np.float32)
-    tris[0::3, :3] = tri[:, 0]
-    tris[0::3, 3] = _bits(scene.material[order])
-    tris[1::3, :3] = tri[:, 1] - tri[:, 0]
-    tris[2::3, :3] = tri[:, 2] - tri[:, 0]
-    m = scene.materials
-    mats = np.zeros((2 * len(m), 4), np.float32)
-    mats[0::2, :3], mats[0::2, 3] = m[:, :3], m[:, 3]
-    mats[1::2, :3], mats[1::2, 3] = m[:, 5:8], m[:, 4]
-    where = np.empty(n_tris, np.int64)
-    where[order] = np.arange(n_tris)  # (a triangle's place in BVH order)
-    norms = np.zeros((3 * n_tris if scene.shading is not None else 1, 4), np.float32)
-    if scene.shading is not None:
-        norms[:, :3] = scene.shading[order].reshape(-1, 3)
-    emit = np.zeros((max(len(scene.emitters), 1), 4), np.float32)
-    emit[:len(scene.emitters), 0] = scene.emitter_cdf
-    emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
-    emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
-    tables = [nodes, tris, mats, emit, norms]
-    offsets = np.cumsum([0] + [len(t) for t in tables])
-    data = np.concatenate(tables)
-    rows = -(-len(data) // DATA_WIDTH)
-    data = np.concatenate([data, np.zeros((rows * DATA_WIDTH - len(data), 4), np.float32)])
-    layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
-              "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
-              "u_norms": int(offsets[4]),
-              "depth": depth, "nodes": n_nodes}
-    return data, layout
-
+__all__ = ["GpuPathTracer"]
 
 class GpuPathTracer(GLResource):
     """Path-trace ``scene`` (a :class:`TraceScene`) at ``width x height``: each
@@ -86,39 +36,25 @@ class GpuPathTracer(GLResource):
             defines += ("SMOOTH_NORMALS",)
         self._csg = None
         if scene.solids:
-            from ..render.csg import leaf_words, tree_data
-
             solid, material = scene.solids[0]
             tree = tree_data(solid)
-            words = leaf_words(tree.leaves)
-            defines += ("CSG_SOLID", f"CSG_WORDS {words}", f"CSG_KINDS {tree.kinds}")
-            if words == 1:
-                defines += ("CSG_LEAF_LOOP",)
-            self._csg = self._keep(ctx.texture((64, len(tree.texels) // 64), 4,
-                                               tree.texels.tobytes(), dtype="f4"))
-            self._csg.filter = (0x2600, 0x2600)
+            defines += ("CSG_SOLID", *csg_defines(tree, blocks=False))
+            self._csg = self._keep(data_texture(ctx, tree.texels, ROW))
             self._csg_values = {
-                "u_csg": 2, "u_csg_material": material, "u_csg_nodes": tree.nodes,
+                "u_csg": 2, "u_csg_material": material, **tree.offsets(),
                 "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
-                "u_csg_ops": tree.ops, "u_csg_bvh": tree.bvh, "u_csg_program": tree.program,
-                "u_csg_records": tree.records, "u_csg_kinds": tree.by_kind,
-                "u_csg_table": tree.table,
                 "u_csg_kind_start": np.array(tree.kind_start, "i4")}
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction
             texels = np.zeros((self.height, 2, self.width, 4), np.float32)
             texels[:, :, :, :3] = np.asarray(rays, np.float32).transpose(0, 2, 1, 3)
-            self._rays = self._keep(ctx.texture((self.width, 2 * self.height), 4,
-                                                texels.tobytes(), dtype="f4"))
-            self._rays.filter = (0x2600, 0x2600)
+            self._rays = self._keep(data_texture(ctx, texels, self.width))
             defines += ("PROBES",)
         self.program = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace.frag",
                                                         defines=defines))
         data, self.layout = pack(scene)
         self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
-        self.texture = self._keep(ctx.texture((DATA_WIDTH, len(data) // DATA_WIDTH), 4,
-                                              data.tobytes(), dtype="f4"))
-        self.texture.filter = (0x2600, 0x2600)  # NEAREST
+        self.texture = self._keep(data_texture(ctx, data, DATA_WIDTH))
         self._sum = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
         self._square = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
         self._hit = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))

@@ -14,33 +14,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import OptionError, UsageError
-from .base import GLResource
-from .shaders import ShaderLibrary
+from ...errors import OptionError, UsageError
+from ...radiosity.formfactors import delta_form_factors
+from ..base import GLResource
+from ..shaders import ShaderLibrary
 
-__all__ = ["Hemicube", "delta_form_factors", "BATCH", "BATCH_PIXELS"]
+__all__ = ["Hemicube", "BATCH", "BATCH_PIXELS"]
 
 #: hemicubes drawn before one read-back: at most 16, in at most about a million pixels
 BATCH, BATCH_PIXELS = 16, 2**20
-
-
-def delta_form_factors(n: int) -> np.ndarray:
-    """The atlas of delta form factors ``(N, 3N)``, row 0 at the bottom (GL's order): the
-    top face in columns ``0..N``, the side faces as ``N x N/2`` halves stacked two by two in
-    columns ``N..2N`` and ``2N..3N``. They sum to 1 as N grows."""
-    d = 2.0 / n
-    c = -1 + (np.arange(n) + 0.5) * d
-    x, y = np.meshgrid(c, c)  # (row, column)
-    top = d * d / (np.pi * (x * x + y * y + 1) ** 2)
-    z = (np.arange(n // 2) + 0.5) * d
-    xs, zs = np.meshgrid(c, z)
-    side = zs * d * d / (np.pi * (xs * xs + zs * zs + 1) ** 2)
-    atlas = np.zeros((n, 3 * n))
-    atlas[:, :n] = top
-    for k in range(4):
-        col, row = n + (k // 2) * n, (k % 2) * (n // 2)
-        atlas[row:row + n // 2, col:col + n] = side
-    return atlas
 
 
 def _cross(a, b) -> np.ndarray:

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from glshade._atomic import _HOST, atomic_write, remove_stale
+from glshade.atomic import HOST, atomic_write, remove_stale
 
 from .conftest import BACKEND, ROOT
 
@@ -21,9 +21,9 @@ def _dead_pid() -> int:
 
 
 def test_the_next_writer_removes_a_dead_writers_temporary(tmp_path):
-    stale = tmp_path / f".out.gif.{_HOST}-{_dead_pid()}.k2j4h1.part"
-    other_output = tmp_path / f".other.gif.{_HOST}-{_dead_pid()}.k2j4h1.part"
-    live = tmp_path / f".out.gif.{_HOST}-{os.getppid()}.k2j4h1.part"
+    stale = tmp_path / f".out.gif.{HOST}-{_dead_pid()}.k2j4h1.part"
+    other_output = tmp_path / f".other.gif.{HOST}-{_dead_pid()}.k2j4h1.part"
+    live = tmp_path / f".out.gif.{HOST}-{os.getppid()}.k2j4h1.part"
     other_host = tmp_path / ".out.gif.elsewhere-1.k2j4h1.part"
     for p in (stale, other_output, live, other_host):
         p.write_bytes(b"half")
@@ -50,7 +50,7 @@ def test_sigkill_mid_animation_then_rerun_leaves_no_temporary(tmp_path):
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     [left] = list(tmp_path.iterdir())
-    assert left.name.startswith(f".frames.{_HOST}-{proc.pid}.") and ".part" in left.name
+    assert left.name.startswith(f".frames.{HOST}-{proc.pid}.") and ".part" in left.name
     assert subprocess.run([*cmd, "--frames", "2"], cwd=ROOT).returncode == 0
     assert [p.name for p in tmp_path.iterdir()] == ["frames"]
     assert len(list(out.iterdir())) == 2

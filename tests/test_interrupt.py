@@ -6,7 +6,7 @@ import sys
 
 CODE = """
 import gc, sys
-from glshade._interrupt import catch_dropped
+from glshade.interrupt import catch_dropped
 from glshade.parallel import Progress, make_executor
 
 class DropsACtrlC:

@@ -13,11 +13,13 @@ from ._version import __version__
 #: public name -> (module, attribute); attribute None: the module itself. The names are
 #: typed for checkers and IDEs by the TYPE_CHECKING imports below (a test keeps both equal).
 _EXPORTS = {
-    # the notes' algebra and chapters, each a module or package of its own
-    "quaternion": ("quaternion", None), "masspoint": ("masspoint", None),
-    "brep": ("brep", None), "solids": ("solids", None), "octree": ("octree", None),
-    "hidden": ("hidden", None), "radiosity": ("radiosity", None),
-    "examples": ("examples", None),
+    # the notes' algebra and chapters, and every other package and public module: each
+    # ``glshade.<name>`` is the module (a test imports them all this way, fresh)
+    **{name: (name, None) for name in (
+        "quaternion", "masspoint", "brep", "solids", "octree", "hidden", "radiosity",
+        "patches", "pathtrace", "scene", "io", "render", "cpu", "batch", "parallel",
+        "viewer", "notebook", "display", "testing", "golden", "examples", "modes",
+        "options", "errors", "atomic", "interrupt", "cli")},
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
     # the mesh kernel
     "geometry": ("geometry", None),
@@ -57,8 +59,10 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import (brep, examples, geometry, hidden, masspoint, octree, quaternion, radiosity,
-                   solids)
+    from . import (atomic, batch, brep, cli, cpu, display, errors, examples, geometry, golden,
+                   hidden, interrupt, io, masspoint, modes, notebook, octree, options,
+                   parallel, patches, pathtrace, quaternion, radiosity, render, scene,
+                   solids, testing, viewer)
     from .compare.comparison import Comparison, compare
     from .animate.frames import animate
     from .display import show

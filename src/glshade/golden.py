@@ -135,7 +135,7 @@ def read_golden(path: Path) -> tuple[np.ndarray, dict[str, Any] | None]:
 
 def write_golden(path: Path, image: Any, facts: dict[str, Any]) -> None:
     """Write a golden image and its fingerprint beside it (each atomically)."""
-    from ._atomic import atomic_write
+    from .atomic import atomic_write
     from .io.images import save_image
 
     path.parent.mkdir(parents=True, exist_ok=True)

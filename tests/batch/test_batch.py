@@ -238,14 +238,14 @@ def test_interrupted_run_resumes_with_only_the_missing_outputs(tmp_path):
 
 
 def test_stale_temporaries_of_a_killed_run_are_removed(tmp_path):
-    from glshade._atomic import _HOST
+    from glshade.atomic import HOST
 
     out = tmp_path / "out"
     (out / "sub").mkdir(parents=True)
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
-    stale = out / "sub" / f".x.phong.png.{_HOST}-{dead.pid}.abc123.part"
-    live = out / f".y.phong.png.{_HOST}-{os.getppid()}.abc123.part"
+    stale = out / "sub" / f".x.phong.png.{HOST}-{dead.pid}.abc123.part"
+    live = out / f".y.phong.png.{HOST}-{os.getppid()}.abc123.part"
     stale.write_bytes(b"half")
     live.write_bytes(b"in use")
     src = tmp_path / "c.obj"

@@ -218,7 +218,7 @@ def test_missing_file_and_directory(tmp_path):
 
 
 def test_plain_decimal_fast_path_equals_strtod(rng):
-    from glshade.io._text import parse_decimals, parse_numbers
+    from glshade.io.text import parse_decimals, parse_numbers
 
     values = rng.normal(size=3000) * 10.0 ** rng.integers(-3, 3, 3000)  # <= 15 digits
     for fmt in ("%.6f", "%.3f", "%.9f"):

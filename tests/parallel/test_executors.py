@@ -11,7 +11,7 @@ import pytest
 
 from glshade.batch import BatchSpec, Task
 from glshade.batch.worker import BatchWorker
-from glshade.compare._sweep import icosphere_level, sweep
+from glshade.compare.sweeps import icosphere_level, sweep
 from glshade.errors import ClusterError, InputError, OutputWriteError
 from glshade.geometry import primitives
 from glshade.io.meshes import save_mesh
@@ -107,11 +107,11 @@ def test_sweep_in_worker_processes_equals_one_process():
 def test_mesa_threads_share_the_cores(dask_cluster):
     from distributed import Client
 
-    from glshade.parallel.dask import MesaThreads, _host
+    from glshade.parallel.dask import MesaThreads, host_of
 
     with Client(dask_cluster.address, timeout="30s") as client:
         workers = list(client.scheduler_info()["workers"])
-        plugin = MesaThreads({_host(workers[0]): len(workers)})
+        plugin = MesaThreads({host_of(workers[0]): len(workers)})
         client.register_plugin(plugin, name=plugin.name)
         got = client.run(lambda: os.environ.get("LP_NUM_THREADS"))
     expected = str(max(1, (os.cpu_count() or 1) // len(workers)))
@@ -174,7 +174,7 @@ def test_a_pool_whose_stop_hangs_is_left_behind_with_its_workers_killed():
     import threading
     import time
 
-    from glshade.parallel.executors import _terminate
+    from glshade.parallel.executors import terminate
 
     class Worker:
         killed = False
@@ -190,7 +190,7 @@ def test_a_pool_whose_stop_hangs_is_left_behind_with_its_workers_killed():
 
     pool = HangingPool()
     t0 = time.perf_counter()
-    assert _terminate(pool, timeout=0.3) is False
+    assert terminate(pool, timeout=0.3) is False
     assert time.perf_counter() - t0 < 2 and all(w.killed for w in pool._pool)
 
     class QuickPool:
@@ -199,4 +199,4 @@ def test_a_pool_whose_stop_hangs_is_left_behind_with_its_workers_killed():
         def terminate(self):
             pass
 
-    assert _terminate(QuickPool(), timeout=5) is True
+    assert terminate(QuickPool(), timeout=5) is True

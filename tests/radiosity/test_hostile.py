@@ -121,13 +121,13 @@ def test_zero_area_polygons_leave_the_others_as_they_were():
     import numpy as np
 
     from glshade import Mesh
-    from glshade.radiosity.problem import _without_zero_area
+    from glshade.radiosity.problem import without_zero_area
 
     v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0], [3, 0, 0],
                   [0.5, 2, 0], [2, 1, 0.0]])
     faces = [[0, 1, 2, 3], [0, 1, 4], [1, 4, 7, 2, 6], [4, 5, 1], [0, 2, 6]]
     mesh = Mesh(v, faces)
-    kept, note = _without_zero_area(mesh, "m", 4.0)
+    kept, note = without_zero_area(mesh, "m", 4.0)
     expected = [f for f in faces if mesh.face_areas[faces.index(f)] > 1e-9]
     assert [list(kept.face(k)) for k in range(kept.n_faces)] == expected
     assert "2 of its 5 polygons have no area" in note

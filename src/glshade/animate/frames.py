@@ -98,7 +98,7 @@ def _spooled(scene, path, times, options, modes, config, jobs, scheduler, spool,
 
     from PIL import Image
 
-    from .._atomic import held_interrupts, temporary
+    from ..atomic import held_interrupts, temporary
 
     folder = None
     try:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write, held_interrupts, part, publish, writing
+from ..atomic import atomic_write, held_interrupts, part, publish, writing
 from ..errors import OutputError, OutputWriteError, VideoUnavailable
 
 __all__ = ["output_format", "write_animation", "FORMATS"]

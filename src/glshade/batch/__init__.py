@@ -14,7 +14,7 @@ import dataclasses
 import time
 from pathlib import Path
 
-from .._atomic import remove_stale, writing
+from ..atomic import remove_stale, writing
 from ..parallel import Progress, make_executor
 from .manifest import kept, read_manifest, write_manifest
 from ._plan import Task, find_inputs, plan

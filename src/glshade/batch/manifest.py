@@ -8,7 +8,7 @@ import dataclasses
 import io
 from pathlib import Path
 
-from .._atomic import atomic_write
+from ..atomic import atomic_write
 from .worker import Row
 
 __all__ = ["write_manifest", "read_manifest", "COLUMNS"]

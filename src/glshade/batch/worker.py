@@ -14,7 +14,7 @@ import zipfile
 
 import numpy as np
 
-from .._atomic import atomic_write, writing
+from ..atomic import atomic_write, writing
 from ..errors import EnvironmentFailure, GlshadeError, UsageError
 from ..modes import Backend, Outputs
 from ..options import DrawOptions, RenderConfig

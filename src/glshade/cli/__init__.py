@@ -17,7 +17,7 @@ __all__ = ["main"]
 
 def main(argv: list[str] | None = None) -> int:
     """The command line: parse ``argv``, run the command; the exit status (2: bad input)."""
-    from .._interrupt import catch_dropped
+    from ..interrupt import catch_dropped
 
     catch_dropped()
     try:

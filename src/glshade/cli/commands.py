@@ -119,9 +119,9 @@ def batch(args: a.BatchArgs) -> int:
 
 
 def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
-    from .._atomic import atomic_write
+    from ..atomic import atomic_write
     from ..compare import sweep, sweep_plot
-    from ..compare._sweep import icosphere_level, uv_sphere_level
+    from ..compare.sweeps import icosphere_level, uv_sphere_level
     from ..io.images import save_image
     from ..parallel import Progress
 
@@ -156,7 +156,7 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
 
 def _patch_sweep(args: a.CompareArgs, modes: list[str]) -> int:
     """``compare patches:NAME --sweep``: exact against averaged normals, level by level."""
-    from .._atomic import atomic_write
+    from ..atomic import atomic_write
     from ..compare import patch_sweep, sweep_plot
     from ..io.images import save_image
     from ..io.meshes import load_source

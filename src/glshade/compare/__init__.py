@@ -4,7 +4,7 @@ analytic or refined reference, and tessellation sweeps."""
 from .._callable import callable_package
 from . import metrics
 from .comparison import REFERENCES, Comparison, ModeMetrics, compare
-from ._sweep import patch_sweep, sweep, sweep_plot
+from .sweeps import patch_sweep, sweep, sweep_plot
 
 __all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES", "sweep", "sweep_plot",
            "patch_sweep", "metrics"]

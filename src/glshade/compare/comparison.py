@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write
+from ..atomic import atomic_write
 from ..errors import ComparisonError
 from ..geometry.subdivide import phong_tessellate
 from ..io.images import (

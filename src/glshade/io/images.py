@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from .._atomic import atomic_write
+from ..atomic import atomic_write
 
 __all__ = ["save_image", "image_format", "IMAGE_FORMATS", "heatmap", "label", "labelled_row",
            "colour_bar", "opaque", "font", "label_image", "LABEL_HEIGHT", "BACKGROUND"]

@@ -12,7 +12,7 @@ from typing import Any
 
 from pathlib import Path
 
-from .._atomic import atomic_write
+from ..atomic import atomic_write
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
 from ..geometry.trimesh_bridge import HINT, from_trimesh, trimesh_formats, trimesh_module

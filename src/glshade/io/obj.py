@@ -14,7 +14,7 @@ from ..geometry.mesh import Mesh
 from ._common import (
     COMMENT, build_mesh, join_lines, offsets_from_sizes, write_faces, write_vertices,
 )
-from ._text import (
+from .text import (
     line_starts, normalize_whitespace, parse_decimals, parse_numbers, ragged_take, token_counts,
 )
 

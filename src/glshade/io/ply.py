@@ -12,7 +12,7 @@ from ..geometry.mesh import Mesh
 from ._common import (
     build_mesh, join_lines, numeric_diagnose, offsets_from_sizes, write_faces, write_vertices,
 )
-from ._text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
+from .text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
 
 __all__ = ["read", "write"]
 

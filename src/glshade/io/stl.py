@@ -10,7 +10,7 @@ import numpy as np
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
 from ._common import build_mesh
-from ._text import parse_numbers
+from .text import parse_numbers
 
 __all__ = ["read", "write"]
 

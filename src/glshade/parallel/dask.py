@@ -19,7 +19,7 @@ import os
 import threading
 import uuid
 
-from .._interrupt import check
+from ..interrupt import check
 from ..errors import ClusterError, InputError
 from .executors import Executor
 
@@ -28,7 +28,7 @@ try:
 except ImportError:  # the extra is missing: DaskExecutor says how to install it
     WorkerPlugin = object  # type: ignore[misc,assignment]
 
-__all__ = ["DaskExecutor", "connect", "INSTALL_HINT"]
+__all__ = ["DaskExecutor", "connect", "host_of", "INSTALL_HINT"]
 
 INSTALL_HINT = "pip install 'glshade[distributed]'"
 
@@ -146,7 +146,9 @@ def _drain(client, futures) -> None:
         distributed.wait(started, timeout=DRAIN_TIMEOUT)
 
 
-def _host(address: str) -> str:
+def host_of(address: str) -> str:
+    """The host of a worker's address (``tcp://10.0.0.5:4000`` -> ``10.0.0.5``): workers
+    on one host share its cores."""
     return address.split("://")[-1].rsplit(":", 1)[0]
 
 
@@ -161,7 +163,7 @@ class MesaThreads(WorkerPlugin):
         self.workers_per_host = workers_per_host
 
     def setup(self, worker):
-        n = self.workers_per_host.get(_host(worker.address), 1)
+        n = self.workers_per_host.get(host_of(worker.address), 1)
         os.environ.setdefault("LP_NUM_THREADS", str(max(1, (os.cpu_count() or 1) // n)))
 
 
@@ -205,7 +207,7 @@ class DaskExecutor(Executor):
                 info = client.scheduler_info()["workers"]
             per_host: dict = {}
             for address in info:
-                per_host[_host(address)] = per_host.get(_host(address), 0) + 1
+                per_host[host_of(address)] = per_host.get(host_of(address), 0) + 1
             plugin = MesaThreads(per_host)
             client.register_plugin(plugin, name=plugin.name)
             [spec] = client.scatter([(self.factory, self.args)], broadcast=True, hash=False)

@@ -16,10 +16,10 @@ import sys
 import threading
 from collections.abc import Generator, Iterable
 
-from .._atomic import held_interrupts
-from .._interrupt import check
+from ..atomic import held_interrupts
+from ..interrupt import check
 
-__all__ = ["Executor", "SerialExecutor", "ProcessExecutor"]
+__all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "terminate"]
 
 
 class Executor:
@@ -100,7 +100,7 @@ class _WorkerProcess(mp.context.SpawnProcess):
     blocked signal stays blocked through fork and exec, so the worker's Python never turns
     it into KeyboardInterrupt. Only the starting thread blocks it, and only while the child
     is launched; the parent's own Ctrl-C is held back meanwhile
-    (:func:`~glshade._atomic.held_interrupts`), not
+    (:func:`~glshade.atomic.held_interrupts`), not
     lost."""
 
     @staticmethod
@@ -114,7 +114,7 @@ class _WorkerProcess(mp.context.SpawnProcess):
             signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
-def _terminate(pool, timeout: float = 10.0) -> bool:
+def terminate(pool, timeout: float = 10.0) -> bool:
     """``pool.terminate()``, bounded: whether it finished. (CPython's result handler can
     wait forever on a message a worker was killed in the middle of writing -- seen about
     once in a hundred Ctrl-Cs -- and terminate waits for that thread.) On a timeout the
@@ -157,7 +157,7 @@ class ProcessExecutor(Executor):
                 yield result
             pool.close()
         except BaseException:
-            if pool is not None and not _terminate(pool):
+            if pool is not None and not terminate(pool):
                 pool = None  # (its threads are daemons, left behind; its workers are gone)
             raise
         finally:

@@ -7,7 +7,7 @@ import sys
 import time
 from typing import Any
 
-from .._interrupt import check
+from ..interrupt import check
 
 __all__ = ["Progress", "as_progress"]
 
@@ -60,7 +60,7 @@ class Progress:
 
     def update(self, n: int = 1, note: str | None = None) -> None:
         """``n`` more items done; ``note`` (a residual, an error) shown beside. A Ctrl-C that
-        Python dropped on the way (``glshade._interrupt``) is raised here."""
+        Python dropped on the way (``glshade.interrupt``) is raised here."""
         check()
         self.done += n
         if self._bar is not None:

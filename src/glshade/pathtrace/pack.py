@@ -6,7 +6,6 @@ from __future__ import annotations
 import numpy as np
 
 from .bvh import build
-from .scene import TraceScene
 
 __all__ = ["pack", "DATA_WIDTH"]
 
@@ -19,9 +18,10 @@ def _bits(values) -> np.ndarray:
     return np.asarray(values, np.int32).view(np.float32)
 
 
-def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
-    """The scene as RGBA32F texels ``(rows * DATA_WIDTH, 4)`` and the offset of each table
-    (see the shader's header): BVH nodes, triangles in BVH order, materials, emitters."""
+def pack(scene) -> tuple[np.ndarray, dict]:
+    """A :class:`~glshade.pathtrace.scene.TraceScene` as RGBA32F texels ``(rows *
+    DATA_WIDTH, 4)`` and the offset of each table (see the shader's header): BVH nodes,
+    triangles in BVH order, materials, emitters."""
     if len(scene.triangles):
         bvh = build(scene.triangles)
         order, depth = bvh.order, bvh.depth
@@ -60,5 +60,5 @@ def pack(scene: TraceScene) -> tuple[np.ndarray, dict]:
     layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
               "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
               "u_norms": int(offsets[4]),
-              "depth": depth, "nodes": n_nodes}
+              "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH}
     return data, layout

@@ -173,7 +173,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     :func:`relative_error`; checked after each doubling, at most ``max_samples``). A
     Ctrl-C returns the picture so far (``interrupted`` set). Seeded: the same call gives
     the same picture."""
-    from .._interrupt import check
+    from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress
     from ..scene.camera import default_camera

@@ -68,6 +68,13 @@ class TraceScene:
         """The diagonal of :attr:`bounds` (for offsets and epsilons)."""
         return float(np.linalg.norm(np.ptp(self.bounds, 0))) or 1.0
 
+    def tables(self) -> tuple[np.ndarray, dict]:
+        """The texels ``(rows * width, 4) float32`` the GPU program reads, and where each
+        table starts (:func:`glshade.pathtrace.pack.pack`)."""
+        from .pack import pack
+
+        return pack(self)
+
     @classmethod
     def from_scene(cls, scene, *, lights: bool = True, camera=None,
                    smooth: bool = False) -> TraceScene:

@@ -182,7 +182,7 @@ class FormFactors:
         self._owns = context is None
         self.context = context or create_context(backend)
         try:
-            self.hemicube = Hemicube(self.context, resolution)
+            self.hemicube = Hemicube(self.context, resolution, delta_form_factors)
             self.hemicube.upload(p.vertices, p.triangles, p.triangle_patch, p.n_patches)
         except BaseException:
             self.close()

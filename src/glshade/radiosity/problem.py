@@ -11,7 +11,7 @@ from ..errors import InputError
 from .patches import Patches, subdivide
 from ..scene import Scene
 
-__all__ = ["PatchScene", "concatenate_patches"]
+__all__ = ["PatchScene", "concatenate_patches", "without_zero_area"]
 
 
 def concatenate_patches(parts: list[Patches]) -> Patches:
@@ -63,7 +63,7 @@ def estimated_patches(mesh, patch_size: float) -> float:
     return float(np.square(per_side).sum())
 
 
-def _without_zero_area(mesh, name: str, diagonal: float):
+def without_zero_area(mesh, name: str, diagonal: float):
     """``mesh`` without the polygons of (relatively) zero area, which can neither give nor
     receive light (an emitter of zero area would count as one; a receiver's radiosity is
     divided by its area); dropped with a warning."""
@@ -124,7 +124,7 @@ class PatchScene:
             raise InputError(f"patch size must be a positive number, got {patch_size!r}")
         b = scene.bounds
         diagonal = float(np.linalg.norm(b[1] - b[0])) or 1.0
-        cleaned = [_without_zero_area(m.mesh.transformed(m.transform), m.name or
+        cleaned = [without_zero_area(m.mesh.transformed(m.transform), m.name or
                                       f"mesh {i + 1}", diagonal) for i, m in models]
         meshes = [mesh for mesh, _ in cleaned]
         notes = [note for _, note in cleaned if note]

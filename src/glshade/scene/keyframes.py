@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import OptionError, PathFormatError, SceneError
 from ..modes import parse_enum
 from .. import quaternion as quat
-from .._atomic import atomic_write
+from ..atomic import atomic_write
 from .camera import Camera
 
 if sys.version_info >= (3, 11):

@@ -15,7 +15,6 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import OptionError, UsageError
-from ...radiosity.formfactors import delta_form_factors
 from ..base import GLResource
 from ..shaders import ShaderLibrary
 
@@ -50,9 +49,11 @@ def _frustum(left, right, bottom, top, near, far) -> np.ndarray:
 
 
 class Hemicube(GLResource):
-    """Hemicubes of resolution ``N`` (the top face is ``N x N``) over uploaded patches."""
+    """Hemicubes of resolution ``N`` (the top face is ``N x N``) over uploaded patches;
+    ``delta(N)`` gives each pixel's delta form factor, an ``(N, 3N)`` atlas (the chapter's
+    numpy: :func:`glshade.radiosity.formfactors.delta_form_factors`)."""
 
-    def __init__(self, context, resolution: int = 128):
+    def __init__(self, context, resolution: int, delta):
         n = int(resolution)
         if n != resolution or n < 4 or n % 2:
             raise OptionError(f"hemicube resolution must be an even whole number >= 4, "
@@ -65,7 +66,7 @@ class Hemicube(GLResource):
                                 f"target; this GL allows {limit} (use <= {limit // 3})")
         self.resolution = n
         self.batch = max(1, min(BATCH, BATCH_PIXELS // (3 * n * n), limit // n))
-        self.weights = np.tile(delta_form_factors(n).ravel(), self.batch)
+        self.weights = np.tile(np.asarray(delta(n), np.float64).ravel(), self.batch)
         ctx = context.ctx
         library = ShaderLibrary(context)
         try:

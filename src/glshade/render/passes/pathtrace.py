@@ -7,8 +7,6 @@ from __future__ import annotations
 import numpy as np
 
 from ...geometry.transforms import gl_bytes
-from ...pathtrace.pack import DATA_WIDTH, pack
-from ...pathtrace.scene import TraceScene
 from ...solids.encoding import ROW, tree_data
 from ..base import GLResource
 from ..data import data_texture
@@ -18,12 +16,13 @@ from .csg import csg_defines
 __all__ = ["GpuPathTracer"]
 
 class GpuPathTracer(GLResource):
-    """Path-trace ``scene`` (a :class:`TraceScene`) at ``width x height``: each
+    """Path-trace ``scene`` (a :class:`glshade.pathtrace.TraceScene`, whose ``tables()``
+    give the texels) at ``width x height``: each
     :meth:`run` adds passes of ``samples`` paths per pixel; :meth:`read` returns the sums.
     The pass number seeds each sample, so a pixel's k-th sample is the same whatever the
     passes are grouped into."""
 
-    def __init__(self, context, scene: TraceScene, width: int, height: int, *,
+    def __init__(self, context, scene, width: int, height: int, *,
                  samples: int = 1, max_depth: int = 64, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None):
         super().__init__(context)
@@ -31,7 +30,9 @@ class GpuPathTracer(GLResource):
         self.scene, self.width, self.height = scene, int(width), int(height)
         self.samples, self.max_depth = int(samples), int(max_depth)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
-        defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {DATA_WIDTH}")
+        data, self.layout = scene.tables()
+        width = self.layout["width"]
+        defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {width}")
         if scene.shading is not None:
             defines += ("SMOOTH_NORMALS",)
         self._csg = None
@@ -52,9 +53,8 @@ class GpuPathTracer(GLResource):
             defines += ("PROBES",)
         self.program = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace.frag",
                                                         defines=defines))
-        data, self.layout = pack(scene)
         self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
-        self.texture = self._keep(data_texture(ctx, data, DATA_WIDTH))
+        self.texture = self._keep(data_texture(ctx, data, width))
         self._sum = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
         self._square = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
         self._hit = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))

@@ -25,15 +25,15 @@ from pathlib import Path
 from .errors import OutputWriteError
 
 __all__ = ["atomic_write", "publish", "writing", "temporary", "part", "held_interrupts",
-           "remove_stale"]
+           "remove_stale", "HOST"]
 
-_HOST = re.sub(r"[^A-Za-z0-9_-]", "_", socket.gethostname()) or "host"
+HOST = re.sub(r"[^A-Za-z0-9_-]", "_", socket.gethostname()) or "host"
 _PART = re.compile(r"^\.(?P<name>.+)\.(?P<host>[A-Za-z0-9_-]+)-(?P<pid>\d+)\.[^.]+\.part"
                    r"(?:\.[A-Za-z0-9]+)?$")
 
 
 def _tag(path: Path) -> str:
-    return f".{path.name}.{_HOST}-{os.getpid()}."
+    return f".{path.name}.{HOST}-{os.getpid()}."
 
 
 def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
@@ -116,7 +116,7 @@ def remove_stale(folder, *, name: str | None = None, recursive: bool = False) ->
     removed = 0
     for p in found:
         m = _PART.match(p.name)
-        if not m or m["host"] != _HOST or (name is not None and m["name"] != name):
+        if not m or m["host"] != HOST or (name is not None and m["name"] != name):
             continue
         if int(m["pid"]) == os.getpid() or _alive(int(m["pid"])):
             continue

@@ -16,6 +16,10 @@ _WS_RUN = re.compile(rb"[ \t\r\f\v]+")
 _SPACE_NL = re.compile(rb" ?\n ?")
 
 
+__all__ = ["parse_numbers", "parse_decimals", "normalize_whitespace", "token_counts",
+           "ragged_take", "line_starts"]
+
+
 def parse_numbers(blob: bytes, dtype=np.float64) -> np.ndarray | None:
     """All whitespace-separated numbers in ``blob``, or None if any token is not one."""
     if not blob or blob.isspace():

@@ -2,12 +2,15 @@
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: setup demo test lint bench assets docs clean
+.PHONY: setup setup-demo demo test lint bench assets docs clean
 
 setup:
-	@scripts/setup.sh
+	@scripts/setup.sh test
 
-demo: setup
+setup-demo:
+	@scripts/setup.sh demo
+
+demo: setup-demo
 	$(VENV)/bin/glshade info assets/teapot.obj
 	@mkdir -p out
 	for mode in flat gouraud phong; do \

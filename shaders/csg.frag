@@ -53,10 +53,8 @@ vec3 face_centre(int i, vec3 p_world) {
 }
 #endif
 
-vec3 encode_srgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
-}
+#include "srgb.glsl"
+#include "rays.glsl"
 
 void main() {
 #ifdef CSG_SLOTS
@@ -64,9 +62,9 @@ void main() {
     vec3 ro = v_ray_origin, rd = v_ray_span;
 #else
     vec2 ndc = (gl_FragCoord.xy - u_viewport_origin) / u_viewport_size * 2.0 - 1.0;
-    vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
-    vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
-    vec3 ro = a.xyz / a.w, rd = normalize(b.xyz / b.w - ro);
+    vec3 ro, rd;
+    pixel_ray(u_inverse_view_proj, ndc, ro, rd);
+    rd = normalize(rd);
 #endif
     float t;
     int leaf = csg_first_hit(ro, rd, t);

@@ -9,6 +9,7 @@ in vec3 in_position;               // (x, y) NDC
 // computed at the corners and interpolated without perspective, exactly, where the
 // fragment program would spend a matrix product a slot on each.
 uniform mat4 u_inverse_view_proj;
+#include "rays.glsl"
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
 noperspective out vec3 v_ray_origin;
 noperspective out vec3 v_ray_span;
@@ -19,9 +20,8 @@ noperspective out vec3 v_slot_span[CSG_SLOTS];
 void main() {
     gl_Position = vec4(in_position.xy, 0.0, 1.0);
 #ifdef CSG_SLOTS
-    vec4 a = u_inverse_view_proj * vec4(in_position.xy, -1.0, 1.0);
-    vec4 b = u_inverse_view_proj * vec4(in_position.xy, 1.0, 1.0);
-    vec3 ro = a.xyz / a.w, rd = b.xyz / b.w - ro;
+    vec3 ro, rd;
+    pixel_ray(u_inverse_view_proj, in_position.xy, ro, rd);
     v_ray_origin = ro;
     v_ray_span = rd;
     for (int s = 0; s < CSG_SLOTS; ++s) {

@@ -58,23 +58,12 @@ layout(location = 0) out vec4 out_sum;
 layout(location = 1) out vec4 out_square;
 layout(location = 2) out vec4 out_hit;  // (camera rays that hit anything, for a coverage mask)
 
-uint g_state;
-
-uint pcg(uint v) {
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-float rand() {
-    g_state = g_state * 747796405u + 2891336453u;
-    uint word = ((g_state >> ((g_state >> 28u) + 4u)) ^ g_state) * 277803737u;
-    word = (word >> 22u) ^ word;
-    return float(word >> 8u) * (1.0 / 16777216.0);
-}
+#include "random.glsl"
+#include "rays.glsl"
+#include "data.glsl"
 
 vec4 fetch(int i) {
-    return texelFetch(u_data, ivec2(i % DATA_WIDTH, i / DATA_WIDTH), 0);
+    return data_texel(u_data, i, DATA_WIDTH);
 }
 
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
@@ -284,10 +273,9 @@ void main() {
         vec3 d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
 #else
         vec2 ndc = 2.0 * (gl_FragCoord.xy - 0.5 + vec2(rand(), rand())) / u_size - 1.0;
-        vec4 a = u_inverse_view_proj * vec4(ndc, -1.0, 1.0);
-        vec4 b = u_inverse_view_proj * vec4(ndc, 1.0, 1.0);
-        vec3 o = a.xyz / a.w;
-        vec3 d = normalize(b.xyz / b.w - o);
+        vec3 o, d;
+        pixel_ray(u_inverse_view_proj, ndc, o, d);
+        d = normalize(d);
 #endif
         float e;
         vec3 value = trace(o, d, e);

@@ -7,11 +7,13 @@ uniform bool u_srgb;
 
 out vec4 out_color;
 
+#include "srgb.glsl"
+
 void main() {
     vec4 s = texelFetch(u_sum, ivec2(gl_FragCoord.xy), 0);
     vec3 c = clamp(s.rgb / max(s.a, 1.0) * u_exposure, 0.0, 1.0);
     if (u_srgb) {
-        c = mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+        c = encode_srgb(c);
     }
     out_color = vec4(c, 1.0);
 }

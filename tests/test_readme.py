@@ -1,6 +1,7 @@
-"""Every Python block of the README runs as written, in order, in one process, in an empty
-folder (no repository files: the examples come from glshade.examples); and the same in a
-fresh virtual environment with the built wheel installed, outside the repository."""
+"""Every Python block of the README and of the guide's pages (docs/guide/, in the order the
+README lists them) runs as written, in order, in one process, in an empty folder (no
+repository files: the examples come from glshade.examples); and the same in a fresh
+virtual environment with the built wheel installed, outside the repository."""
 
 import os
 import re
@@ -15,9 +16,25 @@ from tests.conftest import ROOT
 pytestmark = pytest.mark.gl
 
 
+def guide_pages() -> list:
+    """The guide's pages in the order the README links them."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    return [ROOT / p for p in re.findall(r"\]\((docs/guide/[a-z-]+\.md)\)", readme)]
+
+
 def readme_blocks() -> list[str]:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    return re.findall(r"```python\n(.*?)```", text, re.S)
+    pages = [ROOT / "README.md", *guide_pages()]
+    return [block for page in pages for block in
+            re.findall(r"```python\n(.*?)```", page.read_text(encoding="utf-8"), re.S)]
+
+
+def test_the_readme_is_a_front_door_that_links_every_guide_page():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert len(readme.splitlines()) <= 200
+    linked = {p.name for p in guide_pages()}
+    assert linked == {p.name for p in (ROOT / "docs" / "guide").glob("*.md")}
+    for heading in ("## The two commands", "## Python API", "## Command line"):
+        assert heading in readme
 
 
 def _check_outputs(folder, stdout):

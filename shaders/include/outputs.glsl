@@ -13,10 +13,7 @@ uniform isampler2D u_face_ids;                 // triangle -> polygon id of this
 #endif
 
 // (SRGB is defined for programs that encode for display: no cost for the others)
-vec3 encode_srgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
-}
+#include "srgb.glsl"
 
 void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     color = clamp(color, 0.0, 1.0);

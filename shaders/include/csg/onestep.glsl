@@ -1,0 +1,193 @@
+#ifdef CSG_SLOTS
+// A small tree (at most CSG_SLOTS leaves, 4, 8 or 16, with its truth table): every leaf's
+// runs along the whole line at once, then the surface in one step, with no walk. Each leaf
+// occurs once in the tree, under an even or odd number of right operands of differences,
+// so the tree's answer can only rise at its entries (even) or its exits (odd) -- and only
+// fall at the others: the surface is the nearest of those boundaries (the others where the
+// ray starts inside the solid) past the near plane after which the tree's answer differs
+// from the start's, one candidate a leaf (two for a torus), each tested with a lookup in
+// the table. The leaves' states just after a candidate come from comparing it with every
+// run at once (four leaves to a vector), ties by leaf order as in the walk. The rays come
+// interpolated from the vertex stage, in each slot's frame (csg.vert). Each slot's code is
+// unrolled here, its kind a constant (CSG_KIND_s), so its runs stay in registers and no
+// code of another kind runs: no loops at all (on llvmpipe a loop costs more than the
+// straight code it would skip).
+
+// slot s: its leaf's world -> leaf rows and sizes, u_csg_slot[4 s .. 4 s + 3] (read at
+// indices the compiler knows: plain loads; the rows for the hit's normal), its leaf's
+// number and sign by groups of four
+uniform vec4 u_csg_slot[4 * CSG_SLOTS];
+noperspective in vec3 v_slot_origin[CSG_SLOTS];  // each slot's ray (csg.vert)
+noperspective in vec3 v_slot_span[CSG_SLOTS];
+int csg_hit_slot, csg_hit_kind;        // the slot of csg_first_hit's surface, its kind
+uniform vec4 u_csg_slot_leaf[CSG_SLOTS / 4];
+uniform vec4 u_csg_slot_sign[CSG_SLOTS / 4];   // +1: counts positively in the tree
+int slot_leaf(int s) { return int(u_csg_slot_leaf[s >> 2][s & 3]); }
+
+// slot s's runs [x, y) and [z, w) along the pixel's whole line (empty: INF, INF)
+vec4 slot_runs_as(int kind, int s) {
+    vec4 q = u_csg_slot[4 * s + 3];
+    vec3 o = v_slot_origin[s], d = v_slot_span[s];
+    if (IS(kind, LEAF_HALFSPACE)) {                 // a half-space: before or after its crossing
+        float nd = dot(q.xyz, d), t = (q.w - dot(q.xyz, o)) / nd;
+        return nd > 0.0 ? vec4(-INF, t, INF, INF) : nd < 0.0 ? vec4(t, INF, INF, INF)
+             : dot(q.xyz, o) <= q.w ? vec4(-INF, INF, INF, INF) : vec4(INF);
+    }
+    return leaf_bounds_od(kind, q, o, d);  // (a torus: its two runs)
+}
+
+// the truth table in slot order, 32 bits a word
+uniform uint u_csg_slot_table[CSG_SLOTS == 16 ? 512 : CSG_SLOTS == 8 ? 8 : 1];
+bool table_inside(uint bits) {
+    return ((u_csg_slot_table[bits >> 5u] >> (bits & 31u)) & 1u) != 0u;
+}
+
+#define HAS_TORUS ((CSG_KINDS & (1 << LEAF_TORUS)) != 0)
+
+// the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
+// point just after ``t``: a boundary is passed where it is below ``t`` -- per slot, t
+// itself or the next float above it, where the walk would have passed a boundary at t
+// (leaves numbered up to the candidate's: ties go by leaf order)
+uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
+    uvec4 inside = uvec4(lessThan(a, t)) & uvec4(greaterThanEqual(b, t));
+#if HAS_TORUS
+    inside |= uvec4(lessThan(c, t)) & uvec4(greaterThanEqual(d, t));
+#endif
+    return (inside.x | (inside.y << 1u) | (inside.z << 2u) | (inside.w << 3u)) << shift;
+}
+
+#if CSG_SLOTS == 4
+#define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 0u)
+#elif CSG_SLOTS == 8
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u))
+#else
+#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
+                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u) | \
+                            group_bits(S(2, t, c), A2, B2, C2, D2, 8u) | \
+                            group_bits(S(3, t, c), A3, B3, C3, D3, 12u))
+#endif
+// group g's thresholds for a candidate t of leaf c: the next float above t for the slots
+// whose leaves are numbered at most c (t >= 0 here), t for the others
+#define UPTO(g, t, c) mix(vec4(t), vec4(uintBitsToFloat(floatBitsToUint(t) + 1u)), \
+                          lessThanEqual(u_csg_slot_leaf[g], vec4(c)))
+// the start: the boundaries before t = 0 passed, none at it
+#define BEFORE(g, t, c) vec4(0.0)
+
+// candidate t of leaf c: the surface if the answer after it differs from the start's
+#define CANDIDATE(t, c, s, KIND) { \
+    float tc_ = (t); \
+    if (tc_ >= 0.0 && tc_ < t_best && \
+        table_inside(GROUP_SUM(tc_, float(c), UPTO)) != start) { \
+        t_best = tc_; best = (c); csg_hit_slot = (s); csg_hit_kind = (KIND); } }
+
+// slot c (its runs a..dd): its one candidate (two for a torus), the leaf's own number
+#define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
+    if (KIND >= 0) { \
+        int leaf_ = slot_leaf(c); \
+        bool rises = (u_csg_slot_sign[(c) >> 2][(c) & 3] > 0.0) != start; \
+        CANDIDATE(rises ? (a) : (b), leaf_, c, KIND) \
+        if (KIND == LEAF_TORUS) CANDIDATE(rises ? (cc) : (dd), leaf_, c, KIND) \
+    }
+
+// slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
+#define SLOT(s, KIND, a, b, cc, dd) { \
+    vec4 r_ = KIND >= 0 ? slot_runs_as(KIND, s) : vec4(INF); \
+    a = r_.x; b = r_.y; cc = r_.z; dd = r_.w; }
+#define GROUP(g, K0, K1, K2, K3, A, B, C, D) \
+    vec4 A = vec4(INF), B = vec4(INF), C = vec4(INF), D = vec4(INF); \
+    SLOT(4 * g, K0, A.x, B.x, C.x, D.x) SLOT(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
+    SLOT(4 * g + 2, K2, A.z, B.z, C.z, D.z) SLOT(4 * g + 3, K3, A.w, B.w, C.w, D.w)
+#define GROUP_CANDIDATES(g, K0, K1, K2, K3, A, B, C, D) \
+    SLOT_CANDIDATES(4 * g, K0, A.x, B.x, C.x, D.x) \
+    SLOT_CANDIDATES(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
+    SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z) \
+    SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w)
+
+// M(group, its four slots' kinds, its runs' four vectors) for each group of four slots
+#define GROUP_0(M) M(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
+#define GROUP_1(M) M(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
+#define GROUPS_23(M) M(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2) \
+    M(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
+#if CSG_SLOTS == 4
+#define EACH_GROUP(M) GROUP_0(M)
+#elif CSG_SLOTS == 8
+#define EACH_GROUP(M) GROUP_0(M) GROUP_1(M)
+#else
+#define EACH_GROUP(M) GROUP_0(M) GROUP_1(M) GROUPS_23(M)
+#endif
+
+// the first surface along the pixel's ray (csg.vert's: ``ro`` + t ``rd``, the near plane to
+// the far one), t >= 0: (t, leaf), or leaf -1
+int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
+    EACH_GROUP(GROUP)
+    // the solid can hold the ray's start only where a leaf's box meets the near plane
+    bool start = false;
+    if (u_csg_start > 0)
+        start = table_inside(GROUP_SUM(0.0, 0.0, BEFORE));
+    float t_best = INF;
+    int best = -1;
+    EACH_GROUP(GROUP_CANDIDATES)
+    t_hit = t_best;
+    return best;
+}
+#else
+// the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
+int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
+    vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
+    CLEAR_LEAVES();
+    // the leaves the ray starts in: only those whose boxes hold the start (none where no
+    // leaf's box meets the near plane: the loop is then not run at all)
+    for (int i = 0; i < u_csg_start;) {
+        vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
+        if (any(lessThan(ro, a.xyz)) || any(greaterThan(ro, b.xyz))) { i = int(a.w); continue; }
+        int k = int(b.w);
+        if (k >= 0 && leaf_contains(leaf_kind(k), leaf_param(k), to_leaf(k, vec4(ro, 1.0))))
+            SET_LEAF(k);
+        i++;
+    }
+    bool start = tree_inside(u_csg_start > 0 ? u_csg_ops : 0);
+    float t_cur = 0.0, leaf_cur = -1.0;
+    for (int step = 0; step < 4 * MAX_LEAVES; ++step) {
+        vec4 bt = vec4(INF), bk = vec4(-1.0);
+#ifdef CSG_LEAF_LOOP
+        every_leaf_offer(ro, rd, t_cur, leaf_cur, bt, bk);
+#else
+        for (int i = 0; i < u_csg_nodes;) {
+            vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
+            float t0, t1;
+            if (!box_span(ro, inv, a.xyz, b.xyz, t0, t1) || t1 < t_cur || t0 > bt.w) {
+                i = int(a.w);
+                continue;
+            }
+            int k = int(b.w);
+            if (k >= 0) offer4(leaf_bounds_as(leaf_kind(k), k, ro, rd), k, t_cur, leaf_cur,
+                               bt, bk);
+            i++;
+        }
+#endif
+        // the events in order: the first where the tree's answer changes is the surface
+        EVENT(x) EVENT(y) EVENT(z) EVENT(w)
+        t_cur = bt.w;
+        leaf_cur = bk.w;
+    }
+    return -1;
+}
+#endif
+
+// the surface's normal at p (world), outward from the solid
+vec3 csg_normal(int k, vec3 p) {
+#ifdef CSG_SLOTS
+    // (from the hit's slot: its rows are the world -> leaf map, whose transpose takes a
+    // gradient back to world; the sign is the caller's: it turns the normal to the eye)
+    int s = csg_hit_slot;
+    vec4 m0 = u_csg_slot[4 * s], m1 = u_csg_slot[4 * s + 1], m2 = u_csg_slot[4 * s + 2];
+    vec4 p1 = vec4(p, 1.0);
+    vec3 g = leaf_gradient(csg_hit_kind, u_csg_slot[4 * s + 3],
+                           vec3(dot(m0, p1), dot(m1, p1), dot(m2, p1)));
+    return g.x * m0.xyz + g.y * m1.xyz + g.z * m2.xyz;
+#else
+    return normal_to_world(k, leaf_gradient(leaf_kind(k), leaf_param(k),
+                                            to_leaf(k, vec4(p, 1.0))));
+#endif
+}

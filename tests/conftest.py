@@ -28,6 +28,19 @@ def glshade(*args, timeout=120, **kwargs):
                           text=True, cwd=ROOT, timeout=timeout, **kwargs)
 
 
+def require(module: str, why: str):
+    """``pytest.importorskip`` for what the test extra installs: a skip on a developer's
+    machine that lacks it, a failure when ``CI`` is set (CI must never pass by skipping)."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError as exc:
+        if os.environ.get("CI"):
+            pytest.fail(f"{module} is missing in CI ({why}): {exc}", pytrace=False)
+        pytest.skip(f"{module} is not installed ({why})", allow_module_level=True)
+
+
 def closing_factory(build):
     """For a fixture: yield a function that builds objects, and close them all afterwards."""
     made = []

@@ -261,3 +261,15 @@ def test_public_classes_and_functions_say_what_they_are(module):
         if (inspect.isclass(obj) or inspect.isfunction(obj)) and not (obj.__doc__ or "").strip():
             bare.append(name)
     assert bare == []
+
+
+def test_a_missing_test_extra_fails_in_ci_and_skips_elsewhere(monkeypatch):
+    from tests.conftest import require
+
+    monkeypatch.setenv("CI", "true")
+    with pytest.raises(pytest.fail.Exception, match="missing in CI"):
+        require("glshade_no_such_module", "a test extra")
+    monkeypatch.delenv("CI")
+    with pytest.raises(pytest.skip.Exception):
+        require("glshade_no_such_module", "a test extra")
+    assert require("numpy", "a dependency").__name__ == "numpy"

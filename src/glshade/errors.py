@@ -28,9 +28,20 @@ EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
 
 
 class GlshadeError(Exception):
-    """Base class of every error glshade raises on purpose."""
+    """Base class of every error glshade raises on purpose. One made by :meth:`must`
+    carries its ``subject`` and ``rule``, so a caller can restate the rule for its own
+    subject (a scene file's key) without parsing the message."""
 
     exit_status = EXIT_ENVIRONMENT
+    subject: str | None = None
+    rule: str | None = None
+
+    @classmethod
+    def must(cls, subject: str, rule: str):
+        """``"{subject} must {rule}"``, with both kept as attributes."""
+        error = cls(f"{subject} must {rule}")
+        error.subject, error.rule = subject, rule
+        return error
 
 
 class InputError(GlshadeError, ValueError):

@@ -85,8 +85,8 @@ class Culling(enum.Enum):
         try:
             return cls(str(value).lower())
         except ValueError:
-            raise OptionError(f"cull must be 'auto', True or False (or one of "
-                              f"{', '.join(m.value for m in cls)}), got {value!r}") from None
+            raise OptionError.must("cull", "be 'auto', True or False (or one of "
+                                   f"{', '.join(m.value for m in cls)}), got {value!r}") from None
 
     def __bool__(self) -> bool:  # (so `if options.cull:` reads as before: AUTO and ON cull)
         return self is not Culling.OFF

@@ -20,7 +20,7 @@ from .errors import OptionError
 from .modes import Backend, Culling, Outputs, ShadingMode
 
 __all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS",
-           "check_whole", "check_size", "check_samples"]
+           "check_whole", "check_size", "check_samples", "HEMICUBE_RESOLUTION"]
 
 #: the largest image side glshade makes (GL's framebuffers go no further on most drivers)
 MAX_SIZE = 16384
@@ -29,6 +29,9 @@ MSAA_COUNTS = (0, 1, 2, 4, 8, 16, 32, 64)
 
 #: image size (width, height) when neither the command line nor a scene file gives one
 DEFAULT_SIZE = (800, 600)
+#: the hemicube's resolution unless one is asked for: the top face's pixels a side (the API,
+#: the CLI and scene files all quote this one)
+HEMICUBE_RESOLUTION = 128
 
 
 @dataclass(frozen=True, init=False)
@@ -140,8 +143,8 @@ def check_size(width: object, height: object) -> tuple[int, int]:
     ok = all(not isinstance(v, bool) and isinstance(v, (int, np.integer))
              and 1 <= v <= MAX_SIZE for v in (width, height))
     if not ok:
-        raise OptionError(f"size must be whole pixels from 1 to {MAX_SIZE} a side (width x "
-                          f"height such as 800x600), got {width!r}x{height!r}")
+        raise OptionError.must("size", f"be whole pixels from 1 to {MAX_SIZE} a side (width "
+                               f"x height such as 800x600), got {width!r}x{height!r}")
     return int(width), int(height)  # type: ignore[call-overload]
 
 
@@ -149,8 +152,8 @@ def check_samples(samples: object) -> int:
     """The one rule for MSAA samples: 0 (off) or a power of two up to 64."""
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
             or samples not in MSAA_COUNTS:
-        raise OptionError(f"samples (MSAA) must be 0 (off) or a power of two up to 64 such "
-                          f"as 4, got {samples!r}")
+        raise OptionError.must("samples (MSAA)", "be 0 (off) or a power of two up to 64 "
+                               f"such as 4, got {samples!r}")
     return int(samples)
 
 

@@ -16,7 +16,9 @@ import pytest
 
 from glshade.animate.writers import write_animation
 
-pytest.importorskip("imageio_ffmpeg", reason="the video extra is part of the test extra")
+from ..conftest import require
+
+require("imageio_ffmpeg", "the video extra is part of the test extra")
 
 
 def _frames(n, interrupt_at=None):
@@ -111,7 +113,7 @@ def test_ctrl_c_while_the_encoder_finishes(tmp_path, monkeypatch):
 
 def test_a_written_mp4_has_every_frame(tmp_path):
     """(The oracle for the writer itself: imageio reads back what ffmpeg encoded.)"""
-    imageio = pytest.importorskip("imageio.v2")
+    imageio = require("imageio.v2", "imageio is part of the test extra")
     assert write_animation(_frames(7), tmp_path / "a.mp4", fps=10) == 7
     with imageio.get_reader(tmp_path / "a.mp4") as reader:
         frames = list(reader.iter_data())

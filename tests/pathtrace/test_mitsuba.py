@@ -7,13 +7,14 @@ import pytest
 from glshade.pathtrace import TraceScene, trace
 from glshade.radiosity.cornell import CORNELL_CAMERA, cornell_scene
 
+from ..conftest import require
 from ..oracle import mitsuba_scene
 
 pytestmark = [pytest.mark.gl, pytest.mark.once]
 
 
 def test_the_cornell_box_agrees_with_mitsuba(gl_context, tmp_path):
-    pytest.importorskip("mitsuba", reason="Mitsuba 3 is part of the test extra")
+    require("mitsuba", "Mitsuba 3 is part of the test extra")
     scene, camera = cornell_scene()
     ours = trace(scene, camera, (64, 64), spp=256, seed=3, context=gl_context, progress=False)
     theirs = mitsuba_scene.render(TraceScene.from_scene(scene), CORNELL_CAMERA, 64, 256,

@@ -13,6 +13,7 @@ from dataclasses import dataclass, fields
 from typing import Any, TypeVar
 
 from ..modes import Backend, Outputs, ShadingMode
+from ..options import HEMICUBE_RESOLUTION
 
 __all__ = ["RenderArgs", "InfoArgs", "RenderCommandArgs", "AnimateArgs", "CompareArgs",
            "BatchArgs", "RadiosityArgs", "HiddenArgs", "ViewArgs", "DoctorArgs",
@@ -118,7 +119,7 @@ class RadiosityArgs(RenderArgs):
     scene: str
     output: str
     patch_size: float | None = None
-    hemicube: int = 128
+    hemicube: int = HEMICUBE_RESOLUTION
     method: str = "progressive"
     particles: int = 200_000
     until: float = 0.01

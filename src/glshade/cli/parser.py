@@ -11,7 +11,7 @@ import dataclasses
 from .._version import __version__
 from ..errors import EXIT_USAGE
 from ..modes import HEADLESS_BACKENDS
-from ..options import DEFAULT_SIZE
+from ..options import DEFAULT_SIZE, HEMICUBE_RESOLUTION
 from ..scene import Camera, Material
 from . import arguments as a
 from . import commands as c
@@ -265,8 +265,9 @@ def add_radiosity(sub) -> None:
                    help="the image (.png)")
     p.add_argument("--patch-size", type=v.positive_float, metavar="S", help="cut polygons "
                    "into patches of about S (scene units; default: a 24th of the diagonal)")
-    p.add_argument("--hemicube", type=v.hemicube, default=128, metavar="N",
-                   help="hemicube resolution, the top face's pixels a side (default 128)")
+    p.add_argument("--hemicube", type=v.hemicube, default=HEMICUBE_RESOLUTION, metavar="N",
+                   help="hemicube resolution, the top face's pixels a side (default "
+                   f"{HEMICUBE_RESOLUTION})")
     p.add_argument("--method", type=v.radiosity_method, default="progressive",
                    help="progressive refinement (default), gauss-seidel gathering over the "
                    "full matrix (small scenes), or monte-carlo light tracing (no form "

@@ -16,22 +16,8 @@ __all__ = ["pixel_rays", "raycast_scene", "has_analytic_surfaces"]
 
 def pixel_rays(camera: Camera, width: int, height: int):
     """World-space ray origins and unit directions through pixel centres ``(H, W, 3)``,
-    row 0 at the top."""
-    j, i = np.meshgrid(np.arange(width) + 0.5, np.arange(height) + 0.5)
-    x = 2 * j / width - 1
-    y = 1 - 2 * i / height
-    r = camera.rotation
-    if camera.projection == "perspective":
-        t = np.tan(np.radians(camera.fov_y) / 2)
-        d = np.stack([x * t * width / height, y * t, -np.ones_like(x)], -1) @ r.T
-        d /= np.linalg.norm(d, axis=-1, keepdims=True)
-        o = np.broadcast_to(camera.position, d.shape)
-    else:
-        half_h = camera.height / 2
-        offset = np.stack([x * half_h * width / height, y * half_h, np.zeros_like(x)], -1)
-        o = camera.position + offset @ r.T
-        d = np.broadcast_to(camera.forward, o.shape)
-    return o, d
+    row 0 at the top: :meth:`Camera.rays`, kept under the name the CPU twins use."""
+    return camera.rays((width, height))
 
 
 def has_analytic_surfaces(scene: Scene) -> bool:

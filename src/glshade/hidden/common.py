@@ -219,20 +219,11 @@ def prepare(scene_or_mesh, camera, size=(256, 256)) -> Prepared:
     solid = np.linalg.norm(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]),
                            axis=1) > 0
     tris, src = tris[solid], src[solid]
-    # pixel rays, through pixel centres, in view space
-    inv = np.linalg.inv(proj)
-    xs = (np.arange(width) + 0.5) / width * 2 - 1
-    ys = 1 - (np.arange(height) + 0.5) / height * 2
-    gx, gy = np.meshgrid(xs, ys)
-    ndc = np.stack([gx.ravel(), gy.ravel()], 1)
-
-    def unproject(z):
-        p = np.c_[ndc, np.full(len(ndc), z), np.ones(len(ndc))] @ inv.T
-        return p[:, :3] / p[:, 3:]
-
-    a, b = unproject(-1.0), unproject(1.0)
-    direction = b - a
-    direction /= np.linalg.norm(direction, axis=1, keepdims=True)
+    # pixel rays (Camera.rays), in view space, from the near plane where the GPU's start
+    o, d = camera.rays((width, height))
+    o_view = o.reshape(-1, 3) @ view[:3, :3].T + view[:3, 3]
+    direction = d.reshape(-1, 3) @ view[:3, :3].T
+    a = o_view + direction * ((camera.near + o_view[:, 2]) / -direction[:, 2])[:, None]
     prepared = Prepared(tris, np.zeros((len(tris), 3, 2)), ids[src], order[src],
                         (width, height), proj, a, direction, camera.near, camera.far,
                         n_polygons, (0.0, 0.0, 1.0, 0.0) if camera.projection ==

@@ -208,8 +208,8 @@ def _check(kind: str, value, where: str):
             return _RULES[kind](value)
         except (GlshadeError, ValueError, TypeError) as exc:
             # the rule's own words, with the file's key as their subject
-            said = re.match(r"[\w ()]+? must (.*)", str(exc), re.S)
-            raise SceneFormatError(f"{where} must {said.group(1)}" if said else
+            rule = getattr(exc, "rule", None)
+            raise SceneFormatError(f"{where} must {rule}" if rule else
                                    f"{where}: {exc}") from None
     if kind == "light_type":
         return value if value in ("point", "directional") else fail("'point' or "

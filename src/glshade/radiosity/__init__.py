@@ -16,6 +16,7 @@ import numpy as np
 
 from ..modes import Backend, parse_enum
 from .cornell import CORNELL_CAMERA, CORNELL_MATERIALS, cornell_parts, cornell_scene
+from ..options import HEMICUBE_RESOLUTION
 from .formfactors import FormFactors, quadrature_counts
 from .problem import PatchScene
 from .solvers import Solution, gauss_seidel, progressive
@@ -38,7 +39,7 @@ class Method(str, enum.Enum):
 
 
 def solve(scene, patch_size: float | None = None, *, method: Method | str = Method.PROGRESSIVE,
-          until: float = 0.01, max_shots: int | None = None, hemicube: int = 128,
+          until: float = 0.01, max_shots: int | None = None, hemicube: int = HEMICUBE_RESOLUTION,
           quadrature: int | str = "auto", seed: int = 0, context=None,
           backend: Backend | str = Backend.AUTO, progress=None, on_shot=None,
           particles: int | None = None) -> Solution:

@@ -35,10 +35,12 @@ import numpy as np
 
 from ..errors import InputError, OptionError
 from ..modes import Backend
+from ..options import HEMICUBE_RESOLUTION
 from .contour import clip_to_plane, point_polygon_factors
 from .problem import PatchScene
 
-__all__ = ["FormFactors", "quadrature_counts", "near_pairs", "delta_form_factors"]
+__all__ = ["FormFactors", "quadrature_counts", "near_pairs", "delta_form_factors",
+           "HEMICUBE_RESOLUTION"]
 
 MAX_QUADRATURE = 8
 
@@ -156,7 +158,7 @@ class FormFactors:
     ``samples``: hemicubes are never multisampled). Rows are cached (up to
     ``cache_mb``); ``close()`` releases the GL objects (and the context, if made here)."""
 
-    def __init__(self, problem: PatchScene, resolution: int = 128,
+    def __init__(self, problem: PatchScene, resolution: int = HEMICUBE_RESOLUTION,
                  quadrature: int | str = "auto",
                  seed: int = 0, context=None, backend: Backend | str = "auto",
                  cache_mb: float = 512):

@@ -32,7 +32,7 @@ def check_fov(fov_y: object, what: str = "fov_y") -> float:
     except (TypeError, ValueError):
         value = float("nan")
     if not 0 < value < 180:
-        raise SceneError(f"{what} must be in (0, 180) degrees, got {fov_y!r}")
+        raise SceneError.must(what, f"be in (0, 180) degrees, got {fov_y!r}")
     return value
 
 
@@ -143,6 +143,34 @@ class Camera:
         if self.projection is Projection.PERSPECTIVE:
             return perspective(self.fov_y, aspect, near, far)
         return orthographic(self.height, aspect, near, far)
+
+    def rays(self, size: tuple[int, int], jitter: ArrayLike | None = None
+             ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The pixel rays of a ``size = (width, height)`` image: world-space origins and unit
+        directions ``(H, W, 3)``, through pixel centres, row 0 at the top -- the one pixel-ray
+        convention every numpy ray caster, picker and oracle-facing twin uses (the GPU's is
+        ``shaders/include/rays.glsl``). Perspective rays start at the eye, orthographic ones
+        on the image plane through it. ``jitter`` ``(H, W, 2)`` (or broadcastable) moves each
+        sample from its pixel's centre, in pixels (x right, y down)."""
+        width, height = int(size[0]), int(size[1])
+        j, i = np.meshgrid(np.arange(width) + 0.5, np.arange(height) + 0.5)
+        if jitter is not None:
+            offset = np.broadcast_to(np.asarray(jitter, np.float64), (height, width, 2))
+            j, i = j + offset[..., 0], i + offset[..., 1]
+        x = 2 * j / width - 1
+        y = 1 - 2 * i / height
+        r = self.rotation
+        if self.projection == "perspective":
+            t = np.tan(np.radians(self.fov_y) / 2)
+            d = np.stack([x * t * width / height, y * t, -np.ones_like(x)], -1) @ r.T
+            d /= np.linalg.norm(d, axis=-1, keepdims=True)
+            o = np.broadcast_to(self.position, d.shape)
+        else:
+            half_h = self.height / 2
+            offset3 = np.stack([x * half_h * width / height, y * half_h, np.zeros_like(x)], -1)
+            o = self.position + offset3 @ r.T
+            d = np.broadcast_to(self.forward, o.shape)
+        return o, d
 
     def planes(self, bounds: ArrayLike | None = None) -> tuple[float, float]:
         """``(near, far)``: the camera's own, else fitted to ``bounds`` ``(2, 3)`` -- the far

@@ -11,6 +11,22 @@ trees. :mod:`glshade.render.passes.csg` uploads it; ``shaders/include/csg/`` rea
 the kind and opcode numbers injected from :class:`LeafKind` and :class:`Op` (never written
 twice). Everything here is pure numpy and tested on its public names against the tree's own
 membership test (:meth:`Solid.contains`).
+
+**A small tree (at most TABLE_LEAVES leaves) is cast in one step.** Every leaf's runs along
+the pixel's whole line are found at once and kept in registers; since each leaf occurs once
+in the tree under an even or odd number of right operands of differences, the tree's answer
+can only *rise* at an entry of a positive leaf or an exit of a negative one: the surface is
+the nearest such boundary past the near plane after which the truth table says the answer
+differs from the start's -- one candidate a leaf (two for a torus), each a lookup, ties by
+leaf order (the left operand's face shows). No loops: on a SIMD rasteriser (llvmpipe runs 8
+pixels in lock-step and an if's untaken side runs masked) that is what makes it fast. The
+slots hold the leaves in kind order (``TreeData.slots``), so a program serves every tree
+with the same count of leaves of each kind.
+
+**A larger tree walks** from one leaf boundary to the next (the hierarchy, or each kind's
+leaves in turn below 33 leaves, finding the next four boundaries in one pass), flipping that
+leaf's bit and running the post-order program (skipping subtrees the ray is in none of the
+leaves of); the first boundary where its answer changes is the surface.
 """
 
 from __future__ import annotations

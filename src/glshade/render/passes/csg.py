@@ -6,24 +6,16 @@ block for trees of at most 64 leaves, a data texture beyond -- picks the program
 the solid's screen polygon (:mod:`glshade.solids.proxy`), so only pixels that may show it
 run the cast, each once, the camera inside the solid or out.
 
-**A small tree (at most 14 leaves) is cast in one step** (``include/csg/onestep.glsl``):
-every leaf's runs along the pixel's whole line at once, then the nearest boundary that can
-change the tree's answer whose truth-table lookup says it does. No loops: on a SIMD
-rasteriser (llvmpipe runs 8 pixels in lock-step) that is what makes it fast. Its slots hold
-the leaves in kind order, each slot's kind a compile-time constant, so the program is keyed
-by how many leaves of each kind the tree has: editing sizes, places or operators reuses it.
-The vertex stage gives each pixel its ray in every slot's own frame (affine in NDC, so
-interpolated exactly). **A larger tree walks** (``include/csg/walk.glsl``) from one leaf
-boundary to the next; one program per size class (32, 64, 256, 1,024 leaves) and set of
-kinds.
+A small tree (at most 14 leaves) is cast in one step (``include/csg/onestep.glsl``), with
+no loops, by a program keyed by how many leaves of each kind it has, its rays interpolated
+exactly from the vertex stage; a larger tree walks (``include/csg/walk.glsl``), one program
+per size class and set of kinds: :mod:`glshade.solids.encoding` tells why. Measured on
+llvmpipe (benchmarks/csg_bench.py's 7-leaf tree at 512x512, one thread): 7.8 ms a frame
+against 4.9 ms for its 5,218-triangle manifold3d mesh.
 
-Measured on llvmpipe (the 7-leaf tree of benchmarks/csg_bench.py at 512x512, one thread,
-CPU time): 7.8 ms a frame against 4.9 ms for its 5,218-triangle manifold3d mesh.
-
-Shading: the meshes' lighting with the exact normal at every pixel. Gouraud and Phong both
-light per pixel (a solid has no vertices to hold an intensity); flat gives each planar leaf
-face one intensity, lit at the face's centre; ``normals`` and ``depth`` show what they show
-for meshes. The fragment stage writes gl_FragDepth: solids and meshes share one z-buffer.
+Shading: the meshes' lighting with the exact normal at every pixel (Gouraud lights per
+pixel too: a solid has no vertices); flat gives each planar leaf face one intensity, lit at
+its centre. The fragment stage writes gl_FragDepth: solids and meshes share one z-buffer.
 """
 
 from __future__ import annotations
@@ -89,8 +81,7 @@ class CsgPass(GLResource):
         self.max_slots = max((n for n in (16, 8, 4) if 6 * n + 6 <= limit), default=0)
 
     def data(self, solid: Solid) -> tuple[TreeData, Any]:
-        """(tree data, its texture or uniform buffer) of a solid, made once while it
-        lives."""
+        """(tree data, its texture or uniform buffer) of a solid, made once while it lives."""
         self._check()
         for key in [k for k, v in self._data.items() if v[0]() is None]:
             self._data.pop(key)[2].release()
@@ -169,25 +160,22 @@ class CsgPass(GLResource):
             else:
                 texture.use(location=self.UNIT)
                 put(prog, "u_csg", self.UNIT)
-            for name, value in data.offsets().items():
-                put(prog, name, value)
             inverse = np.linalg.inv(view_proj)
-            put(prog, "u_csg_start", data.nodes if may_start_inside(data, inverse) else 0)
+            values = {**data.offsets(), "u_csg_kind_start": np.array(data.kind_start, "i4"),
+                      "u_csg_start": data.nodes if may_start_inside(data, inverse) else 0,
+                      "u_solid_view_proj": gl_bytes(view_proj),
+                      "u_inverse_view_proj": gl_bytes(inverse), "u_view": gl_bytes(view),
+                      "u_view_normal": np.ascontiguousarray(view[:3, :3].T, "f4").tobytes(),
+                      "u_viewport_origin": (float(viewport[0]), float(viewport[1])),
+                      "u_viewport_size": (float(viewport[2]), float(viewport[3])),
+                      "u_face_id_base": n_polygons}
             if slots:
-                put(prog, "u_csg_slot_leaf", data.slot_leaf)
-                put(prog, "u_csg_slot", data.slot_rows)
-                put(prog, "u_csg_slot_sign", data.slot_sign)
-                put(prog, "u_csg_slot_table", data.slot_words)
-            put(prog, "u_csg_kind_start", np.array(data.kind_start, "i4"))
+                values.update(u_csg_slot_leaf=data.slot_leaf, u_csg_slot=data.slot_rows,
+                              u_csg_slot_sign=data.slot_sign, u_csg_slot_table=data.slot_words)
+            for name, value in values.items():
+                put(prog, name, value)
             bounds = model.solid.bounds
             assert bounds is not None  # (Scene.add refuses unbounded solids)
-            put(prog, "u_solid_view_proj", gl_bytes(view_proj))
-            put(prog, "u_inverse_view_proj", gl_bytes(inverse))
-            put(prog, "u_view", gl_bytes(view))
-            put(prog, "u_view_normal", np.ascontiguousarray(view[:3, :3].T, "f4").tobytes())
-            put(prog, "u_viewport_origin", (float(viewport[0]), float(viewport[1])))
-            put(prog, "u_viewport_size", (float(viewport[2]), float(viewport[3])))
-            put(prog, "u_face_id_base", n_polygons)
             # the screen polygon that holds the solid (solids/proxy.py): only its pixels run
             # the cast; one layer, so each pixel once, the camera inside the solid or out
             polygon = screen_polygon(view_proj, bounds, data.hull,
@@ -199,8 +187,7 @@ class CsgPass(GLResource):
             n_polygons += data.leaves
 
     def _release_extra(self) -> None:
-        """The programs, textures and vertex arrays (the polygon's buffer is in
-        ``_objects``)."""
+        """The programs, textures and vertex arrays (the fan's buffer is in ``_objects``)."""
         for p in self._programs.values():
             p.release()
         self._programs.clear()

@@ -112,6 +112,13 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
+    for add in (add_info, add_render, add_animate, add_compare, add_batch, add_radiosity,
+                add_pathtrace, add_hidden, add_view, add_doctor):
+        add(sub)
+    return parser
+
+
+def add_info(sub) -> None:
     p = sub.add_parser("info", help="print counts, polygon sizes, bounds and area of a mesh "
                        "(or what a scene file holds)",
                        **_examples("glshade info assets/teapot.obj",
@@ -124,6 +131,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "thousandth of its size)")
     p.set_defaults(func=c.info, arguments=a.InfoArgs)
 
+
+def add_render(sub) -> None:
     p = sub.add_parser("render", help="render a mesh, solid or scene headless to an image",
                        **_examples("glshade render assets/teapot.obj -o teapot.png --mode gouraud",
                                    "glshade render primitive:torus -o t.png --size 256x256 "
@@ -143,6 +152,8 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p)
     p.set_defaults(func=c.render, arguments=a.RenderCommandArgs)
 
+
+def add_animate(sub) -> None:
     p = sub.add_parser("animate", help="render a scene file's camera path, or a turntable "
                        "round a mesh, to GIF, PNG, MP4 or frames",
                        **_examples("glshade animate assets/scenes/teapot-orbit.toml -o orbit.gif",
@@ -168,6 +179,8 @@ def build_parser() -> argparse.ArgumentParser:
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=c.animate, arguments=a.AnimateArgs)
 
+
+def add_compare(sub) -> None:
     p = sub.add_parser("compare", help="flat, Gouraud and Phong side by side, with errors "
                        "against a reference",
                        **_examples("glshade compare primitive:icosphere:2 -o grid.png --diff",
@@ -203,6 +216,8 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p, size_default="%dx%d per cell" % c.COMPARE_DEFAULTS.size)
     p.set_defaults(func=c.compare, arguments=a.CompareArgs)
 
+
+def add_batch(sub) -> None:
     p = sub.add_parser("batch", help="render every mesh of folders or globs to images "
                        "(and depth/normal/id arrays), resumably, locally or on Dask",
                        **_examples("glshade batch assets/ -o thumbs --views 2 --jobs 2",
@@ -225,10 +240,8 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p, size_default="256x256")
     p.set_defaults(func=c.batch, arguments=a.BatchArgs)
 
-    add_radiosity(sub)
-    add_pathtrace(sub)
-    add_hidden(sub)
 
+def add_view(sub) -> None:
     p = sub.add_parser("view", help="explore a mesh in a window (keys: h)",
                        **_examples("glshade view assets/teapot.obj",
                                    "glshade view primitive:teapot --compare",
@@ -246,11 +259,11 @@ def build_parser() -> argparse.ArgumentParser:
     add_render_options(p)
     p.set_defaults(func=c.view, arguments=a.ViewArgs)
 
+
+def add_doctor(sub) -> None:
     p = sub.add_parser("doctor", help="say which GL backends work and what they are")
     add_backend(p)
     p.set_defaults(func=c.doctor, arguments=a.DoctorArgs)
-    return parser
-
 
 
 def add_radiosity(sub) -> None:

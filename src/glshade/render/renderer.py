@@ -290,6 +290,41 @@ class Renderer:
         The one drawing path: every picture glshade makes comes through here."""
         self._check()
         options = DrawOptions.of(options)
+        camera = self._checked(scene, camera, options)
+        self.context.make_current()
+        self._sync(scene)
+        state = self._state(target, scene, camera, options, viewport)
+        ctx = self.ctx
+        if clear:
+            target.begin(scene.background, options.outputs)
+        else:
+            target.bind(options.outputs)
+        ctx.viewport = state.viewport
+        if options.depth_test:
+            ctx.enable(moderngl.DEPTH_TEST)
+        else:
+            ctx.disable(moderngl.DEPTH_TEST)
+        id_base, outlined = self._draw_meshes(state)
+        if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
+            if self._patches is None:
+                from .passes.patches import PatchPass
+
+                self._patches = PatchPass(self.context, self.shaders, self._uniforms,
+                                          self._materials)
+            id_base = self._patches.draw(state, id_base, self._normal_matrix)
+        if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
+            self._csg.draw(state, id_base)
+        if outlined:
+            self._edges.draw(state, target, [(g, m) for g, m, _ in outlined],
+                             [c for _, _, c in outlined] if options.wireframe else None)
+        ctx.disable(moderngl.CULL_FACE)
+        ctx.front_face = "ccw"
+        if clear:
+            target.resolve(options.outputs)
+
+    def _checked(self, scene, camera, options: DrawOptions) -> Camera:
+        """The camera a draw uses (planes fitted to the scene), after the checks every draw
+        makes of what it was given."""
         if not isinstance(scene, Scene):
             raise OptionError(f"expected a Scene, got {type(scene).__name__}")
         if not isinstance(camera, Camera):
@@ -306,37 +341,35 @@ class Renderer:
         if len(scene.lights) > MAX_LIGHTS:
             raise SceneError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")
-        self.context.make_current()
-        self._sync(scene)
-        ctx = self.ctx
-        outputs, aux = options.outputs, options.outputs.auxiliary
+        return camera
+
+    def _state(self, target, scene: Scene, camera: Camera, options: DrawOptions,
+               viewport) -> DrawState:
+        """The frozen facts of one draw (matrices, lights, variant, shared uniforms)."""
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
         proj = camera.projection_matrix(vw / vh)
         flip_rows = getattr(target, "rows_top_down", False)
         if flip_rows:  # image row 0 first in memory; this mirrors the winding on screen
             proj = _FLIP_Y @ proj
-        if clear:
-            target.begin(scene.background, outputs)
-        else:
-            target.bind(outputs)
-        ctx.viewport = (vx, vy, vw, vh)
-        if options.depth_test:
-            ctx.enable(moderngl.DEPTH_TEST)
-        else:
-            ctx.disable(moderngl.DEPTH_TEST)
-
-        lights_key = lights = tuple(scene.lights_for(camera))
-        variant = Variant(options.mode, aux, tuple(light_kind(x) for x in lights),
-                          options.srgb, camera.projection is Projection.ORTHOGRAPHIC)
+        lights = tuple(scene.lights_for(camera))
+        variant = Variant(options.mode, options.outputs.auxiliary,
+                          tuple(light_kind(x) for x in lights), options.srgb,
+                          camera.projection is Projection.ORTHOGRAPHIC)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
-        state = DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
-                          (vx, vy, vw, vh), flip_rows)
+        return DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
+                         (vx, vy, vw, vh), flip_rows)
+
+    def _draw_meshes(self, state: DrawState) -> tuple[int, list]:
+        """Draw the scene's visible meshes; the polygon id after theirs, and the (GpuMesh,
+        model matrix, colour) of those whose edges are to be drawn."""
+        ctx, put = self.ctx, self._uniforms.put
+        scene, options, view, lights = state.scene, state.options, state.view, state.lights
+        near = state.camera.planes()[0]
+        pixels = state.viewport[2] * state.viewport[3]
         prepared: set[int] = set()
-        put = self._uniforms.put
-        view3 = view[:3, :3]
         id_base = 0
-        outlined = []  # (GpuMesh, model matrix, colour) of the models whose edges are drawn
+        outlined = []
         for model in scene.models:
             if not model.visible or len(model.mesh.triangles[0]) == 0:
                 id_base += model.mesh.n_faces
@@ -352,31 +385,31 @@ class Renderer:
             cull = options.cull is Culling.ON or (
                 options.cull is Culling.AUTO and gpu.closed
                 and gpu.beyond(model_view, near))  # (seen from outside)
-            flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= vw * vh
-            prog = self._program(variant, not cull, flat)
+            flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
+            prog = self._program(state.variant, not cull, flat)
             if id(prog) not in prepared:  # the frame's uniforms, once per program used
-                for name, value in frame:
+                for name, value in state.frame_uniforms:
                     put(prog, name, value)
                 prepared.add(id(prog))
             transform = m.tobytes()
             normal_world, mirrored = self._normal_matrix(m, transform)
             # (the view is rigid: its inverse transpose is itself)
-            put(prog, "u_normal_view", _mat3(view3 @ normal_world))
+            put(prog, "u_normal_view", _mat3(view[:3, :3] @ normal_world))
             put(prog, "u_model_view", gl_bytes(model_view))
-            held = (transform, id_base, model.material, lights_key, scene.ambient)
+            held = (transform, id_base, model.material, lights, scene.ambient)
             if self._model_state.get(id(prog)) != held:  # else all of it is in place
                 put(prog, "u_normal_world", _mat3(normal_world))
                 put(prog, "u_face_id_base", id_base)
                 for name, value in self._materials(model.material, lights, scene.ambient):
                     put(prog, name, value)
                 self._model_state[id(prog)] = held
-            ctx.front_face = "cw" if mirrored != flip_rows else "ccw"
+            ctx.front_face = "cw" if mirrored != state.flip_rows else "ccw"
             if cull:
                 ctx.enable(moderngl.CULL_FACE)
                 ctx.cull_face = "back"
             else:
                 ctx.disable(moderngl.CULL_FACE)
-            if aux:
+            if state.variant.aux:
                 gpu.face_ids.use(0)
             if options.mode is ShadingMode.RADIOSITY:
                 vao = gpu.color_array(prog, model.display_colors(scene.ambient))
@@ -384,22 +417,7 @@ class Renderer:
                 vao = gpu.vertex_array(prog, options.mode)
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
-        if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
-            if self._patches is None:
-                from .passes.patches import PatchPass
-
-                self._patches = PatchPass(self.context, self.shaders, self._uniforms,
-                                          self._materials)
-            id_base = self._patches.draw(state, id_base, self._normal_matrix)
-        if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
-            self._csg.draw(state, id_base)
-        if outlined:
-            self._edges.draw(state, target, [(g, m) for g, m, _ in outlined],
-                             [c for _, _, c in outlined] if options.wireframe else None)
-        ctx.disable(moderngl.CULL_FACE)
-        ctx.front_face = "ccw"
-        if clear:
-            target.resolve(outputs)
+        return id_base, outlined
 
     def _warn_unsolved(self, scene: Scene) -> None:
         """The radiosity mode shows solved radiosities; say so, once per scene, when the

@@ -146,6 +146,58 @@ vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
     return rho + vec3(ks * 0.5 * (shin + 2.0) * pow(ca, shin));
 }
 
+// next-event estimation (pi x radiance, before the throughput): one emitter triangle by
+// power, a point uniform on it, its light through the BRDF where xo sees it
+vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
+    if (u_n_emit <= 0) return vec3(0.0);
+    float r = rand();
+    int lo = 0, hi = u_n_emit - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
+    }
+    vec4 em = fetch(u_emit + lo);
+    float p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
+    int ek = floatBitsToInt(em.y);
+    vec4 q0 = fetch(u_tris + 3 * ek);
+    vec3 q1 = fetch(u_tris + 3 * ek + 1).xyz, q2 = fetch(u_tris + 3 * ek + 2).xyz;
+    float a = rand(), b = rand();
+    if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+    vec3 y = q0.xyz + a * q1 + b * q2;
+    vec3 ny = normalize(cross(q1, q2));
+    vec3 to = y - xo;
+    float dist2 = dot(to, to), dist = sqrt(dist2);
+    vec3 wi = to / dist;
+    float cx = dot(n, wi), cy = -dot(ny, wi);
+    if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
+        visible(xo, wi, dist * (1.0 - 1e-4))) {
+        vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
+        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (em.z / p);
+    }
+    return vec3(0.0);
+}
+
+// the point and directional lights' contribution where xo sees them
+vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_n_lights; ++i) {
+        vec3 wi = u_light_pos[i].xyz;
+        float dist = 1e30, att = 1.0;
+        if (u_light_pos[i].w > 0.5) {
+            vec3 to = u_light_pos[i].xyz - xo;
+            dist = length(to);
+            wi = to / dist;
+            vec3 c = u_light_att[i];
+            att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+        }
+        float cx = dot(n, wi);
+        if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
+            sum += brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
+        }
+    }
+    return sum;
+}
+
 float g_hit;
 
 vec3 trace(vec3 o, vec3 d, out float first_emits) {
@@ -194,49 +246,8 @@ vec3 trace(vec3 o, vec3 d, out float first_emits) {
         vec3 wo = -d;
         vec3 rho = ma.xyz;
         float ks = ma.w, shin = mb.w;
-        // next-event estimation: one emitter triangle by power, a point uniform on it
-        if (u_n_emit > 0) {
-            float r = rand();
-            int lo = 0, hi = u_n_emit - 1;
-            while (lo < hi) {
-                int mid = (lo + hi) / 2;
-                if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
-            }
-            vec4 em = fetch(u_emit + lo);
-            float p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
-            int ek = floatBitsToInt(em.y);
-            vec4 q0 = fetch(u_tris + 3 * ek);
-            vec3 q1 = fetch(u_tris + 3 * ek + 1).xyz, q2 = fetch(u_tris + 3 * ek + 2).xyz;
-            float a = rand(), b = rand();
-            if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
-            vec3 y = q0.xyz + a * q1 + b * q2;
-            vec3 ny = normalize(cross(q1, q2));
-            vec3 to = y - xo;
-            float dist2 = dot(to, to), dist = sqrt(dist2);
-            vec3 wi = to / dist;
-            float cx = dot(n, wi), cy = -dot(ny, wi);
-            if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
-                visible(xo, wi, dist * (1.0 - 1e-4))) {
-                vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
-                sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2)
-                       * (em.z / p);
-            }
-        }
-        for (int i = 0; i < u_n_lights; ++i) {
-            vec3 wi = u_light_pos[i].xyz;
-            float dist = 1e30, att = 1.0;
-            if (u_light_pos[i].w > 0.5) {
-                vec3 to = u_light_pos[i].xyz - xo;
-                dist = length(to);
-                wi = to / dist;
-                vec3 c = u_light_att[i];
-                att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
-            }
-            float cx = dot(n, wi);
-            if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
-                sum += beta * brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
-            }
-        }
+        sum += beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin)
+                       + lights_seen(xo, n, n_geo, wo, rho, ks, shin));
         // the next direction: a lobe by albedo, then the BRDF-weighted throughput
         float wd = (rho.x + rho.y + rho.z) / 3.0;
         if (wd + ks <= 0.0) break;

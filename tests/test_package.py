@@ -273,3 +273,37 @@ def test_a_missing_test_extra_fails_in_ci_and_skips_elsewhere(monkeypatch):
     with pytest.raises(pytest.skip.Exception):
         require("glshade_no_such_module", "a test extra")
     assert require("numpy", "a dependency").__name__ == "numpy"
+
+
+#: the longest a function may grow (lines, docstring included) before it is split
+LONGEST = 80
+
+
+def test_no_function_is_a_chapter():
+    """Every Python function of glshade and every GLSL function of its shaders fits in
+    LONGEST lines: past that, it holds parts that have names of their own."""
+    import ast
+    import re
+
+    long = []
+    for path in PACKAGE.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                lines = node.end_lineno - node.lineno + 1
+                if lines > LONGEST:
+                    long.append(f"{path.relative_to(PACKAGE)}:{node.lineno} {node.name} "
+                                f"({lines} lines)")
+    for path in (ROOT / "shaders").rglob("*"):
+        if path.suffix == ".md" or not path.is_file():
+            continue
+        text = path.read_text(encoding="utf-8").splitlines()
+        start = None
+        for i, line in enumerate(text):
+            if re.match(r"^[a-z]\w*\s+\w+\(.*\)\s*\{\s*$", line):
+                start = i
+            elif line.startswith("}") and start is not None:
+                if i - start + 1 > LONGEST:
+                    long.append(f"shaders/{path.relative_to(ROOT / 'shaders')}:{start + 1} "
+                                f"({i - start + 1} lines)")
+                start = None
+    assert long == []

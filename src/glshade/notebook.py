@@ -43,6 +43,147 @@ def camera_from_view(view: dict) -> Camera:
                   near=view.get("near"), far=view.get("far"))
 
 
+#: (for the type checker: the traits and the widget's methods come with anywidget.AnyWidget,
+#: which _widget_class mixes in)
+_Widget: Any = object
+
+
+class _Behaviour(_Widget):
+    """What the widget does, apart from its synced traits (kept out of
+    :func:`_widget_class` so the class can be made on first use, when anywidget is
+    imported, without writing its methods inside a function)."""
+
+    def __init__(self, scene: Scene, camera: Camera | None = None, *,
+                 size=(480, 360), mode="phong", compare: str = "", samples: int = 4,
+                 pick: bool = False, backend=None, **kwargs):
+        from concurrent.futures import ThreadPoolExecutor
+
+        from .render.renderer import Renderer
+
+        w, h = int(size[0]), int(size[1])
+        super().__init__(width=w, height=h, **kwargs)
+        self.controls = _Controls(self, scene, camera, (w, h), mode, pick=pick)
+        self.split = _mode_name(compare) if compare else ""
+        # A GL context belongs to one thread, and a kernel answers widget messages on
+        # another than the one that runs cells: every GL call goes to a thread of its own.
+        self._gl = ThreadPoolExecutor(1, thread_name_prefix="glshade-notebook-gl")
+        self.renderer = self._on_gl(Renderer, w, h, samples=samples,
+                                    backend=backend or "auto")
+        self.on_msg(self._on_message)
+        self.refresh()
+
+    def _on_gl(self, fn, *args, **kwargs):
+        """``fn(*args, **kwargs)`` on the widget's GL thread (its result, or its error)."""
+        return self._gl.submit(fn, *args, **kwargs).result()
+
+    @property
+    def scene(self) -> Scene:
+        return self.controls.scene
+
+    @property
+    def camera(self) -> Camera:
+        """The view now shown."""
+        return self.controls.camera
+
+    @camera.setter
+    def camera(self, camera: Camera) -> None:
+        self.controls.camera = camera
+        self.refresh()
+
+    def image(self) -> np.ndarray:
+        """The frame now shown ``(H, W, 3) uint8``: the mode, and right of the middle
+        the compared mode when there is one."""
+        r, c = self.renderer, self.controls
+        left = self._on_gl(r.render, c.scene, c.camera, c.options)[..., :3]
+        if not self.split:
+            return left
+        right = self._on_gl(r.render, c.scene, c.camera,
+                            c.options.replace(mode=self.split))[..., :3]
+        out = left.copy()
+        out[:, self.width // 2:] = right[:, self.width // 2:]
+        return out
+
+    def refresh(self) -> None:
+        """Render the current view and send it to the browser."""
+        from ._display import png_bytes
+
+        png = png_bytes(self.image())
+        c = self.controls
+        with self.hold_sync():  # (one message: the frame and what it shows)
+            self.mode = c.options.mode.value
+            self.view = view_of(c.camera)
+            self.png = png
+            self.status = c.messages[-1] if c.messages else ""
+            self.revision += 1
+
+    def pick(self, x: float, y: float):
+        """What pixel (x, y) of the view shows (:meth:`Renderer.pick`), kept in
+        ``picked`` and said in the status line; None over the background."""
+        c = self.controls
+        found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
+        c.picks.append(found)
+        if found is None:
+            self.picked = {}
+            c._say("pick: background")
+        else:
+            self.picked = {"face": found.face_id, "point": [float(v) for v in found.point],
+                           "normal": [float(v) for v in found.normal],
+                           "depth": float(found.depth)}
+            c._say(f"pick: {found}")
+        return found
+
+    def recentre(self, x: float, y: float) -> bool:
+        """Orbit about the surface point under (x, y) from now on (a double-click)."""
+        c = self.controls
+        found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
+        if found is None:
+            return False
+        point = np.asarray(found.point, np.float64)
+        c.camera = c.camera.replace(position=c.camera.position + point - c.center)
+        c.center = point
+        return True
+
+    def _on_message(self, _widget, content: dict, _buffers) -> None:
+        """A gesture from the browser (an unknown mode or key is said in the status
+        line: a kernel would only log an exception raised here)."""
+        from .errors import GlshadeError
+
+        try:
+            self._gesture(content)
+        except GlshadeError as exc:
+            self.controls._say(f"error: {exc}")
+            self.refresh()
+
+    def _gesture(self, content: dict) -> None:
+        event, c = content.get("event"), self.controls
+        if event == "down":
+            c.mouse_down(float(content["x"]), float(content["y"]),
+                         str(content.get("button", "left")), bool(content.get("shift")))
+        elif event == "move":
+            c.mouse_move(float(content["x"]), float(content["y"]))
+        elif event == "up":
+            c.mouse_up()
+        elif event == "wheel":
+            c.scroll(float(content.get("dy", 0)))
+        elif event == "key":
+            c.key(str(content.get("key", "")))
+        elif event == "mode":
+            c.options = c.options.replace(mode=_mode_name(content["mode"]))
+        elif event == "compare":
+            self.split = _mode_name(content["mode"]) if content.get("mode") else ""
+        else:
+            return
+        self.refresh()  # (every gesture is answered by a frame: the browser's pacing)
+
+    def close(self) -> None:
+        """Close the widget and release its renderer (on its GL thread)."""
+        if getattr(self, "renderer", None) is not None:
+            self._on_gl(self.renderer.close)
+            self._gl.shutdown()
+            self.renderer = None
+        super().close()
+
+
 def _widget_class():
     try:
         import anywidget
@@ -51,7 +192,7 @@ def _widget_class():
         raise UsageError("the notebook viewer needs anywidget: pip install "
                          "'glshade[notebook]'") from exc
 
-    class NotebookViewer(anywidget.AnyWidget):
+    class NotebookViewer(_Behaviour, anywidget.AnyWidget):
         """The widget; see the module docstring. ``size`` ``(w, h)`` pixels; ``samples``
         MSAA samples (4, as ``glshade render``); ``backend`` the renderer's (auto, egl,
         osmesa); ``mode`` the shading mode; ``compare`` a
@@ -68,136 +209,6 @@ def _widget_class():
         status = traitlets.Unicode("").tag(sync=True)
         picked = traitlets.Dict().tag(sync=True)
         revision = traitlets.Int(0).tag(sync=True)
-
-        def __init__(self, scene: Scene, camera: Camera | None = None, *,
-                     size=(480, 360), mode="phong", compare: str = "", samples: int = 4,
-                     pick: bool = False, backend=None, **kwargs):
-            from concurrent.futures import ThreadPoolExecutor
-
-            from .render.renderer import Renderer
-
-            w, h = int(size[0]), int(size[1])
-            super().__init__(width=w, height=h, **kwargs)
-            self.controls = _Controls(self, scene, camera, (w, h), mode, pick=pick)
-            self.split = _mode_name(compare) if compare else ""
-            # A GL context belongs to one thread, and a kernel answers widget messages on
-            # another than the one that runs cells: every GL call goes to a thread of its own.
-            self._gl = ThreadPoolExecutor(1, thread_name_prefix="glshade-notebook-gl")
-            self.renderer = self._on_gl(Renderer, w, h, samples=samples,
-                                        backend=backend or "auto")
-            self.on_msg(self._on_message)
-            self.refresh()
-
-        def _on_gl(self, fn, *args, **kwargs):
-            """``fn(*args, **kwargs)`` on the widget's GL thread (its result, or its error)."""
-            return self._gl.submit(fn, *args, **kwargs).result()
-
-        @property
-        def scene(self) -> Scene:
-            return self.controls.scene
-
-        @property
-        def camera(self) -> Camera:
-            """The view now shown."""
-            return self.controls.camera
-
-        @camera.setter
-        def camera(self, camera: Camera) -> None:
-            self.controls.camera = camera
-            self.refresh()
-
-        def image(self) -> np.ndarray:
-            """The frame now shown ``(H, W, 3) uint8``: the mode, and right of the middle
-            the compared mode when there is one."""
-            r, c = self.renderer, self.controls
-            left = self._on_gl(r.render, c.scene, c.camera, c.options)[..., :3]
-            if not self.split:
-                return left
-            right = self._on_gl(r.render, c.scene, c.camera,
-                                c.options.replace(mode=self.split))[..., :3]
-            out = left.copy()
-            out[:, self.width // 2:] = right[:, self.width // 2:]
-            return out
-
-        def refresh(self) -> None:
-            """Render the current view and send it to the browser."""
-            from ._display import png_bytes
-
-            png = png_bytes(self.image())
-            c = self.controls
-            with self.hold_sync():  # (one message: the frame and what it shows)
-                self.mode = c.options.mode.value
-                self.view = view_of(c.camera)
-                self.png = png
-                self.status = c.messages[-1] if c.messages else ""
-                self.revision += 1
-
-        def pick(self, x: float, y: float):
-            """What pixel (x, y) of the view shows (:meth:`Renderer.pick`), kept in
-            ``picked`` and said in the status line; None over the background."""
-            c = self.controls
-            found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
-            c.picks.append(found)
-            if found is None:
-                self.picked = {}
-                c._say("pick: background")
-            else:
-                self.picked = {"face": found.face_id, "point": [float(v) for v in found.point],
-                               "normal": [float(v) for v in found.normal],
-                               "depth": float(found.depth)}
-                c._say(f"pick: {found}")
-            return found
-
-        def recentre(self, x: float, y: float) -> bool:
-            """Orbit about the surface point under (x, y) from now on (a double-click)."""
-            c = self.controls
-            found = self._on_gl(self.renderer.pick, c.scene, c.camera, x, y)
-            if found is None:
-                return False
-            point = np.asarray(found.point, np.float64)
-            c.camera = c.camera.replace(position=c.camera.position + point - c.center)
-            c.center = point
-            return True
-
-        def _on_message(self, _widget, content: dict, _buffers) -> None:
-            """A gesture from the browser (an unknown mode or key is said in the status
-            line: a kernel would only log an exception raised here)."""
-            from .errors import GlshadeError
-
-            try:
-                self._gesture(content)
-            except GlshadeError as exc:
-                self.controls._say(f"error: {exc}")
-                self.refresh()
-
-        def _gesture(self, content: dict) -> None:
-            event, c = content.get("event"), self.controls
-            if event == "down":
-                c.mouse_down(float(content["x"]), float(content["y"]),
-                             str(content.get("button", "left")), bool(content.get("shift")))
-            elif event == "move":
-                c.mouse_move(float(content["x"]), float(content["y"]))
-            elif event == "up":
-                c.mouse_up()
-            elif event == "wheel":
-                c.scroll(float(content.get("dy", 0)))
-            elif event == "key":
-                c.key(str(content.get("key", "")))
-            elif event == "mode":
-                c.options = c.options.replace(mode=_mode_name(content["mode"]))
-            elif event == "compare":
-                self.split = _mode_name(content["mode"]) if content.get("mode") else ""
-            else:
-                return
-            self.refresh()  # (every gesture is answered by a frame: the browser's pacing)
-
-        def close(self) -> None:
-            """Close the widget and release its renderer (on its GL thread)."""
-            if getattr(self, "renderer", None) is not None:
-                self._on_gl(self.renderer.close)
-                self._gl.shutdown()
-                self.renderer = None
-            super().close()
 
     return NotebookViewer
 

@@ -84,27 +84,45 @@ class WingedEdge:
 
         # pair half-edges through the undirected key
         groups = edge_groups(h_from, h_to, nv)
+        h0, h1 = groups.pairs()
+        same = h_from[h0] == h_from[h1]
+        self.report = report = self._report(groups, idx, off, h0, h1, same)
+        self._edges(groups, h0, h1, same, n_loops)
+        # (a mis-oriented edge breaks the fans at its ends: those are reported with it)
+        on_misoriented = {v for a, b, _ in report.misoriented_edges for v in (a, b)}
+        report.non_manifold_vertices = [v for v in self._pinched_vertices()
+                                        if v not in on_misoriented]
+        if strict and not report.ok:
+            raise TopologyError(report.message())
+
+    def _report(self, groups, idx, off, h0, h1, same) -> TopologyReport:
+        """What is wrong with the surface, but for pinched vertices (found once the edges
+        are linked): edges of more than two faces, mis-oriented pairs, isolated vertices,
+        duplicate faces."""
+        h_from, h_to, h_face = self._h["from"], self._h["to"], self._h["face"]
         order, start, count = groups.order, groups.start, groups.count
         report = TopologyReport()
         for e in np.flatnonzero(count > 2).tolist():
             hs = order[start[e]:start[e] + count[e]]
             report.non_manifold_edges.append((int(groups.lo[e]), int(groups.hi[e]),
                                               sorted(set(h_face[hs].tolist()))))
-        h0, h1 = groups.pairs()
-        same = h_from[h0] == h_from[h1]
         for a, b in zip(h0[same].tolist(), h1[same].tolist()):
             report.misoriented_edges.append((int(h_from[a]), int(h_to[a]),
                                              [int(h_face[a]), int(h_face[b])]))
-        used = np.zeros(nv, bool)
+        used = np.zeros(len(self.vertices), bool)
         used[idx] = True
         report.isolated_vertices = np.flatnonzero(~used).tolist()
         report.duplicate_faces = self._duplicates(idx, off)
-        self.report = report
+        return report
 
-        # edges: one per undirected key; its first half-edge defines P -> N and the left face
+    def _edges(self, groups, h0, h1, same, n_loops: int) -> None:
+        """The winged-edge records: one edge per undirected key, its first half-edge
+        P -> N with the left face; wings, vertex and face edges, boundary half-edges."""
+        h_from, h_to, h_face = self._h["from"], self._h["to"], self._h["face"]
+        nxt, prv, off, nh = self._h["next"], self._h["prev"], self.loop_offsets, len(h_from)
         h_edge = groups.group
         first = groups.first
-        twin = np.full(len(idx), -1, np.int64)
+        twin = np.full(nh, -1, np.int64)
         ok_pair = ~same
         twin[h0[ok_pair]] = h1[ok_pair]
         twin[h1[ok_pair]] = h0[ok_pair]
@@ -120,22 +138,16 @@ class WingedEdge:
             h_edge[nxt[first]],                                    # N_L
             np.where(second >= 0, h_edge[prv[h_e]], -1),           # N_R
         ], 1)
-        self.vertex_edge = np.full(nv, -1, np.int64)
+        self.vertex_edge = np.full(len(self.vertices), -1, np.int64)
         self.vertex_edge[h_from[::-1]] = h_edge[::-1]  # any incident edge; the first wins
-        self._vertex_half = np.full(nv, -1, np.int64)
-        self._vertex_half[h_from[::-1]] = np.arange(len(idx))[::-1]
+        self._vertex_half = np.full(len(self.vertices), -1, np.int64)
+        self._vertex_half[h_from[::-1]] = np.arange(nh)[::-1]
         outer = np.full(self.n_faces, -1, np.int64)
         outer[self.loop_face[::-1]] = np.arange(n_loops)[::-1]  # the first loop of a face
         self.face_outer_loop = outer
         self.face_edge = np.where(outer >= 0, h_edge[off[np.maximum(outer, 0)]], -1)
         # boundary half-edges (no twin), and boundary loops through them
         self._boundary = np.flatnonzero(twin < 0)
-        # (a mis-oriented edge breaks the fans at its ends: those are reported with it)
-        on_misoriented = {v for a, b, _ in report.misoriented_edges for v in (a, b)}
-        report.non_manifold_vertices = [v for v in self._pinched_vertices()
-                                        if v not in on_misoriented]
-        if strict and not report.ok:
-            raise TopologyError(report.message())
 
     def _pinched_vertices(self) -> list:
         """Vertices where more than one fan of faces meets (the surface is pinched there):

@@ -17,18 +17,12 @@ __all__ = ["radiosity"]
 STEP_FRAMES = 36
 
 
-def radiosity(args: RadiosityArgs) -> int:
-    """``glshade radiosity``: solve a scene file for radiosity and draw it."""
-    from ..animate import output_format
-    from ..io.images import save_image
-    from ..modes import ShadingMode
-    from ..parallel import Progress
-    from ..radiosity import FormFactors, PatchScene, Solution, gauss_seidel, progressive
-    from ..radiosity.plot import convergence_plot
-    from ..render.context import create_context
-    from ..render.renderer import Renderer
-
+def _prepare(args: RadiosityArgs):
+    """The checked arguments (every output path before any work), the scene's job, its
+    radiosity problem and the convergence plot's path."""
     from .. import examples
+    from ..animate import output_format
+    from ..radiosity import PatchScene
 
     args = replace(args, scene=examples.resolve(args.scene))
     if not is_scene_file(args.scene):
@@ -42,11 +36,25 @@ def radiosity(args: RadiosityArgs) -> int:
     plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"
     _check_outputs(args.output, plot_path, args.steps)  # before the solve, not after it
     job = load_job(replace(args, mode=None), args.scene)
-    options = job.options.replace(mode=ShadingMode.RADIOSITY)
     try:
         problem = PatchScene.from_scene(job.scene, args.patch_size)
     except InputError as exc:  # (say which scene: the message names a model or a size)
         raise UsageError(f"{args.scene}: {exc}") from None
+    return args, job, problem, plot_path
+
+
+def radiosity(args: RadiosityArgs) -> int:
+    """``glshade radiosity``: solve a scene file for radiosity and draw it."""
+    from ..io.images import save_image
+    from ..modes import ShadingMode
+    from ..parallel import Progress
+    from ..radiosity import FormFactors, Solution, gauss_seidel, progressive
+    from ..radiosity.plot import convergence_plot
+    from ..render.context import create_context
+    from ..render.renderer import Renderer
+
+    args, job, problem, plot_path = _prepare(args)
+    options = job.options.replace(mode=ShadingMode.RADIOSITY)
     quiet = args.quiet
     if not quiet:
         print(problem.summary())

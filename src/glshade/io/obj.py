@@ -79,6 +79,46 @@ def _obj_diagnose(path, data: bytes) -> None:
 
 def read(path, data: bytes) -> Mesh:
     """The Mesh in OBJ bytes ``data`` (``path`` names it in errors: file and line)."""
+    data = _clean(path, data)
+    starts, ends = line_starts(data)
+    arr = np.frombuffer(data, np.uint8)
+    b0 = arr[starts]
+    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    one = (ends - starts == 1) | (b1 == 32)
+    is_v = (b0 == ord("v")) & one
+    is_f = (b0 == ord("f")) & one
+    b0 = np.where(ends > starts, b0, 10)
+    skip = (b0 == 10) | (b0 == ord("#")) | (
+        (b0 == ord("v")) & ((b1 == ord("n")) | (b1 == ord("t")) | (b1 == ord("p"))))
+    group_lines, group_names = [], []
+    for i in np.flatnonzero(~(is_v | is_f | skip)).tolist():
+        line = data[starts[i]:ends[i]].split(b"#", 1)[0].split()
+        if not line:
+            continue
+        if line[0] not in _OBJ_KEYWORDS:
+            _obj_diagnose(path, data)
+        if line[0] in (b"o", b"g"):
+            group_lines.append(i)
+            group_names.append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
+    v_lines, f_lines = np.flatnonzero(is_v), np.flatnonzero(is_f)
+    vertices = _vertices(path, data, starts, ends, v_lines)
+    idx, sizes = _faces(path, data, starts, ends, f_lines, v_lines, len(vertices))
+    groups: dict[str, Any] = {}
+    if group_lines:
+        owner = np.searchsorted(np.asarray(group_lines), f_lines) - 1
+        for g, name in enumerate(group_names):
+            members = np.flatnonzero(owner == g)
+            if len(members):
+                groups[name] = np.concatenate([groups[name], members]) if name in groups \
+                    else members
+    return build_mesh(path, vertices, idx, offsets_from_sizes(sizes),
+                      line_of_face=lambda f: int(f_lines[f]) + 1,
+                      line_of_vertex=lambda i: int(v_lines[i]) + 1, groups=groups)
+
+
+def _clean(path, data: bytes) -> bytes:
+    """OBJ bytes with one space between tokens, one newline between lines, no comments
+    after data; binary data refused."""
     if b"\0" in data[:4096]:
         raise MeshFormatError(path, "binary data in a text OBJ file", byte=data.index(b"\0"))
     lead = data[:1] in (b" ", b"\t")
@@ -90,30 +130,11 @@ def read(path, data: bytes) -> Mesh:
         inline = hashes[hashes > 0]
         if (arr[inline - 1] != 10).any():  # a comment after data: cut it off
             data = normalize_whitespace(COMMENT.sub(b"", data))
-    starts, ends = line_starts(data)
-    arr = np.frombuffer(data, np.uint8)
-    b0 = arr[starts]
-    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
-    one = (ends - starts == 1) | (b1 == 32)
-    is_v = (b0 == ord("v")) & one
-    is_f = (b0 == ord("f")) & one
-    b0 = np.where(ends > starts, b0, 10)
-    skip = (b0 == 10) | (b0 == ord("#")) | (
-        (b0 == ord("v")) & ((b1 == ord("n")) | (b1 == ord("t")) | (b1 == ord("p"))))
-    other = np.flatnonzero(~(is_v | is_f | skip))
-    group_lines, group_names = [], []
-    for i in other.tolist():
-        line = data[starts[i]:ends[i]].split(b"#", 1)[0].split()
-        if not line:
-            continue
-        if line[0] not in _OBJ_KEYWORDS:
-            _obj_diagnose(path, data)
-        if line[0] in (b"o", b"g"):
-            group_lines.append(i)
-            group_names.append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
+    return data
 
-    v_lines = np.flatnonzero(is_v)
-    f_lines = np.flatnonzero(is_f)
+
+def _vertices(path, data: bytes, starts, ends, v_lines) -> np.ndarray:
+    """The ``v`` lines' positions ``(V, 3)`` (a w or a colour after them dropped)."""
     vblob = join_lines(data, starts, ends, v_lines)
     numbers = _blank_keyword(vblob, b"v") if len(v_lines) else b""
     values = parse_decimals(numbers)
@@ -123,16 +144,18 @@ def read(path, data: bytes) -> Mesh:
         _obj_diagnose(path, data)
         raise MeshFormatError(path, "malformed vertex data")
     if len(values) == 3 * len(v_lines):
-        vertices = values.reshape(-1, 3)
-    else:
-        counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
-        bad = ~np.isin(counts, (3, 4, 6, 7))
-        if bad.any() or counts.sum() != len(values):
-            _obj_diagnose(path, data)
-            raise MeshFormatError(path, "malformed vertex data")
-        vertices = ragged_take(values, offsets_from_sizes(counts)[:-1], np.full(len(counts), 3))
-        vertices = vertices.reshape(-1, 3)
+        return values.reshape(-1, 3)
+    counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
+    bad = ~np.isin(counts, (3, 4, 6, 7))
+    if bad.any() or counts.sum() != len(values):
+        _obj_diagnose(path, data)
+        raise MeshFormatError(path, "malformed vertex data")
+    vertices = ragged_take(values, offsets_from_sizes(counts)[:-1], np.full(len(counts), 3))
+    return vertices.reshape(-1, 3)
 
+
+def _faces(path, data: bytes, starts, ends, f_lines, v_lines, n_vertices: int):
+    """The ``f`` lines' vertex indices (0-based, negative ones resolved) and sizes."""
     if len(f_lines) == 0:
         raise MeshFormatError(path, "the file has no faces ('f' lines)")
     fblob = join_lines(data, starts, ends, f_lines)  # data is normalized already
@@ -151,30 +174,13 @@ def read(path, data: bytes) -> Mesh:
         idx = np.where(idx < 0, idx + v_before, idx - 1)
     else:
         idx = idx - 1
-    bad = (idx < 0) | (idx >= len(vertices))
+    bad = (idx < 0) | (idx >= n_vertices)
     if bad.any():
         c = int(np.flatnonzero(bad)[0])
         f = int(np.searchsorted(offsets_from_sizes(sizes), c, side="right") - 1)
         raise MeshFormatError(path, f"face index {int(written[c])} is out of range: the file "
-                              f"defines {len(vertices)} vertices", line=int(f_lines[f]) + 1)
-
-    groups: dict[str, Any] = {}
-    if group_lines:
-        owner = np.searchsorted(np.asarray(group_lines), f_lines) - 1
-        for g, name in enumerate(group_names):
-            members = np.flatnonzero(owner == g)
-            if len(members):
-                groups[name] = np.concatenate([groups[name], members]) if name in groups \
-                    else members
-
-    def line_of_face(f):
-        return int(f_lines[f]) + 1
-
-    def line_of_vertex(i):
-        return int(v_lines[i]) + 1
-
-    return build_mesh(path, vertices, idx, offsets_from_sizes(sizes), line_of_face=line_of_face,
-                  line_of_vertex=line_of_vertex, groups=groups)
+                              f"defines {n_vertices} vertices", line=int(f_lines[f]) + 1)
+    return idx, sizes
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:

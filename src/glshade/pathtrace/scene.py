@@ -92,37 +92,9 @@ class TraceScene:
         if len(solid_models) > 1:
             raise SceneError(f"the path tracer takes one CSG solid, the scene has "
                              f"{len(solid_models)}: make them one (a | b)")
-        tris: list = []
-        corner_normals: list = []
-        mats: list = []
-        models: list = []
         names: list = []
         rows: list = []
-        visible = [m for m in scene.models if m.visible]
-        if scene.patch_models:  # (GPU-tessellated there: the same grid here)
-            from ..patches import tessellate
-            from ..scene.scene import Model
-
-            visible += [Model(tessellate(p.patches, level=p.level).mesh, p.material,
-                              p.transform, p.name) for p in scene.patch_models if p.visible]
-        for k, model in enumerate(visible):
-            mesh = model.mesh
-            name = model.name or f"model {k}"
-            t, _ = mesh.triangles
-            if not len(t):
-                continue
-            v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
-            tris.append(v[t])
-            if smooth:
-                from ..render.gpu_mesh import drawable_normals
-
-                inverse_t = np.linalg.inv(model.transform[:3, :3]).T
-                n = drawable_normals(mesh) @ inverse_t.T
-                corner_normals.append(n[t])
-            mats.append(np.full(len(t), len(rows)))
-            models.append(np.full(len(t), len(names)))
-            names.append(name)
-            rows.append(_material_row(model.material, name))
+        tris, corner_normals, mats, models = _world_triangles(scene, smooth, names, rows)
         solids = []
         for k, model in enumerate(solid_models):
             name = model.name or f"solid {k}"
@@ -164,6 +136,42 @@ class TraceScene:
             shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
                    cdf, light_rows, model, tuple(names), shading, tuple(solids))
+
+
+def _world_triangles(scene, smooth: bool, names: list, rows: list):
+    """The visible meshes' (and tessellated patches') world triangles, their corner normals
+    where ``smooth``, and each triangle's material row and model number, as lists of
+    arrays; ``names`` and ``rows`` (material rows) are appended to."""
+    tris: list = []
+    corner_normals: list = []
+    mats: list = []
+    models: list = []
+    visible = [m for m in scene.models if m.visible]
+    if scene.patch_models:  # (GPU-tessellated there: the same grid here)
+        from ..patches import tessellate
+        from ..scene.scene import Model
+
+        visible += [Model(tessellate(p.patches, level=p.level).mesh, p.material,
+                          p.transform, p.name) for p in scene.patch_models if p.visible]
+    for k, model in enumerate(visible):
+        mesh = model.mesh
+        name = model.name or f"model {k}"
+        t, _ = mesh.triangles
+        if not len(t):
+            continue
+        v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
+        tris.append(v[t])
+        if smooth:
+            from ..render.gpu_mesh import drawable_normals
+
+            inverse_t = np.linalg.inv(model.transform[:3, :3]).T
+            n = drawable_normals(mesh) @ inverse_t.T
+            corner_normals.append(n[t])
+        mats.append(np.full(len(t), len(rows)))
+        models.append(np.full(len(t), len(names)))
+        names.append(name)
+        rows.append(_material_row(model.material, name))
+    return tris, corner_normals, mats, models
 
 
 def _material_row(material, name: str) -> list:

@@ -70,7 +70,6 @@ def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64, hits=None):
     beta = np.ones((len(o), 3))
     alive = np.arange(len(o))
     e_tri = ts.emitters
-    e_p = np.diff(np.concatenate([[0.0], ts.emitter_cdf]))
     for depth in range(max_depth):
         if not len(alive):
             break
@@ -89,44 +88,8 @@ def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64, hits=None):
         wo = -d
         rho, ks, shin = m[:, :3], m[:, 3], m[:, 4]
         if len(e_tri):
-            j = np.searchsorted(ts.emitter_cdf, rng.random(len(x)), side="right")
-            j = np.minimum(j, len(e_tri) - 1)
-            et = tri[e_tri[j]]
-            a, b = rng.random(len(x)), rng.random(len(x))
-            flip = a + b > 1
-            a, b = np.where(flip, 1 - a, a), np.where(flip, 1 - b, b)
-            y = et[:, 0] + a[:, None] * (et[:, 1] - et[:, 0]) + b[:, None] * (et[:, 2] - et[:, 0])
-            to = y - x
-            dist = np.linalg.norm(to, axis=1)
-            wi = to / dist[:, None]
-            cx = np.einsum("rk,rk->r", n, wi)
-            cy = -np.einsum("rk,rk->r", ts.normals[e_tri[j]], wi)
-            ok = (cx > 0) & (cy > 0)
-            th, _ = _hits(x[ok], wi[ok], tri, dist[ok] * (1 - 1e-4))
-            seen = np.zeros(len(x), bool)
-            seen[np.flatnonzero(ok)[~np.isfinite(th)]] = True
-            e = mats[ts.material[e_tri[j]], 5:8]
-            w = np.where(seen, cx * cy / dist ** 2 * ts.areas[e_tri[j]] / e_p[j], 0)
-            f = _brdf_pi(rho, ks, shin, n, wi, wo) / np.pi
-            np.add.at(out, alive, beta * f * e * w[:, None])
-        for light in ts.lights:
-            if light[0] > 0.5:
-                to = light[1:4] - x
-                dist = np.linalg.norm(to, axis=1)
-                wi = to / dist[:, None]
-                c = light[7:10]
-                att = 1 / np.maximum(c[0] + c[1] * dist + c[2] * dist ** 2, 1e-30)
-            else:
-                wi = np.broadcast_to(light[1:4], x.shape)
-                dist, att = np.full(len(x), np.inf), np.ones(len(x))
-            cx = np.einsum("rk,rk->r", n, wi)
-            ok = cx > 0
-            th, _ = _hits(x[ok], wi[ok], tri, dist[ok])
-            seen = np.zeros(len(x), bool)
-            seen[np.flatnonzero(ok)[~np.isfinite(th)]] = True
-            w = np.where(seen, cx * att, 0)
-            np.add.at(out, alive, beta * _brdf_pi(rho, ks, shin, n, wi, wo) * light[4:7] *
-                      w[:, None])
+            np.add.at(out, alive, beta * _emitters_seen(ts, x, n, wo, m, rng))
+        np.add.at(out, alive, beta * _lights_seen(ts, x, n, wo, m))
         wd = rho.mean(1)
         go = wd + ks > 0
         pd = np.where(go, wd / np.maximum(wd + ks, 1e-300), 1)
@@ -190,3 +153,55 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
     return PathTraced(mean.reshape(h, w, 3), se.reshape(h, w, 3), int(spp),
                       np.zeros((h, w)), time.perf_counter() - t0, method="numpy path tracing",
                       coverage=(hits / spp).reshape(h, w))
+
+
+def _emitters_seen(ts: TraceScene, x, n, wo, m, rng) -> np.ndarray:
+    """Next-event estimation on the emitting triangles (R, 3): a point on one, chosen by
+    power, its light through the BRDF where the shaded point ``x`` sees it."""
+    tri, mats, e_tri = ts.triangles, ts.materials, ts.emitters
+    e_p = np.diff(np.concatenate([[0.0], ts.emitter_cdf]))
+    rho, ks, shin = m[:, :3], m[:, 3], m[:, 4]
+    j = np.searchsorted(ts.emitter_cdf, rng.random(len(x)), side="right")
+    j = np.minimum(j, len(e_tri) - 1)
+    et = tri[e_tri[j]]
+    a, b = rng.random(len(x)), rng.random(len(x))
+    flip = a + b > 1
+    a, b = np.where(flip, 1 - a, a), np.where(flip, 1 - b, b)
+    y = et[:, 0] + a[:, None] * (et[:, 1] - et[:, 0]) + b[:, None] * (et[:, 2] - et[:, 0])
+    to = y - x
+    dist = np.linalg.norm(to, axis=1)
+    wi = to / dist[:, None]
+    cx = np.einsum("rk,rk->r", n, wi)
+    cy = -np.einsum("rk,rk->r", ts.normals[e_tri[j]], wi)
+    ok = (cx > 0) & (cy > 0)
+    th, _ = _hits(x[ok], wi[ok], tri, dist[ok] * (1 - 1e-4))
+    seen = np.zeros(len(x), bool)
+    seen[np.flatnonzero(ok)[~np.isfinite(th)]] = True
+    e = mats[ts.material[e_tri[j]], 5:8]
+    w = np.where(seen, cx * cy / dist ** 2 * ts.areas[e_tri[j]] / e_p[j], 0)
+    f = _brdf_pi(rho, ks, shin, n, wi, wo) / np.pi
+    return f * e * w[:, None]
+
+
+def _lights_seen(ts: TraceScene, x, n, wo, m) -> np.ndarray:
+    """The point and directional lights' contribution (R, 3) where ``x`` sees them."""
+    rho, ks, shin = m[:, :3], m[:, 3], m[:, 4]
+    out = np.zeros((len(x), 3))
+    for light in ts.lights:
+        if light[0] > 0.5:
+            to = light[1:4] - x
+            dist = np.linalg.norm(to, axis=1)
+            wi = to / dist[:, None]
+            c = light[7:10]
+            att = 1 / np.maximum(c[0] + c[1] * dist + c[2] * dist ** 2, 1e-30)
+        else:
+            wi = np.broadcast_to(light[1:4], x.shape)
+            dist, att = np.full(len(x), np.inf), np.ones(len(x))
+        cx = np.einsum("rk,rk->r", n, wi)
+        ok = cx > 0
+        th, _ = _hits(x[ok], wi[ok], ts.triangles, dist[ok])
+        seen = np.zeros(len(x), bool)
+        seen[np.flatnonzero(ok)[~np.isfinite(th)]] = True
+        w = np.where(seen, cx * att, 0)
+        out += _brdf_pi(rho, ks, shin, n, wi, wo) * light[4:7] * w[:, None]
+    return out

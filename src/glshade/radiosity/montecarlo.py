@@ -95,17 +95,7 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
     tris, owner = _triangles(problem.meshes)
     scale = float(np.abs(tris).max()) or 1.0
     eps = 1e-9 * scale
-    # the polygons' patches, for finding a hit's patch: a table (polygon, k) -> patch, each
-    # polygon's row padded with its first patch (a pad repeats a candidate: harmless)
-    first_polygon = np.cumsum([0] + [mesh.n_faces for mesh in problem.meshes])
-    key = first_polygon[problem.model] + p.source
-    order = np.argsort(key, kind="stable")
-    counts = np.bincount(key, minlength=first_polygon[-1])
-    starts = np.concatenate([[0], np.cumsum(counts)])
-    slot = np.arange(len(order)) - starts[key[order]]
-    table = np.repeat(order[starts[:-1].clip(max=len(order) - 1)][:, None],
-                      max(int(counts.max()), 1), axis=1)
-    table[key[order], slot] = order
+    first_polygon, table, counts = _polygon_patches(problem)
     lum = (problem.emission * p.areas[:, None]).sum(1)
     if not lum.sum() > 0:
         raise InputError("the scene has no emitter")
@@ -136,26 +126,8 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
             d = _cosine(normal, rng)
             power = problem.emission[src] * p.areas[src, None] / (pick[src, None] * n_batch)
             o = o + normal * eps * 10
-            while len(o):
-                t, k = _hit(o, d, tris, eps)
-                going = np.isfinite(t)
-                o, d, power, t, k = o[going], d[going], power[going], t[going], k[going]
-                if not len(o):
-                    break
-                x = o + t[:, None] * d
-                model, face = owner[k, 0], owner[k, 1]
-                patch = _patch_of(x, first_polygon[model] + face, table, counts, p.centers)
-                np.add.at(arrived[batch], patch, power)
-                rho = problem.rho[patch]
-                survive = rho.mean(axis=1)
-                alive = rng.random(len(o)) < survive
-                keep = alive & (survive > 0)
-                n_hit = p.normals[patch][keep]
-                facing = np.einsum("nk,nk->n", n_hit, d[keep]) > 0
-                n_hit[facing] *= -1  # (reflected to the side the particle came from)
-                power = power[keep] * rho[keep] / survive[keep, None]
-                o = x[keep] + n_hit * eps * 10
-                d = _cosine(n_hit, rng)
+            scene = (problem, tris, owner, first_polygon, table, counts, eps)
+            _follow(scene, o, d, power, arrived[batch], rng)
         if progress is not None:
             progress.update(1)
     per_batch = problem.emission[None] + problem.rho[None] * arrived / p.areas[None, :, None]
@@ -182,3 +154,48 @@ def _patch_of(x, polygon, table, counts, centers):
         gap = centers[cand] - x[sel, None]
         out[sel] = cand[np.arange(len(sel)), np.argmin(np.einsum("nkd,nkd->nk", gap, gap), 1)]
     return out
+
+
+def _polygon_patches(problem):
+    """For finding a hit's patch: each model's first polygon number (M + 1,), a table
+    (polygon, k) -> patch, each polygon's row padded with its first patch (a pad repeats a
+    candidate: harmless), and each polygon's count of patches."""
+    p = problem.patches
+    first_polygon = np.cumsum([0] + [mesh.n_faces for mesh in problem.meshes])
+    key = first_polygon[problem.model] + p.source
+    order = np.argsort(key, kind="stable")
+    counts = np.bincount(key, minlength=first_polygon[-1])
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    slot = np.arange(len(order)) - starts[key[order]]
+    table = np.repeat(order[starts[:-1].clip(max=len(order) - 1)][:, None],
+                      max(int(counts.max()), 1), axis=1)
+    table[key[order], slot] = order
+    return first_polygon, table, counts
+
+
+def _follow(scene, o, d, power, arrived, rng) -> None:
+    """Follow particles from ``o`` along ``d`` carrying ``power`` (N, 3) until they leave
+    the scene or are absorbed (Russian roulette by the mean reflectance), adding the power
+    each brings to a patch into ``arrived`` (P, 3)."""
+    problem, tris, owner, first_polygon, table, counts, eps = scene
+    p = problem.patches
+    while len(o):
+        t, k = _hit(o, d, tris, eps)
+        going = np.isfinite(t)
+        o, d, power, t, k = o[going], d[going], power[going], t[going], k[going]
+        if not len(o):
+            break
+        x = o + t[:, None] * d
+        model, face = owner[k, 0], owner[k, 1]
+        patch = _patch_of(x, first_polygon[model] + face, table, counts, p.centers)
+        np.add.at(arrived, patch, power)
+        rho = problem.rho[patch]
+        survive = rho.mean(axis=1)
+        alive = rng.random(len(o)) < survive
+        keep = alive & (survive > 0)
+        n_hit = p.normals[patch][keep]
+        facing = np.einsum("nk,nk->n", n_hit, d[keep]) > 0
+        n_hit[facing] *= -1  # (reflected to the side the particle came from)
+        power = power[keep] * rho[keep] / survive[keep, None]
+        o = x[keep] + n_hit * eps * 10
+        d = _cosine(n_hit, rng)

@@ -100,7 +100,7 @@ def test_a_thousand_long_union_is_rebalanced_and_exact(make_renderer):
     camera = Camera.look_at((7, 6, 9), (0, 0, 0), fov_y=45).with_planes(scene.bounds)
     frame = make_renderer(*size).render_frame(scene, camera, "flat")
     # the rays of the pixel centres, as the reference renderer makes them
-    from glshade.hidden.common import prepare
+    from glshade.hidden.view import prepare
 
     p = prepare(Scene(), camera, size)
     inv = np.linalg.inv(camera.view_matrix())

@@ -15,7 +15,7 @@ __all__ = ["render_solids"]
 def render_solids(scene: Scene, camera, size=(256, 256)):
     """``(depth (H, W), normal (H, W, 3), face_id (H, W))`` of the scene's solids alone
     (its meshes only count for the ids): inf, zero and -1 where no solid is hit."""
-    from ..hidden.common import prepare
+    from ..hidden.view import prepare
 
     width, height = size
     camera = camera.with_planes(scene.bounds)  # (as the renderer fits them)

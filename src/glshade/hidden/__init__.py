@@ -10,7 +10,9 @@ import enum
 
 from ..modes import parse_enum
 from ._bsp import bsp
-from .common import HiddenResult, Prepared, edge_pixels, prepare
+from .raster import edge_pixels
+from .result import HiddenResult
+from .view import Prepared, prepare
 from ._depth_sort import DepthSortCycle, depth_sort
 from ._raycast import raycast
 from ._scanline import scanline

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import (HiddenResult, Prepared, fragments, resolve_last, split_by_plane,
-                     takes_scene, timed)
+from .raster import fragments, resolve_last
+from .result import HiddenResult
+from .view import Prepared, split_by_plane, takes_scene, timed
 
 __all__ = ["bsp", "build_bsp", "back_to_front", "paint", "Pieces"]
 

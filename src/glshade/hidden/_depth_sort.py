@@ -25,7 +25,8 @@ import numpy as np
 
 from ..errors import DepthSortCycle
 from ._bsp import Pieces, paint
-from .common import HiddenResult, Prepared, split_by_plane, timed, takes_scene
+from .result import HiddenResult
+from .view import Prepared, split_by_plane, takes_scene, timed
 
 __all__ = ["depth_sort", "DepthSortCycle"]
 

@@ -12,7 +12,9 @@ pairs tested: about n N times the mean box's share of the image), ``plane inters
 
 from __future__ import annotations
 
-from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed, takes_scene
+from .raster import fragments, resolve_nearest
+from .result import HiddenResult
+from .view import Prepared, takes_scene, timed
 
 __all__ = ["raycast"]
 

@@ -13,7 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import SUBPIXEL, HiddenResult, Prepared, resolve_nearest, timed, takes_scene
+from .raster import SUBPIXEL, resolve_nearest
+from .result import HiddenResult
+from .view import Prepared, takes_scene, timed
 
 __all__ = ["scanline"]
 

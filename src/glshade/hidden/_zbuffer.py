@@ -7,7 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import HiddenResult, Prepared, fragments, resolve_nearest, timed, takes_scene
+from .raster import fragments, resolve_nearest
+from .result import HiddenResult
+from .view import Prepared, takes_scene, timed
 
 __all__ = ["zbuffer"]
 

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._bsp import paint
-from .common import HiddenResult, Prepared
+from .result import HiddenResult
+from .view import Prepared
 from ._zbuffer import zbuffer
 
 __all__ = ["Agreement", "agreement", "id_colors", "disagreement_map", "step_frames"]

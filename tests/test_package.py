@@ -34,7 +34,7 @@ LAYERS = [
     {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
-    {"cli", "testing", "golden", "pytest_plugin", "display", "notebook", "__init__",
+    {"cli", "testing", "display", "notebook", "__init__",
      "__main__"},
 ]
 RANK = {name: i for i, layer in enumerate(LAYERS) for name in layer}
@@ -193,7 +193,7 @@ def _chapters() -> list[str]:
     """The public packages and top-level modules of glshade, from the files."""
     names = {p.stem if p.suffix == ".py" else p.name for p in PACKAGE.iterdir()
              if (p.suffix == ".py" or (p / "__init__.py").is_file())}
-    return sorted(n for n in names if not n.startswith("_") and n != "pytest_plugin")
+    return sorted(n for n in names if not n.startswith("_"))
 
 
 @pytest.mark.parametrize("chapter", _chapters())

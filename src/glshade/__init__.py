@@ -18,7 +18,7 @@ _EXPORTS = {
     **{name: (name, None) for name in (
         "quaternion", "masspoint", "brep", "solids", "octree", "hidden", "radiosity",
         "patches", "pathtrace", "scene", "io", "render", "cpu", "batch", "parallel",
-        "viewer", "notebook", "display", "testing", "golden", "examples", "modes",
+        "viewer", "notebook", "display", "testing", "examples", "modes",
         "options", "errors", "atomic", "interrupt", "cli")},
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
     # the mesh kernel
@@ -59,8 +59,8 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import (atomic, batch, brep, cli, cpu, display, errors, examples, geometry, golden,
-                   hidden, interrupt, io, masspoint, modes, notebook, octree, options,
+    from . import (atomic, batch, brep, cli, cpu, display, errors, examples, geometry, hidden,
+                   interrupt, io, masspoint, modes, notebook, octree, options,
                    parallel, patches, pathtrace, quaternion, radiosity, render, scene,
                    solids, testing, viewer)
     from .compare.comparison import Comparison, compare

@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from glshade.golden import as_rgba, edge_mask, judge
+from glshade.testing.golden import as_rgba, edge_mask, judge
 
 
 def _quads():
@@ -147,7 +147,7 @@ def test_plugin_verdict_for_another_renderer(pytester, gl_context):
     when the check is given the Frame (its id buffer), an interior change fails."""
     backend = gl_context.backend.value
     pytester.makepyfile(test_images=PLUGIN + '''
-from glshade.golden import edge_mask
+from glshade.testing.golden import edge_mask
 
 def test_edges(glshade_renderer, glshade_golden):
     f = frame(glshade_renderer)

@@ -85,3 +85,23 @@ def test_pytest_plugin_fails_clearly_without_gl(pytester):
     assert out.returncode == 1
     assert "no headless OpenGL context" in out.stdout
     assert "tried osmesa" in out.stdout and "libosmesa6" in out.stdout
+
+
+def test_every_comparison_reads_an_image_one_way(tmp_path):
+    """Integers of any type are 8-bit levels as they are (an int64 image equal to a uint8
+    one is equal); floats are [0, 1]; what fits neither is refused, never rescaled."""
+    from glshade.testing import levels
+    from glshade.testing.golden import as_rgba
+
+    img = np.arange(48, dtype=np.uint8).reshape(4, 4, 3) * 5
+    assert_images_close(img.astype(np.int64), img, max_mean=0, max_pixel=0)
+    assert (as_rgba(img.astype(np.int16)) == as_rgba(img)).all()
+    assert (levels(img / 255.0) == levels(img)).all()
+    ones = np.ones((2, 2), np.int32)  # (level 1, not white: an int image is never scaled)
+    assert levels(ones)[0, 0, 0] == 1.0
+    with pytest.raises(AssertionError, match="differ"):
+        assert_images_close(ones, ones * 255, max_mean=0.5, max_pixel=4, save_to=tmp_path)
+    for bad, words in ((img.astype(np.int64) * 300, "0..255"), (img * 2.0, "floats are read"),
+                       (np.zeros((2, 2, 2)), "shape")):
+        with pytest.raises(ValueError, match=words):
+            levels(bad)

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from .compare.metrics import edge_mask
+from ..compare.metrics import edge_mask
 
 __all__ = ["fingerprint", "as_rgba", "edge_mask", "Verdict", "judge", "read_golden",
            "write_golden", "FINGERPRINT_KEYS"]
@@ -40,7 +40,7 @@ FINGERPRINT_KEYS = ("vendor", "renderer", "version", "backend", "samples", "glsh
 def fingerprint(renderer: Any) -> dict[str, Any]:
     """The facts that decide a render's bytes: the GL driver's vendor, renderer and version,
     the backend, the renderer's MSAA samples and glshade's version."""
-    from ._version import __version__
+    from .._version import __version__
 
     info = renderer.context.info
     return {"vendor": info.get("vendor"), "renderer": info.get("renderer"),
@@ -49,20 +49,11 @@ def fingerprint(renderer: Any) -> dict[str, Any]:
 
 
 def as_rgba(image: Any) -> np.ndarray:
-    """``(H, W, 4) uint8`` of an image: grey, RGB (alpha 255) or RGBA; uint8 or floats in
-    [0, 1]."""
-    a = np.asarray(image)
-    if a.ndim == 2:
-        a = a[..., None]
-    if a.ndim != 3 or a.shape[2] not in (1, 3, 4):
-        raise ValueError(f"an image must be (H, W), (H, W, 3) or (H, W, 4), got {a.shape}")
-    if a.dtype != np.uint8:
-        a = np.clip(np.round(np.asarray(a, np.float64) * 255.0), 0, 255).astype(np.uint8)
-    if a.shape[2] == 1:
-        a = np.repeat(a, 3, axis=2)
-    if a.shape[2] == 3:
-        a = np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2)
-    return a
+    """``(H, W, 4) uint8`` of an image, read as :func:`glshade.testing.levels` reads it
+    (integers are levels, floats [0, 1]), rounded."""
+    from . import levels
+
+    return np.round(levels(image)).astype(np.uint8)
 
 
 @dataclass
@@ -135,8 +126,8 @@ def read_golden(path: Path) -> tuple[np.ndarray, dict[str, Any] | None]:
 
 def write_golden(path: Path, image: Any, facts: dict[str, Any]) -> None:
     """Write a golden image and its fingerprint beside it (each atomically)."""
-    from .atomic import atomic_write
-    from .io.images import save_image
+    from ..atomic import atomic_write
+    from ..io.images import save_image
 
     path.parent.mkdir(parents=True, exist_ok=True)
     save_image(as_rgba(image), path)

@@ -6,8 +6,9 @@ Fixtures:
   a clear failure naming every backend tried when no GL context can be made.
 - ``glshade_golden``: ``glshade_golden(image_or_frame, name=None, *, renderer=None,
   max_mean=0.5, max_pixel=4)`` compares with ``golden/NAME.png`` beside the test file,
-  judged as :mod:`glshade.golden` says (the same renderer: identical bytes; another: interior
-  pixels within tolerance, edge pixels free when a Frame gives its id buffer).
+  judged as :mod:`glshade.testing.golden` says (the same renderer: identical bytes;
+  another: interior pixels within tolerance, edge pixels free when a Frame gives its id
+  buffer).
 
 Golden names come from the test's node id (``test_file.TestClass.test_name[param].png``;
 a second check in one test adds ``-2``, ``-3`` ...); an explicit ``name`` still works. Two
@@ -116,7 +117,7 @@ def glshade_golden(request):
 
     def check(image: Any, name: str | None = None, *, renderer: Any = None,
               max_mean: float = 0.5, max_pixel: float = 4.0, edge_width: int = 1) -> None:
-        from glshade.golden import fingerprint, judge, read_golden, write_golden
+        from glshade.testing.golden import fingerprint, judge, read_golden, write_golden
 
         calls[0] += 1
         if name is None:
@@ -159,7 +160,7 @@ def glshade_golden(request):
 
 
 def _save_failure(out: Path, actual, expected, verdict) -> None:
-    from glshade.golden import as_rgba
+    from glshade.testing.golden import as_rgba
     from glshade.io.images import heatmap, save_image
 
     out.mkdir(parents=True, exist_ok=True)

@@ -4,8 +4,9 @@
 saves the actual image, the expected one and a difference heat map in a results folder
 outside the source tree (:func:`failure_dir`), and says where they differ. RGB and RGBA
 images are compared by what they hold (RGB is RGBA with an opaque alpha). The pytest plugin
-(``glshade.pytest_plugin``, registered as an entry point) adds a ``glshade_renderer``
-fixture and golden-image checks (:mod:`glshade.golden`).
+(:mod:`glshade.testing.pytest_plugin`, registered as an entry point) adds a
+``glshade_renderer`` fixture and golden-image checks (:mod:`glshade.testing.golden`). Both
+read an image's values one way (:func:`levels`).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["assert_images_close", "failure_dir"]
+__all__ = ["assert_images_close", "failure_dir", "levels"]
 
 
 def failure_dir() -> Path:
@@ -34,16 +35,46 @@ def failure_dir() -> Path:
     return Path(base) / safe
 
 
-def _as_float(img, name) -> np.ndarray:
-    a = np.asarray(img)
+def levels(image, name: str = "image") -> np.ndarray:
+    """An image's values as ``(H, W, 4) float64`` in 8-bit units, the one reading every
+    comparison makes: grey ``(H, W)`` or ``(H, W, 1)``, RGB (alpha 255) or RGBA; integers
+    (any integer type) are 8-bit levels 0..255 as they are, floats are [0, 1] (times 255).
+    Anything else -- levels out of range, floats beyond [0, 1] or not finite -- is refused
+    (a ValueError naming ``name``), never rescaled by a guess."""
+    a = np.asarray(image)
     if a.ndim == 2:
         a = a[..., None]
-    if a.ndim != 3:
-        raise AssertionError(f"{name} must be an (H, W[, C]) image, got shape {a.shape}")
-    a = a.astype(np.float64)
-    if np.asarray(img).dtype != np.uint8 and a.max(initial=0) <= 1.0:
-        a = a * 255.0  # floats in [0, 1]
-    return a
+    if a.ndim != 3 or a.shape[2] not in (1, 3, 4):
+        raise ValueError(f"{name} must be an (H, W), (H, W, 1), (H, W, 3) or (H, W, 4) "
+                         f"image, got shape {a.shape}")
+    if a.dtype == bool or not (np.issubdtype(a.dtype, np.integer)
+                               or np.issubdtype(a.dtype, np.floating)):
+        raise ValueError(f"{name} must hold integers (levels 0..255) or floats in [0, 1], "
+                         f"got {a.dtype}")
+    values = a.astype(np.float64)
+    if np.issubdtype(a.dtype, np.integer):
+        if values.size and (values.min() < 0 or values.max() > 255):
+            raise ValueError(f"{name}: integer levels must be 0..255, got "
+                             f"{values.min():g}..{values.max():g}")
+    else:
+        if not np.isfinite(values).all():
+            raise ValueError(f"{name}: floats must be finite")
+        if values.size and (values.min() < 0 or values.max() > 1):
+            raise ValueError(f"{name}: floats are read as [0, 1], got "
+                             f"{values.min():g}..{values.max():g} (scale them, or pass uint8)")
+        values = values * 255.0
+    if values.shape[2] == 1:
+        values = np.repeat(values, 3, axis=2)
+    if values.shape[2] == 3:
+        values = np.concatenate([values, np.full(values.shape[:2] + (1,), 255.0)], axis=2)
+    return values
+
+
+def _as_float(image, name: str) -> np.ndarray:
+    try:
+        return levels(image, name)
+    except ValueError as exc:
+        raise AssertionError(str(exc)) from None
 
 
 def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: float = 4.0,
@@ -56,9 +87,6 @@ def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: floa
     pixels are over, their bounding box and the worst pixel.
     """
     a, e = _as_float(actual, "actual"), _as_float(expected, "expected")
-    if a.shape[:2] == e.shape[:2] and {a.shape[2], e.shape[2]} == {3, 4}:
-        a, e = (x if x.shape[2] == 4 else np.concatenate([x, np.full(x.shape[:2] + (1,), 255.0)],
-                                                         axis=2) for x in (a, e))
     if a.shape != e.shape:
         raise AssertionError(f"image shapes differ: actual {a.shape}, expected {e.shape}")
     diff = np.abs(a - e).max(axis=-1)
@@ -66,14 +94,12 @@ def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: floa
     worst = float(diff.max(initial=0))
     if mean <= max_mean and worst <= max_pixel:
         return
-    from .io.images import heatmap, save_image
+    from ..io.images import heatmap, save_image
 
     out = Path(save_to) if save_to is not None else failure_dir()
     out.mkdir(parents=True, exist_ok=True)
-    save_image(np.clip(a, 0, 255).astype(np.uint8)[..., :4] if a.shape[2] in (3, 4)
-               else np.clip(a[..., 0], 0, 255).astype(np.uint8), out / "actual.png")
-    save_image(np.clip(e, 0, 255).astype(np.uint8)[..., :4] if e.shape[2] in (3, 4)
-               else np.clip(e[..., 0], 0, 255).astype(np.uint8), out / "expected.png")
+    save_image(np.round(a).astype(np.uint8), out / "actual.png")
+    save_image(np.round(e).astype(np.uint8), out / "expected.png")
     save_image(heatmap(diff, max(worst, 1.0)), out / "diff.png")
     over = diff > max_pixel
     y, x = np.unravel_index(int(np.argmax(diff)), diff.shape)

@@ -34,7 +34,7 @@ LAYERS = [
     {"compare", "radiosity"},
     {"animate", "batch"},
     {"viewer"},
-    {"cli", "testing", "display", "notebook", "__init__",
+    {"cli", "testing", "notebook", "__init__",
      "__main__"},
 ]
 RANK = {name: i for i, layer in enumerate(LAYERS) for name in layer}

@@ -71,7 +71,7 @@ def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
     wheel = next(wheels.glob("glshade-*.whl"))
     names = zipfile.ZipFile(wheel).namelist()
     assert "glshade/examples/scenes/cornell-box.toml" in names
-    assert "glshade/notebook_static/viewer.js" in names  # (the widget's front end)
+    assert "glshade/notebook/static/viewer.js" in names  # (the widget's front end)
     assert any(n.endswith(".dist-info/licenses/LICENSE") for n in names)
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)

@@ -18,7 +18,7 @@ _EXPORTS = {
     **{name: (name, None) for name in (
         "quaternion", "masspoint", "brep", "solids", "octree", "hidden", "radiosity",
         "patches", "pathtrace", "scene", "io", "render", "cpu", "batch", "parallel",
-        "viewer", "notebook", "display", "testing", "examples", "modes",
+        "viewer", "notebook", "testing", "examples", "modes",
         "options", "errors", "atomic", "interrupt", "cli")},
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
     # the mesh kernel
@@ -48,7 +48,7 @@ _EXPORTS = {
     "compare": ("compare", None),  # (callable packages: glshade.compare(...) is the function)
     "Comparison": ("compare.comparison", "Comparison"), "animate": ("animate", None),
     # notebooks
-    "show": ("display", "show"),
+    "show": ("notebook.display", "show"),
     # errors
     **{name: ("errors", name) for name in (
         "GlshadeError", "InputError", "EnvironmentFailure", "GeometryError", "OptionError",
@@ -59,13 +59,13 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import (atomic, batch, brep, cli, cpu, display, errors, examples, geometry, hidden,
+    from . import (atomic, batch, brep, cli, cpu, errors, examples, geometry, hidden,
                    interrupt, io, masspoint, modes, notebook, octree, options,
                    parallel, patches, pathtrace, quaternion, radiosity, render, scene,
                    solids, testing, viewer)
     from .compare.comparison import Comparison, compare
     from .animate.frames import animate
-    from .display import show
+    from .notebook.display import show
     from .errors import (ComparisonError, ContextError, DisplayError, EnvironmentFailure,
                          GeometryError, GlshadeError, InputError, MeshFormatError,
                          OptionError, RenderWarning, SceneError, SceneFormatError,
@@ -89,7 +89,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
 
 
 if "IPython" in sys.modules:  # (in a notebook: objects' reprs draw their thumbnails)
-    from . import display as _display_hook  # noqa: F401
+    from .notebook import display as _display_hook  # noqa: F401
 
 
 def __getattr__(name: str):

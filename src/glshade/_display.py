@@ -3,7 +3,7 @@ colour maps of a frame's buffers, and the hook through which a picture is render
 
 Why split: every layer's objects (a Mesh, a Scene, a radiosity Solution) display
 themselves, but a thumbnail needs the renderer, which the lower layers must not import. So
-they ask :func:`picture`, which calls the hook :mod:`glshade.display` installs when it is
+they ask :func:`picture`, which calls the hook :mod:`glshade.notebook.display` installs when it is
 imported (``import glshade`` imports it when IPython is running); with no hook, or no GL,
 the facts are shown alone.
 """
@@ -22,7 +22,7 @@ __all__ = ["facts_html", "png_bytes", "buffers_image", "id_colours", "bounds_fac
 
 #: thumbnails' size in pixels (width, height)
 THUMBNAIL = (256, 192)
-#: (a Scene, Mesh or solid, mode) -> (H, W, 4) uint8 or None; installed by glshade.display
+#: (a Scene, Mesh or solid, mode) -> (H, W, 4) uint8 or None; installed by glshade.notebook.display
 thumbnail_hook: Callable | None = None
 
 

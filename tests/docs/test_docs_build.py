@@ -47,7 +47,7 @@ def test_every_public_module_has_an_api_page_with_its_objects(site):
     api = site / "api" / "generated"
     for module in ("glshade.quaternion", "glshade.solids.leaves", "glshade.radiosity.solvers",
                    "glshade.pathtrace.progressive",
-                   "glshade.notebook", "glshade.hidden.view", "glshade.scene.camera"):
+                   "glshade.notebook.widget", "glshade.hidden.view", "glshade.scene.camera"):
         page = (api / f"{module}.html").read_text(encoding="utf-8")
         assert 'class="sig-name descname"' in page, module
     camera = (api / "glshade.scene.camera.html").read_text(encoding="utf-8")

@@ -156,7 +156,7 @@ class Mesh:
         return f"<Mesh{name}: {self.n_vertices} vertices, {self.n_faces} faces>"
 
     def _repr_html_(self) -> str:
-        """In a notebook: a thumbnail and the counts (:mod:`glshade.display`)."""
+        """In a notebook: a thumbnail and the counts (:mod:`glshade.notebook.display`)."""
         from .._display import bounds_fact, facts_html, picture
 
         facts = [f"{self.n_vertices:,} vertices, {self.n_faces:,} polygons",

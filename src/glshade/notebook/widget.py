@@ -16,14 +16,14 @@ from typing import Any
 
 import numpy as np
 
-from .errors import UsageError
-from .modes import ShadingMode
-from .scene import Camera, Scene
-from .viewer.controls import Controls
+from ..errors import UsageError
+from ..modes import ShadingMode
+from ..scene import Camera, Scene
+from ..viewer.controls import Controls
 
 __all__ = ["NotebookViewer", "view", "camera_from_view", "view_of"]
 
-_STATIC = Path(__file__).with_name("notebook_static")
+_STATIC = Path(__file__).with_name("static")
 #: the widget class, made on first use (anywidget imported then: ``__getattr__``)
 NotebookViewer: Any
 
@@ -58,7 +58,7 @@ class _Behaviour(_Widget):
                  pick: bool = False, backend=None, **kwargs):
         from concurrent.futures import ThreadPoolExecutor
 
-        from .render.renderer import Renderer
+        from ..render.renderer import Renderer
 
         w, h = int(size[0]), int(size[1])
         super().__init__(width=w, height=h, **kwargs)
@@ -105,7 +105,7 @@ class _Behaviour(_Widget):
 
     def refresh(self) -> None:
         """Render the current view and send it to the browser."""
-        from ._display import png_bytes
+        from .._display import png_bytes
 
         png = png_bytes(self.image())
         c = self.controls
@@ -146,7 +146,7 @@ class _Behaviour(_Widget):
     def _on_message(self, _widget, content: dict, _buffers) -> None:
         """A gesture from the browser (an unknown mode or key is said in the status
         line: a kernel would only log an exception raised here)."""
-        from .errors import GlshadeError
+        from ..errors import GlshadeError
 
         try:
             self._gesture(content)

@@ -15,7 +15,7 @@ from PIL import Image
 
 import glshade
 from glshade import Camera, CameraPath, Keyframe, Scene
-from glshade.display import THUMBNAIL, buffers_image, png_bytes, show
+from glshade.notebook.display import THUMBNAIL, buffers_image, png_bytes, show
 from glshade.geometry import primitives
 from glshade.octree import Octree
 from glshade.solids import Box, Sphere
@@ -110,14 +110,15 @@ def test_png_bytes_round_trip():
 
 
 def test_without_the_display_module_the_facts_show_alone():
-    """In a script (no IPython, glshade.display never imported) a repr draws nothing: the
+    """In a script (no IPython, glshade.notebook.display never imported) a repr draws nothing: the
     lower layers cannot reach the renderer except through the hook display installs."""
     import subprocess
     import sys
 
     code = ("import sys; from glshade.geometry import primitives; "
             "h = primitives.cube()._repr_html_(); "
-            "print('<img' in h, 'glshade.display' in sys.modules, 'moderngl' in sys.modules)")
+            "print('<img' in h, 'glshade.notebook.display' in sys.modules, "
+            "'moderngl' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.split() == ["False", "False", "False"], out.stderr
 
@@ -126,8 +127,9 @@ def test_nothing_imports_ipython():
     import subprocess
     import sys
 
-    code = ("import sys, glshade, glshade.display; glshade.display.show(__import__('numpy')"
-            ".zeros((2, 2, 3))); print('IPython' in sys.modules)")
+    code = ("import sys, glshade, glshade.notebook.display; "
+            "glshade.notebook.display.show(__import__('numpy').zeros((2, 2, 3))); "
+            "print('IPython' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip() == "False", out.stderr
 

@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import _display
-from ._display import THUMBNAIL, buffers_image, png_bytes
+from .. import _display
+from .._display import THUMBNAIL, buffers_image, png_bytes
 
 __all__ = ["show", "thumbnail", "png_bytes", "buffers_image", "THUMBNAIL"]
 
@@ -30,9 +30,9 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
     made or there is nothing to draw."""
     import warnings
 
-    from .errors import EnvironmentFailure
-    from .scene import Scene
-    from .scene.camera import Camera
+    from ..errors import EnvironmentFailure
+    from ..scene import Scene
+    from ..scene.camera import Camera
 
     if not isinstance(scene, Scene):
         alone = Scene()
@@ -44,7 +44,7 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
         return None
     cam = camera or Camera.named("iso", bounds, aspect=size[0] / size[1])
     try:
-        from .render.renderer import Renderer
+        from ..render.renderer import Renderer
 
         with warnings.catch_warnings(), Renderer(*size, samples=0) as r:
             warnings.simplefilter("ignore")
@@ -57,7 +57,7 @@ def show(x) -> None:
     """Display ``x`` in a notebook: an image array, a Frame (its buffers side by side), an
     animation file (.gif, .png, .mp4) or anything with ``_repr_html_``. Outside IPython
     nothing is displayed and a ValueError says so only for what cannot be shown at all."""
-    from .render.renderer import Frame
+    from ..render.renderer import Frame
 
     if isinstance(x, (str, Path)):
         path = Path(x)

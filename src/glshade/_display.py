@@ -17,7 +17,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["facts_html", "png_bytes", "buffers_image", "id_colours", "bounds_fact",
+__all__ = ["facts_html", "png_bytes", "buffers_image", "bounds_fact",
            "picture", "THUMBNAIL"]
 
 #: thumbnails' size in pixels (width, height)
@@ -41,13 +41,6 @@ def png_bytes(image: np.ndarray) -> bytes:
     return buf.getvalue()
 
 
-def id_colours(ids: np.ndarray) -> np.ndarray:
-    """(H, W, 3) uint8: a distinct colour per polygon id (a hash), black background."""
-    h = (ids.astype(np.int64) + 1) * 2654435761 % (2 ** 32)
-    rgb = np.stack([(h >> s) & 255 for s in (0, 8, 16)], -1).astype(np.uint8) // 2 + 96
-    return np.where((ids >= 0)[..., None], rgb, 0).astype(np.uint8)
-
-
 def buffers_image(frame) -> np.ndarray:
     """A frame's buffers as one ``(H, k W, 3)`` uint8 image: colour, then depth (near
     white, far dark), world normals (0.5 n + 0.5) and polygon ids, those the frame has."""
@@ -69,7 +62,9 @@ def buffers_image(frame) -> np.ndarray:
         rgb = ((0.5 * n + 0.5) * 255 + 0.5).astype(np.uint8)
         tiles.append(np.where(shown[..., None], rgb, 0).astype(np.uint8))
     if frame.face_id is not None:
-        tiles.append(id_colours(np.asarray(frame.face_id)))
+        from .colormaps import id_colors
+
+        tiles.append(id_colors(np.asarray(frame.face_id)))
     return np.concatenate(tiles, axis=1)
 
 

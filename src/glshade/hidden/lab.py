@@ -11,6 +11,7 @@ import numpy as np
 from ._bsp import paint
 from .result import HiddenResult
 from .view import Prepared
+from ..colormaps import id_colors
 from ._zbuffer import zbuffer
 
 __all__ = ["Agreement", "agreement", "id_colors", "disagreement_map", "step_frames"]
@@ -41,24 +42,6 @@ def agreement(result: HiddenResult, reference_ids, reference_depth, edges) -> Ag
         np.maximum(np.abs(reference_depth[same]), 1e-30)
     return Agreement(int((diff & ~edges).sum()), int((diff & edges).sum()),
                      int((reference_ids >= 0).sum()), float(rel.max()) if rel.size else 0.0)
-
-
-def id_colors(face_id: np.ndarray) -> np.ndarray:
-    """(H, W, 3) uint8: each polygon id a colour of its own (golden-ratio hues), the
-    background dark."""
-    ids = face_id.astype(np.int64)
-    h = (ids * 0.6180339887) % 1.0
-    s = 0.55 + 0.35 * ((ids * 0.37) % 1.0)
-    v = 0.95 - 0.25 * ((ids * 0.71) % 1.0)
-    i = np.floor(h * 6).astype(int) % 6
-    f = h * 6 - np.floor(h * 6)
-    p, q, t = v * (1 - s), v * (1 - f * s), v * (1 - (1 - f) * s)
-    r = np.choose(i, [v, q, p, p, t, v])
-    g = np.choose(i, [t, v, v, q, p, p])
-    b = np.choose(i, [p, p, t, v, v, q])
-    rgb = (np.stack([r, g, b], -1) * 255).astype(np.uint8)
-    rgb[ids < 0] = (18, 18, 22)
-    return rgb
 
 
 def disagreement_map(face_id, reference, edges) -> np.ndarray:

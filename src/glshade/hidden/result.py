@@ -34,8 +34,9 @@ class HiddenResult:
 
     def _repr_html_(self) -> str:
         """In a notebook: the polygon ids it found, and its counters."""
-        from .._display import id_colours, facts_html
+        from .._display import facts_html
+        from ..colormaps import id_colors
 
         facts = [f"{k}: {v:,}" if isinstance(v, int) else f"{k}: {v}"
                  for k, v in self.counters.items()]
-        return facts_html(repr(self), facts, id_colours(self.face_id))
+        return facts_html(repr(self), facts, id_colors(self.face_id))

@@ -14,6 +14,8 @@ from typing import Any, TypeVar
 
 from ..modes import Backend, Outputs, ShadingMode
 from ..options import HEMICUBE_RESOLUTION
+from ..radiosity import Method
+from ..scene.camera import View
 
 __all__ = ["RenderArgs", "InfoArgs", "RenderCommandArgs", "AnimateArgs", "CompareArgs",
            "BatchArgs", "RadiosityArgs", "HiddenArgs", "ViewArgs", "DoctorArgs",
@@ -45,7 +47,7 @@ class RenderArgs:
     srgb: bool | None = None
     mode: ShadingMode | None = None
     time: float | None = None
-    view: str | None = None
+    view: View | None = None
     ortho: bool = False
     edges: bool | None = None
 
@@ -120,7 +122,7 @@ class RadiosityArgs(RenderArgs):
     output: str
     patch_size: float | None = None
     hemicube: int = HEMICUBE_RESOLUTION
-    method: str = "progressive"
+    method: Method = Method.PROGRESSIVE
     particles: int = 200_000
     until: float = 0.01
     iterations: int | None = None

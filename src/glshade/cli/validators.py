@@ -133,19 +133,20 @@ def fov(text: str) -> float:
     return _rule(check_fov, value, "the field of view")
 
 
-def radiosity_method(text: str) -> str:
+def radiosity_method(text: str):
+    """A radiosity solver: a :class:`glshade.radiosity.Method` (an enum past the parser)."""
     from ..radiosity import Method
 
-    return _rule(Method.parse, text).value
+    return _rule(Method.parse, text)
 
 
 #: --view's names: glshade.View's
 VIEW_CHOICES = tuple(v.value for v in View)
 
 
-def view(text: str) -> str:
-    """A named view (front, back, left, right, top, bottom, iso)."""
-    return _rule(View.parse, text).value
+def view(text: str) -> View:
+    """A named view (front, back, left, right, top, bottom, iso): a :class:`View`."""
+    return _rule(View.parse, text)
 
 
 #: --algorithms of glshade hidden: the lab's, and the GPU's z-buffer as a reference

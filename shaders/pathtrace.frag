@@ -1,7 +1,14 @@
 #version 330 core
-// A progressive Monte Carlo path tracer for the rendering equation (notes, 23.1): each pass
-// adds SAMPLES paths per pixel to two float targets (blended by addition): the sum of the
-// samples' values with their count, and the sum of their squares (for a per-pixel variance).
+// A progressive Monte Carlo path tracer for the rendering equation (notes, 23.1). Each pixel
+// traces its samples one after another, k = 0, 1, ... (sample k's random stream seeded by
+// (seed, pixel, k)), and each pass continues where the last stopped: a path in flight is
+// kept in four state targets (origin and bounces, direction, throughput, value so far and
+// the random state), so one invocation's work is bounded (new bounces start only under
+// u_budget loop iterations: llvmpipe stops a shader at 65,535, silently) and no answer
+// depends on how samples are grouped into passes. Finished samples add to three targets:
+// their values' sum and count, their squares' sum (for a per-pixel variance) and first hits
+// on an emitter, and camera rays that hit anything with the bounces that came near the
+// driver's limit (counted, never hidden). Targets are read and written in turn (ping-pong).
 // Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
@@ -17,12 +24,12 @@
 // BRDF: rho_d / pi + k_s (n + 2) / (2 pi) cos^n(alpha), two-sided; emission one-sided.
 // Next-event estimation to the emitters and the lights, then a BRDF-sampled bounce (lobe
 // chosen by albedo); emission found by a bounce is not counted again (no double counting);
-// Russian roulette after 3 bounces. Random numbers: PCG, seeded by (seed, pixel, sample).
+// Russian roulette from the fourth vertex (RR_CAP: the most a path may go on with, so a
+// lossless room still ends). Random numbers: a PCG stream seeded by nested PCG hashes of
+// the seed, the pixel's x and y and the sample k.
 
 #define PI 3.14159265358979
-#ifndef SAMPLES
-#define SAMPLES 1
-#endif
+#define RR_CAP 0.99
 #ifndef DATA_WIDTH
 #define DATA_WIDTH 1024
 #endif
@@ -42,8 +49,11 @@ uniform int u_norms;
 uniform mat4 u_inverse_view_proj;
 uniform vec2 u_size;
 uniform uint u_seed;
-uniform uint u_pass;
-uniform int u_max_depth;
+uniform float u_target;       // samples a pixel should have finished when this run ends
+uniform int u_budget;         // loop iterations under which a new bounce may start
+uniform int u_max_depth;      // vertices a path may have (<= 0: no limit; roulette ends it)
+// the state and sums of the last pass (see the header), read at this pixel
+uniform sampler2D u_state0, u_state1, u_state2, u_state3, u_acc0, u_acc1, u_acc2;
 uniform float u_eps;
 uniform int u_n_lights;
 uniform vec4 u_light_pos[8];   // (position or direction to the light, kind: 0 dir, 1 point)
@@ -54,9 +64,15 @@ uniform vec3 u_light_att[8];
 uniform sampler2D u_rays;
 #endif
 
-layout(location = 0) out vec4 out_sum;
-layout(location = 1) out vec4 out_square;
-layout(location = 2) out vec4 out_hit;  // (camera rays that hit anything, for a coverage mask)
+layout(location = 0) out vec4 out_state0;  // origin, bounces made + 1 (0: no path)
+layout(location = 1) out vec4 out_state1;  // direction, random state's low 16 bits
+layout(location = 2) out vec4 out_state2;  // throughput, random state's high 16 bits
+layout(location = 3) out vec4 out_state3;  // the path's value so far, flags (1 emits, 2 hit)
+layout(location = 4) out vec4 out_sum;     // finished samples: sum of values, count
+layout(location = 5) out vec4 out_square;  // sum of squares, first hits on an emitter
+layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near the limit
+
+int g_iter;  // loop iterations so far in this invocation (every loop of the tracer counts)
 
 #include "random.glsl"
 #include "rays.glsl"
@@ -76,7 +92,11 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     stack[top++] = 0;
     t_hit = t_max;
     tri_hit = -1;
+#ifdef NO_TRIANGLES
+    top = 0;  // (a solid alone: no hierarchy to walk; its root box would hold every ray)
+#endif
     while (top > 0) {
+        ++g_iter;
         int node = stack[--top];
         vec4 a = fetch(u_nodes + 2 * node);
         vec4 b = fetch(u_nodes + 2 * node + 1);
@@ -94,6 +114,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
             continue;
         }
         for (int k = first; k < first + count; ++k) {
+            ++g_iter;
             vec4 p0 = fetch(u_tris + 3 * k);
             vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
             vec3 pv = cross(d, e2);
@@ -153,6 +174,7 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
     float r = rand();
     int lo = 0, hi = u_n_emit - 1;
     while (lo < hi) {
+        ++g_iter;
         int mid = (lo + hi) / 2;
         if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
     }
@@ -181,6 +203,7 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
 vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
     vec3 sum = vec3(0.0);
     for (int i = 0; i < u_n_lights; ++i) {
+        ++g_iter;
         vec3 wi = u_light_pos[i].xyz;
         float dist = 1e30, att = 1.0;
         if (u_light_pos[i].w > 0.5) {
@@ -198,103 +221,144 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
     return sum;
 }
 
-float g_hit;
+// One path's state between bounces (see the header).
+struct Path {
+    vec3 o, d, beta, value;
+    int bounces;      // vertices found so far
+    float flags;      // 1: its first hit emits; 2: its camera ray hit anything
+};
 
-vec3 trace(vec3 o, vec3 d, out float first_emits) {
-    vec3 sum = vec3(0.0), beta = vec3(1.0);
-    first_emits = 0.0;
-    for (int depth = 0; depth < u_max_depth; ++depth) {
-        float t;
-        int k;
-        if (!intersect(o, d, 1e30, t, k)) break;
-        if (depth == 0) g_hit += 1.0;
-        vec3 x = o + t * d;
-        int m;
-        vec3 ng;
+// one bounce of ``p``: the next vertex, its emission (first vertex), next-event estimation
+// and the next direction; false when the path ends
+bool bounce(inout Path p) {
+    float t;
+    int k;
+    if (!intersect(p.o, p.d, 1e30, t, k)) return false;
+    if (p.bounces == 0) p.flags += 2.0;
+    vec3 x = p.o + t * p.d;
+    int m;
+    vec3 ng;
 #ifdef CSG_SOLID
-        bool on_solid = k <= -2;
-        if (on_solid) {
-            m = u_csg_material;
-            ng = normalize(csg_normal(-2 - k, x));
-        } else
+    bool on_solid = k <= -2;
+    if (on_solid) {
+        m = u_csg_material;
+        ng = normalize(csg_normal(-2 - k, x));
+    } else
 #endif
-        {
-            vec4 p0 = fetch(u_tris + 3 * k);
-            vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
-            m = floatBitsToInt(p0.w);
-            ng = normalize(cross(e1, e2));
-        }
-        vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
-        if (depth == 0 && dot(ng, d) < 0.0) {
-            sum += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
-            first_emits = float(dot(mb.xyz, vec3(1.0)) > 0.0);
-        }
-        vec3 n = dot(ng, d) < 0.0 ? ng : -ng;
-        vec3 xo = x + n * u_eps;  // (offsets along the true surface)
-        vec3 n_geo = n;
+    {
+        vec4 p0 = fetch(u_tris + 3 * k);
+        vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+        m = floatBitsToInt(p0.w);
+        ng = normalize(cross(e1, e2));
+    }
+    vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
+    if (p.bounces == 0 && dot(ng, p.d) < 0.0) {
+        p.value += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
+        p.flags += float(dot(mb.xyz, vec3(1.0)) > 0.0);
+    }
+    vec3 n = dot(ng, p.d) < 0.0 ? ng : -ng;
+    vec3 xo = x + n * u_eps;  // (offsets along the true surface)
+    vec3 n_geo = n;
 #ifdef SMOOTH_NORMALS
 #ifdef CSG_SOLID
-        if (!on_solid)
+    if (!on_solid)
 #endif
-        {
-            vec3 ns = normalize((1.0 - g_uv.x - g_uv.y) * fetch(u_norms + 3 * k).xyz +
-                                g_uv.x * fetch(u_norms + 3 * k + 1).xyz +
-                                g_uv.y * fetch(u_norms + 3 * k + 2).xyz);
-            n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the ray's side)
-        }
-#endif
-        vec3 wo = -d;
-        vec3 rho = ma.xyz;
-        float ks = ma.w, shin = mb.w;
-        sum += beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin)
-                       + lights_seen(xo, n, n_geo, wo, rho, ks, shin));
-        // the next direction: a lobe by albedo, then the BRDF-weighted throughput
-        float wd = (rho.x + rho.y + rho.z) / 3.0;
-        if (wd + ks <= 0.0) break;
-        float pd = wd / (wd + ks);
-        vec3 r = reflect(d, n);
-        vec3 wi = rand() < pd ? around(n, sqrt(rand()), 2.0 * PI * rand())
-                              : around(r, pow(rand(), 1.0 / (shin + 1.0)), 2.0 * PI * rand());
-        float cx = dot(wi, n);
-        if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) break;
-        float ca = max(dot(wi, r), 0.0);
-        float pdf = pd * cx / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) * pow(ca, shin);
-        beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
-        if (depth >= 3) {
-            float q = min(max(beta.x, max(beta.y, beta.z)), 0.95);
-            if (rand() >= q) break;
-            beta /= q;
-        }
-        o = xo;
-        d = wi;
+    {
+        vec3 ns = normalize((1.0 - g_uv.x - g_uv.y) * fetch(u_norms + 3 * k).xyz +
+                            g_uv.x * fetch(u_norms + 3 * k + 1).xyz +
+                            g_uv.y * fetch(u_norms + 3 * k + 2).xyz);
+        n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the ray's side)
     }
-    return sum;
+#endif
+    vec3 wo = -p.d;
+    vec3 rho = ma.xyz;
+    float ks = ma.w, shin = mb.w;
+    p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin)
+                         + lights_seen(xo, n, n_geo, wo, rho, ks, shin));
+    p.bounces += 1;
+    if (u_max_depth > 0 && p.bounces >= u_max_depth) return false;
+    // the next direction: a lobe by albedo, then the BRDF-weighted throughput
+    float wd = (rho.x + rho.y + rho.z) / 3.0;
+    if (wd + ks <= 0.0) return false;
+    float pd = wd / (wd + ks);
+    vec3 r = reflect(p.d, n);
+    vec3 wi = rand() < pd ? around(n, sqrt(rand()), 2.0 * PI * rand())
+                          : around(r, pow(rand(), 1.0 / (shin + 1.0)), 2.0 * PI * rand());
+    float cx = dot(wi, n);
+    if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) return false;
+    float ca = max(dot(wi, r), 0.0);
+    float pdf = pd * cx / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) * pow(ca, shin);
+    p.beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
+    if (p.bounces >= 4) {  // (Russian roulette from the fourth vertex on)
+        // continue with the throughput's chance (the weight then stays near 1: in a grey
+        // room of reflectance rho a path goes on with probability rho), at most RR_CAP
+        float q = min(max(p.beta.x, max(p.beta.y, p.beta.z)), RR_CAP);
+        if (rand() >= q) return false;
+        p.beta /= q;
+    }
+    p.o = xo;
+    p.d = wi;
+    return true;
 }
 
-void main() {
-    uvec2 pixel = uvec2(gl_FragCoord.xy);
-    vec3 sum = vec3(0.0), square = vec3(0.0);
-    float emits = 0.0;
-    g_hit = 0.0;
-    for (int s = 0; s < SAMPLES; ++s) {
-        g_state = pcg(pcg(pcg(u_seed) ^ (pixel.x + 65536u * pixel.y)) ^
-                      (u_pass * uint(SAMPLES) + uint(s)));
+// sample k of this pixel, from its start: its random stream and its camera (or given) ray
+Path start(uvec2 pixel, uint k) {
+    g_state = pcg(pcg(pcg(pcg(u_seed) + pixel.x) + pixel.y) + k);
+    Path p;
 #ifdef PROBES
-        vec3 o = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y)), 0).xyz;
-        vec3 d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
+    p.o = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y)), 0).xyz;
+    p.d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
 #else
-        vec2 ndc = 2.0 * (gl_FragCoord.xy - 0.5 + vec2(rand(), rand())) / u_size - 1.0;
-        vec3 o, d;
-        pixel_ray(u_inverse_view_proj, ndc, o, d);
-        d = normalize(d);
+    vec2 ndc = 2.0 * (vec2(pixel) + vec2(rand(), rand())) / u_size - 1.0;
+    pixel_ray(u_inverse_view_proj, ndc, p.o, p.d);
+    p.d = normalize(p.d);
 #endif
-        float e;
-        vec3 value = trace(o, d, e);
-        sum += value;
-        square += value * value;
-        emits += e;
+    p.beta = vec3(1.0);
+    p.value = vec3(0.0);
+    p.bounces = 0;
+    p.flags = 0.0;
+    return p;
+}
+
+// the most bounces one invocation makes (a bound the loop-iteration budget rarely reaches)
+#define STEPS 256
+// a bounce that ends above this many counted iterations may have met the driver's limit
+#define NEAR_LIMIT 60000
+
+void main() {
+    ivec2 at = ivec2(gl_FragCoord.xy);
+    uvec2 pixel = uvec2(at);
+    vec4 s0 = texelFetch(u_state0, at, 0), s1 = texelFetch(u_state1, at, 0);
+    vec4 s2 = texelFetch(u_state2, at, 0), s3 = texelFetch(u_state3, at, 0);
+    vec4 sum = texelFetch(u_acc0, at, 0), square = texelFetch(u_acc1, at, 0);
+    vec4 hit = texelFetch(u_acc2, at, 0);
+    bool flying = s0.w > 0.5;
+    Path p;
+    p.o = s0.xyz; p.d = s1.xyz; p.beta = s2.xyz; p.value = s3.xyz;
+    p.bounces = int(s0.w) - 1;
+    p.flags = s3.w;
+    g_state = uint(s1.w) | (uint(s2.w) << 16u);
+    g_iter = 0;
+    for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
+        if (!flying) {
+            if (sum.w >= u_target) break;
+            p = start(pixel, uint(sum.w));  // (samples finish in order: k is the count)
+            flying = true;
+        }
+        bool going = bounce(p);
+        if (g_iter >= NEAR_LIMIT) hit.y += 1.0;
+        if (!going) {
+            sum += vec4(p.value, 1.0);
+            square += vec4(p.value * p.value, mod(p.flags, 2.0));
+            hit.x += float(p.flags >= 2.0);
+            flying = false;
+        }
     }
-    out_sum = vec4(sum, float(SAMPLES));
-    out_square = vec4(square, emits);
-    out_hit = vec4(g_hit, 0.0, 0.0, 0.0);
+    out_state0 = vec4(p.o, flying ? float(p.bounces + 1) : 0.0);
+    out_state1 = vec4(p.d, float(g_state & 0xFFFFu));
+    out_state2 = vec4(p.beta, float(g_state >> 16u));
+    out_state3 = vec4(p.value, p.flags);
+    out_sum = sum;
+    out_square = square;
+    out_hit = hit;
 }

@@ -18,6 +18,18 @@ from glshade.errors import ContextError
 
 pytest_plugins = ["pytester"]
 
+try:  # property-based sweeps: derandomized in CI (the same examples every run), printed
+    from hypothesis import HealthCheck, settings
+
+    settings.register_profile("ci", derandomize=True, deadline=None, print_blob=True,
+                              suppress_health_check=[HealthCheck.too_slow])
+    settings.register_profile("dev", deadline=None,
+                              suppress_health_check=[HealthCheck.too_slow])
+    settings.load_profile("ci" if os.environ.get("CI") else
+                          os.environ.get("HYPOTHESIS_PROFILE", "dev"))
+except ImportError:  # (the test extra installs it; tests that use it say so)
+    pass
+
 BACKEND = os.environ.get("GLSHADE_TEST_BACKEND", "egl")
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -141,7 +141,7 @@ class PathtraceArgs(RenderArgs):
     spp: int | None = None
     until: float | None = None
     seed: int = 0
-    max_depth: int = 64
+    max_depth: int | None = None
     exposure: float | None = None
     no_lights: bool = False
     quiet: bool = False

@@ -329,9 +329,9 @@ def add_pathtrace(sub) -> None:
                       "pixels' RMS standard error is F of the image's mean (e.g. 0.01)")
     p.add_argument("--seed", type=v.seed, default=0, help="of the random numbers (a whole "
                    "number >= 0; default 0: the same picture every run)")
-    p.add_argument("--max-depth", type=v.count, default=64, metavar="N",
-                   help="bounces at most (default 64; Russian roulette ends most paths "
-                   "sooner)")
+    p.add_argument("--max-depth", type=v.count, default=None, metavar="N",
+                   help="vertices a path may have (default: no limit; Russian roulette "
+                   "ends paths, so the picture is the rendering equation's)")
     p.add_argument("--exposure", type=v.positive_float, help="scale of radiosity units to "
                    "display (default: the brightest lit surface shows as white)")
     p.add_argument("--no-lights", action="store_true", help="only emitting surfaces give "

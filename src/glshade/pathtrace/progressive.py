@@ -27,8 +27,9 @@ class PathTraced:
     """A path-traced picture: ``image`` (H, W, 3) float64 in radiosity units (pi x
     radiance), ``se`` (H, W, 3) each pixel's standard error, ``samples`` per pixel,
     ``emitting`` (H, W) the fraction of a pixel's first hits on an emitter, ``seconds`` of
-    tracing, whether a Ctrl-C ended it early, and ``coverage`` (H, W) the fraction of a
-    pixel's camera rays that hit the scene."""
+    tracing, whether a Ctrl-C ended it early, ``coverage`` (H, W) the fraction of a
+    pixel's camera rays that hit the scene, and ``near_limit`` the bounces that came near
+    the driver's loop limit (0: none could have been cut short)."""
 
     image: np.ndarray
     se: np.ndarray
@@ -39,6 +40,7 @@ class PathTraced:
     method: str = "GPU path tracing"
     history: list = field(default_factory=list)
     coverage: np.ndarray | None = field(default=None, repr=False)
+    near_limit: int = 0
 
     @property
     def relative_error(self) -> float:
@@ -89,16 +91,17 @@ class PathTracer:
     ``camera``: the headlight's place for a scene with no lights or emitters; ``smooth``:
     shade with the renderer's vertex normals (see :class:`TraceScene`)."""
 
-    def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int = 64,
-                 samples_per_pass: int = 1, context=None, backend: str = "auto",
-                 lights: bool = True, camera=None, smooth: bool = False):
+    def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int | None = None,
+                 context=None, backend: str = "auto", lights: bool = True, camera=None,
+                 smooth: bool = False):
         from ..render.context import create_context
         from ..render.passes.pathtrace import GpuPathTracer
 
         from ..options import check_whole
 
         w, h = _size(size)
-        max_depth = check_whole("max_depth", max_depth, 1)
+        if max_depth is not None:
+            max_depth = check_whole("max_depth", max_depth, 1)
         self.trace_scene = scene if isinstance(scene, TraceScene) else \
             TraceScene.from_scene(scene, lights=lights, camera=camera, smooth=smooth)
         self.seed = int(seed)
@@ -106,7 +109,7 @@ class PathTracer:
         self.context = create_context(backend) if context is None else context
         try:
             self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h,
-                                     samples=samples_per_pass, max_depth=max_depth)
+                                     max_depth=max_depth)
         except BaseException:
             self.close()
             raise
@@ -115,19 +118,19 @@ class PathTracer:
 
     @property
     def samples(self) -> int:
-        return self.gpu.passes * self.gpu.samples
+        """Samples every pixel has finished."""
+        return self.gpu.samples
 
     def add(self, camera, samples: int = 1) -> bool:
-        """Add at least ``samples`` paths per pixel (whole passes) seen from ``camera``;
-        whether that started the picture over (a new camera)."""
+        """Add exactly ``samples`` paths per pixel seen from ``camera``; whether that
+        started the picture over (a new camera)."""
         restarted = self.camera is not None and camera != self.camera
         if restarted:
             self.gpu.reset()
             self.seconds = 0.0
         self.camera = camera
-        passes = -(-int(samples) // self.gpu.samples)
         t0 = time.perf_counter()
-        self.gpu.run(camera, passes, self.seed)
+        self.gpu.run(camera, int(samples), self.seed)
         self.context.ctx.finish()
         self.seconds += time.perf_counter() - t0
         return restarted
@@ -136,8 +139,17 @@ class PathTracer:
         total, square, hits = self.gpu.read()
         mean, se = _moments(total, square)
         n = max(int(total[0, 0, 3]), 1)
+        near = int(hits[..., 1].sum())
+        if near:
+            import warnings
+
+            from ..errors import RenderWarning
+
+            warnings.warn(f"{near:,} bounces came near the GPU driver's limit of 65,535 loop "
+                          "iterations a pixel and may have been cut short (a scene whose one "
+                          "ray costs that much: simplify it)", RenderWarning, stacklevel=3)
         return PathTraced(mean, se, self.samples, square[..., 3] / n, self.seconds,
-                          interrupted, coverage=hits[..., 0] / n)
+                          interrupted, coverage=hits[..., 0] / n, near_limit=near)
 
     def close(self) -> None:
         gpu = getattr(self, "gpu", None)
@@ -166,13 +178,17 @@ def _size(size) -> tuple[int, int]:
 
 def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
           until: float | None = None, max_samples: int = 65536, seed: int = 0,
-          max_depth: int = 64, samples_per_pass: int | None = None, backend: str = "auto",
-          context=None, lights: bool = True, progress=None) -> PathTraced:
+          max_depth: int | None = None, samples_per_pass: int | None = None,
+          backend: str = "auto", context=None, lights: bool = True,
+          progress=None) -> PathTraced:
     """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
-    ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
-    :func:`relative_error`; checked after each doubling, at most ``max_samples``). A
-    Ctrl-C returns the picture so far (``interrupted`` set). Seeded: the same call gives
-    the same picture."""
+    exactly ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
+    :func:`relative_error`; checked after each doubling, at most ``max_samples``).
+    ``max_depth``: vertices a path may have (default None: no limit, Russian roulette ends
+    paths, so the answer is the rendering equation's); ``samples_per_pass``: samples
+    between two looks at the progress bar and Ctrl-C (they never change the picture: a
+    pixel's k-th sample is the same however they are grouped). A Ctrl-C returns the
+    picture so far (``interrupted`` set). Seeded: the same call gives the same picture."""
     from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress
@@ -189,11 +205,13 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     w, h = _size(size)
     if camera is None:  # (a Scene's bounds, or a TraceScene's)
         camera = default_camera(scene.bounds, w / h)
-    per_pass = samples_per_pass or _per_pass(w * h)
+    per_pass = _per_pass(w * h)
     goal = int(spp) if spp is not None else int(max_samples)
     bar, owned = as_progress(progress, goal, "samples")
-    with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, samples_per_pass=per_pass,
-                    context=context, backend=backend, lights=lights) as tracer:
+    if samples_per_pass is not None:
+        per_pass = check_whole("samples_per_pass", samples_per_pass, 1)
+    with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, context=context,
+                    backend=backend, lights=lights) as tracer:
         history: list = []
         interrupted = False
         try:
@@ -222,6 +240,6 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
 
 
 def _per_pass(pixels: int) -> int:
-    """Samples a pixel per draw: about a million paths a draw (a draw is the unit a
-    progress bar and a Ctrl-C see), at least 1 and at most 16."""
+    """Samples a pixel between two looks at the progress bar and Ctrl-C: about a million
+    paths, at least 1 and at most 16."""
     return int(np.clip(2**20 // max(pixels, 1), 1, 16))

@@ -54,7 +54,8 @@ def probe_rays(scene: TraceScene, points: int, seed: int) -> np.ndarray:
 
 
 def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0,
-                      lights: bool = False, max_depth: int = 64, backend: str = "auto",
+                      lights: bool = False, max_depth: int | None = None,
+                      backend: str = "auto",
                       context=None) -> SurfaceRadiosity:
     """Each model's area-mean radiosity (front side) by path tracing ``spp`` paths from
     each of ``points`` points. ``lights=False``: emitting surfaces only, as radiosity
@@ -68,10 +69,9 @@ def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0
     own = context is None
     ctx = create_context(backend) if own else context
     try:
-        per_pass = int(np.clip(2**20 // rays[:, :, 0, 0].size, 1, 16))
-        with GpuPathTracer(ctx, ts, int(points), len(ts.names), samples=per_pass,
-                           max_depth=max_depth, rays=rays[::-1]) as gpu:
-            gpu.run(None, -(-int(spp) // per_pass), seed)
+        with GpuPathTracer(ctx, ts, int(points), len(ts.names), max_depth=max_depth,
+                           rays=rays[::-1]) as gpu:
+            gpu.run(None, int(spp), seed)
             total, _, _ = gpu.read()
     finally:
         if own:

@@ -14,6 +14,10 @@ from .scene import TraceScene
 __all__ = ["trace"]
 
 
+#: the most a path goes on with under Russian roulette (shaders/pathtrace.frag's RR_CAP)
+RR_CAP = 0.99
+
+
 def _hits(o, d, tri, t_max):
     """Nearest hit of each ray (R, 3) among ``tri`` (T, 3, 3): t (R,) (inf: none) and the
     triangle (R,). Möller-Trumbore over every pair, in blocks of rays."""
@@ -105,7 +109,7 @@ def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64, hits=None):
         with np.errstate(divide="ignore", invalid="ignore"):
             beta = beta * _brdf_pi(rho, ks, shin, n, wi, wo) / np.pi * (cx / pdf)[:, None]
         if depth >= 3:
-            q = np.minimum(beta.max(1), 0.95)
+            q = np.minimum(beta.max(1), RR_CAP)
             go &= rng.random(len(x)) < q
             beta = beta / np.where(go, q, 1)[:, None]
         o, d, beta, alive = x[go], wi[go], beta[go], alive[go]

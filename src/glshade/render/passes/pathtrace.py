@@ -15,26 +15,40 @@ from .csg import csg_defines
 
 __all__ = ["GpuPathTracer"]
 
+#: texture units: the scene's tables, given rays, the solid's tree, then the seven targets
+_DATA, _RAYS, _CSG, _TARGETS = 0, 1, 2, 3
+_TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
+
+
 class GpuPathTracer(GLResource):
     """Path-trace ``scene`` (a :class:`glshade.pathtrace.TraceScene`, whose ``tables()``
-    give the texels) at ``width x height``: each
-    :meth:`run` adds passes of ``samples`` paths per pixel; :meth:`read` returns the sums.
-    The pass number seeds each sample, so a pixel's k-th sample is the same whatever the
-    passes are grouped into."""
+    give the texels) at ``width x height``: :meth:`run` makes every pixel finish
+    ``samples`` more paths; :meth:`read` returns the sums. Each pixel traces its samples in
+    order and sample k's random stream is seeded by (seed, pixel, k); a path in flight is
+    kept between passes (shaders/pathtrace.frag), so one invocation's work stays under
+    ``budget`` loop iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th
+    sample is the same however the work is grouped. ``max_depth``: vertices a path may
+    have (None: no limit, Russian roulette ends it)."""
+
+    #: loop iterations under which an invocation starts another bounce (a bounce of a
+    #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
+    BUDGET = 8192
 
     def __init__(self, context, scene, width: int, height: int, *,
-                 samples: int = 1, max_depth: int = 64, shaders: ShaderLibrary | None = None,
-                 rays: np.ndarray | None = None):
+                 max_depth: int | None = None, shaders: ShaderLibrary | None = None,
+                 rays: np.ndarray | None = None, budget: int = BUDGET):
         super().__init__(context)
         ctx = context.ctx
         self.scene, self.width, self.height = scene, int(width), int(height)
-        self.samples, self.max_depth = int(samples), int(max_depth)
+        self.max_depth, self.budget = max_depth, int(budget)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
         data, self.layout = scene.tables()
         width = self.layout["width"]
-        defines: tuple[str, ...] = (f"SAMPLES {self.samples}", f"DATA_WIDTH {width}")
+        defines: tuple[str, ...] = (f"DATA_WIDTH {width}",)
         if scene.shading is not None:
             defines += ("SMOOTH_NORMALS",)
+        if not len(scene.triangles):
+            defines += ("NO_TRIANGLES",)
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]
@@ -42,7 +56,7 @@ class GpuPathTracer(GLResource):
             defines += ("CSG_SOLID", *csg_defines(tree, blocks=False))
             self._csg = self._keep(data_texture(ctx, tree.texels, ROW))
             self._csg_values = {
-                "u_csg": 2, "u_csg_material": material, **tree.offsets(),
+                "u_csg": _CSG, "u_csg_material": material, **tree.offsets(),
                 "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
                 "u_csg_kind_start": np.array(tree.kind_start, "i4")}
         self._rays = None
@@ -55,12 +69,19 @@ class GpuPathTracer(GLResource):
                                                         defines=defines))
         self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
         self.texture = self._keep(data_texture(ctx, data, width))
-        self._sum = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
-        self._square = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
-        self._hit = self._keep(ctx.texture((self.width, self.height), 4, dtype="f4"))
-        self.fbo = self._keep(ctx.framebuffer([self._sum, self._square, self._hit]))
+        # two sets of the seven targets, read and written in turn
+        size = (self.width, self.height)
+        self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
+                         for _ in range(2)]
+        self._fbos = [self._keep(ctx.framebuffer(t)) for t in self._targets]
+        self._current = 0
         self.vao = self._keep(ctx.vertex_array(self.program, []))
+        self._left = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace_left.frag"))
+        self._left_vao = self._keep(ctx.vertex_array(self._left, []))
+        self._left_fbo = self._keep(ctx.simple_framebuffer(size, components=1))
+        self._query = ctx.query(samples=True)  # (moderngl frees a query with its context)
         self.passes = 0
+        self.samples = 0
         self.reset()
 
     def _write(self, values: dict) -> None:
@@ -77,8 +98,10 @@ class GpuPathTracer(GLResource):
     def _static_uniforms(self) -> dict:
         """The uniforms that stay for this tracer's life: sizes, tables, lights, the solid."""
         values: dict = {"u_size": (float(self.width), float(self.height)),
-                        "u_max_depth": self.max_depth, "u_eps": 1e-5 * self.scene.size,
-                        "u_data": 0, "u_rays": 1, "u_n_lights": len(self.scene.lights)}
+                        "u_max_depth": int(self.max_depth or 0),
+                        "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
+                        "u_data": _DATA, "u_rays": _RAYS, "u_n_lights": len(self.scene.lights),
+                        **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
         if self._csg is not None:
             values.update(self._csg_values)
@@ -97,40 +120,57 @@ class GpuPathTracer(GLResource):
     def reset(self) -> None:
         """Forget every sample (a new camera)."""
         self._check()
-        self.fbo.clear(0.0, 0.0, 0.0, 0.0)
-        self.passes = 0
+        for fbo in self._fbos:
+            fbo.clear(0.0, 0.0, 0.0, 0.0)
+        self.passes = self.samples = 0
 
-    def run(self, camera, passes: int = 1, seed: int = 0) -> None:
-        """Add ``passes`` passes of samples seen from ``camera`` (None for given rays)."""
+    def run(self, camera, samples: int = 1, seed: int = 0) -> int:
+        """Make every pixel finish ``samples`` more paths seen from ``camera`` (None for
+        given rays); the passes that took."""
         import moderngl
 
         self._check()
         ctx = self.context.ctx
-        prog = self.program
-        aspect = self.width / self.height
-        values: dict = {"u_seed": int(seed) & 0xFFFFFFFF}
+        target = self.samples + int(samples)
+        values: dict = {"u_seed": int(seed) & 0xFFFFFFFF, "u_target": float(target)}
         if camera is not None:
+            aspect = self.width / self.height
             vp = camera.projection_matrix(aspect) @ camera.view_matrix()
             values["u_inverse_view_proj"] = gl_bytes(np.linalg.inv(vp))
         self._write(values)
+        self._left["u_acc0"].value = _TARGETS
+        self._left["u_target"].value = float(target)
         if self._csg is not None:
-            self._csg.use(location=2)
-        self.texture.use(location=0)
+            self._csg.use(location=_CSG)
+        self.texture.use(location=_DATA)
         if self._rays is not None:
-            self._rays.use(location=1)
-        self.fbo.use()
+            self._rays.use(location=_RAYS)
         ctx.viewport = (0, 0, self.width, self.height)
-        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
-        ctx.enable(moderngl.BLEND)
-        ctx.blend_func = moderngl.ONE, moderngl.ONE
-        try:
-            for _ in range(int(passes)):
-                prog["u_pass"].value = self.passes
-                self.vao.render(moderngl.TRIANGLES, vertices=3)
-                self.passes += 1
-        finally:
-            ctx.disable(moderngl.BLEND)
-            ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
+        passes = 0
+        while True:
+            read, write = self._targets[self._current], self._fbos[1 - self._current]
+            for i, tex in enumerate(read):
+                tex.use(location=_TARGETS + i)
+            write.use()
+            self.vao.render(moderngl.TRIANGLES, vertices=3)
+            self._current = 1 - self._current
+            passes += 1
+            if not self._unfinished():
+                break
+        self.passes += passes
+        self.samples = target
+        return passes
+
+    def _unfinished(self) -> int:
+        """How many pixels have not finished the run's samples (an occlusion query)."""
+        import moderngl
+
+        self._targets[self._current][4].use(location=_TARGETS)
+        self._left_fbo.use()
+        with self._query:
+            self._left_vao.render(moderngl.TRIANGLES, vertices=3)
+        return int(self._query.samples)
 
     def show(self, fbo, exposure: float, srgb: bool = False) -> None:
         """Draw the picture so far (mean times ``exposure``, clipped) into ``fbo``, a
@@ -146,7 +186,7 @@ class GpuPathTracer(GLResource):
         ctx = self.context.ctx
         ctx.viewport = (0, 0, self.width, self.height)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
-        self._sum.use(location=0)
+        self._targets[self._current][4].use(location=0)
         self._show["u_sum"].value = 0
         self._show["u_exposure"].value = float(exposure)
         self._show["u_srgb"].value = bool(srgb)
@@ -158,10 +198,11 @@ class GpuPathTracer(GLResource):
     def read(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(sum, square, hits): ``(H, W, 4)`` float64, top row first: the samples' sum
         (RGB) and count (A); the sum of their squares (RGB) and of first hits on an
-        emitter (A); the count of camera rays that hit anything (R)."""
+        emitter (A); the count of camera rays that hit anything (R) and of bounces that
+        came near the driver's loop limit (G)."""
         self._check()
         out = []
-        for tex in (self._sum, self._square, self._hit):
+        for tex in self._targets[self._current][4:]:
             a = np.frombuffer(tex.read(), np.float32).reshape(self.height, self.width, 4)
             out.append(a[::-1].astype(np.float64))
         return out[0], out[1], out[2]

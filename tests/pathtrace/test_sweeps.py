@@ -1,0 +1,79 @@
+"""The path tracer swept over its parameter space (hypothesis, derandomized in CI) against
+closed forms: a furnace -- a closed room of emission E and reflectance rho -- shows
+E (1 - rho^(D+1)) / (1 - rho) with paths of at most D vertices, E / (1 - rho) with no limit,
+at every albedo up to 0.99, whatever the samples, their grouping into passes or the work
+one invocation may do; and a pixel's k-th sample is the same bytes however it is reached."""
+
+import numpy as np
+import pytest
+
+from tests.conftest import require
+
+require("hypothesis", "property-based sweeps are part of the test extra")
+from hypothesis import example, given, settings, strategies as st  # noqa: E402
+
+from glshade.geometry import primitives  # noqa: E402
+from glshade.pathtrace import TraceScene, trace  # noqa: E402
+from glshade.render.passes.pathtrace import GpuPathTracer  # noqa: E402
+from glshade.scene import Camera, Material, Scene  # noqa: E402
+
+pytestmark = [pytest.mark.gl, pytest.mark.once]
+
+INSIDE = Camera.look_at((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), fov_y=60.0, near=0.01, far=10.0)
+
+
+def furnace(rho: float, emission: float = 1.0) -> Scene:
+    scene = Scene(ambient=(0, 0, 0))
+    scene.add(primitives.cube().flipped(),
+              Material(color=(1.0, 1.0, 1.0), kd=rho, ka=0.0, ks=0.0, emission=(emission,) * 3))
+    return scene
+
+
+def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
+    """E (1 + rho + ... + rho^D): the camera's hit emits E, and each of its D vertices'
+    next-event estimate brings rho times what reaches it directly (E, the room all
+    emitting) times the throughput rho^k of the vertices before it."""
+    if depth is None:
+        return emission / (1 - rho)
+    return emission * (1 - rho ** (depth + 1)) / (1 - rho)
+
+
+@settings(max_examples=24)
+@given(rho=st.floats(0.0, 0.99), spp=st.integers(8, 48),
+       per_pass=st.sampled_from([None, 1, 3, 16]),
+       depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16))
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0)   # (the issue's furnace)
+@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1)
+@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2)
+def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
+                                                     seed):
+    r = trace(furnace(rho), INSIDE, (16, 16), spp=spp, samples_per_pass=per_pass, seed=seed,
+              max_depth=depth, context=gl_context, progress=False)
+    assert r.samples == spp and r.near_limit == 0
+    want = closed_form(rho, depth)
+    pixels = r.image.mean(-1).ravel()
+    # the pixels are independent estimates of one number: their spread is the error bar
+    bar = pixels.std(ddof=1) / np.sqrt(pixels.size)
+    assert abs(pixels.mean() - want) <= 5 * bar + 1e-9 * want, (pixels.mean(), want, bar)
+    assert (r.coverage == 1).all()
+
+
+@settings(max_examples=12)
+@given(rho=st.floats(0.3, 0.95), budget=st.integers(16, 20000),
+       chunks=st.lists(st.integers(1, 6), min_size=1, max_size=4))
+def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, rho, budget,
+                                                                  chunks):
+    """Every pixel ends with exactly the samples asked, and the same bytes, whether they
+    came in one run or several, with much or little work per invocation."""
+    ts = TraceScene.from_scene(furnace(rho))
+    total = sum(chunks)
+    with GpuPathTracer(gl_context, ts, 12, 10) as one:
+        one.run(INSIDE, total, seed=5)
+        want = one.read()
+    with GpuPathTracer(gl_context, ts, 12, 10, budget=budget) as split:
+        for n in chunks:
+            split.run(INSIDE, n, seed=5)
+        got = split.read()
+    assert (got[0][..., 3] == total).all()
+    for a, b in zip(got, want):
+        assert np.array_equal(a, b)

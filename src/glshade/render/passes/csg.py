@@ -182,7 +182,7 @@ class CsgPass(GLResource):
                                      (int(viewport[2]), int(viewport[3])))
             if len(polygon):
                 ctx.disable(moderngl.CULL_FACE)
-                self.fan(prog, polygon).render(moderngl.TRIANGLE_FAN)
+                self.fan(prog, polygon).render(moderngl.TRIANGLE_FAN, vertices=len(polygon))
                 ctx.enable(moderngl.CULL_FACE)
             n_polygons += data.leaves
 

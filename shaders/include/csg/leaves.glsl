@@ -82,26 +82,33 @@ float torus_root(vec4 q, vec3 o, vec3 d, float a, float b, float ga) {
     return 0.5 * (a + b);
 }
 
-// real roots of the depressed cubic s^3 + p s + r (up to 3, sorted; the rest INF)
-void cubic_roots(float p, float r, out float s[3]) {
-    s[0] = INF; s[1] = INF; s[2] = INF;
+// cut points of the depressed cubic s^3 + p s + r (up to 4, sorted; the rest INF): its
+// real root where one is real (Cardano), and, where p < 0, the three of the trigonometric
+// form with the cosine clamped -- the roots where three are real, and where float32 says
+// one (two about to merge) the place of the pair. A cut too many only splits a monotone
+// piece; a cut too few would leave two roots in one piece, seen as none.
+void cubic_cuts(float p, float r, out float s[4]) {
+    s[0] = INF; s[1] = INF; s[2] = INF; s[3] = INF;
     float p3 = p / 3.0, r2 = r / 2.0;
     float disc = r2 * r2 + p3 * p3 * p3;
     if (disc > 0.0) {
         float u = -r2 - (r2 >= 0.0 ? 1.0 : -1.0) * sqrt(disc);  // (no cancellation)
         float cu = sign(u) * pow(abs(u), 1.0 / 3.0);
-        s[0] = cu != 0.0 ? cu - p3 / cu : 0.0;
-    } else {
-        float m = 2.0 * sqrt(max(-p3, 0.0));
-        float c = p3 < 0.0 ? clamp(-r2 / (-p3 * sqrt(-p3)), -1.0, 1.0) : 1.0;
+        s[3] = cu != 0.0 ? cu - p3 / cu : 0.0;
+    }
+    if (p3 < 0.0) {
+        float m = 2.0 * sqrt(-p3);
+        float c = clamp(-r2 / (-p3 * sqrt(-p3)), -1.0, 1.0);
         float phi = acos(c) / 3.0;
         s[0] = m * cos(phi + 2.0943951);
         s[1] = m * cos(phi - 2.0943951);
         s[2] = m * cos(phi);
-        for (int a = 0; a < 2; ++a)
-            for (int b = 0; b < 2; ++b)
-                if (s[b] > s[b + 1]) { float x = s[b]; s[b] = s[b + 1]; s[b + 1] = x; }
+    } else if (disc <= 0.0) {
+        s[0] = 0.0;  // (p = r = 0: the triple root)
     }
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            if (s[b] > s[b + 1]) { float x = s[b]; s[b] = s[b + 1]; s[b + 1] = x; }
 }
 
 // the torus's boundaries along o + t d (up to four; the rest INF)
@@ -113,20 +120,22 @@ vec4 torus_bounds(vec4 q, vec3 o, vec3 d) {
     vec3 u = d / len;
     float s0 = -dot(o, u);
     vec3 c = o + s0 * u;
-    float big = q.x + q.y, h2 = big * big - dot(c, c);
+    // (the bounding sphere a little larger than R + r: where the line leaves it near the
+    // outer equator, float32 would put its end on the surface, or inside, and lose a root)
+    float big = (q.x + q.y) * 1.001, h2 = big * big - dot(c, c);
     if (h2 <= 0.0) return out_t;                   // misses the bounding sphere
     float h = sqrt(h2);
     float R2 = q.x * q.x;
     float k0 = dot(c, c) + R2 - q.y * q.y;
     float A = 2.0 * k0 - 4.0 * R2 * dot(u.xz, u.xz);
     float B = -8.0 * R2 * dot(c.xz, u.xz);
-    float crit[3];
-    cubic_roots(A / 2.0, B / 4.0, crit);
-    float cuts[5] = float[5](-h, INF, INF, INF, h);
-    for (int j = 0; j < 3; ++j) cuts[j + 1] = clamp(crit[j], -h, h);
+    float crit[4];
+    cubic_cuts(A / 2.0, B / 4.0, crit);
+    float cuts[6] = float[6](-h, INF, INF, INF, INF, h);
+    for (int j = 0; j < 4; ++j) cuts[j + 1] = crit[j] >= INF * 0.5 ? INF : clamp(crit[j], -h, h);
     float a = cuts[0], ga = torus_g(q, c, u, a);
     int n = 0;
-    for (int j = 1; j < 5; ++j) {
+    for (int j = 1; j < 6; ++j) {
         float b = cuts[j];
         if (b >= INF * 0.5) continue;
         float gb = torus_g(q, c, u, b);

@@ -32,8 +32,7 @@ def test_gpu_tessellation_draws_the_cpu_tessellation_s_picture(make_renderer, mo
     r = make_renderer(240, 180)
     gpu = r.render_frame(_scene(teapot, tessellation="gpu", level=level), CAM, mode,
                          outputs=Outputs.DEPTH)
-    cpu = r.render_frame(_scene(G.tessellate(teapot, level=level).mesh), CAM, mode,
-                         outputs=Outputs.DEPTH)
+    cpu = r.render_frame(_scene(teapot, level=level), CAM, mode, outputs=Outputs.DEPTH)
     d = np.abs(gpu.color.astype(int) - cpu.color.astype(int))[..., :3].max(-1)
     assert (gpu.color[..., :3].max(-1) > 0).mean() > 0.2  # (the teapot is there)
     assert d.mean() < 0.25 and (d > 2).mean() < 0.02, (d.mean(), (d > 2).mean())
@@ -90,3 +89,23 @@ def test_what_the_gpu_cannot_draw_is_refused(make_renderer):
     r = make_renderer(64, 48)
     with pytest.raises(SceneError, match="the flat mode needs its CPU tessellation"):
         r.render(_scene(teapot, tessellation="gpu"), CAM, "flat")
+
+
+def test_level_is_honoured_on_the_cpu_path_too():
+    """``Scene.add(patches, level=N)`` tessellates N segments a side on the CPU as on the
+    GPU (it was ignored: the CPU path always tessellated to its default tolerance)."""
+    from glshade.geometry import primitives
+
+    teapot = G.teapot()
+    counts = []
+    for level in (1, 3, 9):
+        model = Scene().add(teapot, level=level)
+        want = G.tessellate(teapot, level=level).mesh
+        assert np.array_equal(model.mesh.vertices, want.vertices)
+        counts.append(model.mesh.n_faces)
+    assert counts[0] < counts[1] < counts[2]
+    assert Scene().add(teapot).mesh.n_faces not in counts  # (the default: a tolerance)
+    with pytest.raises(SceneError, match="level is for patches"):
+        Scene().add(primitives.cube(), level=4)
+    with pytest.raises(SceneError, match="level must be"):
+        Scene().add(teapot, level=0)

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import SceneError
+from ..errors import GeometryError, SceneError
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.transforms import box_corners, compose_transform
@@ -141,7 +141,7 @@ class Scene:
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None,
-            tessellation: str = "cpu", level: int = 16):
+            tessellation: str = "cpu", level: int | None = None):
         """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
         :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
         normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
@@ -150,8 +150,10 @@ class Scene:
         keeps edges sharper than that sharp under smooth shading (CAD parts): the mesh is
         added with its vertices split there (:meth:`Mesh.split_creases`). ``vertex_colors``
         (V, 3) are what the ``radiosity`` mode shows (a radiosity solution's display).
-        Patches with ``tessellation="gpu"`` are kept as patches and tessellated by the GPU
-        at every draw, ``level`` segments a side (1..64): a :class:`PatchModel`."""
+        Patches are tessellated here, ``level`` segments a side if given (else to the
+        tolerance above); with ``tessellation="gpu"`` they are kept as patches and
+        tessellated by the GPU at every draw, ``level`` segments a side (1..64, default 16):
+        a :class:`PatchModel`. The same level gives the same triangles either way."""
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
@@ -164,9 +166,12 @@ class Scene:
                 raise SceneError(f"tessellation='gpu' is for patches (glshade.patches), not "
                                  f"a {type(mesh).__name__}")
             return self._add_patches(mesh, material, transform, rotation, translation, scale,
-                                     name, level)
+                                     name, 16 if level is None else level)
         if isinstance(mesh, (PatchSurface, PatchSet)):  # (a tessellation, exact normals)
-            mesh = _tessellated(mesh)
+            mesh = _tessellated(mesh, level)
+        elif level is not None:
+            raise SceneError(f"level is for patches (glshade.patches), not a "
+                             f"{type(mesh).__name__}")
         if not isinstance(mesh, Mesh):
             raise SceneError(f"scene.add needs a Mesh, a Solid or patches, got "
                                 f"{type(mesh).__name__}")
@@ -268,10 +273,16 @@ def _placement(transform, rotation, translation, scale) -> NDArray[np.float64]:
     return affine_matrix(compose_transform(rotation, translation, scale), "transform")
 
 
-def _tessellated(patches) -> Mesh:
+def _tessellated(patches, level: int | None = None) -> Mesh:
+    """Patches as a mesh: ``level`` segments a side, or to PATCH_TOLERANCE of their size."""
     from ..patches import PatchSet, PatchSurface, tessellate
 
     surface = patches if isinstance(patches, PatchSurface) else PatchSurface(patches)
+    if level is not None:
+        try:
+            return tessellate(surface, level=level).mesh
+        except GeometryError as exc:
+            raise SceneError(str(exc)) from None
     b = surface.patches.bounds()
     size = float(np.ptp(np.concatenate([b[:, 0], b[:, 1]]), 0).max()) or 1.0
     assert isinstance(surface.patches, PatchSet)

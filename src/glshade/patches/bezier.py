@@ -20,7 +20,18 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
 
-__all__ = ["bernstein", "curve_point", "de_casteljau", "PatchSet", "elevate"]
+__all__ = ["bernstein", "curve_point", "de_casteljau", "PatchSet", "elevate", "MAX_DEGREE",
+           "MAX_WEIGHT_RATIO", "MAX_COORDINATE"]
+
+#: the highest degree a side of a patch may have (binomials and Bernstein sums stay exact
+#: in float64 well past it; a patch of higher degree is a mistake, not a surface)
+MAX_DEGREE = 32
+#: the most a patch's largest weight may be of its smallest: past it the homogeneous
+#: coordinates lose every digit of the smaller masses (and 1e-300 .. 1e300 overflow)
+MAX_WEIGHT_RATIO = 1e12
+#: the largest control-point coordinate (a point's square must stay finite in float64 and
+#: the renderer's float32 must still tell neighbouring samples apart)
+MAX_COORDINATE = 1e15
 
 #: ``norm(Su x Sv)`` below this fraction of the patch's size squared counts as degenerate (a
 #: collapsed edge or pole, where the normal is taken as its limit)
@@ -86,10 +97,39 @@ def elevate(h: np.ndarray, axis: int) -> np.ndarray:
     return np.moveaxis(out, 0, axis)
 
 
+def _check_patch_numbers(p: np.ndarray, w: np.ndarray) -> None:
+    """Refuse, naming the first patch at fault, numbers no tessellation can use."""
+    def first(bad) -> int:
+        return int(np.flatnonzero(bad)[0])
+
+    finite = np.isfinite(p).all((1, 2, 3)) & np.isfinite(w).all((1, 2))
+    if not finite.all():
+        raise GeometryError(f"patch {first(~finite)}: control points and weights must be "
+                            "finite numbers")
+    if (w <= 0).any():
+        k = first((w <= 0).any((1, 2)))
+        raise GeometryError(f"patch {k}: weights must be positive (a mass-point of mass 0 is "
+                            "a vector: no point of the surface)")
+    ratio = w.max((1, 2)) / w.min((1, 2))
+    if (ratio > MAX_WEIGHT_RATIO).any():
+        k = first(ratio > MAX_WEIGHT_RATIO)
+        raise GeometryError(f"patch {k}: weights span {float(w[k].min()):g} to "
+                            f"{float(w[k].max()):g}, more than {MAX_WEIGHT_RATIO:g} apart")
+    big = np.abs(p).max((1, 2, 3)) > MAX_COORDINATE
+    if big.any():
+        k = first(big)
+        raise GeometryError(f"patch {k}: a control point coordinate of "
+                            f"{float(np.abs(p[k]).max()):g} is over the limit of "
+                            f"{MAX_COORDINATE:g}")
+
+
 @dataclass(frozen=True)
 class PatchSet:
     """P tensor-product (rational) Bezier patches of one degree: ``points (P, m+1, n+1, 3)``
-    and ``weights (P, m+1, n+1)`` (positive; ones for polynomial patches)."""
+    and ``weights (P, m+1, n+1)`` (positive; ones for polynomial patches; kept scaled so
+    each patch's largest is 1). Refused, naming the patch: no patches, a degree over
+    MAX_DEGREE, weights not one per point, not positive or spanning more than
+    MAX_WEIGHT_RATIO, coordinates over MAX_COORDINATE, numbers that are not finite."""
 
     points: np.ndarray
     weights: np.ndarray
@@ -101,13 +141,23 @@ class PatchSet:
         if p.ndim != 4 or p.shape[-1] != 3 or min(p.shape[1:3]) < 2:
             raise GeometryError("patch control points must have shape (P, m+1, n+1, 3) "
                                 f"with m, n >= 1, got {p.shape}")
-        w = np.ones(p.shape[:3]) if weights is None else \
-            np.array(weights, dtype=np.float64).reshape(p.shape[:3])
-        if not (np.isfinite(p).all() and np.isfinite(w).all()):
-            raise GeometryError("patch control points and weights must be finite")
-        if (w <= 0).any():
-            raise GeometryError("patch weights must be positive (a mass-point of mass 0 is "
-                                "a vector: no point of the surface)")
+        if not len(p):
+            raise GeometryError("a PatchSet needs at least one patch, got none")
+        if max(p.shape[1:3]) - 1 > MAX_DEGREE:
+            raise GeometryError(f"patch degree ({p.shape[1] - 1}, {p.shape[2] - 1}) is over "
+                                f"the limit of {MAX_DEGREE} a side")
+        if weights is None:
+            w = np.ones(p.shape[:3])
+        else:
+            w = np.array(weights, dtype=np.float64)
+            if w.size != np.prod(p.shape[:3]):
+                raise GeometryError(f"patch weights must be one per control point, shape "
+                                    f"{p.shape[:3]}, got shape {w.shape}")
+            w = w.reshape(p.shape[:3])
+        _check_patch_numbers(p, w)
+        # (a rational patch is the same surface with all its weights scaled alike: scaled so
+        # the largest is 1, 1e-300 or 1e300 weights neither underflow nor overflow)
+        w = w / w.max((1, 2), keepdims=True)
         p.setflags(write=False)
         w.setflags(write=False)
         object.__setattr__(self, "points", p)

@@ -1,0 +1,52 @@
+"""Patches refuse what no tessellation can use, in one line naming the patch and the rule,
+and a rational patch is the same surface whatever scale its weights have (hypothesis,
+derandomized in CI): a quarter circle as a rational quadratic puts every point at radius 1
+within 1e-12, its weights scaled by anything from 1e-300 to 1e300."""
+
+import numpy as np
+import pytest
+
+from tests.conftest import require
+
+from glshade.errors import GeometryError
+from glshade.patches import PatchSet, tessellate
+from glshade.patches.bezier import MAX_COORDINATE, MAX_DEGREE, MAX_WEIGHT_RATIO
+
+require("hypothesis", "property-based sweeps are part of the test extra")
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+NET = np.random.default_rng(0).random((2, 3, 3, 3))
+
+
+@pytest.mark.parametrize("args, words", [
+    ((np.zeros((0, 3, 3, 3)),), "at least one patch"),
+    ((NET, np.ones(5)), "one per control point"),
+    ((NET, np.r_[np.ones(17), -1.0]), "patch 1: weights must be positive"),
+    ((NET, np.r_[np.ones(9), 1.0, np.full(8, 1e13)]), "patch 1: weights span"),
+    ((np.zeros((1, MAX_DEGREE + 2, 2, 3)),), f"limit of {MAX_DEGREE}"),
+    ((NET * [1, 1, 2 * MAX_COORDINATE],), "patch 0: a control point coordinate"),
+    ((np.where(NET > 0.99, np.nan, NET),), "finite"),
+])
+def test_refusals_name_the_patch_and_the_rule(args, words):
+    with pytest.raises(GeometryError, match=words) as info:
+        PatchSet(*args)
+    assert "\n" not in str(info.value)
+    assert MAX_WEIGHT_RATIO >= 1e6
+
+
+def _quarter_circle_strip(scale: float) -> PatchSet:
+    """The quarter circle of radius 1 in the xz plane (the rational quadratic with middle
+    weight 1/sqrt 2), swept along y: a (2, 1) patch."""
+    ring = np.array([[1.0, 0, 0], [1.0, 0, 1.0], [0, 0, 1.0]])
+    points = np.stack([ring, ring + [0, 1.0, 0]], 1)[None]  # (1, 3, 2, 3)
+    w = np.array([1.0, np.sqrt(0.5), 1.0])[:, None].repeat(2, 1)[None] * scale
+    return PatchSet(points, w)
+
+
+@settings(max_examples=30)
+@given(exponent=st.floats(-300, 300), level=st.integers(1, 24))
+def test_a_rational_circle_stays_a_circle_at_any_weight_scale(exponent, level):
+    mesh = tessellate(_quarter_circle_strip(10.0 ** exponent), level=level).mesh
+    radius = np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 2])
+    assert np.isfinite(mesh.vertices).all()
+    assert np.abs(radius - 1).max() < 1e-12

@@ -16,7 +16,8 @@ from ..modes import Outputs
 __all__ = ["Task", "find_inputs", "plan", "MESH_SUFFIXES"]
 
 #: the file kinds a folder is searched for (trimesh's formats join when it is installed)
-MESH_SUFFIXES = tuple(f".{f}" for f in FORMATS)
+#: what a folder input is searched for: mesh files and patch files (the classic .bpt)
+MESH_SUFFIXES = tuple(f".{f}" for f in FORMATS) + (".bpt",)
 
 
 @dataclasses.dataclass(frozen=True)

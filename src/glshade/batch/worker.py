@@ -108,13 +108,13 @@ class BatchWorker:
 
     def _render(self, task: Task) -> int:
         from ..io.images import save_image
-        from ..io.meshes import load_mesh
+        from ..io.meshes import load_source
         from ..scene import Camera, Material, PointLight, Scene
 
         s = self.spec
-        mesh = load_mesh(task.input)
+        mesh = load_source(str(task.input))  # (a mesh file, or a .bpt file of patches)
         scene = Scene(**({"background": s.background} if s.background is not None else {}))
-        scene.add(mesh, Material.from_values(s.material), crease=s.crease)
+        model = scene.add(mesh, Material.from_values(s.material), crease=s.crease)
         for position in s.lights:
             scene.add_light(PointLight(position))
         fault = task.fault()  # (checked again where the files are made: links can change)
@@ -140,7 +140,7 @@ class BatchWorker:
                 write_npz(next(arrays), {name: getattr(frame, name) for name in
                                          ("depth", "normal", "face_id")
                                          if getattr(frame, name) is not None})
-        return mesh.n_faces
+        return model.mesh.n_faces  # (patches: their tessellation's polygons)
 
     def close(self):
         self.renderer.close()

@@ -72,7 +72,8 @@ def load_mesh(path, format: str | None = None) -> Mesh:
 def load_source(spec: str) -> Any:
     """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
     MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`),
-    ``patches:NAME`` a :class:`~glshade.patches.PatchSurface`."""
+    ``patches:NAME`` or a ``.bpt`` file (the classic patch format) a
+    :class:`~glshade.patches.PatchSurface`."""
     if spec.startswith("solid:"):
         from ..solids.text import parse_solid
 
@@ -85,6 +86,11 @@ def load_source(spec: str) -> Any:
         from .. import patches
 
         return patches.named(spec[len("patches:"):])
+    if Path(spec).suffix.lower() == ".bpt":
+        from ..patches import PatchSurface
+        from ..patches.files import read_patches
+
+        return PatchSurface(read_patches(spec), Path(spec).stem)
     return load_mesh(spec)
 
 

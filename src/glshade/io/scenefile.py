@@ -24,6 +24,10 @@ Example (``assets/scenes/teapot-orbit.toml``)::
     time = 0.0
     eye = [6.0, 2.0, 0.0]
     target = [0.0, 0.0, 0.0]
+
+``[[solid]]`` tables hold CSG trees (``tree = "box(2) - sphere(1.2)"``), ``[[patches]]``
+tables Bezier patches (``source = "patches:teapot"`` or a ``.bpt`` file, ``level`` segments
+a side, ``tessellation = "cpu"`` or ``"gpu"``), with the mesh's material and placement keys.
 """
 
 from __future__ import annotations
@@ -105,7 +109,11 @@ _SCHEMA = {
 }
 _SCHEMA["solid"] = {k: v for k, v in _SCHEMA["mesh"].items()
                     if k not in ("source", "crease")} | {"tree": "str"}
-_TOP = {"render", "mesh", "solid", "light", "camera"}
+# patches: source = "patches:NAME" or a .bpt file; level segments a side; tessellation
+_SCHEMA["patches"] = {k: v for k, v in _SCHEMA["mesh"].items() if k != "crease"} | {
+    "level": "level", "tessellation": "tessellation"}
+_TOP = {"render", "mesh", "solid", "patches", "light", "camera"}
+_MANY = ("mesh", "solid", "patches", "light")
 
 
 class _Locator:
@@ -211,6 +219,11 @@ def _check(kind: str, value, where: str):
             rule = getattr(exc, "rule", None)
             raise SceneFormatError(f"{where} must {rule}" if rule else
                                    f"{where}: {exc}") from None
+    if kind == "level":
+        return value if isinstance(value, int) and not isinstance(value, bool) and \
+            value >= 1 else fail("a whole number of segments >= 1")
+    if kind == "tessellation":
+        return value if value in ("cpu", "gpu") else fail("'cpu' or 'gpu'")
     if kind == "light_type":
         return value if value in ("point", "directional") else fail("'point' or "
                                                                     "'directional'")
@@ -254,7 +267,7 @@ def _validate(data: dict, loc: _Locator, source: str):
         raw = data.get(table)
         if raw is None:
             continue
-        many = table in ("mesh", "solid", "light")
+        many = table in _MANY
         if many and not isinstance(raw, list):
             raise SceneFormatError(f"{source}:{loc.line(table, None, None)}: write meshes and "
                                    f"lights as [[{table}]] tables")
@@ -306,8 +319,9 @@ def load_scene(path) -> SceneFile:
     settings.origin = {k: f"{source}:{loc.line('render', None, k)}: [render] {k}" for k in r}
     scene = Scene(**{k: r[k] for k in ("ambient", "background") if k in r})
     meshes = d.get("mesh", [])
-    if not meshes and not d.get("solid"):
-        raise SceneFormatError(f"{source}: the scene has no [[mesh]] or [[solid]]")
+    if not meshes and not d.get("solid") and not d.get("patches"):
+        raise SceneFormatError(f"{source}: the scene has no [[mesh]], [[solid]] or "
+                               "[[patches]]")
     for i, m in enumerate(meshes):
         line = loc.line("mesh", i, "source")
         if "source" not in m:
@@ -326,6 +340,8 @@ def load_scene(path) -> SceneFile:
         model.visible = m.get("visible", True)
     for i, m in enumerate(d.get("solid", [])):
         _add_solid(scene, m, i, loc, source)
+    for i, m in enumerate(d.get("patches", [])):
+        _add_patches(scene, m, i, loc, source, path.parent)
     for i, light in enumerate(d.get("light", [])):
         where = f"{source}:{loc.line('light', i, None)}: [[light]] {i + 1}"
         kind = light.get("type", "direction" in light and "directional" or "point")
@@ -347,6 +363,32 @@ def load_scene(path) -> SceneFile:
     if settings.duration is None:
         settings.duration = camera_path.duration or 0.0
     return SceneFile(scene, camera_path, settings, path)
+
+
+def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) -> None:
+    """A ``[[patches]]`` table: ``source`` a named model (``patches:NAME``) or a ``.bpt``
+    file (relative to the scene file), tessellated on the CPU or the GPU at ``level``."""
+    from ..patches import PatchSurface, named
+    from ..patches.files import read_patches
+
+    where = f"{source}:{loc.line('patches', i, None)}: [[patches]] {i + 1}"
+    if "source" not in m:
+        raise SceneFormatError(f"{where} needs a 'source' (patches:NAME or a .bpt file)")
+    spec = m["source"]
+    try:
+        if spec.startswith("patches:"):
+            surface = named(spec[len("patches:"):])
+        else:
+            file = (base / spec) if not Path(spec).is_absolute() else Path(spec)
+            surface = PatchSurface(read_patches(file), file.stem)
+        model = scene.add(surface, Material.from_values(m), m.get("transform"),
+                          rotation=m.get("rotation"),
+                          translation=m.get("translation", (0, 0, 0)),
+                          scale=m.get("scale", 1.0), name=m.get("name"),
+                          tessellation=m.get("tessellation", "cpu"), level=m.get("level"))
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{where}: {exc}") from None
+    model.visible = m.get("visible", True)
 
 
 def _load_mesh(spec: str, base: Path, where: str):

@@ -12,7 +12,7 @@ from ..errors import InputError
 from ..geometry.transforms import y_up_to_z_up, z_up_to_y_up
 from .bezier import PatchSet
 
-__all__ = ["read_patches", "parse_patches", "write_patches", "teapot"]
+__all__ = ["read_patches", "parse_patches", "write_patches", "teapot", "EXTENSION"]
 
 
 def _numbers(line: str, kind, path, number: int, count: int | None = None) -> list:
@@ -52,6 +52,10 @@ def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet
     for k in range(n_vertices):
         number, line = take(f"vertex {k + 1}")
         rows.append(_numbers(line, float, path, number, 3))
+    extra = next(it, None)
+    if extra is not None:
+        raise InputError(f"{path}:{extra[0]}: unexpected content after the last vertex: "
+                         f"{extra[1].strip()[:40]!r}")
     points = np.array(rows, np.float64).reshape(-1, 3)
     if not np.isfinite(points).all():
         raise InputError(f"{path}: a vertex is not finite")
@@ -66,9 +70,16 @@ def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet
     return PatchSet(cp)
 
 
+#: the file extension of the classic format (Newell's teapot data, z up)
+EXTENSION = ".bpt"
+
+
 def read_patches(path, up: str = "z") -> PatchSet:
-    """The patches of a file in the classic format (errors name the file and line)."""
+    """The patches of a file in the classic format (errors name the file and line; a path
+    that is not a regular file is refused before reading)."""
     p = Path(path)
+    if not p.is_file():
+        raise InputError(f"{p}: not a regular file" if p.exists() else f"{p}: no such file")
     try:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:

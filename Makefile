@@ -25,7 +25,7 @@ demo: setup-demo
 # once, on EGL), then the viewer in a real window under Xvfb.
 # Both headless passes run on every core (pytest-xdist, at most 4 worker processes: each
 # llvmpipe context renders on all cores itself); the viewer's tests share one display.
-XDIST := -n auto --maxprocesses 4 --durations=15
+XDIST := -n auto --maxprocesses 4 --dist worksteal --durations=15
 test: setup
 	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
 	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST) -m "gl and not slow and not once" --ignore=tests/viewer

@@ -19,7 +19,7 @@ from glshade.pathtrace import TraceScene  # noqa: E402
 from glshade.render.passes.pathtrace import GpuPathTracer  # noqa: E402
 from glshade.solids import Box, Cylinder, Sphere, Torus  # noqa: E402
 
-pytestmark = pytest.mark.gl
+pytestmark = [pytest.mark.gl, pytest.mark.once]
 
 N = 40
 CAMERA = glshade.Camera.look_at((2.6, 1.9, 3.4), (0, 0, 0), fov_y=45)
@@ -38,7 +38,7 @@ trees = st.recursive(placed, lambda kids: st.tuples(kids, kids, st.sampled_from(
     max_leaves=6)
 
 
-@settings(max_examples=20)
+@settings(max_examples=12)
 @given(solid=trees)
 @pytest.mark.filterwarnings("ignore::glshade.RenderWarning")  # (trees that come out empty)
 def test_the_tracer_hits_the_pixels_the_raster_pass_covers(gl_context, solid):

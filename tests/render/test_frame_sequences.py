@@ -16,7 +16,8 @@ import glshade  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.solids import Box, Cylinder, Sphere, Torus  # noqa: E402
 
-pytestmark = pytest.mark.gl
+pytestmark = [pytest.mark.gl, pytest.mark.once,
+              pytest.mark.filterwarnings("ignore::glshade.RenderWarning")]
 
 SIZE = 48
 
@@ -47,7 +48,7 @@ frames = st.tuples(st.integers(0, len(SCENES) - 1), cameras,
                    st.sampled_from(["flat", "gouraud", "phong", "normals", "depth"]))
 
 
-@settings(max_examples=15)
+@settings(max_examples=10)
 @given(sequence=st.lists(frames, min_size=2, max_size=4))
 def test_every_frame_is_the_frame_a_fresh_renderer_draws(gl_context, sequence):
     with glshade.Renderer(SIZE, SIZE, samples=0, context=gl_context) as shared:

@@ -20,7 +20,10 @@ from hypothesis import example, given, settings, strategies as st  # noqa: E402
 import glshade  # noqa: E402
 from glshade.solids import Torus  # noqa: E402
 
-pytestmark = pytest.mark.gl
+# (backend-independent: the OSMesa pass leaves it out; blank renders of a view that misses
+# the torus are examples too)
+pytestmark = [pytest.mark.gl, pytest.mark.once,
+              pytest.mark.filterwarnings("ignore::glshade.RenderWarning")]
 
 N = 40
 
@@ -72,7 +75,7 @@ def _compare(gl_context, R, ratio, q, shift, eye_at, eye_in_tube, look):
 unit = st.floats(-1.0, 1.0)
 
 
-@settings(max_examples=40)
+@settings(max_examples=16)
 @given(R=st.floats(0.2, 5.0), ratio=st.floats(0.002, 0.99),
        q=st.tuples(unit, unit, unit, unit).filter(lambda v: np.linalg.norm(v) > 0.2),
        shift=st.tuples(unit, unit, unit).map(np.array),

@@ -187,7 +187,7 @@ class Renderer:
         self._uniforms = UniformWriter()
         self._materials = MaterialUniforms()
         self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
-        self._edges = EdgePass(self.context, self.shaders, self._uniforms)
+        self._edges = EdgePass(self.context, self.shaders, self._uniforms, self._gpu_mesh)
         self._patches: Any = None  # (a PatchPass, made for the first GPU patch model)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
@@ -304,19 +304,20 @@ class Renderer:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
             ctx.disable(moderngl.DEPTH_TEST)
-        id_base, outlined = self._draw_meshes(state)
+        id_base = self._draw_meshes(state)
+        passes: list = []
         if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
             if self._patches is None:
                 from .passes.patches import PatchPass
 
                 self._patches = PatchPass(self.context, self.shaders, self._uniforms,
-                                          self._materials)
-            id_base = self._patches.draw(state, id_base, self._normal_matrix)
+                                          self._materials, self._normal_matrix)
+            passes.append(self._patches)
         if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
-            self._csg.draw(state, id_base)
-        if outlined:
-            self._edges.draw(state, target, [(g, m) for g, m, _ in outlined],
-                             [c for _, _, c in outlined] if options.wireframe else None)
+            passes.append(self._csg)
+        passes.append(self._edges)  # (the overlay: when asked for, over the rest)
+        for p in passes:  # (one signature: the draw's facts, the first free polygon id)
+            id_base = p.draw(state, id_base)
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
         if clear:
@@ -358,25 +359,21 @@ class Renderer:
                           camera.projection is Projection.ORTHOGRAPHIC)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
         return DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
-                         (vx, vy, vw, vh), flip_rows)
+                         (vx, vy, vw, vh), flip_rows, target)
 
-    def _draw_meshes(self, state: DrawState) -> tuple[int, list]:
-        """Draw the scene's visible meshes; the polygon id after theirs, and the (GpuMesh,
-        model matrix, colour) of those whose edges are to be drawn."""
+    def _draw_meshes(self, state: DrawState) -> int:
+        """Draw the scene's visible meshes; the polygon id after theirs."""
         ctx, put = self.ctx, self._uniforms.put
         scene, options, view, lights = state.scene, state.options, state.view, state.lights
         near = state.camera.planes()[0]
         pixels = state.viewport[2] * state.viewport[3]
         prepared: set[int] = set()
         id_base = 0
-        outlined = []
         for model in scene.models:
             if not model.visible or len(model.mesh.triangles[0]) == 0:
                 id_base += model.mesh.n_faces
                 continue
             gpu = self._gpu_mesh(model.mesh)
-            if options.edges or options.wireframe:
-                outlined.append((gpu, model.transform, model.material.color))
             if options.wireframe:  # (edges alone: nothing filled)
                 id_base += gpu.n_polygons
                 continue
@@ -417,7 +414,7 @@ class Renderer:
                 vao = gpu.vertex_array(prog, options.mode)
             vao.render(moderngl.TRIANGLES)
             id_base += gpu.n_polygons
-        return id_base, outlined
+        return id_base
 
     def _warn_unsolved(self, scene: Scene) -> None:
         """The radiosity mode shows solved radiosities; say so, once per scene, when the

@@ -9,6 +9,7 @@ pass reaches into another object's state, and what a pass may depend on is writt
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -35,6 +36,7 @@ class DrawState:
         lights in view space, depth range).
     viewport : ``(x, y, w, h)`` in the target's pixels.
     flip_rows : whether the target stores row 0 at the top (its winding is mirrored).
+    target : what is drawn into (an OffscreenTarget, a window's; ``bind(outputs)``).
     """
 
     scene: Scene
@@ -47,6 +49,7 @@ class DrawState:
     frame_uniforms: tuple
     viewport: tuple[int, int, int, int]
     flip_rows: bool
+    target: Any = None
 
     @property
     def view_proj(self) -> np.ndarray:

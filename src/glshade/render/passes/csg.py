@@ -133,9 +133,9 @@ class CsgPass(GLResource):
             vao = vaos[id(program)] = ctx.vertex_array(program, [(vbo, "3f", "in_position")])
         return vao
 
-    def draw(self, state: DrawState, id_base: int) -> None:
-        """Draw the scene's visible solids (after its meshes: their ids follow from
-        ``id_base``, the meshes' polygon count)."""
+    def draw(self, state: DrawState, id_base: int) -> int:
+        """Draw the scene's visible solids (their ids, a leaf each, follow from
+        ``id_base``); the id base after them."""
         import moderngl
 
         self._check()
@@ -185,6 +185,7 @@ class CsgPass(GLResource):
                 self.fan(prog, polygon).render(moderngl.TRIANGLE_FAN, vertices=len(polygon))
                 ctx.enable(moderngl.CULL_FACE)
             n_polygons += data.leaves
+        return n_polygons
 
     def _release_extra(self) -> None:
         """The programs, textures and vertex arrays (the fan's buffer is in ``_objects``)."""

@@ -39,9 +39,10 @@ def edge_width(width: int, height: int) -> float:
 class EdgePass(GLResource):
     """The edge program and its drawing, for one Renderer (released with it)."""
 
-    def __init__(self, context, shaders, uniforms):
+    def __init__(self, context, shaders, uniforms, gpu_mesh):
         super().__init__(context)
         self.shaders, self.uniforms = shaders, uniforms
+        self.gpu_mesh = gpu_mesh  # (the renderer's cache: Mesh -> GpuMesh)
         self._program: Any = None
 
     def program(self):
@@ -51,12 +52,19 @@ class EdgePass(GLResource):
                                                             geom="edges.geom"))
         return self._program
 
-    def draw(self, state: DrawState, target, gpu_meshes, colors=None) -> None:
-        """Draw the edges of ``gpu_meshes`` (``(GpuMesh, model matrix)`` pairs) into
-        ``target``'s colour, in ``EDGE_COLOR`` or one colour per mesh (``colors``)."""
+    def draw(self, state: DrawState, id_base: int) -> int:
+        """Draw the edges of the scene's visible meshes into the target's colour, in
+        ``EDGE_COLOR`` (or, wireframe, each in its material's colour); the id base as it
+        was (edges take no ids)."""
+        options = state.options
+        models = [m for m in state.scene.models if m.visible and len(m.mesh.triangles[0])]
+        if not (options.edges or options.wireframe) or not models:
+            return id_base
+        gpu_meshes = [(self.gpu_mesh(m.mesh), m.transform) for m in models]
+        colors = [m.material.color for m in models] if options.wireframe else None
         prog = self.program()
         ctx = self.context.ctx
-        target.bind(Outputs.COLOR)
+        state.target.bind(Outputs.COLOR)
         put = self.uniforms.put
         x, y, w, h = state.viewport
         put(prog, "u_proj", gl_bytes(state.proj))
@@ -71,3 +79,4 @@ class EdgePass(GLResource):
             put(prog, "u_edge_color", tuple(float(c) for c in
                                             (colors[i] if colors is not None else EDGE_COLOR)))
             gpu.edge_array(prog).render(moderngl.LINES)
+        return id_base

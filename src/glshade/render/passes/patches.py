@@ -31,12 +31,13 @@ class PatchPass(GLResource):
     """Programs and control-point buffers of GPU-tessellated patch models, for one
     Renderer (which hands in its uniform writer and material cache)."""
 
-    def __init__(self, context, shaders, uniforms, materials):
+    def __init__(self, context, shaders, uniforms, materials, normal_matrix):
         super().__init__(context)
         if context.ctx.version_code < 400:
             raise SceneError(f"GPU tessellation needs OpenGL 4.0; this context is "
                              f"{context.ctx.version_code / 100:.1f} (tessellate on the CPU)")
         self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
+        self.normal_matrix = normal_matrix  # (the renderer's cache: (model, key) -> (N, mirrored))
         self._programs: dict = {}
         self._buffers: dict[int, Any] = {}
 
@@ -73,7 +74,7 @@ class PatchPass(GLResource):
                                                                   "in_control")])
         return vao
 
-    def draw(self, state, id_base: int, normal_matrix) -> int:
+    def draw(self, state, id_base: int) -> int:
         """Draw the scene's visible patch models (their ids, one per patch, follow from
         ``id_base``); return the id base after them."""
         import moderngl
@@ -98,7 +99,7 @@ class PatchPass(GLResource):
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             m = model.transform
-            normal_world, mirrored = normal_matrix(m, m.tobytes())
+            normal_world, mirrored = self.normal_matrix(m, m.tobytes())
             put(prog, "u_normal_view", np.ascontiguousarray(
                 (view3 @ normal_world).T, "f4").tobytes())
             put(prog, "u_normal_world", np.ascontiguousarray(normal_world.T, "f4").tobytes())

@@ -101,13 +101,21 @@ def make_renderer(gl_context):
                                Renderer(width, height, samples=samples, context=gl_context))
 
 
+#: folders whose GL tests prove what does not depend on the backend -- the command line,
+#: files, processes, pytest plugins: the OSMesa pass leaves them out (marked ``once``)
+ONCE_FOLDERS = ("tests/batch/", "tests/animate/", "tests/testing/", "tests/cli/")
+
+
 def pytest_collection_modifyitems(items):
     """Every test that draws (through the shared context, or a subprocess marked ``gl``) is
-    a GL test: ``make test`` runs them again on OSMesa with ``-m gl``."""
+    a GL test: ``make test`` runs them again on OSMesa with ``-m gl``, but for those of the
+    ONCE_FOLDERS and the README's blocks (which the EGL pass runs)."""
     for item in items:
-        in_render = "tests/render/" in str(item.fspath).replace("\\", "/")
-        if in_render or "gl_context" in getattr(item, "fixturenames", ()):
+        path = str(item.fspath).replace("\\", "/")
+        if "tests/render/" in path or "gl_context" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.gl)
+        if any(folder in path for folder in ONCE_FOLDERS) or path.endswith("tests/test_readme.py"):
+            item.add_marker(pytest.mark.once)
 
 
 @pytest.fixture

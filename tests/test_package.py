@@ -18,7 +18,7 @@ PACKAGE = Path(glshade.__file__).parent
 #: chapter of the notes is one package (or module) at its public import path.
 LAYERS = [
     {"_version", "atomic", "_callable", "interrupt", "_vec", "_display", "errors", "modes",
-     "options", "examples", "colormaps"},
+     "options", "examples", "colormaps", "_paths"},
     {"parallel"},
     {"quaternion", "masspoint"},
     {"geometry"},

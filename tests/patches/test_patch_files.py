@@ -34,7 +34,7 @@ def test_trailing_content_is_refused_naming_the_line(pot):
         read_patches(pot)
     with pytest.raises(InputError, match="no such file"):
         read_patches(pot.with_name("missing.bpt"))
-    with pytest.raises(InputError, match="not a regular file"):
+    with pytest.raises(InputError, match="is a directory"):
         read_patches(pot.parent)
 
 

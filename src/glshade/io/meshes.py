@@ -13,6 +13,7 @@ from typing import Any
 from pathlib import Path
 
 from ..atomic import atomic_write
+from .._paths import file_fault
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
 from ..geometry.trimesh_bridge import HINT, from_trimesh, trimesh_formats, trimesh_module
@@ -46,8 +47,9 @@ def load_mesh(path, format: str | None = None) -> Mesh:
         line (or byte offset) and says what was wrong.
     """
     path = Path(path)
-    if path.is_dir():
-        raise MeshFormatError(path, "is a directory, not a mesh file")
+    fault = file_fault(path)
+    if fault is not None:
+        raise MeshFormatError(path, fault.replace("not a file", "not a mesh file"))
     native = (format or path.suffix.lstrip(".")).lower() in FORMATS
     # (trimesh is imported only for a format glshade does not read itself: it is slow to
     # import, and swallows a Ctrl-C that lands while it imports)

@@ -294,6 +294,11 @@ def _validate(data: dict, loc: _Locator, source: str):
 def load_scene(path) -> SceneFile:
     """Read a scene file: the Scene, its CameraPath and its RenderSettings."""
     path = Path(path)
+    from .._paths import file_fault
+
+    fault = file_fault(path)
+    if fault is not None:
+        raise SceneFormatError(f"{path}: {fault}")
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:

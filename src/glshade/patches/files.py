@@ -77,9 +77,12 @@ EXTENSION = ".bpt"
 def read_patches(path, up: str = "z") -> PatchSet:
     """The patches of a file in the classic format (errors name the file and line; a path
     that is not a regular file is refused before reading)."""
+    from .._paths import file_fault
+
     p = Path(path)
-    if not p.is_file():
-        raise InputError(f"{p}: not a regular file" if p.exists() else f"{p}: no such file")
+    fault = file_fault(p)
+    if fault is not None:
+        raise InputError(f"{p}: {fault}")
     try:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:

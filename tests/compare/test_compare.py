@@ -195,3 +195,24 @@ def test_the_heat_maps_scale_is_robust_and_can_be_fixed(make_renderer):
     assert magenta.sum() == c.metrics[0].silhouette
     fixed = compare(s, cam, ("flat",), renderer=r, size=(128, 96), scale=40.0)
     assert fixed.scale == 40.0
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--save-tiles", "{tmp}/taken.txt"], "is a file, not a folder"),
+    (["--json", "{tmp}/nowhere/m.json"], "does not exist"),
+    (["--csv", "{tmp}/grid.png"], "must be different files"),
+    (["--json", "{tmp}"], "is a folder, not a file"),
+])
+def test_every_output_is_checked_before_any_work(tmp_path, extra, words):
+    """A compare whose outputs cannot all be written says so in one line before it renders,
+    and writes nothing (the grid included)."""
+    from tests.conftest import glshade
+
+    (tmp_path / "taken.txt").write_text("mine")
+    args = [a.replace("{tmp}", str(tmp_path)) for a in extra]
+    out = glshade("compare", "primitive:icosphere:1", "-o", str(tmp_path / "grid.png"),
+                  "--size", "32x32", *args)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1 and words in out.stderr, \
+        out.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["taken.txt"]
+    assert (tmp_path / "taken.txt").read_text() == "mine"

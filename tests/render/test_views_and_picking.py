@@ -199,3 +199,17 @@ def test_the_radiosity_mode_on_an_unsolved_scene_says_how_to_solve_it(make_rende
     with warnings.catch_warnings():  # (once per scene: a viewer draws every frame)
         warnings.simplefilter("error")
         r.render(scene, Camera.named("front", scene.bounds), "radiosity")
+
+
+@pytest.mark.parametrize("x, y, words", [
+    (float("nan"), 3.0, "finite"), (2.0, float("inf"), "finite"), (-1.0, 3.0, "outside"),
+    (96.0, 3.0, "outside"), ("left", 3.0, "two numbers"), (None, 1.0, "two numbers")])
+def test_a_pick_outside_the_image_or_not_a_number_is_refused_in_words(make_renderer, x, y,
+                                                                      words):
+    from glshade.errors import OptionError
+
+    scene = Scene()
+    scene.add(primitives.cube())
+    r = make_renderer(96, 72)
+    with pytest.raises(OptionError, match=words):
+        r.pick(scene, Camera.look_at((3, 2, 4), (0, 0, 0)), x, y)

@@ -11,6 +11,7 @@ from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, InputError, UsageErr
 from ..io.scenefile import RenderSettings
 from ..options import RenderConfig
 from . import arguments as a
+from . import validators as v
 from .info import info
 from .inputs import load_job
 
@@ -192,6 +193,8 @@ def compare(args: a.CompareArgs) -> int:
     modes = [m.value for m in args.modes]
     if args.sweep:
         return _sweep(args, modes)
+    v.check_outputs({"the grid": args.output, "--json": args.json, "--csv": args.csv},
+                    {"--save-tiles": args.save_tiles})  # (before any work)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
     scenes, surfaces = {}, None
     if "radiosity" in modes:

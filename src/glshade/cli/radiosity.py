@@ -10,6 +10,7 @@ from dataclasses import replace
 from ..errors import EXIT_OK, InputError, UsageError
 from .arguments import RadiosityArgs
 from .inputs import is_scene_file, load_job
+from .validators import check_outputs
 
 __all__ = ["radiosity"]
 
@@ -34,7 +35,10 @@ def _prepare(args: RadiosityArgs):
     if args.steps:
         output_format(args.steps)  # a bad extension fails before the work
     plot_path = args.plot or os.path.splitext(args.output)[0] + "-convergence.png"
-    _check_outputs(args.output, plot_path, args.steps)  # before the solve, not after it
+    steps = args.steps or ""  # (an animation file, or a folder/ of frames)
+    check_outputs({"the image": args.output, "--plot": plot_path,
+                   "--steps": None if steps.endswith("/") else steps or None},
+                  {"--steps": steps or None} if steps.endswith("/") else None)
     job = load_job(replace(args, mode=None), args.scene)
     try:
         problem = PatchScene.from_scene(job.scene, args.patch_size)
@@ -141,20 +145,6 @@ def _monte_carlo(args: RadiosityArgs, job, problem, options) -> int:
               f"relative standard error of a surface {worst:.2%}, exposure {exposure:.4g}")
         print(f"{args.output}: {w}x{h}")
     return EXIT_OK
-
-
-def _check_outputs(*paths) -> None:
-    """The outputs asked for: distinct, each in a folder that exists (checked before the
-    solve, so a typo does not cost the run)."""
-    given = [os.path.abspath(p) for p in paths if p]
-    if len(set(given)) != len(given):
-        raise UsageError("the image, --plot and --steps must be different files, got "
-                         f"{', '.join(p for p in paths if p)}")
-    for p in paths:
-        if p:
-            folder = os.path.dirname(os.path.abspath(p.rstrip("/")))
-            if not os.path.isdir(folder):
-                raise UsageError(f"{p}: the folder {folder} does not exist")
 
 
 def _exposure_warning(image, exposure: float) -> None:

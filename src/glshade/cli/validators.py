@@ -9,7 +9,7 @@ import argparse
 import math
 import re
 
-from ..errors import InputError
+from ..errors import InputError, UsageError
 from ..hidden import Algorithm
 from ..modes import ShadingMode
 from ..scene.camera import View
@@ -216,3 +216,27 @@ def image_output(text: str) -> str:
     except InputError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
     return text
+
+
+def check_outputs(files: dict, folders: dict | None = None) -> None:
+    """Every output a run will write, checked before any work (so a typo does not cost the
+    run, and nothing is left half done): ``files`` and ``folders`` map each option's name to
+    its path (None: not asked for). All distinct; a file's folder must exist and the file
+    must not be a folder; an output folder may exist (as a folder) or be made in a folder
+    that exists."""
+    import os
+
+    named = {k: v for k, v in {**files, **(folders or {})}.items() if v}
+    paths = [os.path.abspath(str(v).rstrip("/")) for v in named.values()]
+    if len(set(paths)) != len(paths):
+        raise UsageError(f"{', '.join(named)} must be different files, got "
+                         f"{', '.join(str(v) for v in named.values())}")
+    for name, p in named.items():
+        full = os.path.abspath(str(p).rstrip("/"))
+        parent = os.path.dirname(full)
+        if not os.path.isdir(parent):
+            raise UsageError(f"{p}: the folder {parent} does not exist")
+        if name in (folders or {}) and os.path.exists(full) and not os.path.isdir(full):
+            raise UsageError(f"{p} ({name}): is a file, not a folder")
+        if name in files and os.path.isdir(full):
+            raise UsageError(f"{p} ({name}): is a folder, not a file")

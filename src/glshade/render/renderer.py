@@ -531,10 +531,16 @@ class Renderer:
         the id, depth and normal buffers of one draw. None where the pixel shows background.
         The normal is the polygon's own (a flat draw) unless ``options`` say another mode
         (Phong's: the interpolated normal there)."""
-        px, py = int(np.floor(x)), int(np.floor(y))
+        try:
+            fx, fy = float(x), float(y)
+        except (TypeError, ValueError):
+            raise OptionError(f"a pixel is two numbers (x, y), got ({x!r}, {y!r})") from None
+        if not (math.isfinite(fx) and math.isfinite(fy)):
+            raise OptionError(f"a pixel is two finite numbers, got ({fx:g}, {fy:g})")
+        px, py = math.floor(fx), math.floor(fy)
         if not (0 <= px < self.width and 0 <= py < self.height):
-            raise OptionError(f"pixel ({x}, {y}) is outside the {self.width}x{self.height} "
-                              "image")
+            raise OptionError(f"pixel ({fx:g}, {fy:g}) is outside the {self.width}x"
+                              f"{self.height} image")
         o = DrawOptions.of(options if options is not None else ShadingMode.FLAT)
         frame = self.render_frame(scene, camera, o, outputs=Outputs.ALL)
         assert frame.face_id is not None and frame.depth is not None

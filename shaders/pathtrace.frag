@@ -34,7 +34,10 @@
 #define DATA_WIDTH 1024
 #endif
 #define STACK 48
+int g_iter;  // loop iterations so far in this invocation (every loop of the tracer counts,
+             // the solid's walk included: CSG_COUNT)
 #ifdef CSG_SOLID
+#define CSG_COUNT ++g_iter
 #include "csg.glsl"
 uniform int u_csg_material;
 #endif
@@ -72,7 +75,6 @@ layout(location = 4) out vec4 out_sum;     // finished samples: sum of values, c
 layout(location = 5) out vec4 out_square;  // sum of squares, first hits on an emitter
 layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near the limit
 
-int g_iter;  // loop iterations so far in this invocation (every loop of the tracer counts)
 
 #include "random.glsl"
 #include "rays.glsl"

@@ -24,6 +24,11 @@
 #error "the CSG constants (LEAF_*, OP_*, CSG_ROW) come from solids/encoding.py: csg_defines()"
 #endif
 const float INF = 1e30;
+// CSG_COUNT; stands in every loop that grows with the tree: a program that must bound its
+// invocations' work (the path tracer) counts them there; elsewhere it is nothing
+#ifndef CSG_COUNT
+#define CSG_COUNT
+#endif
 #ifndef CSG_WORDS
 #define CSG_WORDS 32                   // words of leaf bits: 32 leaves each (encoding.py picks)
 #endif

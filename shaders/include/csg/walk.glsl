@@ -8,12 +8,13 @@ uniform int u_csg_kind_start[7];       // where each kind's list starts (and the
 // boundaries: two, one for a half-space, four for a torus)
 #define KIND_LOOP(n) \
     for (int j = u_csg_kind_start[n]; j < u_csg_kind_start[n + 1]; ++j) { \
+        CSG_COUNT; \
         int k = int(csg_texel(u_csg_kinds + j).x); \
         vec4 t = leaf_bounds_as(n, k, ro, rd); \
         float kf = float(k); \
         offer(t.x, kf, t_cur, leaf_cur, bt, bk); \
-        if (n != 5) offer(t.y, kf, t_cur, leaf_cur, bt, bk); \
-        if (n == 4) { \
+        if (n != LEAF_HALFSPACE) offer(t.y, kf, t_cur, leaf_cur, bt, bk); \
+        if (n == LEAF_TORUS) { \
             offer(t.z, kf, t_cur, leaf_cur, bt, bk); \
             offer(t.w, kf, t_cur, leaf_cur, bt, bk); \
         } \
@@ -70,6 +71,7 @@ uint leaf_bits[CSG_WORDS];
 // is the ray inside any of the leaves first .. last?
 bool any_inside(int first, int last) {
     for (int w = first >> 5; w <= (last >> 5); ++w) {
+        CSG_COUNT;
         int a = max(first - 32 * w, 0), b = min(last - 32 * w, 31);
         uint mask = (b - a == 31 ? 0xffffffffu : ((1u << uint(b - a + 1)) - 1u)) << uint(a);
 #if CSG_WORDS == 1
@@ -103,6 +105,7 @@ bool tree_inside(int ops) {
 #ifdef CSG_LEAF_LOOP
     // a small tree: every position in turn (skipping would cost more than it saves)
     for (int j = 0; j < ops; ++j) {
+        CSG_COUNT;
         int code = int(csg_texel(u_csg_program + j).x);
         bool x = (stack & 1u) != 0u, y = (stack & 2u) != 0u;
         stack = code >= 0 ? (stack << 1) | LEAF_BIT(max(code, 0))
@@ -111,9 +114,11 @@ bool tree_inside(int ops) {
     return (stack & 1u) != 0u;
 #endif
     for (int j = 0; j < ops;) {
+        CSG_COUNT;
         vec4 e = csg_texel(u_csg_program + j);
         int r = int(e.y);
         while (r >= 0) {               // the largest subtree starting here the ray is not in
+            CSG_COUNT;
             vec4 rec = csg_texel(u_csg_records + r);
             if (!any_inside(int(rec.y), int(rec.z))) break;
             r = int(rec.w);
@@ -141,3 +146,50 @@ bool tree_inside(int ops) {
     if (bk.c < 0.0) return -1; \
     FLIP_LEAF(int(bk.c)); \
     if (tree_inside(u_csg_ops) != start) { t_hit = bt.c; return int(bk.c); }
+
+#ifndef CSG_SLOTS
+// the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
+int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
+    vec3 inv = 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
+    CLEAR_LEAVES();
+    // the leaves the ray starts in: only those whose boxes hold the start (none where no
+    // leaf's box meets the near plane: the loop is then not run at all)
+    for (int i = 0; i < u_csg_start;) {
+        CSG_COUNT;
+        vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
+        if (any(lessThan(ro, a.xyz)) || any(greaterThan(ro, b.xyz))) { i = int(a.w); continue; }
+        int k = int(b.w);
+        if (k >= 0 && leaf_contains(leaf_kind(k), leaf_param(k), to_leaf(k, vec4(ro, 1.0))))
+            SET_LEAF(k);
+        i++;
+    }
+    bool start = tree_inside(u_csg_start > 0 ? u_csg_ops : 0);
+    float t_cur = 0.0, leaf_cur = -1.0;
+    for (int step = 0; step < 4 * MAX_LEAVES; ++step) {
+        CSG_COUNT;
+        vec4 bt = vec4(INF), bk = vec4(-1.0);
+#ifdef CSG_LEAF_LOOP
+        every_leaf_offer(ro, rd, t_cur, leaf_cur, bt, bk);
+#else
+        for (int i = 0; i < u_csg_nodes;) {
+            CSG_COUNT;
+            vec4 a = csg_texel(u_csg_bvh + 2 * i), b = csg_texel(u_csg_bvh + 2 * i + 1);
+            float t0, t1;
+            if (!box_span(ro, inv, a.xyz, b.xyz, t0, t1) || t1 < t_cur || t0 > bt.w) {
+                i = int(a.w);
+                continue;
+            }
+            int k = int(b.w);
+            if (k >= 0) offer4(leaf_bounds_as(leaf_kind(k), k, ro, rd), k, t_cur, leaf_cur,
+                               bt, bk);
+            i++;
+        }
+#endif
+        // the events in order: the first where the tree's answer changes is the surface
+        EVENT(x) EVENT(y) EVENT(z) EVENT(w)
+        t_cur = bt.w;
+        leaf_cur = bk.w;
+    }
+    return -1;
+}
+#endif

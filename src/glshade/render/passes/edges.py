@@ -57,8 +57,10 @@ class EdgePass(GLResource):
         ``EDGE_COLOR`` (or, wireframe, each in its material's colour); the id base as it
         was (edges take no ids)."""
         options = state.options
+        if not (options.edges or options.wireframe):
+            return id_base
         models = [m for m in state.scene.models if m.visible and len(m.mesh.triangles[0])]
-        if not (options.edges or options.wireframe) or not models:
+        if not models:
             return id_base
         gpu_meshes = [(self.gpu_mesh(m.mesh), m.transform) for m in models]
         colors = [m.material.color for m in models] if options.wireframe else None

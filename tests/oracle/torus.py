@@ -25,8 +25,9 @@ def first_hits(o, d, R, r, t_min):
     real = np.abs(roots.imag) <= 1e-6 * (1 + np.abs(roots.real))
     t = np.where(real, roots.real, np.inf)
     t = np.sort(_polish(o, d, R, r, t), 1)
-    gap = np.diff(np.concatenate([np.full((len(o), 1), -np.inf), t,
-                                  np.full((len(o), 1), np.inf)], 1), axis=1)
+    with np.errstate(invalid="ignore"):  # (inf - inf past the last root)
+        gap = np.diff(np.concatenate([np.full((len(o), 1), -np.inf), t,
+                                      np.full((len(o), 1), np.inf)], 1), axis=1)
     after = t > t_min[:, None]
     first = np.where(after.any(1), np.argmax(after, 1), 0)
     hit = np.where(after.any(1), t[np.arange(len(o)), first], np.inf)

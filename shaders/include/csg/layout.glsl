@@ -12,7 +12,9 @@
 // tree on the bits (a small tree: one lookup in its truth table; else its program, skipping
 // subtrees the ray is in none of the leaves of); the first boundary where the tree's answer
 // changes is the surface. One pass over the leaves yields the next four boundaries in order.
-// Ties (coincident faces) go by leaf order: the left operand's face shows.
+// Ties (coincident faces, computed through different transforms: equal but for rounding):
+// boundaries closer than u_csg_tie are one place (solids/tree.py TIE): the tree's answer is
+// taken past all of them, and a surface there is the lowest-numbered leaf's among them.
 // Leaf boundaries are exact: closed-form roots, the torus's quartic split at the roots of its
 // derivative (a cubic, in closed form) into monotone pieces, each root bracketed and refined
 // by bisection on a sign computed without cancellation.
@@ -51,6 +53,7 @@ vec4 csg_texel(int i) { return csg_data[i]; }
 uniform sampler2D u_csg;               // RGBA32F, CSG_ROW texels a row
 vec4 csg_texel(int i) { return data_texel(u_csg, i, CSG_ROW); }
 #endif
+uniform float u_csg_tie;               // the tie rule's length, world units (tie_length)
 uniform int u_csg_nodes;               // hierarchy nodes
 uniform int u_csg_start;               // the nodes to look through for the leaves a ray
                                        // starts in: 0 where none can hold a ray's start

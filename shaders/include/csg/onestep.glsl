@@ -6,8 +6,8 @@
 // fall at the others: the surface is the nearest of those boundaries (the others where the
 // ray starts inside the solid) past the near plane after which the tree's answer differs
 // from the start's, one candidate a leaf (two for a torus), each tested with a lookup in
-// the table. The leaves' states just after a candidate come from comparing it with every
-// run at once (four leaves to a vector), ties by leaf order as in the walk. The rays come
+// the table. The leaves' states just past a candidate come from comparing it with every
+// run at once (four leaves to a vector), past its ties as in the walk (the tie rule). The rays come
 // interpolated from the vertex stage, in each slot's frame (csg.vert). Each slot's code is
 // unrolled here, its kind a constant (CSG_KIND_s), so its runs stay in registers and no
 // code of another kind runs: no loops at all (on llvmpipe a loop costs more than the
@@ -45,9 +45,8 @@ bool table_inside(uint bits) {
 #define HAS_TORUS ((CSG_KINDS & (1 << LEAF_TORUS)) != 0)
 
 // the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
-// point just after ``t``: a boundary is passed where it is below ``t`` -- per slot, t
-// itself or the next float above it, where the walk would have passed a boundary at t
-// (leaves numbered up to the candidate's: ties go by leaf order)
+// point just past ``t``: a boundary is passed where it is below ``t`` (a candidate's t
+// plus the tie rule's length: its tied boundaries passed with it, csg/layout.glsl)
 uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
     uvec4 inside = uvec4(lessThan(a, t)) & uvec4(greaterThanEqual(b, t));
 #if HAS_TORUS
@@ -55,6 +54,20 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
 #endif
     return (inside.x | (inside.y << 1u) | (inside.z << 2u) | (inside.w << 3u)) << shift;
 }
+
+// the lowest leaf of a group of four slots with a boundary within ``tie`` of ``t``
+float group_tied(vec4 leaf, float t, float tie, vec4 a, vec4 b, vec4 c, vec4 d) {
+    bvec4 near = bvec4(uvec4(lessThanEqual(abs(a - t), vec4(tie))) |
+                       uvec4(lessThanEqual(abs(b - t), vec4(tie))));
+#if HAS_TORUS
+    near = bvec4(uvec4(near) | uvec4(lessThanEqual(abs(c - t), vec4(tie))) |
+                 uvec4(lessThanEqual(abs(d - t), vec4(tie))));
+#endif
+    vec4 l = mix(vec4(INF), leaf, near);
+    return min(min(l.x, l.y), min(l.z, l.w));
+}
+#define TIED(g, K0, K1, K2, K3, A, B, C, D) \
+    tied = min(tied, group_tied(u_csg_slot_leaf[g], t_best, tie, A, B, C, D));
 
 #if CSG_SLOTS == 4
 #define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 0u)
@@ -67,10 +80,8 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
                             group_bits(S(2, t, c), A2, B2, C2, D2, 8u) | \
                             group_bits(S(3, t, c), A3, B3, C3, D3, 12u))
 #endif
-// group g's thresholds for a candidate t of leaf c: the next float above t for the slots
-// whose leaves are numbered at most c (t >= 0 here), t for the others
-#define UPTO(g, t, c) mix(vec4(t), vec4(uintBitsToFloat(floatBitsToUint(t) + 1u)), \
-                          lessThanEqual(u_csg_slot_leaf[g], vec4(c)))
+// group g's thresholds for a candidate t: past its ties
+#define UPTO(g, t, c) vec4(t + tie)
 // the start: the boundaries before t = 0 passed, none at it
 #define BEFORE(g, t, c) vec4(0.0)
 
@@ -118,8 +129,9 @@ uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
 #endif
 
 // the first surface along the pixel's ray (csg.vert's: ``ro`` + t ``rd``, the near plane to
-// the far one), t >= 0: (t, leaf), or leaf -1
+// the far one), t >= 0: (t, leaf), or leaf -1; of the leaves tied there, the lowest
 int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
+    float tie = u_csg_tie / length(rd);   // (t runs from the near plane to the far one)
     EACH_GROUP(GROUP)
     // the solid can hold the ray's start only where a leaf's box meets the near plane
     bool start = false;
@@ -129,6 +141,9 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     int best = -1;
     EACH_GROUP(GROUP_CANDIDATES)
     t_hit = t_best;
-    return best;
+    if (best < 0) return -1;
+    float tied = INF;
+    EACH_GROUP(TIED)
+    return int(min(tied, float(best)));
 }
 #endif

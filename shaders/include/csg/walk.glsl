@@ -141,11 +141,23 @@ bool tree_inside(int ops) {
     return (stack & 1u) != 0u;
 }
 
-// an event of the batch: flip its leaf's bit; the surface if the tree's answer changes
+// an event of the batch, with the tie rule (solids/tree.py TIE): a boundary within u_csg_tie
+// of the one before joins its group; where a group ends, the surface if the tree's answer
+// after it differs from the start's -- at the group's first t, of its lowest leaf
 #define EVENT(c) \
-    if (bk.c < 0.0) return -1; \
-    FLIP_LEAF(int(bk.c)); \
-    if (tree_inside(u_csg_ops) != start) { t_hit = bt.c; return int(bk.c); }
+    if (bk.c < 0.0 || bt.c - t_prev > u_csg_tie) { \
+        if (group_open && tree_inside(u_csg_ops) != start) { \
+            t_hit = group_t; \
+            return int(group_leaf); \
+        } \
+        group_open = false; \
+        if (bk.c < 0.0) return -1; \
+    } \
+    group_leaf = group_open ? min(group_leaf, bk.c) : bk.c; \
+    group_t = group_open ? group_t : bt.c; \
+    group_open = true; \
+    t_prev = bt.c; \
+    FLIP_LEAF(int(bk.c));
 
 #ifndef CSG_SLOTS
 // the first surface along ro + t rd, t > 0: (t, leaf), or leaf -1
@@ -165,6 +177,8 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     }
     bool start = tree_inside(u_csg_start > 0 ? u_csg_ops : 0);
     float t_cur = 0.0, leaf_cur = -1.0;
+    bool group_open = false;
+    float group_t = 0.0, group_leaf = -1.0, t_prev = -INF;
     for (int step = 0; step < 4 * MAX_LEAVES; ++step) {
         CSG_COUNT;
         vec4 bt = vec4(INF), bk = vec4(-1.0);
@@ -190,6 +204,6 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
         t_cur = bt.w;
         leaf_cur = bk.w;
     }
-    return -1;
+    return -1;  // (4 events a leaf at most: never reached with a group open)
 }
 #endif

@@ -17,8 +17,8 @@ class _Leaf(Solid):
     def _leaf_events(self, o: np.ndarray, d: np.ndarray, leaf: int) -> Events:
         raise NotImplementedError
 
-    def _events(self, o, d, leaves) -> Events:
-        return self._leaf_events(o, d, leaves[id(self)])
+    def _events(self, o, d, cast) -> Events:
+        return self._leaf_events(o, d, cast.leaves[id(self)])
 
     def _classify(self, lo, hi):
         return _by_distance(self.distance, lo, hi)

@@ -28,7 +28,7 @@ from ..geometry.analytic import affine_matrix
 from ..geometry.transforms import box_corners
 
 __all__ = ["Solid", "Union", "Intersection", "Difference", "Transformed", "Events",
-           "MAX_DEPTH", "SIZE_RANGE"]
+           "MAX_DEPTH", "SIZE_RANGE", "TIE", "tie_length"]
 
 #: sizes, offsets and translations within (1 / SIZE_RANGE, SIZE_RANGE) in magnitude: their
 #: squares stay finite and normal in float32 (the GPU's numbers)
@@ -37,6 +37,23 @@ SIZE_RANGE = 1e15
 #: a move folds into the transform below it): well inside Python's recursion limit, which
 #: the numpy reference's walk down the tree uses
 MAX_DEPTH = 200
+#: the tie rule: leaf boundaries closer along a ray than TIE times the cast's scale (the
+#: solid's reach plus the ray origin's distance from its centre) are one place -- the
+#: tree's answer is taken past all of them, and the surface there, if any, is the
+#: lowest-numbered (leftmost) leaf among them. Coincident faces computed through
+#: different transforms differ by rounding (float32 on the GPU), so without it their order
+#: is noise: a box minus a box that shares a face speckles, a union shows either leaf.
+#: 2^-16: some 100 times float32's rounding; thinner features than this vanish.
+TIE = 2.0 ** -16
+
+
+def tie_length(bounds, origin) -> float:
+    """The tie rule's length (world units) for a solid with ``bounds (2, 3)`` cast from
+    ``origin (3,)``: TIE times its reach plus the origin's distance from its centre."""
+    lo, hi = np.asarray(bounds, np.float64)
+    centre = (lo + hi) / 2
+    reach = np.linalg.norm(hi - lo) / 2
+    return float(TIE * (reach + np.linalg.norm(np.asarray(origin, np.float64) - centre)))
 
 
 class Events:
@@ -117,10 +134,22 @@ class Solid:
         return self._bounds()
 
     def events(self, origins, directions) -> Events:
-        """Roth's boundary events along the rays ``origins + t directions``, every t."""
+        """Roth's boundary events along the rays ``origins + t directions``, every t, with
+        the tie rule (:data:`TIE`): ``kind`` 0 marks a boundary the solid's surface is not
+        on (kept for the rule; t = inf marks padding)."""
+        o, d = np.asarray(origins, np.float64), np.asarray(directions, np.float64)
+        bounds = self.bounds
+        if bounds is None:
+            tie = np.zeros((len(o), 1))
+        else:
+            centre = bounds.mean(0)
+            reach = np.linalg.norm(bounds[1] - bounds[0]) / 2
+            with np.errstate(divide="ignore", invalid="ignore"):
+                tie = TIE * (reach + np.linalg.norm(o - centre, axis=1)) \
+                    / np.linalg.norm(d, axis=1)
+            tie = np.nan_to_num(tie, posinf=0.0)[:, None]
         leaves = {id(leaf): i for i, leaf in enumerate(self.leaves())}
-        return self._events(np.asarray(origins, np.float64),
-                            np.asarray(directions, np.float64), leaves)
+        return self._events(o, d, _Cast(leaves, tie))
 
     def intersect(self, origins: ArrayLike, directions: ArrayLike, t_min: float = 0.0):
         """First surface along each ray beyond ``t_min``: ``(t (N,), normal (N, 3), leaf
@@ -174,7 +203,7 @@ class Solid:
     def _bounds(self) -> np.ndarray | None:
         raise NotImplementedError
 
-    def _events(self, o: np.ndarray, d: np.ndarray, leaves: dict[int, int]) -> Events:
+    def _events(self, o: np.ndarray, d: np.ndarray, cast: _Cast) -> Events:
         raise NotImplementedError
 
     def _classify(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
@@ -182,6 +211,14 @@ class Solid:
 
 
 # ----------------------------------------------------------------------------- helpers
+
+class _Cast:
+    """What a cast passes down the tree: each leaf's number (by ``id``) and the tie
+    rule's length per ray, ``(N, 1)`` in units of t."""
+
+    def __init__(self, leaves: dict[int, int], tie: np.ndarray):
+        self.leaves, self.tie = leaves, tie
+
 
 def _solid(x) -> Solid:
     if not isinstance(x, Solid):
@@ -356,8 +393,8 @@ class _Boolean(Solid):
     def _contains(self, p):
         return self.op(self.a._contains(p), self.b._contains(p))
 
-    def _events(self, o, d, leaves) -> Events:
-        ea, eb = self.a._events(o, d, leaves), self.b._events(o, d, leaves)
+    def _events(self, o, d, cast) -> Events:
+        ea, eb = self.a._events(o, d, cast), self.b._events(o, d, cast)
         sign = -1.0 if isinstance(self, Difference) else 1.0  # B's surfaces face the other way
         ev = Events(np.c_[ea.t, eb.t], np.c_[ea.kind, eb.kind],
                     np.concatenate([ea.normal, sign * eb.normal], 1), np.c_[ea.leaf, eb.leaf])
@@ -372,11 +409,34 @@ class _Boolean(Solid):
         inside = self.op(in_a, in_b)
         before = np.c_[self.op(np.zeros((len(o), 1), bool), np.zeros((len(o), 1), bool)),
                        inside[:, :-1]]
-        change = (inside != before) & (ev.kind != 0)
-        out = Events(np.where(change, ev.t, np.inf), np.where(change, inside * 2 - 1, 0)
-                     .astype(np.int8), np.where(change[..., None], ev.normal, 0.0),
-                     np.where(change, ev.leaf, -1))
-        return out.sorted()
+        return _tied(ev, before, inside, cast.tie)
+
+
+def _tied(ev: Events, before: np.ndarray, after: np.ndarray, tie: np.ndarray) -> Events:
+    """A node's events from its operands' merged, sorted ones and its answer before and
+    after each: boundaries within ``tie`` of the previous one are one group (the tie
+    rule); a group where the answer changes is one event at its first t, of its
+    lowest-numbered leaf; every other boundary is kept silent (kind 0)."""
+    n, width = ev.t.shape
+    with np.errstate(invalid="ignore"):
+        gap = np.diff(ev.t, axis=1) > tie  # (inf - inf: NaN, no gap: padding is one group)
+    start = np.c_[np.ones((n, 1), bool), gap]
+    end = np.c_[gap, np.ones((n, 1), bool)]
+    col = np.broadcast_to(np.arange(width), (n, width))
+    first = np.maximum.accumulate(np.where(start, col, 0), axis=1)
+    last = np.minimum.accumulate(np.where(end, col, width)[:, ::-1], axis=1)[:, ::-1]
+    change = start & (np.take_along_axis(before, first, 1) != np.take_along_axis(after, last, 1))
+    # each group's lowest leaf and where it is: the least (leaf, column) key over the group
+    key = np.where(ev.leaf >= 0, ev.leaf, 1 << 40) * width + col
+    starts = (np.flatnonzero(start.ravel()))
+    least = np.minimum.reduceat(key.ravel(), starts)
+    group_least = np.repeat(least, np.diff(np.r_[starts, key.size]))
+    rep = (group_least % width).reshape(n, width)
+    rows = np.arange(n)[:, None]
+    leaf = np.where(change, ev.leaf[rows, rep], ev.leaf)
+    normal = np.where(change[..., None], ev.normal[rows, rep], ev.normal)
+    kind = np.where(change, np.take_along_axis(after, last, 1) * 2 - 1, 0).astype(np.int8)
+    return Events(ev.t, kind, normal, leaf)
 
 
 def _balanced(kind, operands: list[Solid]) -> Solid:
@@ -482,9 +542,9 @@ class Transformed(Solid):
         c = box_corners(b) @ self.matrix[:3, :3].T + self.matrix[:3, 3]
         return np.array([c.min(0), c.max(0)])
 
-    def _events(self, o, d, leaves) -> Events:
+    def _events(self, o, d, cast) -> Events:
         m = self.inverse
-        ev = self.child._events(o @ m[:3, :3].T + m[:3, 3], d @ m[:3, :3].T, leaves)
+        ev = self.child._events(o @ m[:3, :3].T + m[:3, 3], d @ m[:3, :3].T, cast)
         # normals follow by the inverse transpose (t is unchanged: rays are not rescaled)
         ev.normal = ev.normal @ m[:3, :3]
         return ev

@@ -31,7 +31,7 @@ from ...modes import ShadingMode
 from ...solids.encoding import (ROW, TreeData, glsl_defines, may_start_inside, size_class,
                                 tree_data)
 from ...solids.proxy import DIRECTIONS, screen_polygon
-from ...solids.tree import Solid
+from ...solids.tree import Solid, tie_length
 from ..base import GLResource
 from ..data import data_texture
 from ..programs import MaterialUniforms, ProgramKey, UniformWriter
@@ -161,7 +161,11 @@ class CsgPass(GLResource):
                 texture.use(location=self.UNIT)
                 put(prog, "u_csg", self.UNIT)
             inverse = np.linalg.inv(view_proj)
-            values = {**data.offsets(), "u_csg_kind_start": np.array(data.kind_start, "i4"),
+            bounds = model.solid.bounds
+            assert bounds is not None  # (Scene.add refuses unbounded solids)
+            eye = np.linalg.inv(view)[:3, 3]
+            values = {"u_csg_tie": tie_length(bounds, eye), **data.offsets(),
+                      "u_csg_kind_start": np.array(data.kind_start, "i4"),
                       "u_csg_start": data.nodes if may_start_inside(data, inverse) else 0,
                       "u_solid_view_proj": gl_bytes(view_proj),
                       "u_inverse_view_proj": gl_bytes(inverse), "u_view": gl_bytes(view),
@@ -174,8 +178,6 @@ class CsgPass(GLResource):
                               u_csg_slot_sign=data.slot_sign, u_csg_slot_table=data.slot_words)
             for name, value in values.items():
                 put(prog, name, value)
-            bounds = model.solid.bounds
-            assert bounds is not None  # (Scene.add refuses unbounded solids)
             # the screen polygon that holds the solid (solids/proxy.py): only its pixels run
             # the cast; one layer, so each pixel once, the camera inside the solid or out
             polygon = screen_polygon(view_proj, bounds, data.hull,

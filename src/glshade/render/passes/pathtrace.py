@@ -8,6 +8,7 @@ import numpy as np
 
 from ...geometry.transforms import gl_bytes
 from ...solids.encoding import ROW, tree_data
+from ...solids.tree import TIE
 from ..base import GLResource
 from ..data import data_texture
 from ..shaders import ShaderLibrary
@@ -58,6 +59,8 @@ class GpuPathTracer(GLResource):
             self._csg_values = {
                 "u_csg": _CSG, "u_csg_material": material, **tree.offsets(),
                 "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
+                # the tie rule's length (solids/tree.py): a path's rays start in the scene
+                "u_csg_tie": TIE * scene.size,
                 "u_csg_kind_start": np.array(tree.kind_start, "i4")}
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction

@@ -2,6 +2,8 @@
 batch and view (through the one loader), and ``[[patches]]`` tables in scene files; a
 file with anything after its last vertex is refused naming the line."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -66,3 +68,22 @@ def test_scene_files_take_patches_tables(pot, tmp_path):
     scene_file.write_text('[[patches]]\nsource = "pot.bpt"\nlevel = 0\n')
     with pytest.raises(SceneFormatError, match=r"s.toml:3: \[\[patches\]\] 1 key 'level'"):
         load_scene(scene_file)
+
+
+@pytest.mark.parametrize("vertex, words", [
+    ("1e20", r"pot.bpt: patch \d+: a control point coordinate of 1e\+20 is over the limit"),
+    ("nan", r"pot.bpt:\d+: vertex 1 is not finite"),
+])
+@pytest.mark.parametrize("command", ["render", "info"])
+def test_a_hostile_patch_file_is_one_line_naming_file_patch_and_rule(pot, tmp_path, vertex,
+                                                                       words, command):
+    lines = pot.read_text().splitlines()
+    first = int(lines[0]) + 2  # (the first vertex's line, after the count and the patches)
+    lines[first] = ",".join([vertex, *lines[first].split(",")[1:]])
+    pot.write_text("\n".join(lines) + "\n")
+    out_png = tmp_path / "out.png"
+    args = [command, str(pot)] + (["-o", str(out_png)] if command == "render" else [])
+    out = glshade(*args)
+    assert out.returncode == 2 and re.search(words, out.stderr), out.stderr
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert not out_png.exists()

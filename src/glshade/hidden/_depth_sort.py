@@ -21,6 +21,8 @@ each step checks P against all its overlapping Q at once.
 
 from __future__ import annotations
 
+import bisect
+
 import numpy as np
 
 from ..errors import DepthSortCycle
@@ -33,19 +35,20 @@ __all__ = ["depth_sort", "DepthSortCycle"]
 
 def _sat_separated(a: np.ndarray, b: np.ndarray, eps: float) -> np.ndarray:
     """Whether triangles ``a`` (3, 2) and each of ``b`` (n, 3, 2) are separated in 2D by an
-    axis normal to one of their edges (touching counts as separated)."""
+    axis normal to one of their edges (touching counts as separated): all six axes of
+    every pair at once."""
     n = len(b)
-    out = np.zeros(n, bool)
-    tris = [np.broadcast_to(a, (n, 3, 2)), b]
-    for t in tris:
-        for k in range(3):
-            e = t[:, (k + 1) % 3] - t[:, k]
-            axis = np.stack([-e[:, 1], e[:, 0]], 1)
-            pa = np.einsum("nkd,nd->nk", tris[0], axis)
-            pb = np.einsum("nkd,nd->nk", tris[1], axis)
-            scale = eps * (np.abs(axis).sum(1) + 1e-300)
-            out |= (pa.max(1) <= pb.min(1) + scale) | (pb.max(1) <= pa.min(1) + scale)
-    return out
+    axes = np.empty((n, 6, 2))                                  # each edge's normal
+    nxt = [1, 2, 0]
+    ea = a[nxt] - a                                             # (3, 2) a's edges
+    eb = b[:, nxt] - b                                          # (n, 3, 2)
+    axes[:, :3, 0], axes[:, :3, 1] = -ea[:, 1], ea[:, 0]
+    axes[:, 3:, 0], axes[:, 3:, 1] = -eb[..., 1], eb[..., 0]
+    pa = np.einsum("kd,nad->nak", a, axes)                      # (n, 6, 3)
+    pb = np.einsum("nkd,nad->nak", b, axes)
+    scale = eps * (np.abs(axes).sum(-1) + 1e-300)
+    apart = (pa.max(-1) <= pb.min(-1) + scale) | (pb.max(-1) <= pa.min(-1) + scale)
+    return apart.any(1)
 
 
 @takes_scene
@@ -70,25 +73,151 @@ def depth_sort(p: Prepared, split: bool = True) -> HiddenResult:
     return result
 
 
+class _Todo:
+    """The list still to paint: ``front``, the polygons moved to its head (most recent
+    first), then ``main``, sorted by farthest depth, farthest first (``keys``: minus that
+    depth, ascending). Each piece's place in it as sortable numbers (``group``: 0 front,
+    1 main; ``key``; ``seq``: ties, in insertion order), so a set of pieces is put in list
+    order without scanning the list."""
+
+    def __init__(self, order: np.ndarray, zmax: np.ndarray, capacity: int):
+        self.front: list[int] = []
+        self.main = [int(k) for k in order]
+        self.keys = [float(-zmax[k]) for k in order]
+        self.group = np.ones(capacity, np.int8)
+        self.key = np.zeros(capacity)
+        self.seq = np.zeros(capacity, np.int64)
+        self.alive = np.zeros(capacity, bool)
+        self.key[order], self.seq[order], self.alive[order] = -zmax[order], \
+            np.arange(len(order)), True
+        self._next, self._stamp = len(order), 0
+
+    def __bool__(self) -> bool:
+        return bool(self.front or self.main)
+
+    def head(self) -> int:
+        return self.front[0] if self.front else self.main[0]
+
+    def pop_head(self) -> None:
+        k = self.head()
+        if self.front:
+            self.front.pop(0)
+        else:
+            self.main.pop(0)
+            self.keys.pop(0)
+        self.alive[k] = False
+
+    def in_order(self, ids: np.ndarray) -> np.ndarray:
+        return ids[np.lexsort((self.seq[ids], self.key[ids], self.group[ids]))]
+
+    def remove(self, k: int) -> None:
+        self.alive[k] = False
+        if self.group[k] == 0:
+            self.front.remove(k)
+            return
+        i = bisect.bisect_left(self.keys, self.key[k])
+        while self.main[i] != k:
+            i += 1
+        del self.main[i], self.keys[i]
+
+    def to_front(self, k: int) -> None:
+        self.remove(k)
+        self.front.insert(0, k)
+        self._stamp += 1
+        self.group[k], self.key[k], self.alive[k] = 0, -self._stamp, True
+
+    def insert(self, k: int, zmax: float) -> None:
+        """Into ``main`` after every polygon reaching as far or farther."""
+        if k >= len(self.alive):
+            cap = max(k + 1, 2 * len(self.alive))
+            for name in ("group", "key", "seq", "alive"):
+                old = getattr(self, name)
+                new = np.zeros(cap, old.dtype)
+                new[:len(old)] = old
+                setattr(self, name, new)
+        i = bisect.bisect_right(self.keys, -zmax)
+        self.main.insert(i, k)
+        self.keys.insert(i, -zmax)
+        self.group[k], self.key[k], self.seq[k], self.alive[k] = 1, -zmax, self._next, True
+        self._next += 1
+
+
+class _Grid:
+    """The spatial index of the overlap tests: square screen cells, each listing the
+    pieces whose screen box meets it (pieces painted or split stay listed, and are
+    filtered out when met)."""
+
+    def __init__(self, size, lo: np.ndarray, hi: np.ndarray):
+        width, height = size
+        span = np.maximum(hi - lo, 1e-9)
+        typical = float(np.median(span.max(1))) if len(span) else 1.0
+        self.cell = max(typical, max(width, height) / 256, 1.0)
+        self.nx = int(np.ceil(width / self.cell)) + 1
+        self.ny = int(np.ceil(height / self.cell)) + 1
+        self.cells: list[list[int]] = [[] for _ in range(self.nx * self.ny)]
+        self.add(np.arange(len(lo)), lo, hi)
+
+    def _range(self, lo, hi):
+        """The cells' x and y index ranges of boxes (clamped to the image's cells)."""
+        a = np.clip(np.floor(lo / self.cell), 0, [self.nx - 1, self.ny - 1]).astype(np.int64)
+        b = np.clip(np.floor(hi / self.cell), 0, [self.nx - 1, self.ny - 1]).astype(np.int64)
+        return a, b
+
+    def add(self, ids: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> None:
+        a, b = self._range(lo, hi)
+        count = (b - a + 1).prod(1)
+        piece = np.repeat(ids, count)
+        k = np.arange(len(piece)) - np.repeat(np.cumsum(count) - count, count)
+        w = np.repeat(b[:, 0] - a[:, 0] + 1, count)
+        x = np.repeat(a[:, 0], count) + k % w
+        y = np.repeat(a[:, 1], count) + k // w
+        cell = y * self.nx + x
+        order = np.argsort(cell, kind="stable")
+        cell, piece = cell[order], piece[order]
+        cuts = np.flatnonzero(np.diff(cell)) + 1
+        for c, group in zip(cell[np.r_[0, cuts]] if len(cell) else [],
+                            np.split(piece, cuts)):
+            self.cells[int(c)].extend(group.tolist())
+
+    def near(self, lo, hi, alive: np.ndarray) -> np.ndarray:
+        """The ``alive`` pieces listed in the cells a box meets, each once (a cell's list
+        is rewritten without the others as it is read)."""
+        c, nx, ny = self.cell, self.nx - 1, self.ny - 1
+        x0, y0 = min(max(int(lo[0] // c), 0), nx), min(max(int(lo[1] // c), 0), ny)
+        x1, y1 = min(max(int(hi[0] // c), 0), nx), min(max(int(hi[1] // c), 0), ny)
+        parts = []
+        for y in range(y0, y1 + 1):
+            for x in range(x0, x1 + 1):
+                k = y * self.nx + x
+                ids = np.array(self.cells[k], np.int64)
+                keep = ids[alive[ids]]
+                if len(keep) < len(ids):
+                    self.cells[k] = keep.tolist()
+                parts.append(keep)
+        out = np.concatenate(parts) if parts else np.zeros(0, np.int64)
+        return np.unique(out) if len(parts) > 1 else out
+
+
 def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> list[int]:
     """The painting order (piece indices, far to near)."""
-    t_all, _, _ = pieces.arrays()
     cache = _Cache(p, pieces)
-    depth = -t_all[:, :, 2]
     # the list, farthest first (ties: in draw order, so that the first drawn is painted
     # last among equals)
-    todo = list(np.lexsort((-np.arange(len(t_all)), -depth.max(1))))
+    n = pieces.size
+    todo = _Todo(np.lexsort((-np.arange(n), -cache.zmax[:n])), cache.zmax[:n], 2 * n + 16)
+    grid = _Grid(p.size, cache.lo[:n], cache.hi[:n])
     moved: set[int] = set()
     out: list[int] = []
     while todo:
-        P = todo[0]
-        rest = np.array(todo[1:], np.int64)
-        blocker = _first_blocker(cache, P, rest, eps, counters) if len(rest) else None
-        if blocker is None:
+        P = todo.head()
+        near = grid.near(cache.lo[P], cache.hi[P], todo.alive)
+        near = near[(near != P) & (cache.zmax[near] > cache.zmin[P] + eps)]
+        Q = _first_blocker(cache, P, todo.in_order(near), eps, counters) if len(near) \
+            else None
+        if Q is None:
             out.append(P)
-            todo.pop(0)
+            todo.pop_head()
             continue
-        Q = int(rest[blocker])
         # the tests again with P and Q swapped: may Q be painted before P?
         counters["tests"] += 2
         swapped = _swapped_ok(cache, P, Q, eps)
@@ -102,8 +231,7 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
             if counters["moves"] > 20 * pieces.size + 100:
                 raise DepthSortCycle("depth sort keeps reordering the same polygons (an "
                                      "unresolved cycle); use the BSP or the z-buffer")
-            todo.remove(Q)
-            todo.insert(0, Q)
+            todo.to_front(Q)
             continue
         if not split:
             raise DepthSortCycle(
@@ -115,42 +243,54 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
                                  f"{int(p.ids[cache.src(Q)])} cannot be ordered or split")
         # a cycle, or polygons piercing each other: split one by the other's plane
         victim, by = straddling
-        n, d = cache.plane(by)
+        n_by, d_by = cache.plane(by)
         t, s, c = pieces.arrays()
-        ft, fs, fc, bt, bs, bc = split_by_plane(t[victim][None], n, np.array([d]), eps,
+        ft, fs, fc, bt, bs, bc = split_by_plane(t[victim][None], n_by, np.array([d_by]), eps,
                                                 c[victim][None])
         counters["splits"] += 1
-        new = list(pieces.add(np.concatenate([ft, bt]), s[[victim] * (len(ft) + len(bt))],
-                              np.concatenate([fc, bc])))
+        new = pieces.add(np.concatenate([ft, bt]), s[[victim] * (len(ft) + len(bt))],
+                         np.concatenate([fc, bc]))
         cache.grow()
         todo.remove(victim)
         moved.discard(victim)
-        # back into the list (farthest first) by their farthest depth
-        far = cache.zmax
-        for k in new:
-            pos = 0
-            while pos < len(todo) and far[todo[pos]] >= far[k]:
-                pos += 1
-            todo.insert(pos, k)
+        for k in new:  # back into the list (farthest first) by their farthest depth
+            todo.insert(int(k), cache.zmax[k])
+        grid.add(new, cache.lo[new], cache.hi[new])
     return out
 
 
 class _Cache:
-    """Per-piece data the tests need (screen triangle, extents, planes)."""
+    """Per-piece data the tests need (screen triangle, extents, planes), grown with the
+    pieces (only the new ones computed)."""
 
     def __init__(self, p: Prepared, pieces: Pieces):
         self.p, self.pieces = p, pieces
+        self.size = 0
+        cap = max(16, 2 * pieces.size)
+        self.screen = np.empty((cap, 3, 2))
+        self.lo, self.hi = np.empty((cap, 2)), np.empty((cap, 2))
+        self.zmin, self.zmax = np.empty(cap), np.empty(cap)
         self.grow()
 
     def grow(self):
+        start, stop = self.size, self.pieces.size
+        if stop > len(self.zmin):
+            cap = max(stop, 2 * len(self.zmin))
+            for name in ("screen", "lo", "hi", "zmin", "zmax"):
+                old = getattr(self, name)
+                new = np.empty((cap, *old.shape[1:]))
+                new[:start] = old[:start]
+                setattr(self, name, new)
         t, s, _ = self.pieces.arrays()
-        self.t = t
-        self._src = s
-        self.screen = self.p.to_screen(t)
-        self.lo, self.hi = self.screen.min(1), self.screen.max(1)
-        self.zmin, self.zmax = (-t[:, :, 2]).min(1), (-t[:, :, 2]).max(1)
-        self.n = self.pieces._n[:self.pieces.size, :3]
-        self.d = self.pieces._n[:self.pieces.size, 3]
+        self.t, self._src = t, s
+        self.screen[start:stop] = self.p.to_screen(t[start:stop])
+        self.lo[start:stop] = self.screen[start:stop].min(1)
+        self.hi[start:stop] = self.screen[start:stop].max(1)
+        self.zmin[start:stop] = (-t[start:stop, :, 2]).min(1)
+        self.zmax[start:stop] = (-t[start:stop, :, 2]).max(1)
+        self.n = self.pieces._n[:stop, :3]
+        self.d = self.pieces._n[:stop, 3]
+        self.size = stop
 
     def src(self, k):
         return self._src[k]
@@ -183,8 +323,9 @@ def _swapped_ok(c: _Cache, P: int, Q: int, eps: float) -> bool:
 
 
 def _first_blocker(c: _Cache, P: int, rest: np.ndarray, eps: float, counters):
-    """The first Q in ``rest`` that P must not be painted before (every test fails), or
-    None."""
+    """The first Q in ``rest`` (list order) that P must not be painted before (every test
+    fails), or None. Tests 1 and 2 run on every Q at once; the costlier 3-5 on those left,
+    a chunk at a time in list order, stopping at the first chunk with a blocker."""
     # only polygons reaching farther than P's nearest point are compared
     q = rest[c.zmax[rest] > c.zmin[P] + eps]
     if not len(q):
@@ -194,28 +335,32 @@ def _first_blocker(c: _Cache, P: int, rest: np.ndarray, eps: float, counters):
     ok |= (c.hi[q, 1] <= c.lo[P, 1]) | (c.lo[q, 1] >= c.hi[P, 1])         # 2: y
     left = q[~ok]
     counters["tests"] += len(q) + len(left)
-    if len(left):
+    n_p, d_p = c.n[P], c.d[P]
+    eye_p = float(c.p.eye_side(n_p, d_p))
+    for start in range(0, len(left), _CHUNK):
+        chunk = left[start:start + _CHUNK]
         # 3: P wholly on the far side of Q's plane
-        nq, dq = c.n[left], c.d[left]
+        nq, dq = c.n[chunk], c.d[chunk]
         side = np.einsum("kd,nd->nk", c.t[P], nq) - dq[:, None]   # (n, 3)
         eye = c.p.eye_side(nq, dq)                                 # the eye's side
         far = np.where(np.abs(eye) <= eps, True, (side * np.sign(eye)[:, None] <= eps).all(1))
         # 4: Q wholly on the near side of P's plane
-        n_p, d_p = c.n[P], c.d[P]
-        side_q = np.einsum("nkd,d->nk", c.t[left], n_p) - d_p
-        eye_p = float(c.p.eye_side(n_p, d_p))
+        side_q = np.einsum("nkd,d->nk", c.t[chunk], n_p) - d_p
         near = (side_q * np.sign(eye_p) >= -eps).all(1) if abs(eye_p) > eps else \
-            np.ones(len(left), bool)
+            np.ones(len(chunk), bool)
         sub_ok = far | near
-        rem = left[~sub_ok]
-        counters["tests"] += len(left) + len(rem)
+        rem = chunk[~sub_ok]
+        counters["tests"] += len(chunk) + len(rem)
         if len(rem):
             sub_ok[~sub_ok] = _sat_separated(c.screen[P], c.screen[rem], 1e-12)  # 5
-        ok[~ok] = sub_ok
-    blocked = np.flatnonzero(~ok)
-    if not len(blocked):
-        return None
-    return int(np.flatnonzero(np.isin(rest, q[blocked[0]]))[0])
+        blocked = np.flatnonzero(~sub_ok)
+        if len(blocked):
+            return int(chunk[blocked[0]])
+    return None
+
+
+#: Q tested at a time by tests 3-5 (a blocker is often among the first)
+_CHUNK = 64
 
 
 def _choose_split(c: _Cache, P: int, Q: int, eps: float):

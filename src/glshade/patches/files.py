@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import GeometryError, InputError
 from ..geometry.transforms import y_up_to_z_up, z_up_to_y_up
 from .bezier import PatchSet
 
@@ -48,17 +48,19 @@ def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet
                       for k in range(n_patches)])
     number, line = take("the vertex count")
     (n_vertices,) = _numbers(line, int, path, number, 1)
-    rows = []
+    rows, numbers = [], []
     for k in range(n_vertices):
         number, line = take(f"vertex {k + 1}")
         rows.append(_numbers(line, float, path, number, 3))
+        numbers.append(number)
     extra = next(it, None)
     if extra is not None:
         raise InputError(f"{path}:{extra[0]}: unexpected content after the last vertex: "
                          f"{extra[1].strip()[:40]!r}")
     points = np.array(rows, np.float64).reshape(-1, 3)
     if not np.isfinite(points).all():
-        raise InputError(f"{path}: a vertex is not finite")
+        k = int(np.argwhere(~np.isfinite(points))[0, 0])
+        raise InputError(f"{path}:{numbers[k]}: vertex {k + 1} is not finite")
     bad = (index < 1) | (index > n_vertices)
     if bad.any():
         k = int(np.argwhere(bad)[0, 0])
@@ -67,7 +69,10 @@ def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet
     cp = points[index - 1].reshape(-1, 4, 4, 3)
     if up == "z":
         cp = z_up_to_y_up(cp)
-    return PatchSet(cp)
+    try:
+        return PatchSet(cp)
+    except GeometryError as exc:  # (patch k of the file: the set's refusal, with the file)
+        raise InputError(f"{path}: {exc}") from None
 
 
 #: the file extension of the classic format (Newell's teapot data, z up)

@@ -222,6 +222,11 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
         counters["tests"] += 2
         swapped = _swapped_ok(cache, P, Q, eps)
         straddling = _choose_split(cache, P, Q, eps)
+        if straddling is None and Q in moved and Q in todo.front:
+            # a cycle through the polygons moved since Q was (P .. Q at the list's
+            # head): P and Q are ordered, so some other pair of it straddles a plane
+            straddling = _cycle_split(cache, todo.front[:todo.front.index(Q) + 1], eps)
+            swapped = swapped and straddling is None
         if swapped and (Q not in moved or straddling is None):
             # Q goes first (a second move without a plane to split by is allowed, up to a
             # bound: a true cycle always has a polygon that straddles another's plane)
@@ -361,6 +366,20 @@ def _first_blocker(c: _Cache, P: int, rest: np.ndarray, eps: float, counters):
 
 #: Q tested at a time by tests 3-5 (a blocker is often among the first)
 _CHUNK = 64
+
+
+def _cycle_split(c: _Cache, cycle: list[int], eps: float):
+    """(polygon to split, polygon whose plane splits it) among the members of a cycle:
+    the first pair where one straddles the other's plane; None if none does."""
+    ids = np.array(cycle, np.int64)
+    side = np.einsum("akd,bd->abk", c.t[ids], c.n[ids]) - c.d[ids][None, :, None]
+    straddles = (side > eps).any(2) & (side < -eps).any(2)    # (a, b): a across b's plane
+    np.fill_diagonal(straddles, False)
+    hit = np.argwhere(straddles)
+    if not len(hit):
+        return None
+    a, b = hit[0]
+    return int(ids[a]), int(ids[b])
 
 
 def _choose_split(c: _Cache, P: int, Q: int, eps: float):

@@ -108,7 +108,9 @@ class _Todo:
         self.alive[k] = False
 
     def in_order(self, ids: np.ndarray) -> np.ndarray:
-        return ids[np.lexsort((self.seq[ids], self.key[ids], self.group[ids]))]
+        """``ids`` (repeats allowed) in list order, each once."""
+        ids = ids[np.lexsort((ids, self.seq[ids], self.key[ids], self.group[ids]))]
+        return ids[np.r_[True, ids[1:] != ids[:-1]]]
 
     def remove(self, k: int) -> None:
         self.alive[k] = False
@@ -180,8 +182,8 @@ class _Grid:
             self.cells[int(c)].extend(group.tolist())
 
     def near(self, lo, hi, alive: np.ndarray) -> np.ndarray:
-        """The ``alive`` pieces listed in the cells a box meets, each once (a cell's list
-        is rewritten without the others as it is read)."""
+        """The ``alive`` pieces listed in the cells a box meets (with repeats; a cell's
+        list is rewritten without the others as it is read)."""
         c, nx, ny = self.cell, self.nx - 1, self.ny - 1
         x0, y0 = min(max(int(lo[0] // c), 0), nx), min(max(int(lo[1] // c), 0), ny)
         x1, y1 = min(max(int(hi[0] // c), 0), nx), min(max(int(hi[1] // c), 0), ny)
@@ -194,8 +196,7 @@ class _Grid:
                 if len(keep) < len(ids):
                     self.cells[k] = keep.tolist()
                 parts.append(keep)
-        out = np.concatenate(parts) if parts else np.zeros(0, np.int64)
-        return np.unique(out) if len(parts) > 1 else out
+        return np.concatenate(parts) if parts else np.zeros(0, np.int64)
 
 
 def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> list[int]:
@@ -212,6 +213,9 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
         P = todo.head()
         near = grid.near(cache.lo[P], cache.hi[P], todo.alive)
         near = near[(near != P) & (cache.zmax[near] > cache.zmin[P] + eps)]
+        counters["comparisons"] += len(near)
+        near = near[_overlap_xy(cache, P, near)]                      # tests 1 and 2
+        counters["tests"] += 2 * len(near)
         Q = _first_blocker(cache, P, todo.in_order(near), eps, counters) if len(near) \
             else None
         if Q is None:
@@ -327,19 +331,17 @@ def _swapped_ok(c: _Cache, P: int, Q: int, eps: float) -> bool:
     return _behind(c, Q, P, eps) or _in_front(c, P, Q, eps)
 
 
-def _first_blocker(c: _Cache, P: int, rest: np.ndarray, eps: float, counters):
-    """The first Q in ``rest`` (list order) that P must not be painted before (every test
-    fails), or None. Tests 1 and 2 run on every Q at once; the costlier 3-5 on those left,
-    a chunk at a time in list order, stopping at the first chunk with a blocker."""
-    # only polygons reaching farther than P's nearest point are compared
-    q = rest[c.zmax[rest] > c.zmin[P] + eps]
-    if not len(q):
-        return None
-    counters["comparisons"] += len(q)
-    ok = (c.hi[q, 0] <= c.lo[P, 0]) | (c.lo[q, 0] >= c.hi[P, 0])          # 1: x
-    ok |= (c.hi[q, 1] <= c.lo[P, 1]) | (c.lo[q, 1] >= c.hi[P, 1])         # 2: y
-    left = q[~ok]
-    counters["tests"] += len(q) + len(left)
+def _overlap_xy(c: _Cache, P: int, q: np.ndarray) -> np.ndarray:
+    """Tests 1 and 2 failed: the screen x- and y-extents of P and each Q overlap."""
+    lo, hi = c.lo[P], c.hi[P]
+    return (c.hi[q, 0] > lo[0]) & (c.lo[q, 0] < hi[0]) & (c.hi[q, 1] > lo[1]) & \
+        (c.lo[q, 1] < hi[1])
+
+
+def _first_blocker(c: _Cache, P: int, left: np.ndarray, eps: float, counters):
+    """The first Q in ``left`` (list order; tests 1 and 2 already failed for each) that P
+    must not be painted before (every test fails), or None. The costlier tests 3-5 run a
+    chunk at a time, stopping at the first chunk with a blocker."""
     n_p, d_p = c.n[P], c.d[P]
     eye_p = float(c.p.eye_side(n_p, d_p))
     for start in range(0, len(left), _CHUNK):

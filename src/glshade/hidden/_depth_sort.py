@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import DepthSortCycle
 from ._bsp import Pieces, paint
 from .result import HiddenResult
-from .view import Prepared, split_by_plane, takes_scene, timed
+from .view import Prepared, takes_scene, timed
 
 __all__ = ["depth_sort", "DepthSortCycle"]
 
@@ -110,7 +110,9 @@ class _Todo:
     def in_order(self, ids: np.ndarray) -> np.ndarray:
         """``ids`` (repeats allowed) in list order, each once."""
         ids = ids[np.lexsort((ids, self.seq[ids], self.key[ids], self.group[ids]))]
-        return ids[np.r_[True, ids[1:] != ids[:-1]]]
+        keep = np.ones(len(ids), bool)
+        keep[1:] = ids[1:] != ids[:-1]
+        return ids[keep]
 
     def remove(self, k: int) -> None:
         self.alive[k] = False
@@ -254,11 +256,10 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
         victim, by = straddling
         n_by, d_by = cache.plane(by)
         t, s, c = pieces.arrays()
-        ft, fs, fc, bt, bs, bc = split_by_plane(t[victim][None], n_by, np.array([d_by]), eps,
-                                                c[victim][None])
+        tris, cuts = _split_one(t[victim].tolist(), n_by.tolist(), float(d_by), eps,
+                                c[victim].tolist())
         counters["splits"] += 1
-        new = pieces.add(np.concatenate([ft, bt]), s[[victim] * (len(ft) + len(bt))],
-                         np.concatenate([fc, bc]))
+        new = pieces.add(np.array(tris), np.full(len(tris), s[victim]), np.array(cuts))
         cache.grow()
         todo.remove(victim)
         moved.discard(victim)
@@ -299,6 +300,9 @@ class _Cache:
         self.zmax[start:stop] = (-t[start:stop, :, 2]).max(1)
         self.n = self.pieces._n[:stop, :3]
         self.d = self.pieces._n[:stop, 3]
+        # the eye's side of each plane (zero: seen edge-on)
+        eye = self.p.eye_side(self.n[start:stop], self.d[start:stop])
+        self.eye = np.r_[self.eye[:start], eye] if start else eye
         self.size = stop
 
     def src(self, k):
@@ -311,7 +315,7 @@ class _Cache:
 def _behind(c: _Cache, a: int, b: int, eps: float) -> bool:
     """Whether polygon ``a`` lies wholly on the far side of ``b``'s plane from the eye."""
     n, d = c.plane(b)
-    eye = c.p.eye_side(n, d)
+    eye = c.eye[b]
     if abs(eye) <= eps:
         return True  # b is seen edge-on
     return bool(((c.t[a] @ n - d) * np.sign(eye) <= eps).all())
@@ -320,7 +324,7 @@ def _behind(c: _Cache, a: int, b: int, eps: float) -> bool:
 def _in_front(c: _Cache, a: int, b: int, eps: float) -> bool:
     """Whether polygon ``a`` lies wholly on the eye's side of ``b``'s plane."""
     n, d = c.plane(b)
-    eye = c.p.eye_side(n, d)
+    eye = c.eye[b]
     if abs(eye) <= eps:
         return True
     return bool(((c.t[a] @ n - d) * np.sign(eye) >= -eps).all())
@@ -343,13 +347,13 @@ def _first_blocker(c: _Cache, P: int, left: np.ndarray, eps: float, counters):
     must not be painted before (every test fails), or None. The costlier tests 3-5 run a
     chunk at a time, stopping at the first chunk with a blocker."""
     n_p, d_p = c.n[P], c.d[P]
-    eye_p = float(c.p.eye_side(n_p, d_p))
+    eye_p = float(c.eye[P])
     for start in range(0, len(left), _CHUNK):
         chunk = left[start:start + _CHUNK]
         # 3: P wholly on the far side of Q's plane
         nq, dq = c.n[chunk], c.d[chunk]
         side = np.einsum("kd,nd->nk", c.t[P], nq) - dq[:, None]   # (n, 3)
-        eye = c.p.eye_side(nq, dq)                                 # the eye's side
+        eye = c.eye[chunk]                                         # the eye's side
         far = np.where(np.abs(eye) <= eps, True, (side * np.sign(eye)[:, None] <= eps).all(1))
         # 4: Q wholly on the near side of P's plane
         side_q = np.einsum("nkd,d->nk", c.t[chunk], n_p) - d_p
@@ -368,6 +372,35 @@ def _first_blocker(c: _Cache, P: int, left: np.ndarray, eps: float, counters):
 
 #: Q tested at a time by tests 3-5 (a blocker is often among the first)
 _CHUNK = 64
+
+
+def _split_one(tri: list, n: list, d: float, eps: float, cut: list):
+    """One triangle split by the plane ``n.p = d`` (it straddles it): the pieces on each
+    side as triangles (fans of the clipped polygons) and their edges' cut flags (a split
+    line or a diagonal, or the original edge's flag) -- as ``view.split_by_plane`` does for
+    many, in plain floats for one (the painter splits one at a time)."""
+    dist = [sum(a * b for a, b in zip(v, n)) - d for v in tri]
+    dist = [0.0 if abs(x) <= eps else x for x in dist]
+    tris, cuts = [], []
+    for sign in (1.0, -1.0):
+        poly, flags = [], []   # the clipped polygon; flags[k]: edge k -> k + 1 is a cut
+        for i in range(3):
+            j = (i + 1) % 3
+            a, b = tri[i], tri[j]
+            sa, sb = sign * dist[i], sign * dist[j]
+            if sa >= 0:
+                poly.append(a)
+                flags.append(cut[i] if (sb >= 0 or sa > 0) else True)
+            if sa * sb < 0:   # a crossing on edge i: the point, then along the edge or the cut
+                f = sa / (sa - sb)
+                poly.append([a[k] + (b[k] - a[k]) * f for k in range(3)])
+                flags.append(cut[i] if sa < 0 else True)
+        m = len(poly)
+        for k in range(1, m - 1):   # fan from vertex 0: edges 0-k, k-(k+1), (k+1)-0
+            tris.append([poly[0], poly[k], poly[k + 1]])
+            cuts.append([flags[0] if k == 1 else True, flags[k],
+                         flags[m - 1] if k + 1 == m - 1 else True])
+    return tris, cuts
 
 
 def _cycle_split(c: _Cache, cycle: list[int], eps: float):

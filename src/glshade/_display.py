@@ -22,14 +22,19 @@ __all__ = ["facts_html", "png_bytes", "buffers_image", "bounds_fact",
 
 #: thumbnails' size in pixels (width, height)
 THUMBNAIL = (256, 192)
-#: (a Scene, Mesh or solid, mode) -> (H, W, 4) uint8 or None; installed by glshade.notebook.display
+#: (a Scene, Mesh or solid, mode, choose) -> (H, W, 4) uint8 or None; installed by
+#: glshade.notebook.display
 thumbnail_hook: Callable | None = None
 
 
-def picture(drawable, mode: str = "phong"):
+def picture(drawable, mode: str = "phong", choose: bool = False):
     """A thumbnail of ``drawable`` (a Scene, a Mesh or a solid) through the installed
-    hook, or None."""
-    return None if thumbnail_hook is None else thumbnail_hook(drawable, mode=mode)
+    hook (``choose``: from the view that shows most, for a closed room), or None; an
+    image ``(H, W, 4)`` uint8 is its own picture."""
+    if isinstance(drawable, np.ndarray):
+        return drawable
+    return None if thumbnail_hook is None else thumbnail_hook(drawable, mode=mode,
+                                                              choose=choose)
 
 
 def png_bytes(image: np.ndarray) -> bytes:

@@ -436,3 +436,44 @@ def test_ctrl_c_while_writing_an_mp4_ends_promptly(tmp_path):
         assert proc.returncode in (130, -signal.SIGINT), err
         assert "Traceback" not in err
         assert list(tmp_path.iterdir()) == []
+
+
+def test_animate_and_batch_show_progress_by_default_in_a_notebook(monkeypatch, tmp_path):
+    """Called as the README shows them (no ``progress``), animate() and batch() show
+    tqdm's notebook bar (its widget) in a Jupyter kernel: their default is to show
+    progress where a person watches (it was off)."""
+    from glshade.batch import BatchSpec, batch
+    from glshade.geometry import primitives
+    from glshade.io import save_mesh
+    from glshade.parallel import progress
+
+    made = []
+
+    class Bar:
+        def __init__(self, **kwargs):
+            made.append(kwargs)
+
+        def update(self, n=1):
+            pass
+
+        def close(self):
+            pass
+
+        def set_postfix_str(self, *args, **kwargs):
+            pass
+
+    monkeypatch.setattr(progress, "in_notebook", lambda: True)
+    monkeypatch.setattr(progress, "_tqdm", lambda notebook: Bar if notebook else None)
+    import glshade as api
+
+    scene = Scene()
+    scene.add(primitives.cube())
+    path = CameraPath([Keyframe.look_at(0, (3, 2, 4), (0, 0, 0)),
+                       Keyframe.look_at(1, (-3, 2, 4), (0, 0, 0))])
+    assert api.animate(scene, path, 2, output=str(tmp_path / "a.gif"),
+                           size=(32, 24), samples=0, backend=BACKEND) == 2
+    assert [m["unit"].strip() for m in made] == ["frames"]
+    save_mesh(primitives.cube(), tmp_path / "c.obj")
+    batch([str(tmp_path / "c.obj")], tmp_path / "out", BatchSpec(size=(32, 32),
+                                                                backend=BACKEND))
+    assert len(made) == 2

@@ -41,10 +41,20 @@ def test_the_tutorials_are_the_executed_notebooks(site):
 
 
 def test_every_public_module_has_an_api_page_with_its_objects(site):
+    import pkgutil
+
+    import glshade
     import glshade.radiosity
     import glshade.solids
 
     api = site / "api" / "generated"
+    # (glshade.cli is the command line, whose page is docs/guide/cli.md, not an API)
+    public = [m.name for m in pkgutil.walk_packages(glshade.__path__, "glshade.")
+              if not any(part.startswith("_") for part in m.name.split("."))
+              and not m.name.startswith("glshade.cli")]
+    missing = [name for name in public if not (api / f"{name}.html").is_file()]
+    assert not missing, f"public modules without an API page: {missing}"
+    assert "glshade.examples" in public and "glshade.testing.pytest_plugin" in public
     for module in ("glshade.quaternion", "glshade.solids.leaves", "glshade.radiosity.solvers",
                    "glshade.pathtrace.progressive",
                    "glshade.notebook.widget", "glshade.hidden.view", "glshade.scene.camera"):

@@ -47,14 +47,17 @@ def objects(renderer):
                        Keyframe.look_at(3, (-4, 2, 0), (0, 0, 0))])
     from glshade.radiosity import cornell_scene, solve
 
-    box, _ = cornell_scene()
+    box, box_camera = cornell_scene()
     solution = solve(box, patch_size=250, until=0.2, context=renderer.context)
     from glshade import patches
+    from glshade.pathtrace import trace
+
+    traced = trace(box, box_camera, size=(32, 24), spp=4, context=renderer.context)
 
     return {"mesh": cube, "scene": scene, "solid": Box(2) - Sphere(1.2),
             "patches": patches.named("teapot"),
             "octree": Octree.from_solid(Box(2) - Sphere(1.2), 4), "frame": frame,
-            "hidden": hidden, "path": path, "solution": solution}
+            "hidden": hidden, "path": path, "solution": solution, "traced": traced}
 
 
 def test_every_object_has_a_short_repr_and_a_picture(make_renderer):
@@ -69,6 +72,19 @@ def test_every_object_has_a_short_repr_and_a_picture(make_renderer):
         # a real picture: more than one colour
         flat = image.reshape(-1, image.shape[-1] if image.ndim == 3 else 1)
         assert len(np.unique(flat, axis=0)) > 2, name
+
+
+def test_a_closed_rooms_thumbnail_is_chosen_to_show_it(gl_context):
+    """A radiosity solution of the Cornell box is seen from the view that shows most (the
+    iso view sees the room's outside, dark): brighter than the iso view's render."""
+    from glshade._display import thumbnail_hook
+    from glshade.radiosity import cornell_scene, solve
+
+    box, _ = cornell_scene()
+    solution = solve(box, patch_size=250, until=0.2, context=gl_context)
+    (image,) = pictures(solution._repr_html_())
+    iso = thumbnail_hook(solution.scene(), mode="radiosity")
+    assert image[..., :3].mean() > 2 * np.asarray(iso)[..., :3].mean()
 
 
 def test_thumbnails_have_the_thumbnail_size_and_show_the_object(gl_context):

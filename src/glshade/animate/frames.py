@@ -134,11 +134,12 @@ def _check_output(output, shape) -> None:
 def animate(scene, path: CameraPath | None = None, frames: int | None = None, options=None,
             *, modes=None, output=None, fps: float | None = None,
             config: RenderConfig | None = None, size=None, samples: int | None = None,
-            jobs: int | None = 1, backend=None, progress: bool | None = False,
+            jobs: int | None = 1, backend=None, progress: bool | None = None,
             scheduler: str | None = None, **changes):
     """Render ``frames`` frames along ``path``. Without ``output``, return an iterator of
     images; with it, write the file (GIF, PNG/APNG, MP4 or a folder) and return the number
-    of frames. ``jobs=None`` uses every core; ``progress=None`` shows a bar on a terminal;
+    of frames. ``jobs=None`` uses every core; ``progress`` (default None) shows tqdm's bar in a
+    notebook (its widget) or on a terminal, a line now and then in a log, False nothing;
     ``scheduler`` renders on a Dask cluster (see :func:`render_frames`); ``config`` (or
     ``size``, ``samples``, ``backend``) is what each Renderer is built with.
 

@@ -45,13 +45,15 @@ class BatchResult:
 
 def batch(inputs, outdir, spec: BatchSpec | None = None, *, jobs: int = 1,
           scheduler: str | None = None, overwrite: bool = False,
-          progress: bool | None = False) -> BatchResult:
+          progress: bool | None = None) -> BatchResult:
     """Render every mesh named by ``inputs`` (files, folders, globs) into ``outdir``.
 
     An input whose outputs all exist is kept (``overwrite=True`` renders it again); a
     malformed one gets a row with its error and the run goes on. ``jobs`` local worker
     processes, or ``scheduler`` (a Dask address, or "local"). Ctrl-C stops the run with
-    the manifest of what was done written and no partial file left.
+    the manifest of what was done written and no partial file left. ``progress`` (default
+    None): tqdm's bar in a notebook (its widget) or on a terminal, a line now and then in
+    a log, False nothing.
     """
     start = time.perf_counter()
     spec = spec or BatchSpec()

@@ -21,13 +21,15 @@ import numpy as np
 from .. import _display
 from .._display import THUMBNAIL, buffers_image, png_bytes
 
-__all__ = ["show", "thumbnail", "png_bytes", "buffers_image", "THUMBNAIL"]
+__all__ = ["show", "thumbnail", "telling_view", "png_bytes", "buffers_image", "THUMBNAIL"]
 
 
-def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str = "phong"):
+def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str = "phong",
+              choose: bool = False):
     """A ``(H, W, 4)`` uint8 render of ``scene`` (a Scene, or a Mesh or solid put in one;
-    framed from the iso view unless a camera is given), or None where no GL context can be
-    made or there is nothing to draw."""
+    framed from the iso view unless a camera is given, or, ``choose``, from the view that
+    shows most: see :func:`telling_view`), or None where no GL context can be made or there
+    is nothing to draw."""
     import warnings
 
     from ..errors import EnvironmentFailure
@@ -42,15 +44,43 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
     bounds = scene.bounds
     if bounds is None:
         return None
-    cam = camera or Camera.named("iso", bounds, aspect=size[0] / size[1])
     try:
         from ..render.renderer import Renderer
 
         with warnings.catch_warnings(), Renderer(*size, samples=0) as r:
             warnings.simplefilter("ignore")
+            if camera is None and choose:
+                camera = telling_view(r, scene, bounds, size[0] / size[1], mode)
+            cam = camera or Camera.named("iso", bounds, aspect=size[0] / size[1])
             return r.render(scene, cam, mode)
     except EnvironmentFailure:
         return None
+
+
+def telling_view(renderer, scene, bounds, aspect: float, mode: str):
+    """Of the iso view, the six axis views from outside and a wide view from the middle
+    (a closed room is dark from every outside view), the camera whose small render is
+    brightest on average: a thumbnail that shows something."""
+    from ..scene.camera import Camera
+
+    lo, hi = np.asarray(bounds, np.float64)
+    centre, reach = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2 or 1.0
+    cameras = [Camera.named("iso", bounds, aspect=aspect)]
+    for axis in range(3):
+        for sign in (-1.0, 1.0):
+            look = np.zeros(3)
+            look[axis] = sign
+            up = (0, 0, 1) if axis == 1 else (0, 1, 0)
+            cameras.append(Camera.look_at(centre + 2.5 * reach * look, centre, up=up,
+                                          fov_y=40))
+    cameras.append(Camera.look_at(centre - 0.45 * (hi - lo)[2] * np.array([0, 0, 1.0]),
+                                  centre, fov_y=75))
+    small = renderer.__class__(48, max(1, int(48 / aspect)), samples=0,
+                               context=renderer.context)
+    with small:
+        means = [float(np.asarray(small.render(scene, cam, mode))[..., :3].mean())
+                 for cam in cameras]
+    return cameras[int(np.argmax(means))]
 
 
 def show(x) -> None:

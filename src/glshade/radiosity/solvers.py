@@ -58,7 +58,9 @@ class Solution:
         facts = [f"{self.hemicubes:,} hemicubes",
                  f"radiosity {float(self.radiosity.min()):.4g} .. "
                  f"{float(self.radiosity.max()):.4g}"]
-        return facts_html(repr(self), facts, picture(self.scene(), mode="radiosity"))
+        # (a room is closed: from the view that shows most, inside it where need be)
+        return facts_html(repr(self), facts, picture(self.scene(), mode="radiosity",
+                                                     choose=True))
 
     @property
     def unshot_fraction(self) -> float:

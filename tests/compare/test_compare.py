@@ -216,3 +216,57 @@ def test_every_output_is_checked_before_any_work(tmp_path, extra, words):
         out.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["taken.txt"]
     assert (tmp_path / "taken.txt").read_text() == "mine"
+
+
+@pytest.mark.parametrize("part", ["assets/lprism.obj", "primitive:cube", "primitive:cylinder"])
+def test_the_fine_reference_of_a_cad_part_keeps_its_shape(part, make_renderer):
+    """A flat-faced part's phong-fine reference has the part's own silhouette: its hard
+    edges are found from the mesh (the crease angle, said in the summary) and kept, so the
+    reference covers the flat render's pixels within 1.5% -- where the curved refinement of
+    the unsplit mesh bulges the part by more than 5% (what compare did by default)."""
+    from glshade.compare.comparison import _reference
+    from glshade.geometry.merge import detect_crease
+    from glshade.geometry.subdivide import phong_tessellate
+    from glshade.io.meshes import load_source
+    from glshade.options import DrawOptions
+
+    mesh = load_source(part if part.startswith("primitive") else str(ROOT / part))
+    scene = Scene()
+    scene.add(mesh, MAT)
+    scene.add_light(PointLight((3.0, 4.0, 5.0)))
+    lo, hi = mesh.bounds
+    centre, reach = (lo + hi) / 2, np.linalg.norm(hi - lo) / 2
+    cam = Camera.look_at(centre + reach * np.array([1.6, 1.2, 2.0]), centre, fov_y=45)
+    r = make_renderer(96, 96)
+    _, ref_mask, _, crease = _reference(scene, cam, "phong-fine", r, (96, 96), DrawOptions())
+    assert crease is not None and crease == detect_crease(mesh)
+    flat = r.render_frame(scene, cam, "flat").face_id >= 0
+    assert abs(ref_mask.sum() / flat.sum() - 1) < 0.015
+    rounded = Scene()
+    rounded.add(phong_tessellate(mesh, 6), MAT)
+    bulged = r.render_frame(rounded, cam, "flat").face_id >= 0
+    assert abs(bulged.sum() / flat.sum() - 1) > 0.05
+    c = compare(scene, cam, renderer=r, size=(96, 96))
+    assert c.reference_crease == crease and f"{crease:.3g}°" in c.table()
+
+
+@pytest.mark.parametrize("width", [20, 32, 48, 64, 96, 160, 400])
+def test_labels_fit_any_tile(width):
+    """A heat map's long label on tiles from 20 to 400 pixels wide: shrunk, then cut with
+    an ellipsis, it never reaches the band's edges (it ran off small tiles) and is there."""
+    from glshade.io.images import BACKGROUND, LABEL_HEIGHT, label
+
+    tile = np.zeros((30, width, 3), np.uint8)
+    band = label(tile, "PSNR 31.25 dB, SSIM 0.987")[:LABEL_HEIGHT].astype(int)
+    ink = np.abs(band - np.array(BACKGROUND)).max(-1) > 40
+    assert ink.any()
+    assert not ink[:, :2].any() and not ink[:, -2:].any()
+
+
+def test_view_and_eye_together_are_refused_in_one_line(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "glshade", "compare", "primitive:cube", "-o",
+                          str(tmp_path / "g.png"), "--view", "front", "--eye", "1,2,3",
+                          "--backend", BACKEND], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert "--view front frames its own camera; give --view or --eye, not both" in out.stderr
+    assert not (tmp_path / "g.png").exists()

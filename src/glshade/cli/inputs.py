@@ -91,6 +91,11 @@ def _view(args: RenderArgs, camera: Camera, scene: Scene, aspect: float,
     unless --eye gave the eye), both framed for a pane ``pane`` times as wide as the image
     is (view --compare: a third)."""
     aspect *= pane
+    if args.view is not None and (args.eye is not None or args.target is not None):
+        given = "--eye" if args.eye is not None else "--target"
+        name = getattr(args.view, "value", args.view)
+        raise UsageError(f"--view {name} frames its own camera; give --view or "
+                         f"{given}, not both")
     if args.view is not None:
         lens = {"fov_y": args.fov} if args.fov is not None else {}
         camera = Camera.named(args.view, scene.bounds, aspect, **lens)

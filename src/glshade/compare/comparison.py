@@ -28,6 +28,7 @@ import numpy as np
 
 from ..atomic import atomic_write
 from ..errors import ComparisonError
+from ..geometry.merge import detect_crease
 from ..geometry.subdivide import phong_tessellate
 from ..io.images import (
     BACKGROUND, LABEL_HEIGHT, colour_bar, heatmap, label, labelled_row, opaque,
@@ -72,6 +73,9 @@ class Comparison:
     images: dict = field(repr=False, default_factory=dict)
     reference: np.ndarray | None = field(repr=False, default=None)
     reference_kind: str = ""
+    #: the crease angle (degrees) the phong-fine reference kept hard, found from the
+    #: meshes' own edges (None: smooth, or another reference)
+    reference_crease: float | None = None
     masks: dict = field(repr=False, default_factory=dict)
     scale: float = 0.0     # the heat maps' (8-bit units)
 
@@ -94,16 +98,20 @@ class Comparison:
         rows = [(m.mode, f"{m.mean_abs:.3f}", f"{m.max_abs:.1f}", f"{m.rmse:.3f}",
                  f"{m.psnr:.2f}", f"{m.ssim:.4f}", f"{m.mach_band:.2f}",
                  f"{m.peak:.1f}/{m.reference_peak:.1f}") for m in self.metrics]
-        return (f"against the {self.reference_kind} reference, 8-bit units\n"
-                + format_table(rows, head))
+        return (f"against the {self.reference_kind} reference{self._crease_note()}, 8-bit "
+                f"units\n" + format_table(rows, head))
+
+    def _crease_note(self) -> str:
+        c = self.reference_crease
+        return "" if c is None else f" (edges sharper than {c:.3g}° kept hard)"
 
     def as_dicts(self) -> list[dict]:
         return [asdict(m) for m in self.metrics]
 
     def write_json(self, path) -> None:
         with atomic_write(path, "w") as f:
-            json.dump({"reference": self.reference_kind, "modes": self.as_dicts()}, f,
-                      indent=2, default=lambda x: None)
+            json.dump({"reference": self.reference_kind, "crease": self.reference_crease,
+                       "modes": self.as_dicts()}, f, indent=2, default=lambda x: None)
 
     def write_csv(self, path) -> None:
         rows = self.as_dicts()
@@ -151,20 +159,29 @@ def _reference(scene, camera, kind, renderer, size, options, spp=64):
         if options.srgb:
             color = encode_srgb(color)
         bg = np.asarray(scene.background[:3])
-        return np.where(mask[..., None], color, bg) * 255, mask, f"path traced ({spp} spp)"
+        return np.where(mask[..., None], color, bg) * 255, mask, f"path traced ({spp} spp)", \
+            None
     if isinstance(kind, (str, Path)) and str(kind) == "analytic":
         color, mask = raycast_scene(scene, camera, w, h)
         bg = np.asarray(scene.background[:3])
-        return np.where(mask[..., None], color, bg) * 255, mask, "analytic"
+        return np.where(mask[..., None], color, bg) * 255, mask, "analytic", None
     if isinstance(kind, (str, Path)) and str(kind) == "phong-fine":
+        # hard edges stay hard: a flat-faced part's creases are split first (the angle
+        # each mesh's own edges suggest), else the curved refinement rounds the part off
         fine = Scene(scene.ambient, scene.background)
+        creases = []
         for m in scene.models:
             if m.visible:
-                fine.add(phong_tessellate(m.mesh, 6), m.material, m.transform)
+                crease = detect_crease(m.mesh)
+                mesh = m.mesh if crease is None else m.mesh.split_creases(crease)
+                creases.append(crease)
+                fine.add(phong_tessellate(mesh, 6), m.material, m.transform)
         fine.lights = list(scene.lights)
         frame = renderer.render_frame(fine, camera, options.replace(mode=ShadingMode.PHONG),
                                       outputs=Outputs.FACE_ID, color_dtype="f4")
-        return frame.color[..., :3] * 255.0, frame.face_id >= 0, "phong-fine"
+        found = [c for c in creases if c is not None]
+        return frame.color[..., :3] * 255.0, frame.face_id >= 0, "phong-fine", \
+            (min(found) if found else None)
     if isinstance(kind, (str, Path)):
         from PIL import Image
 
@@ -184,7 +201,7 @@ def _reference(scene, camera, kind, renderer, size, options, spp=64):
         img = img * 255
     bg = np.asarray(scene.background[:3]) * 255
     mask = np.abs(img[..., :3] - bg).max(-1) > 1
-    return img[..., :3], mask, label
+    return img[..., :3], mask, label, None
 
 
 #: what compare renders with unless told: small tiles, one sample per pixel like its references
@@ -232,7 +249,8 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             from ..cpu.raycast import has_analytic_surfaces
 
             reference = "analytic" if has_analytic_surfaces(scene) else "phong-fine"
-        ref, ref_mask, ref_kind = _reference(scene, camera, reference, r, size, base, spp)
+        ref, ref_mask, ref_kind, crease = _reference(scene, camera, reference, r, size, base,
+                                                     spp)
         drawn = {ShadingMode.parse(k): v for k, v in (scenes or {}).items()}
         frames = {m: r.render_frame(drawn.get(m, scene), camera, base.replace(mode=m),
                                     outputs=Outputs.FACE_ID, color_dtype="f4")
@@ -268,7 +286,7 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
         raise ComparisonError(f"scale must be a positive number of 8-bit units, got {scale!r}")
     scale = max(float(scale), 1.0)
     grid = _grid(images, ref, ref_kind, errors if diff else None, silhouettes, results, scale)
-    return Comparison(grid, results, images, ref, ref_kind, masks, scale)
+    return Comparison(grid, results, images, ref, ref_kind, crease, masks, scale)
 
 
 def _u8(image: np.ndarray) -> np.ndarray:

@@ -55,6 +55,41 @@ def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
                  mesh.face_offsets.copy(), normals)
 
 
+def dihedral_angles(mesh: Mesh) -> np.ndarray:
+    """Degrees between the normals of the two faces at each edge two faces share (0: flat,
+    90: a box's edge)."""
+    c0, c1 = mesh.edge_groups.pairs()
+    f0, f1 = mesh.corner_face[c0], mesh.corner_face[c1]
+    cos = np.einsum("ij,ij->i", mesh.face_normals[f0], mesh.face_normals[f1])
+    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
+
+
+#: the crease detector's bounds: angles under MIN_CREASE are a curved surface's facets (a
+#: coarse torus of 12 x 8 turns 45 degrees an edge), and a gap in the angles must be
+#: CREASE_GAP degrees wide to separate creases from them
+MIN_CREASE, CREASE_GAP = 50.0, 15.0
+
+
+def detect_crease(mesh: Mesh) -> float | None:
+    """The crease angle a mesh's own edges suggest (degrees), or None for a smooth one:
+    CAD-like parts have facet angles of a few degrees and hard edges of 90 or so; the
+    threshold is the middle of the widest gap below a crease (one of MIN_CREASE or more),
+    at least CREASE_GAP wide, and never under MIN_CREASE; MIN_CREASE where every angle is
+    past it (a box)."""
+    angles = np.sort(dihedral_angles(mesh))
+    angles = angles[angles > 1e-3]  # (a polygon's triangulation: flat)
+    if not len(angles) or angles[-1] < MIN_CREASE:
+        return None
+    if angles[0] >= MIN_CREASE:
+        return MIN_CREASE
+    gaps = np.diff(angles)
+    above = angles[1:] >= MIN_CREASE
+    k = int(np.argmax(np.where(above, gaps, -1.0)))
+    if gaps[k] < CREASE_GAP:
+        return None
+    return float(max((angles[k] + angles[k + 1]) / 2, MIN_CREASE))
+
+
 def split_point_contacts(mesh: Mesh) -> Mesh:
     """Give each piece of surface its own copy of a vertex where pieces only touch at that
     point (a handle's end resting on a body). Pieces are faces joined through shared edges;

@@ -81,14 +81,29 @@ def font(size: int = 14):
         return ImageFont.load_default()
 
 
+def fitted(draw, text: str, width: float, size: int = 14):
+    """``(font, text)`` that fit ``width`` pixels: the font shrunk down to 8 pixels, then
+    the text cut short with an ellipsis (a label never runs past its tile)."""
+    room = max(width - 4, 1)
+    for px in range(size, 7, -1):
+        face = font(px)
+        if draw.textlength(text, font=face) <= room:
+            return face, text
+    face = font(8)
+    while len(text) > 1 and draw.textlength(text + "\u2026", font=face) > room:
+        text = text[:-1]
+    return face, (text + "\u2026" if draw.textlength(text, font=face) <= room else "")
+
+
 def label(tile: np.ndarray, text: str, background=BACKGROUND) -> np.ndarray:
-    """``tile`` (RGB) under a band of LABEL_HEIGHT pixels with ``text`` centred in it."""
+    """``tile`` (RGB) under a band of LABEL_HEIGHT pixels with ``text`` centred in it
+    (shrunk or cut to fit the tile: :func:`fitted`)."""
     from PIL import Image, ImageDraw
 
     h, w = tile.shape[:2]
     band = Image.new("RGB", (w, LABEL_HEIGHT), background)
     draw = ImageDraw.Draw(band)
-    face = font(14)
+    face, text = fitted(draw, text, w)
     width = draw.textlength(text, font=face)
     draw.text(((w - width) / 2, 3), text, fill=(235, 235, 235), font=face)
     return np.vstack([np.asarray(band), tile[..., :3]])
@@ -127,7 +142,7 @@ def label_image(text: str, width: int) -> np.ndarray:
 
     band = Image.new("RGBA", (width, LABEL_HEIGHT), (*BACKGROUND, 255))
     draw = ImageDraw.Draw(band)
-    face = font(14)
+    face, text = fitted(draw, text, width)
     draw.text(((width - draw.textlength(text, font=face)) / 2, 3), text,
               fill=(235, 235, 235, 255), font=face)
     return np.asarray(band)

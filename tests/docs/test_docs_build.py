@@ -13,12 +13,21 @@ from tests.conftest import BACKEND, ROOT
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
+    import fcntl
+    import tempfile
+    from pathlib import Path
+
     out = tmp_path_factory.mktemp("docs")
     generated = tmp_path_factory.mktemp("doctrees")
-    r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
-                        "html", "-d", str(generated), str(ROOT / "docs"), str(out)],
-                       capture_output=True, text=True, timeout=900,
-                       env={**__import__("os").environ, "GLSHADE_BACKEND": BACKEND})
+    # one build at a time (a build remakes docs/api/generated: two test workers building
+    # at once would delete each other's pages)
+    lock = Path(tempfile.gettempdir()) / "glshade-docs-build.lock"
+    with open(lock, "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
+                            "html", "-d", str(generated), str(ROOT / "docs"), str(out)],
+                           capture_output=True, text=True, timeout=900,
+                           env={**__import__("os").environ, "GLSHADE_BACKEND": BACKEND})
     assert r.returncode == 0, (r.stdout + r.stderr)[-4000:]
     return out
 

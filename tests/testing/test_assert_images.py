@@ -68,7 +68,9 @@ def test_pytest_plugin_golden_images(pytester, gl_context):
     result.assert_outcomes(passed=2, failed=1)
     result.stdout.fnmatch_lines(["*the same renderer made different bytes*Saved actual.png*",
                                  f"glshade: 1 golden image(s) differ; see {results}*index.html"])
-    assert (results / "sphere-broken" / "diff.png").exists()
+    # (a folder per test node id, then per golden)
+    assert [p.relative_to(results).as_posix() for p in results.glob("*/*/diff.png")] == \
+        ["test_images.py.test_broken/sphere-broken/diff.png"]
     assert not (pytester.path / "glshade-failures").exists()  # (never in the source tree)
 
 

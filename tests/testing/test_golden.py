@@ -133,7 +133,8 @@ def test_plugin_names_collisions_add_missing_update_and_summary(pytester, gl_con
     out = pytester.path.parent / "out"  # (the ini's results folder)
     page = (out / "index.html").read_text()
     assert "test_images.py::TestGroup::test_param" in page
-    assert 'src="test_images.TestGroup.test_param/diff.png"' in page
+    assert ('src="test_images.py.TestGroup.test_param/test_images.TestGroup.test_param/'
+            'diff.png"') in page
     assert "the same renderer made different bytes" in page and "llvmpipe" in page
     assert not list(pytester.path.rglob("actual.png"))  # nothing in the source tree
     # update rewrites it; then it passes
@@ -173,3 +174,82 @@ def test_inside(glshade_renderer, glshade_golden):
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(["*cube-inside.png: another renderer, but interior pixels "
                                  "differ beyond tolerance*1 interior pixels over tolerance*"])
+
+
+BASELINES = '''
+import numpy as np
+import pytest
+from glshade import Camera, Material, Scene
+from glshade.geometry import primitives
+
+def frame(r, color):
+    s = Scene()
+    s.add(primitives.cube(), Material(color=color))
+    return r.render_frame(s, Camera.look_at([2, 1.5, 3], [0, 0, 0]), "flat")
+
+def test_two(glshade_renderer, glshade_golden):
+    glshade_golden(frame(glshade_renderer, COLOR_A), "a.png")
+    glshade_golden(frame(glshade_renderer, COLOR_B), "b.png")
+'''
+
+
+@pytest.mark.once
+def test_plugin_baselines_every_failure_report_and_approve(pytester, gl_context):
+    """The modes image-test users ask for most: several baselines per golden (passes if
+    any does, a failure is judged against the closest); every differing golden of a test
+    reported in one run (the second check runs after the first fails); results in a folder
+    per node id (two test files of one name in two folders do not share one); a passing
+    run rewrites index.html (no stale report); approving from the report's list writes
+    the new goldens, and the run passes."""
+    import subprocess
+    import sys
+
+    backend = gl_context.backend.value
+    grey, red = "(0.8, 0.8, 0.8)", "(0.2, 0.2, 0.75)"
+    for sub in ("one", "two"):
+        pytester.mkpydir(sub)
+        (pytester.path / sub / "test_same.py").write_text(
+            BASELINES.replace("COLOR_A", grey).replace("COLOR_B", grey))
+    results = pytester.path / "results"   # (outside the tests' folders, this test's own)
+    run = lambda *a: pytester.runpytest_subprocess(  # noqa: E731
+        "--glshade-backend", backend, "--glshade-results", str(results), *a)
+    run("--glshade-add-missing").assert_outcomes(passed=2)
+    page = (results / "index.html").read_text()
+    assert "all 4 golden image checks passed" in page
+    # one: an alternative baseline of a.png in navy; the render turns navy: passes by it
+    golden = pytester.path / "one" / "golden"
+    (pytester.path / "one" / "test_same.py").write_text(
+        BASELINES.replace("COLOR_A", red).replace("COLOR_B", grey))
+    run("--glshade-update-golden", "one").assert_outcomes(passed=1)
+    (golden / "a.png").rename(golden / "a.alt-1.png")
+    (golden / "a.json").rename(golden / "a.alt-1.json")
+    (pytester.path / "two" / "golden" / "a.png").replace(golden / "a.png")
+    (pytester.path / "two" / "golden" / "a.json").replace(golden / "a.json")
+    run("one", "-k", "test_two").assert_outcomes(passed=1)
+    # both folders' test_two turn blue in a and b: both checks of each fail, all reported
+    blue = "(0.2, 0.2, 0.9)"
+    for sub in ("one", "two"):
+        if sub == "two":
+            (pytester.path / "two" / "golden" / "a.png").unlink(missing_ok=True)
+            run("--glshade-add-missing", "two").assert_outcomes(passed=1)
+        (pytester.path / sub / "test_same.py").write_text(
+            BASELINES.replace("COLOR_A", blue).replace("COLOR_B", blue))
+    result = run()
+    result.assert_outcomes(failed=2)
+    result.stdout.fnmatch_lines(["*a.png (closest baseline a.alt-1.png)*", "*b.png:*"])
+    found = sorted(p.relative_to(results).as_posix() for p in results.glob("*/*/diff.png"))
+    want = ["one_test_same.py.test_two/a/diff.png", "one_test_same.py.test_two/b/diff.png",
+            "two_test_same.py.test_two/a/diff.png", "two_test_same.py.test_two/b/diff.png"]
+    assert len(found) == 4 and all(f.endswith(w) for f, w in zip(found, want)), found
+    page = (results / "index.html").read_text()
+    assert "4 of 4 golden image checks differ" in page and page.count("class='approve'") == 4
+    # approve two by name, then the rest
+    keys = list(json.loads((results / "approve.json").read_text()))
+    approve = [sys.executable, "-m", "glshade.testing.approve", str(results)]
+    out = subprocess.run(approve + keys[:2], capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.count("approved:") == 2, out.stderr
+    out = subprocess.run(approve + ["nonsense"], capture_output=True, text=True)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1 and "no failure" in out.stderr
+    assert subprocess.run(approve + ["--all"], capture_output=True).returncode == 0
+    run().assert_outcomes(passed=2)
+    assert "all 4 golden image checks passed" in (results / "index.html").read_text()

@@ -17,19 +17,24 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["assert_images_close", "failure_dir", "levels"]
+__all__ = ["assert_images_close", "failure_dir", "node_folder", "levels"]
+
+
+def node_folder(nodeid: str) -> str:
+    """A test's own results folder name, from its whole node id (its file's path
+    included: tests of one name in two folders do not share one)."""
+    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", nodeid.replace("::", "."))
 
 
 def failure_dir() -> Path:
-    """Where failure images go: ``<results>/<test name>/``, the results folder being
+    """Where failure images go: ``<results>/<test node id>/``, the results folder being
     ``GLSHADE_RESULTS`` (the pytest plugin sets it to its results folder) or this machine's
     temporary folder -- never beside the test, in the source tree."""
     import tempfile
 
     current = os.environ.get("PYTEST_CURRENT_TEST", "")
     node = current.split(" ")[0]
-    name = node.partition("::")[2]
-    safe = re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", name or "images")
+    safe = node_folder(node) if node else "images"
     base = os.environ.get("GLSHADE_RESULTS") or os.path.join(tempfile.gettempdir(),
                                                              "glshade-results")
     return Path(base) / safe

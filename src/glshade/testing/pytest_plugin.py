@@ -12,7 +12,14 @@ Fixtures:
 
 Golden names come from the test's node id (``test_file.TestClass.test_name[param].png``;
 a second check in one test adds ``-2``, ``-3`` ...); an explicit ``name`` still works. Two
-tests that would share a golden are refused. Options:
+tests that would share a golden are refused. Several baselines: ``NAME.alt-1.png``,
+``NAME.alt-2.png`` ... beside ``NAME.png`` are accepted too (a render passes if any does;
+a failure is reported against the closest). Every check of a test runs: the test fails
+after its body with every golden that differs, not at the first. Each run that checks
+goldens writes ``index.html`` in the results folder -- the failures (actual, expected,
+difference, facts; a folder per test node id) with an approve box each, or that all
+passed -- and ``approve.json``, from which ``python -m glshade.testing.approve DIR
+[NAME ...]`` writes the approved renders as the new goldens. Options:
 
 - ``--glshade-add-missing``: write the goldens that do not exist (the rest are checked).
 - ``--glshade-update-golden``: rewrite every golden the run checks.
@@ -23,7 +30,9 @@ tests that would share a golden are refused. Options:
 
 from __future__ import annotations
 
+import glob
 import html
+import json
 import os
 import re
 from dataclasses import dataclass
@@ -31,6 +40,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
+from glshade.testing import node_folder
 
 _REGISTRY = pytest.StashKey[dict]()  # golden path -> node id that checks it
 _FAILURES = pytest.StashKey[list]()  # what index.html lists
@@ -57,6 +68,7 @@ def pytest_addoption(parser):
 def pytest_configure(config):
     config.stash[_REGISTRY] = {}
     config.stash[_FAILURES] = []
+    config.stash[_CHECKS] = []
 
 
 def _results(config) -> Path:
@@ -104,6 +116,12 @@ class _Failure:
     summary: str
     golden_facts: dict | None
     facts: dict
+    golden: Path        # where an approved render goes (the golden's own path)
+    baseline: Path      # the baseline it was judged against (the closest)
+
+
+_ITEM_FAILURES = pytest.StashKey[list]()  # one test's golden failures (messages)
+_CHECKS = pytest.StashKey[list]()         # golden checks run this session (one per check)
 
 
 @pytest.fixture
@@ -117,7 +135,7 @@ def glshade_golden(request):
 
     def check(image: Any, name: str | None = None, *, renderer: Any = None,
               max_mean: float = 0.5, max_pixel: float = 4.0, edge_width: int = 1) -> None:
-        from glshade.testing.golden import fingerprint, judge, read_golden, write_golden
+        from glshade.testing.golden import fingerprint, write_golden
 
         calls[0] += 1
         if name is None:
@@ -135,6 +153,7 @@ def glshade_golden(request):
         if renderer is None:
             renderer = request.getfixturevalue("glshade_renderer")
         facts = fingerprint(renderer)
+        config.stash[_CHECKS].append(name)
         if update or (add_missing and not path.exists()):
             write_golden(path, color, facts)
             return
@@ -142,21 +161,59 @@ def glshade_golden(request):
             pytest.fail(f"no golden image {path}; run pytest with --glshade-add-missing to "
                         "write the missing ones (or --glshade-update-golden to rewrite all)",
                         pytrace=False)
-        expected, golden_facts = read_golden(path)
+        verdict, baseline, expected, golden_facts = _closest(path, color, facts, face_id,
+                                                             max_mean, max_pixel, edge_width)
+        if verdict.ok:
+            return
+        out = _results(config) / node_folder(request.node.nodeid) / _safe(Path(name).stem)
+        _save_failure(out, color, expected, verdict)
+        config.stash[_FAILURES].append(_Failure(request.node.nodeid, name, out,
+                                                verdict.summary(), golden_facts, facts, path,
+                                                baseline))
+        shown = name if baseline == path else f"{name} (closest baseline {baseline.name})"
+        request.node.stash.setdefault(_ITEM_FAILURES, []).append(
+            f"{shown}: {verdict.summary()}. Saved actual.png, expected.png and diff.png in "
+            f"{out}")
+
+    return check
+
+
+def _safe(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", name)
+
+
+def _closest(path: Path, color, facts, face_id, max_mean, max_pixel, edge_width):
+    """The verdict against ``path`` or any of its ``.alt-K`` baselines: the first that
+    passes, else the closest (fewest interior pixels over, then the least mean)."""
+    from glshade.testing.golden import judge, read_golden
+
+    baselines = [path] + sorted(path.parent.glob(f"{glob.escape(path.stem)}.alt-*.png"))
+    best = None
+    for baseline in baselines:
+        expected, golden_facts = read_golden(baseline)
         same = golden_facts is not None and all(golden_facts.get(k) == facts.get(k)
                                                 for k in facts)
         verdict = judge(color, expected, same_fingerprint=same, face_id=face_id,
                         max_mean=max_mean, max_pixel=max_pixel, edge_width=edge_width)
+        found = (verdict, baseline, expected, golden_facts)
         if verdict.ok:
-            return
-        out = _results(config) / re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", Path(name).stem)
-        _save_failure(out, color, expected, verdict)
-        config.stash[_FAILURES].append(_Failure(request.node.nodeid, name, out,
-                                                verdict.summary(), golden_facts, facts))
-        pytest.fail(f"{name}: {verdict.summary()}. Saved actual.png, expected.png and "
-                    f"diff.png in {out}", pytrace=False)
+            return found
+        if best is None or (verdict.interior_over, verdict.mean) < \
+                (best[0].interior_over, best[0].mean):
+            best = found
+    assert best is not None
+    return best
 
-    return check
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item):
+    """After the test's body: fail with every golden check that differed (each was
+    checked; the first did not stop the rest)."""
+    result = yield
+    failures = item.stash.get(_ITEM_FAILURES, [])
+    if failures:
+        pytest.fail("\n".join(failures), pytrace=False)
+    return result
 
 
 def _save_failure(out: Path, actual, expected, verdict) -> None:
@@ -172,23 +229,48 @@ def _save_failure(out: Path, actual, expected, verdict) -> None:
 
 
 def pytest_sessionfinish(session, exitstatus):
-    failures = session.config.stash.get(_FAILURES, [])
-    if not failures:
+    """Write this run's report (a run that checked goldens rewrites it: never stale)."""
+    checks = session.config.stash.get(_CHECKS, [])
+    if not checks:
         return
+    from glshade.atomic import atomic_write
+
+    failures = session.config.stash.get(_FAILURES, [])
     folder = _results(session.config)
     rows = []
     for f in failures:
         rel = os.path.relpath(f.folder, folder)
+        key = f"{f.nodeid}::{f.name}"
         images = "".join(f'<td><img src="{html.escape(rel)}/{n}.png" alt="{n}"><br>{n}</td>'
                          for n in ("actual", "expected", "diff"))
-        facts = html.escape(f"render: {f.facts}\ngolden: {f.golden_facts}")
-        rows.append(f"<tr><td><b>{html.escape(f.nodeid)}</b><br>{html.escape(f.name)}<br>"
+        facts = html.escape(f"render: {f.facts}\ngolden ({f.baseline.name}): "
+                            f"{f.golden_facts}")
+        rows.append(f"<tr><td><label><input type='checkbox' class='approve' "
+                    f"value='{html.escape(key, quote=True)}'> approve</label><br>"
+                    f"<b>{html.escape(f.nodeid)}</b><br>{html.escape(f.name)}<br>"
                     f"{html.escape(f.summary)}<pre>{facts}</pre></td>{images}</tr>")
+    head = (f"{len(failures)} of {len(checks)} golden image checks differ" if failures
+            else f"all {len(checks)} golden image checks passed")
+    command = f"python -m glshade.testing.approve {folder}"
+    script = ("<script>function cmd(){var k=[...document.querySelectorAll('.approve:checked')]"
+              ".map(function(b){return \"'\"+b.value.replace(/'/g,\"'\\\\''\")+\"'\"});"
+              f"document.getElementById('cmd').textContent={json.dumps(command)}+"
+              "(k.length?' '+k.join(' '):' --all')}"
+              "document.addEventListener('change',cmd);cmd()</script>")
     page = ("<!doctype html><meta charset='utf-8'><title>glshade golden images</title>"
             "<style>img{image-rendering:pixelated;max-width:320px}td{vertical-align:top;"
             "padding:6px}pre{white-space:pre-wrap;font-size:small}</style>"
-            f"<h1>{len(failures)} golden image(s) differ</h1><table>{''.join(rows)}</table>")
-    (folder / "index.html").write_text(page, encoding="utf-8")
+            f"<h1>{html.escape(head)}</h1>"
+            + (f"<p>Tick the renders to approve, then run (writes them as the goldens):</p>"
+               f"<pre id='cmd'></pre><table>{''.join(rows)}</table>{script}" if failures
+               else ""))
+    with atomic_write(folder / "index.html", "w") as out:
+        out.write(page)
+    manifest = {f"{f.nodeid}::{f.name}": {"golden": str(f.golden),
+                                          "actual": str(f.folder / "actual.png"),
+                                          "facts": f.facts} for f in failures}
+    with atomic_write(folder / "approve.json", "w") as out:
+        json.dump(manifest, out, indent=2, default=str)
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):

@@ -89,13 +89,14 @@ def test_context_error_names_osmesa_reason_and_package():
     assert "apt-get install libosmesa6" in text
 
 
-def test_context_error_for_missing_egl_device():
+def test_a_missing_egl_device_is_refused_naming_those_present():
+    """(An argument error, not a failed backend: auto does not fall back to OSMesa.)"""
     code = ("from glshade.render.context import create_context\n"
-            "try:\n    create_context('egl', device=97)\nexcept Exception as e:\n"
+            "try:\n    create_context('auto', device=97)\nexcept Exception as e:\n"
             "    print(type(e).__name__); print(e)\n")
     out = run_py(code)
-    assert out.stdout.startswith("ContextError"), out.stdout + out.stderr
-    assert "egl:" in out.stdout and "libegl" in out.stdout.lower()
+    assert out.stdout.startswith("OptionError"), out.stdout + out.stderr
+    assert "EGL device 97 does not exist; present: 0: " in out.stdout
 
 
 def test_unknown_backend():

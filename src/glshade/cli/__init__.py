@@ -42,6 +42,8 @@ def _main(argv: list[str] | None) -> int:
     warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
     args = build_parser().parse_args(argv)
     try:  # the Namespace becomes the subcommand's typed arguments here, and only here
+        if getattr(args, "device", None) is not None:
+            _choose_device(args.device)
         return args.func(from_namespace(args.arguments, args))
     except (GlshadeError, OSError) as exc:  # expected: one line, no traceback
         if isinstance(exc, BrokenPipeError) and _stdout_closed():
@@ -50,6 +52,17 @@ def _main(argv: list[str] | None) -> int:
             raise
         print(f"glshade: error: {exc}", file=sys.stderr)
         return exit_status(exc)
+
+
+def _choose_device(spec: str) -> None:
+    """``--device``: checked now (one line naming the devices present if there is no such
+    one), then given to every context this run makes -- workers too -- as
+    GLSHADE_EGL_DEVICE."""
+    import os
+
+    from ..render.context import device_index
+
+    os.environ["GLSHADE_EGL_DEVICE"] = str(device_index(spec))
 
 
 def _stdout_closed() -> bool:

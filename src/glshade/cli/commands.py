@@ -261,7 +261,7 @@ def view(args: a.ViewArgs) -> int:
 
 def doctor(args: a.DoctorArgs) -> int:
     """``glshade doctor``: which GL backends work here, and what they are."""
-    from ..render.context import create_context, probe_backends
+    from ..render.context import create_context, egl_devices, probe_backends
 
     ok = True
     try:
@@ -276,4 +276,10 @@ def doctor(args: a.DoctorArgs) -> int:
     print("backends:")
     for name, status in probe_backends().items():
         print(f"  {name:<8} {status}")
+    devices = egl_devices()
+    print(f"EGL devices ({len(devices)}; choose with --device or GLSHADE_EGL_DEVICE, by index "
+          "or name):")
+    for d in devices:
+        what = d.get("error") or f"{d['vendor']} | {d['renderer']}"
+        print(f"  {d['index']:<3} {what}")
     return EXIT_OK if ok else EXIT_ENVIRONMENT

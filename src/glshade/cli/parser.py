@@ -38,6 +38,9 @@ def add_backend(p: argparse.ArgumentParser) -> None:
     p.add_argument("--backend", choices=HEADLESS_BACKENDS, default="auto",
                    help="where the GL context comes from: auto (EGL, else OSMesa), egl or "
                    "osmesa (default auto; GLSHADE_BACKEND overrides auto)")
+    p.add_argument("--device", metavar="INDEX|NAME", default=None,
+                   help="the EGL device, by index or a part of its name (glshade doctor "
+                   "lists them; as GLSHADE_EGL_DEVICE)")
 
 
 def add_quiet(p: argparse.ArgumentParser, what: str = "no summary line") -> None:

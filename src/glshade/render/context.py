@@ -25,7 +25,7 @@ from ..errors import ContextError, OptionError
 from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
-           "tune_malloc"]
+           "tune_malloc", "egl_devices", "device_index"]
 
 REQUIRE = 330
 
@@ -222,13 +222,83 @@ class RenderContext:
         return f"<RenderContext {self.backend.value}: {state}>"
 
 
-def _make_egl(device: int | None) -> RenderContext:
+def _egl_device_count() -> int:
+    """How many EGL devices the driver lists (EGL_EXT_device_enumeration), 0 when it
+    lists none or cannot say."""
+    import ctypes
+    import ctypes.util
+
+    try:
+        egl = ctypes.CDLL(ctypes.util.find_library("EGL") or "libEGL.so.1")
+    except OSError:
+        return 0
+    egl.eglGetProcAddress.restype = ctypes.c_void_p
+    egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+    address = egl.eglGetProcAddress(b"eglQueryDevicesEXT")
+    if not address:
+        return 0
+    query = ctypes.CFUNCTYPE(ctypes.c_uint, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p),
+                             ctypes.POINTER(ctypes.c_int))(address)
+    count = ctypes.c_int(0)
+    if not query(0, None, ctypes.byref(count)):
+        return 0
+    return max(int(count.value), 0)
+
+
+def egl_devices() -> list[dict]:
+    """Every EGL device: ``{"index", "vendor", "renderer"}`` from a context made on it
+    (or ``"error"``: why none could be) -- what ``glshade doctor`` lists and ``--device``
+    / ``GLSHADE_EGL_DEVICE`` choose from, by index or by name."""
+    import moderngl
+
+    out = []
+    for i in range(_egl_device_count()):
+        try:
+            settings: dict[str, Any] = {"backend": "egl", "device_index": i}
+            ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
+        except Exception as exc:  # (glcontext raises bare Exceptions)
+            out.append({"index": i, "vendor": "", "renderer": "",
+                        "error": _explain_egl(exc)})
+            continue
+        out.append({"index": i, "vendor": ctx.info.get("GL_VENDOR", ""),
+                    "renderer": ctx.info.get("GL_RENDERER", "")})
+        ctx.release()
+    return out
+
+
+def device_index(spec) -> int:
+    """An EGL device by index (``"1"``) or by name (a case-blind part of its vendor or
+    renderer: ``"nvidia"``, ``"llvmpipe"``); one line naming those present when no device
+    (or more than one, by name) matches."""
+    text = str(spec).strip()
+    if text.isdigit() and int(text) < _egl_device_count():
+        return int(text)  # (no need to make a context on each device)
+    devices = egl_devices()
+    present = "; ".join(f"{d['index']}: {d['vendor']} {d['renderer']}".strip()
+                        for d in devices) or "none"
+    if text.isdigit():
+        if int(text) < len(devices):
+            return int(text)
+        raise OptionError(f"EGL device {text} does not exist; present: {present}")
+    hits = [d["index"] for d in devices
+            if text.lower() in f"{d['vendor']} {d['renderer']}".lower()]
+    if len(hits) == 1:
+        return hits[0]
+    raise OptionError(f"EGL device {text!r} " + ("matches several" if hits else
+                      "matches none") + f"; present: {present}")
+
+
+def _make_egl(device: int | str | None) -> RenderContext:
     import moderngl
 
     settings: dict[str, Any] = {"backend": "egl"}
     dev = device if device is not None else os.environ.get("GLSHADE_EGL_DEVICE")
     if dev not in (None, ""):
-        settings["device_index"] = int(dev)
+        try:
+            settings["device_index"] = device_index(dev)
+        except OptionError as exc:
+            source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
+            raise OptionError(f"{source}{exc}") from None
     try:
         ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
     except Exception as exc:  # moderngl/glcontext raise bare Exceptions with EGL text
@@ -263,8 +333,9 @@ _MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT), Backend.OSMESA: (lambda d: _make
                                                                  _OSMESA_HINT)}
 
 
-def create_context(backend="auto", device: int | None = None) -> RenderContext:
-    """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for.
+def create_context(backend="auto", device: int | str | None = None) -> RenderContext:
+    """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for;
+    ``device`` (or ``GLSHADE_EGL_DEVICE``): an EGL device's index or name (:func:`egl_devices`).
 
     Raises
     ------

@@ -81,6 +81,10 @@ class OffscreenTarget(GLResource):
         """Bind for drawing without clearing."""
         (self.fbo_draw_all if outputs.auxiliary else self.fbo_draw_color).use()
 
+    def depth_source(self):
+        """The framebuffer whose depth buffer holds what has been drawn (to copy from)."""
+        return self.fbo_draw_color
+
     def resolve(self, outputs: Outputs) -> None:
         """Copy the multisampled drawing into the single-sampled buffers that are read."""
         if self.samples:
@@ -155,6 +159,9 @@ class WindowTarget:
 
     def bind(self, outputs: Outputs) -> None:
         self._fbo().use()
+
+    def depth_source(self):
+        return self._fbo()
 
     def resolve(self, outputs: Outputs) -> None:
         pass

@@ -4,10 +4,14 @@ triangulation) drawn as lines a few pixels wide, on top of the filled picture or
 
 Lines are widened into screen-aligned quads by a geometry shader (``edges.geom``): GL core
 profiles promise no line width above 1, and a 1-pixel line vanishes on a large image, so the
-width grows with the image (:func:`edge_width`). Edges are drawn a little in front of their
-surface (a bias in normalised depth) with the depth test on, so the z-buffer hides the edges
-behind other surfaces and keeps those on the visible ones. They go to the colour only: the
-auxiliary outputs (ids, depth, normals) stay the surfaces'.
+width grows with the image (:func:`edge_width`). Whether an edge is seen is decided per
+pixel, in view depth (``edges.frag``): the surfaces' depth buffer is copied to a texture,
+and each fragment compares the edge's own depth at its point of the centre line with the
+3x3 pixels around that point, allowing their spread (a surface's slope: a concave edge lies
+behind the pixels beside it) and four steps of the depth buffer -- no constant bias, so it
+holds at any near plane, with the camera inside the scene or out; a silhouette (nothing
+drawn beside it) is seen along its length. They go to the colour only: the auxiliary
+outputs (ids, depth, normals) stay the surfaces'.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ from __future__ import annotations
 from typing import Any
 
 import moderngl
+import numpy as np
 
 from ...geometry.transforms import gl_bytes
 from ...modes import Outputs
@@ -25,8 +30,8 @@ __all__ = ["EdgePass", "edge_width", "EDGE_COLOR"]
 
 #: the overlay's colour (linear RGB): dark, readable on every shading
 EDGE_COLOR = (0.06, 0.06, 0.07)
-#: depth bias of an edge towards the eye, in normalised depth (keeps it off its surface)
-EDGE_BIAS = 2e-4
+#: texture unit of the surfaces' depth
+_DEPTH_UNIT = 7
 
 
 def edge_width(width: int, height: int) -> float:
@@ -44,6 +49,7 @@ class EdgePass(GLResource):
         self.shaders, self.uniforms = shaders, uniforms
         self.gpu_mesh = gpu_mesh  # (the renderer's cache: Mesh -> GpuMesh)
         self._program: Any = None
+        self._depth: Any = None   # (size, texture, framebuffer): the surfaces' depth
 
     def program(self):
         self._check()
@@ -66,19 +72,47 @@ class EdgePass(GLResource):
         colors = [m.material.color for m in models] if options.wireframe else None
         prog = self.program()
         ctx = self.context.ctx
+        hide = bool(state.options.depth_test)
+        if hide:
+            self._copy_depth(state.target)
         state.target.bind(Outputs.COLOR)
         put = self.uniforms.put
         x, y, w, h = state.viewport
         put(prog, "u_proj", gl_bytes(state.proj))
+        put(prog, "u_inverse_proj", gl_bytes(np.linalg.inv(state.proj)))
+        put(prog, "u_viewport_origin", (float(x), float(y)))
         put(prog, "u_viewport_size", (float(w), float(h)))
         put(prog, "u_edge_width", float(edge_width(w, h)))
-        put(prog, "u_edge_bias", EDGE_BIAS)
+        put(prog, "u_hide", int(hide))
+        put(prog, "u_scene_depth", _DEPTH_UNIT)
         ctx.disable(moderngl.CULL_FACE)
-        if state.options.depth_test:
-            ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.DEPTH_TEST)  # (seen or not is edges.frag's judgement)
         for i, (gpu, model) in enumerate(gpu_meshes):
             put(prog, "u_model_view", gl_bytes(state.view @ model))
             put(prog, "u_edge_color", tuple(float(c) for c in
                                             (colors[i] if colors is not None else EDGE_COLOR)))
             gpu.edge_array(prog).render(moderngl.LINES)
+        if state.options.depth_test:
+            ctx.enable(moderngl.DEPTH_TEST)
         return id_base
+
+    def _copy_depth(self, target) -> None:
+        """The surfaces' depth so far into a texture the edges read (resolved from MSAA by
+        the copy), bound to its unit."""
+        ctx = self.context.ctx
+        source = target.depth_source()
+        size = tuple(source.size)
+        if self._depth is None or self._depth[0] != size:
+            self._release_extra()
+            texture = ctx.depth_texture(size)
+            colour = ctx.renderbuffer(size, 4)
+            self._depth = (size, texture, ctx.framebuffer([colour], texture), colour)
+        ctx.copy_framebuffer(self._depth[2], source)
+        self._depth[1].use(location=_DEPTH_UNIT)
+
+    def _release_extra(self) -> None:
+        """The depth copy (remade when the target's size changes)."""
+        if self._depth is not None:
+            for obj in (self._depth[2], self._depth[3], self._depth[1]):
+                obj.release()
+            self._depth = None

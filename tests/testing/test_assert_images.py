@@ -107,3 +107,24 @@ def test_every_comparison_reads_an_image_one_way(tmp_path):
                        (np.zeros((2, 2, 2)), "shape")):
         with pytest.raises(ValueError, match=words):
             levels(bad)
+
+
+def test_results_go_to_the_given_folder_before_any_golden_fails(pytester):
+    """assert_images_close in a test run with --glshade-results saves its failure images
+    there, in the test's own folder (its node id), though no golden check ever ran (the
+    folder was told to glshade only after a golden failed)."""
+    pytester.makepyfile(test_plain='''
+import numpy as np
+from glshade.testing import assert_images_close
+
+def test_close():
+    a = np.zeros((8, 8, 4), np.uint8)
+    b = a.copy()
+    b[2, 3, 0] = 99
+    assert_images_close(a, b)
+''')
+    results = pytester.path / "results"
+    out = pytester.runpytest_subprocess("--glshade-results", str(results))
+    out.assert_outcomes(failed=1)
+    saved = sorted(p.relative_to(results).as_posix() for p in results.rglob("*.png"))
+    assert saved == [f"test_plain.py.test_close/{n}.png" for n in ("actual", "diff", "expected")]

@@ -71,6 +71,14 @@ def pytest_configure(config):
     config.stash[_CHECKS] = []
 
 
+def pytest_sessionstart(session):
+    """The results folder is known from the start (assert_images_close's failures go there
+    too, before any golden has failed)."""
+    if session.config.getoption("--glshade-results") or \
+            session.config.getini("glshade_results"):
+        _results(session.config)
+
+
 def _results(config) -> Path:
     """The results folder, made on first use (and told to glshade.testing)."""
     if _RESULTS not in config.stash:

@@ -49,3 +49,24 @@ def test_a_dropped_ctrl_c_is_raised_at_the_next_item():
                                            "raised by the executor", "once only"]
     assert "ValueError: an ordinary unraisable error" in done.stderr
     assert "KeyboardInterrupt" not in done.stderr
+
+
+HELD = """
+import os, signal
+from glshade.interrupt import held
+try:
+    with held():
+        os.kill(os.getpid(), signal.SIGINT)
+        print("the block went on")
+    print("not reached")
+except KeyboardInterrupt:
+    print("raised after the block")
+print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+"""
+
+
+def test_a_held_ctrl_c_waits_for_the_block_then_is_raised():
+    done = subprocess.run([sys.executable, "-c", HELD], capture_output=True, text=True,
+                          timeout=60)
+    assert done.stdout.split() == ["the", "block", "went", "on", "raised", "after", "the",
+                                   "block", "True"], done.stderr

@@ -6,11 +6,11 @@ raise it again between items (:func:`check`, called by the progress bar)."""
 
 from __future__ import annotations
 
+import contextlib
+import sys
 from typing import Any
 
-import sys
-
-__all__ = ["catch_dropped", "check"]
+__all__ = ["catch_dropped", "check", "held"]
 
 _dropped = False
 _previous_hook: Any = None
@@ -38,3 +38,28 @@ def check() -> None:
     if _dropped:
         _dropped = False
         raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def held():
+    """Hold a Ctrl-C until the block ends, then raise it: for the driver's work that must
+    not be cut short (a GL context being made, a program compiled and linked -- a
+    KeyboardInterrupt in the middle of them can leave the driver's state half-made, and
+    the interpreter crash at exit). In the main thread, where Python's own handler is
+    installed; elsewhere the block simply runs."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        yield
+        return
+    caught: list[int] = []
+    signal.signal(signal.SIGINT, lambda *_: caught.append(1))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        if caught:
+            raise KeyboardInterrupt
+

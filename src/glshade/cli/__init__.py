@@ -29,6 +29,13 @@ def main(argv: list[str] | None = None) -> int:
         exec("")
         print("glshade: interrupted", file=sys.stderr)
         return 130
+    finally:
+        if argv is None:  # (the command itself, not a call from Python code)
+            # the run is over, its status decided: a Ctrl-C while the interpreter shuts
+            # down would end it by SIGINT instead (a finished render read as killed)
+            import signal
+
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _main(argv: list[str] | None) -> int:

@@ -34,6 +34,10 @@ def pathtrace(args: PathtraceArgs) -> int:
     result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
                       max_depth=args.max_depth, backend=args.backend.value,
                       progress=False if args.quiet else None)
+    if result.interrupted and not result.samples:  # (nothing traced: nothing to keep)
+        print("glshade: interrupted before the first sample; nothing written",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
     exposure = args.exposure or result.auto_exposure()
     srgb = args.srgb if args.srgb is not None else job.settings.options.srgb
     image = result.rgba8(exposure, srgb=bool(srgb))

@@ -22,6 +22,7 @@ import os
 import re
 
 from ..errors import ContextError, OptionError
+from ..interrupt import held
 from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
@@ -300,7 +301,8 @@ def _make_egl(device: int | str | None) -> RenderContext:
             source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
             raise OptionError(f"{source}{exc}") from None
     try:
-        ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
+        with held():  # (a Ctrl-C waits for the driver to finish making the context)
+            ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
     except Exception as exc:  # moderngl/glcontext raise bare Exceptions with EGL text
         raise ContextError(_explain_egl(exc)) from None
     return RenderContext(ctx, Backend.EGL, ctx.info.get("GL_RENDERER", ""))
@@ -312,8 +314,9 @@ def _make_osmesa() -> RenderContext:
     loader = OSMesaLoader()
     try:
         # (moderngl's stubs want a dict for ``context``; glcontext takes a loader object)
-        ctx = moderngl.create_context(standalone=True, require=REQUIRE,
-                                      context=loader)  # type: ignore[arg-type]
+        with held():
+            ctx = moderngl.create_context(standalone=True, require=REQUIRE,
+                                          context=loader)  # type: ignore[arg-type]
     except Exception as exc:
         loader.release()
         raise ContextError(f"moderngl could not use the OSMesa context: {exc}") from None

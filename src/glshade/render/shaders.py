@@ -14,6 +14,7 @@ import re
 from pathlib import Path
 
 from ..errors import ShaderError
+from ..interrupt import held
 from ..modes import ShadingMode
 from .base import GLResource
 from .programs import ProgramKey
@@ -152,7 +153,8 @@ class ShaderLibrary(GLResource):
             stages["tess_control_shader"] = assemble(tess[0], root, defines)
             stages["tess_evaluation_shader"] = assemble(tess[1], root, defines)
         try:
-            return self.context.ctx.program(**{k: v[0] for k, v in stages.items()})
+            with held():  # (a Ctrl-C waits for the driver's compile and link)
+                return self.context.ctx.program(**{k: v[0] for k, v in stages.items()})
         except Exception as exc:  # moderngl raises a bare Error with the driver's log
             text = str(exc)
             found = re.search(r"^(" + "|".join(stages) + r")\s*$", text, re.M)

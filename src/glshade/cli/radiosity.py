@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import os
+import sys
 import time
 
 from dataclasses import replace
 
-from ..errors import EXIT_OK, InputError, UsageError
+from ..errors import EXIT_ENVIRONMENT, EXIT_OK, InputError, UsageError
 from .arguments import RadiosityArgs
 from .inputs import is_scene_file, load_job
 from .validators import check_outputs
@@ -53,6 +54,7 @@ def radiosity(args: RadiosityArgs) -> int:
     from ..modes import ShadingMode
     from ..parallel import Progress
     from ..radiosity import FormFactors, Solution, gauss_seidel, progressive
+    from ..radiosity.solvers import check_converges
     from ..radiosity.plot import convergence_plot
     from ..render.context import create_context
     from ..render.renderer import Renderer
@@ -64,6 +66,7 @@ def radiosity(args: RadiosityArgs) -> int:
         print(problem.summary())
     if args.method == "monte-carlo":
         return _monte_carlo(args, job, problem, options)
+    check_converges(problem)  # (before any work: a closed lossless room never settles)
     snapshots: list = []
     levels = iter([10 ** (k / STEP_FRAMES * _log10(args.until)) for k in
                    range(1, STEP_FRAMES + 1)])
@@ -113,6 +116,12 @@ def radiosity(args: RadiosityArgs) -> int:
               f"{solution.unshot_fraction:.2%}, exposure {exposure:.4g}")
         print(f"{args.output}: {w}x{h}; convergence: {plot_path}"
               + (f"; steps: {args.steps} ({len(frames) + 1} frames)" if args.steps else ""))
+    if not solution.converged:  # (a cap, not the goal: how far it got, and not success)
+        print(f"glshade: error: {solution.method} did not converge in "
+              f"{solution.history[-1][1]:,} steps (unshot or change "
+              f"{solution.history[-1][2]:.3g}); {args.output} is how far it got",
+              file=sys.stderr)
+        return EXIT_ENVIRONMENT
     return EXIT_OK
 
 

@@ -56,11 +56,18 @@ def seed(text: str) -> int:
     return int(text)
 
 
+#: the largest count any option takes (a GL int; checked before any arithmetic)
+MAX_COUNT = 2**31 - 1
+
+
 def count(text: str) -> int:
-    """A positive integer."""
+    """A positive integer, at most MAX_COUNT."""
     if not text.strip().isdigit() or int(text) < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number >= 1 such as 4, got "
                                          f"{text!r}")
+    if int(text) > MAX_COUNT:
+        raise argparse.ArgumentTypeError(f"expected a whole number from 1 to {MAX_COUNT:,}, "
+                                         f"got {text!r}")
     return int(text)
 
 
@@ -70,6 +77,9 @@ def _number(text: str, ok, expected: str) -> float:
         value = float(text)
     except ValueError:
         value = float("nan")
+    if math.isinf(value):  # (1e400: a number, but not one glshade can compute with)
+        raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}, which is not "
+                                         "a finite number")
     if not (math.isfinite(value) and ok(value)):
         raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}")
     return value

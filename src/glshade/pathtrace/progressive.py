@@ -77,6 +77,10 @@ class PathTraced:
                           picture(self.rgba8()))
 
 
+#: the most vertices a path may be asked to have (Russian roulette ends paths long before)
+MAX_PATH_DEPTH = 1_000_000
+
+
 def _moments(total: np.ndarray, square: np.ndarray):
     n = np.maximum(total[..., 3:4], 1)
     mean = total[..., :3] / n
@@ -102,6 +106,9 @@ class PathTracer:
         w, h = _size(size)
         if max_depth is not None:
             max_depth = check_whole("max_depth", max_depth, 1)
+            if max_depth > MAX_PATH_DEPTH:  # (a GL int; checked before any arithmetic)
+                raise OptionError(f"max_depth must be at most {MAX_PATH_DEPTH:,} (vertices "
+                                  f"a path may have), got {max_depth:,}")
         self.trace_scene = scene if isinstance(scene, TraceScene) else \
             TraceScene.from_scene(scene, lights=lights, camera=camera, smooth=smooth)
         self.seed = int(seed)

@@ -53,8 +53,12 @@ def solve(scene, patch_size: float | None = None, *, method: Method | str = Meth
     object with ``update(n, note)``."""
     from ..parallel.progress import as_progress
 
+    from .solvers import check_converges
+
     chosen = Method.parse(method)
     problem = PatchScene.from_scene(scene, patch_size)
+    if chosen is not Method.MONTE_CARLO:  # (particles end by count: it always ends)
+        check_converges(problem)
     unit = "batches" if chosen is Method.MONTE_CARLO else "shots" \
         if chosen is Method.PROGRESSIVE else "shooters"
     bar, owned = as_progress(progress, None, unit)

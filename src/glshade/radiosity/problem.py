@@ -102,6 +102,23 @@ class PatchScene:
     def n_patches(self) -> int:
         return self.patches.n_patches
 
+    @property
+    def closed(self) -> bool:
+        """Whether the models' polygons, their vertices welded, close a surface facing in
+        (a room with no opening: light that leaves a patch meets another; a closed surface
+        facing out sends its light away)."""
+        from ..geometry.merge import concatenate, weld
+
+        if not self.meshes:
+            return False
+        mesh = weld(concatenate(self.meshes))
+        if not mesh.closed_and_oriented:
+            return False
+        tri, _ = mesh.triangles
+        v = mesh.vertices[tri]
+        volume = np.einsum("ij,ij->i", v[:, 0], np.cross(v[:, 1], v[:, 2])).sum() / 6
+        return bool(volume < 0)  # (normals in: the signed volume is negative)
+
     @classmethod
     def from_scene(cls, scene: Scene, patch_size: float | None = None) -> PatchScene:
         """Cut every visible model of ``scene`` into patches of about ``patch_size``

@@ -45,6 +45,8 @@ class Solution:
     hemicubes: int = 0
     #: (P, 3) each patch's standard error, for a Monte Carlo solution (None otherwise)
     se: np.ndarray | None = field(default=None, repr=False)
+    #: whether the solver met its goal (False: it stopped at a cap; see ``history``)
+    converged: bool = True
 
     def __repr__(self) -> str:
         steps = self.history[-1][1] if self.history else 0
@@ -152,6 +154,7 @@ def progressive(ff: FormFactors, until: float = 0.01, max_shots: int | None = No
         if on_shot:
             on_shot(sol, shots)
     sol.hemicubes = ff.hemicubes_drawn
+    sol.converged = power.sum() / emitted <= until
     return sol
 
 
@@ -185,7 +188,30 @@ def gauss_seidel(ff: FormFactors, iterations: int | None = None, tol: float = 1e
         sol.history.append((time.perf_counter() - start, sweeps, residual))
         if iterations is None and change <= tol * max(float(b.max()), 1e-300):
             break
-        if sweeps > 10_000:
+        if iterations is None and sweeps >= MAX_SWEEPS:
+            sol.converged = False  # (said by the caller: never success at a cap)
             break
     sol.hemicubes = ff.hemicubes_drawn
     return sol
+
+
+#: Gauss-Seidel's cap on sweeps when no count is given (a solution that has not settled
+#: by then is reported as not converged)
+MAX_SWEEPS = 10_000
+
+
+def check_converges(problem) -> None:
+    """Refuse, before any work, a closed room that loses no light: every patch reflecting
+    all of one colour channel (reflectance 1) in a closed surface makes the spectral
+    radius of rho F one, so shooting or gathering never settles."""
+    rho = np.asarray(problem.rho)
+    lossless = [bool((rho[:, c] >= 1.0 - 1e-12).all()) for c in range(3)]
+    if not any(lossless):
+        return
+    if not problem.closed:
+        return
+    names = ", ".join(c for c, ok in zip(("red", "green", "blue"), lossless) if ok)
+    raise InputError(f"every surface reflects all {names} light (reflectance 1) and the "
+                     "scene is closed: the light never dies out (the spectral radius of "
+                     "rho F is 1), so no solver can converge; give some surface a "
+                     "reflectance below 1")

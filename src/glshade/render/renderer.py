@@ -109,7 +109,8 @@ _FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
 _BYTES_PER_SAMPLE = 44
 
 
-def _check_fits(context, width: int, height: int, samples: int) -> None:
+def check_fits(context, width: int, height: int, samples: int = 0,
+               bytes_per_pixel: int = 0) -> None:
     """Refuse, up front and by name, what this GL cannot make: MSAA sample counts it lacks,
     images wider than its framebuffers, and (on a software renderer, which draws in main
     memory) images larger than the machine's memory."""
@@ -127,14 +128,16 @@ def _check_fits(context, width: int, height: int, samples: int) -> None:
         raise SettingError("size", f"an image of {width}x{height} is larger than this GL's "
                                    f"largest framebuffer, {side} pixels a side "
                                    f"({context.detail})")
-    need = width * height * _BYTES_PER_SAMPLE * (samples + 1 if samples else 1)
+    need = width * height * (bytes_per_pixel or
+                             _BYTES_PER_SAMPLE * (samples + 1 if samples else 1))
     software = context.software
     try:
         memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
     except (ValueError, OSError, AttributeError):
         memory = 0
     if software and memory and need > memory // 3:
-        raise SettingError("size", f"an image of {width}x{height} with {samples} samples "
+        what = f"with {samples} samples " if not bytes_per_pixel else ""
+        raise SettingError("size", f"an image of {width}x{height} {what}"
                                    f"needs about {need / 2**30:.1f} GiB of framebuffers; this "
                                    "software renderer draws in main memory "
                                    f"({memory / 2**30:.0f} GiB): ask for fewer pixels or "
@@ -177,7 +180,7 @@ class Renderer:
         self.context = context or create_context(config.backend, config.device)
         self.ctx = self.context.ctx
         try:
-            _check_fits(self.context, config.width, config.height, config.samples)
+            check_fits(self.context, config.width, config.height, config.samples)
         except InputError:
             if self._owns_context:
                 self.context.release()

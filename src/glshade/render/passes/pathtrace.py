@@ -38,6 +38,10 @@ class GpuPathTracer(GLResource):
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, budget: int = BUDGET):
+        from ..renderer import check_fits
+
+        # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
+        check_fits(context, int(width), int(height), bytes_per_pixel=2 * 7 * 16 + 4)
         super().__init__(context)
         ctx = context.ctx
         self.scene, self.width, self.height = scene, int(width), int(height)

@@ -74,7 +74,7 @@ CLI_TABLE = [
     (["render", "primitive:cube", "-o", "x.png", "--mode", "toon"], {}, 2,
      "unknown shading mode 'toon'"),
     (["render", "primitive:cube", "-o", "x.png", "--fov", "200"], {}, 2,
-     "the field of view must be in (0, 180) degrees"),
+     "the field of view must be from 0.0001 to under 180 degrees"),
     (["radiosity", "assets/scenes/cornell-box.toml", "-o", "x.png", "--method", "jacobi"], {},
      2, "unknown radiosity method 'jacobi'; choose one of progressive, gauss-seidel"),
     (["hidden", "primitive:cube", "-o", "x.png", "--algorithms", "painter"], {}, 2,

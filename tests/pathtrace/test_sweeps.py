@@ -54,7 +54,8 @@ def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_
     pixels = r.image.mean(-1).ravel()
     # the pixels are independent estimates of one number: their spread is the error bar
     bar = pixels.std(ddof=1) / np.sqrt(pixels.size)
-    assert abs(pixels.mean() - want) <= 5 * bar + 1e-9 * want, (pixels.mean(), want, bar)
+    # (plus float32 rounding: the tracer sums in float32, a few ulps of the answer)
+    assert abs(pixels.mean() - want) <= 5 * bar + 4e-7 * want, (pixels.mean(), want, bar)
     assert (r.coverage == 1).all()
 
 

@@ -116,7 +116,7 @@ def radiosity(args: RadiosityArgs) -> int:
               f"{solution.unshot_fraction:.2%}, exposure {exposure:.4g}")
         print(f"{args.output}: {w}x{h}; convergence: {plot_path}"
               + (f"; steps: {args.steps} ({len(frames) + 1} frames)" if args.steps else ""))
-    if not solution.converged:  # (a cap, not the goal: how far it got, and not success)
+    if not solution.converged and args.iterations is None:  # (a cap, not the goal)
         print(f"glshade: error: {solution.method} did not converge in "
               f"{solution.history[-1][1]:,} steps (unshot or change "
               f"{solution.history[-1][2]:.3g}); {args.output} is how far it got",

@@ -132,13 +132,13 @@ def samples(text: str) -> int:
 
 
 def fov(text: str) -> float:
-    """A vertical field of view in degrees, in (0, 180)."""
+    """A vertical field of view in degrees, from MIN_FOV_Y to under 180."""
     from ..scene.camera import check_fov
 
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"expected degrees in (0, 180) such as 45, got "
+        raise argparse.ArgumentTypeError(f"expected degrees under 180 such as 45, got "
                                          f"{text!r}") from None
     return _rule(check_fov, value, "the field of view")
 

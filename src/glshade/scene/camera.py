@@ -25,21 +25,29 @@ __all__ = ["Camera", "View", "default_camera"]
 PROJECTIONS = tuple(p.value for p in Projection)
 
 
+#: the narrowest field of view (degrees): a camera framing a scene through a narrower one
+#: would stand further off than a float can say
+MIN_FOV_Y = 1e-4
+
+
 def check_fov(fov_y: object, what: str = "fov_y") -> float:
-    """The one rule for a vertical field of view: degrees in (0, 180)."""
+    """The one rule for a vertical field of view: degrees in [MIN_FOV_Y, 180)."""
     try:
         value = float(fov_y)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         value = float("nan")
-    if not 0 < value < 180:
-        raise SceneError.must(what, f"be in (0, 180) degrees, got {fov_y!r}")
+    if not MIN_FOV_Y <= value < 180:
+        raise SceneError.must(what, f"be from {MIN_FOV_Y:g} to under 180 degrees, got "
+                                    f"{fov_y!r}")
     return value
 
 
 def _vec3(value, name) -> NDArray[np.float64]:
     a = np.array(value, dtype=np.float64)  # (a copy: the camera keeps it read-only)
     if a.shape != (3,) or not np.isfinite(a).all():
-        raise SceneError(f"{name} must be 3 finite numbers, got {value!r}")
+        shown = ", ".join(f"{float(x):g}" for x in np.ravel(a)) if a.dtype.kind in "fiu" \
+            else repr(value)
+        raise SceneError(f"{name} must be 3 finite numbers, got ({shown})")
     return a
 
 

@@ -74,3 +74,19 @@ def test_radiosity_and_phong_against_the_path_tracer_with_per_surface_numbers(tm
     assert float(rows["radiosity"][1]) < 0.5 * float(rows["phong"][1])
     for surface in ("floor", "ceiling", "back_wall", "red_wall", "green_wall"):
         assert abs(float(rows[surface][-1].rstrip("%"))) < 10, rows[surface]
+
+
+def test_a_black_path_traced_picture_says_why(tmp_path):
+    """A camera that sees nothing: the picture is written, with the one-line reason render
+    gives for a blank image (it was silent), and no 'inf%' error."""
+    scene = tmp_path / "away.toml"
+    scene.write_text('[[mesh]]\nsource = "primitive:cube"\nemission = [1.0, 1.0, 1.0]\n'
+                     '[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 10]\n')
+    out = tmp_path / "away.png"
+    r = glshade("pathtrace", str(scene), "-o", str(out), "--spp", "2", "--size", "16x16",
+                "--backend", BACKEND)
+    assert r.returncode == 0 and out.exists(), r.stderr
+    assert r.stderr.strip() == ("glshade: warning: the picture is black: no part of the "
+                                "scene lies in the camera's view (between its near and far "
+                                "planes, inside its field of view)")
+    assert "inf%" not in r.stdout and "relative error none (nothing lit)" in r.stdout

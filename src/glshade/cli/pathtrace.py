@@ -5,6 +5,8 @@ from __future__ import annotations
 import sys
 from dataclasses import replace
 
+import numpy as np
+
 from ..errors import EXIT_OK, InputError, UsageError
 from .arguments import PathtraceArgs
 from .inputs import load_job
@@ -38,14 +40,25 @@ def pathtrace(args: PathtraceArgs) -> int:
         print("glshade: interrupted before the first sample; nothing written",
               file=sys.stderr)
         return EXIT_INTERRUPTED
+    if not (result.image > 0).any():  # (a black picture says why, as render's blank does)
+        import warnings
+
+        from ..errors import RenderWarning
+        from ..render.diagnostics import why_blank
+
+        reason = why_blank(job.scene, job.camera.with_planes(job.scene.bounds))
+        warnings.warn(RenderWarning(reason.replace("the render is blank", "the picture is "
+                                                   "black", 1)), stacklevel=2)
     exposure = args.exposure or result.auto_exposure()
     srgb = args.srgb if args.srgb is not None else job.settings.options.srgb
     image = result.rgba8(exposure, srgb=bool(srgb))
     save_image(image, args.output)
     rays = result.samples * w * h
+    error = result.relative_error
+    said = f"{error:.2%}" if np.isfinite(error) else "none (nothing lit)"
     line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
             f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s), relative error "
-            f"{result.relative_error:.2%}, exposure {exposure:.4g} -> {args.output}")
+            f"{said}, exposure {exposure:.4g} -> {args.output}")
     if result.interrupted:
         print(f"glshade: interrupted after {result.samples:,} samples a pixel; the image so "
               f"far is in {args.output}", file=sys.stderr)

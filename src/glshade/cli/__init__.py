@@ -17,25 +17,42 @@ __all__ = ["main"]
 
 def main(argv: list[str] | None = None) -> int:
     """The command line: parse ``argv``, run the command; the exit status (2: bad input)."""
+    import signal
+
     from ..interrupt import catch_dropped
 
     catch_dropped()
+    seen: list[int] = []
+    if argv is None and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        # (noted too: a Ctrl-C inside an extension's import can surface as that import's
+        # ImportError -- numpy's does -- and is still a Ctrl-C)
+        def interrupt(signum, frame):
+            seen.append(signum)
+            raise KeyboardInterrupt
+
+        signal.signal(signal.SIGINT, interrupt)
     try:
         return _main(argv)
     except KeyboardInterrupt:
-        # CPython notes a KeyboardInterrupt that leaves a nested exec of source text (the
-        # dataclasses and namedtuples being made while modules import) and, handled or not,
-        # ends the process with SIGINT instead of this status; the next such exec clears it
-        exec("")
-        print("glshade: interrupted", file=sys.stderr)
-        return 130
+        return _interrupted()
+    except ImportError:
+        if seen:
+            return _interrupted()
+        raise
     finally:
         if argv is None:  # (the command itself, not a call from Python code)
             # the run is over, its status decided: a Ctrl-C while the interpreter shuts
             # down would end it by SIGINT instead (a finished render read as killed)
-            import signal
-
             signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _interrupted() -> int:
+    # CPython notes a KeyboardInterrupt that leaves a nested exec of source text (the
+    # dataclasses and namedtuples being made while modules import) and, handled or not,
+    # ends the process with SIGINT instead of this status; the next such exec clears it
+    exec("")
+    print("glshade: interrupted", file=sys.stderr)
+    return 130
 
 
 def _main(argv: list[str] | None) -> int:

@@ -43,6 +43,7 @@ def approve(results, keys=None) -> list[str]:
 
 
 def main(argv=None) -> int:
+    """The command: approve the named renders (or ``--all``); 0, or 2 with one line."""
     from ..errors import GlshadeError
 
     ap = argparse.ArgumentParser(prog="python -m glshade.testing.approve",

@@ -70,3 +70,21 @@ def test_a_held_ctrl_c_waits_for_the_block_then_is_raised():
                           timeout=60)
     assert done.stdout.split() == ["the", "block", "went", "on", "raised", "after", "the",
                                    "block", "True"], done.stderr
+
+
+def test_held_delivers_to_the_handler_that_was_there():
+    """Under the command line's own handler (which notes the Ctrl-C, then raises), a held
+    Ctrl-C is delivered to it when the block ends (it was let through unheld)."""
+    code = HELD.replace("from glshade.interrupt import held", (
+        "from glshade.interrupt import held\n"
+        "seen = []\n"
+        "def mine(signum, frame):\n"
+        "    seen.append(signum)\n"
+        "    raise KeyboardInterrupt\n"
+        "signal.signal(signal.SIGINT, mine)")).replace(
+        "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)",
+        "print(signal.getsignal(signal.SIGINT) is mine and seen == [signal.SIGINT])")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=60)
+    assert done.stdout.split() == ["the", "block", "went", "on", "raised", "after", "the",
+                                   "block", "True"], done.stderr

@@ -42,16 +42,16 @@ def check() -> None:
 
 @contextlib.contextmanager
 def held():
-    """Hold a Ctrl-C until the block ends, then raise it: for the driver's work that must
-    not be cut short (a GL context being made, a program compiled and linked -- a
-    KeyboardInterrupt in the middle of them can leave the driver's state half-made, and
-    the interpreter crash at exit). In the main thread, where Python's own handler is
-    installed; elsewhere the block simply runs."""
+    """Hold a Ctrl-C until the block ends, then deliver it (to the handler that was there:
+    Python's raises KeyboardInterrupt): for the driver's work that must not be cut short (a
+    GL context being made, a program compiled and linked -- a KeyboardInterrupt in the
+    middle of them can leave the driver's state half-made, and the interpreter crash at
+    exit). In the main thread, under a Python handler; elsewhere the block simply runs."""
     import signal
     import threading
 
-    if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+    previous = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or not callable(previous):
         yield
         return
     caught: list[int] = []
@@ -59,7 +59,6 @@ def held():
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGINT, previous)
         if caught:
-            raise KeyboardInterrupt
-
+            previous(signal.SIGINT, None)

@@ -3,6 +3,7 @@ reflects all of a colour (reflectance 1: the spectral radius of rho F is 1) is r
 before any work, in one line; a closed surface facing out, or a room losing any light,
 solves; and a solver stopped at its cap reports that it did not converge (never success)."""
 
+import numpy as np
 import pytest
 
 import glshade
@@ -66,3 +67,21 @@ def test_the_cli_refuses_a_closed_lossless_room_in_one_line(tmp_path):
     done = run("radiosity", str(path), "-o", str(out_png), "-q")
     assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
     assert "never dies out" in done.stderr and not out_png.exists()
+
+
+def test_patch_corners_weld_by_the_geometrys_scale_not_the_patch_size():
+    """Two squares 1e-5 apart (distinct corners) cut into large patches keep their own
+    vertices (the weld grid was a millionth of the patch size: 1e-4 here, which merged
+    them), and tiny patches of a scene far from the origin weld without overflow."""
+    from glshade.radiosity import PatchScene
+
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    pair = Mesh(np.r_[square, square + [1 + 1e-5, 0, 0]], [[0, 1, 2, 3], [4, 5, 6, 7]])
+    s = scene(pair, (0.5, 0.5, 0.5))
+    patches = PatchScene.from_scene(s, patch_size=100.0).patches
+    assert len(patches.vertices) == 8
+    far = Mesh(square * 1e-3 + 1e4, [[0, 1, 2, 3]])
+    tiny = PatchScene.from_scene(scene(far, (0.5, 0.5, 0.5)), patch_size=1e-4).patches
+    side = round(np.sqrt(tiny.n_patches))  # (a grid of side x side patches)
+    assert side >= 10 and len(tiny.vertices) == (side + 1) ** 2  # (every corner welded)
+    assert np.isfinite(tiny.vertices).all()

@@ -245,8 +245,10 @@ def _assemble(parts, split: int, size: float) -> Patches:
         np.zeros((0, 3, 3))
     corners = np.concatenate([qt, tris])  # (T, 3, 3)
     patch = np.concatenate([np.arange(nq), np.arange(nq), nq + np.arange(nt)]).astype(np.int64)
-    # weld by position, to a grid far finer than a patch
-    quantum = size * 1e-6
+    # weld by position, to a grid set by the geometry's own scale (2^-30 of its largest
+    # coordinate: float noise, never a feature -- and never past int64), not by the patch
+    # size (tiny patches overflowed the keys, large ones welded distinct corners)
+    quantum = max(float(np.abs(corners).max()), 1e-300) * 2.0 ** -30
     keys = np.round(corners.reshape(-1, 3) / quantum).astype(np.int64)
     _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
     vertices = corners.reshape(-1, 3)[first]

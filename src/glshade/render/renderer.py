@@ -25,6 +25,7 @@ from ..errors import (
     EnvironmentFailure, GlshadeError, InputError, RenderWarning, SettingError,
     OptionError, SceneError, UsageError,
 )
+from ..interrupt import held
 from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Backend, Culling, Outputs, Projection, ShadingMode
 from ..options import DrawOptions, RenderConfig
@@ -492,9 +493,10 @@ class Renderer:
         options = DrawOptions.of(options, **changes)
         if options.outputs is not Outputs.COLOR:
             options = options.replace(outputs=Outputs.COLOR)
-        target = self._target("f1")
-        self._counted_draw(target, scene, camera, options)
-        return target.read_color()
+        with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
+            target = self._target("f1")
+            self._counted_draw(target, scene, camera, options)
+            return target.read_color()
 
     def render_frame(self, scene: Scene, camera: Camera, options=None, *,
                      outputs: Outputs = Outputs.ALL, color_dtype: str = "u1",
@@ -511,20 +513,22 @@ class Renderer:
             raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         dtype = "f1" if color_dtype == "u1" else "f4"
-        target = self._target(dtype)
         want = options.outputs
-        if self.samples and want.auxiliary:  # colour multisampled, the rest exact
-            self._counted_draw(target, scene, camera, options.replace(outputs=Outputs.COLOR))
-            color = target.read_color()
-            target = self._target(dtype, samples=0)
-            self.draw(target, scene, camera, options)
-        else:
-            self._counted_draw(target, scene, camera, options)
-            color = target.read_color()
-        return Frame(color,
-                     target.read_depth() if want & Outputs.DEPTH else None,
-                     target.read_normal() if want & Outputs.NORMAL else None,
-                     target.read_face_id() if want & Outputs.FACE_ID else None)
+        with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
+            target = self._target(dtype)
+            if self.samples and want.auxiliary:  # colour multisampled, the rest exact
+                self._counted_draw(target, scene, camera,
+                                   options.replace(outputs=Outputs.COLOR))
+                color = target.read_color()
+                target = self._target(dtype, samples=0)
+                self.draw(target, scene, camera, options)
+            else:
+                self._counted_draw(target, scene, camera, options)
+                color = target.read_color()
+            return Frame(color,
+                         target.read_depth() if want & Outputs.DEPTH else None,
+                         target.read_normal() if want & Outputs.NORMAL else None,
+                         target.read_face_id() if want & Outputs.FACE_ID else None)
 
     def pick(self, scene: Scene, camera: Camera, x: float, y: float,
              options=None) -> Pick | None:

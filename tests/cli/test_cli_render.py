@@ -87,10 +87,12 @@ def test_malformed_mesh_exits_2(tmp_path):
     assert list(tmp_path.iterdir()) == [bad]
 
 
-def test_unwritable_output_exits_1(tmp_path):
+def test_an_output_into_a_missing_folder_exits_2_before_any_work(tmp_path):
+    """(A path given wrong is bad input, checked first; the system refusing a write --
+    permissions, a full disk -- is the environment's: status 1.)"""
     r = glshade("render", "primitive:cube", "-o", str(tmp_path / "no" / "dir" / "x.png"),
                 "--size", "16x16", "--backend", BACKEND)
-    assert r.returncode == 1
+    assert r.returncode == 2
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
 
 

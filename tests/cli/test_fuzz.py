@@ -78,3 +78,17 @@ def test_inputs_that_are_not_meshes_end_in_one_line(command, source, tmp_path):
     done = glshade(*args, "--size", "16x16") if command != "info" else glshade(*args)
     assert done.returncode == 2, done.stderr
     _check(done, out_dir, set())
+
+
+@pytest.mark.parametrize("command", ["render", "pathtrace", "hidden", "compare"])
+@pytest.mark.parametrize("bad", ["missing folder", "a folder", "empty"])
+def test_an_output_that_cannot_be_written_is_refused_before_any_work(command, bad, tmp_path):
+    """Every command that writes an image checks its output first (it rendered, then met
+    a raw OS error: 'cannot write .: Device or resource busy' for -o '')."""
+    fixed, _ = COMMANDS[command]
+    output = {"missing folder": str(tmp_path / "no" / "x.png"), "a folder": str(tmp_path),
+              "empty": ""}[bad]
+    done = glshade(command, *fixed, "-o", output, "--backend", BACKEND)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1, done.stderr
+    assert "cannot write" not in done.stderr and "Traceback" not in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == []

@@ -2,9 +2,10 @@
 the typed value each subcommand's arguments become (arguments), what is rendered
 (inputs) and the subcommands (commands, info, hidden, radiosity).
 
-Exit status: 0 on success; 2 for bad input (arguments, or an input file that is missing
-or malformed), reported in one line on stderr; 1 for a failure of the environment (no GL
-context, an output that cannot be written), also one line. ``--debug`` shows tracebacks.
+Exit status: 0 on success; 2 for bad input (arguments, an input file that is missing or
+malformed, an output path into a missing folder -- every output is checked before any
+work), reported in one line on stderr; 1 for a failure of the environment (no GL context,
+a write the system refuses), also one line. ``--debug`` shows tracebacks.
 Ctrl-C at any moment, imports included, ends with one line and status 130.
 """
 

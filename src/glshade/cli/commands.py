@@ -26,6 +26,7 @@ def render(args: a.RenderCommandArgs) -> int:
     from ..io.images import save_image
     from ..render.renderer import Renderer
 
+    v.check_outputs({"the image": args.output})  # (before any work)
     job = load_job(args, args.mesh)
     (width, height), options = job.size, job.options
     with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
@@ -249,6 +250,7 @@ def view(args: a.ViewArgs) -> int:
     """``glshade view``: the interactive window."""
     from ..viewer.window import Viewer
 
+    v.check_outputs({"--screenshot": args.screenshot})  # (before the window opens)
     job = load_job(args, args.mesh, pane=1 / 3 if args.compare else 1.0)
     with job.explained(), Viewer(job.scene, job.camera, size=job.size, options=job.options,
                                  samples=job.settings.samples, compare=args.compare,

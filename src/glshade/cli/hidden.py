@@ -19,6 +19,9 @@ def hidden(args: HiddenArgs) -> int:
     from ..hidden.lab import agreement, disagreement_map, id_colors
     from ..io.images import label, opaque, save_image
     from ..io.tables import format_table
+    from .validators import check_outputs
+
+    check_outputs({"the grid": args.output, "--steps": getattr(args, "steps", None)})
 
     if args.steps:
         if output_format(args.steps) == "dir":

@@ -20,6 +20,9 @@ def pathtrace(args: PathtraceArgs) -> int:
     """Path-trace a scene file or mesh to an image; a Ctrl-C writes the image so far."""
     from .. import pathtrace as pt
     from ..io.images import save_image
+    from .validators import check_outputs
+
+    check_outputs({"the image": args.output})  # (before any work)
 
     for given, name in ((args.samples, "--samples (MSAA)"), (args.edges, "--edges")):
         if given is not None:

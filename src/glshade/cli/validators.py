@@ -221,6 +221,8 @@ def image_output(text: str) -> str:
     from ..errors import InputError
     from ..io.images import image_format
 
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty file name")
     try:
         image_format(text)
     except InputError as exc:
@@ -236,6 +238,9 @@ def check_outputs(files: dict, folders: dict | None = None) -> None:
     that exists."""
     import os
 
+    for name, p in {**files, **(folders or {})}.items():
+        if p is not None and not str(p).strip():
+            raise UsageError(f"{name}: an empty file name")
     named = {k: v for k, v in {**files, **(folders or {})}.items() if v}
     paths = [os.path.abspath(str(v).rstrip("/")) for v in named.values()]
     if len(set(paths)) != len(paths):

@@ -21,11 +21,9 @@ def hidden(args: HiddenArgs) -> int:
     from ..io.tables import format_table
     from .validators import check_outputs
 
-    check_outputs({"the grid": args.output, "--steps": getattr(args, "steps", None)})
-
-    if args.steps:
-        if output_format(args.steps) == "dir":
-            raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
+    check_outputs({"the grid": args.output, "--steps": args.steps})
+    if args.steps and output_format(args.steps) == "dir":
+        raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
     args = replace(args, size=args.size or (256, 256))
     job = load_job(args, args.mesh)
     if job.scene.solids:  # the algorithms are for polygons: so is the GPU's reference here

@@ -280,13 +280,14 @@ class _Cache:
         self.screen = np.empty((cap, 3, 2))
         self.lo, self.hi = np.empty((cap, 2)), np.empty((cap, 2))
         self.zmin, self.zmax = np.empty(cap), np.empty(cap)
+        self.eye = np.empty(cap)  # the eye's side of each plane (zero: seen edge-on)
         self.grow()
 
     def grow(self):
         start, stop = self.size, self.pieces.size
         if stop > len(self.zmin):
             cap = max(stop, 2 * len(self.zmin))
-            for name in ("screen", "lo", "hi", "zmin", "zmax"):
+            for name in ("screen", "lo", "hi", "zmin", "zmax", "eye"):
                 old = getattr(self, name)
                 new = np.empty((cap, *old.shape[1:]))
                 new[:start] = old[:start]
@@ -300,9 +301,7 @@ class _Cache:
         self.zmax[start:stop] = (-t[start:stop, :, 2]).max(1)
         self.n = self.pieces._n[:stop, :3]
         self.d = self.pieces._n[:stop, 3]
-        # the eye's side of each plane (zero: seen edge-on)
-        eye = self.p.eye_side(self.n[start:stop], self.d[start:stop])
-        self.eye = np.r_[self.eye[:start], eye] if start else eye
+        self.eye[start:stop] = self.p.eye_side(self.n[start:stop], self.d[start:stop])
         self.size = stop
 
     def src(self, k):

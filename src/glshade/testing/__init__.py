@@ -17,13 +17,19 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["assert_images_close", "failure_dir", "node_folder", "levels"]
+__all__ = ["assert_images_close", "failure_dir", "node_folder", "safe_name", "levels"]
+
+
+def safe_name(text: str) -> str:
+    """``text`` as a file name: runs of anything but letters, digits, ``_.-[]`` become
+    ``_``."""
+    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", text)
 
 
 def node_folder(nodeid: str) -> str:
     """A test's own results folder name, from its whole node id (its file's path
     included: tests of one name in two folders do not share one)."""
-    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", nodeid.replace("::", "."))
+    return safe_name(nodeid.replace("::", "."))
 
 
 def failure_dir() -> Path:

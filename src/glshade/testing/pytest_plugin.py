@@ -34,14 +34,13 @@ import glob
 import html
 import json
 import os
-import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from glshade.testing import node_folder
+from glshade.testing import node_folder, safe_name
 
 _REGISTRY = pytest.StashKey[dict]()  # golden path -> node id that checks it
 _FAILURES = pytest.StashKey[list]()  # what index.html lists
@@ -113,7 +112,7 @@ def golden_name(nodeid: str) -> str:
     """``tests/test_a.py::TestB::test_c[x]`` -> ``test_a.TestB.test_c[x]``: a file name."""
     file, _, rest = nodeid.partition("::")
     parts = [Path(file).stem, *rest.split("::")] if rest else [Path(file).stem]
-    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", ".".join(p for p in parts if p))
+    return safe_name(".".join(p for p in parts if p))
 
 
 @dataclass
@@ -173,7 +172,7 @@ def glshade_golden(request):
                                                              max_mean, max_pixel, edge_width)
         if verdict.ok:
             return
-        out = _results(config) / node_folder(request.node.nodeid) / _safe(Path(name).stem)
+        out = _results(config) / node_folder(request.node.nodeid) / safe_name(Path(name).stem)
         _save_failure(out, color, expected, verdict)
         config.stash[_FAILURES].append(_Failure(request.node.nodeid, name, out,
                                                 verdict.summary(), golden_facts, facts, path,
@@ -184,10 +183,6 @@ def glshade_golden(request):
             f"{out}")
 
     return check
-
-
-def _safe(name: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", name)
 
 
 def _closest(path: Path, color, facts, face_id, max_mean, max_pixel, edge_width):

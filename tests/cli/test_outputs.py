@@ -71,3 +71,20 @@ def test_the_image_format_follows_the_extension(tmp_path, name, magic):
                 "--backend", BACKEND)
     assert r.returncode == 0, r.stderr
     assert out.read_bytes().startswith(magic)
+
+
+@pytest.mark.parametrize("command, output, words", [
+    (("animate", "primitive:cube", "--frames", "2"), "{tmp}/no/x.gif", "does not exist"),
+    (("animate", "primitive:cube", "--frames", "2"), "{tmp}/taken.txt/", "is a file, not a "
+     "folder"),
+    (("animate", "primitive:cube", "--frames", "2"), "", "-o: an empty file name"),
+    (("batch", "assets/teapot.obj"), "{tmp}/taken.txt", "is a file, not a folder"),
+    (("batch", "assets/teapot.obj"), "{tmp}/no/out", "does not exist"),
+])
+def test_animate_and_batch_check_their_outputs_first(tmp_path, command, output, words):
+    """The commands that write many files check where before the first frame or mesh."""
+    (tmp_path / "taken.txt").write_text("mine")
+    r = limited(10**9, *command, "-o", output.replace("{tmp}", str(tmp_path)), "-q",
+                "--backend", BACKEND)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and words in r.stderr, r.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["taken.txt"]

@@ -270,3 +270,32 @@ def test_view_and_eye_together_are_refused_in_one_line(tmp_path):
     assert out.returncode == 2 and out.stderr.count("\n") == 1
     assert "--view front frames its own camera; give --view or --eye, not both" in out.stderr
     assert not (tmp_path / "g.png").exists()
+
+
+@pytest.mark.parametrize("source, levels, words", [
+    ("patches:teapot", "0", "--levels: a patch sweep's tessellation levels run from 1 to 512, "
+     "got 0"),
+    ("primitive:icosphere", "2,9", "--levels: a sphere's subdivision levels run from 0 to 8, "
+     "got 9"),
+])
+def test_a_sweep_names_levels_out_of_its_range(tmp_path, source, levels, words):
+    """Each sweep checks the levels it can draw and names the option (a patch sweep without
+    --levels once failed on the sphere default's level 0 with 'level must be ...')."""
+    from tests.conftest import glshade
+
+    out = glshade("compare", source, "--sweep", "--levels", levels, "-o",
+                  str(tmp_path / "s.png"))
+    assert out.returncode == 2 and out.stderr.strip() == f"glshade: error: {words}", out.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_patch_sweep_draws_its_own_default_levels(tmp_path):
+    from glshade.compare.sweeps import PATCH_SWEEP_LEVELS
+    from tests.conftest import glshade
+
+    out = glshade("compare", "patches:sphere", "--sweep", "-o", str(tmp_path / "s.png"),
+                  "--size", "24x24", "--modes", "phong")
+    assert out.returncode == 0, out.stderr
+    drawn = [int(line.split()[0]) for line in out.stdout.splitlines()
+             if line.strip()[:1].isdigit()]
+    assert drawn == list(PATCH_SWEEP_LEVELS)

@@ -206,6 +206,20 @@ def test_view_cli_screenshot(tmp_path):
     assert Image.open(out).size == (200, 150)
 
 
+def test_a_blank_screenshot_says_why(tmp_path):
+    """A screenshot of nothing warns as ``render`` does (the camera looks away here), and
+    still writes the picture it was asked for."""
+    out = tmp_path / "away.png"
+    r = subprocess.run([sys.executable, "-m", "glshade", "view", "primitive:cube", "--frames",
+                        "2", "--screenshot", str(out), "--size", "64x48", "--eye", "0,0,5",
+                        "--target", "0,0,10"], cwd=ROOT, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "glshade: warning: the render is blank: no part of the scene lies in the " \
+        "camera's view" in r.stderr, r.stderr
+    assert out.exists()
+
+
 def test_resize_keeps_the_aspect(viewer_factory, tmp_path):
     import glfw
 

@@ -102,7 +102,7 @@ class CompareArgs(RenderArgs, ExecutorArgs):
     json: str | None = None
     csv: str | None = None
     sweep: bool = False
-    levels: tuple[int, ...] = tuple(range(7))
+    levels: tuple[int, ...] | None = None  # (None: the sweep's own default)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -60,6 +60,9 @@ def animate(args: a.AnimateArgs) -> int:
     from ..animate import animate as run, output_format
 
     output_format(args.output)  # a bad extension fails before any rendering
+    folder = args.output.endswith(("/", os.sep))  # (a folder/ of frames)
+    v.check_outputs({} if folder else {"-o": args.output}, {"-o": args.output} if folder
+                    else None)
     job = load_job(args, args.scene)
     st = job.settings
     fps = args.fps or st.fps
@@ -100,6 +103,7 @@ def batch(args: a.BatchArgs) -> int:
     if args.eye is not None or args.target is not None:
         raise UsageError("batch frames every mesh itself; use --views N for more "
                          "directions, not --eye/--target")
+    v.check_outputs({}, {"-o": args.output})  # (the folder; before any mesh is read)
     given = args.given("color", "ka", "kd", "ks", "shininess")
     Material.from_values(given)  # bad values fail now, not once per mesh
     options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}))
@@ -120,6 +124,10 @@ def batch(args: a.BatchArgs) -> int:
     return EXIT_OK if not result.count("error") else EXIT_USAGE
 
 
+#: a sphere sweep's deepest subdivision (level 8: 1.3 M triangles for the icosphere)
+SPHERE_MAX_LEVEL = 8
+
+
 def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
     from ..atomic import atomic_write
     from ..compare import sweep, sweep_plot
@@ -134,10 +142,14 @@ def _sweep(args: a.CompareArgs, modes: list[str]) -> int:
         raise UsageError("--sweep needs a sphere primitive (primitive:icosphere or "
                          "primitive:uv_sphere) or patches:NAME")
     make = icosphere_level if spec == "icosphere" else uv_sphere_level
-    with Progress(len(args.levels), unit="levels") as bar:
+    levels = list(range(7)) if args.levels is None else args.levels
+    if max(levels) > SPHERE_MAX_LEVEL:
+        raise UsageError(f"--levels: a sphere's subdivision levels run from 0 to "
+                         f"{SPHERE_MAX_LEVEL}, got {max(levels)}")
+    with Progress(len(levels), unit="levels") as bar:
         config = RenderConfig(*(args.size or COMPARE_DEFAULTS.size), samples=0,
                               backend=args.backend)
-        rows = sweep(make, args.levels, modes=modes, config=config, jobs=args.jobs or 1,
+        rows = sweep(make, levels, modes=modes, config=config, jobs=args.jobs or 1,
                      scheduler=args.scheduler, progress=bar)
     print("mean |error| against the analytic sphere (8-bit units) and the brightest pixel "
           "(the reference's: %.1f)" % rows[0][modes[0]].reference_peak)
@@ -160,14 +172,20 @@ def _patch_sweep(args: a.CompareArgs, modes: list[str]) -> int:
     """``compare patches:NAME --sweep``: exact against averaged normals, level by level."""
     from ..atomic import atomic_write
     from ..compare import patch_sweep, sweep_plot
+    from ..compare.sweeps import PATCH_SWEEP_LEVELS
     from ..io.images import save_image
     from ..io.meshes import load_source
+    from ..patches.tessellation import MAX_LEVEL
 
+    levels = args.levels if args.levels is not None else PATCH_SWEEP_LEVELS
+    if min(levels) < 1:
+        raise UsageError(f"--levels: a patch sweep's tessellation levels run from 1 to "
+                         f"{MAX_LEVEL}, got {min(levels)}")
     surface = load_source(args.mesh)
     # (flat shading lights each polygon by its own normal: the vertex normals do not show)
     modes = [m for m in modes if m in ("gouraud", "phong")] or ["phong"]
     size = args.size or COMPARE_DEFAULTS.size
-    rows = patch_sweep(surface, levels=args.levels, modes=modes, size=size,
+    rows = patch_sweep(surface, levels=levels, modes=modes, size=size,
                        backend=args.backend, progress=None)
     series = [f"{m} {k}" for m in modes for k in ("exact", "averaged")]
     print(f"mean |error| against Phong on a fine tessellation with exact normals (8-bit "

@@ -213,8 +213,10 @@ def add_compare(sub) -> None:
     p.add_argument("--csv", help="write the metrics as CSV")
     p.add_argument("--sweep", action="store_true", help="error of each mode against "
                    "tessellation level of a sphere primitive")
-    p.add_argument("--levels", type=v.levels, default=list(range(0, 7)),
-                   help="levels for --sweep, e.g. 0..6")
+    p.add_argument("--levels", type=v.levels, default=None,
+                   help="levels for --sweep, e.g. 0..6 (spheres: subdivisions 0 to 8, "
+                   "default 0..6; patches: tessellation levels 1 to 512, default "
+                   "2,3,4,6,8,12,16)")
     add_executor_options(p, default_jobs="1", what="--sweep levels")
     add_render_options(p, size_default="%dx%d per cell" % c.COMPARE_DEFAULTS.size)
     p.set_defaults(func=c.compare, arguments=a.CompareArgs)

@@ -101,17 +101,20 @@ def mode(text: str) -> ShadingMode:
 
 
 def levels(text: str) -> list[int]:
-    """``a..b`` or ``a,b,c`` as a list of tessellation levels."""
+    """``a..b`` or ``a,b,c`` as a list of tessellation levels (each sweep checks its own
+    range: sphere subdivisions 0 to 8, patch tessellations 1 to 512)."""
+    from ..patches.tessellation import MAX_LEVEL
+
     m = re.fullmatch(r"\s*(\d+)\s*\.\.\s*(\d+)\s*", text)
-    if m and int(m.group(1)) <= int(m.group(2)) <= 8:
+    if m and int(m.group(1)) <= int(m.group(2)) <= MAX_LEVEL:
         return list(range(int(m.group(1)), int(m.group(2)) + 1))
     try:
         values = [int(v) for v in text.split(",")]
     except ValueError:
         values = []
-    if not values or min(values) < 0 or max(values) > 8:
-        raise argparse.ArgumentTypeError(f"expected levels such as 0..6 or 1,3,5 (0 to 8), got "
-                                         f"{text!r}")
+    if not values or min(values) < 0 or max(values) > MAX_LEVEL:
+        raise argparse.ArgumentTypeError(f"expected levels such as 0..6 or 1,3,5 (0 to "
+                                         f"{MAX_LEVEL}), got {text!r}")
     return values
 
 

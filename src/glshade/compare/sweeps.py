@@ -148,7 +148,11 @@ def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420
     return np.asarray(img)
 
 
-def patch_sweep(surface, camera: Camera | None = None, levels=(2, 3, 4, 6, 8, 12, 16),
+#: the tessellation levels a patch sweep draws unless told
+PATCH_SWEEP_LEVELS = (2, 3, 4, 6, 8, 12, 16)
+
+
+def patch_sweep(surface, camera: Camera | None = None, levels=PATCH_SWEEP_LEVELS,
                 modes=("gouraud", "phong"), *, reference_level: int = 96, size=(256, 256),
                 material=None, renderer=None, backend=None, progress=None) -> list[dict]:
     """Shading error of a patch model's tessellations against an exact per-pixel reference

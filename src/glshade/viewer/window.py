@@ -191,6 +191,15 @@ class Viewer(Controls):
         if path is not None:
             from ..io.images import save_image
 
+            if (img == img[:1, :1]).all() and self.tracer is None:  # (one colour: a blank)
+                import warnings
+
+                from ..errors import RenderWarning
+                from ..render.diagnostics import why_blank
+
+                warnings.warn(why_blank(self.scene, self.camera.with_planes(self.scene.bounds),
+                                        self.options.cull), RenderWarning, stacklevel=2)
+
             save_image(img, path)
             self._say(f"saved {path}")
         return img

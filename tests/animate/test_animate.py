@@ -148,7 +148,8 @@ def test_a_time_off_the_path_warns_and_a_zero_frame_rate_is_refused(tmp_path):
                                    "the view at its end")
     assert (tmp_path / "late.png").read_bytes() == (tmp_path / "end.png").read_bytes()
     zero = glshade("animate", "assets/teapot.obj", "-o", str(tmp_path / "a.gif"), "--fps", "0")
-    assert zero.returncode == 2 and "--fps: expected a number > 0" in zero.stderr
+    assert zero.returncode == 2 and "--fps: expected frames a second from 0.01 to 1000" \
+        in zero.stderr
     assert not (tmp_path / "a.gif").exists()
 
 
@@ -477,3 +478,16 @@ def test_animate_and_batch_show_progress_by_default_in_a_notebook(monkeypatch, t
     batch([str(tmp_path / "c.obj")], tmp_path / "out", BatchSpec(size=(32, 32),
                                                                 backend=BACKEND))
     assert len(made) == 2
+
+
+@pytest.mark.parametrize("where", ["--fps", "scene file"])
+def test_a_frame_rate_an_animation_cannot_hold_is_refused(tmp_path, where):
+    """A subnormal frame rate made the turntable's seconds infinite (a NaN camera and numpy
+    warnings); the range is that of a GIF's frame delay, said in one line."""
+    scene = tmp_path / "s.toml"
+    scene.write_text('[render]\nfps = 1e-320\n[[mesh]]\nsource = "primitive:cube"\n')
+    args = (["primitive:cube", "--fps", "1e-320"] if where == "--fps" else [str(scene)])
+    out = glshade("animate", *args, "-o", str(tmp_path / "a.gif"), "-q")
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert "from 0.01 to 1000" in out.stderr and "warning" not in out.stderr
+    assert not (tmp_path / "a.gif").exists()

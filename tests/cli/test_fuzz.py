@@ -1,9 +1,9 @@
 """Hostile input to the commands (hypothesis, derandomized in CI; the failing example is
-printed): every option of render, pathtrace, compare, radiosity, hidden and info given
-values from the edges -- zero, negative, huge (past 2^31 and 2^63), not finite, not a
-number, empty -- and inputs that are not meshes. Every run ends with status 0, 1 or 2; a
-failure says one line on stderr, with no traceback and no numpy repr, and leaves nothing
-in the output folder; a success writes only its outputs there."""
+printed): every option of render, pathtrace, compare, radiosity, hidden, animate, batch
+and info given values from the edges -- zero, negative, huge (past 2^31 and 2^63), not
+finite, not a number, empty -- and inputs that are not meshes. Every run ends with status
+0, 1 or 2; a failure says one line on stderr, with no traceback and no numpy repr, and
+leaves nothing in the output folder; a success writes only its outputs there."""
 
 import re
 
@@ -37,7 +37,15 @@ COMMANDS = {
                    "--hemicube": HOSTILE, "--exposure": HOSTILE}),
     "hidden": (["primitive:cube", "--size", "16x16"],
                {"--size": SIZES, "--algorithm": ["bsp", "nope", ""], "--fov": HOSTILE}),
+    "animate": (["primitive:cube", "--size", "16x16", "--frames", "2", "--jobs", "1", "-q"],
+                {"--frames": HOSTILE, "--fps": HOSTILE, "--duration": HOSTILE,
+                 "--size": SIZES}),
+    "batch": (["assets/teapot.obj", "--size", "16x16", "--jobs", "1", "-q"],
+              {"--views": HOSTILE, "--size": SIZES, "--samples": HOSTILE,
+               "--crease": HOSTILE}),
 }
+#: what each command is told to write (-o) in the test's folder; the rest write out.png
+OUTPUT = {"animate": "out.gif", "batch": "out"}
 INPUTS = ["/dev/null", "assets", "missing.obj", "assets/README.md"]
 
 
@@ -63,9 +71,9 @@ def test_hostile_options_end_well(data, tmp_path_factory):
     option = data.draw(st.sampled_from(sorted(options)), label="option")
     value = data.draw(st.sampled_from(options[option]), label="value")
     out_dir = tmp_path_factory.mktemp("out")
-    out = out_dir / "out.png"
+    out = out_dir / OUTPUT.get(command, "out.png")
     args = [command, *fixed, option, value, "-o", str(out), "--backend", BACKEND]
-    outputs = {"out.png", "out-convergence.png"}
+    outputs = {"out.png", "out-convergence.png", "out.gif", "out"}
     _check(glshade(*args, timeout=300), out_dir, outputs)
 
 

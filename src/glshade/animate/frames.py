@@ -10,6 +10,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ..errors import InputError, OutputError
+from .writers import check_fps
 from ..io.images import LABEL_HEIGHT, labelled_row
 from ..io.scenefile import SceneFile
 from ..options import DrawOptions, RenderConfig
@@ -150,7 +151,7 @@ def animate(scene, path: CameraPath | None = None, frames: int | None = None, op
         st = scene.settings
         path = scene.path if path is None else path
         options = st.options if options is None else options
-        fps = st.fps if fps is None else fps
+        fps = check_fps(st.fps if fps is None else fps)
         if config is None:
             config = RenderConfig.of(size=size or st.size,
                                      samples=st.samples if samples is None else samples,
@@ -162,7 +163,7 @@ def animate(scene, path: CameraPath | None = None, frames: int | None = None, op
     if path is None or frames is None:
         raise InputError("animate needs a camera path and a number of frames (or a loaded "
                          "scene file, which has both)")
-    fps = 30.0 if fps is None else fps
+    fps = 30.0 if fps is None else check_fps(fps)
     config = RenderConfig.of(config, size=size, samples=samples, backend=backend)
     if output is not None:
         _check_output(output, frame_shape(config.size, len(modes or [None])))

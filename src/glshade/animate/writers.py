@@ -14,9 +14,26 @@ import numpy as np
 from ..atomic import atomic_write, held_interrupts, part, publish, writing
 from ..errors import OutputError, OutputWriteError, VideoUnavailable
 
-__all__ = ["output_format", "write_animation", "FORMATS"]
+__all__ = ["output_format", "write_animation", "check_fps", "FORMATS", "MIN_FPS", "MAX_FPS"]
 
 FORMATS = ("gif", "png", "apng", "mp4", "dir")
+#: the frame rates an animation may have: a GIF frame lasts at most 655.35 s (a 16-bit count
+#: of 1/100 s), and a frame shorter than 1 ms is no frame a player shows
+MIN_FPS, MAX_FPS = 0.01, 1000.0
+
+
+def check_fps(fps: float, name: str = "fps") -> float:
+    """``fps`` as a float in [MIN_FPS, MAX_FPS], or an OptionError naming ``name``."""
+    from ..errors import OptionError
+
+    try:
+        value = float(fps)
+    except (TypeError, ValueError):
+        raise OptionError(f"{name} must be a number, got {fps!r}") from None
+    if not MIN_FPS <= value <= MAX_FPS:
+        raise OptionError(f"{name} must be from {MIN_FPS:g} to {MAX_FPS:g} frames a second, "
+                          f"got {value:g}")
+    return value
 
 
 def output_format(output) -> str:

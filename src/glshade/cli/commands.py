@@ -58,6 +58,7 @@ TURNTABLE_SECONDS = 4.0
 def animate(args: a.AnimateArgs) -> int:
     """``glshade animate``: a scene along its camera path, to GIF, APNG, MP4 or frames."""
     from ..animate import animate as run, output_format
+    from ..animate.writers import check_fps
 
     output_format(args.output)  # a bad extension fails before any rendering
     folder = args.output.endswith(("/", os.sep))  # (a folder/ of frames)
@@ -65,7 +66,7 @@ def animate(args: a.AnimateArgs) -> int:
                     else None)
     job = load_job(args, args.scene)
     st = job.settings
-    fps = args.fps or st.fps
+    fps = args.fps or check_fps(st.fps, f"{args.scene}: [render] fps")
     duration = args.duration if args.duration is not None else st.duration
     if job.path is None and duration is None:
         duration = TURNTABLE_SECONDS

@@ -166,7 +166,7 @@ def add_animate(sub) -> None:
                    "or a mesh (a turn round it: 4 s unless --frames or --duration)")
     p.add_argument("-o", "--output", required=True, help="out.gif, out.png (APNG), out.mp4 "
                    "or a folder/ for PNG frames")
-    p.add_argument("--fps", type=v.positive_float, help="frames per second (default: the "
+    p.add_argument("--fps", type=v.fps, help="frames per second (default: the "
                    "scene's, else 30)")
     length = p.add_mutually_exclusive_group()
     length.add_argument("--duration", type=v.nonnegative_float, help="seconds of path to render")

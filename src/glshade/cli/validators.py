@@ -208,6 +208,14 @@ def positive_float(text: str) -> float:
     return _number(text, lambda x: x > 0, "a number > 0")
 
 
+def fps(text: str) -> float:
+    """Frames a second, in the range an animation file can hold."""
+    from ..animate.writers import MAX_FPS, MIN_FPS
+
+    return _number(text, lambda x: MIN_FPS <= x <= MAX_FPS,
+                   f"frames a second from {MIN_FPS:g} to {MAX_FPS:g}")
+
+
 def fraction(text: str) -> float:
     return _number(text, lambda x: 0 <= x < 1, "a fraction in [0, 1), such as 0.01")
 

@@ -3,6 +3,7 @@
 // events along it, the first surface beyond the near plane; its depth goes to
 // gl_FragDepth, so solids and meshes meet in one z-buffer. Lit by the same function as the
 // meshes (lighting.glsl) with the exact normal at every pixel.
+#include "shadow_mask.glsl"
 #include "lighting.glsl"
 #include "csg.glsl"
 

@@ -1,6 +1,7 @@
 #version 330 core
 // Uniform (flat) shading: the polygon's one intensity, computed at its corners (flat.vert).
 #include "surface.glsl"
+#include "shadow_mask.glsl"
 #include "outputs.glsl"
 
 flat in vec3 v_color_front;
@@ -9,6 +10,12 @@ flat in vec3 v_color_back;
 #endif
 #ifdef WORLD_NORMALS
 flat in vec3 v_face_normal_world;
+#endif
+#ifdef SHADOW_MASK
+flat in vec3 v_terms_front[LIGHT_COUNT];
+#ifdef TWO_SIDED
+flat in vec3 v_terms_back[LIGHT_COUNT];
+#endif
 #endif
 in vec3 v_position_view;
 
@@ -21,7 +28,14 @@ void main() {
 #endif
     face_viewer(n_view, n_world);
 #ifdef TWO_SIDED
+#ifdef SHADOW_MASK
+    vec3 color = gl_FrontFacing ? visible_sum(v_color_front, v_terms_front)
+                                : visible_sum(v_color_back, v_terms_back);
+#else
     vec3 color = gl_FrontFacing ? v_color_front : v_color_back;
+#endif
+#elif defined(SHADOW_MASK)
+    vec3 color = visible_sum(v_color_front, v_terms_front);
 #else
     vec3 color = v_color_front;  // back faces are culled
 #endif

@@ -18,6 +18,12 @@ flat out vec3 v_color_back;
 #ifdef WORLD_NORMALS
 flat out vec3 v_face_normal_world;
 #endif
+#ifdef SHADOW_MASK
+flat out vec3 v_terms_front[LIGHT_COUNT];  // each light's term apart (v_color_*: ambient)
+#ifdef TWO_SIDED
+flat out vec3 v_terms_back[LIGHT_COUNT];
+#endif
+#endif
 out vec3 v_position_view;
 
 void main() {
@@ -26,9 +32,19 @@ void main() {
     vec3 n = normalize(u_normal_view * in_face_normal);
     vec3 c = (u_model_view * vec4(in_face_centroid, 1.0)).xyz;
     vec3 v = view_dir(c);
+#ifdef SHADOW_MASK
+    vec3 terms[LIGHT_COUNT];
+    v_color_front = light_terms(c, n, v, terms);
+    v_terms_front = terms;
+#ifdef TWO_SIDED
+    v_color_back = light_terms(c, -n, v, terms);
+    v_terms_back = terms;
+#endif
+#else
     v_color_front = light_intensity(c, n, v);
 #ifdef TWO_SIDED
     v_color_back = light_intensity(c, -n, v);
+#endif
 #endif
 #ifdef WORLD_NORMALS
     v_face_normal_world = u_normal_world * in_face_normal;

@@ -1,11 +1,18 @@
 #version 330 core
 // Gouraud shading: interpolated vertex intensities.
 #include "surface.glsl"
+#include "shadow_mask.glsl"
 #include "outputs.glsl"
 
 in vec3 v_color_front;
 #ifdef TWO_SIDED
 in vec3 v_color_back;
+#endif
+#ifdef SHADOW_MASK
+in vec3 v_terms_front[LIGHT_COUNT];
+#ifdef TWO_SIDED
+in vec3 v_terms_back[LIGHT_COUNT];
+#endif
 #endif
 in vec3 v_position_view;
 #ifdef WORLD_NORMALS
@@ -21,7 +28,14 @@ void main() {
 #endif
     face_viewer(n_view, n_world);
 #ifdef TWO_SIDED
+#ifdef SHADOW_MASK
+    vec3 color = gl_FrontFacing ? visible_sum(v_color_front, v_terms_front)
+                                : visible_sum(v_color_back, v_terms_back);
+#else
     vec3 color = gl_FrontFacing ? v_color_front : v_color_back;
+#endif
+#elif defined(SHADOW_MASK)
+    vec3 color = visible_sum(v_color_front, v_terms_front);
 #else
     vec3 color = v_color_front;  // back faces are culled
 #endif

@@ -1,6 +1,7 @@
 #version 330 core
 // Phong shading: normals interpolated, renormalised and lit at every pixel, with L and V
 // per pixel.
+#include "shadow_mask.glsl"
 #include "lighting.glsl"
 #include "surface.glsl"
 #include "outputs.glsl"

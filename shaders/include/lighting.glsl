@@ -13,6 +13,12 @@
 
 #include "constants.glsl"
 
+// How much of light i reaches the point: 1 unless a fragment stage has a shadow pass's
+// visibility (shadow_mask.glsl, included before this file, defines it per pixel).
+#ifndef LIGHT_VISIBLE
+#define LIGHT_VISIBLE(i) 1.0
+#endif
+
 // Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
 vec3 view_dir(vec3 p_view) {
 #ifdef ORTHOGRAPHIC
@@ -53,7 +59,20 @@ vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
     // a constant trip count over constant kinds: unrolled, each term its kind's code alone
     const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
-        color += light_term(i, kinds[i], p_view, n_view, v_view);
+        color += LIGHT_VISIBLE(i) * light_term(i, kinds[i], p_view, n_view, v_view);
     }
     return color;
 }
+
+#ifdef SHADOW_MASK
+// The same formula with each light's term kept apart (the ambient term is returned): the
+// vertex stages of flat and Gouraud shading hand the terms on, so that a pixel drops the
+// terms of the lights its surface point does not see (shadow_mask.glsl: visible_sum).
+vec3 light_terms(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 terms[LIGHT_COUNT]) {
+    const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        terms[i] = light_term(i, kinds[i], p_view, n_view, v_view);
+    }
+    return AMBIENT_TERM;
+}
+#endif

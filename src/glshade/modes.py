@@ -9,7 +9,7 @@ from typing import TypeVar
 
 from .errors import OptionError
 
-__all__ = ["ShadingMode", "Outputs", "Culling", "Projection", "Backend", "HEADLESS_BACKENDS",
+__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Projection", "Backend", "HEADLESS_BACKENDS",
            "parse_enum"]
 
 
@@ -90,6 +90,30 @@ class Culling(enum.Enum):
 
     def __bool__(self) -> bool:  # (so `if options.cull:` reads as before: AUTO and ON cull)
         return self is not Culling.OFF
+
+
+class Shadows(enum.Enum):
+    """Cast shadows: a light the shaded point cannot see adds nothing there (the ambient
+    term and the other lights' terms stay)."""
+
+    OFF = "off"      # every light reaches every surface facing it (the notes' model)
+    EXACT = "exact"  # one ray from each pixel's surface point to each light, through a BVH
+    MAP = "map"      # shadow maps (2D for directional lights, cube for point lights), PCF
+
+    @classmethod
+    def parse(cls, value: object) -> Shadows:
+        """A Shadows, its name, or True (EXACT) / False (OFF)."""
+        if isinstance(value, cls):
+            return value
+        if value is True:
+            return cls.EXACT
+        if value is False or value is None:
+            return cls.OFF
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise OptionError.must("shadows", "be one of "
+                                   f"{', '.join(m.value for m in cls)}, got {value!r}") from None
 
 
 class Projection(str, enum.Enum):

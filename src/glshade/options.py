@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .errors import OptionError
-from .modes import Backend, Culling, Outputs, ShadingMode
+from .modes import Backend, Culling, Outputs, ShadingMode, Shadows
 
 __all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS",
            "check_whole", "check_size", "check_samples", "HEMICUBE_RESOLUTION"]
@@ -51,6 +51,9 @@ class DrawOptions:
     edges : draw the polygons' edges over the filled picture (dark; hidden edges stay
         hidden). Edges are each polygon's boundary, never its triangulation's diagonals.
     outputs : what the draw writes besides colour (:class:`Outputs`).
+    shadows : cast shadows (:class:`Shadows` or its name): "off" (default), "exact" (a ray
+        from each pixel's surface point to each light) or "map" (shadow maps with PCF). They
+        shade the flat, Gouraud and Phong modes; the other modes show no light to shadow.
     """
 
     mode: ShadingMode = ShadingMode.PHONG
@@ -60,11 +63,12 @@ class DrawOptions:
     wireframe: bool = False
     outputs: Outputs = Outputs.COLOR
     edges: bool = False
+    shadows: Shadows = Shadows.OFF
 
     def __init__(self, mode: ShadingMode | str = ShadingMode.PHONG, depth_test: bool = True,
                  cull: Culling | bool | str = Culling.AUTO, srgb: bool = False,
                  wireframe: bool = False, outputs: Outputs = Outputs.COLOR,
-                 edges: bool = False) -> None:
+                 edges: bool = False, shadows: Shadows | str | bool = Shadows.OFF) -> None:
         # (written out so that names are accepted where members are stored: a mode's name,
         # cull=True; the stored fields are the enums, and type checkers see both)
         put = object.__setattr__
@@ -75,6 +79,7 @@ class DrawOptions:
         put(self, "wireframe", wireframe)
         put(self, "outputs", outputs)
         put(self, "edges", edges)
+        put(self, "shadows", Shadows.parse(shadows))
         self._check()
 
     def _check(self) -> None:

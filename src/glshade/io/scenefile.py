@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import GlshadeError, PathFormatError, SceneFormatError
-from ..modes import Culling, ShadingMode
+from ..modes import Culling, ShadingMode, Shadows
 from ..options import DEFAULT_SIZE, DrawOptions, check_samples, check_size
 from ..scene.camera import check_fov
 from ..scene.keyframes import OrientationInterp, PositionInterp
@@ -94,6 +94,7 @@ NUMBER = (int, float)
 _SCHEMA = {
     "render": {"size": "size", "mode": "mode", "samples": "samples", "srgb": "bool",
                "depth_test": "bool", "cull": "cull", "wireframe": "bool",
+               "shadows": "shadows",
                "fps": "positive", "duration": "positive", "background": "color",
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
@@ -101,7 +102,7 @@ _SCHEMA = {
              "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees",
              "emission": "color", "reflectance": "reflectance"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
-              "intensity": "nonneg", "attenuation": "vec3"},
+              "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
                "orientation": "quat", "fov_y": "fov", "near": "positive", "far": "positive",
                "interpolation": "interp", "position_interpolation": "pinterp",
@@ -154,7 +155,7 @@ def _size(value: object) -> tuple[int, int]:
 #: the rules of the values that the API checks where they are made: one rule, one message
 _RULES = {"size": _size, "samples": check_samples, "fov": check_fov,
           "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
-          "pinterp": PositionInterp.parse, "cull": Culling.parse}
+          "pinterp": PositionInterp.parse, "cull": Culling.parse, "shadows": Shadows.parse}
 
 
 def _check(kind: str, value, where: str):
@@ -211,7 +212,7 @@ def _check(kind: str, value, where: str):
                    for r in value for v in r):
             fail("a 4x4 list of lists of finite numbers")
         return np.array(value, dtype=float)
-    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull"):
+    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull", "shadows"):
         try:
             return _RULES[kind](value)
         except (GlshadeError, ValueError, TypeError) as exc:
@@ -357,10 +358,12 @@ def load_scene(path) -> SceneFile:
             obj: PointLight | DirectionalLight
             if kind == "point":
                 obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
-                                                          "attenuation") if k in light})
+                                                          "attenuation", "shadows")
+                                    if k in light})
             else:
                 obj = DirectionalLight(**{k: light[k] for k in ("direction", "color",
-                                                                "intensity") if k in light})
+                                                                "intensity", "shadows")
+                                          if k in light})
             scene.add_light(obj)
         except GlshadeError as exc:
             raise SceneFormatError(f"{where}: {exc}") from None

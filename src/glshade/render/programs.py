@@ -85,6 +85,8 @@ class Variant(NamedTuple):
     lights: tuple
     srgb: bool
     orthographic: bool
+    #: each light's term is weighed by its visibility at the pixel (a shadow pass's)
+    shadows: bool = False
 
 
 @dataclass(frozen=True)
@@ -99,20 +101,22 @@ class ProgramKey:
     two_sided: bool = True
     #: Phong's lighting constants reach the fragment stage as flat varyings (constants.glsl)
     flat_constants: bool = False
+    shadows: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model."""
         return cls(variant.mode, variant.aux, variant.lights, variant.srgb,
-                   variant.orthographic, two_sided, flat_constants)
+                   variant.orthographic, two_sided, flat_constants, variant.shadows)
 
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS
         flat = self.flat_constants and self.mode is ShadingMode.PHONG
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
-                 ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights))
+                 ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
+                 ("SHADOW_MASK", self.shadows))
         out = [name for name, on in flags if on]
         out.append(f"LIGHT_COUNT {len(self.lights)}")
         out.append(f"LIGHT_KINDS {', '.join(self.lights)}")

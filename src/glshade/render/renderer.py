@@ -27,7 +27,7 @@ from ..errors import (
 )
 from ..interrupt import held
 from ..geometry.transforms import box_corners, gl_bytes
-from ..modes import Backend, Culling, Outputs, Projection, ShadingMode
+from ..modes import Backend, Culling, Outputs, Projection, ShadingMode, Shadows
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from .context import RenderContext, create_context
@@ -43,7 +43,13 @@ from .passes.edges import EdgePass
 from .diagnostics import why_blank
 from .target import OffscreenTarget
 
-__all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH"]
+__all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
+
+#: the modes whose lights a shadow hides (the others show no light: normals, depth,
+#: radiosity's solved values)
+SHADOWED_MODES = (ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)
+#: the texture unit of a shadowed draw's visibility array (shaders/include/shadow_mask.glsl)
+SHADOW_UNIT = 6
 
 #: how far a camera may be from the origin or its scene (beyond, the view and projection
 #: matrices overflow float64 products)
@@ -193,6 +199,7 @@ class Renderer:
         self._csg = CsgPass(self.context, self.shaders, self._uniforms, self._materials)
         self._edges = EdgePass(self.context, self.shaders, self._uniforms, self._gpu_mesh)
         self._patches: Any = None  # (a PatchPass, made for the first GPU patch model)
+        self._shadow_pass: Any = None  # (a ShadowPass, made for the first shadowed draw)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query: Any = None
@@ -224,6 +231,8 @@ class Renderer:
         self._edges.release()
         if self._patches is not None:
             self._patches.release()
+        if self._shadow_pass is not None:
+            self._shadow_pass.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
@@ -299,6 +308,7 @@ class Renderer:
         self._sync(scene)
         state = self._state(target, scene, camera, options, viewport)
         ctx = self.ctx
+        visibility = self._shadows_of(state)
         if clear:
             target.begin(scene.background, options.outputs)
         else:
@@ -308,6 +318,8 @@ class Renderer:
             ctx.enable(moderngl.DEPTH_TEST)
         else:
             ctx.disable(moderngl.DEPTH_TEST)
+        if visibility is not None:
+            visibility.use(SHADOW_UNIT)
         id_base = self._draw_meshes(state)
         passes: list = []
         if scene.patch_models and not options.wireframe:  # tessellated here, by the GPU
@@ -326,6 +338,23 @@ class Renderer:
         ctx.front_face = "ccw"
         if clear:
             target.resolve(options.outputs)
+
+    def _shadows_of(self, state: DrawState):
+        """The visibility of each light at each pixel (a texture array), when the draw casts
+        shadows: the shadow pass draws the scene's surface points first, then traces or
+        looks up each light (render/passes/shadows.py)."""
+        if not state.variant.shadows:
+            return None
+        if self._shadow_pass is None:
+            from .passes.shadows import ShadowPass
+
+            self._shadow_pass = ShadowPass(self.context, self.shaders)
+        return self._shadow_pass.prepare(self, state)
+
+    @property
+    def shadow_pass(self):
+        """The last shadowed draw's pass (its ``undecided`` rays, its ``maps``), or None."""
+        return self._shadow_pass
 
     def _checked(self, scene, camera, options: DrawOptions) -> Camera:
         """The camera a draw uses (planes fitted to the scene), after the checks every draw
@@ -358,10 +387,14 @@ class Renderer:
         if flip_rows:  # image row 0 first in memory; this mirrors the winding on screen
             proj = _FLIP_Y @ proj
         lights = tuple(scene.lights_for(camera))
+        shadows = options.shadows is not Shadows.OFF and options.mode in SHADOWED_MODES \
+            and not options.wireframe
         variant = Variant(options.mode, options.outputs.auxiliary,
                           tuple(light_kind(x) for x in lights), options.srgb,
-                          camera.projection is Projection.ORTHOGRAPHIC)
+                          camera.projection is Projection.ORTHOGRAPHIC, shadows)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
+        if shadows:
+            frame.append(("u_visibility", SHADOW_UNIT))
         return DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
                          (vx, vy, vw, vh), flip_rows, target)
 

@@ -22,12 +22,14 @@ MAX_LIGHTS = 8
 @dataclass(frozen=True)
 class PointLight:
     """A light at ``position`` (world). No distance attenuation by default (the notes'
-    model); ``attenuation=(c, l, q)`` divides by ``c + l d + q d^2``."""
+    model); ``attenuation=(c, l, q)`` divides by ``c + l d + q d^2``. ``shadows=False``: the
+    light reaches everything facing it even where a draw casts shadows."""
 
     position: tuple = (5.0, 5.0, 5.0)
     color: tuple = (1.0, 1.0, 1.0)
     intensity: float = 1.0
     attenuation: tuple = (1.0, 0.0, 0.0)
+    shadows: bool = True
 
     def __post_init__(self):
         p = np.asarray(self.position, dtype=np.float64)
@@ -40,6 +42,7 @@ class PointLight:
         if att == (0.0, 0.0, 0.0):
             raise SceneError("attenuation (c, l, q) must not be all zero")
         object.__setattr__(self, "attenuation", att)
+        _check_shadows(self.shadows)
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[x, y, z, 1]``: the position in view space."""
@@ -50,11 +53,12 @@ class PointLight:
 @dataclass(frozen=True)
 class DirectionalLight:
     """A light infinitely far away. ``direction`` is the way the light travels, so the
-    vector to the light is ``L = -direction``."""
+    vector to the light is ``L = -direction``. ``shadows=False``: it casts none."""
 
     direction: tuple = (-1.0, -1.0, -1.0)
     color: tuple = (1.0, 1.0, 1.0)
     intensity: float = 1.0
+    shadows: bool = True
 
     def __post_init__(self):
         d = np.asarray(self.direction, dtype=np.float64)
@@ -63,6 +67,7 @@ class DirectionalLight:
         object.__setattr__(self, "direction", tuple((d / np.linalg.norm(d)).tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
+        _check_shadows(self.shadows)
 
     attenuation = (1.0, 0.0, 0.0)
 
@@ -70,6 +75,11 @@ class DirectionalLight:
         """``[x, y, z, 0]``: the unit vector towards the light, in view space."""
         x, y, z = view[:3, :3] @ self.direction
         return np.array([-x, -y, -z, 0.0])
+
+
+def _check_shadows(value) -> None:
+    if not isinstance(value, bool):
+        raise SceneError(f"a light's shadows must be true or false, got {value!r}")
 
 
 def lights_for(lights, camera) -> list:

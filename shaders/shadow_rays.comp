@@ -1,0 +1,123 @@
+#version 430 core
+// Exact cast shadows: for each pixel's nearest surface point (from a G-buffer the renderer
+// drew: view depth and polygon id) and each light (the z of the invocation), one ray to the
+// light through a BVH of the scene's world triangles; any hit before the light hides it.
+// One invocation is one ray, its loop iterations counted and bounded (llvmpipe stops a
+// shader at 65,535, silently): a ray that runs out is counted in u_counts and its light
+// shown as seen (the pass reports the count; it is never hidden).
+//
+// Buffers (render/passes/shadows.py writes them):
+//   nodes: 2 vec4 a node, (lo, first as int bits), (hi, count as int bits); an inner node
+//     (count 0) has children first and first + 1, a leaf triangles [first, first + count)
+//   tris: 3 vec4 a triangle, (v0, polygon id as int bits: -1 none), (v1 - v0), (v2 - v0)
+// The ray leaves the point at t_min = eps (relative to the point's depth and the scene's
+// scale: the point is rebuilt from a float depth) and skips the polygon the point is on (a
+// planar polygon cannot shade itself; its neighbours can).
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+layout(std430, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
+layout(std430, binding = 1) readonly buffer Tris { vec4 tris[]; };
+layout(std430, binding = 2) buffer Counts { uint undecided; };
+layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
+
+uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
+uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
+uniform mat4 u_inverse_view_proj;  // the draw's clip -> world
+uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
+uniform vec3 u_eye;
+uniform vec3 u_forward;            // the view axis (world, unit)
+uniform float u_near;
+uniform float u_scale;             // the scene's largest coordinate (float32 precision)
+uniform float u_eps;               // relative offset of a ray's start
+uniform int u_budget;              // loop iterations a ray may take
+uniform int u_light_count;
+uniform vec4 u_lights[8];          // world: point (xyz, 1), direction TO it (xyz, 0);
+                                   // w = 2: casts no shadows (always seen)
+uniform int u_has_triangles;
+
+#include "rays.glsl"
+
+#define STACK 64
+
+// Whether anything lies on o + t d for t in (t_min, t_max), skipping polygon ``own``; -1
+// when the ray ran out of its budget.
+int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
+    if (u_has_triangles == 0) return 0;
+    vec3 inv = 1.0 / d;
+    int stack[STACK];
+    int top = 0;
+    stack[top++] = 0;
+    int iterations = 0;
+    while (top > 0) {
+        if (++iterations > u_budget) return -1;
+        int node = stack[--top];
+        vec4 a = nodes[2 * node], b = nodes[2 * node + 1];
+        vec3 t0 = (a.xyz - o) * inv, t1 = (b.xyz - o) * inv;
+        vec3 tn = min(t0, t1), tf = max(t0, t1);
+        float near = max(max(tn.x, tn.y), max(tn.z, t_min));
+        float far = min(min(tf.x, tf.y), min(tf.z, t_max));
+        if (near > far) continue;
+        int first = floatBitsToInt(a.w), count = floatBitsToInt(b.w);
+        if (count == 0) {
+            if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
+            stack[top++] = first + 1;
+            stack[top++] = first;
+            continue;
+        }
+        for (int k = first; k < first + count; ++k) {
+            ++iterations;
+            vec4 p0 = tris[3 * k];
+            if (floatBitsToInt(p0.w) == own) continue;
+            vec3 e1 = tris[3 * k + 1].xyz, e2 = tris[3 * k + 2].xyz;
+            vec3 pv = cross(d, e2);
+            float det = dot(e1, pv);
+            if (det == 0.0) continue;
+            float f = 1.0 / det;
+            vec3 s = o - p0.xyz;
+            float u = f * dot(s, pv);
+            if (u < 0.0 || u > 1.0) continue;
+            vec3 q = cross(s, e1);
+            float v = f * dot(d, q);
+            if (v < 0.0 || u + v > 1.0) continue;
+            float t = f * dot(e2, q);
+            if (t > t_min && t < t_max) return 1;
+        }
+    }
+    return 0;
+}
+
+void main() {
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    ivec2 px = id.xy + ivec2(u_viewport.xy);
+    int light = id.z;
+    if (any(greaterThanEqual(id.xy, ivec2(u_viewport.zw))) || light >= u_light_count) return;
+    int face = texelFetch(u_face_ids, px, 0).r;
+    if (face == 0) {
+        imageStore(u_visibility, ivec3(px, light), vec4(1.0));
+        return;
+    }
+    float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
+    vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
+    vec3 origin, span;
+    pixel_ray(u_inverse_view_proj, ndc, origin, span);
+    vec3 dir = normalize(span);
+#ifdef ORTHOGRAPHIC
+    vec3 p = origin + dir * (depth - u_near);
+#else
+    vec3 p = u_eye + dir * (depth / dot(dir, u_forward));
+#endif
+    vec4 l = u_lights[light];
+    float seen = 1.0;
+    if (l.w < 1.5) {
+        vec3 d = l.w > 0.5 ? l.xyz - p : l.xyz;
+        float dist = l.w > 0.5 ? length(d) : 3.4e38;
+        d = l.w > 0.5 ? d / max(dist, 1e-30) : d;
+        float eps = u_eps * (depth + u_scale);
+        int hit = occluded(p, d, eps, dist - eps, face - 1);
+        if (hit < 0) {
+            atomicAdd(undecided, 1u);
+        }
+        seen = hit == 1 ? 0.0 : 1.0;
+    }
+    imageStore(u_visibility, ivec3(px, light), vec4(seen));
+}

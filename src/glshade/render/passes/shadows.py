@@ -1,0 +1,267 @@
+"""Cast shadows: how much of each light reaches each pixel's surface point, left in a
+texture array (a layer a light) that the shading programs read (shaders/include/
+shadow_mask.glsl) before they sum the lights' terms.
+
+A draw with shadows first draws the scene into a G-buffer of its own (view depth and
+polygon ids, at the draw's viewport), then finds, per pixel and light:
+
+- ``exact``: one ray from the point to the light through a BVH of the scene's triangles
+  (shaders/shadow_rays.comp, a compute shader: one invocation a ray, its work bounded);
+- ``map``: the light's depth map (2D for a directional light, six faces of a cube for a
+  point light) with percentage-closer filtering (shaders/shadow_maps.comp).
+
+Then the renderer draws the picture, each light's term weighed by its layer at the pixel.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+
+from ...errors import RenderWarning
+from ...geometry.transforms import gl_bytes
+from ...modes import Outputs, ShadingMode, Shadows
+from ..base import GLResource
+
+__all__ = ["ShadowPass", "UNIT", "SHADOW_EPS", "RAY_BUDGET", "shadow_lights"]
+
+#: texture unit of the visibility array in the shading programs
+UNIT = 6  # (the renderer's SHADOW_UNIT)
+#: a shadow ray starts this far from its point, relative to the point's depth plus the
+#: scene's largest coordinate (the point is rebuilt from a float32 depth, ~1e-7 of those)
+SHADOW_EPS = 2e-5
+#: loop iterations one shadow ray may take (llvmpipe stops a shader at 65,535); a ray that
+#: runs out shows its light as seen, and is counted and reported
+RAY_BUDGET = 60_000
+
+
+def shadow_lights(lights) -> np.ndarray:
+    """``(L, 4)`` float32 rows the compute programs read: a point light's world position
+    with w = 1, a directional light's unit vector towards it with w = 0; w = 2 for a light
+    that casts no shadows."""
+    rows = np.zeros((max(len(lights), 1), 4), np.float32)
+    for i, light in enumerate(lights):
+        if hasattr(light, "position"):
+            rows[i] = (*light.position, 1.0)
+        else:
+            rows[i] = (*(-np.asarray(light.direction)), 0.0)
+        if not getattr(light, "shadows", True):
+            rows[i, 3] = 2.0
+    return rows
+
+
+class _GBuffer:
+    """The draw's surface points: polygon id + 1 (0 background) and the view depth's bits,
+    in textures the compute pass reads (drawn like any target: ``begin/bind/resolve``)."""
+
+    def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
+        self.width, self.height, self.rows_top_down = width, height, rows_top_down
+        size = (width, height)
+        color = keep(ctx.renderbuffer(size, 4, dtype="f1"))
+        normal = keep(ctx.renderbuffer(size, 4, dtype="f4"))
+        self.face = keep(ctx.texture(size, 1, dtype="i4"))
+        self.depth = keep(ctx.texture(size, 1, dtype="u4"))
+        for t in (self.face, self.depth):
+            t.filter = (0x2600, 0x2600)  # NEAREST: integers are never filtered
+        self.zbuf = keep(ctx.depth_renderbuffer(size))
+        self.fbo = keep(ctx.framebuffer([color, normal, self.face, self.depth], self.zbuf))
+        self.fbo_color = keep(ctx.framebuffer([color], self.zbuf))
+
+    def begin(self, background, outputs) -> None:
+        self.fbo.use()
+        self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+
+    def bind(self, outputs) -> None:
+        self.fbo.use()
+
+    def depth_source(self):
+        return self.fbo_color
+
+    def resolve(self, outputs) -> None:
+        pass
+
+
+class ShadowPass(GLResource):
+    """The shadow work of one Renderer: its G-buffer, BVH buffers, shadow maps and the
+    visibility array, made for the first draw that asks and kept (per size, per scene
+    geometry) for the next ones."""
+
+    def __init__(self, context, shaders):
+        super().__init__(context)
+        self.shaders = shaders
+        self._gbuffer: tuple | None = None
+        self._visibility: tuple | None = None
+        self._bvh: tuple | None = None  # (key, nodes, tris, count, n_triangles)
+        self._programs: dict = {}
+        self._counts = self._keep(context.ctx.buffer(reserve=4))
+        self.undecided = 0
+        self.maps: Any = None  # (a ShadowMaps, for the map method)
+
+    # ---------------------------------------------------------------- resources
+    def _gbuffer_for(self, width: int, height: int, rows_top_down: bool) -> _GBuffer:
+        key = (width, height, rows_top_down)
+        if self._gbuffer is None or self._gbuffer[0] != key:
+            if self._gbuffer is not None:
+                for obj in self._gbuffer[2]:
+                    obj.release()
+            made: list = []
+            self._gbuffer = (key, _GBuffer(self.context.ctx, width, height, rows_top_down,
+                                           lambda o: made.append(o) or o), made)
+        return self._gbuffer[1]
+
+    def visibility(self, width: int, height: int, layers: int):
+        """The ``(W, H, layers)`` R8 array the shading programs read (made once a size)."""
+        key = (width, height, layers)
+        if self._visibility is None or self._visibility[0] != key:
+            if self._visibility is not None:
+                self._visibility[1].release()
+            tex = self.context.ctx.texture_array((width, height, layers), 1, dtype="f1")
+            tex.filter = (0x2600, 0x2600)
+            self._visibility = (key, tex)
+        return self._visibility[1]
+
+    def _occluder_buffers(self, scene):
+        """The BVH of the scene's triangles in two storage buffers, built again only when
+        the geometry changed (meshes, patches, transforms, visibility)."""
+        from ...pathtrace.bvh import build
+        from ...scene.occluders import occluders
+
+        key = tuple((id(m.mesh), m.transform.tobytes(), m.visible) for m in scene.models) + \
+            tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
+                  for p in scene.patch_models)
+        if self._bvh is not None and self._bvh[0] == key:
+            return self._bvh[1:]
+        if self._bvh is not None:
+            self._bvh[1].release()
+            self._bvh[2].release()
+        found = occluders(scene)
+        ctx = self.context.ctx
+        if len(found):
+            bvh = build(found.triangles)
+            nodes = np.zeros((2 * bvh.n_nodes, 4), np.float32)
+            nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
+            nodes[0::2, 3] = np.asarray(bvh.first, np.int32).view(np.float32)
+            nodes[1::2, 3] = np.asarray(bvh.count, np.int32).view(np.float32)
+            tri = found.triangles[bvh.order]
+            tris = np.zeros((3 * len(tri), 4), np.float32)
+            tris[0::3, :3] = tri[:, 0]
+            tris[0::3, 3] = np.asarray(found.polygon[bvh.order], np.int32).view(np.float32)
+            tris[1::3, :3] = tri[:, 1] - tri[:, 0]
+            tris[2::3, :3] = tri[:, 2] - tri[:, 0]
+        else:
+            nodes = tris = np.zeros((2, 4), np.float32)
+        scale = float(np.abs(found.bounds).max()) if len(found) else 1.0
+        self._bvh = (key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()), len(found),
+                     scale, found)
+        return self._bvh[1:]
+
+    def _program(self, name: str, orthographic: bool):
+        key = (name, orthographic)
+        prog = self._programs.get(key)
+        if prog is None:
+            from ..shaders import assemble
+
+            source, _ = assemble(name, defines=("ORTHOGRAPHIC",) if orthographic else ())
+            prog = self._programs[key] = self.context.ctx.compute_shader(source)
+        return prog
+
+    # ---------------------------------------------------------------- the pass
+    def prepare(self, renderer, state) -> Any:
+        """Draw the G-buffer of ``state``'s draw and fill the visibility array for it;
+        return the array (bound by the caller to :data:`UNIT`)."""
+        self._check()
+        target = state.target
+        width, height = int(target.width), int(target.height)
+        gbuf = self._gbuffer_for(width, height, bool(state.flip_rows))
+        options = state.options.replace(shadows=Shadows.OFF, mode=ShadingMode.NORMALS,
+                                        outputs=Outputs.ALL, edges=False, srgb=False)
+        renderer.draw(gbuf, state.scene, state.camera, options, viewport=state.viewport)
+        lights = state.lights
+        vis = self.visibility(width, height, max(len(lights), 1))
+        if state.options.shadows is Shadows.MAP:
+            from .shadow_maps import ShadowMaps
+
+            if self.maps is None:
+                self.maps = ShadowMaps(self.context, self.shaders)
+            self.maps.fill(self, renderer, state, gbuf, vis)
+        else:
+            self._trace(state, gbuf, vis)
+        return vis
+
+    def _trace(self, state, gbuf: _GBuffer, vis) -> None:
+        """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
+        ctx = self.context.ctx
+        nodes, tris, n_triangles, scale, _ = self._occluder_buffers(state.scene)
+        from ...scene.camera import Projection
+
+        ortho = state.camera.projection is Projection.ORTHOGRAPHIC
+        prog = self._program("shadow_rays.comp", ortho)
+        self.bind_gbuffer(prog, state, gbuf)
+        inverse_view = np.linalg.inv(state.view)
+        values = {"u_scale": scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
+                  "u_has_triangles": int(n_triangles > 0),
+                  "u_eye": tuple(inverse_view[:3, 3]),
+                  "u_forward": tuple(-inverse_view[:3, 2])}
+        for name, value in values.items():
+            if name in prog:
+                prog[name].value = value
+        nodes.bind_to_storage_buffer(0)
+        tris.bind_to_storage_buffer(1)
+        self.dispatch(prog, state, vis)
+
+    def bind_gbuffer(self, prog, state, gbuf: _GBuffer) -> None:
+        """The G-buffer, the draw's matrices, viewport and lights, for a compute program."""
+        gbuf.face.use(0)
+        gbuf.depth.use(1)
+        inverse = np.linalg.inv(state.proj @ state.view)
+        rows = shadow_lights(state.lights)
+        values = {"u_face_ids": 0, "u_depth_bits": 1, "u_inverse_view_proj": gl_bytes(inverse),
+                  "u_viewport": tuple(float(v) for v in state.viewport),
+                  "u_near": float(state.camera.planes()[0]),
+                  "u_light_count": len(state.lights)}
+        for name, value in values.items():
+            if name in prog:
+                if isinstance(value, bytes):
+                    prog[name].write(value)
+                else:
+                    prog[name].value = value
+        if "u_lights" in prog:
+            prog["u_lights"].write(np.resize(rows, (8, 4)).astype("f4").tobytes())
+
+    def dispatch(self, prog, state, vis) -> None:
+        """Run ``prog`` over the viewport's pixels x the lights; count the rays that ran out
+        of their budget (a warning, never silent)."""
+        ctx = self.context.ctx
+        self._counts.write(np.zeros(1, np.uint32).tobytes())
+        self._counts.bind_to_storage_buffer(2)
+        vis.bind_to_image(0, read=False, write=True)
+        _, _, w, h = (int(v) for v in state.viewport)
+        prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
+        ctx.memory_barrier()
+        self.undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
+        if self.undecided:
+            warnings.warn(f"{self.undecided:,} shadow rays ran past {RAY_BUDGET:,} steps (the "
+                          "GL's loop limit) and show their light as seen", RenderWarning,
+                          stacklevel=5)
+
+    def _release_extra(self) -> None:
+        for p in self._programs.values():
+            p.release()
+        self._programs.clear()
+        if self._gbuffer is not None:
+            for obj in self._gbuffer[2]:
+                obj.release()
+            self._gbuffer = None
+        if self._visibility is not None:
+            self._visibility[1].release()
+            self._visibility = None
+        if self._bvh is not None:
+            self._bvh[1].release()
+            self._bvh[2].release()
+            self._bvh = None
+        if self.maps is not None:
+            self.maps.release()
+            self.maps = None

@@ -13,12 +13,22 @@
 // The ray leaves the point at t_min = eps (relative to the point's depth and the scene's
 // scale: the point is rebuilt from a float depth) and skips the polygon the point is on (a
 // planar polygon cannot shade itself; its neighbours can).
+// CSG_SOLID: this run casts against one CSG solid instead (csg.glsl, the raster pass's
+// cast, from the ray's start moved eps towards the light), and only hides more: a light a
+// run before found hidden stays hidden (one run a solid, after the triangles').
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(std430, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
 layout(std430, binding = 1) readonly buffer Tris { vec4 tris[]; };
 layout(std430, binding = 2) buffer Counts { uint undecided; };
+#ifdef CSG_SOLID
+layout(r8, binding = 0) uniform image2DArray u_visibility;
+int g_iter;
+#define CSG_COUNT ++g_iter
+#include "csg.glsl"
+#else
 layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
+#endif
 
 uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
 uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
@@ -92,10 +102,14 @@ void main() {
     int light = id.z;
     if (any(greaterThanEqual(id.xy, ivec2(u_viewport.zw))) || light >= u_light_count) return;
     int face = texelFetch(u_face_ids, px, 0).r;
+#ifdef CSG_SOLID
+    if (face == 0 || imageLoad(u_visibility, ivec3(px, light)).r == 0.0) return;
+#else
     if (face == 0) {
         imageStore(u_visibility, ivec3(px, light), vec4(1.0));
         return;
     }
+#endif
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
     vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
     vec3 origin, span;
@@ -113,7 +127,16 @@ void main() {
         float dist = l.w > 0.5 ? length(d) : 3.4e38;
         d = l.w > 0.5 ? d / max(dist, 1e-30) : d;
         float eps = u_eps * (depth + u_scale);
+#ifdef CSG_SOLID
+        float t;
+        g_iter = 0;
+        int leaf = csg_first_hit(p + eps * d, d, t);
+        int hit = leaf >= 0 && t > 0.0 && t < dist - 2.0 * eps ? 1 : 0;
+        if (g_iter > u_budget) hit = -1;  // (counted as the walk went: flagged, not hidden)
+        if (hit == 0) return;  // (the triangles' answer stands)
+#else
         int hit = occluded(p, d, eps, dist - eps, face - 1);
+#endif
         if (hit < 0) {
             atomicAdd(undecided, 1u);
         }

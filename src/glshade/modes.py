@@ -9,8 +9,8 @@ from typing import TypeVar
 
 from .errors import OptionError
 
-__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Projection", "Backend", "HEADLESS_BACKENDS",
-           "parse_enum"]
+__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Projection", "Backend",
+           "HEADLESS_BACKENDS", "parse_enum"]
 
 
 E = TypeVar("E", bound=enum.Enum)

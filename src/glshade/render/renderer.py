@@ -81,12 +81,16 @@ class Frame:
     normal : (H, W, 3) float32 world-space unit normal (zero where nothing was drawn).
     face_id : (H, W) int32 id of the source polygon (not the triangle); -1 for background;
     with several models, ids continue from one model to the next in scene order.
+    visibility : (H, W, L) float32, a draw with shadows: how much of each of its L lights
+    reaches the surface point each pixel centre sees (1 seen, 0 hidden; a shadow map's PCF
+    gives fractions; 1 on the background).
     """
 
     color: np.ndarray
     depth: np.ndarray | None = None
     normal: np.ndarray | None = None
     face_id: np.ndarray | None = None
+    visibility: np.ndarray | None = None
 
     def __repr__(self) -> str:
         h, w = self.color.shape[:2]
@@ -558,10 +562,12 @@ class Renderer:
             else:
                 self._counted_draw(target, scene, camera, options)
                 color = target.read_color()
+            shadowed = options.shadows is not Shadows.OFF and options.mode in SHADOWED_MODES
             return Frame(color,
                          target.read_depth() if want & Outputs.DEPTH else None,
                          target.read_normal() if want & Outputs.NORMAL else None,
-                         target.read_face_id() if want & Outputs.FACE_ID else None)
+                         target.read_face_id() if want & Outputs.FACE_ID else None,
+                         self._shadow_pass.read() if shadowed else None)
 
     def pick(self, scene: Scene, camera: Camera, x: float, y: float,
              options=None) -> Pick | None:

@@ -25,6 +25,7 @@ from ...errors import RenderWarning
 from ...geometry.transforms import gl_bytes
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
+from ..programs import UniformWriter
 
 __all__ = ["ShadowPass", "UNIT", "SHADOW_EPS", "RAY_BUDGET", "shadow_lights"]
 
@@ -99,6 +100,9 @@ class ShadowPass(GLResource):
         self._counts = self._keep(context.ctx.buffer(reserve=4))
         self.undecided = 0
         self.maps: Any = None  # (a ShadowMaps, for the map method)
+        self._solid_data: dict = {}  # id(solid) -> (solid, its tree data, its texture)
+        self._put = UniformWriter().put
+        self._lights_drawn = 0
 
     # ---------------------------------------------------------------- resources
     def _gbuffer_for(self, width: int, height: int, rows_top_down: bool) -> _GBuffer:
@@ -181,6 +185,7 @@ class ShadowPass(GLResource):
         renderer.draw(gbuf, state.scene, state.camera, options, viewport=state.viewport)
         lights = state.lights
         vis = self.visibility(width, height, max(len(lights), 1))
+        self._lights_drawn = len(lights)
         if state.options.shadows is Shadows.MAP:
             from .shadow_maps import ShadowMaps
 
@@ -191,9 +196,17 @@ class ShadowPass(GLResource):
             self._trace(state, gbuf, vis)
         return vis
 
+    def read(self) -> np.ndarray:
+        """The last draw's visibility ``(H, W, L)`` float32 in [0, 1] (row 0 at the top of
+        an offscreen target's image)."""
+        assert self._visibility is not None, "no shadowed draw yet"
+        (w, h, layers), tex = self._visibility
+        data = np.frombuffer(tex.read(), np.uint8).reshape(layers, h, w)
+        n = self._lights_drawn
+        return np.ascontiguousarray(data[:n].transpose(1, 2, 0), np.float32) / 255.0
+
     def _trace(self, state, gbuf: _GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
-        ctx = self.context.ctx
         nodes, tris, n_triangles, scale, _ = self._occluder_buffers(state.scene)
         from ...scene.camera import Projection
 
@@ -206,11 +219,48 @@ class ShadowPass(GLResource):
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():
-            if name in prog:
-                prog[name].value = value
+            self._put(prog, name, value)
         nodes.bind_to_storage_buffer(0)
         tris.bind_to_storage_buffer(1)
         self.dispatch(prog, state, vis)
+        for model in state.scene.solids:  # (each hides more of what the triangles left)
+            if model.visible:
+                self._trace_solid(model.solid, state, gbuf, vis, ortho, values)
+
+    def _trace_solid(self, solid, state, gbuf: _GBuffer, vis, ortho: bool, values) -> None:
+        """One CSG solid's shadows over the triangles': the raster pass's exact cast."""
+        from ...solids.encoding import ROW, tree_data
+        from ...solids.tree import TIE
+        from ..data import data_texture
+        from .csg import csg_defines
+
+        found = self._solid_data.get(id(solid))
+        if found is None or found[0] is not solid:
+            if found is not None:
+                found[2].release()
+            tree = tree_data(solid)
+            texture = data_texture(self.context.ctx, tree.texels, ROW)
+            found = self._solid_data[id(solid)] = (solid, tree, texture)
+        _, tree, texture = found
+        defines = ("CSG_SOLID", *csg_defines(tree, blocks=False)) + \
+            (("ORTHOGRAPHIC",) if ortho else ())
+        prog = self._programs.get(defines)
+        if prog is None:
+            from ..shaders import assemble
+
+            source, _ = assemble("shadow_rays.comp", defines=defines)
+            prog = self._programs[defines] = self.context.ctx.compute_shader(source)
+        self.bind_gbuffer(prog, state, gbuf)
+        texture.use(2)
+        bounds = np.asarray(solid.bounds, np.float64)
+        size = float(np.linalg.norm(bounds[1] - bounds[0])) or 1.0
+        extra = {"u_csg": 2, **tree.offsets(), "u_csg_start": tree.nodes,
+                 "u_csg_tie": TIE * size, "u_scale": max(values["u_scale"],
+                                                         float(np.abs(bounds).max()))}
+        extra["u_csg_kind_start"] = np.array(tree.kind_start, "i4")
+        for name, value in {**values, **extra}.items():
+            self._put(prog, name, value)
+        self.dispatch(prog, state, vis, keep_count=True)
 
     def bind_gbuffer(self, prog, state, gbuf: _GBuffer) -> None:
         """The G-buffer, the draw's matrices, viewport and lights, for a compute program."""
@@ -222,28 +272,25 @@ class ShadowPass(GLResource):
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}
+        values["u_lights"] = rows.astype("f4")
         for name, value in values.items():
-            if name in prog:
-                if isinstance(value, bytes):
-                    prog[name].write(value)
-                else:
-                    prog[name].value = value
-        if "u_lights" in prog:
-            prog["u_lights"].write(np.resize(rows, (8, 4)).astype("f4").tobytes())
+            self._put(prog, name, value)
 
-    def dispatch(self, prog, state, vis) -> None:
+    def dispatch(self, prog, state, vis, keep_count: bool = False) -> None:
         """Run ``prog`` over the viewport's pixels x the lights; count the rays that ran out
         of their budget (a warning, never silent)."""
         ctx = self.context.ctx
-        self._counts.write(np.zeros(1, np.uint32).tobytes())
+        if not keep_count:
+            self._counts.write(np.zeros(1, np.uint32).tobytes())
         self._counts.bind_to_storage_buffer(2)
-        vis.bind_to_image(0, read=False, write=True)
+        vis.bind_to_image(0, read=True, write=True)
         _, _, w, h = (int(v) for v in state.viewport)
         prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
         ctx.memory_barrier()
-        self.undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
-        if self.undecided:
-            warnings.warn(f"{self.undecided:,} shadow rays ran past {RAY_BUDGET:,} steps (the "
+        undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
+        self.undecided, new = undecided, undecided - (self.undecided if keep_count else 0)
+        if new:
+            warnings.warn(f"{new:,} shadow rays ran past {RAY_BUDGET:,} steps (the "
                           "GL's loop limit) and show their light as seen", RenderWarning,
                           stacklevel=5)
 
@@ -265,3 +312,6 @@ class ShadowPass(GLResource):
         if self.maps is not None:
             self.maps.release()
             self.maps = None
+        for _, _, texture in self._solid_data.values():
+            texture.release()
+        self._solid_data.clear()

@@ -1,0 +1,362 @@
+"""Cast shadows against a float64 numpy ray caster that shares no code with glshade: its
+own pixel rays (from eye, target and field of view), closed-form intersections (a plane, a
+box, a sphere, a box minus a cylinder's bore) and Moller-Trumbore over a torus's triangles.
+The shadow of a sphere on a plane is the conic its closed form gives.
+
+``exact``: every pixel whose 3x3 sub-pixel samples (its corners, edge midpoints and centre)
+agree -- one surface, one answer for each light -- shows what the centre's ray finds: 0
+mismatches outside that half-pixel band, at MSAA 0 and 4, EGL and OSMesa the same bytes."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import glshade as g
+from glshade import quaternion as Q
+from glshade.geometry import primitives as P
+from glshade.solids.leaves import Box, Cylinder, Sphere
+from tests.conftest import ROOT
+
+W, H, FOV = 112, 84, 45.0
+PLANE_HALF = 3.0
+EPS = 1e-9
+
+# ------------------------------------------------------------------ the oracle (float64)
+
+
+def pixel_rays(eye, target, width, height, fov, offsets):
+    """Unit directions ``(K, H, W, 3)`` through each pixel at sub-pixel ``offsets`` (K, 2),
+    x right and y down from the pixel centre, for a camera at ``eye`` looking at
+    ``target`` with y up."""
+    eye, target = np.asarray(eye, float), np.asarray(target, float)
+    f = (target - eye) / np.linalg.norm(target - eye)
+    r = np.cross(f, (0.0, 1.0, 0.0))
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    tan = np.tan(np.radians(fov) / 2)
+    i = np.arange(width)[None, None, :] + 0.5 + offsets[:, 0, None, None]
+    j = np.arange(height)[None, :, None] + 0.5 + offsets[:, 1, None, None]
+    x = (2 * i / width - 1) * tan * width / height
+    y = (1 - 2 * j / height) * tan
+    d = f + x[..., None] * r + y[..., None] * u
+    return d / np.linalg.norm(d, axis=-1, keepdims=True)
+
+
+def hit_plane(o, d):
+    """The quad y = 0, |x|, |z| <= PLANE_HALF: (t_in, t_out) as an interval of zero width."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = -o[..., 1] / d[..., 1]
+    p = o + t[..., None] * d
+    ok = (t > 0) & (np.abs(p[..., 0]) <= PLANE_HALF) & (np.abs(p[..., 2]) <= PLANE_HALF)
+    t = np.where(ok, t, np.inf)
+    return t, t
+
+
+def slab(o, d, lo, hi):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t0, t1 = (np.asarray(lo) - o) / d, (np.asarray(hi) - o) / d
+    tn = np.nan_to_num(np.minimum(t0, t1), nan=-np.inf).max(-1)
+    tf = np.nan_to_num(np.maximum(t0, t1), nan=np.inf).min(-1)
+    miss = tn > tf
+    return np.where(miss, np.inf, tn), np.where(miss, -np.inf, tf)
+
+
+def hit_sphere(o, d, c, r):
+    oc = o - c
+    b = np.einsum("...k,...k", oc, d)
+    disc = b * b - (np.einsum("...k,...k", oc, oc) - r * r)
+    s = np.sqrt(np.maximum(disc, 0))
+    return np.where(disc > 0, -b - s, np.inf), np.where(disc > 0, -b + s, -np.inf)
+
+
+def hit_bored(o, d, lo, hi, axis_xz, radius):
+    """A box minus a vertical cylinder through it: the intervals' difference. Returns
+    (box_in, box_out, bore_in, bore_out)."""
+    a, b = slab(o, d, lo, hi)
+    q = o[..., [0, 2]] - axis_xz
+    e = d[..., [0, 2]]
+    qa = np.einsum("...k,...k", e, e)
+    qb = np.einsum("...k,...k", q, e)
+    qc = np.einsum("...k,...k", q, q) - radius ** 2
+    disc = qb * qb - qa * qc
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = np.sqrt(np.maximum(disc, 0))
+        c0, c1 = (-qb - s) / qa, (-qb + s) / qa
+    inside = qc < 0
+    c0 = np.where(disc > 0, c0, np.where(inside & (qa == 0), -np.inf, np.inf))
+    c1 = np.where(disc > 0, c1, np.where(inside & (qa == 0), np.inf, -np.inf))
+    return a, b, c0, c1
+
+
+def hit_triangles(o, d, tri, chunk=4096):
+    """Nearest t > 0 of each ray against triangles ``(T, 3, 3)`` (Moller-Trumbore)."""
+    o2, d2 = o.reshape(-1, 3), d.reshape(-1, 3)
+    best = np.full(len(o2), np.inf)
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    for s in range(0, len(o2), chunk):
+        oo, dd = o2[s:s + chunk, None], d2[s:s + chunk, None]
+        pv = np.cross(dd, e2)
+        det = np.einsum("rtk,tk->rt", pv, e1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f = 1 / det
+            sv = oo - tri[:, 0]
+            u = f * np.einsum("rtk,rtk->rt", sv, pv)
+            qv = np.cross(sv, e1)
+            v = f * np.einsum("rtk,rtk->rt", dd, qv)
+            t = f * np.einsum("rtk,tk->rt", qv, e2)
+        ok = (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > EPS)
+        best[s:s + chunk] = np.where(ok, t, np.inf).min(1)
+    return best.reshape(o.shape[:-1])
+
+
+class Oracle:
+    """Objects the scene holds, each a function of rays -> (entry t, exit t)."""
+
+    def __init__(self, kind):
+        self.kind = kind
+
+    def first_hit(self, o, d):
+        """Nearest surface t and the object's index."""
+        ts = [np.where(a > EPS, a, np.where(b > EPS, b, np.inf)) if not bored else
+              _bored_first(*a_b) for (a, b, bored, a_b) in self._intervals(o, d)]
+        ts = np.stack(ts)
+        return ts.min(0), ts.argmin(0)
+
+    def blocked(self, o, d, dist):
+        """Whether anything lies on o + t d for t in (EPS, dist)."""
+        out = np.zeros(o.shape[:-1], bool)
+        for a, b, bored, a_b in self._intervals(o, d):
+            if bored:
+                box_in, box_out, c0, c1 = a_b
+                lo, hi = np.maximum(box_in, EPS), np.minimum(box_out, dist)
+                out |= (lo < hi) & ~((c0 <= lo) & (c1 >= hi))
+            else:
+                lo, hi = np.maximum(a, EPS), np.minimum(b, dist)
+                out |= (lo <= hi) & np.isfinite(lo)
+        return out
+
+    def _intervals(self, o, d):
+        t, _ = hit_plane(o, d)
+        yield t, t, False, None
+        if self.kind == "cube":
+            a, b = slab(o, d, (-0.5, 0.0, -0.5), (0.5, 1.0, 0.5))
+            yield a, b, False, None
+        elif self.kind == "sphere":
+            a, b = hit_sphere(o, d, np.array([0.0, 1.0, 0.0]), 0.6)
+            yield a, b, False, None
+        elif self.kind == "bored":
+            parts = hit_bored(o, d, (-0.6, 0.2, -0.4), (0.6, 0.8, 0.4), np.array([0.1, 0.0]),
+                              0.25)
+            yield None, None, True, parts
+        elif self.kind == "torus":
+            t = hit_triangles(o, d, TORUS_TRIANGLES)
+            yield t, t, False, None
+
+
+def _bored_first(box_in, box_out, c0, c1):
+    """The first t > EPS where a ray meets a box minus a bore."""
+    first = np.where((box_in > EPS) & ~((c0 <= box_in) & (box_in <= c1)), box_in, np.inf)
+    exit_bore = np.where((c1 > EPS) & (c1 >= box_in) & (c1 <= box_out) &
+                         ~((box_in > EPS) & ~((c0 <= box_in) & (box_in <= c1))), c1, np.inf)
+    return np.where(box_in <= box_out, np.minimum(first, exit_bore), np.inf)
+
+
+TORUS_ROTATION = Q.from_axis_angle((1, 0, 0.3), 0.6)
+TORUS_MESH = P.torus(0.7, 0.22, 24, 12)
+_tv = Q.rotate(TORUS_ROTATION, TORUS_MESH.vertices) + np.array([0.0, 1.1, 0.0])
+TORUS_TRIANGLES = _tv[TORUS_MESH.triangles[0]]
+
+LIGHTS = {"point": g.PointLight(position=(-1.2, 3.5, -1.0)),
+          "directional": g.DirectionalLight(direction=(0.8, -1.5, 0.6))}
+EYES = {"above": ((3.5, 4.0, 5.0), (0.0, 0.5, 0.0)),
+        "grazing": ((5.5, 0.35, 4.0), (0.0, 0.25, 0.0))}
+GRID = np.array([(x, y) for y in (-0.5, 0.0, 0.5) for x in (-0.5, 0.0, 0.5)])
+
+
+def oracle_visibility(kind, eye, target, light):
+    """``(seen (H, W) bool, decided (H, W) bool, drawn (H, W) bool)`` at pixel centres;
+    ``decided``: the 3x3 samples agree on the object hit and on the light's visibility."""
+    o = np.broadcast_to(np.asarray(eye, float), (len(GRID), H, W, 3))
+    d = pixel_rays(eye, target, W, H, FOV, GRID)
+    oracle = Oracle(kind)
+    t, which = oracle.first_hit(o, d)
+    drawn = np.isfinite(t)
+    p = o + np.where(drawn, t, 0)[..., None] * d
+    if isinstance(light, g.PointLight):
+        to = np.asarray(light.position) - p
+        dist = np.linalg.norm(to, axis=-1)
+        ld = to / dist[..., None]
+    else:
+        ld = np.broadcast_to(-np.asarray(light.direction), p.shape)
+        dist = np.full(p.shape[:-1], np.inf)
+    seen = ~oracle.blocked(p + 1e-7 * ld, ld, dist) & drawn
+    centre = len(GRID) // 2
+    agree = (which == which[centre]).all(0) & (seen == seen[centre]).all(0) & \
+        (drawn == drawn[centre]).all(0)
+    return seen[centre], agree & drawn[centre], drawn[centre]
+
+
+# ------------------------------------------------------------------ the same scene in glshade
+
+
+def scene_of(kind, light):
+    s = g.Scene(ambient=(0.15, 0.15, 0.15), background=(0, 0, 0))
+    s.add(P.plane(2 * PLANE_HALF), g.Material(color=(0.8, 0.8, 0.8)),
+          rotation=Q.from_axis_angle((1, 0, 0), -np.pi / 2))
+    if kind == "cube":
+        s.add(P.cube(), g.Material(color=(0.9, 0.3, 0.2)), translation=(0, 0.5, 0))
+    elif kind == "sphere":
+        s.add(Sphere(0.6), g.Material(color=(0.3, 0.5, 0.9)), translation=(0, 1.0, 0))
+    elif kind == "bored":
+        bored = Box((1.2, 0.6, 0.8)) - Cylinder(0.25, 2.0).translated((0.1, 0.0, 0.0))
+        s.add(bored, g.Material(color=(0.2, 0.7, 0.3)), translation=(0, 0.5, 0))
+    elif kind == "torus":
+        s.add(TORUS_MESH, g.Material(color=(0.7, 0.6, 0.2)), rotation=TORUS_ROTATION,
+              translation=(0, 1.1, 0))
+    s.add_light(light)
+    return s
+
+
+@pytest.fixture(scope="module")
+def renderers(gl_context):
+    from glshade.render.renderer import Renderer
+
+    made = {s: Renderer(W, H, samples=s, context=gl_context) for s in (0, 4)}
+    yield made
+    for r in made.values():
+        r.close()
+
+
+@pytest.mark.parametrize("eye", sorted(EYES))
+@pytest.mark.parametrize("light", sorted(LIGHTS))
+@pytest.mark.parametrize("kind", ["cube", "sphere", "torus", "bored"])
+def test_exact_shadows_match_the_ray_cast_oracle(renderers, kind, light, eye):
+    position, target = EYES[eye]
+    seen, decided, drawn = oracle_visibility(kind, position, target, LIGHTS[light])
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    scene = scene_of(kind, LIGHTS[light])
+    for samples, r in renderers.items():
+        frame = r.render_frame(scene, camera, "phong", shadows="exact")
+        got = frame.visibility[..., 0] > 0.5
+        gpu_drawn = frame.face_id >= 0
+        assert ((gpu_drawn != drawn) & decided).sum() == 0, (samples, "coverage")
+        wrong = (got != seen) & decided
+        assert wrong.sum() == 0, (samples, np.argwhere(wrong)[:10].tolist(),
+                                  int(decided.sum()))
+        # the test sees both answers in the picture: shadowed and lit pixels
+        lit, dark = int((seen & decided).sum()), int((~seen & decided & drawn).sum())
+        assert lit > 200 and dark > 100, (lit, dark)
+
+
+def test_the_shadow_of_a_sphere_on_a_plane_is_its_conic(renderers):
+    """Closed form: a plane point P is dark where the segment P -> light passes within the
+    sphere's radius of its centre (a quadratic's discriminant); the boundary is a conic."""
+    light = LIGHTS["point"]
+    position, target = EYES["above"]
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    frame = renderers[0].render_frame(scene_of("sphere", light), camera, "flat",
+                                      shadows="exact")
+    d = pixel_rays(position, target, W, H, FOV, np.zeros((1, 2)))[0]
+    t = -position[1] / d[..., 1]
+    p = np.asarray(position) + t[..., None] * d          # the plane y = 0 under each pixel
+    on_plane = (t > 0) & (frame.face_id == 0)             # (polygon 0: the plane)
+    L, c, r = np.asarray(light.position), np.array([0.0, 1.0, 0.0]), 0.6
+    u = (L - p) / np.linalg.norm(L - p, axis=-1, keepdims=True)
+    along = np.einsum("...k,...k", c - p, u)
+    gap2 = np.einsum("...k,...k", c - p, c - p) - along ** 2
+    margin = np.sqrt(np.abs(gap2)) - r                    # signed distance to the cone
+    pixel = np.linalg.norm(p - position, axis=-1) * 2 * np.tan(np.radians(FOV) / 2) / H
+    dark = (gap2 < r * r) & (along > 0)
+    clear = np.abs(margin) > pixel * 2                    # beyond a pixel of the boundary
+    got = frame.visibility[..., 0] < 0.5
+    assert (on_plane & clear).sum() > 2000 and (on_plane & clear & dark).sum() > 100
+    assert ((got != dark) & on_plane & clear).sum() == 0
+
+
+@pytest.mark.parametrize("mode", ["flat", "gouraud", "phong"])
+def test_a_shadowed_pixel_is_the_render_of_the_lights_it_sees(renderers, mode):
+    """Two lights: each pixel equals, within a level, the render with only the lights its
+    point sees (ambient always)."""
+    position, target = EYES["above"]
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    a, b = LIGHTS["point"], g.DirectionalLight(direction=(0.9, -1.4, -0.3),
+                                               color=(0.5, 0.4, 0.3))
+    scene = scene_of("cube", a)
+    scene.add_light(b)
+    r = renderers[0]
+    frame = r.render_frame(scene, camera, mode, shadows="exact", color_dtype="f4")
+    vis = frame.visibility > 0.5
+    alone = {}
+    for name, lights in {"ab": [a, b], "a": [a], "b": [b], "": []}.items():
+        only = scene_of("cube", a)
+        only.lights.clear()
+        for x in lights:
+            only.add_light(x)
+        if not lights:  # (ambient alone: a light of no intensity)
+            only.add_light(g.PointLight(position=a.position, intensity=0.0))
+        alone[name] = r.render_frame(only, camera, mode, color_dtype="f4").color
+    sees_a, sees_b = vis[..., 0:1], vis[..., 1:2]
+    expected = np.where(sees_a & sees_b, alone["ab"],
+                        np.where(sees_a, alone["a"], np.where(sees_b, alone["b"], alone[""])))
+    drawn = frame.face_id >= 0
+    assert vis[drawn].all(-1).any() and (~vis[drawn]).any()
+    assert np.abs(frame.color - expected)[drawn].max() <= 1.5 / 255
+
+
+@pytest.mark.parametrize("elevation", [1.0, 3.0, 10.0, 30.0, 60.0, 89.0])
+def test_no_acne_on_a_convex_mesh_lit_at_any_elevation(make_renderer, elevation):
+    """A convex polyhedron alone, lit from 1 to 89 degrees above its equator: no pixel
+    whose polygon faces the light is in shadow (nothing else is there to cast one)."""
+    mesh = P.icosphere(2)
+    scene = g.Scene()
+    scene.add(mesh, g.Material(color=(0.8, 0.8, 0.8)))
+    e = np.radians(elevation)
+    light = g.DirectionalLight(direction=(-np.cos(e), -np.sin(e), -0.0))
+    scene.add_light(light)
+    r = make_renderer(160, 120)
+    for eye in ((0.0, 0.5, 3.5), (3.2, 0.2, 1.0)):
+        camera = g.Camera.look_at(eye, (0, 0, 0))
+        frame = r.render_frame(scene, camera, "flat", shadows="exact")
+        facing = np.einsum("hwk,k->hw", frame.normal, -np.asarray(light.direction)) > 1e-6
+        hidden = frame.visibility[..., 0] < 0.5
+        assert facing.sum() > 500
+        assert (facing & hidden).sum() == 0, elevation
+
+
+def test_a_light_may_cast_no_shadows(make_renderer):
+    position, target = EYES["above"]
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    light = g.PointLight(position=(1.5, 4.0, 1.2), shadows=False)
+    r = make_renderer(W, H)
+    frame = r.render_frame(scene_of("cube", light), camera, "phong", shadows="exact")
+    plain = r.render(scene_of("cube", light), camera, "phong")
+    assert (frame.visibility == 1).all()
+    assert np.array_equal(frame.color, plain)
+
+
+SNIPPET = """
+import sys
+import numpy as np
+sys.path.insert(0, '.')
+from tests.render.test_shadows import scene_of, LIGHTS, EYES, FOV, W, H
+import glshade as g
+position, target = EYES["above"]
+camera = g.Camera.look_at(position, target, fov_y=FOV)
+with g.Renderer(W, H, samples=0, backend=sys.argv[1]) as r:
+    out = [r.render(scene_of(k, LIGHTS["point"]), camera, m, shadows="exact")
+           for k in ("cube", "sphere") for m in ("flat", "phong")]
+np.save(sys.argv[2], np.stack(out))
+"""
+
+
+def test_egl_and_osmesa_give_the_same_bytes(tmp_path):
+    images = {}
+    for backend in ("egl", "osmesa"):
+        path = tmp_path / f"{backend}.npy"
+        out = subprocess.run([sys.executable, "-c", SNIPPET, backend, str(path)],
+                             capture_output=True, text=True, cwd=ROOT, timeout=300)
+        assert out.returncode == 0, out.stderr
+        images[backend] = np.load(path)
+    assert np.array_equal(images["egl"], images["osmesa"])

@@ -112,8 +112,13 @@ class ShadowPass(GLResource):
                 for obj in self._gbuffer[2]:
                     obj.release()
             made: list = []
+
+            def keep(obj):
+                made.append(obj)
+                return obj
+
             self._gbuffer = (key, _GBuffer(self.context.ctx, width, height, rows_top_down,
-                                           lambda o: made.append(o) or o), made)
+                                           keep), made)
         return self._gbuffer[1]
 
     def visibility(self, width: int, height: int, layers: int):

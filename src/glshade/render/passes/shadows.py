@@ -55,20 +55,21 @@ def shadow_lights(lights) -> np.ndarray:
 
 
 class _GBuffer:
-    """The draw's surface points: polygon id + 1 (0 background) and the view depth's bits,
-    in textures the compute pass reads (drawn like any target: ``begin/bind/resolve``)."""
+    """The draw's surface points: world normal, polygon id + 1 (0 background) and the view
+    depth's bits, in textures the compute pass reads (drawn like any target: ``begin/bind/resolve``)."""
 
     def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
         self.width, self.height, self.rows_top_down = width, height, rows_top_down
         size = (width, height)
         color = keep(ctx.renderbuffer(size, 4, dtype="f1"))
-        normal = keep(ctx.renderbuffer(size, 4, dtype="f4"))
+        self.normal = keep(ctx.texture(size, 4, dtype="f4"))
         self.face = keep(ctx.texture(size, 1, dtype="i4"))
         self.depth = keep(ctx.texture(size, 1, dtype="u4"))
-        for t in (self.face, self.depth):
-            t.filter = (0x2600, 0x2600)  # NEAREST: integers are never filtered
+        for t in (self.normal, self.face, self.depth):
+            t.filter = (0x2600, 0x2600)  # NEAREST: a pixel's own values, never blended
         self.zbuf = keep(ctx.depth_renderbuffer(size))
-        self.fbo = keep(ctx.framebuffer([color, normal, self.face, self.depth], self.zbuf))
+        self.fbo = keep(ctx.framebuffer([color, self.normal, self.face, self.depth],
+                                        self.zbuf))
         self.fbo_color = keep(ctx.framebuffer([color], self.zbuf))
 
     def begin(self, background, outputs) -> None:

@@ -1,0 +1,216 @@
+"""Shadow maps, the fast method of :mod:`.shadows`: each light's depth map drawn from the
+scene's triangles (kept while the geometry and the light stay: a moving camera draws none),
+then looked up per pixel with percentage-closer filtering (shaders/shadow_maps.comp).
+
+A directional light's map is orthographic, fitted to the scene's box; a point light's is a
+cube (six square faces of 90 degrees, tiles of one depth texture). The bias is the texel's
+footprint on the surface times its slope against the light (in the shader). CSG solids
+receive map shadows but cast none (they are ray cast, not triangles): ``exact`` casts theirs.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from ...errors import RenderWarning
+from ...geometry.transforms import gl_bytes, look_at, orthographic, perspective
+from ..base import GLResource
+
+__all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS"]
+
+#: texels a side of a directional light's map
+MAP_SIZE = 2048
+#: texels a side of each of a point light's six cube faces
+CUBE_SIZE = 1024
+#: percentage-closer filtering over (2 R + 1)^2 texels (the shader's PCF_RADIUS)
+PCF_RADIUS = 1
+
+#: a cube's faces: the direction each looks along and its up (GL's cube-map order)
+_FACES = (((1, 0, 0), (0, -1, 0)), ((-1, 0, 0), (0, -1, 0)), ((0, 1, 0), (0, 0, 1)),
+          ((0, -1, 0), (0, 0, -1)), ((0, 0, 1), (0, -1, 0)), ((0, 0, -1), (0, -1, 0)))
+
+
+def light_frames(light_row: np.ndarray, bounds: np.ndarray):
+    """The views and projections of one light's map over a scene box ``bounds (2, 3)``:
+    ``(views [(4, 4)], proj (4, 4), facts)``; facts: "faces", "size", "planes" (a point
+    light's near and far) or "ortho" (half width, half height, near, far)."""
+    lo, hi = np.asarray(bounds, np.float64)
+    centre = (lo + hi) / 2
+    radius = max(float(np.linalg.norm(hi - lo)) / 2, 1e-12)
+    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                        for z in (lo[2], hi[2])])
+    if light_row[3] < 0.5:  # directional: orthographic along the light's direction
+        to = light_row[:3] / np.linalg.norm(light_row[:3])
+        up = (0.0, 1.0, 0.0) if abs(to[1]) < 0.9 else (1.0, 0.0, 0.0)
+        view = look_at(centre + to * 2 * radius, centre, up)
+        q = corners @ view[:3, :3].T + view[:3, 3]
+        half = max(float(np.abs(q[:, :2]).max()), 1e-12) * 1.01
+        near, far = float(-q[:, 2].max()), float(-q[:, 2].min())
+        pad = 0.01 * (far - near) + 1e-9 * radius
+        near, far = near - pad, far + pad
+        proj = orthographic(2 * half, 1.0, near, far)
+        return [view], proj, {"faces": 1, "size": MAP_SIZE, "ortho": (half, half, near, far)}
+    p = light_row[:3].astype(np.float64)
+    gap = np.maximum(np.maximum(lo - p, p - hi), 0.0)
+    far = float(np.linalg.norm(corners - p, axis=1).max()) * 1.01
+    near = max(float(np.linalg.norm(gap)) * 0.5, 1e-3 * radius, 1e-6 * far)
+    views = [look_at(p, p + np.asarray(d, float), up) for d, up in _FACES]
+    proj = perspective(90.0, 1.0, near, far)
+    return views, proj, {"faces": 6, "size": CUBE_SIZE, "planes": (near, far)}
+
+
+class ShadowMaps(GLResource):
+    """The depth maps of a Renderer's lights and the program that draws them."""
+
+    def __init__(self, context, shaders):
+        super().__init__(context)
+        self.shaders = shaders
+        self._maps: dict[int, tuple] = {}    # light index -> (key, texture, framebuffer)
+        self._soup: tuple | None = None      # (key, buffer, vertex array)
+        self._program = None
+        self._lookup: dict[bool, object] = {}
+        #: per light of the last draw: (faces, texels a side, texel footprint in pixels)
+        self.facts: list[tuple[int, int, float]] = []
+        self._warned_solids = False
+
+    def _soup_for(self, key, triangles: np.ndarray):
+        if self._soup is None or self._soup[0] != key:
+            if self._soup is not None:
+                self._soup[2].release()
+                self._soup[1].release()
+            ctx = self.context.ctx
+            if self._program is None:
+                self._program = self._keep(self.shaders.compile("shadow_depth.vert",
+                                                                "shadow_depth.frag"))
+            data = np.ascontiguousarray(triangles.reshape(-1, 3), np.float32)
+            buf = ctx.buffer(data.tobytes() if len(data) else np.zeros(9, "f4").tobytes())
+            vao = ctx.vertex_array(self._program, [(buf, "3f", "in_position")])
+            self._soup = (key, buf, vao, len(data))
+        return self._soup
+
+    def _draw_map(self, index: int, key, soup, views, proj, facts) -> object:
+        """The light's depth texture, drawn anew only when its key changed."""
+        import moderngl
+
+        found = self._maps.get(index)
+        if found is not None and found[0] == key:
+            return found[1]
+        if found is not None:
+            found[2].release()
+            found[1].release()
+        ctx = self.context.ctx
+        size, faces = facts["size"], facts["faces"]
+        shape = (3 * size, 2 * size) if faces == 6 else (size, size)
+        tex = ctx.depth_texture(shape)
+        tex.compare_func = ""
+        tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        fbo = ctx.framebuffer(depth_attachment=tex)
+        fbo.use()
+        fbo.clear(depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.CULL_FACE)
+        for f, view in enumerate(views):
+            ctx.viewport = ((f % 3) * size, (f // 3) * size, size, size) if faces == 6 else \
+                (0, 0, size, size)
+            self._program["u_mvp"].write(gl_bytes(proj @ view))
+            if soup[3]:
+                soup[2].render(moderngl.TRIANGLES)
+        self._maps[index] = (key, tex, fbo)
+        return tex
+
+    def fill(self, owner, renderer, state, gbuf, vis) -> None:
+        """Each light's map (drawn when its geometry or light changed), then its layer of
+        ``vis`` by PCF lookups at the G-buffer's points."""
+        from ...scene.camera import Projection
+        from .shadows import shadow_lights
+
+        if state.scene.solids and not self._warned_solids:
+            self._warned_solids = True
+            warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
+                          "not drawn into the maps): shadows='exact' casts theirs",
+                          RenderWarning, stacklevel=5)
+        _, _, n, scale, found = owner._occluder_buffers(state.scene)
+        geometry = owner._bvh[0]
+        soup = self._soup_for(geometry, found.triangles)
+        bounds = np.asarray(state.scene.bounds, np.float64)
+        rows = shadow_lights(state.lights)
+        ortho = state.camera.projection is Projection.ORTHOGRAPHIC
+        prog = self._lookup.get(ortho)
+        if prog is None:
+            from ..shaders import assemble
+
+            source, _ = assemble("shadow_maps.comp",
+                                 defines=("ORTHOGRAPHIC",) if ortho else ())
+            prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
+        self.facts = []
+        inverse_view = np.linalg.inv(state.view)
+        for i, row in enumerate(rows[:len(state.lights)]):
+            views, proj, facts = light_frames(row.astype(np.float64), bounds)
+            key = (geometry, row.tobytes(), bounds.tobytes())
+            tex = self._draw_map(i, key, soup, views, proj, facts)
+            owner.bind_gbuffer(prog, state, gbuf)
+            gbuf.normal.use(3)
+            tex.use(4)
+            put = owner._put
+            for name, value in {"u_normals": 3, "u_map": 4, "u_layer": i,
+                                "u_light": tuple(float(x) for x in row),
+                                "u_faces": facts["faces"], "u_size": facts["size"],
+                                "u_face_planes": facts.get("planes", (1.0, 2.0)),
+                                "u_ortho": facts.get("ortho", (1.0, 1.0, 0.0, 1.0)),
+                                "u_eye": tuple(inverse_view[:3, 3]),
+                                "u_forward": tuple(-inverse_view[:3, 2]),
+                                "u_face_view": b"".join(
+                                    [gl_bytes(v) for v in views] +
+                                    [gl_bytes(np.eye(4))] * (6 - len(views)))}.items():
+                put(prog, name, value)
+            vis.bind_to_image(0, read=False, write=True)
+            _, _, w, h = (int(v) for v in state.viewport)
+            prog.run(math.ceil(w / 8), math.ceil(h / 8), 1)
+            self.facts.append((facts["faces"], facts["size"],
+                               self._footprint(state, views, facts, bounds)))
+        self.context.ctx.memory_barrier()
+        owner.undecided = 0
+
+    @staticmethod
+    def _footprint(state, views, facts, bounds) -> float:
+        """A map texel's width over a pixel's, at the scene's centre (how coarse the map is
+        on screen: above 1, its texels show as steps along a shadow's edge)."""
+        from ...scene.camera import Projection
+
+        centre = np.asarray(bounds, np.float64).mean(0)
+        if facts["faces"] == 6:
+            light = np.linalg.inv(views[0])[:3, 3]
+            texel = 2 * float(np.linalg.norm(centre - light)) / facts["size"]
+        else:
+            texel = 2 * facts["ortho"][0] / facts["size"]
+        cam = state.camera
+        height = state.viewport[3]
+        if cam.projection is Projection.ORTHOGRAPHIC:
+            pixel = cam.height / height
+        else:
+            depth = max(-(state.view[:3, :3] @ centre + state.view[:3, 3])[2], 1e-12)
+            pixel = 2 * depth * math.tan(math.radians(cam.fov_y) / 2) / height
+        return texel / pixel
+
+    def summary(self) -> str:
+        """One line: each light's map size and its texel footprint in pixels."""
+        parts = [f"{'6x' if faces == 6 else ''}{size}x{size} ({'cube' if faces == 6 else '2D'}"
+                 f", a texel {fp:.2g} px)" for faces, size, fp in self.facts]
+        return "shadow maps: " + "; ".join(parts) + f", PCF {2 * PCF_RADIUS + 1}x" \
+            f"{2 * PCF_RADIUS + 1}"
+
+    def _release_extra(self) -> None:
+        for _, tex, fbo in self._maps.values():
+            fbo.release()
+            tex.release()
+        self._maps.clear()
+        if self._soup is not None:
+            self._soup[2].release()
+            self._soup[1].release()
+            self._soup = None
+        for p in self._lookup.values():
+            p.release()  # type: ignore[attr-defined]
+        self._lookup.clear()

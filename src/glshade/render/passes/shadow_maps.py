@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -71,7 +72,7 @@ class ShadowMaps(GLResource):
         self._maps: dict[int, tuple] = {}    # light index -> (key, texture, framebuffer)
         self._soup: tuple | None = None      # (key, buffer, vertex array)
         self._program = None
-        self._lookup: dict[bool, object] = {}
+        self._lookup: dict[bool, Any] = {}
         #: per light of the last draw: (faces, texels a side, texel footprint in pixels)
         self.facts: list[tuple[int, int, float]] = []
         self._warned_solids = False
@@ -91,7 +92,7 @@ class ShadowMaps(GLResource):
             self._soup = (key, buf, vao, len(data))
         return self._soup
 
-    def _draw_map(self, index: int, key, soup, views, proj, facts) -> object:
+    def _draw_map(self, index: int, key, soup, views, proj, facts) -> Any:
         """The light's depth texture, drawn anew only when its key changed."""
         import moderngl
 
@@ -212,5 +213,5 @@ class ShadowMaps(GLResource):
             self._soup[1].release()
             self._soup = None
         for p in self._lookup.values():
-            p.release()  # type: ignore[attr-defined]
+            p.release()
         self._lookup.clear()

@@ -56,7 +56,7 @@ def shadow_lights(lights) -> np.ndarray:
 
 class _GBuffer:
     """The draw's surface points: world normal, polygon id + 1 (0 background) and the view
-    depth's bits, in textures the compute pass reads (drawn like any target: ``begin/bind/resolve``)."""
+    depth's bits, in textures the compute pass reads (drawn into like any target)."""
 
     def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
         self.width, self.height, self.rows_top_down = width, height, rows_top_down

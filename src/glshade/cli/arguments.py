@@ -50,6 +50,7 @@ class RenderArgs:
     view: View | None = None
     ortho: bool = False
     edges: bool | None = None
+    shadows: tuple | None = None  # (Shadows members; several only for compare)
 
     def given(self, *names: str) -> dict[str, Any]:
         """The named options that were given (not None), by name."""

@@ -31,11 +31,24 @@ def render(args: a.RenderCommandArgs) -> int:
     (width, height), options = job.size, job.options
     with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(job.scene, job.camera, options)
+        shadows = _shadow_summary(renderer, options)
     save_image(image, args.output)
     if not args.quiet:
         print(f"{args.output}: {width}x{height} {options.mode.value}, "
-              f"{_contents(job.scene)} ({renderer.backend})")
+              f"{_contents(job.scene)} ({renderer.backend})" + shadows)
     return EXIT_OK
+
+
+def _shadow_summary(renderer, options) -> str:
+    """The render line's words on shadows: the method, and a map's sizes and footprint."""
+    from ..modes import Shadows
+
+    shadow_pass = renderer.shadow_pass
+    if options.shadows is Shadows.OFF or shadow_pass is None:
+        return ""
+    if options.shadows is Shadows.MAP and shadow_pass.maps is not None:
+        return "; " + shadow_pass.maps.summary()
+    return "; exact shadows (a ray a pixel and light)"
 
 
 def _contents(scene) -> str:
@@ -107,7 +120,11 @@ def batch(args: a.BatchArgs) -> int:
     v.check_outputs({}, {"-o": args.output})  # (the folder; before any mesh is read)
     given = args.given("color", "ka", "kd", "ks", "shininess")
     Material.from_values(given)  # bad values fail now, not once per mesh
-    options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}))
+    if args.shadows and len(args.shadows) > 1:
+        raise UsageError("--shadows: one method for batch (several are for compare)")
+    options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}),
+                                               **({"shadows": args.shadows[0]}
+                                                  if args.shadows else {}))
     spec = BatchSpec(modes=tuple(m.value for m in args.modes), outputs=args.outputs,
                      size=args.size or (256, 256),
                      samples=4 if args.samples is None else args.samples, views=args.views,

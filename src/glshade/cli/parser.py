@@ -92,9 +92,17 @@ def add_render_options(p: argparse.ArgumentParser, size_default: str | None = No
     p.add_argument("--ortho", action="store_true", help="parallel (orthographic) projection")
     p.add_argument("--edges", action="store_true", default=None, help="draw the polygons' "
                    "edges over the picture (their boundaries, not the triangles')")
+    add_shadows(p)
     add_backend(p)
     p.add_argument("--srgb", action="store_true", default=None,
                    help="encode the linear result as sRGB")
+
+
+def add_shadows(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--shadows", type=v.shadows, metavar="off|exact|map",
+                   help="cast shadows: exact (a ray from each pixel's point to each light), "
+                   "map (shadow maps, PCF) or off (default: the scene's, else off); compare "
+                   "takes two or more, e.g. exact,map, and shows their difference")
 
 
 def add_executor_options(p: argparse.ArgumentParser, default_jobs: str = "the number of "
@@ -178,6 +186,7 @@ def add_animate(sub) -> None:
     p.add_argument("--size", type=v.size, metavar="WxH", help="frame size (default: the "
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
+    add_shadows(p)
     add_backend(p)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=c.animate, arguments=a.AnimateArgs)

@@ -208,6 +208,18 @@ def positive_float(text: str) -> float:
     return _number(text, lambda x: x > 0, "a number > 0")
 
 
+def shadows(text: str) -> tuple:
+    """``exact``, ``map``, ``off`` -- or several, comma-separated (compare's methods)."""
+    from ..modes import Shadows
+
+    names = [t.strip().lower() for t in text.split(",")]
+    known = [m.value for m in Shadows]
+    if not names or any(n not in known for n in names) or len(set(names)) != len(names):
+        raise argparse.ArgumentTypeError(f"expected {', '.join(known)} (or several for "
+                                         f"compare, e.g. exact,map), got {text!r}")
+    return tuple(Shadows(n) for n in names)
+
+
 def fps(text: str) -> float:
     """Frames a second, in the range an animation file can hold."""
     from ..animate.writers import MAX_FPS, MIN_FPS

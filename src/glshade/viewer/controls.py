@@ -12,7 +12,7 @@ import time
 import numpy as np
 
 from .. import quaternion as quat
-from ..modes import Culling, ShadingMode
+from ..modes import Culling, ShadingMode, Shadows
 from ..options import DrawOptions
 from ..scene import Camera, PointLight, Scene, default_camera
 from .arcball import Arcball
@@ -72,6 +72,11 @@ class Controls:
             self.options = o.replace(depth_test=not o.depth_test)
         elif char == "w":
             self.options = o.replace(edges=not o.edges)
+        elif char == "x":  # cast shadows: off, exact, map
+            turn = {Shadows.OFF: Shadows.EXACT, Shadows.EXACT: Shadows.MAP,
+                    Shadows.MAP: Shadows.OFF}
+            self.options = o.replace(shadows=turn[o.shadows])
+            self._say(f"shadows: {self.options.shadows.value}")
         elif char == "c":
             turn = {Culling.AUTO: Culling.ON, Culling.ON: Culling.OFF, Culling.OFF: Culling.AUTO}
             self.options = o.replace(cull=turn[o.cull])

@@ -3,11 +3,11 @@ Renderer's programs and buffers; this module only supplies the framebuffer and t
 camera control.
 
 Keys: 1 flat, 2 Gouraud, 3 Phong, 4 normals, 5 depth, 6 radiosity; z depth test; w
-polygon edges; c back-face culling (auto / on / off); v the named views in turn (front,
-back, left, right, top, bottom, iso); o orthographic / perspective; l light at the camera;
-t path tracing (the rendering equation, refined while the camera rests; t again or a mode
-key: back); k add a key frame; p play/pause the path; P save the path as TOML; s
-screenshot; r reset;
+polygon edges; x cast shadows (off, exact, map); c back-face culling (auto / on / off); v
+the named views in turn (front, back, left, right, top, bottom, iso); o orthographic /
+perspective; l light at the camera; t path tracing (the rendering equation, refined while
+the camera rests; t again or a mode key: back); k add a key frame; p play/pause the path;
+P save the path as TOML; s screenshot; r reset;
 h or ? help; Esc or q quit. Left-drag: arcball; right- or shift-drag: pan; wheel: dolly
 (the clip planes follow: nothing in front of the camera is cut away); double-click:
 re-centre on the surface; with --pick a click prints the polygon under it.

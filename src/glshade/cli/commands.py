@@ -233,6 +233,8 @@ def compare(args: a.CompareArgs) -> int:
     v.check_outputs({"the grid": args.output, "--json": args.json, "--csv": args.csv},
                     {"--save-tiles": args.save_tiles})  # (before any work)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
+    if args.shadows and len(args.shadows) > 1:
+        return _compare_shadows(args, job)
     scenes, surfaces = {}, None
     if "radiosity" in modes:
         scenes["radiosity"], surfaces = _radiosity_for_compare(args, job)
@@ -249,6 +251,30 @@ def compare(args: a.CompareArgs) -> int:
         result.write_json(args.json)
     if args.csv:
         result.write_csv(args.csv)
+    print(f"grid: {args.output}")
+    return EXIT_OK
+
+
+def _compare_shadows(args: a.CompareArgs, job) -> int:
+    """``compare --shadows exact,map``: the methods side by side in one shading mode, each
+    one's difference from the first, and the pixels that disagree."""
+    from ..compare.shadows import compare_shadows
+    from ..io.images import save_image
+    from ..render.renderer import SHADOWED_MODES
+
+    from ..modes import ShadingMode
+
+    mode = args.modes[0] if len(args.modes) == 1 else ShadingMode.PHONG
+    if mode not in SHADOWED_MODES:
+        raise UsageError(f"--shadows compares its methods in a lit mode (flat, gouraud or "
+                         f"phong; with several --modes, phong), not {mode.value}")
+    with job.explained():
+        result = compare_shadows(job.scene, job.camera, [m.value for m in args.shadows],
+                                 job.options.replace(mode=mode),
+                                 config=job.config(args.backend).replace(samples=0))
+    save_image(result.image, args.output)
+    print(f"shadows in {mode.value}, against {result.reference}:")
+    print(result.table())
     print(f"grid: {args.output}")
     return EXIT_OK
 

@@ -1,0 +1,120 @@
+"""Shadow methods side by side (``compare --shadows exact,map``): each method's picture, its
+difference from the first method's as a heat map, and the numbers -- the mean difference,
+the fraction of drawn pixels that differ by more than a level, and the frame time."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..modes import Shadows
+from ..options import DrawOptions, RenderConfig
+
+__all__ = ["ShadowComparison", "compare_shadows"]
+
+
+@dataclass
+class ShadowComparison:
+    """``methods`` in order (the first is the reference); per method its ``colors`` ``(H, W,
+    4) uint8``, ``visibility`` ``(H, W, L)`` (None for off) and ``seconds`` a frame;
+    ``drawn`` ``(H, W)`` the pixels a surface covers."""
+
+    methods: tuple[str, ...]
+    colors: dict = field(default_factory=dict)
+    visibility: dict = field(default_factory=dict)
+    seconds: dict = field(default_factory=dict)
+    drawn: np.ndarray | None = None
+
+    @property
+    def reference(self) -> str:
+        return self.methods[0]
+
+    def disagreement(self, method: str) -> float:
+        """The fraction of drawn pixels whose colour differs from the reference's by more
+        than one 8-bit level (where a light's visibility differs but its term is zero --
+        the side turned away from it -- nothing shows, and nothing is counted)."""
+        diff = np.abs(self.colors[method][..., :3].astype(int) -
+                      self.colors[self.reference][..., :3].astype(int)).max(-1)
+        drawn = self.drawn if self.drawn is not None else np.ones(diff.shape, bool)
+        return float((diff > 1)[drawn].mean()) if drawn.any() else 0.0
+
+    def visibility_disagreement(self, method: str) -> float:
+        """The fraction of drawn pixels where ``method`` and the reference disagree on
+        whether some light is seen (more than half of it, for a map's PCF fractions),
+        counted whether or not the light's term there is zero."""
+        a, b = self.visibility.get(self.reference), self.visibility.get(method)
+        drawn = self.drawn if self.drawn is not None else np.ones(1, bool)
+        if a is None and b is None:
+            return 0.0
+        a = a if a is not None else np.ones_like(b)
+        b = b if b is not None else np.ones_like(a)
+        differ = ((a > 0.5) != (b > 0.5)).any(-1)
+        return float(differ[drawn].mean()) if drawn.any() else 0.0
+
+    def mean_difference(self, method: str) -> float:
+        """Mean |colour difference| from the reference over the drawn pixels, 8-bit units."""
+        diff = np.abs(self.colors[method][..., :3].astype(int) -
+                      self.colors[self.reference][..., :3].astype(int)).max(-1)
+        return float(diff[self.drawn].mean()) if self.drawn is not None and \
+            self.drawn.any() else 0.0
+
+    def table(self) -> str:
+        from ..io.tables import format_table
+
+        rows = [(m, f"{self.seconds[m] * 1000:.1f}",
+                 "-" if m == self.reference else f"{self.mean_difference(m):.3f}",
+                 "-" if m == self.reference else f"{self.disagreement(m):.3%}")
+                for m in self.methods]
+        return format_table(rows, ("shadows", "ms a frame", f"mean |diff| vs {self.reference}",
+                                   "pixels that differ (> 1 level)"))
+
+    @property
+    def image(self) -> np.ndarray:
+        """The renders in a labelled row, and under them each method's difference from the
+        reference as a heat map (its scale: the largest difference, at least 1)."""
+        from ..io.images import heatmap, labelled_row
+
+        top = labelled_row({f"shadows {m} ({self.seconds[m] * 1000:.0f} ms)": self.colors[m]
+                            for m in self.methods})
+        diffs = {m: np.abs(self.colors[m][..., :3].astype(int) -
+                           self.colors[self.reference][..., :3].astype(int)).max(-1)
+                 for m in self.methods}
+        vmax = max(1.0, max(float(d.max()) for d in diffs.values()))
+        bottom = labelled_row({
+            (f"{self.reference}: the reference" if m == self.reference else
+             f"|{m} - {self.reference}|, {self.disagreement(m):.2%} differ"):
+            heatmap(d, vmax) for m, d in diffs.items()})
+        return np.vstack([top, bottom])
+
+
+def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
+                    config: RenderConfig | None = None, renderer=None) -> ShadowComparison:
+    """Draw ``scene`` once per shadow method (names or :class:`~glshade.Shadows`; the first
+    is the reference) with the same ``options`` otherwise; each timed on a third draw (the
+    first two build the BVH, the maps and the programs)."""
+    from ..render.renderer import Renderer
+
+    chosen = tuple(Shadows.parse(m).value for m in methods)
+    if len(chosen) < 2:
+        raise ValueError("compare_shadows needs two or more methods, e.g. ('exact', 'map')")
+    base = DrawOptions.of(options)
+    own = renderer is None
+    r = renderer or Renderer(config=config or RenderConfig(samples=0))
+    out = ShadowComparison(chosen)
+    try:
+        for m in chosen:
+            o = base.replace(shadows=Shadows(m))
+            frame = r.render_frame(scene, camera, o)
+            r.render(scene, camera, o)  # (the colour-only programs compiled: then timed)
+            start = time.perf_counter()
+            r.render(scene, camera, o)
+            out.seconds[m] = time.perf_counter() - start
+            out.colors[m] = frame.color
+            out.visibility[m] = frame.visibility
+            out.drawn = frame.face_id >= 0
+    finally:
+        if own:
+            r.close()
+    return out

@@ -268,8 +268,9 @@ def _compare_shadows(args: a.CompareArgs, job) -> int:
     if mode not in SHADOWED_MODES:
         raise UsageError(f"--shadows compares its methods in a lit mode (flat, gouraud or "
                          f"phong; with several --modes, phong), not {mode.value}")
+    methods = [m.value for m in args.shadows or ()]
     with job.explained():
-        result = compare_shadows(job.scene, job.camera, [m.value for m in args.shadows],
+        result = compare_shadows(job.scene, job.camera, methods,
                                  job.options.replace(mode=mode),
                                  config=job.config(args.backend).replace(samples=0))
     save_image(result.image, args.output)

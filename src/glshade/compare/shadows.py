@@ -113,6 +113,7 @@ def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
             out.seconds[m] = time.perf_counter() - start
             out.colors[m] = frame.color
             out.visibility[m] = frame.visibility
+            assert frame.face_id is not None
             out.drawn = frame.face_id >= 0
     finally:
         if own:

@@ -73,9 +73,9 @@ class Controls:
         elif char == "w":
             self.options = o.replace(edges=not o.edges)
         elif char == "x":  # cast shadows: off, exact, map
-            turn = {Shadows.OFF: Shadows.EXACT, Shadows.EXACT: Shadows.MAP,
-                    Shadows.MAP: Shadows.OFF}
-            self.options = o.replace(shadows=turn[o.shadows])
+            shadow_turn = {Shadows.OFF: Shadows.EXACT, Shadows.EXACT: Shadows.MAP,
+                           Shadows.MAP: Shadows.OFF}
+            self.options = o.replace(shadows=shadow_turn[o.shadows])
             self._say(f"shadows: {self.options.shadows.value}")
         elif char == "c":
             turn = {Culling.AUTO: Culling.ON, Culling.ON: Culling.OFF, Culling.OFF: Culling.AUTO}

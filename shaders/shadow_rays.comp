@@ -7,20 +7,41 @@
 // shown as seen (the pass reports the count; it is never hidden).
 //
 // Buffers (render/passes/shadows.py writes them):
-//   nodes: 2 vec4 a node, (lo, first as int bits), (hi, count as int bits); an inner node
-//     (count 0) has children first and first + 1, a leaf triangles [first, first + count)
-//   tris: 3 vec4 a triangle, (v0, polygon id as int bits: -1 none), (v1 - v0), (v2 - v0)
-// The ray leaves the point at t_min = eps (relative to the point's depth and the scene's
-// scale: the point is rebuilt from a float depth) and skips the polygon the point is on (a
-// planar polygon cannot shade itself; its neighbours can).
+//   nodes: a Node each: lo, first, hi, count; an inner node (count 0) has children first
+//     and first + 1, a leaf triangles [first, first + count)
+//   tris: a Tri each: v0, its polygon's id (-1: none), v1 - v0, v2 - v0 (the id an int
+//     member: an int carried in a float's bits is a denormal, which a GPU may flush to 0)
+// The ray leaves the point eps off the surface (along its polygon's normal, on the light's
+// side) at
+// t_min = eps, eps relative to the point's depth and the scene's scale (the point is
+// rebuilt from a float depth), and skips the polygon the point is on (a planar polygon
+// cannot shade itself; its neighbours can).
 // CSG_SOLID: this run casts against one CSG solid instead (csg.glsl, the raster pass's
 // cast, from the ray's start moved eps towards the light), and only hides more: a light a
 // run before found hidden stays hidden (one run a solid, after the triangles').
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(std430, binding = 0) readonly buffer Nodes { vec4 nodes[]; };
-layout(std430, binding = 1) readonly buffer Tris { vec4 tris[]; };
+struct Node {
+    vec3 lo;
+    int first;
+    vec3 hi;
+    int count;
+};
+layout(std430, binding = 0) readonly buffer Nodes { Node nodes[]; };
+struct Tri {
+    vec3 v0;
+    int polygon;
+    vec3 e1;
+    float pad1;
+    vec3 e2;
+    float pad2;
+};
+layout(std430, binding = 1) readonly buffer Tris { Tri tris[]; };
 layout(std430, binding = 2) buffer Counts { uint undecided; };
+// each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
+// patch's, a solid's leaf) take the G-buffer's normal
+layout(std430, binding = 4) readonly buffer Normals { vec4 polygon_normals[]; };
+uniform int u_polygons;
 #ifdef CSG_SOLID
 layout(r8, binding = 0) uniform image2DArray u_visibility;
 int g_iter;
@@ -32,6 +53,7 @@ layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 
 uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
 uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
+uniform sampler2D u_normals;       // world normal (the shading one, turned to the viewer)
 uniform mat4 u_inverse_view_proj;  // the draw's clip -> world
 uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
 uniform vec3 u_eye;
@@ -61,13 +83,13 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     while (top > 0) {
         if (++iterations > u_budget) return -1;
         int node = stack[--top];
-        vec4 a = nodes[2 * node], b = nodes[2 * node + 1];
-        vec3 t0 = (a.xyz - o) * inv, t1 = (b.xyz - o) * inv;
+        Node box = nodes[node];
+        vec3 t0 = (box.lo - o) * inv, t1 = (box.hi - o) * inv;
         vec3 tn = min(t0, t1), tf = max(t0, t1);
         float near = max(max(tn.x, tn.y), max(tn.z, t_min));
         float far = min(min(tf.x, tf.y), min(tf.z, t_max));
         if (near > far) continue;
-        int first = floatBitsToInt(a.w), count = floatBitsToInt(b.w);
+        int first = box.first, count = box.count;
         if (count == 0) {
             if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
             stack[top++] = first + 1;
@@ -76,14 +98,14 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
         }
         for (int k = first; k < first + count; ++k) {
             ++iterations;
-            vec4 p0 = tris[3 * k];
-            if (floatBitsToInt(p0.w) == own) continue;
-            vec3 e1 = tris[3 * k + 1].xyz, e2 = tris[3 * k + 2].xyz;
+            Tri tri = tris[k];
+            if (tri.polygon == own) continue;
+            vec3 e1 = tri.e1, e2 = tri.e2;
             vec3 pv = cross(d, e2);
             float det = dot(e1, pv);
             if (det == 0.0) continue;
             float f = 1.0 / det;
-            vec3 s = o - p0.xyz;
+            vec3 s = o - tri.v0;
             float u = f * dot(s, pv);
             if (u < 0.0 || u > 1.0) continue;
             vec3 q = cross(s, e1);
@@ -127,6 +149,12 @@ void main() {
         float dist = l.w > 0.5 ? length(d) : 3.4e38;
         d = l.w > 0.5 ? d / max(dist, 1e-30) : d;
         float eps = u_eps * (depth + u_scale);
+        // start eps off the surface on the light's side of its polygon (a concave crease's
+        // neighbour rises over the point: a grazing ray that started on the surface would
+        // clip it), then eps along the ray
+        vec3 n = face - 1 < u_polygons ? polygon_normals[face - 1].xyz :
+                                         texelFetch(u_normals, px, 0).xyz;
+        p += (dot(n, d) < 0.0 ? -eps : eps) * n;
 #ifdef CSG_SOLID
         float t;
         g_iter = 0;

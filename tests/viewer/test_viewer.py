@@ -7,8 +7,9 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
-from glshade import Camera, Culling, Material, PointLight, Scene
+from glshade import Camera, Culling, Material, PointLight, RenderWarning, Scene
 from glshade.geometry import primitives as P
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -91,6 +92,25 @@ def test_keys_switch_modes_like_headless(viewer_factory, tmp_path):
         v.step()
         assert np.abs(v.screenshot().astype(int) - ref).max() <= 1, key
     assert np.abs(refs[0] - refs[2]).max() > 20  # the modes really differ
+
+
+def test_x_turns_shadows_exact_then_map_then_off_like_headless(viewer_factory, tmp_path):
+    """The window's framebuffer is top row last (GL's own): its shadows still fall where
+    the headless renderer's do (the slab's on the teapot, the teapot's on the slab)."""
+    v = viewer_factory(csg_scene(), CAM)
+    refs = headless(tmp_path, {"mode": "phong", "shadows": "exact"},
+                    {"mode": "phong", "shadows": "map"}, "phong",
+                    scene="csg_scene")[0].astype(int)
+    v.key("3")
+    for ref in refs:
+        v.key("x")
+        if v.options.shadows.value == "map":  # (said once: the solid casts no map shadow)
+            with pytest.warns(RenderWarning, match="CSG solids receive map shadows"):
+                v.step()
+        else:
+            v.step()
+        assert np.abs(v.screenshot().astype(int) - ref).max() <= 1, v.options.shadows
+    assert (np.abs(refs[0] - refs[2]).max(-1) > 20).sum() > 100  # shadows really show
 
 
 def test_z_toggles_depth_test(viewer_factory, tmp_path):

@@ -15,10 +15,13 @@ __all__ = ["Occluders", "occluders"]
 class Occluders:
     """``triangles (T, 3, 3)`` float64 world positions; ``polygon (T,)`` int64: the id of
     the mesh polygon each comes from, as :class:`~glshade.Frame` numbers them, or -1 (a
-    tessellated patch's triangle: a curved patch may shade itself, so none is skipped)."""
+    tessellated patch's triangle: a curved patch may shade itself, so none is skipped);
+    ``normals (P, 3)`` the world unit normal of every mesh polygon by that id (zero for a
+    hidden model's), the surface's own side for a ray's start."""
 
     triangles: np.ndarray
     polygon: np.ndarray
+    normals: np.ndarray
 
     def __len__(self) -> int:
         return len(self.triangles)
@@ -35,16 +38,21 @@ class Occluders:
 def occluders(scene) -> Occluders:
     """The triangles of ``scene``'s visible meshes and patch models (at their level), with
     zero-area triangles left out (no ray can hit them)."""
-    tris, ids = [], []
+    tris, ids, normals = [], [], []
     base = 0
     for model in scene.models:
         mesh = model.mesh
         t, face = mesh.triangles
+        n = np.zeros((mesh.n_faces, 3))
         if model.visible and len(t):
             m = model.transform
             v = mesh.vertices @ m[:3, :3].T + m[:3, 3]
             tris.append(v[t])
             ids.append(base + face)
+            n = mesh.newell_normals @ np.linalg.inv(m[:3, :3])  # (the inverse transpose)
+            length = np.linalg.norm(n, axis=1, keepdims=True)
+            n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+        normals.append(n)
         base += mesh.n_faces
     if scene.patch_models:  # (the GPU tessellates them on the same grid)
         from ..patches import tessellate
@@ -57,11 +65,12 @@ def occluders(scene) -> Occluders:
             v = mesh.vertices @ p.transform[:3, :3].T + p.transform[:3, 3]
             tris.append(v[t])
             ids.append(np.full(len(t), -1))
+    normal = np.concatenate(normals) if normals else np.zeros((0, 3))
     if not tris:
-        return Occluders(np.zeros((0, 3, 3)), np.zeros(0, np.int64))
+        return Occluders(np.zeros((0, 3, 3)), np.zeros(0, np.int64), normal)
     triangles = np.concatenate(tris).astype(np.float64)
     polygon = np.concatenate(ids).astype(np.int64)
     area2 = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0],
                                     triangles[:, 2] - triangles[:, 0]), axis=1)
     keep = np.isfinite(triangles).all((1, 2)) & (area2 > 0)
-    return Occluders(triangles[keep], polygon[keep])
+    return Occluders(triangles[keep], polygon[keep], normal)

@@ -133,7 +133,7 @@ class ShadowMaps(GLResource):
             warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
                           "not drawn into the maps): shadows='exact' casts theirs",
                           RenderWarning, stacklevel=5)
-        _, _, n, scale, found = owner._occluder_buffers(state.scene)
+        found = owner._occluder_buffers(state.scene)[4]
         geometry = owner._bvh[0]
         soup = self._soup_for(geometry, found.triangles)
         bounds = np.asarray(state.scene.bounds, np.float64)

@@ -145,8 +145,8 @@ class ShadowPass(GLResource):
         if self._bvh is not None and self._bvh[0] == key:
             return self._bvh[1:]
         if self._bvh is not None:
-            self._bvh[1].release()
-            self._bvh[2].release()
+            for buf in (self._bvh[1], self._bvh[2], self._bvh[6]):
+                buf.release()
         found = occluders(scene)
         ctx = self.context.ctx
         if len(found):
@@ -164,8 +164,10 @@ class ShadowPass(GLResource):
         else:
             nodes = tris = np.zeros((2, 4), np.float32)
         scale = float(np.abs(found.bounds).max()) if len(found) else 1.0
+        normals = np.zeros((max(len(found.normals), 1), 4), np.float32)
+        normals[:len(found.normals), :3] = found.normals
         self._bvh = (key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()), len(found),
-                     scale, found)
+                     scale, found, ctx.buffer(normals.tobytes()))
         return self._bvh[1:]
 
     def _program(self, name: str, orthographic: bool):
@@ -213,7 +215,7 @@ class ShadowPass(GLResource):
 
     def _trace(self, state, gbuf: _GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
-        nodes, tris, n_triangles, scale, _ = self._occluder_buffers(state.scene)
+        nodes, tris, n_triangles, scale, found, normals = self._occluder_buffers(state.scene)
         from ...scene.camera import Projection
 
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
@@ -221,13 +223,14 @@ class ShadowPass(GLResource):
         self.bind_gbuffer(prog, state, gbuf)
         inverse_view = np.linalg.inv(state.view)
         values = {"u_scale": scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
-                  "u_has_triangles": int(n_triangles > 0),
+                  "u_has_triangles": int(n_triangles > 0), "u_polygons": len(found.normals),
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():
             self._put(prog, name, value)
         nodes.bind_to_storage_buffer(0)
         tris.bind_to_storage_buffer(1)
+        normals.bind_to_storage_buffer(4)
         self.dispatch(prog, state, vis)
         for model in state.scene.solids:  # (each hides more of what the triangles left)
             if model.visible:
@@ -272,9 +275,11 @@ class ShadowPass(GLResource):
         """The G-buffer, the draw's matrices, viewport and lights, for a compute program."""
         gbuf.face.use(0)
         gbuf.depth.use(1)
+        gbuf.normal.use(3)
         inverse = np.linalg.inv(state.proj @ state.view)
         rows = shadow_lights(state.lights)
-        values = {"u_face_ids": 0, "u_depth_bits": 1, "u_inverse_view_proj": gl_bytes(inverse),
+        values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
+                  "u_inverse_view_proj": gl_bytes(inverse),
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}
@@ -312,8 +317,8 @@ class ShadowPass(GLResource):
             self._visibility[1].release()
             self._visibility = None
         if self._bvh is not None:
-            self._bvh[1].release()
-            self._bvh[2].release()
+            for buf in (self._bvh[1], self._bvh[2], self._bvh[6]):
+                buf.release()
             self._bvh = None
         if self.maps is not None:
             self.maps.release()

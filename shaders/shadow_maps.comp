@@ -15,7 +15,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 uniform isampler2D u_face_ids;
 uniform usampler2D u_depth_bits;
-uniform sampler2D u_normals;       // world normal, w = 1 where drawn
+uniform sampler2D u_normals;       // world normal as (n + 1) / 2
 uniform sampler2D u_map;           // the light's depths in [0, 1] (window depth)
 uniform mat4 u_inverse_view_proj;
 uniform vec4 u_viewport;
@@ -65,7 +65,7 @@ void main() {
 #else
     vec3 p = u_eye + dir * (depth / dot(dir, u_forward));
 #endif
-    vec3 n = normalize(texelFetch(u_normals, px, 0).xyz);
+    vec3 n = normalize(texelFetch(u_normals, px, 0).xyz * 2.0 - 1.0);
     vec3 to_light = u_light.w > 0.5 ? normalize(u_light.xyz - p) : u_light.xyz;
     float cos_t = clamp(abs(dot(n, to_light)), 0.05, 1.0);
     float tan_t = sqrt(1.0 - cos_t * cos_t) / cos_t;

@@ -53,7 +53,7 @@ layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 
 uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
 uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
-uniform sampler2D u_normals;       // world normal (the shading one, turned to the viewer)
+uniform sampler2D u_normals;       // world normal as (n + 1) / 2 (the shading one, seen side)
 uniform mat4 u_inverse_view_proj;  // the draw's clip -> world
 uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
 uniform vec3 u_eye;
@@ -65,7 +65,8 @@ uniform int u_budget;              // loop iterations a ray may take
 uniform int u_light_count;
 uniform vec4 u_lights[8];          // world: point (xyz, 1), direction TO it (xyz, 0);
                                    // w = 2: casts no shadows (always seen)
-uniform int u_has_triangles;
+uniform int u_has_triangles;      // 0: no hierarchy (no triangles but the big ones)
+uniform int u_big;                 // the first u_big triangles: tested by every ray
 
 #include "rays.glsl"
 
@@ -73,13 +74,35 @@ uniform int u_has_triangles;
 
 // Whether anything lies on o + t d for t in (t_min, t_max), skipping polygon ``own``; -1
 // when the ray ran out of its budget.
+// Whether the ray o + t d, t in (t_min, t_max), meets triangle k (not of polygon own).
+bool meets(int k, vec3 o, vec3 d, float t_min, float t_max, int own) {
+    Tri tri = tris[k];
+    if (tri.polygon == own) return false;
+    vec3 pv = cross(d, tri.e2);
+    float det = dot(tri.e1, pv);
+    if (det == 0.0) return false;
+    float f = 1.0 / det;
+    vec3 s = o - tri.v0;
+    float u = f * dot(s, pv);
+    if (u < 0.0 || u > 1.0) return false;
+    vec3 q = cross(s, tri.e1);
+    float v = f * dot(d, q);
+    if (v < 0.0 || u + v > 1.0) return false;
+    float t = f * dot(tri.e2, q);
+    return t > t_min && t < t_max;
+}
+
 int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
+    int iterations = 0;
+    for (int k = 0; k < u_big; ++k) {
+        ++iterations;
+        if (meets(k, o, d, t_min, t_max, own)) return 1;
+    }
     if (u_has_triangles == 0) return 0;
     vec3 inv = 1.0 / d;
     int stack[STACK];
     int top = 0;
     stack[top++] = 0;
-    int iterations = 0;
     while (top > 0) {
         if (++iterations > u_budget) return -1;
         int node = stack[--top];
@@ -98,21 +121,7 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
         }
         for (int k = first; k < first + count; ++k) {
             ++iterations;
-            Tri tri = tris[k];
-            if (tri.polygon == own) continue;
-            vec3 e1 = tri.e1, e2 = tri.e2;
-            vec3 pv = cross(d, e2);
-            float det = dot(e1, pv);
-            if (det == 0.0) continue;
-            float f = 1.0 / det;
-            vec3 s = o - tri.v0;
-            float u = f * dot(s, pv);
-            if (u < 0.0 || u > 1.0) continue;
-            vec3 q = cross(s, e1);
-            float v = f * dot(d, q);
-            if (v < 0.0 || u + v > 1.0) continue;
-            float t = f * dot(e2, q);
-            if (t > t_min && t < t_max) return 1;
+            if (meets(k, o, d, t_min, t_max, own)) return 1;
         }
     }
     return 0;
@@ -152,8 +161,20 @@ void main() {
         // start eps off the surface on the light's side of its polygon (a concave crease's
         // neighbour rises over the point: a grazing ray that started on the surface would
         // clip it), then eps along the ray
-        vec3 n = face - 1 < u_polygons ? polygon_normals[face - 1].xyz :
-                                         texelFetch(u_normals, px, 0).xyz;
+        bool polygon = face - 1 < u_polygons;
+        vec3 n = polygon ? polygon_normals[face - 1].xyz : (texelFetch(u_normals, px, 0).xyz * 2.0 - 1.0);
+#ifndef CSG_SOLID
+#ifdef ORTHOGRAPHIC
+        vec3 to_eye = -u_forward;
+#else
+        vec3 to_eye = u_eye - p;
+#endif
+        if (polygon && dot(n, d) * dot(n, to_eye) < 0.0) {
+            // the light is behind the polygon as seen: its own plane hides it (no ray)
+            imageStore(u_visibility, ivec3(px, light), vec4(0.0));
+            return;
+        }
+#endif
         p += (dot(n, d) < 0.0 ? -eps : eps) * n;
 #ifdef CSG_SOLID
         float t;

@@ -37,6 +37,9 @@ SHADOW_EPS = 2e-5
 #: loop iterations one shadow ray may take (llvmpipe stops a shader at 65,535); a ray that
 #: runs out shows its light as seen, and is counted and reported
 RAY_BUDGET = 60_000
+#: triangles wider than this fraction of the scene's diagonal are tested by every ray in a
+#: list of their own (at most MAX_BIG of them), the rest through the hierarchy
+BIG_TRIANGLE, MAX_BIG = 0.25, 64
 
 
 def shadow_lights(lights) -> np.ndarray:
@@ -55,22 +58,25 @@ def shadow_lights(lights) -> np.ndarray:
 
 
 class _GBuffer:
-    """The draw's surface points: world normal, polygon id + 1 (0 background) and the view
-    depth's bits, in textures the compute pass reads (drawn into like any target)."""
+    """The draw's surface points: world normal (as (n + 1) / 2), polygon id + 1 (0
+    background) and the view depth's bits, in textures the compute pass reads (drawn into
+    like any target)."""
 
     def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
         self.width, self.height, self.rows_top_down = width, height, rows_top_down
         size = (width, height)
-        color = keep(ctx.renderbuffer(size, 4, dtype="f1"))
-        self.normal = keep(ctx.texture(size, 4, dtype="f4"))
+        # the normals mode's colour is the world normal as (n + 1) / 2, 8 bits a component:
+        # enough for a ray's start and a map's slope, a quarter of a float target's cost
+        self.normal = keep(ctx.texture(size, 4, dtype="f1"))
+        unread = keep(ctx.renderbuffer(size, 4, dtype="f1"))  # (the float normal: unused)
         self.face = keep(ctx.texture(size, 1, dtype="i4"))
         self.depth = keep(ctx.texture(size, 1, dtype="u4"))
         for t in (self.normal, self.face, self.depth):
             t.filter = (0x2600, 0x2600)  # NEAREST: a pixel's own values, never blended
         self.zbuf = keep(ctx.depth_renderbuffer(size))
-        self.fbo = keep(ctx.framebuffer([color, self.normal, self.face, self.depth],
+        self.fbo = keep(ctx.framebuffer([self.normal, unread, self.face, self.depth],
                                         self.zbuf))
-        self.fbo_color = keep(ctx.framebuffer([color], self.zbuf))
+        self.fbo_color = keep(ctx.framebuffer([self.normal], self.zbuf))
 
     def begin(self, background, outputs) -> None:
         self.fbo.use()
@@ -149,16 +155,31 @@ class ShadowPass(GLResource):
                 buf.release()
         found = occluders(scene)
         ctx = self.context.ctx
+        big = np.zeros(0, np.int64)
         if len(found):
-            bvh = build(found.triangles)
-            nodes = np.zeros((2 * bvh.n_nodes, 4), np.float32)
-            nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
-            nodes[0::2, 3] = np.asarray(bvh.first, np.int32).view(np.float32)
-            nodes[1::2, 3] = np.asarray(bvh.count, np.int32).view(np.float32)
-            tri = found.triangles[bvh.order]
+            # the largest triangles (a floor's, a wall's) go in a list every ray tests first:
+            # in the hierarchy their boxes would widen every node they share to the scene's
+            extent = np.linalg.norm(np.ptp(found.triangles, axis=1), axis=1)
+            size = float(np.linalg.norm(np.ptp(found.bounds, axis=0))) or 1.0
+            big = np.flatnonzero(extent > BIG_TRIANGLE * size)
+            big = big[np.argsort(-extent[big], kind="stable")][:MAX_BIG]
+            rest = np.setdiff1d(np.arange(len(found)), big)
+            order = big
+            if len(rest):
+                bvh = build(found.triangles[rest])
+                order = np.concatenate([big, rest[bvh.order]])
+                nodes = np.zeros((2 * bvh.n_nodes, 4), np.float32)
+                nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
+                # (leaves' triangles follow the big ones)
+                first = np.where(bvh.count > 0, bvh.first + len(big), bvh.first)
+                nodes[0::2, 3] = np.asarray(first, np.int32).view(np.float32)
+                nodes[1::2, 3] = np.asarray(bvh.count, np.int32).view(np.float32)
+            else:  # (one empty box no ray enters)
+                nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)
+            tri = found.triangles[order]
             tris = np.zeros((3 * len(tri), 4), np.float32)
             tris[0::3, :3] = tri[:, 0]
-            tris[0::3, 3] = np.asarray(found.polygon[bvh.order], np.int32).view(np.float32)
+            tris[0::3, 3] = np.asarray(found.polygon[order], np.int32).view(np.float32)
             tris[1::3, :3] = tri[:, 1] - tri[:, 0]
             tris[2::3, :3] = tri[:, 2] - tri[:, 0]
         else:
@@ -167,7 +188,7 @@ class ShadowPass(GLResource):
         normals = np.zeros((max(len(found.normals), 1), 4), np.float32)
         normals[:len(found.normals), :3] = found.normals
         self._bvh = (key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()), len(found),
-                     scale, found, ctx.buffer(normals.tobytes()))
+                     scale, found, ctx.buffer(normals.tobytes()), len(big))
         return self._bvh[1:]
 
     def _program(self, name: str, orthographic: bool):
@@ -215,7 +236,8 @@ class ShadowPass(GLResource):
 
     def _trace(self, state, gbuf: _GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
-        nodes, tris, n_triangles, scale, found, normals = self._occluder_buffers(state.scene)
+        nodes, tris, n_triangles, scale, found, normals, n_big = \
+            self._occluder_buffers(state.scene)
         from ...scene.camera import Projection
 
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
@@ -223,7 +245,8 @@ class ShadowPass(GLResource):
         self.bind_gbuffer(prog, state, gbuf)
         inverse_view = np.linalg.inv(state.view)
         values = {"u_scale": scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
-                  "u_has_triangles": int(n_triangles > 0), "u_polygons": len(found.normals),
+                  "u_has_triangles": int(n_triangles > n_big),
+                  "u_big": n_big, "u_polygons": len(found.normals),
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():

@@ -15,12 +15,40 @@ uniform isampler2D u_face_ids;                 // triangle -> polygon id of this
 // (SRGB is defined for programs that encode for display: no cost for the others)
 #include "srgb.glsl"
 
+#if defined(OIT_CAPTURE) || defined(OIT_BLEND)
+uniform float u_opacity;                       // the surface's Material.opacity
+#endif
+#ifdef OIT_CAPTURE
+// A transparent surface's fragment joins its pixel's list (render/passes/transparency.py):
+// node i + 1 is (colour RG, BA as half floats, view depth, the next node), the pixel's head
+// the last node added; the opaque depth test runs first (nothing hidden joins).
+layout(early_fragment_tests) in;
+layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;
+layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
+layout(std430, binding = 6) buffer OitCount { uint oit_count; };
+uniform uint u_oit_capacity;
+#endif
+
 void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     color = clamp(color, 0.0, 1.0);
 #ifdef SRGB
     color = encode_srgb(color);
 #endif
+#ifdef OIT_CAPTURE
+    // (with MSAA a pixel's fragment is its sample 0's: two triangles that share an edge
+    // through the pixel would both be listed otherwise)
+    uint i = (gl_SampleMaskIn[0] & 1) != 0 ? atomicAdd(oit_count, 1u) : 0xffffffffu;
+    if (i < u_oit_capacity) {  // (beyond: counted, and the pass runs again with room)
+        uint next = imageAtomicExchange(u_oit_heads, ivec2(gl_FragCoord.xy), i + 1u);
+        oit_nodes[i] = uvec4(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, u_opacity)),
+                             floatBitsToUint(depth_view), next);
+    }
+    frag_color = vec4(0.0);  // (masked: the resolve pass composites)
+#elif defined(OIT_BLEND)
+    frag_color = vec4(color, u_opacity);
+#else
     frag_color = vec4(color, 1.0);
+#endif
 #ifdef GLSHADE_AUX_OUTPUTS
 #ifdef PATCH_IDS
     int polygon = gl_PrimitiveID;  // (tessellated on the GPU: the patch's number)

@@ -34,7 +34,7 @@ _EXPORTS = {
     # drawing options
     "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
     "Culling": ("modes", "Culling"), "Projection": ("modes", "Projection"),
-    "Shadows": ("modes", "Shadows"),
+    "Shadows": ("modes", "Shadows"), "Transparency": ("modes", "Transparency"),
     "DrawOptions": ("options", "DrawOptions"), "RenderConfig": ("options", "RenderConfig"),
     # files
     "load_mesh": ("io.meshes", "load_mesh"), "save_mesh": ("io.meshes", "save_mesh"),
@@ -78,7 +78,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .io.meshes import load_mesh, save_mesh
     from .io.scenefile import load_scene
     from .masspoint import MassPoint, centroid
-    from .modes import Culling, Outputs, Projection, ShadingMode, Shadows
+    from .modes import Culling, Outputs, Projection, ShadingMode, Shadows, Transparency
     from .options import DrawOptions, RenderConfig
     from .render.context import Backend, RenderContext, create_context, tune_malloc
     from .render.renderer import Frame, Pick, Renderer

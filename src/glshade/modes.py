@@ -9,7 +9,8 @@ from typing import TypeVar
 
 from .errors import OptionError
 
-__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Projection", "Backend",
+__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Transparency", "Projection",
+           "Backend",
            "HEADLESS_BACKENDS", "parse_enum"]
 
 
@@ -113,6 +114,25 @@ class Shadows(enum.Enum):
             return cls(str(value).lower())
         except ValueError:
             raise OptionError.must("shadows", "be one of "
+                                   f"{', '.join(m.value for m in cls)}, got {value!r}") from None
+
+
+class Transparency(enum.Enum):
+    """How surfaces with ``Material.opacity`` below 1 are composited over what lies behind."""
+
+    EXACT = "exact"        # per-pixel fragment lists, sorted by depth, "over" front to back
+    WEIGHTED = "weighted"  # McGuire and Bavoil's weighted blended estimate (order-free)
+    BLEND = "blend"        # "over" in the order the surfaces are drawn (teaching: wrong
+                           # wherever that is not back to front)
+
+    @classmethod
+    def parse(cls, value: object) -> Transparency:
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise OptionError.must("transparency", "be one of "
                                    f"{', '.join(m.value for m in cls)}, got {value!r}") from None
 
 

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .errors import OptionError
-from .modes import Backend, Culling, Outputs, ShadingMode, Shadows
+from .modes import Backend, Culling, Outputs, ShadingMode, Shadows, Transparency
 
 __all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS",
            "check_whole", "check_size", "check_samples", "HEMICUBE_RESOLUTION"]
@@ -26,6 +26,9 @@ __all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUN
 MAX_SIZE = 16384
 #: the MSAA sample counts a draw may ask for (0: off); the GL may offer fewer
 MSAA_COUNTS = (0, 1, 2, 4, 8, 16, 32, 64)
+
+#: the most transparent layers a pixel's exact composite keeps (its sort runs per pixel)
+MAX_LAYERS = 256
 
 #: image size (width, height) when neither the command line nor a scene file gives one
 DEFAULT_SIZE = (800, 600)
@@ -54,6 +57,11 @@ class DrawOptions:
     shadows : cast shadows (:class:`Shadows` or its name): "off" (default), "exact" (a ray
         from each pixel's surface point to each light) or "map" (shadow maps with PCF). They
         shade the flat, Gouraud and Phong modes; the other modes show no light to shadow.
+    transparency : how surfaces of opacity below 1 are composited (:class:`Transparency` or
+        its name): "exact" (default: per-pixel fragment lists sorted by depth), "weighted"
+        (McGuire-Bavoil's estimate) or "blend" (in drawing order).
+    max_layers : the transparent surfaces "exact" keeps a pixel (the nearest; more are
+        counted, reported and left out), default 32.
     """
 
     mode: ShadingMode = ShadingMode.PHONG
@@ -64,11 +72,15 @@ class DrawOptions:
     outputs: Outputs = Outputs.COLOR
     edges: bool = False
     shadows: Shadows = Shadows.OFF
+    transparency: Transparency = Transparency.EXACT
+    max_layers: int = 32
 
     def __init__(self, mode: ShadingMode | str = ShadingMode.PHONG, depth_test: bool = True,
                  cull: Culling | bool | str = Culling.AUTO, srgb: bool = False,
                  wireframe: bool = False, outputs: Outputs = Outputs.COLOR,
-                 edges: bool = False, shadows: Shadows | str | bool = Shadows.OFF) -> None:
+                 edges: bool = False, shadows: Shadows | str | bool = Shadows.OFF,
+                 transparency: Transparency | str = Transparency.EXACT,
+                 max_layers: int = 32) -> None:
         # (written out so that names are accepted where members are stored: a mode's name,
         # cull=True; the stored fields are the enums, and type checkers see both)
         put = object.__setattr__
@@ -80,6 +92,8 @@ class DrawOptions:
         put(self, "outputs", outputs)
         put(self, "edges", edges)
         put(self, "shadows", Shadows.parse(shadows))
+        put(self, "transparency", Transparency.parse(transparency))
+        put(self, "max_layers", max_layers)
         self._check()
 
     def _check(self) -> None:
@@ -87,6 +101,10 @@ class DrawOptions:
             value = getattr(self, name)
             if not isinstance(value, bool):
                 raise OptionError(f"{name} must be True or False, got {value!r}")
+        if isinstance(self.max_layers, bool) or not isinstance(self.max_layers, int) or \
+                not 1 <= self.max_layers <= MAX_LAYERS:
+            raise OptionError(f"max_layers must be a whole number from 1 to {MAX_LAYERS}, got "
+                              f"{self.max_layers!r}")
         if not isinstance(self.outputs, Outputs) or not self.outputs & Outputs.COLOR:
             raise OptionError(f"outputs must be an Outputs flag including COLOR, got "
                                 f"{self.outputs!r}")

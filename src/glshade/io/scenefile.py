@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import GlshadeError, PathFormatError, SceneFormatError
-from ..modes import Culling, ShadingMode, Shadows
+from ..modes import Culling, ShadingMode, Shadows, Transparency
 from ..options import DEFAULT_SIZE, DrawOptions, check_samples, check_size
 from ..scene.camera import check_fov
 from ..scene.keyframes import OrientationInterp, PositionInterp
@@ -94,13 +94,13 @@ NUMBER = (int, float)
 _SCHEMA = {
     "render": {"size": "size", "mode": "mode", "samples": "samples", "srgb": "bool",
                "depth_test": "bool", "cull": "cull", "wireframe": "bool",
-               "shadows": "shadows",
+               "shadows": "shadows", "transparency": "transparency",
                "fps": "positive", "duration": "positive", "background": "color",
                "ambient": "color"},
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
              "ks": "unit", "shininess": "nonneg", "translation": "vec3", "rotation": "quat",
              "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees",
-             "emission": "color", "reflectance": "reflectance"},
+             "emission": "color", "reflectance": "reflectance", "opacity": "unit"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
@@ -155,7 +155,8 @@ def _size(value: object) -> tuple[int, int]:
 #: the rules of the values that the API checks where they are made: one rule, one message
 _RULES = {"size": _size, "samples": check_samples, "fov": check_fov,
           "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
-          "pinterp": PositionInterp.parse, "cull": Culling.parse, "shadows": Shadows.parse}
+          "pinterp": PositionInterp.parse, "cull": Culling.parse, "shadows": Shadows.parse,
+          "transparency": Transparency.parse}
 
 
 def _check(kind: str, value, where: str):
@@ -212,7 +213,8 @@ def _check(kind: str, value, where: str):
                    for r in value for v in r):
             fail("a 4x4 list of lists of finite numbers")
         return np.array(value, dtype=float)
-    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull", "shadows"):
+    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull", "shadows",
+                "transparency"):
         try:
             return _RULES[kind](value)
         except (GlshadeError, ValueError, TypeError) as exc:

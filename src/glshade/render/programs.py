@@ -102,13 +102,16 @@ class ProgramKey:
     #: Phong's lighting constants reach the fragment stage as flat varyings (constants.glsl)
     flat_constants: bool = False
     shadows: bool = False
+    #: a transparent surface's draw: "capture" (into per-pixel fragment lists) or "blend"
+    #: (its opacity as alpha, blended in drawing order); "" for an opaque one
+    oit: str = ""
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
-           flat_constants: bool = False) -> ProgramKey:
+           flat_constants: bool = False, oit: str = "") -> ProgramKey:
         """The key of a draw's variant for one model."""
-        return cls(variant.mode, variant.aux, variant.lights, variant.srgb,
-                   variant.orthographic, two_sided, flat_constants, variant.shadows)
+        return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
+                   variant.orthographic, two_sided, flat_constants, variant.shadows, oit)
 
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS
@@ -116,7 +119,8 @@ class ProgramKey:
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
-                 ("SHADOW_MASK", self.shadows))
+                 ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", self.oit == "capture"),
+                 ("GLSL_430", self.oit == "capture"), ("OIT_BLEND", self.oit == "blend"))
         out = [name for name, on in flags if on]
         out.append(f"LIGHT_COUNT {len(self.lights)}")
         out.append(f"LIGHT_KINDS {', '.join(self.lights)}")

@@ -204,6 +204,7 @@ class Renderer:
         self._edges = EdgePass(self.context, self.shaders, self._uniforms, self._gpu_mesh)
         self._patches: Any = None  # (a PatchPass, made for the first GPU patch model)
         self._shadow_pass: Any = None  # (a ShadowPass, made for the first shadowed draw)
+        self._oit: Any = None  # (a TransparencyPass, made for the first transparent surface)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query: Any = None
@@ -237,6 +238,8 @@ class Renderer:
             self._patches.release()
         if self._shadow_pass is not None:
             self._shadow_pass.release()
+        if self._oit is not None:
+            self._oit.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
         self._uniforms.forget()
         self._programs.clear()
@@ -335,9 +338,15 @@ class Renderer:
             passes.append(self._patches)
         if scene.solids and not options.wireframe:  # CSG, ray cast into the same z-buffer
             passes.append(self._csg)
-        passes.append(self._edges)  # (the overlay: when asked for, over the rest)
         for p in passes:  # (one signature: the draw's facts, the first free polygon id)
             id_base = p.draw(state, id_base)
+        clear_of = [m for m in scene.models if m.visible and len(m.mesh.triangles[0]) and
+                    not options.wireframe and self._transparent(m, options)]
+        if clear_of:  # (after every opaque surface: what they show through)
+            self._transparency_pass().draw(self, state, clear_of)
+            target.bind(options.outputs)
+            ctx.viewport = state.viewport
+        id_base = self._edges.draw(state, id_base)  # (the overlay: when asked for, on top)
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
         if clear:
@@ -354,6 +363,19 @@ class Renderer:
 
             self._shadow_pass = ShadowPass(self.context, self.shaders)
         return self._shadow_pass.prepare(self, state)
+
+    def _transparency_pass(self):
+        if self._oit is None:
+            from .passes.transparency import TransparencyPass
+
+            self._oit = TransparencyPass(self.context, self.shaders)
+        return self._oit
+
+    @property
+    def transparency(self):
+        """What the last draw with transparent surfaces composited and left out (a
+        :class:`~glshade.render.passes.transparency.TransparencyReport`), or None."""
+        return None if self._oit is None else self._oit.report
 
     @property
     def shadow_pass(self):
@@ -403,11 +425,9 @@ class Renderer:
                          (vx, vy, vw, vh), flip_rows, target)
 
     def _draw_meshes(self, state: DrawState) -> int:
-        """Draw the scene's visible meshes; the polygon id after theirs."""
-        ctx, put = self.ctx, self._uniforms.put
-        scene, options, view, lights = state.scene, state.options, state.view, state.lights
-        near = state.camera.planes()[0]
-        pixels = state.viewport[2] * state.viewport[3]
+        """Draw the scene's visible opaque meshes; the polygon id after theirs (transparent
+        ones keep their ids: they are drawn later, by the transparency pass)."""
+        scene, options = state.scene, state.options
         prepared: set[int] = set()
         id_base = 0
         for model in scene.models:
@@ -415,47 +435,72 @@ class Renderer:
                 id_base += model.mesh.n_faces
                 continue
             gpu = self._gpu_mesh(model.mesh)
-            if options.wireframe:  # (edges alone: nothing filled)
-                id_base += gpu.n_polygons
-                continue
-            m = model.transform
-            model_view = view @ m
-            cull = options.cull is Culling.ON or (
-                options.cull is Culling.AUTO and gpu.closed
-                and gpu.beyond(model_view, near))  # (seen from outside)
-            flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
-            prog = self._program(state.variant, not cull, flat)
-            if id(prog) not in prepared:  # the frame's uniforms, once per program used
-                for name, value in state.frame_uniforms:
-                    put(prog, name, value)
-                prepared.add(id(prog))
-            transform = m.tobytes()
-            normal_world, mirrored = self._normal_matrix(m, transform)
-            # (the view is rigid: its inverse transpose is itself)
-            put(prog, "u_normal_view", _mat3(view[:3, :3] @ normal_world))
-            put(prog, "u_model_view", gl_bytes(model_view))
-            held = (transform, id_base, model.material, lights, scene.ambient)
-            if self._model_state.get(id(prog)) != held:  # else all of it is in place
-                put(prog, "u_normal_world", _mat3(normal_world))
-                put(prog, "u_face_id_base", id_base)
-                for name, value in self._materials(model.material, lights, scene.ambient):
-                    put(prog, name, value)
-                self._model_state[id(prog)] = held
-            ctx.front_face = "cw" if mirrored != state.flip_rows else "ccw"
-            if cull:
-                ctx.enable(moderngl.CULL_FACE)
-                ctx.cull_face = "back"
-            else:
-                ctx.disable(moderngl.CULL_FACE)
-            if state.variant.aux:
-                gpu.face_ids.use(0)
-            if options.mode is ShadingMode.RADIOSITY:
-                vao = gpu.color_array(prog, model.display_colors(scene.ambient))
-            else:
-                vao = gpu.vertex_array(prog, options.mode)
-            vao.render(moderngl.TRIANGLES)
+            if not options.wireframe and not self._transparent(model, options):
+                self._draw_model(state, model, gpu, id_base, prepared)
             id_base += gpu.n_polygons
         return id_base
+
+    @staticmethod
+    def _transparent(model, options) -> bool:
+        """Whether a model is drawn by the transparency pass (not in the debug modes, whose
+        colours are values to read, not surfaces to see through)."""
+        return model.material.opacity < 1.0 and options.mode in SHADOWED_MODES + (
+            ShadingMode.RADIOSITY,)
+
+    def _draw_models(self, state: DrawState, models, oit: str = "",
+                     extra: dict | None = None) -> None:
+        """Draw ``models`` (the transparency pass's: ``oit`` "capture" or "blend")."""
+        prepared: set[int] = set()
+        for model in models:
+            self._draw_model(state, model, self._gpu_mesh(model.mesh), 0, prepared, oit,
+                             extra)
+
+    def _draw_model(self, state: DrawState, model, gpu, id_base: int, prepared: set,
+                    oit: str = "", extra: dict | None = None) -> None:
+        """One model's draw call, with the uniforms its program does not hold yet."""
+        ctx, put = self.ctx, self._uniforms.put
+        scene, options, view, lights = state.scene, state.options, state.view, state.lights
+        near = state.camera.planes()[0]
+        pixels = state.viewport[2] * state.viewport[3]
+        m = model.transform
+        model_view = view @ m
+        cull = options.cull is Culling.ON or (
+            options.cull is Culling.AUTO and gpu.closed
+            and gpu.beyond(model_view, near) and not oit)  # (seen from outside)
+        flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
+        prog = self._program(state.variant, not cull, flat, oit)
+        if id(prog) not in prepared:  # the frame's uniforms, once per program used
+            for name, value in state.frame_uniforms:
+                put(prog, name, value)
+            for name, value in (extra or {}).items():
+                put(prog, name, value)
+            prepared.add(id(prog))
+        transform = m.tobytes()
+        normal_world, mirrored = self._normal_matrix(m, transform)
+        # (the view is rigid: its inverse transpose is itself)
+        put(prog, "u_normal_view", _mat3(view[:3, :3] @ normal_world))
+        put(prog, "u_model_view", gl_bytes(model_view))
+        held = (transform, id_base, model.material, lights, scene.ambient)
+        if self._model_state.get(id(prog)) != held:  # else all of it is in place
+            put(prog, "u_normal_world", _mat3(normal_world))
+            put(prog, "u_face_id_base", id_base)
+            put(prog, "u_opacity", float(model.material.opacity))
+            for name, value in self._materials(model.material, lights, scene.ambient):
+                put(prog, name, value)
+            self._model_state[id(prog)] = held
+        ctx.front_face = "cw" if mirrored != state.flip_rows else "ccw"
+        if cull:
+            ctx.enable(moderngl.CULL_FACE)
+            ctx.cull_face = "back"
+        else:
+            ctx.disable(moderngl.CULL_FACE)
+        if state.variant.aux and not oit:
+            gpu.face_ids.use(0)
+        if options.mode is ShadingMode.RADIOSITY:
+            vao = gpu.color_array(prog, model.display_colors(scene.ambient))
+        else:
+            vao = gpu.vertex_array(prog, options.mode)
+        vao.render(moderngl.TRIANGLES)
 
     def _warn_unsolved(self, scene: Scene) -> None:
         """The radiosity mode shows solved radiosities; say so, once per scene, when the
@@ -481,15 +526,16 @@ class Renderer:
                                                bool(np.linalg.det(model[:3, :3]) < 0))
         return found
 
-    def _program(self, variant: Variant, two_sided: bool, flat: bool = False):
+    def _program(self, variant: Variant, two_sided: bool, flat: bool = False, oit: str = ""):
         """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic),
-        with flat lighting constants if asked for and they fit."""
-        found = (variant, two_sided, flat)
+        with flat lighting constants if asked for and they fit; ``oit``: a transparent
+        surface's ("capture" into fragment lists, or "blend")."""
+        found = (variant, two_sided, flat, oit)
         program = self._programs.get(found)
         if program is None:
-            flat = flat and flat_constants_fit(variant.mode, variant.aux, variant.lights,
-                                               self._max_varyings)
-            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat)
+            flat = flat and flat_constants_fit(variant.mode, variant.aux and not oit,
+                                               variant.lights, self._max_varyings)
+            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=oit)
             program = self._programs[found] = self.shaders.program(key)
         return program
 

@@ -52,7 +52,8 @@ def assemble(name: str, root: Path | None = None,
              defines: tuple[str, ...] = ()) -> tuple[str, list[str]]:
     """Source of ``name`` with includes expanded and ``defines`` injected after
     ``#version``; and the file of each ``#line`` source number (index = source string
-    number used in ``#line L N``)."""
+    number used in ``#line L N``). The define ``GLSL_430`` raises the file's ``#version``
+    to 430 core (storage buffers and image atomics in a program written for 330)."""
     root = root or shader_dir()
     files: list[str] = []
 
@@ -74,7 +75,7 @@ def assemble(name: str, root: Path | None = None,
                 if not line.startswith("#version"):
                     raise ShaderError(f"{files[number]}:1: the first line must be #version, "
                                       f"got {line!r}")
-                out.append(line)
+                out.append("#version 430 core" if "GLSL_430" in defines else line)
                 out.extend(f"#define {d}" for d in defines)
                 out.append(f"#line 2 {number}")
                 continue

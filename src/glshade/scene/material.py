@@ -38,7 +38,10 @@ class Material:
 
     For radiosity (diffuse surfaces only): ``emission`` E, the radiosity a surface gives
     off by itself (RGB, any non-negative size), and ``reflectance`` the notes' rho_d
-    (RGB, each in [0, 1]); without it, rho_d = kd * color."""
+    (RGB, each in [0, 1]); without it, rho_d = kd * color.
+
+    ``opacity`` in [0, 1]: below 1 the surface is transparent, composited "over" what lies
+    behind it (:class:`~glshade.DrawOptions` ``transparency``) after the opaque ones."""
 
     color: tuple = (0.8, 0.8, 0.8)
     ka: float = 0.2
@@ -47,12 +50,17 @@ class Material:
     shininess: float = 32.0
     emission: tuple = (0.0, 0.0, 0.0)
     reflectance: tuple | None = None
+    opacity: float = 1.0
 
     def __post_init__(self):
         object.__setattr__(self, "color", color3(self.color, "color"))
         for name in ("ka", "kd", "ks", "shininess"):
             object.__setattr__(self, name, nonnegative(getattr(self, name), name))
         object.__setattr__(self, "emission", color3(self.emission, "emission"))
+        opacity = nonnegative(self.opacity, "opacity")
+        if opacity > 1:
+            raise SceneError(f"opacity must be in [0, 1] (1: opaque), got {opacity:g}")
+        object.__setattr__(self, "opacity", opacity)
         if self.reflectance is not None:
             rho = color3(self.reflectance, "reflectance")
             if max(rho) > 1:
@@ -67,6 +75,9 @@ class Material:
             return self.reflectance
         return tuple(self.kd * c for c in self.color)
 
+    @property
+    def transparent(self) -> bool:
+        return self.opacity < 1.0
 
     @classmethod
     def from_values(cls, values: dict) -> Material:

@@ -1,0 +1,93 @@
+#version 430 core
+// The transparent surfaces of a pixel, composited over what the opaque pass drew there
+// (blending ONE, ONE_MINUS_SRC_ALPHA: out = C + (1 - A) dst, C premultiplied).
+//
+// EXACT: the pixel's list (render/passes/transparency.py; its nodes in outputs.glsl) kept
+// sorted nearest first, at most MAX_LAYERS (the farther ones counted, and left out), then
+// "over" front to back: C += T a c, T *= 1 - a. Equal depths are ordered by the colour's
+// and opacity's bits, so the result never depends on the order the fragments arrived in.
+// WEIGHTED: McGuire and Bavoil's estimate (2013, eq. 7's weight) over the whole list,
+// order-free: C = sum(w a c) / sum(w a) x (1 - prod(1 - a)).
+// A list walk is bounded (LIST_BUDGET steps: llvmpipe stops a shader at 65,535): a pixel
+// that runs out is counted (u_counts[2]) and composited from what it read.
+layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;
+layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
+layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };  // pixels over, fragments
+                                                                     // over, cut short, -
+#ifndef MAX_LAYERS
+#define MAX_LAYERS 32
+#endif
+#define LIST_BUDGET 60000
+
+out vec4 frag_color;
+
+float weight(float z, float a) {
+    return a * clamp(10.0 / (1e-5 + pow(z / 5.0, 2.0) + pow(z / 200.0, 6.0)), 1e-2, 3e3);
+}
+
+// whether node a comes before node b: nearer, or (a tie) by colour and opacity bits
+bool before(uvec4 a, uvec4 b) {
+    float da = uintBitsToFloat(a.z), db = uintBitsToFloat(b.z);
+    return da < db || (da == db && (a.x < b.x || (a.x == b.x && a.y < b.y)));
+}
+
+void main() {
+    uint i = imageLoad(u_oit_heads, ivec2(gl_FragCoord.xy)).r;
+    if (i == 0u) discard;
+    int steps = 0;
+#ifdef WEIGHTED
+    vec3 sum_c = vec3(0.0);
+    float sum_w = 0.0, t = 1.0;
+    while (i != 0u && steps < LIST_BUDGET) {
+        ++steps;
+        uvec4 node = oit_nodes[i - 1u];
+        vec2 rg = unpackHalf2x16(node.x), ba = unpackHalf2x16(node.y);
+        float w = weight(uintBitsToFloat(node.z), ba.y);
+        sum_c += w * vec3(rg, ba.x);
+        sum_w += w;
+        t *= 1.0 - ba.y;
+        i = node.w;
+    }
+    if (i != 0u) atomicAdd(u_counts[2], 1u);
+    vec3 c = sum_w > 0.0 ? sum_c / sum_w : vec3(0.0);
+    frag_color = vec4(c * (1.0 - t), 1.0 - t);
+#else
+    uvec4 kept[MAX_LAYERS];
+    int n = 0;
+    uint dropped = 0u;
+    while (i != 0u && steps < LIST_BUDGET) {
+        ++steps;
+        uvec4 node = oit_nodes[i - 1u];
+        i = node.w;
+        if (n == MAX_LAYERS && !before(node, kept[n - 1])) {
+            ++dropped;
+            continue;
+        }
+        if (n == MAX_LAYERS) {
+            ++dropped;  // (the farthest kept one makes room)
+            --n;
+        }
+        int k = n;
+        while (k > 0 && before(node, kept[k - 1])) {
+            ++steps;
+            kept[k] = kept[k - 1];
+            --k;
+        }
+        kept[k] = node;
+        ++n;
+    }
+    if (i != 0u) atomicAdd(u_counts[2], 1u);
+    if (dropped > 0u) {
+        atomicAdd(u_counts[0], 1u);
+        atomicAdd(u_counts[1], dropped);
+    }
+    vec3 c = vec3(0.0);
+    float t = 1.0;
+    for (int k = 0; k < n; ++k) {
+        vec2 rg = unpackHalf2x16(kept[k].x), ba = unpackHalf2x16(kept[k].y);
+        c += t * ba.y * vec3(rg, ba.x);
+        t *= 1.0 - ba.y;
+    }
+    frag_color = vec4(c, 1.0 - t);
+#endif
+}

@@ -1,0 +1,209 @@
+"""Transparent surfaces (``Material.opacity`` below 1), drawn after the opaque ones.
+
+- ``exact``: every transparent fragment that passes the opaque depth test joins its pixel's
+  list (a head image and a node buffer, appended to with atomics: shaders/include/
+  outputs.glsl); a full-viewport pass (shaders/oit_resolve.frag) sorts each list nearest
+  first, keeps ``max_layers`` of it and composites "over" front to back onto the opaque
+  picture. A list longer than ``max_layers`` is counted (pixels, fragments) and reported;
+  the node buffer grows and the capture runs again when a frame needs more room.
+- ``weighted``: the same lists, resolved by McGuire and Bavoil's weighted blended estimate
+  (order-free, approximate: for comparison).
+- ``blend``: each surface blended "over" as it is drawn, in the scene's order (what a
+  renderer without order independence shows).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import RenderWarning
+from ...modes import Transparency
+from ..base import GLResource
+
+__all__ = ["TransparencyPass", "TransparencyReport", "NODE_BYTES"]
+
+#: bytes of one fragment in a list: colour (half floats), opacity, view depth, next
+NODE_BYTES = 16
+#: list nodes made room for at first, per pixel of the target (grown as frames need)
+START_NODES_PER_PIXEL = 4
+
+
+@dataclass(frozen=True)
+class TransparencyReport:
+    """What the last transparent draw kept and left out: ``fragments`` in the lists,
+    ``pixels_over`` pixels with more than ``max_layers`` surfaces and the
+    ``fragments_over`` left out there, ``cut_short`` pixels whose list walk hit the
+    shader's step bound."""
+
+    method: str
+    fragments: int = 0
+    max_layers: int = 0
+    pixels_over: int = 0
+    fragments_over: int = 0
+    cut_short: int = 0
+
+    def __str__(self) -> str:
+        if self.method == Transparency.BLEND.value:
+            return "transparency: blended in drawing order"
+        text = f"transparency {self.method}: {self.fragments:,} transparent fragments"
+        if self.pixels_over:
+            text += (f"; {self.pixels_over:,} pixels had more than {self.max_layers} layers "
+                     f"({self.fragments_over:,} farther fragments left out)")
+        return text
+
+
+class TransparencyPass(GLResource):
+    """A Renderer's fragment-list buffers and resolve programs."""
+
+    def __init__(self, context, shaders):
+        super().__init__(context)
+        self.shaders = shaders
+        ctx = context.ctx
+        self._heads = None  # (size, texture, framebuffer to clear it)
+        self._nodes = None
+        self._capacity = 0
+        self._count = self._keep(ctx.buffer(reserve=4))
+        self._report = self._keep(ctx.buffer(reserve=16))
+        self._programs: dict = {}
+        self.report = TransparencyReport(Transparency.EXACT.value)
+
+    def _heads_for(self, width: int, height: int):
+        if self._heads is None or self._heads[0] != (width, height):
+            if self._heads is not None:
+                self._heads[2].release()
+                self._heads[1].release()
+            ctx = self.context.ctx
+            tex = ctx.texture((width, height), 1, dtype="u4")
+            tex.filter = (0x2600, 0x2600)
+            self._heads = ((width, height), tex, ctx.framebuffer([tex]))
+        return self._heads
+
+    def _room(self, nodes: int) -> None:
+        if nodes > self._capacity:
+            if self._nodes is not None:
+                self._nodes.release()
+            self._capacity = int(nodes)
+            self._nodes = self.context.ctx.buffer(reserve=self._capacity * NODE_BYTES)
+
+    def _resolve_program(self, method: Transparency, layers: int):
+        key = (method, layers)
+        prog = self._programs.get(key)
+        if prog is None:
+            defines = (f"MAX_LAYERS {layers}",) + (("WEIGHTED",) if method is
+                                                   Transparency.WEIGHTED else ())
+            prog = self._programs[key] = self.shaders.compile(
+                "oit_resolve.vert", "oit_resolve.frag", defines=defines)
+        return prog
+
+    def draw(self, renderer, state, models) -> None:
+        """Draw the transparent ``models`` of ``state``'s draw over its opaque picture."""
+        import moderngl
+
+        self._check()
+        ctx = self.context.ctx
+        options = state.options
+        target = state.target
+        if options.transparency is Transparency.BLEND:
+            target.bind(_colour_only())
+            fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
+            ctx.enable(moderngl.BLEND)
+            # (the picture's alpha stays: the opaque pass's coverage)
+            ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA, moderngl.ZERO,
+                              moderngl.ONE)
+            fbo.depth_mask = False  # (tested against everything, written by nothing)
+            try:
+                renderer._draw_models(state, models, oit="blend")
+            finally:
+                fbo.depth_mask = True
+                ctx.disable(moderngl.BLEND)
+            self.report = TransparencyReport(Transparency.BLEND.value)
+            return
+        width, height = int(target.width), int(target.height)
+        _, heads, clear = self._heads_for(width, height)
+        self._room(max(self._capacity, width * height * START_NODES_PER_PIXEL))
+        for _ in range(2):  # (a second time with room for every fragment, when short)
+            clear.use()
+            clear.clear(0.0, 0.0, 0.0, 0.0)
+            self._count.write(np.zeros(1, np.uint32).tobytes())
+            target.bind(_colour_only())
+            ctx.viewport = state.viewport
+            heads.bind_to_image(1, read=True, write=True)
+            self._nodes.bind_to_storage_buffer(5)
+            self._count.bind_to_storage_buffer(6)
+            fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
+            fbo.depth_mask = False
+            fbo.color_mask = (False, False, False, False)
+            try:
+                renderer._draw_models(state, models, oit="capture",
+                                      extra={"u_oit_capacity": self._capacity})
+            finally:
+                fbo.color_mask = (True, True, True, True)
+                fbo.depth_mask = True
+            ctx.memory_barrier()
+            count = int(np.frombuffer(self._count.read(), np.uint32)[0])
+            if count <= self._capacity:
+                break
+            self._room(int(count * 1.25) + 1024)
+        self._resolve(state, heads, count)
+
+    def _resolve(self, state, heads, count: int) -> None:
+        import moderngl
+
+        ctx = self.context.ctx
+        options = state.options
+        layers = options.max_layers
+        prog = self._resolve_program(options.transparency, layers)
+        vao = ctx.vertex_array(prog, [])
+        self._report.write(np.zeros(4, np.uint32).tobytes())
+        self._report.bind_to_storage_buffer(7)
+        heads.bind_to_image(1, read=True, write=False)
+        self._nodes.bind_to_storage_buffer(5)
+        state.target.bind(_colour_only())
+        ctx.viewport = state.viewport
+        ctx.disable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.CULL_FACE)
+        ctx.enable(moderngl.BLEND)
+        ctx.blend_func = (moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA, moderngl.ZERO,
+                          moderngl.ONE)
+        try:
+            vao.render(moderngl.TRIANGLES, vertices=3)
+        finally:
+            ctx.disable(moderngl.BLEND)
+            if options.depth_test:
+                ctx.enable(moderngl.DEPTH_TEST)
+            vao.release()
+        ctx.memory_barrier()
+        over, dropped, short, _ = (int(x) for x in np.frombuffer(self._report.read(),
+                                                                  np.uint32))
+        self.report = TransparencyReport(options.transparency.value, count, layers, over,
+                                         dropped, short)
+        if over and options.transparency is Transparency.EXACT:
+            warnings.warn(f"{over:,} pixels had more than max_layers={layers} transparent "
+                          f"surfaces: the nearest {layers} were composited, {dropped:,} "
+                          "farther fragments left out (raise max_layers)", RenderWarning,
+                          stacklevel=5)
+        if short:
+            warnings.warn(f"{short:,} pixels' transparent lists were longer than the "
+                          "shader's step bound and composited in part", RenderWarning,
+                          stacklevel=5)
+
+    def _release_extra(self) -> None:
+        for p in self._programs.values():
+            p.release()
+        self._programs.clear()
+        if self._heads is not None:
+            self._heads[2].release()
+            self._heads[1].release()
+            self._heads = None
+        if self._nodes is not None:
+            self._nodes.release()
+            self._nodes = None
+
+
+def _colour_only():
+    from ...modes import Outputs
+
+    return Outputs.COLOR

@@ -1,6 +1,7 @@
 #version 430 core
 // The transparent surfaces of a pixel, composited over what the opaque pass drew there
-// (blending ONE, ONE_MINUS_SRC_ALPHA: out = C + (1 - A) dst, C premultiplied).
+// (u_behind, its copy): out = C + T behind, C premultiplied, T the layers' transmittance,
+// rounded once.
 //
 // EXACT: the pixel's list (render/passes/transparency.py; its nodes in outputs.glsl) kept
 // sorted nearest first, at most MAX_LAYERS (the farther ones counted, and left out), then
@@ -19,16 +20,16 @@ layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };  // pixels o
 #endif
 #define LIST_BUDGET 60000
 
+uniform sampler2D u_behind;
 out vec4 frag_color;
 
 float weight(float z, float a) {
     return a * clamp(10.0 / (1e-5 + pow(z / 5.0, 2.0) + pow(z / 200.0, 6.0)), 1e-2, 3e3);
 }
 
-// whether node a comes before node b: nearer, or (a tie) by colour and opacity bits
-bool before(uvec4 a, uvec4 b) {
-    float da = uintBitsToFloat(a.z), db = uintBitsToFloat(b.z);
-    return da < db || (da == db && (a.x < b.x || (a.x == b.x && a.y < b.y)));
+// whether fragment a comes before fragment b: nearer, or (a tie) by colour and opacity bits
+bool before(float da, uint rga, uint baa, float db, uint rgb, uint bab) {
+    return da < db || (da == db && (rga < rgb || (rga == rgb && baa < bab)));
 }
 
 void main() {
@@ -41,7 +42,7 @@ void main() {
     while (i != 0u && steps < LIST_BUDGET) {
         ++steps;
         uvec4 node = oit_nodes[i - 1u];
-        vec2 rg = unpackHalf2x16(node.x), ba = unpackHalf2x16(node.y);
+        vec2 rg = unpackUnorm2x16(node.x), ba = unpackUnorm2x16(node.y);
         float w = weight(uintBitsToFloat(node.z), ba.y);
         sum_c += w * vec3(rg, ba.x);
         sum_w += w;
@@ -50,16 +51,22 @@ void main() {
     }
     if (i != 0u) atomicAdd(u_counts[2], 1u);
     vec3 c = sum_w > 0.0 ? sum_c / sum_w : vec3(0.0);
-    frag_color = vec4(c * (1.0 - t), 1.0 - t);
+    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
+    frag_color = vec4(c * (1.0 - t) + t * behind.rgb, behind.a);
 #else
-    uvec4 kept[MAX_LAYERS];
+    // (three arrays, element by element: llvmpipe lost whole-uvec4 copies between
+    // dynamically indexed elements of one local array)
+    float depth[MAX_LAYERS];
+    uint rg[MAX_LAYERS], ba[MAX_LAYERS];
     int n = 0;
     uint dropped = 0u;
     while (i != 0u && steps < LIST_BUDGET) {
         ++steps;
         uvec4 node = oit_nodes[i - 1u];
         i = node.w;
-        if (n == MAX_LAYERS && !before(node, kept[n - 1])) {
+        float d = uintBitsToFloat(node.z);
+        if (n == MAX_LAYERS && !before(d, node.x, node.y, depth[n - 1], rg[n - 1],
+                                       ba[n - 1])) {
             ++dropped;
             continue;
         }
@@ -68,12 +75,16 @@ void main() {
             --n;
         }
         int k = n;
-        while (k > 0 && before(node, kept[k - 1])) {
+        while (k > 0 && before(d, node.x, node.y, depth[k - 1], rg[k - 1], ba[k - 1])) {
             ++steps;
-            kept[k] = kept[k - 1];
+            depth[k] = depth[k - 1];
+            rg[k] = rg[k - 1];
+            ba[k] = ba[k - 1];
             --k;
         }
-        kept[k] = node;
+        depth[k] = d;
+        rg[k] = node.x;
+        ba[k] = node.y;
         ++n;
     }
     if (i != 0u) atomicAdd(u_counts[2], 1u);
@@ -84,10 +95,11 @@ void main() {
     vec3 c = vec3(0.0);
     float t = 1.0;
     for (int k = 0; k < n; ++k) {
-        vec2 rg = unpackHalf2x16(kept[k].x), ba = unpackHalf2x16(kept[k].y);
-        c += t * ba.y * vec3(rg, ba.x);
-        t *= 1.0 - ba.y;
+        vec2 cr = unpackUnorm2x16(rg[k]), ca = unpackUnorm2x16(ba[k]);
+        c += t * ca.y * vec3(cr, ca.x);
+        t *= 1.0 - ca.y;
     }
-    frag_color = vec4(c, 1.0 - t);
+    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
+    frag_color = vec4(c + t * behind.rgb, behind.a);
 #endif
 }

@@ -20,7 +20,7 @@ uniform float u_opacity;                       // the surface's Material.opacity
 #endif
 #ifdef OIT_CAPTURE
 // A transparent surface's fragment joins its pixel's list (render/passes/transparency.py):
-// node i + 1 is (colour RG, BA as half floats, view depth, the next node), the pixel's head
+// node i + 1 is (colour RG, BA as 16-bit fractions, view depth, the next node), the head
 // the last node added; the opaque depth test runs first (nothing hidden joins).
 layout(early_fragment_tests) in;
 layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;
@@ -40,7 +40,7 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     uint i = (gl_SampleMaskIn[0] & 1) != 0 ? atomicAdd(oit_count, 1u) : 0xffffffffu;
     if (i < u_oit_capacity) {  // (beyond: counted, and the pass runs again with room)
         uint next = imageAtomicExchange(u_oit_heads, ivec2(gl_FragCoord.xy), i + 1u);
-        oit_nodes[i] = uvec4(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, u_opacity)),
+        oit_nodes[i] = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, u_opacity)),
                              floatBitsToUint(depth_view), next);
     }
     frag_color = vec4(0.0);  // (masked: the resolve pass composites)

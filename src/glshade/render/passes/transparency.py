@@ -68,6 +68,7 @@ class TransparencyPass(GLResource):
         self._count = self._keep(ctx.buffer(reserve=4))
         self._report = self._keep(ctx.buffer(reserve=16))
         self._programs: dict = {}
+        self._behind = None  # (size, the opaque picture's copy)
         self.report = TransparencyReport(Transparency.EXACT.value)
 
     def _heads_for(self, width: int, height: int):
@@ -80,6 +81,21 @@ class TransparencyPass(GLResource):
             tex.filter = (0x2600, 0x2600)
             self._heads = ((width, height), tex, ctx.framebuffer([tex]))
         return self._heads
+
+    def _behind_for(self, target):
+        """A single-sampled copy of the target's colour (its type) and its framebuffer,
+        made once a size."""
+        dtype = getattr(target, "color_dtype", "f1")
+        key = (int(target.width), int(target.height), dtype)
+        if self._behind is None or self._behind[0] != key:
+            if self._behind is not None:
+                self._behind[2].release()
+                self._behind[1].release()
+            ctx = self.context.ctx
+            tex = ctx.texture(key[:2], 4, dtype=dtype)
+            tex.filter = (0x2600, 0x2600)
+            self._behind = (key, tex, ctx.framebuffer([tex]))
+        return self._behind[1], self._behind[2]
 
     def _room(self, nodes: int) -> None:
         if nodes > self._capacity:
@@ -114,10 +130,12 @@ class TransparencyPass(GLResource):
             ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA, moderngl.ZERO,
                               moderngl.ONE)
             fbo.depth_mask = False  # (tested against everything, written by nothing)
+            fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
             try:
                 renderer._draw_models(state, models, oit="blend")
             finally:
                 fbo.depth_mask = True
+                fbo.use()
                 ctx.disable(moderngl.BLEND)
             self.report = TransparencyReport(Transparency.BLEND.value)
             return
@@ -136,12 +154,14 @@ class TransparencyPass(GLResource):
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
             fbo.depth_mask = False
             fbo.color_mask = (False, False, False, False)
+            fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
             try:
                 renderer._draw_models(state, models, oit="capture",
                                       extra={"u_oit_capacity": self._capacity})
             finally:
                 fbo.color_mask = (True, True, True, True)
                 fbo.depth_mask = True
+                fbo.use()
             ctx.memory_barrier()
             count = int(np.frombuffer(self._count.read(), np.uint32)[0])
             if count <= self._capacity:
@@ -161,17 +181,21 @@ class TransparencyPass(GLResource):
         self._report.bind_to_storage_buffer(7)
         heads.bind_to_image(1, read=True, write=False)
         self._nodes.bind_to_storage_buffer(5)
+        target = state.target
         state.target.bind(_colour_only())
+        # the opaque picture, read in float by the resolve: "over" it in one rounding (8-bit
+        # blending would round the layers' colour and their transmittance apart)
+        behind, behind_fbo = self._behind_for(target)
+        ctx.copy_framebuffer(behind_fbo, ctx.fbo)  # (a multisampled picture: resolved)
+        state.target.bind(_colour_only())
+        behind.use(2)
+        prog["u_behind"].value = 2
         ctx.viewport = state.viewport
         ctx.disable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.CULL_FACE)
-        ctx.enable(moderngl.BLEND)
-        ctx.blend_func = (moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA, moderngl.ZERO,
-                          moderngl.ONE)
         try:
             vao.render(moderngl.TRIANGLES, vertices=3)
         finally:
-            ctx.disable(moderngl.BLEND)
             if options.depth_test:
                 ctx.enable(moderngl.DEPTH_TEST)
             vao.release()
@@ -198,6 +222,10 @@ class TransparencyPass(GLResource):
             self._heads[2].release()
             self._heads[1].release()
             self._heads = None
+        if self._behind is not None:
+            self._behind[2].release()
+            self._behind[1].release()
+            self._behind = None
         if self._nodes is not None:
             self._nodes.release()
             self._nodes = None

@@ -1,0 +1,216 @@
+"""Transparency against a numpy A-buffer that shares no code with glshade: its own camera
+matrices, triangles projected in float64 and snapped to GL's 1/256 sub-pixel grid, edge
+functions with the top-left rule at each pixel centre, every fragment of a pixel sorted by
+view depth and composited "over" onto the background. Unlit colours (ambient alone, ka = 1)
+make each fragment's colour its material's.
+
+exact: within 1/255 at every pixel further than 0.01 px from a projected edge (and away
+from the lines where triangles pierce each other), at depth complexity up to 64; any
+permutation of the draw order gives identical bytes; n stacked layers of opacity a cover
+1 - (1 - a)^n; more layers than ``max_layers`` are reported with their count."""
+
+import numpy as np
+import pytest
+
+import glshade as g
+
+W, H = 96, 80
+EYE, TARGET, FOV = np.array([0.3, 0.2, 6.0]), np.array([0.0, 0.0, 0.0]), 40.0
+BACKGROUND = (26 / 255, 38 / 255, 51 / 255)  # (8-bit levels: the opaque picture is 8-bit)
+SNAP = 256.0
+NUDGES = [np.array(o) for o in ((0.01, 0.0), (-0.01, 0.0), (0.0, 0.01), (0.0, -0.01))]
+
+
+def look_at(eye, target):
+    f = (target - eye) / np.linalg.norm(target - eye)
+    r = np.cross(f, (0.0, 1.0, 0.0))
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    return r, u, f
+
+
+def window(points):
+    """World points (N, 3) -> (x right, y down from the image's top, view depth)."""
+    r, u, f = look_at(EYE, TARGET)
+    q = points - EYE
+    depth = q @ f
+    tan = np.tan(np.radians(FOV) / 2)
+    x = (q @ r) / (depth * tan * W / H)
+    y = (q @ u) / (depth * tan)
+    return np.stack([(x + 1) * W / 2, (1 - y) * H / 2, depth], -1)
+
+
+def a_buffer(triangles, colors, opacity):
+    """The oracle: ``(H, W, 3)`` float composite, and ``(H, W)`` bool: pixels to judge."""
+    px = np.stack(np.meshgrid(np.arange(W) + 0.5, np.arange(H) + 0.5), -1)  # (H, W, 2)
+    frags_d, frags_c, frags_a, nudged = [], [], [], []
+    judge = np.ones((H, W), bool)
+    for tri, col, a in zip(triangles, colors, opacity):
+        w = window(tri)
+        v = np.round(w[:, :2] * SNAP) / SNAP                      # sub-pixel snap
+        area = (v[1, 0] - v[0, 0]) * (v[2, 1] - v[0, 1]) - \
+            (v[2, 0] - v[0, 0]) * (v[1, 1] - v[0, 1])
+        if area == 0:
+            continue
+        e = []
+        for i in range(3):
+            a0, a1 = v[i], v[(i + 1) % 3]
+            # edge function of a0 -> a1 at the pixel centres, positive inside (any winding)
+            fn = (a1[0] - a0[0]) * (px[..., 1] - a0[1]) - (a1[1] - a0[1]) * (px[..., 0] - a0[0])
+            fn = fn * np.sign(area)
+            judge &= np.abs(fn) / np.hypot(*(a1 - a0)) > 0.01     # 0.01 px from the edge
+            # top-left rule (y down): a point on a top or left edge is inside
+            dy, dx = (a1[1] - a0[1]) * np.sign(area), (a1[0] - a0[0]) * np.sign(area)
+            top_left = (dy < 0) or (dy == 0 and dx > 0)
+            e.append(fn > 0 if not top_left else fn >= 0)
+        inside = e[0] & e[1] & e[2]
+        # perspective-correct view depth: 1 / depth is affine on the screen
+        depth = 1.0 / (barycentric(v, px) @ (1.0 / w[:, 2]))
+        frags_d.append(np.where(inside, depth, np.inf))
+        nudged.append([np.where(inside, 1.0 / (barycentric(v, px + o) @ (1.0 / w[:, 2])),
+                                np.inf) for o in NUDGES])
+        frags_c.append(np.broadcast_to(col, (H, W, 3)))
+        frags_a.append(np.where(inside, a, 0.0))
+    d = np.stack(frags_d)                                         # (F, H, W)
+    order = np.argsort(d, axis=0, kind="stable")
+    # (where two surfaces pierce each other: their order must hold 0.01 px about the centre)
+    for k in range(len(NUDGES)):
+        moved = np.argsort(np.stack([n[k] for n in nudged]), axis=0, kind="stable")
+        judge &= (moved == order).all(0)
+    c = np.stack(frags_c)[order[..., None].repeat(3, -1), np.arange(H)[None, :, None, None],
+                          np.arange(W)[None, None, :, None], np.arange(3)]
+    a = np.take_along_axis(np.stack(frags_a), order, 0)
+    out = np.zeros((H, W, 3))
+    t = np.ones((H, W))
+    for k in range(len(d)):
+        out += (t * a[k])[..., None] * c[k]
+        t *= 1 - a[k]
+    return out + t[..., None] * np.asarray(BACKGROUND), judge
+
+
+def covered_at_most(triangles) -> int:
+    """The most triangles any pixel centre lies in (the depth complexity)."""
+    _, _, counts = _coverage(triangles)
+    return int(counts.max())
+
+
+def _coverage(triangles):
+    px = np.stack(np.meshgrid(np.arange(W) + 0.5, np.arange(H) + 0.5), -1)
+    counts = np.zeros((H, W), int)
+    for tri in triangles:
+        lam = barycentric(window(tri)[:, :2], px)
+        counts += (lam >= 0).all(-1)
+    return px, None, counts
+
+
+def barycentric(v, px):
+    (x0, y0), (x1, y1), (x2, y2) = v
+    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+    l0 = ((y1 - y2) * (px[..., 0] - x2) + (x2 - x1) * (px[..., 1] - y2)) / det
+    l1 = ((y2 - y0) * (px[..., 0] - x2) + (x0 - x2) * (px[..., 1] - y2)) / det
+    return np.stack([l0, l1, 1 - l0 - l1], -1)
+
+
+def soup(n, seed, spread=1.0, reach=1.0):
+    """``n`` random interpenetrating triangles in front of the camera, centres within
+    ``reach``, corners ``spread`` (sd) about them, with colours and opacities."""
+    rng = np.random.default_rng(seed)
+    centre = rng.uniform(-reach, reach, (n, 1, 3)) * (1.2, 1.0, 1.0)
+    tri = centre + rng.normal(0, spread, (n, 3, 3))
+    return tri, rng.uniform(0, 1, (n, 3)), rng.uniform(0.15, 0.85, n)
+
+
+def crossing(n, seed):
+    """``n`` tilted triangles that all hold the view's centre (corners about 120 degrees
+    apart around it, at random depths): depth complexity n there, piercing everywhere."""
+    rng = np.random.default_rng(seed)
+    turn = rng.uniform(0, 2 * np.pi, (n, 1)) + np.array([0, 2, 4]) * np.pi / 3 + \
+        rng.uniform(-0.3, 0.3, (n, 3))
+    radius = rng.uniform(1.2, 2.4, (n, 3))
+    tri = np.stack([radius * np.cos(turn), radius * np.sin(turn),
+                    rng.uniform(-1.5, 1.5, (n, 3))], -1)
+    return tri, rng.uniform(0, 1, (n, 3)), rng.uniform(0.05, 0.3, n)
+
+
+def scene_of(triangles, colors, opacity, order=None):
+    s = g.Scene(ambient=(1.0, 1.0, 1.0), background=BACKGROUND)
+    for k in (range(len(triangles)) if order is None else order):
+        mesh = g.Mesh(triangles[k], [[0, 1, 2]])
+        s.add(mesh, g.Material(color=tuple(colors[k]), ka=1.0, kd=0.0, ks=0.0,
+                               opacity=float(opacity[k])))
+    s.add_light(g.PointLight(position=(0, 0, 10), intensity=0.0))
+    return s
+
+
+CAMERA = g.Camera.look_at(EYE, TARGET, fov_y=FOV)
+
+
+@pytest.mark.parametrize("n, seed, deepest", [(6, 1, 2), (24, 2, 6), (64, 3, 64)])
+def test_exact_matches_the_a_buffer(make_renderer, n, seed, deepest):
+    """Random soups; the last one's triangles all cross the middle: up to 64 layers."""
+    tri, col, a = soup(n, seed, 0.9, 1.0) if n < 64 else crossing(n, seed)
+    expected, judge = a_buffer(tri, col, a)
+    r = make_renderer(W, H)
+    got = r.render(scene_of(tri, col, a), CAMERA, "flat", cull=False,
+                   max_layers=64).astype(float)[..., :3]
+    err = np.abs(got - expected * 255).max(-1)
+    assert judge.mean() > 0.3
+    assert err[judge].max() <= 1.0, (err[judge].max(), np.argwhere((err > 1) & judge)[:5])
+    assert r.transparency.pixels_over == 0
+    layers = max(int((window(t)[:, 2] > 0).all()) for t in tri)  # (all in front)
+    assert layers == 1 and covered_at_most(tri) >= deepest
+
+
+def test_weighted_and_blend_are_the_approximations_they_are(make_renderer):
+    """On the same soup: weighted blended OIT and drawing-order blending differ from the
+    A-buffer by more than a level somewhere (they are not exact); exact does not."""
+    tri, col, a = soup(24, 2, 0.9)
+    expected, judge = a_buffer(tri, col, a)
+    r = make_renderer(W, H)
+    errors = {}
+    for method in ("exact", "weighted", "blend"):
+        got = r.render(scene_of(tri, col, a), CAMERA, "flat", cull=False,
+                       transparency=method).astype(float)[..., :3]
+        errors[method] = np.abs(got - expected * 255)[judge].max()
+    assert errors["exact"] <= 1 < errors["weighted"] and errors["blend"] > 1, errors
+
+
+def test_any_draw_order_gives_the_same_bytes(make_renderer):
+    tri, col, a = soup(24, 5, 0.9)
+    r = make_renderer(W, H, samples=4)
+    first = r.render(scene_of(tri, col, a), CAMERA, "phong")
+    for seed in range(3):
+        order = np.random.default_rng(seed).permutation(len(tri))
+        assert np.array_equal(r.render(scene_of(tri, col, a, order), CAMERA, "phong"), first)
+
+
+@pytest.mark.parametrize("opacity", [0.1, 0.35, 0.8])
+def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, opacity):
+    """n coplanar-free parallel squares of opacity a, white over black: the centre's value
+    is 1 - (1 - a)^n."""
+    r = make_renderer(32, 32)
+    for n in (1, 2, 5, 16, 40):
+        s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
+        for k in range(n):
+            s.add(g.geometry.primitives.plane(1.0),
+                  g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=opacity),
+                  translation=(0, 0, -0.01 * k))
+        s.add_light(g.PointLight(position=(0, 0, 5), intensity=0.0))
+        img = r.render(s, g.Camera.look_at((0, 0, 3), (0, 0, 0)), "flat",
+                       max_layers=64)
+        assert abs(img[16, 16, 0] - 255 * (1 - (1 - opacity) ** n)) <= 1.0, (n, img[16, 16])
+
+
+def test_more_layers_than_max_layers_are_reported(make_renderer):
+    r = make_renderer(32, 32)
+    s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
+    for k in range(12):
+        s.add(g.geometry.primitives.plane(1.0),
+              g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=0.3),
+              translation=(0, 0, -0.01 * k))
+    with pytest.warns(g.RenderWarning, match=r"pixels had more than max_layers=8"):
+        img = r.render(s, g.Camera.look_at((0, 0, 3), (0, 0, 0)), "flat", max_layers=8)
+    report = r.transparency
+    covered = int((img[..., 0] > 0).sum())
+    assert report.pixels_over == covered and report.fragments_over == 4 * covered
+    assert abs(img[16, 16, 0] - 255 * (1 - 0.7 ** 8)) <= 1.0  # (the nearest 8)

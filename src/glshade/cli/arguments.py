@@ -41,6 +41,8 @@ class RenderArgs:
     kd: float | None = None
     ks: float | None = None
     shininess: float | None = None
+    opacity: float | None = None
+    transparency: tuple | None = None  # (Transparency members; several only for compare)
     crease: float | None = None
     tolerance: float | None = None
     backend: Backend = Backend.AUTO

@@ -32,6 +32,9 @@ def render(args: a.RenderCommandArgs) -> int:
     with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(job.scene, job.camera, options)
         shadows = _shadow_summary(renderer, options)
+        if any(m.visible and m.material.opacity < 1.0 for m in job.scene.models) and \
+                renderer.transparency is not None:
+            shadows += f"; {renderer.transparency}"
     save_image(image, args.output)
     if not args.quiet:
         print(f"{args.output}: {width}x{height} {options.mode.value}, "
@@ -118,13 +121,17 @@ def batch(args: a.BatchArgs) -> int:
         raise UsageError("batch frames every mesh itself; use --views N for more "
                          "directions, not --eye/--target")
     v.check_outputs({}, {"-o": args.output})  # (the folder; before any mesh is read)
-    given = args.given("color", "ka", "kd", "ks", "shininess")
+    given = args.given("color", "ka", "kd", "ks", "shininess", "opacity")
     Material.from_values(given)  # bad values fail now, not once per mesh
     if args.shadows and len(args.shadows) > 1:
         raise UsageError("--shadows: one method for batch (several are for compare)")
+    if args.transparency and len(args.transparency) > 1:
+        raise UsageError("--transparency: one method for batch (several are for compare)")
     options = RenderSettings().options.replace(**({"srgb": True} if args.srgb else {}),
                                                **({"shadows": args.shadows[0]}
-                                                  if args.shadows else {}))
+                                                  if args.shadows else {}),
+                                               **({"transparency": args.transparency[0]}
+                                                  if args.transparency else {}))
     spec = BatchSpec(modes=tuple(m.value for m in args.modes), outputs=args.outputs,
                      size=args.size or (256, 256),
                      samples=4 if args.samples is None else args.samples, views=args.views,
@@ -233,8 +240,13 @@ def compare(args: a.CompareArgs) -> int:
     v.check_outputs({"the grid": args.output, "--json": args.json, "--csv": args.csv},
                     {"--save-tiles": args.save_tiles})  # (before any work)
     job = load_job(args, args.mesh, COMPARE_DEFAULTS)
+    if len(args.shadows or ()) > 1 and len(args.transparency or ()) > 1:
+        raise UsageError("compare one option's methods at a time: several --shadows or "
+                         "several --transparency, not both")
     if args.shadows and len(args.shadows) > 1:
-        return _compare_shadows(args, job)
+        return _compare_methods(args, job, "shadows", args.shadows)
+    if args.transparency and len(args.transparency) > 1:
+        return _compare_methods(args, job, "transparency", args.transparency)
     scenes, surfaces = {}, None
     if "radiosity" in modes:
         scenes["radiosity"], surfaces = _radiosity_for_compare(args, job)
@@ -255,10 +267,11 @@ def compare(args: a.CompareArgs) -> int:
     return EXIT_OK
 
 
-def _compare_shadows(args: a.CompareArgs, job) -> int:
-    """``compare --shadows exact,map``: the methods side by side in one shading mode, each
-    one's difference from the first, and the pixels that disagree."""
-    from ..compare.shadows import compare_shadows
+def _compare_methods(args: a.CompareArgs, job, option: str, values) -> int:
+    """``compare --shadows exact,map`` or ``--transparency exact,weighted,blend``: the
+    methods side by side in one shading mode, each one's difference from the first, and
+    the pixels that differ."""
+    from ..compare.shadows import compare_methods
     from ..io.images import save_image
     from ..render.renderer import SHADOWED_MODES
 
@@ -266,15 +279,14 @@ def _compare_shadows(args: a.CompareArgs, job) -> int:
 
     mode = args.modes[0] if len(args.modes) == 1 else ShadingMode.PHONG
     if mode not in SHADOWED_MODES:
-        raise UsageError(f"--shadows compares its methods in a lit mode (flat, gouraud or "
+        raise UsageError(f"--{option} compares its methods in a lit mode (flat, gouraud or "
                          f"phong; with several --modes, phong), not {mode.value}")
-    methods = [m.value for m in args.shadows or ()]
     with job.explained():
-        result = compare_shadows(job.scene, job.camera, methods,
+        result = compare_methods(job.scene, job.camera, option, [m.value for m in values],
                                  job.options.replace(mode=mode),
                                  config=job.config(args.backend).replace(samples=0))
     save_image(result.image, args.output)
-    print(f"shadows in {mode.value}, against {result.reference}:")
+    print(f"{option} in {mode.value}, against {result.reference}:")
     print(result.table())
     print(f"grid: {args.output}")
     return EXIT_OK

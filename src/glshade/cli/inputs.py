@@ -70,7 +70,8 @@ class Job:
 def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
     """A one-mesh scene and its camera from the render options (render, view, compare)."""
     scene = Scene(**args.given("background"))
-    scene.add(mesh, Material.from_values(args.given("color", "ka", "kd", "ks", "shininess")),
+    scene.add(mesh, Material.from_values(args.given("color", "ka", "kd", "ks", "shininess",
+                                                            "opacity")),
               crease=args.crease)
     lens = {"fov_y": args.fov} if args.fov is not None else {}
     eye, target = args.eye, args.target
@@ -157,6 +158,12 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
                          f"({','.join(m.value for m in methods)}): several are for compare")
     if methods and len(methods) == 1:
         overrides["shadows"] = methods[0]
+    blends = getattr(args, "transparency", None)
+    if blends and len(blends) > 1 and not hasattr(args, "reference"):
+        raise UsageError(f"--transparency: one method here, got {len(blends)} "
+                         f"({','.join(m.value for m in blends)}): several are for compare")
+    if blends and len(blends) == 1:
+        overrides["transparency"] = blends[0]
     settings = replace(settings, options=settings.options.replace(**overrides))
     origin = dict(settings.origin)
     if args.size:

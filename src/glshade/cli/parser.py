@@ -82,6 +82,12 @@ def add_render_options(p: argparse.ArgumentParser, size_default: str | None = No
                        f"(default {mat[name]:g})")
     p.add_argument("--shininess", type=v.nonnegative_float,
                    help=f"specular exponent n (default {mat['shininess']:g})")
+    p.add_argument("--opacity", type=v.unit_float, help="the mesh's opacity, 0..1 (below 1: "
+                   "transparent; default 1)")
+    p.add_argument("--transparency", type=v.transparency, metavar="exact|weighted|blend",
+                   help="how transparent surfaces are composited: exact (per-pixel lists, "
+                   "sorted), weighted (McGuire-Bavoil) or blend (drawing order); default: "
+                   "the scene's, else exact; compare takes several, e.g. exact,weighted,blend")
     p.add_argument("--tolerance", type=v.positive_float, metavar="T", help="patches:NAME: "
                    "tessellate to within T world units of the exact surface (default: a "
                    "thousandth of its size)")

@@ -220,6 +220,18 @@ def shadows(text: str) -> tuple:
     return tuple(Shadows(n) for n in names)
 
 
+def transparency(text: str) -> tuple:
+    """``exact``, ``weighted``, ``blend`` -- or several, comma-separated (compare's)."""
+    from ..modes import Transparency
+
+    names = [t.strip().lower() for t in text.split(",")]
+    known = [m.value for m in Transparency]
+    if not names or any(n not in known for n in names) or len(set(names)) != len(names):
+        raise argparse.ArgumentTypeError(f"expected {', '.join(known)} (or several for "
+                                         f"compare, e.g. exact,weighted), got {text!r}")
+    return tuple(Transparency(n) for n in names)
+
+
 def fps(text: str) -> float:
     """Frames a second, in the range an animation file can hold."""
     from ..animate.writers import MAX_FPS, MIN_FPS

@@ -4,10 +4,12 @@ analytic or refined reference, and tessellation sweeps."""
 from .._callable import callable_package
 from . import metrics
 from .comparison import REFERENCES, Comparison, ModeMetrics, compare
-from .shadows import ShadowComparison, compare_shadows
+from .shadows import (MethodComparison, ShadowComparison, compare_methods, compare_shadows,
+                      compare_transparency)
 from .sweeps import patch_sweep, sweep, sweep_plot
 
 __all__ = ["compare", "Comparison", "ModeMetrics", "REFERENCES", "sweep", "sweep_plot",
-           "patch_sweep", "metrics", "compare_shadows", "ShadowComparison"]
+           "patch_sweep", "metrics", "compare_shadows", "ShadowComparison",
+           "compare_transparency", "compare_methods", "MethodComparison"]
 
 callable_package(__name__, compare)  # glshade.compare(...) calls the function, whatever is bound

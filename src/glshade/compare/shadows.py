@@ -1,6 +1,7 @@
-"""Shadow methods side by side (``compare --shadows exact,map``): each method's picture, its
-difference from the first method's as a heat map, and the numbers -- the mean difference,
-the fraction of drawn pixels that differ by more than a level, and the frame time."""
+"""Methods side by side -- shadows (``compare --shadows exact,map``) or transparency
+(``compare --transparency exact,weighted,blend``): each method's picture, its difference
+from the first method's as a heat map, and the numbers -- the mean difference, the fraction
+of drawn pixels that differ by more than a level, and the frame time."""
 
 from __future__ import annotations
 
@@ -9,19 +10,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..modes import Shadows
+from ..modes import Shadows, Transparency
 from ..options import DrawOptions, RenderConfig
 
-__all__ = ["ShadowComparison", "compare_shadows"]
+__all__ = ["ShadowComparison", "MethodComparison", "compare_shadows", "compare_transparency",
+           "compare_methods"]
 
 
 @dataclass
-class ShadowComparison:
-    """``methods`` in order (the first is the reference); per method its ``colors`` ``(H, W,
-    4) uint8``, ``visibility`` ``(H, W, L)`` (None for off) and ``seconds`` a frame;
-    ``drawn`` ``(H, W)`` the pixels a surface covers."""
+class MethodComparison:
+    """``methods`` of ``option`` in order (the first is the reference); per method its
+    ``colors`` ``(H, W, 4) uint8``, ``visibility`` ``(H, W, L)`` (shadows; None for off)
+    and ``seconds`` a frame; ``drawn`` ``(H, W)`` the pixels measured (those a surface
+    covers for shadows; the whole picture for transparency)."""
 
     methods: tuple[str, ...]
+    option: str = "shadows"
     colors: dict = field(default_factory=dict)
     visibility: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
@@ -67,7 +71,7 @@ class ShadowComparison:
                  "-" if m == self.reference else f"{self.mean_difference(m):.3f}",
                  "-" if m == self.reference else f"{self.disagreement(m):.3%}")
                 for m in self.methods]
-        return format_table(rows, ("shadows", "ms a frame", f"mean |diff| vs {self.reference}",
+        return format_table(rows, (self.option, "ms a frame", f"mean |diff| vs {self.reference}",
                                    "pixels that differ (> 1 level)"))
 
     @property
@@ -76,7 +80,7 @@ class ShadowComparison:
         reference as a heat map (its scale: the largest difference, at least 1)."""
         from ..io.images import heatmap, labelled_row
 
-        top = labelled_row({f"shadows {m} ({self.seconds[m] * 1000:.0f} ms)": self.colors[m]
+        top = labelled_row({f"{self.option} {m} ({self.seconds[m] * 1000:.0f} ms)": self.colors[m]
                             for m in self.methods})
         diffs = {m: np.abs(self.colors[m][..., :3].astype(int) -
                            self.colors[self.reference][..., :3].astype(int)).max(-1)
@@ -89,23 +93,24 @@ class ShadowComparison:
         return np.vstack([top, bottom])
 
 
-def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
-                    config: RenderConfig | None = None, renderer=None) -> ShadowComparison:
-    """Draw ``scene`` once per shadow method (names or :class:`~glshade.Shadows`; the first
-    is the reference) with the same ``options`` otherwise; each timed on a third draw (the
-    first two build the BVH, the maps and the programs)."""
+def compare_methods(scene, camera, option: str, methods, options=None,
+                    config: RenderConfig | None = None, renderer=None) -> MethodComparison:
+    """Draw ``scene`` once per value of the draw option ``option`` ("shadows" or
+    "transparency"; the first value is the reference) with the same ``options`` otherwise;
+    each timed on a third draw (the first two build the BVH, the maps and the programs)."""
     from ..render.renderer import Renderer
 
-    chosen = tuple(Shadows.parse(m).value for m in methods)
+    parse = {"shadows": Shadows.parse, "transparency": Transparency.parse}[option]
+    chosen = tuple(parse(m).value for m in methods)
     if len(chosen) < 2:
-        raise ValueError("compare_shadows needs two or more methods, e.g. ('exact', 'map')")
+        raise ValueError(f"comparing {option} needs two or more methods")
     base = DrawOptions.of(options)
     own = renderer is None
     r = renderer or Renderer(config=config or RenderConfig(samples=0))
-    out = ShadowComparison(chosen)
+    out = MethodComparison(chosen, option)
     try:
         for m in chosen:
-            o = base.replace(shadows=Shadows(m))
+            o = base.replace(**{option: m})
             frame = r.render_frame(scene, camera, o)
             r.render(scene, camera, o)  # (the colour-only programs compiled: then timed)
             start = time.perf_counter()
@@ -114,8 +119,28 @@ def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
             out.colors[m] = frame.color
             out.visibility[m] = frame.visibility
             assert frame.face_id is not None
-            out.drawn = frame.face_id >= 0
+            # (the pixels measured: where a surface is; transparent ones write no id)
+            out.drawn = frame.face_id >= 0 if option == "shadows" else \
+                np.ones(frame.face_id.shape, bool)
     finally:
         if own:
             r.close()
     return out
+
+
+def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
+                    config: RenderConfig | None = None, renderer=None) -> MethodComparison:
+    """:func:`compare_methods` of the shadow methods (the first is the reference)."""
+    return compare_methods(scene, camera, "shadows", methods, options, config, renderer)
+
+
+def compare_transparency(scene, camera, methods=("exact", "weighted", "blend"), options=None,
+                         config: RenderConfig | None = None,
+                         renderer=None) -> MethodComparison:
+    """:func:`compare_methods` of the transparency methods (the first is the reference)."""
+    return compare_methods(scene, camera, "transparency", methods, options, config,
+                           renderer)
+
+
+#: (the earlier name)
+ShadowComparison = MethodComparison

@@ -110,8 +110,10 @@ class ProgramKey:
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: str = "") -> ProgramKey:
         """The key of a draw's variant for one model."""
+        # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
-                   variant.orthographic, two_sided, flat_constants, variant.shadows, oit)
+                   variant.orthographic, two_sided, flat_constants,
+                   variant.shadows and not oit, oit)
 
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS

@@ -36,15 +36,15 @@ class Occluders:
 
 
 def occluders(scene) -> Occluders:
-    """The triangles of ``scene``'s visible meshes and patch models (at their level), with
-    zero-area triangles left out (no ray can hit them)."""
+    """The triangles of ``scene``'s visible opaque meshes and patch models (at their level),
+    with zero-area triangles left out (no ray can hit them); transparent meshes cast none."""
     tris, ids, normals = [], [], []
     base = 0
     for model in scene.models:
         mesh = model.mesh
         t, face = mesh.triangles
         n = np.zeros((mesh.n_faces, 3))
-        if model.visible and len(t):
+        if model.visible and len(t) and model.material.opacity >= 1.0:  # (opaque only)
             m = model.transform
             v = mesh.vertices @ m[:3, :3].T + m[:3, 3]
             tris.append(v[t])

@@ -15,6 +15,7 @@ Then the renderer draws the picture, each light's term weighed by its layer at t
 
 from __future__ import annotations
 
+import copy
 import math
 import warnings
 from typing import Any
@@ -55,6 +56,12 @@ def shadow_lights(lights) -> np.ndarray:
         if not getattr(light, "shadows", True):
             rows[i, 3] = 2.0
     return rows
+
+
+def _hidden(model):
+    out = copy.copy(model)
+    out.visible = False
+    return out
 
 
 class _GBuffer:
@@ -211,7 +218,14 @@ class ShadowPass(GLResource):
         gbuf = self._gbuffer_for(width, height, bool(state.flip_rows))
         options = state.options.replace(shadows=Shadows.OFF, mode=ShadingMode.NORMALS,
                                         outputs=Outputs.ALL, edges=False, srgb=False)
-        renderer.draw(gbuf, state.scene, state.camera, options, viewport=state.viewport)
+        scene = state.scene
+        if any(m.material.opacity < 1.0 for m in scene.models):
+            # the opaque surfaces' points (transparent ones receive no shadows), hidden
+            # copies keeping the polygon ids of the transparent ones
+            scene = copy.copy(scene)
+            scene.models = [m if m.material.opacity >= 1.0 else _hidden(m)
+                            for m in scene.models]
+        renderer.draw(gbuf, scene, state.camera, options, viewport=state.viewport)
         lights = state.lights
         vis = self.visibility(width, height, max(len(lights), 1))
         self._lights_drawn = len(lights)

@@ -214,3 +214,58 @@ def test_more_layers_than_max_layers_are_reported(make_renderer):
     covered = int((img[..., 0] > 0).sum())
     assert report.pixels_over == covered and report.fragments_over == 4 * covered
     assert abs(img[16, 16, 0] - 255 * (1 - 0.7 ** 8)) <= 1.0  # (the nearest 8)
+
+
+def glass_over_cube():
+    s = g.Scene(ambient=(0.3, 0.3, 0.3), background=(0.1, 0.1, 0.1))
+    s.add(g.geometry.primitives.cube(), g.Material(color=(0.9, 0.2, 0.2)),
+          translation=(0, 0, -1.0))
+    s.add(g.geometry.primitives.icosphere(3, 0.8), g.Material(color=(0.2, 0.4, 0.9),
+                                                              opacity=0.4))
+    s.add_light(g.PointLight(position=(3, 4, 5)))
+    return s, g.Camera.look_at((0, 0.3, 5), (0, 0, 0))
+
+
+def test_depth_normal_and_ids_report_the_nearest_opaque_surface(make_renderer):
+    """Documented: the auxiliary outputs are those of the nearest opaque surface -- the
+    frame with the glass sphere equals the frame without it there."""
+    scene, camera = glass_over_cube()
+    r = make_renderer(80, 60)
+    with_glass = r.render_frame(scene, camera, "phong")
+    scene.models[1].visible = False
+    without = r.render_frame(scene, camera, "phong")
+    assert np.array_equal(with_glass.face_id, without.face_id)
+    assert np.array_equal(with_glass.depth, without.depth)
+    assert np.array_equal(with_glass.normal, without.normal)
+    seen_through = (with_glass.face_id >= 0) & (np.abs(with_glass.color.astype(int) -
+                                                        without.color.astype(int)).max(-1) > 20)
+    assert seen_through.sum() > 100  # (the glass is there, over the cube)
+
+
+@pytest.mark.parametrize("mode", ["flat", "gouraud", "phong"])
+def test_every_lit_mode_and_msaa_composite_the_same_way(make_renderer, mode):
+    """MSAA changes edges only: inside the silhouettes (the glass's too: a multisampled
+    pixel's transparent fragment is its sample 0's) the 4-sample composite equals the
+    1-sample one within a level; edges drawn over the glass still show."""
+    scene, camera = glass_over_cube()
+    plain = make_renderer(80, 60).render(scene, camera, mode).astype(int)
+    msaa = make_renderer(80, 60, samples=4).render(scene, camera, mode).astype(int)
+    solid = glass_over_cube()[0]
+    solid.models[1].material = g.Material()  # (opaque: its silhouette in the ids too)
+    ids = make_renderer(80, 60).render_frame(solid, camera, mode).face_id
+    inside = np.ones_like(ids, bool)
+    for axis in (0, 1):
+        for step in (1, -1):
+            inside &= np.roll(ids, step, axis) == ids
+    assert np.abs(plain - msaa)[inside].max() <= 1
+    edged = make_renderer(80, 60).render(scene, camera, mode, edges=True).astype(int)
+    assert (np.abs(edged - plain).max(-1) > 30).sum() > 50
+
+
+def test_the_debug_modes_draw_transparent_surfaces_as_they_are(make_renderer):
+    """Normals and depth show values, not surfaces to see through: opacity is not used."""
+    scene, camera = glass_over_cube()
+    r = make_renderer(80, 60)
+    a = r.render(scene, camera, "normals")
+    scene.models[1].material = g.Material(color=(0.2, 0.4, 0.9))
+    assert np.array_equal(a, r.render(scene, camera, "normals"))

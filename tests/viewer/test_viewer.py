@@ -22,6 +22,16 @@ def teapot_scene():
     return s
 
 
+def glass_scene():
+    """The teapot behind a glass ball (composited from per-pixel lists)."""
+    from glshade.geometry import primitives
+
+    s = teapot_scene()
+    s.add(primitives.icosphere(3, 1.2), Material(color=(0.3, 0.6, 0.9), opacity=0.4),
+          translation=(0.8, 1.5, 2.0))
+    return s
+
+
 def csg_scene():
     """A CSG solid with the teapot through it (ray cast and rasterised, one z-buffer)."""
     from glshade.solids import Box, Sphere
@@ -111,6 +121,17 @@ def test_x_turns_shadows_exact_then_map_then_off_like_headless(viewer_factory, t
             v.step()
         assert np.abs(v.screenshot().astype(int) - ref).max() <= 1, v.options.shadows
     assert (np.abs(refs[0] - refs[2]).max(-1) > 20).sum() > 100  # shadows really show
+
+
+def test_transparent_surfaces_in_the_window_like_headless(viewer_factory, tmp_path):
+    """The window's framebuffer: the glass composited over the teapot as headless does."""
+    v = viewer_factory(glass_scene(), CAM, options="phong")
+    v.step()
+    shot = v.screenshot().astype(int)
+    refs = headless(tmp_path, "phong", scene="glass_scene")[0].astype(int)
+    assert np.abs(shot - refs[0]).max() <= 1
+    plain = headless(tmp_path, "phong")[0][0].astype(int)
+    assert (np.abs(refs[0] - plain).max(-1) > 20).sum() > 500  # the glass is there
 
 
 def test_z_toggles_depth_test(viewer_factory, tmp_path):

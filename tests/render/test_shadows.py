@@ -404,3 +404,38 @@ def _points(eye, target, depth):
     f /= np.linalg.norm(f)
     t = np.where(np.isfinite(depth), depth, 0) / (d @ f)
     return np.asarray(eye, float) + t[..., None] * d
+
+
+@pytest.mark.parametrize("method", ["exact", "map"])
+def test_patches_cast_and_receive(renderers, method):
+    """A patch sphere (rational, GPU-tessellated) casts the sphere's conic on the floor, up
+    to its tessellation (a few pixels' band); its own lit side stays lit."""
+    from glshade.patches import sphere
+
+    light = LIGHTS["point"]
+    position, target = EYES["above"]
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    scene = scene_of("cube", light)
+    scene.models.pop()  # (the cube out: the floor alone, then the patch sphere)
+    scene.add(sphere(), g.Material(color=(0.3, 0.5, 0.9)), translation=(0, 1.0, 0),
+              scale=0.6)
+    frame = renderers[0].render_frame(scene, camera, "phong", shadows=method)
+    d = pixel_rays(position, target, W, H, FOV, np.zeros((1, 2)))[0]
+    p = np.asarray(position) + (-position[1] / d[..., 1])[..., None] * d
+    L, c, r = np.asarray(light.position), np.array([0.0, 1.0, 0.0]), 0.6
+    u = (L - p) / np.linalg.norm(L - p, axis=-1, keepdims=True)
+    along = np.einsum("...k,...k", c - p, u)
+    gap = np.sqrt(np.abs(np.einsum("...k,...k", c - p, c - p) - along ** 2))
+    pixel = np.linalg.norm(p - position, axis=-1) * 2 * np.tan(np.radians(FOV) / 2) / H
+    dark = (gap < r) & (along > 0)
+    clear = np.abs(gap - r) > 3 * pixel
+    floor = frame.face_id == 0
+    got = frame.visibility[..., 0] < 0.5
+    assert (floor & clear & dark).sum() > 100
+    assert ((got != dark) & floor & clear).sum() == 0
+    on_sphere = frame.face_id >= 1
+    normal = frame.normal[on_sphere]
+    points = _points(position, target, frame.depth)[on_sphere]
+    facing = np.einsum("nk,nk->n", normal, L - points) > 0.3 * np.linalg.norm(L - points,
+                                                                               axis=1)
+    assert facing.sum() > 30 and (frame.visibility[on_sphere][facing, 0] > 0.5).all()

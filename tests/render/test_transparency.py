@@ -269,3 +269,14 @@ def test_the_debug_modes_draw_transparent_surfaces_as_they_are(make_renderer):
     a = r.render(scene, camera, "normals")
     scene.models[1].material = g.Material(color=(0.2, 0.4, 0.9))
     assert np.array_equal(a, r.render(scene, camera, "normals"))
+
+
+def test_a_gl_without_storage_buffers_is_told_what_to_use(make_renderer, monkeypatch):
+    """Fragment lists need GL 4.3; an older GL gets one line naming the way that works."""
+    scene, camera = glass_over_cube()
+    r = make_renderer(32, 24)
+    monkeypatch.setattr(r.ctx, "version_code", 330)
+    with pytest.raises(g.errors.EnvironmentFailure, match=r"need OpenGL 4\.3; this GL is 3\.3"
+                       r".*use transparency='blend'"):
+        r.render(scene, camera, "phong")
+    assert r.render(scene, camera, "phong", transparency="blend").shape == (24, 32, 4)

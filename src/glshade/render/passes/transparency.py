@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import RenderWarning
+from ...errors import EnvironmentFailure, RenderWarning
 from ...modes import Transparency
 from ..base import GLResource
 
@@ -121,6 +121,12 @@ class TransparencyPass(GLResource):
         self._check()
         ctx = self.context.ctx
         options = state.options
+        if options.transparency is not Transparency.BLEND and ctx.version_code < 430:
+            raise EnvironmentFailure(
+                f"transparency={options.transparency.value!r} keeps per-pixel fragment lists "
+                f"in storage buffers, which need OpenGL 4.3; this GL is "
+                f"{ctx.version_code // 100}.{ctx.version_code % 100 // 10} "
+                f"({self.context.detail}): use transparency='blend'")
         target = state.target
         if options.transparency is Transparency.BLEND:
             target.bind(_colour_only())

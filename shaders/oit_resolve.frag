@@ -11,10 +11,16 @@
 // order-free: C = sum(w a c) / sum(w a) x (1 - prod(1 - a)).
 // A list walk is bounded (LIST_BUDGET steps: llvmpipe stops a shader at 65,535): a pixel
 // that runs out is counted (u_counts[2]) and composited from what it read.
-layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;
+layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;  // fragments a pixel
+layout(r32ui, binding = 2) uniform coherent uimage2D u_oit_more;   // pool list head + 1
 layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
 layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };  // pixels over, fragments
-                                                                     // over, cut short, -
+                                                                     // over, cut short, all
+uniform uint u_oit_width;
+uniform uint u_oit_base;
+#ifndef OIT_SLOTS
+#error "OIT_SLOTS comes from render/programs.py (OIT_SLOTS)"
+#endif
 #ifndef MAX_LAYERS
 #define MAX_LAYERS 32
 #endif
@@ -32,24 +38,44 @@ bool before(float da, uint rga, uint baa, float db, uint rgb, uint bab) {
     return da < db || (da == db && (rga < rgb || (rga == rgb && baa < bab)));
 }
 
+// The pixel's k-th fragment: its own slots first, then the pool's list (``i``: the next
+// pool node + 1, advanced as the list is walked; 0 at its end).
+uint g_first, g_slots, g_next;
+
+bool next_node(out uvec4 node) {
+    if (g_slots > 0u) {
+        node = oit_nodes[g_first++];
+        --g_slots;
+        return true;
+    }
+    if (g_next == 0u) return false;
+    node = oit_nodes[u_oit_base + g_next - 1u];
+    g_next = node.w;
+    return true;
+}
+
 void main() {
-    uint i = imageLoad(u_oit_heads, ivec2(gl_FragCoord.xy)).r;
-    if (i == 0u) discard;
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    uint count = imageLoad(u_oit_heads, px).r;
+    if (count == 0u) discard;
+    atomicAdd(u_counts[3], count);
+    g_first = (uint(px.y) * u_oit_width + uint(px.x)) * uint(OIT_SLOTS);
+    g_slots = min(count, uint(OIT_SLOTS));
+    g_next = imageLoad(u_oit_more, px).r;
+    uvec4 node;
     int steps = 0;
 #ifdef WEIGHTED
     vec3 sum_c = vec3(0.0);
     float sum_w = 0.0, t = 1.0;
-    while (i != 0u && steps < LIST_BUDGET) {
+    while (steps < LIST_BUDGET && next_node(node)) {
         ++steps;
-        uvec4 node = oit_nodes[i - 1u];
         vec2 rg = unpackUnorm2x16(node.x), ba = unpackUnorm2x16(node.y);
         float w = weight(uintBitsToFloat(node.z), ba.y);
         sum_c += w * vec3(rg, ba.x);
         sum_w += w;
         t *= 1.0 - ba.y;
-        i = node.w;
     }
-    if (i != 0u) atomicAdd(u_counts[2], 1u);
+    if (steps >= LIST_BUDGET) atomicAdd(u_counts[2], 1u);
     vec3 c = sum_w > 0.0 ? sum_c / sum_w : vec3(0.0);
     vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
     frag_color = vec4(c * (1.0 - t) + t * behind.rgb, behind.a);
@@ -60,10 +86,8 @@ void main() {
     uint rg[MAX_LAYERS], ba[MAX_LAYERS];
     int n = 0;
     uint dropped = 0u;
-    while (i != 0u && steps < LIST_BUDGET) {
+    while (steps < LIST_BUDGET && next_node(node)) {
         ++steps;
-        uvec4 node = oit_nodes[i - 1u];
-        i = node.w;
         float d = uintBitsToFloat(node.z);
         if (n == MAX_LAYERS && !before(d, node.x, node.y, depth[n - 1], rg[n - 1],
                                        ba[n - 1])) {
@@ -87,7 +111,7 @@ void main() {
         ba[k] = node.y;
         ++n;
     }
-    if (i != 0u) atomicAdd(u_counts[2], 1u);
+    if (steps >= LIST_BUDGET) atomicAdd(u_counts[2], 1u);
     if (dropped > 0u) {
         atomicAdd(u_counts[0], 1u);
         atomicAdd(u_counts[1], dropped);

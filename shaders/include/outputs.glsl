@@ -20,13 +20,21 @@ uniform float u_opacity;                       // the surface's Material.opacity
 #endif
 #ifdef OIT_CAPTURE
 // A transparent surface's fragment joins its pixel's list (render/passes/transparency.py):
-// node i + 1 is (colour RG, BA as 16-bit fractions, view depth, the next node), the head
-// the last node added; the opaque depth test runs first (nothing hidden joins).
+// a node is (colour RG, BA as 16-bit fractions, view depth, the next node). A pixel's first
+// OIT_SLOTS fragments take its own slots (a per-pixel count, no shared counter to contend
+// for); the rest go to a shared pool, linked from a second head image. The opaque depth
+// test runs first (nothing hidden joins).
 layout(early_fragment_tests) in;
-layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;
+layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;  // fragments a pixel
+layout(r32ui, binding = 2) uniform coherent uimage2D u_oit_more;   // pool list head + 1
 layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
 layout(std430, binding = 6) buffer OitCount { uint oit_count; };
-uniform uint u_oit_capacity;
+uniform uint u_oit_capacity;  // nodes in the pool
+uniform uint u_oit_width;     // the target's width (a pixel's slots: its index x OIT_SLOTS)
+uniform uint u_oit_base;      // where the pool starts (after every pixel's slots)
+#ifndef OIT_SLOTS
+#error "OIT_SLOTS comes from render/programs.py (OIT_SLOTS)"
+#endif
 #endif
 
 void write_outputs(vec3 color, vec3 n_world, float depth_view) {
@@ -37,11 +45,20 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
 #ifdef OIT_CAPTURE
     // (with MSAA a pixel's fragment is its sample 0's: two triangles that share an edge
     // through the pixel would both be listed otherwise)
-    uint i = (gl_SampleMaskIn[0] & 1) != 0 ? atomicAdd(oit_count, 1u) : 0xffffffffu;
-    if (i < u_oit_capacity) {  // (beyond: counted, and the pass runs again with room)
-        uint next = imageAtomicExchange(u_oit_heads, ivec2(gl_FragCoord.xy), i + 1u);
-        oit_nodes[i] = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, u_opacity)),
-                             floatBitsToUint(depth_view), next);
+    if ((gl_SampleMaskIn[0] & 1) != 0) {
+        ivec2 px = ivec2(gl_FragCoord.xy);
+        uvec4 node = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, u_opacity)),
+                           floatBitsToUint(depth_view), 0u);
+        uint slot = imageAtomicAdd(u_oit_heads, px, 1u);
+        if (slot < uint(OIT_SLOTS)) {
+            oit_nodes[(uint(px.y) * u_oit_width + uint(px.x)) * uint(OIT_SLOTS) + slot] = node;
+        } else {
+            uint i = atomicAdd(oit_count, 1u);
+            if (i < u_oit_capacity) {  // (beyond: counted; the pass runs again with room)
+                node.w = imageAtomicExchange(u_oit_more, px, i + 1u);
+                oit_nodes[u_oit_base + i] = node;
+            }
+        }
     }
     frag_color = vec4(0.0);  // (masked: the resolve pass composites)
 #elif defined(OIT_BLEND)

@@ -11,7 +11,7 @@ from glshade.errors import SceneError
 from glshade.geometry import primitives
 from glshade.pathtrace import TraceScene, trace
 from glshade.pathtrace import twin
-from glshade.pathtrace.bvh import build
+from glshade.geometry.bvh import build
 from glshade.pathtrace.surfaces import surface_radiosity
 from glshade.radiosity import PatchScene, cornell_scene
 from glshade.scene import Camera, DirectionalLight, Material, Scene

@@ -271,7 +271,7 @@ def _compare_methods(args: a.CompareArgs, job, option: str, values) -> int:
     """``compare --shadows exact,map`` or ``--transparency exact,weighted,blend``: the
     methods side by side in one shading mode, each one's difference from the first, and
     the pixels that differ."""
-    from ..compare.shadows import compare_methods
+    from ..compare.methods import compare_methods
     from ..io.images import save_image
     from ..render.renderer import SHADOWED_MODES
 

@@ -4,7 +4,7 @@ analytic or refined reference, and tessellation sweeps."""
 from .._callable import callable_package
 from . import metrics
 from .comparison import REFERENCES, Comparison, ModeMetrics, compare
-from .shadows import (MethodComparison, ShadowComparison, compare_methods, compare_shadows,
+from .methods import (MethodComparison, ShadowComparison, compare_methods, compare_shadows,
                       compare_transparency)
 from .sweeps import patch_sweep, sweep, sweep_plot
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .bvh import build
+from ..geometry.bvh import build
 
 __all__ = ["pack", "DATA_WIDTH"]
 

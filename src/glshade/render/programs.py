@@ -77,6 +77,10 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
     return 2 + bool(aux) + 1 + per_light * len(lights) <= max_vectors
 
 
+#: a pixel's own slots for its first transparent fragments (the rest: a shared pool)
+OIT_SLOTS = 4
+
+
 class Variant(NamedTuple):
     """What every program of one draw shares (the rest of a ProgramKey is per model)."""
 
@@ -124,6 +128,8 @@ class ProgramKey:
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", self.oit == "capture"),
                  ("GLSL_430", self.oit == "capture"), ("OIT_BLEND", self.oit == "blend"))
         out = [name for name, on in flags if on]
+        if self.oit == "capture":
+            out.append(f"OIT_SLOTS {OIT_SLOTS}")
         out.append(f"LIGHT_COUNT {len(self.lights)}")
         out.append(f"LIGHT_KINDS {', '.join(self.lights)}")
         return tuple(out)

@@ -1,5 +1,6 @@
-"""Shadow maps, the fast method of :mod:`.shadows`: each light's depth map drawn from the
-scene's triangles (kept while the geometry and the light stay: a moving camera draws none),
+"""Shadow maps, the fast method of :mod:`glshade.render.passes.shadows`: each light's depth
+map drawn from the scene's triangles (kept while the geometry and the light stay: a moving
+camera draws none),
 then looked up per pixel with percentage-closer filtering (shaders/shadow_maps.comp).
 
 A directional light's map is orthographic, fitted to the scene's box; a point light's is a
@@ -20,7 +21,7 @@ from ...errors import RenderWarning
 from ...geometry.transforms import gl_bytes, look_at, orthographic, perspective
 from ..base import GLResource
 
-__all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS"]
+__all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
 
 #: texels a side of a directional light's map
 MAP_SIZE = 2048
@@ -61,6 +62,21 @@ def light_frames(light_row: np.ndarray, bounds: np.ndarray):
     views = [look_at(p, p + np.asarray(d, float), up) for d, up in _FACES]
     proj = perspective(90.0, 1.0, near, far)
     return views, proj, {"faces": 6, "size": CUBE_SIZE, "planes": (near, far)}
+
+
+def shadow_lights(lights) -> np.ndarray:
+    """``(L, 4)`` float32 rows the compute programs read: a point light's world position
+    with w = 1, a directional light's unit vector towards it with w = 0; w = 2 for a light
+    that casts no shadows."""
+    rows = np.zeros((max(len(lights), 1), 4), np.float32)
+    for i, light in enumerate(lights):
+        if hasattr(light, "position"):
+            rows[i] = (*light.position, 1.0)
+        else:
+            rows[i] = (*(-np.asarray(light.direction)), 0.0)
+        if not getattr(light, "shadows", True):
+            rows[i, 3] = 2.0
+    return rows
 
 
 class ShadowMaps(GLResource):
@@ -126,7 +142,6 @@ class ShadowMaps(GLResource):
         """Each light's map (drawn when its geometry or light changed), then its layer of
         ``vis`` by PCF lookups at the G-buffer's points."""
         from ...scene.camera import Projection
-        from .shadows import shadow_lights
 
         if state.scene.solids and not self._warned_solids:
             self._warned_solids = True

@@ -27,8 +27,9 @@ from ...geometry.transforms import gl_bytes
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
 from ..programs import UniformWriter
+from .shadow_maps import ShadowMaps, shadow_lights
 
-__all__ = ["ShadowPass", "UNIT", "SHADOW_EPS", "RAY_BUDGET", "shadow_lights"]
+__all__ = ["ShadowPass", "UNIT", "SHADOW_EPS", "RAY_BUDGET"]
 
 #: texture unit of the visibility array in the shading programs
 UNIT = 6  # (the renderer's SHADOW_UNIT)
@@ -41,21 +42,6 @@ RAY_BUDGET = 60_000
 #: triangles wider than this fraction of the scene's diagonal are tested by every ray in a
 #: list of their own (at most MAX_BIG of them), the rest through the hierarchy
 BIG_TRIANGLE, MAX_BIG = 0.25, 64
-
-
-def shadow_lights(lights) -> np.ndarray:
-    """``(L, 4)`` float32 rows the compute programs read: a point light's world position
-    with w = 1, a directional light's unit vector towards it with w = 0; w = 2 for a light
-    that casts no shadows."""
-    rows = np.zeros((max(len(lights), 1), 4), np.float32)
-    for i, light in enumerate(lights):
-        if hasattr(light, "position"):
-            rows[i] = (*light.position, 1.0)
-        else:
-            rows[i] = (*(-np.asarray(light.direction)), 0.0)
-        if not getattr(light, "shadows", True):
-            rows[i, 3] = 2.0
-    return rows
 
 
 def _hidden(model):
@@ -149,7 +135,7 @@ class ShadowPass(GLResource):
     def _occluder_buffers(self, scene):
         """The BVH of the scene's triangles in two storage buffers, built again only when
         the geometry changed (meshes, patches, transforms, visibility)."""
-        from ...pathtrace.bvh import build
+        from ...geometry.bvh import build
         from ...scene.occluders import occluders
 
         key = tuple((id(m.mesh), m.transform.tobytes(), m.visible) for m in scene.models) + \
@@ -230,8 +216,6 @@ class ShadowPass(GLResource):
         vis = self.visibility(width, height, max(len(lights), 1))
         self._lights_drawn = len(lights)
         if state.options.shadows is Shadows.MAP:
-            from .shadow_maps import ShadowMaps
-
             if self.maps is None:
                 self.maps = ShadowMaps(self.context, self.shaders)
             self.maps.fill(self, renderer, state, gbuf, vis)

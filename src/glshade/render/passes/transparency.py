@@ -1,11 +1,12 @@
 """Transparent surfaces (``Material.opacity`` below 1), drawn after the opaque ones.
 
 - ``exact``: every transparent fragment that passes the opaque depth test joins its pixel's
-  list (a head image and a node buffer, appended to with atomics: shaders/include/
-  outputs.glsl); a full-viewport pass (shaders/oit_resolve.frag) sorts each list nearest
-  first, keeps ``max_layers`` of it and composites "over" front to back onto the opaque
-  picture. A list longer than ``max_layers`` is counted (pixels, fragments) and reported;
-  the node buffer grows and the capture runs again when a frame needs more room.
+  list (shaders/include/outputs.glsl): the pixel's first ``OIT_SLOTS`` fragments take slots
+  of its own (a per-pixel atomic count), the rest a shared pool linked from a second head
+  image; a full-viewport pass (shaders/oit_resolve.frag) sorts each list nearest first,
+  keeps ``max_layers`` of it and composites "over" front to back onto a float copy of the
+  opaque picture. A list longer than ``max_layers`` is counted (pixels, fragments) and
+  reported; the pool grows and the capture runs again when a frame needs more room.
 - ``weighted``: the same lists, resolved by McGuire and Bavoil's weighted blended estimate
   (order-free, approximate: for comparison).
 - ``blend``: each surface blended "over" as it is drawn, in the scene's order (what a
@@ -22,13 +23,14 @@ import numpy as np
 from ...errors import EnvironmentFailure, RenderWarning
 from ...modes import Transparency
 from ..base import GLResource
+from ..programs import OIT_SLOTS as SLOTS  # (a pixel's own slots; then a shared pool)
 
 __all__ = ["TransparencyPass", "TransparencyReport", "NODE_BYTES"]
 
 #: bytes of one fragment in a list: colour (half floats), opacity, view depth, next
 NODE_BYTES = 16
-#: list nodes made room for at first, per pixel of the target (grown as frames need)
-START_NODES_PER_PIXEL = 4
+#: the pool's nodes at first, per pixel of the target (grown as frames need)
+START_POOL_PER_PIXEL = 2
 
 
 @dataclass(frozen=True)
@@ -64,7 +66,8 @@ class TransparencyPass(GLResource):
         ctx = context.ctx
         self._heads = None  # (size, texture, framebuffer to clear it)
         self._nodes = None
-        self._capacity = 0
+        self._capacity = 0  # (the pool's nodes)
+        self._slots = 0     # (the pixels' own slots)
         self._count = self._keep(ctx.buffer(reserve=4))
         self._report = self._keep(ctx.buffer(reserve=16))
         self._programs: dict = {}
@@ -72,14 +75,19 @@ class TransparencyPass(GLResource):
         self.report = TransparencyReport(Transparency.EXACT.value)
 
     def _heads_for(self, width: int, height: int):
+        """The per-pixel fragment counts and pool list heads, and a framebuffer that clears
+        both (made once a size)."""
         if self._heads is None or self._heads[0] != (width, height):
             if self._heads is not None:
-                self._heads[2].release()
-                self._heads[1].release()
+                for obj in self._heads[1:][::-1]:
+                    obj.release()
             ctx = self.context.ctx
-            tex = ctx.texture((width, height), 1, dtype="u4")
-            tex.filter = (0x2600, 0x2600)
-            self._heads = ((width, height), tex, ctx.framebuffer([tex]))
+            made = []
+            for _ in range(2):
+                tex = ctx.texture((width, height), 1, dtype="u4")
+                tex.filter = (0x2600, 0x2600)
+                made.append(tex)
+            self._heads = ((width, height), made[0], made[1], ctx.framebuffer(made))
         return self._heads
 
     def _behind_for(self, target):
@@ -97,19 +105,21 @@ class TransparencyPass(GLResource):
             self._behind = (key, tex, ctx.framebuffer([tex]))
         return self._behind[1], self._behind[2]
 
-    def _room(self, nodes: int) -> None:
-        if nodes > self._capacity:
+    def _room(self, slots: int, pool: int) -> None:
+        """A node buffer of ``slots`` per-pixel slots, then a pool of at least ``pool``."""
+        if slots != self._slots or pool > self._capacity:
             if self._nodes is not None:
                 self._nodes.release()
-            self._capacity = int(nodes)
-            self._nodes = self.context.ctx.buffer(reserve=self._capacity * NODE_BYTES)
+            self._slots, self._capacity = int(slots), max(int(pool), self._capacity)
+            self._nodes = self.context.ctx.buffer(
+                reserve=(self._slots + self._capacity) * NODE_BYTES)
 
     def _resolve_program(self, method: Transparency, layers: int):
         key = (method, layers)
         prog = self._programs.get(key)
         if prog is None:
-            defines = (f"MAX_LAYERS {layers}",) + (("WEIGHTED",) if method is
-                                                   Transparency.WEIGHTED else ())
+            defines = (f"MAX_LAYERS {layers}", f"OIT_SLOTS {SLOTS}") + (
+                ("WEIGHTED",) if method is Transparency.WEIGHTED else ())
             prog = self._programs[key] = self.shaders.compile(
                 "oit_resolve.vert", "oit_resolve.frag", defines=defines)
         return prog
@@ -146,8 +156,9 @@ class TransparencyPass(GLResource):
             self.report = TransparencyReport(Transparency.BLEND.value)
             return
         width, height = int(target.width), int(target.height)
-        _, heads, clear = self._heads_for(width, height)
-        self._room(max(self._capacity, width * height * START_NODES_PER_PIXEL))
+        _, heads, more, clear = self._heads_for(width, height)
+        self._room(width * height * SLOTS, width * height * START_POOL_PER_PIXEL)
+        layout = {"u_oit_width": width, "u_oit_base": self._slots}
         for _ in range(2):  # (a second time with room for every fragment, when short)
             clear.use()
             clear.clear(0.0, 0.0, 0.0, 0.0)
@@ -155,6 +166,7 @@ class TransparencyPass(GLResource):
             target.bind(_colour_only())
             ctx.viewport = state.viewport
             heads.bind_to_image(1, read=True, write=True)
+            more.bind_to_image(2, read=True, write=True)
             self._nodes.bind_to_storage_buffer(5)
             self._count.bind_to_storage_buffer(6)
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
@@ -163,19 +175,20 @@ class TransparencyPass(GLResource):
             fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
             try:
                 renderer._draw_models(state, models, oit="capture",
-                                      extra={"u_oit_capacity": self._capacity})
+                                      extra={"u_oit_capacity": self._capacity, **layout})
             finally:
                 fbo.color_mask = (True, True, True, True)
                 fbo.depth_mask = True
                 fbo.use()
             ctx.memory_barrier()
-            count = int(np.frombuffer(self._count.read(), np.uint32)[0])
-            if count <= self._capacity:
+            pooled = int(np.frombuffer(self._count.read(), np.uint32)[0])
+            if pooled <= self._capacity:
                 break
-            self._room(int(count * 1.25) + 1024)
-        self._resolve(state, heads, count)
+            self._room(self._slots, int(pooled * 1.25) + 1024)
+            layout["u_oit_base"] = self._slots
+        self._resolve(state, heads, more, layout)
 
-    def _resolve(self, state, heads, count: int) -> None:
+    def _resolve(self, state, heads, more, layout: dict) -> None:
         import moderngl
 
         ctx = self.context.ctx
@@ -186,7 +199,10 @@ class TransparencyPass(GLResource):
         self._report.write(np.zeros(4, np.uint32).tobytes())
         self._report.bind_to_storage_buffer(7)
         heads.bind_to_image(1, read=True, write=False)
+        more.bind_to_image(2, read=True, write=False)
         self._nodes.bind_to_storage_buffer(5)
+        for name, value in layout.items():
+            prog[name].value = value
         target = state.target
         state.target.bind(_colour_only())
         # the opaque picture, read in float by the resolve: "over" it in one rounding (8-bit
@@ -206,8 +222,8 @@ class TransparencyPass(GLResource):
                 ctx.enable(moderngl.DEPTH_TEST)
             vao.release()
         ctx.memory_barrier()
-        over, dropped, short, _ = (int(x) for x in np.frombuffer(self._report.read(),
-                                                                  np.uint32))
+        over, dropped, short, count = (int(x) for x in np.frombuffer(self._report.read(),
+                                                                      np.uint32))
         self.report = TransparencyReport(options.transparency.value, count, layers, over,
                                          dropped, short)
         if over and options.transparency is Transparency.EXACT:
@@ -225,8 +241,8 @@ class TransparencyPass(GLResource):
             p.release()
         self._programs.clear()
         if self._heads is not None:
-            self._heads[2].release()
-            self._heads[1].release()
+            for obj in self._heads[1:][::-1]:
+                obj.release()
             self._heads = None
         if self._behind is not None:
             self._behind[2].release()

@@ -1,4 +1,5 @@
-"""A bounding-volume hierarchy over triangles, built in numpy for the GPU path tracer.
+"""A bounding-volume hierarchy over triangles, built in numpy for the GPU (the path
+tracer and the exact shadow rays).
 
 Median splits, built a level at a time: every node of a level that holds more than
 ``leaf_size`` triangles sorts its triangles by centroid along the longest axis of their

@@ -58,7 +58,8 @@ class MethodComparison:
         return float(differ[drawn].mean()) if drawn.any() else 0.0
 
     def mean_difference(self, method: str) -> float:
-        """Mean |colour difference| from the reference over the drawn pixels, 8-bit units."""
+        """The mean absolute colour difference from the reference over the drawn pixels, in
+        8-bit units."""
         diff = np.abs(self.colors[method][..., :3].astype(int) -
                       self.colors[self.reference][..., :3].astype(int)).max(-1)
         return float(diff[self.drawn].mean()) if self.drawn is not None and \

@@ -78,7 +78,7 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
 
 
 #: a pixel's own slots for its first transparent fragments (the rest: a shared pool)
-OIT_SLOTS = 4
+OIT_SLOTS = 8
 
 
 class Variant(NamedTuple):

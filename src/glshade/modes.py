@@ -29,6 +29,23 @@ def parse_enum(cls: type[E], value: object, what: str) -> E:
         raise OptionError(f"unknown {what} {value!r}; choose one of {choices}") from None
 
 
+def _option_member(cls: type[E], value: object, option: str, true: E | None = None,
+                   false: E | None = None, rule: str = "be one of {names}") -> E:
+    """A member of a draw option's enum from itself, its (case-insensitive) value, or True
+    and False where the option gives them a meaning; else OptionError naming the option."""
+    if isinstance(value, cls):
+        return value
+    if value is True and true is not None:
+        return true
+    if value is False and false is not None:
+        return false
+    try:
+        return cls(str(value).lower())
+    except ValueError:
+        names = ", ".join(str(m.value) for m in cls)
+        raise OptionError.must(option, rule.format(names=names) + f", got {value!r}") from None
+
+
 class ShadingMode(enum.Enum):
     """How a surface is shaded (the notes' three, a radiosity solution's display, and two
     debug views)."""
@@ -77,17 +94,8 @@ class Culling(enum.Enum):
     @classmethod
     def parse(cls, value: object) -> Culling:
         """A Culling, True (ON), False (OFF) or a member's name."""
-        if isinstance(value, cls):
-            return value
-        if value is True:
-            return cls.ON
-        if value is False:
-            return cls.OFF
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise OptionError.must("cull", "be 'auto', True or False (or one of "
-                                   f"{', '.join(m.value for m in cls)}), got {value!r}") from None
+        return _option_member(cls, value, "cull", cls.ON, cls.OFF,
+                              "be 'auto', True or False (or one of {names})")
 
     def __bool__(self) -> bool:  # (so `if options.cull:` reads as before: AUTO and ON cull)
         return self is not Culling.OFF
@@ -103,18 +111,9 @@ class Shadows(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Shadows:
-        """A Shadows, its name, or True (EXACT) / False (OFF)."""
-        if isinstance(value, cls):
-            return value
-        if value is True:
-            return cls.EXACT
-        if value is False or value is None:
-            return cls.OFF
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise OptionError.must("shadows", "be one of "
-                                   f"{', '.join(m.value for m in cls)}, got {value!r}") from None
+        """A Shadows, its name, or True (EXACT) / False or None (OFF)."""
+        return _option_member(cls, cls.OFF if value is None else value, "shadows",
+                              cls.EXACT, cls.OFF)
 
 
 class Transparency(enum.Enum):
@@ -127,13 +126,7 @@ class Transparency(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Transparency:
-        if isinstance(value, cls):
-            return value
-        try:
-            return cls(str(value).lower())
-        except ValueError:
-            raise OptionError.must("transparency", "be one of "
-                                   f"{', '.join(m.value for m in cls)}, got {value!r}") from None
+        return _option_member(cls, value, "transparency")
 
 
 class Projection(str, enum.Enum):

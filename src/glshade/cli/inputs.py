@@ -152,18 +152,13 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
         except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
     overrides = args.given("mode", "srgb", "edges")
-    methods = getattr(args, "shadows", None)
-    if methods and len(methods) > 1 and not hasattr(args, "reference"):
-        raise UsageError(f"--shadows: one method here, got {len(methods)} "
-                         f"({','.join(m.value for m in methods)}): several are for compare")
-    if methods and len(methods) == 1:
-        overrides["shadows"] = methods[0]
-    blends = getattr(args, "transparency", None)
-    if blends and len(blends) > 1 and not hasattr(args, "reference"):
-        raise UsageError(f"--transparency: one method here, got {len(blends)} "
-                         f"({','.join(m.value for m in blends)}): several are for compare")
-    if blends and len(blends) == 1:
-        overrides["transparency"] = blends[0]
+    for option in ("shadows", "transparency"):  # (several methods: compare's alone)
+        methods = getattr(args, option, None)
+        if methods and len(methods) > 1 and not hasattr(args, "reference"):
+            raise UsageError(f"--{option}: one method here, got {len(methods)} "
+                             f"({','.join(m.value for m in methods)}): several are for compare")
+        if methods:
+            overrides[option] = methods[0]
     settings = replace(settings, options=settings.options.replace(**overrides))
     origin = dict(settings.origin)
     if args.size:

@@ -11,7 +11,7 @@ import re
 
 from ..errors import InputError, UsageError
 from ..hidden import Algorithm
-from ..modes import ShadingMode
+from ..modes import ShadingMode, Shadows, Transparency
 from ..scene.camera import View
 
 __all__ = ["size", "vec3", "count", "unit_float", "nonnegative_float", "mode", "modes",
@@ -208,28 +208,23 @@ def positive_float(text: str) -> float:
     return _number(text, lambda x: x > 0, "a number > 0")
 
 
-def shadows(text: str) -> tuple:
-    """``exact``, ``map``, ``off`` -- or several, comma-separated (compare's methods)."""
-    from ..modes import Shadows
+def _methods(kind, example: str):
+    """An argument type: one of ``kind``'s values, or several comma-separated (compare's)."""
+    def parse(text: str) -> tuple:
+        names = [t.strip().lower() for t in text.split(",")]
+        known = [m.value for m in kind]
+        if any(n not in known for n in names) or len(set(names)) != len(names):
+            raise argparse.ArgumentTypeError(f"expected {', '.join(known)} (or several for "
+                                             f"compare, e.g. {example}), got {text!r}")
+        return tuple(kind(n) for n in names)
 
-    names = [t.strip().lower() for t in text.split(",")]
-    known = [m.value for m in Shadows]
-    if not names or any(n not in known for n in names) or len(set(names)) != len(names):
-        raise argparse.ArgumentTypeError(f"expected {', '.join(known)} (or several for "
-                                         f"compare, e.g. exact,map), got {text!r}")
-    return tuple(Shadows(n) for n in names)
+    return parse
 
 
-def transparency(text: str) -> tuple:
-    """``exact``, ``weighted``, ``blend`` -- or several, comma-separated (compare's)."""
-    from ..modes import Transparency
-
-    names = [t.strip().lower() for t in text.split(",")]
-    known = [m.value for m in Transparency]
-    if not names or any(n not in known for n in names) or len(set(names)) != len(names):
-        raise argparse.ArgumentTypeError(f"expected {', '.join(known)} (or several for "
-                                         f"compare, e.g. exact,weighted), got {text!r}")
-    return tuple(Transparency(n) for n in names)
+#: --shadows: exact, map, off (several: compare's)
+shadows = _methods(Shadows, "exact,map")
+#: --transparency: exact, weighted, blend (several: compare's)
+transparency = _methods(Transparency, "exact,weighted")
 
 
 def fps(text: str) -> float:

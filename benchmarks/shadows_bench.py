@@ -10,14 +10,13 @@ Run: ``.venv/bin/python benchmarks/shadows_bench.py [--repeats 5] [--size 512]``
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import interleaved, table  # noqa: E402
+from _timing import frame_arguments, frame_header, interleaved, table  # noqa: E402
 
 import glshade as g  # noqa: E402
 from glshade import quaternion as Q  # noqa: E402
@@ -45,15 +44,11 @@ def scene(triangles: int, lights: int) -> g.Scene:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--size", type=int, default=512)
-    args = parser.parse_args()
+    args = frame_arguments(__doc__)
     camera = g.Camera.look_at((4.0, 4.0, 6.0), (0.0, 0.8, 0.0), fov_y=45)
     rows = []
     with g.Renderer(args.size, args.size, samples=0) as r:
-        print(f"{r.context.detail}, {args.size}x{args.size}, Phong, medians of "
-              f"{args.repeats} interleaved rounds")
+        print(frame_header(r, args.size, args.repeats))
         for triangles in (1_000, 100_000):
             for lights in (1, 4):
                 s = scene(triangles, lights)

@@ -8,14 +8,13 @@ Run: ``.venv/bin/python benchmarks/transparency_bench.py [--repeats 5] [--size 5
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _timing import interleaved, table  # noqa: E402
+from _timing import frame_arguments, frame_header, interleaved, table  # noqa: E402
 
 import glshade as g  # noqa: E402
 from glshade import quaternion as Q  # noqa: E402
@@ -36,25 +35,20 @@ def scene(layers: int, opacity: float) -> g.Scene:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--size", type=int, default=512)
-    args = parser.parse_args()
+    args = frame_arguments(__doc__)
     camera = g.Camera.look_at((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), fov_y=45)
     rows = []
     with g.Renderer(args.size, args.size, samples=0) as r:
-        print(f"{r.context.detail}, {args.size}x{args.size}, Phong, medians of "
-              f"{args.repeats} interleaved rounds")
+        print(frame_header(r, args.size, args.repeats))
         for layers in (1, 8, 64):
             glass, solid = scene(layers, 0.3), scene(layers, 1.0)
-            series = {"opaque": lambda: r.render(solid, camera, "phong")}
+            series = {"opaque": lambda solid=solid: r.render(solid, camera, "phong")}
             for m in ("exact", "weighted", "blend"):
-                series[m] = (lambda m=m: r.render(glass, camera, "phong", transparency=m,
-                                                  max_layers=64))
+                series[m] = (lambda m=m, glass=glass: r.render(
+                    glass, camera, "phong", transparency=m, max_layers=64))
             for fn in series.values():
                 fn()  # (compiled and sized before the clock)
             med = interleaved(series, args.repeats)
-            fragments = r.transparency.fragments if r.transparency else 0
             r.render(glass, camera, "phong", max_layers=64)
             fragments = r.transparency.fragments
             rows.append((layers, f"{fragments / args.size ** 2:.1f}",

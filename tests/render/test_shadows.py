@@ -439,3 +439,39 @@ def test_patches_cast_and_receive(renderers, method):
     facing = np.einsum("nk,nk->n", normal, L - points) > 0.3 * np.linalg.norm(L - points,
                                                                                axis=1)
     assert facing.sum() > 30 and (frame.visibility[on_sphere][facing, 0] > 0.5).all()
+
+
+def test_an_orthographic_camera_shadows_where_the_oracle_does(renderers):
+    """Orthographic views rebuild their points along parallel rays: on the floor, exact
+    shadows match the oracle's box (outside a pixel of its edges) and maps agree with them."""
+    light = LIGHTS["directional"]
+    position, target = np.asarray(EYES["above"][0]), np.asarray(EYES["above"][1])
+    scene = scene_of("cube", light)
+    height = 6.0
+    camera = g.Camera.look_at(position, target, fov_y=FOV).replace(
+        projection="orthographic", height=height)
+    frames = {m: renderers[0].render_frame(scene, camera, "phong", shadows=m)
+              for m in ("exact", "map")}
+    f = (target - position) / np.linalg.norm(target - position)
+    r = np.cross(f, (0.0, 1.0, 0.0))
+    r /= np.linalg.norm(r)
+    u = np.cross(r, f)
+    px = height / H
+    x = ((np.arange(W) + 0.5) - W / 2) * px
+    y = (H / 2 - (np.arange(H) + 0.5)) * px
+    origin = position + x[None, :, None] * r + y[:, None, None] * u
+    t = -origin[..., 1] / f[1]
+    p = origin + t[..., None] * f                        # the floor under each pixel
+    to = np.broadcast_to(-np.asarray(light.direction), p.shape)
+    dark = Oracle("cube").blocked(p + 1e-7 * to, to, np.full(p.shape[:-1], np.inf))
+    # (a pixel's width on the floor, along the light: the band where a pixel straddles)
+    near_edge = np.zeros_like(dark)
+    for axis in (0, 1):
+        for step in (1, -1):
+            near_edge |= np.roll(dark, step, axis) != dark
+    floor = frames["exact"].face_id == 0
+    exact = frames["exact"].visibility[..., 0] < 0.5
+    assert (floor & dark & ~near_edge).sum() > 50
+    assert ((exact != dark) & floor & ~near_edge).sum() == 0
+    mapped = frames["map"].visibility[..., 0] < 0.5
+    assert ((mapped != exact) & floor & ~near_edge).sum() == 0

@@ -92,6 +92,17 @@ bool meets(int k, vec3 o, vec3 d, float t_min, float t_max, int own) {
     return t > t_min && t < t_max;
 }
 
+// The ray's entry into a node's box, or a negative number where it misses the box
+// within (t_min, t_max).
+float enters(int node, vec3 o, vec3 inv, float t_min, float t_max) {
+    Node box = nodes[node];
+    vec3 t0 = (box.lo - o) * inv, t1 = (box.hi - o) * inv;
+    vec3 tn = min(t0, t1), tf = max(t0, t1);
+    float near = max(max(tn.x, tn.y), max(tn.z, t_min));
+    float far = min(min(tf.x, tf.y), min(tf.z, t_max));
+    return near <= far ? near : -1.0;
+}
+
 int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     int iterations = 0;
     for (int k = 0; k < u_big; ++k) {
@@ -100,26 +111,30 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     }
     if (u_has_triangles == 0) return 0;
     vec3 inv = 1.0 / d;
+    if (enters(0, o, inv, t_min, t_max) < 0.0) return 0;
+    // a node on the stack is one the ray enters: its children are tested before they are
+    // pushed (the nearer one is taken next)
     int stack[STACK];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         if (++iterations > u_budget) return -1;
-        int node = stack[--top];
-        Node box = nodes[node];
-        vec3 t0 = (box.lo - o) * inv, t1 = (box.hi - o) * inv;
-        vec3 tn = min(t0, t1), tf = max(t0, t1);
-        float near = max(max(tn.x, tn.y), max(tn.z, t_min));
-        float far = min(min(tf.x, tf.y), min(tf.z, t_max));
-        if (near > far) continue;
-        int first = box.first, count = box.count;
-        if (count == 0) {
+        Node box = nodes[stack[--top]];
+        if (box.count == 0) {
+            float a = enters(box.first, o, inv, t_min, t_max);
+            float b = enters(box.first + 1, o, inv, t_min, t_max);
             if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
-            stack[top++] = first + 1;
-            stack[top++] = first;
+            if (a >= 0.0 && b >= 0.0) {
+                stack[top++] = a <= b ? box.first + 1 : box.first;
+                stack[top++] = a <= b ? box.first : box.first + 1;
+            } else if (a >= 0.0) {
+                stack[top++] = box.first;
+            } else if (b >= 0.0) {
+                stack[top++] = box.first + 1;
+            }
             continue;
         }
-        for (int k = first; k < first + count; ++k) {
+        for (int k = box.first; k < box.first + box.count; ++k) {
             ++iterations;
             if (meets(k, o, d, t_min, t_max, own)) return 1;
         }

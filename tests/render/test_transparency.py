@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import glshade as g
+from tests.conftest import require
 
 W, H = 96, 80
 EYE, TARGET, FOV = np.array([0.3, 0.2, 6.0]), np.array([0.0, 0.0, 0.0]), 40.0
@@ -40,8 +41,9 @@ def window(points):
     return np.stack([(x + 1) * W / 2, (1 - y) * H / 2, depth], -1)
 
 
-def a_buffer(triangles, colors, opacity):
-    """The oracle: ``(H, W, 3)`` float composite, and ``(H, W)`` bool: pixels to judge."""
+def a_buffer(triangles, colors, opacity, margin=0.01):
+    """The oracle: ``(H, W, 3)`` float composite, and ``(H, W)`` bool: pixels to judge
+    (further than ``margin`` px from every projected edge)."""
     px = np.stack(np.meshgrid(np.arange(W) + 0.5, np.arange(H) + 0.5), -1)  # (H, W, 2)
     frags_d, frags_c, frags_a, nudged = [], [], [], []
     judge = np.ones((H, W), bool)
@@ -58,7 +60,7 @@ def a_buffer(triangles, colors, opacity):
             # edge function of a0 -> a1 at the pixel centres, positive inside (any winding)
             fn = (a1[0] - a0[0]) * (px[..., 1] - a0[1]) - (a1[1] - a0[1]) * (px[..., 0] - a0[0])
             fn = fn * np.sign(area)
-            judge &= np.abs(fn) / np.hypot(*(a1 - a0)) > 0.01     # 0.01 px from the edge
+            judge &= np.abs(fn) / np.hypot(*(a1 - a0)) > margin   # (px from the edge)
             # top-left rule (y down): a point on a top or left edge is inside
             dy, dx = (a1[1] - a0[1]) * np.sign(area), (a1[0] - a0[0]) * np.sign(area)
             top_left = (dy < 0) or (dy == 0 and dx > 0)
@@ -280,3 +282,27 @@ def test_a_gl_without_storage_buffers_is_told_what_to_use(make_renderer, monkeyp
                        r".*use transparency='blend'"):
         r.render(scene, camera, "phong")
     assert r.render(scene, camera, "phong", transparency="blend").shape == (24, 32, 4)
+
+
+require("hypothesis", "property-based sweeps are part of the test extra")
+from hypothesis import HealthCheck, assume, given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=30, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(n=st.integers(1, 24), seed=st.integers(0, 2**16), spread=st.floats(0.2, 1.6),
+       low=st.floats(0.01, 0.99), width=st.floats(0.0, 0.98), samples=st.sampled_from([0, 4]))
+def test_exact_over_soups_and_opacities(make_renderer, n, seed, spread, low, width, samples):
+    """The A-buffer sweep over the range: 1 to 24 interpenetrating triangles of any spread,
+    opacities anywhere in [0.01, 0.99] (nearly clear to nearly opaque), MSAA off and 4."""
+    tri, col, _ = soup(n, seed, spread)
+    assume((window(tri.reshape(-1, 3))[:, 2] > 0.5).all())  # (all in front of the eye)
+    assume(_coverage(tri)[2].sum() > 20)                     # (and in its view)
+    a = np.random.default_rng(seed).uniform(low, min(low + width, 0.99), n)
+    # (under MSAA a pixel's fragment is its first sample's: judged where no edge crosses
+    # the pixel, further than half its diagonal from every edge)
+    expected, judge = a_buffer(tri, col, a, margin=0.75 if samples else 0.01)
+    r = make_renderer(W, H, samples=samples)
+    got = r.render(scene_of(tri, col, a), CAMERA, "flat", cull=False,
+                   max_layers=32).astype(float)[..., :3]
+    err = np.abs(got - expected * 255).max(-1)
+    assert err[judge].max(initial=0) <= 1.0, np.argwhere((err > 1) & judge)[:5].tolist()

@@ -13,8 +13,7 @@ import numpy as np
 from ..modes import Shadows, Transparency
 from ..options import DrawOptions, RenderConfig
 
-__all__ = ["ShadowComparison", "MethodComparison", "compare_shadows", "compare_transparency",
-           "compare_methods"]
+__all__ = ["MethodComparison", "compare_shadows", "compare_transparency", "compare_methods"]
 
 
 @dataclass
@@ -43,19 +42,6 @@ class MethodComparison:
                       self.colors[self.reference][..., :3].astype(int)).max(-1)
         drawn = self.drawn if self.drawn is not None else np.ones(diff.shape, bool)
         return float((diff > 1)[drawn].mean()) if drawn.any() else 0.0
-
-    def visibility_disagreement(self, method: str) -> float:
-        """The fraction of drawn pixels where ``method`` and the reference disagree on
-        whether some light is seen (more than half of it, for a map's PCF fractions),
-        counted whether or not the light's term there is zero."""
-        a, b = self.visibility.get(self.reference), self.visibility.get(method)
-        drawn = self.drawn if self.drawn is not None else np.ones(1, bool)
-        if a is None and b is None:
-            return 0.0
-        a = a if a is not None else np.ones_like(b)
-        b = b if b is not None else np.ones_like(a)
-        differ = ((a > 0.5) != (b > 0.5)).any(-1)
-        return float(differ[drawn].mean()) if drawn.any() else 0.0
 
     def mean_difference(self, method: str) -> float:
         """The mean absolute colour difference from the reference over the drawn pixels, in
@@ -142,6 +128,3 @@ def compare_transparency(scene, camera, methods=("exact", "weighted", "blend"), 
     return compare_methods(scene, camera, "transparency", methods, options, config,
                            renderer)
 
-
-#: (the earlier name)
-ShadowComparison = MethodComparison

@@ -148,9 +148,9 @@ class ShadowMaps(GLResource):
             warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
                           "not drawn into the maps): shadows='exact' casts theirs",
                           RenderWarning, stacklevel=5)
-        found = owner._occluder_buffers(state.scene)[4]
-        geometry = owner._bvh[0]
-        soup = self._soup_for(geometry, found.triangles)
+        occ = owner.occluding(state.scene)
+        geometry = occ.key
+        soup = self._soup_for(geometry, occ.found.triangles)
         bounds = np.asarray(state.scene.bounds, np.float64)
         rows = shadow_lights(state.lights)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC

@@ -18,6 +18,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -42,6 +43,35 @@ RAY_BUDGET = 60_000
 #: triangles wider than this fraction of the scene's diagonal are tested by every ray in a
 #: list of their own (at most MAX_BIG of them), the rest through the hierarchy
 BIG_TRIANGLE, MAX_BIG = 0.25, 64
+
+
+@dataclass
+class _Occluding:
+    """The scene's occluders on the GPU: the BVH's ``nodes``, the ``tris`` (the ``big``
+    ones first, tested by every ray), each mesh polygon's world ``normals`` (storage
+    buffers), the triangles as ``found`` on the CPU (the maps draw them), the scene's
+    largest coordinate ``scale``, and the ``key`` of the geometry they were built for."""
+
+    key: tuple
+    nodes: Any
+    tris: Any
+    normals: Any
+    found: Any
+    big: int
+    scale: float
+
+    def release(self) -> None:
+        for buf in (self.nodes, self.tris, self.normals):
+            buf.release()
+
+
+def _geometry_key(scene) -> tuple:
+    """What the occluders depend on: each mesh and patch model, its transform, whether it
+    is shown and whether it is opaque (transparent surfaces cast no shadows)."""
+    return tuple((id(m.mesh), m.transform.tobytes(), m.visible, m.material.opacity >= 1.0)
+                 for m in scene.models) + \
+        tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
+              for p in scene.patch_models)
 
 
 def _hidden(model):
@@ -95,7 +125,7 @@ class ShadowPass(GLResource):
         self.shaders = shaders
         self._gbuffer: tuple | None = None
         self._visibility: tuple | None = None
-        self._bvh: tuple | None = None  # (key, nodes, tris, count, n_triangles)
+        self._occluding: _Occluding | None = None
         self._programs: dict = {}
         self._counts = self._keep(context.ctx.buffer(reserve=4))
         self.undecided = 0
@@ -132,23 +162,23 @@ class ShadowPass(GLResource):
             self._visibility = (key, tex)
         return self._visibility[1]
 
-    def _occluder_buffers(self, scene):
-        """The BVH of the scene's triangles in two storage buffers, built again only when
-        the geometry changed (meshes, patches, transforms, visibility)."""
+    def occluding(self, scene) -> _Occluding:
+        """The scene's occluders on the GPU (a BVH in storage buffers), built again only
+        when the geometry changed (meshes, patches, transforms, visibility, opacity)."""
         from ...geometry.bvh import build
         from ...scene.occluders import occluders
 
-        key = tuple((id(m.mesh), m.transform.tobytes(), m.visible) for m in scene.models) + \
-            tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
-                  for p in scene.patch_models)
-        if self._bvh is not None and self._bvh[0] == key:
-            return self._bvh[1:]
-        if self._bvh is not None:
-            for buf in (self._bvh[1], self._bvh[2], self._bvh[6]):
-                buf.release()
+        key = _geometry_key(scene)
+        if self._occluding is not None and self._occluding.key == key:
+            return self._occluding
+        if self._occluding is not None:
+            self._occluding.release()
+            self._occluding = None
         found = occluders(scene)
         ctx = self.context.ctx
         big = np.zeros(0, np.int64)
+        nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)  # (a box no ray enters)
+        tris = np.zeros((2, 4), np.float32)
         if len(found):
             # the largest triangles (a floor's, a wall's) go in a list every ray tests first:
             # in the hierarchy their boxes would widen every node they share to the scene's
@@ -167,31 +197,28 @@ class ShadowPass(GLResource):
                 first = np.where(bvh.count > 0, bvh.first + len(big), bvh.first)
                 nodes[0::2, 3] = np.asarray(first, np.int32).view(np.float32)
                 nodes[1::2, 3] = np.asarray(bvh.count, np.int32).view(np.float32)
-            else:  # (one empty box no ray enters)
-                nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)
             tri = found.triangles[order]
             tris = np.zeros((3 * len(tri), 4), np.float32)
             tris[0::3, :3] = tri[:, 0]
             tris[0::3, 3] = np.asarray(found.polygon[order], np.int32).view(np.float32)
             tris[1::3, :3] = tri[:, 1] - tri[:, 0]
             tris[2::3, :3] = tri[:, 2] - tri[:, 0]
-        else:
-            nodes = tris = np.zeros((2, 4), np.float32)
-        scale = float(np.abs(found.bounds).max()) if len(found) else 1.0
         normals = np.zeros((max(len(found.normals), 1), 4), np.float32)
         normals[:len(found.normals), :3] = found.normals
-        self._bvh = (key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()), len(found),
-                     scale, found, ctx.buffer(normals.tobytes()), len(big))
-        return self._bvh[1:]
+        self._occluding = _Occluding(
+            key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()),
+            ctx.buffer(normals.tobytes()), found, len(big),
+            float(np.abs(found.bounds).max()) if len(found) else 1.0)
+        return self._occluding
 
-    def _program(self, name: str, orthographic: bool):
-        key = (name, orthographic)
-        prog = self._programs.get(key)
+    def _program(self, defines: tuple):
+        """The exact method's compute program for ``defines`` (compiled once)."""
+        prog = self._programs.get(defines)
         if prog is None:
             from ..shaders import assemble
 
-            source, _ = assemble(name, defines=("ORTHOGRAPHIC",) if orthographic else ())
-            prog = self._programs[key] = self.context.ctx.compute_shader(source)
+            source, _ = assemble("shadow_rays.comp", defines=defines)
+            prog = self._programs[defines] = self.context.ctx.compute_shader(source)
         return prog
 
     # ---------------------------------------------------------------- the pass
@@ -234,24 +261,23 @@ class ShadowPass(GLResource):
 
     def _trace(self, state, gbuf: _GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
-        nodes, tris, n_triangles, scale, found, normals, n_big = \
-            self._occluder_buffers(state.scene)
         from ...scene.camera import Projection
 
+        occ = self.occluding(state.scene)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
-        prog = self._program("shadow_rays.comp", ortho)
+        prog = self._program(("ORTHOGRAPHIC",) if ortho else ())
         self.bind_gbuffer(prog, state, gbuf)
         inverse_view = np.linalg.inv(state.view)
-        values = {"u_scale": scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
-                  "u_has_triangles": int(n_triangles > n_big),
-                  "u_big": n_big, "u_polygons": len(found.normals),
+        values = {"u_scale": occ.scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
+                  "u_has_triangles": int(len(occ.found) > occ.big),
+                  "u_big": occ.big, "u_polygons": len(occ.found.normals),
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():
             self._put(prog, name, value)
-        nodes.bind_to_storage_buffer(0)
-        tris.bind_to_storage_buffer(1)
-        normals.bind_to_storage_buffer(4)
+        occ.nodes.bind_to_storage_buffer(0)
+        occ.tris.bind_to_storage_buffer(1)
+        occ.normals.bind_to_storage_buffer(4)
         self.dispatch(prog, state, vis)
         for model in state.scene.solids:  # (each hides more of what the triangles left)
             if model.visible:
@@ -274,12 +300,7 @@ class ShadowPass(GLResource):
         _, tree, texture = found
         defines = ("CSG_SOLID", *csg_defines(tree, blocks=False)) + \
             (("ORTHOGRAPHIC",) if ortho else ())
-        prog = self._programs.get(defines)
-        if prog is None:
-            from ..shaders import assemble
-
-            source, _ = assemble("shadow_rays.comp", defines=defines)
-            prog = self._programs[defines] = self.context.ctx.compute_shader(source)
+        prog = self._program(defines)
         self.bind_gbuffer(prog, state, gbuf)
         texture.use(2)
         bounds = np.asarray(solid.bounds, np.float64)
@@ -337,10 +358,9 @@ class ShadowPass(GLResource):
         if self._visibility is not None:
             self._visibility[1].release()
             self._visibility = None
-        if self._bvh is not None:
-            for buf in (self._bvh[1], self._bvh[2], self._bvh[6]):
-                buf.release()
-            self._bvh = None
+        if self._occluding is not None:
+            self._occluding.release()
+            self._occluding = None
         if self.maps is not None:
             self.maps.release()
             self.maps = None

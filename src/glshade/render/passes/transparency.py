@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import EnvironmentFailure, RenderWarning
-from ...modes import Transparency
+from ...modes import Outputs, Transparency
 from ..base import GLResource
 from ..programs import OIT_SLOTS as SLOTS  # (a pixel's own slots; then a shared pool)
 
@@ -139,7 +139,7 @@ class TransparencyPass(GLResource):
                 f"({self.context.detail}): use transparency='blend'")
         target = state.target
         if options.transparency is Transparency.BLEND:
-            target.bind(_colour_only())
+            target.bind(Outputs.COLOR)
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
             ctx.enable(moderngl.BLEND)
             # (the picture's alpha stays: the opaque pass's coverage)
@@ -163,7 +163,7 @@ class TransparencyPass(GLResource):
             clear.use()
             clear.clear(0.0, 0.0, 0.0, 0.0)
             self._count.write(np.zeros(1, np.uint32).tobytes())
-            target.bind(_colour_only())
+            target.bind(Outputs.COLOR)
             ctx.viewport = state.viewport
             heads.bind_to_image(1, read=True, write=True)
             more.bind_to_image(2, read=True, write=True)
@@ -204,12 +204,12 @@ class TransparencyPass(GLResource):
         for name, value in layout.items():
             prog[name].value = value
         target = state.target
-        state.target.bind(_colour_only())
+        state.target.bind(Outputs.COLOR)
         # the opaque picture, read in float by the resolve: "over" it in one rounding (8-bit
         # blending would round the layers' colour and their transmittance apart)
         behind, behind_fbo = self._behind_for(target)
         ctx.copy_framebuffer(behind_fbo, ctx.fbo)  # (a multisampled picture: resolved)
-        state.target.bind(_colour_only())
+        state.target.bind(Outputs.COLOR)
         behind.use(2)
         prog["u_behind"].value = 2
         ctx.viewport = state.viewport
@@ -253,7 +253,3 @@ class TransparencyPass(GLResource):
             self._nodes = None
 
 
-def _colour_only():
-    from ...modes import Outputs
-
-    return Outputs.COLOR

@@ -415,7 +415,9 @@ def test_map_shadows_differ_only_within_their_band(renderers, kind, light, eye):
     got = frame.visibility[..., 0] > 0.5
     wrong = (got != seen) & decided & facing
     assert wrong.sum() == 0, np.argwhere(wrong)[:10].tolist()
-    assert (~seen & decided & facing).sum() > (20 if eye == "above" else 0)  # (to find)
+    # (shadows were there to find: at a grazing eye a thin band, undecided near its edges)
+    assert (~seen & (decided if eye == "above" else drawn) & facing).sum() > \
+        (20 if eye == "above" else 0)
 
 
 def _points(eye, target, depth):

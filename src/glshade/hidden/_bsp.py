@@ -52,7 +52,9 @@ class Pieces:
     def plane(self, k):
         return self._n[k, :3], self._n[k, 3], self._a[k]
 
-    def add(self, tris, src, cut) -> np.ndarray:
+    def add(self, tris, src, cut, plane=None) -> np.ndarray:
+        """Append pieces; ``plane`` (4,): the plane they all lie in (pieces of one split
+        triangle inherit its plane, exact where their own cross product is a sliver's)."""
         need = self.size + len(tris)
         if need > len(self._t):
             cap = max(need, 2 * len(self._t))
@@ -64,8 +66,20 @@ class Pieces:
         self._t[self.size:need], self._s[self.size:need], self._c[self.size:need] = \
             tris, src, cut
         start, self.size = self.size, need
-        self._planes(start, need)
+        if plane is None:
+            self._planes(start, need)
+        else:
+            self._n[start:need] = plane
+            self._a[start:need] = [_twice_area(t) for t in np.asarray(tris).tolist()]
         return np.arange(start, need)
+
+
+def _twice_area(t: list) -> float:
+    """|(b - a) x (c - a)| of one triangle, in plain floats (a split adds two or three)."""
+    (ax, ay, az), (bx, by, bz), (cx, cy, cz) = t
+    ux, uy, uz, vx, vy, vz = bx - ax, by - ay, bz - az, cx - ax, cy - ay, cz - az
+    return ((uy * vz - uz * vy) ** 2 + (uz * vx - ux * vz) ** 2 +
+            (ux * vy - uy * vx) ** 2) ** 0.5
 
 
 def build_bsp(pieces: Pieces, eps: float):

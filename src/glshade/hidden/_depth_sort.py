@@ -16,7 +16,10 @@ polygons that pierce each other), and is split by the other's plane, its pieces 
 into the list. With ``split=False`` a cycle is an error that names the polygons.
 
 One Python step per polygon painted or moved (the resolution is sequential by nature);
-each step checks P against all its overlapping Q at once.
+each step checks P against all its overlapping Q at once. The overlaps are found through a
+screen grid the first time P is at the head of the list; after that, P remembers the Q it
+has not yet passed and is tested only against those and the pieces split off since (a
+pair's answer depends on the pair alone), so a polygon met again costs little.
 """
 
 from __future__ import annotations
@@ -33,22 +36,25 @@ from .view import Prepared, takes_scene, timed
 __all__ = ["depth_sort", "DepthSortCycle"]
 
 
-def _sat_separated(a: np.ndarray, b: np.ndarray, eps: float) -> np.ndarray:
-    """Whether triangles ``a`` (3, 2) and each of ``b`` (n, 3, 2) are separated in 2D by an
-    axis normal to one of their edges (touching counts as separated): all six axes of
-    every pair at once."""
-    n = len(b)
-    axes = np.empty((n, 6, 2))                                  # each edge's normal
-    nxt = [1, 2, 0]
-    ea = a[nxt] - a                                             # (3, 2) a's edges
-    eb = b[:, nxt] - b                                          # (n, 3, 2)
-    axes[:, :3, 0], axes[:, :3, 1] = -ea[:, 1], ea[:, 0]
-    axes[:, 3:, 0], axes[:, 3:, 1] = -eb[..., 1], eb[..., 0]
-    pa = np.einsum("kd,nad->nak", a, axes)                      # (n, 6, 3)
-    pb = np.einsum("nkd,nad->nak", b, axes)
-    scale = eps * (np.abs(axes).sum(-1) + 1e-300)
-    apart = (pa.max(-1) <= pb.min(-1) + scale) | (pb.max(-1) <= pa.min(-1) + scale)
-    return apart.any(1)
+def _edge_axes(screen: np.ndarray):
+    """Each screen triangle's (n, 3, 2) edge normals (the separating axes of test 5), its
+    own extent along them (n, 3) twice, and the tolerance of each axis (n, 3)."""
+    e = screen[:, [1, 2, 0]] - screen
+    axes = np.stack([-e[..., 1], e[..., 0]], -1)
+    own = axes @ screen.transpose(0, 2, 1)                      # (n, axis, vertex)
+    return axes, own.min(-1), own.max(-1), 1e-12 * (np.abs(axes).sum(-1) + 1e-300)
+
+
+def _sat_separated(c, P: int, b: np.ndarray) -> np.ndarray:
+    """Whether triangle ``P`` and each of ``b`` are separated on screen by an axis normal
+    to one of their edges (touching counts as separated): all six axes of every pair at
+    once, each triangle's extent along its own axes computed once (``c.axes``, ...)."""
+    on_p = c.screen[b] @ c.axes[P].T                           # (n, vertex, P's axis)
+    lo, hi = on_p.min(1), on_p.max(1)
+    apart = ((c.own_hi[P] <= lo + c.tol[P]) | (hi <= c.own_lo[P] + c.tol[P])).any(1)
+    on_b = c.axes[b] @ c.screen[P].T                           # (n, b's axis, vertex)
+    lo, hi = on_b.min(2), on_b.max(2)
+    return apart | ((hi <= c.own_lo[b] + c.tol[b]) | (c.own_hi[b] <= lo + c.tol[b])).any(1)
 
 
 @takes_scene
@@ -168,6 +174,15 @@ class _Grid:
         return a, b
 
     def add(self, ids: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> None:
+        if len(ids) <= 4:   # a split's pieces: plain loops cost less than the sort
+            c, nx, ny = self.cell, self.nx - 1, self.ny - 1
+            for k, (x0, y0), (x1, y1) in zip(ids.tolist(), lo.tolist(), hi.tolist()):
+                for y in range(min(max(int(y0 // c), 0), ny), min(max(int(y1 // c), 0), ny) + 1):
+                    row = y * self.nx
+                    for x in range(min(max(int(x0 // c), 0), nx),
+                                   min(max(int(x1 // c), 0), nx) + 1):
+                        self.cells[row + x].append(k)
+            return
         a, b = self._range(lo, hi)
         count = (b - a + 1).prod(1)
         piece = np.repeat(ids, count)
@@ -201,9 +216,38 @@ class _Grid:
         return np.concatenate(parts) if parts else np.zeros(0, np.int64)
 
 
+class _Met:
+    """What each polygon met when it was last at the head of the list: the pieces it has
+    not passed the tests against (its blocker and those not yet tested) and the number of
+    pieces then. Met again -- after the polygons moved before it are painted, or a piece
+    split off -- it is tested only against those and the pieces made since (a pair's
+    answer depends on the pair alone; pieces are numbered as they are made)."""
+
+    def __init__(self) -> None:
+        self.undecided: dict[int, tuple[np.ndarray, int]] = {}
+
+    def candidates(self, P: int, c: _Cache, alive: np.ndarray, grid: _Grid, eps: float,
+                   counters) -> np.ndarray:
+        """The alive pieces P may have to wait for (repeats allowed), tests 1 and 2 done."""
+        seen = self.undecided.get(P)
+        if seen is None:
+            near = grid.near(c.lo[P], c.hi[P], alive)
+        else:
+            ids, size = seen
+            near = np.concatenate((ids[alive[ids]], np.flatnonzero(alive[size:c.size]) + size))
+        near = near[(near != P) & (c.zmax[near] > c.zmin[P] + eps)]
+        counters["comparisons"] += len(near)
+        near = near[_overlap_xy(c, P, near)]                           # tests 1 and 2
+        counters["tests"] += 2 * len(near)
+        return near
+
+    def note(self, P: int, undecided: np.ndarray, size: int) -> None:
+        self.undecided[P] = (undecided, size)
+
+
 def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> list[int]:
     """The painting order (piece indices, far to near)."""
-    cache = _Cache(p, pieces)
+    cache = _Cache(p, pieces, eps)
     # the list, farthest first (ties: in draw order, so that the first drawn is painted
     # last among equals)
     n = pieces.size
@@ -211,15 +255,13 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
     grid = _Grid(p.size, cache.lo[:n], cache.hi[:n])
     moved: set[int] = set()
     out: list[int] = []
+    met = _Met()
     while todo:
         P = todo.head()
-        near = grid.near(cache.lo[P], cache.hi[P], todo.alive)
-        near = near[(near != P) & (cache.zmax[near] > cache.zmin[P] + eps)]
-        counters["comparisons"] += len(near)
-        near = near[_overlap_xy(cache, P, near)]                      # tests 1 and 2
-        counters["tests"] += 2 * len(near)
-        Q = _first_blocker(cache, P, todo.in_order(near), eps, counters) if len(near) \
-            else None
+        near = met.candidates(P, cache, todo.alive, grid, eps, counters)
+        Q, undecided = _first_blocker(cache, P, todo.in_order(near), eps, counters) \
+            if len(near) else (None, near)
+        met.note(P, undecided, cache.size)
         if Q is None:
             out.append(P)
             todo.pop_head()
@@ -259,7 +301,7 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
         tris, cuts = _split_one(t[victim].tolist(), n_by.tolist(), float(d_by), eps,
                                 c[victim].tolist())
         counters["splits"] += 1
-        new = pieces.add(np.array(tris), np.full(len(tris), s[victim]), np.array(cuts))
+        new = pieces.add(tris, np.full(len(tris), s[victim]), cuts, pieces._n[victim])
         cache.grow()
         todo.remove(victim)
         moved.discard(victim)
@@ -273,21 +315,26 @@ class _Cache:
     """Per-piece data the tests need (screen triangle, extents, planes), grown with the
     pieces (only the new ones computed)."""
 
-    def __init__(self, p: Prepared, pieces: Pieces):
-        self.p, self.pieces = p, pieces
+    def __init__(self, p: Prepared, pieces: Pieces, eps: float):
+        self.p, self.pieces, self.eps = p, pieces, eps
         self.size = 0
         cap = max(16, 2 * pieces.size)
         self.screen = np.empty((cap, 3, 2))
         self.lo, self.hi = np.empty((cap, 2)), np.empty((cap, 2))
+        self.box = np.empty((cap, 4))   # lo, hi: one gather for tests 1 and 2
+        self.axes = np.empty((cap, 3, 2))
+        self.own_lo, self.own_hi, self.tol = (np.empty((cap, 3)) for _ in range(3))
         self.zmin, self.zmax = np.empty(cap), np.empty(cap)
         self.eye = np.empty(cap)  # the eye's side of each plane (zero: seen edge-on)
+        self.sgn = np.empty(cap)  # its sign, 0 within eps (edge-on: no side to be on)
         self.grow()
 
     def grow(self):
         start, stop = self.size, self.pieces.size
         if stop > len(self.zmin):
             cap = max(stop, 2 * len(self.zmin))
-            for name in ("screen", "lo", "hi", "zmin", "zmax", "eye"):
+            for name in ("screen", "lo", "hi", "zmin", "zmax", "eye", "sgn", "box", "axes",
+                         "own_lo", "own_hi", "tol"):
                 old = getattr(self, name)
                 new = np.empty((cap, *old.shape[1:]))
                 new[:start] = old[:start]
@@ -297,11 +344,17 @@ class _Cache:
         self.screen[start:stop] = self.p.to_screen(t[start:stop])
         self.lo[start:stop] = self.screen[start:stop].min(1)
         self.hi[start:stop] = self.screen[start:stop].max(1)
+        self.box[start:stop, :2], self.box[start:stop, 2:] = self.lo[start:stop], \
+            self.hi[start:stop]
+        self.axes[start:stop], self.own_lo[start:stop], self.own_hi[start:stop], \
+            self.tol[start:stop] = _edge_axes(self.screen[start:stop])
         self.zmin[start:stop] = (-t[start:stop, :, 2]).min(1)
         self.zmax[start:stop] = (-t[start:stop, :, 2]).max(1)
         self.n = self.pieces._n[:stop, :3]
         self.d = self.pieces._n[:stop, 3]
         self.eye[start:stop] = self.p.eye_side(self.n[start:stop], self.d[start:stop])
+        self.sgn[start:stop] = np.where(np.abs(self.eye[start:stop]) <= self.eps, 0.0,
+                                        np.sign(self.eye[start:stop]))
         self.size = stop
 
     def src(self, k):
@@ -336,37 +389,29 @@ def _swapped_ok(c: _Cache, P: int, Q: int, eps: float) -> bool:
 
 def _overlap_xy(c: _Cache, P: int, q: np.ndarray) -> np.ndarray:
     """Tests 1 and 2 failed: the screen x- and y-extents of P and each Q overlap."""
-    lo, hi = c.lo[P], c.hi[P]
-    return (c.hi[q, 0] > lo[0]) & (c.lo[q, 0] < hi[0]) & (c.hi[q, 1] > lo[1]) & \
-        (c.lo[q, 1] < hi[1])
+    b = c.box[q]
+    return ((b[:, 2:] > c.lo[P]) & (b[:, :2] < c.hi[P])).all(1)
 
 
 def _first_blocker(c: _Cache, P: int, left: np.ndarray, eps: float, counters):
     """The first Q in ``left`` (list order; tests 1 and 2 already failed for each) that P
-    must not be painted before (every test fails), or None. The costlier tests 3-5 run a
-    chunk at a time, stopping at the first chunk with a blocker."""
-    n_p, d_p = c.n[P], c.d[P]
-    eye_p = float(c.eye[P])
-    for start in range(0, len(left), _CHUNK):
-        chunk = left[start:start + _CHUNK]
-        # 3: P wholly on the far side of Q's plane
-        nq, dq = c.n[chunk], c.d[chunk]
-        side = np.einsum("kd,nd->nk", c.t[P], nq) - dq[:, None]   # (n, 3)
-        eye = c.eye[chunk]                                         # the eye's side
-        far = np.where(np.abs(eye) <= eps, True, (side * np.sign(eye)[:, None] <= eps).all(1))
-        # 4: Q wholly on the near side of P's plane
-        side_q = np.einsum("nkd,d->nk", c.t[chunk], n_p) - d_p
-        near = (side_q * np.sign(eye_p) >= -eps).all(1) if abs(eye_p) > eps else \
-            np.ones(len(chunk), bool)
-        sub_ok = far | near
-        rem = chunk[~sub_ok]
-        counters["tests"] += len(chunk) + len(rem)
-        if len(rem):
-            sub_ok[~sub_ok] = _sat_separated(c.screen[P], c.screen[rem], 1e-12)  # 5
-        blocked = np.flatnonzero(~sub_ok)
+    must not be painted before (every test fails), or None. Tests 3 and 4 run on all of
+    them at once; test 5, the costliest, a chunk at a time, stopping at the first chunk
+    with a blocker. Also the Q of ``left`` it has not passed (the blocker, the rest of its
+    chunk that failed, the chunks not tested)."""
+    # 3: P wholly on the far side of Q's plane; 4: Q wholly on the near side of P's plane
+    # (a plane seen edge-on has no side: its sign is 0, and both tests hold)
+    far = ((c.t[P] @ c.n[left].T - c.d[left]) * c.sgn[left] <= eps).all(0)
+    near = ((c.t[left] @ c.n[P] - c.d[P]) * c.sgn[P] >= -eps).all(1)
+    rem = left[~(far | near)]
+    counters["tests"] += len(left) + len(rem)
+    for start in range(0, len(rem), _CHUNK):
+        chunk = rem[start:start + _CHUNK]
+        apart = _sat_separated(c, P, chunk)                                   # 5
+        blocked = np.flatnonzero(~apart)
         if len(blocked):
-            return int(chunk[blocked[0]])
-    return None
+            return int(chunk[blocked[0]]), np.concatenate((chunk[blocked], rem[start + _CHUNK:]))
+    return None, rem[:0]
 
 
 #: Q tested at a time by tests 3-5 (a blocker is often among the first)

@@ -7,7 +7,8 @@
 #include "lighting.glsl"
 #include "csg.glsl"
 
-uniform mat4 u_inverse_view_proj;  // clip -> world
+uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+uniform mat4 u_camera_to_world; // view -> world
 uniform mat4 u_solid_view_proj;  // world -> clip (the box's own is the vertex stage's)
 uniform mat4 u_view;
 uniform mat3 u_view_normal;        // world -> view, for normals (the view is rigid)
@@ -64,7 +65,7 @@ void main() {
 #else
     vec2 ndc = (gl_FragCoord.xy - u_viewport_origin) / u_viewport_size * 2.0 - 1.0;
     vec3 ro, rd;
-    pixel_ray(u_inverse_view_proj, ndc, ro, rd);
+    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, ro, rd);
     rd = normalize(rd);
 #endif
     float t;

@@ -8,7 +8,8 @@ in vec3 in_position;               // (x, y) NDC
 // projection's inverse divides by a constant, so both are affine in the pixel's NDC:
 // computed at the corners and interpolated without perspective, exactly, where the
 // fragment program would spend a matrix product a slot on each.
-uniform mat4 u_inverse_view_proj;
+uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+uniform mat4 u_camera_to_world; // view -> world
 #include "rays.glsl"
 uniform vec4 u_csg_slot[4 * CSG_SLOTS];
 noperspective out vec3 v_ray_origin;
@@ -21,7 +22,7 @@ void main() {
     gl_Position = vec4(in_position.xy, 0.0, 1.0);
 #ifdef CSG_SLOTS
     vec3 ro, rd;
-    pixel_ray(u_inverse_view_proj, in_position.xy, ro, rd);
+    pixel_ray(u_inverse_proj, u_camera_to_world, in_position.xy, ro, rd);
     v_ray_origin = ro;
     v_ray_span = rd;
     for (int s = 0; s < CSG_SLOTS; ++s) {

@@ -49,7 +49,8 @@ uniform int u_mats;
 uniform int u_emit;
 uniform int u_n_emit;
 uniform int u_norms;
-uniform mat4 u_inverse_view_proj;
+uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+uniform mat4 u_camera_to_world; // view -> world
 uniform vec2 u_size;
 uniform uint u_seed;
 uniform float u_target;       // samples a pixel should have finished when this run ends
@@ -312,7 +313,7 @@ Path start(uvec2 pixel, uint k) {
     p.d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
 #else
     vec2 ndc = 2.0 * (vec2(pixel) + vec2(rand(), rand())) / u_size - 1.0;
-    pixel_ray(u_inverse_view_proj, ndc, p.o, p.d);
+    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, p.o, p.d);
     p.d = normalize(p.d);
 #endif
     p.beta = vec3(1.0);

@@ -17,7 +17,8 @@ uniform isampler2D u_face_ids;
 uniform usampler2D u_depth_bits;
 uniform sampler2D u_normals;       // world normal as (n + 1) / 2
 uniform sampler2D u_map;           // the light's depths in [0, 1] (window depth)
-uniform mat4 u_inverse_view_proj;
+uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+uniform mat4 u_camera_to_world; // view -> world
 uniform vec4 u_viewport;
 uniform vec3 u_eye;
 uniform vec3 u_forward;
@@ -58,7 +59,7 @@ void main() {
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
     vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
     vec3 origin, span;
-    pixel_ray(u_inverse_view_proj, ndc, origin, span);
+    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, origin, span);
     vec3 dir = normalize(span);
 #ifdef ORTHOGRAPHIC
     vec3 p = origin + dir * (depth - u_near);

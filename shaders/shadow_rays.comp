@@ -54,7 +54,8 @@ layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
 uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
 uniform sampler2D u_normals;       // world normal as (n + 1) / 2 (the shading one, seen side)
-uniform mat4 u_inverse_view_proj;  // the draw's clip -> world
+uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+uniform mat4 u_camera_to_world; // view -> world
 uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
 uniform vec3 u_eye;
 uniform vec3 u_forward;            // the view axis (world, unit)
@@ -159,7 +160,7 @@ void main() {
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
     vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
     vec3 origin, span;
-    pixel_ray(u_inverse_view_proj, ndc, origin, span);
+    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, origin, span);
     vec3 dir = normalize(span);
 #ifdef ORTHOGRAPHIC
     vec3 p = origin + dir * (depth - u_near);

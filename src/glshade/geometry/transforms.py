@@ -109,6 +109,15 @@ def gl_bytes(matrix: ArrayLike) -> bytes:
     return np.ascontiguousarray(np.asarray(matrix, dtype=np.float32).T).tobytes()
 
 
+def ray_uniforms(proj: ArrayLike, view: ArrayLike) -> dict[str, bytes]:
+    """The matrices of a pixel's ray on the GPU (shaders' ``rays.glsl``): ``u_inverse_proj``
+    (clip -> view) and ``u_camera_to_world`` (view -> world), inverted in float64. Kept
+    apart, not one inverse view-projection: a tiny near plane's rounding then only
+    scales a far point along its own ray."""
+    return {"u_inverse_proj": gl_bytes(np.linalg.inv(np.asarray(proj, np.float64))),
+            "u_camera_to_world": gl_bytes(np.linalg.inv(np.asarray(view, np.float64)))}
+
+
 def box_corners(bounds) -> NDArray[np.float64]:
     """The 8 corners ``(..., 8, 3)`` of boxes given as ``(..., 2, 3)`` minimum and maximum."""
     b = np.asarray(bounds, np.float64)

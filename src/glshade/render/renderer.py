@@ -30,6 +30,7 @@ from ..geometry.transforms import box_corners, gl_bytes
 from ..modes import Backend, Culling, Outputs, Projection, ShadingMode, Shadows
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
+from ..scene.camera import MAX_PLANE_RATIO
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import (
@@ -398,6 +399,11 @@ class Renderer:
             raise SceneError(f"the camera is {reach:.3g} from the origin or its scene, too "
                              f"far to compute its projection (at most {MAX_CAMERA_REACH:g}): "
                              "move it closer")
+        if far > MAX_PLANE_RATIO * near and camera.projection == "perspective":
+            warnings.warn(f"the near plane ({near:.3g}) is {far / near:.3g} times nearer than "
+                          f"the far plane ({far:.3g}): past {MAX_PLANE_RATIO:.0e} the depth "
+                          "buffer cannot order surfaces and drops some; raise the near "
+                          "plane or lower the far one", RenderWarning, stacklevel=3)
         if len(scene.lights) > MAX_LIGHTS:
             raise SceneError(f"at most {MAX_LIGHTS} lights per draw, the scene has "
                                 f"{len(scene.lights)}")

@@ -26,7 +26,7 @@ import weakref
 
 import numpy as np
 
-from ...geometry.transforms import gl_bytes
+from ...geometry.transforms import gl_bytes, ray_uniforms
 from ...modes import ShadingMode
 from ...solids.encoding import (ROW, TreeData, glsl_defines, may_start_inside, size_class,
                                 tree_data)
@@ -168,7 +168,7 @@ class CsgPass(GLResource):
                       "u_csg_kind_start": np.array(data.kind_start, "i4"),
                       "u_csg_start": data.nodes if may_start_inside(data, inverse) else 0,
                       "u_solid_view_proj": gl_bytes(view_proj),
-                      "u_inverse_view_proj": gl_bytes(inverse), "u_view": gl_bytes(view),
+                      **ray_uniforms(state.proj, view), "u_view": gl_bytes(view),
                       "u_view_normal": np.ascontiguousarray(view[:3, :3].T, "f4").tobytes(),
                       "u_viewport_origin": (float(viewport[0]), float(viewport[1])),
                       "u_viewport_size": (float(viewport[2]), float(viewport[3])),

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...geometry.transforms import gl_bytes
+from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
 from ..base import GLResource
@@ -142,8 +142,8 @@ class GpuPathTracer(GLResource):
         values: dict = {"u_seed": int(seed) & 0xFFFFFFFF, "u_target": float(target)}
         if camera is not None:
             aspect = self.width / self.height
-            vp = camera.projection_matrix(aspect) @ camera.view_matrix()
-            values["u_inverse_view_proj"] = gl_bytes(np.linalg.inv(vp))
+            values.update(ray_uniforms(camera.projection_matrix(aspect),
+                                       camera.view_matrix()))
         self._write(values)
         self._left["u_acc0"].value = _TARGETS
         self._left["u_target"].value = float(target)

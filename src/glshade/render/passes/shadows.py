@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import RenderWarning
-from ...geometry.transforms import gl_bytes
+from ...geometry.transforms import ray_uniforms
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
 from ..programs import UniformWriter
@@ -318,10 +318,9 @@ class ShadowPass(GLResource):
         gbuf.face.use(0)
         gbuf.depth.use(1)
         gbuf.normal.use(3)
-        inverse = np.linalg.inv(state.proj @ state.view)
         rows = shadow_lights(state.lights)
         values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
-                  "u_inverse_view_proj": gl_bytes(inverse),
+                  **ray_uniforms(state.proj, state.view),
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}

@@ -10,6 +10,21 @@
 in vec3 in_position;
 in vec3 in_face_normal;
 in vec3 in_face_centroid;
+#ifdef TEXTURED
+in vec2 in_uv;
+out vec2 v_uv;  // (per pixel: the polygon's one lit colour times its texels)
+#ifdef SHADOW_MASK
+flat out vec3 v_spec_terms_front[LIGHT_COUNT];  // (v_terms_*: ambient and diffuse)
+#ifdef TWO_SIDED
+flat out vec3 v_spec_terms_back[LIGHT_COUNT];
+#endif
+#else
+flat out vec3 v_spec_front;
+#ifdef TWO_SIDED
+flat out vec3 v_spec_back;
+#endif
+#endif
+#endif
 
 flat out vec3 v_color_front;
 #ifdef TWO_SIDED
@@ -32,7 +47,25 @@ void main() {
     vec3 n = normalize(u_normal_view * in_face_normal);
     vec3 c = (u_model_view * vec4(in_face_centroid, 1.0)).xyz;
     vec3 v = view_dir(c);
-#ifdef SHADOW_MASK
+#ifdef TEXTURED
+    v_uv = in_uv;
+#endif
+#if defined(TEXTURED) && defined(SHADOW_MASK)
+    vec3 terms[LIGHT_COUNT], spec_terms[LIGHT_COUNT];
+    v_color_front = light_terms_parts(c, n, v, terms, spec_terms);
+    v_terms_front = terms;
+    v_spec_terms_front = spec_terms;
+#ifdef TWO_SIDED
+    v_color_back = light_terms_parts(c, -n, v, terms, spec_terms);
+    v_terms_back = terms;
+    v_spec_terms_back = spec_terms;
+#endif
+#elif defined(TEXTURED)
+    v_color_front = light_parts(c, n, v, v_spec_front);
+#ifdef TWO_SIDED
+    v_color_back = light_parts(c, -n, v, v_spec_back);
+#endif
+#elif defined(SHADOW_MASK)
     vec3 terms[LIGHT_COUNT];
     v_color_front = light_terms(c, n, v, terms);
     v_terms_front = terms;

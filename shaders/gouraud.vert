@@ -7,7 +7,14 @@
 
 in vec3 in_position;
 in vec3 in_normal;
+#ifdef TEXTURED
+in vec2 in_uv;
+out vec2 v_uv;
+#endif
 
 void main() {
     gouraud_stage(in_position, in_normal);
+#ifdef TEXTURED
+    v_uv = in_uv;
+#endif
 }

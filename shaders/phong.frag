@@ -5,9 +5,13 @@
 #include "lighting.glsl"
 #include "surface.glsl"
 #include "outputs.glsl"
+#include "textures.glsl"
 
 in vec3 v_position_view;
 in vec3 v_normal_view;
+#ifdef TEXTURED
+in vec2 v_uv;
+#endif
 #ifdef WORLD_NORMALS
 in vec3 v_normal_world;
 #endif
@@ -20,6 +24,13 @@ void main() {
     vec3 n_world = vec3(0.0, 0.0, 1.0);  // (not written: no normal output)
 #endif
     face_viewer(n, n_world);
+#ifdef TEXTURED
+    vec3 specular;
+    vec3 lit = light_parts(v_position_view, n, view_dir(v_position_view), specular);
+    g_map_opacity = map_opacity(v_uv);
+    write_outputs(textured_color(lit, specular, v_uv), n_world, -v_position_view.z);
+#else
     write_outputs(light_intensity(v_position_view, n, view_dir(v_position_view)), n_world,
                   -v_position_view.z);
+#endif
 }

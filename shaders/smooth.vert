@@ -10,9 +10,16 @@
 
 in vec3 in_position;
 in vec3 in_normal;
+#ifdef TEXTURED
+in vec2 in_uv;
+out vec2 v_uv;  // (interpolated perspective-correct)
+#endif
 
 void main() {
     smooth_stage(in_position, in_normal);
+#ifdef TEXTURED
+    v_uv = in_uv;
+#endif
 #ifdef FLAT_CONSTANTS
     forward_constants();
 #endif

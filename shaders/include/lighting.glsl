@@ -28,9 +28,11 @@ vec3 view_dir(vec3 p_view) {
 #endif
 }
 
-// One light's diffuse and specular term, k (kd max(L.N, 0) Ip C + ks max(R.V, 0)^n Ip);
-// `kind` is a constant, so each call compiles to the code of its kind alone.
-vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
+// One light's diffuse and specular terms, k kd max(L.N, 0) Ip C (returned) and
+// k ks max(R.V, 0)^n Ip (``specular``); `kind` is a constant, so each call compiles to the
+// code of its kind alone.
+vec3 light_term_parts(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view,
+                      out vec3 specular) {
     vec3 l = LIGHT_POS_VIEW(i).xyz;
     float k = 1.0;
     if (kind != DIRECTIONAL) {
@@ -46,12 +48,22 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 r = 2.0 * ln * n_view - l;
     float rv = max(dot(r, v_view), 0.0);
     float spec = rv > 0.0 ? pow(rv, SHININESS) : 0.0;
-    vec3 term = ln * LIGHT_DIFFUSE(i) + spec * LIGHT_SPECULAR(i);
+    vec3 diffuse = ln * LIGHT_DIFFUSE(i);
+    specular = spec * LIGHT_SPECULAR(i);
     if (kind == ATTENUATED) {
-        term *= k;
+        diffuse *= k;
+        specular *= k;
     }
     // (no branch: a light behind the surface, L.N <= 0, contributes nothing at all)
-    return ln > 0.0 ? term : vec3(0.0);
+    specular = ln > 0.0 ? specular : vec3(0.0);
+    return ln > 0.0 ? diffuse : vec3(0.0);
+}
+
+// One light's whole term, k (kd max(L.N, 0) Ip C + ks max(R.V, 0)^n Ip).
+vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
+    vec3 specular;
+    vec3 diffuse = light_term_parts(i, kind, p_view, n_view, v_view, specular);
+    return diffuse + specular;
 }
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
@@ -75,4 +87,33 @@ vec3 light_terms(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 terms[LIGHT_COU
     }
     return AMBIENT_TERM;
 }
+#endif
+
+#ifdef TEXTURED
+// The formula in its two parts, for textured surfaces (textures.glsl): the ambient and
+// diffuse terms (returned; the diffuse map, the notes' C, multiplies them) and the
+// specular one (``specular``; the specular map multiplies it).
+vec3 light_parts(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 specular) {
+    vec3 color = AMBIENT_TERM;
+    specular = vec3(0.0);
+    const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        vec3 s;
+        color += LIGHT_VISIBLE(i) * light_term_parts(i, kinds[i], p_view, n_view, v_view, s);
+        specular += LIGHT_VISIBLE(i) * s;
+    }
+    return color;
+}
+
+#ifdef SHADOW_MASK
+// The same, each light's two terms kept apart (flat and Gouraud with a shadow pass).
+vec3 light_terms_parts(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 terms[LIGHT_COUNT],
+                       out vec3 specular_terms[LIGHT_COUNT]) {
+    const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        terms[i] = light_term_parts(i, kinds[i], p_view, n_view, v_view, specular_terms[i]);
+    }
+    return AMBIENT_TERM;
+}
+#endif
 #endif

@@ -18,6 +18,12 @@ uniform isampler2D u_face_ids;                 // triangle -> polygon id of this
 #if defined(OIT_CAPTURE) || defined(OIT_BLEND)
 uniform float u_opacity;                       // the surface's Material.opacity
 #endif
+#ifdef TEXTURED
+float g_map_opacity = 1.0;                     // its opacity map here (textures.glsl)
+#define SURFACE_OPACITY (u_opacity * g_map_opacity)
+#else
+#define SURFACE_OPACITY u_opacity
+#endif
 #ifdef OIT_CAPTURE
 // A transparent surface's fragment joins its pixel's list (render/passes/transparency.py):
 // a node is (colour RG, BA as 16-bit fractions, view depth, the next node). A pixel's first
@@ -47,7 +53,7 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     // through the pixel would both be listed otherwise)
     if ((gl_SampleMaskIn[0] & 1) != 0) {
         ivec2 px = ivec2(gl_FragCoord.xy);
-        uvec4 node = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, u_opacity)),
+        uvec4 node = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, SURFACE_OPACITY)),
                            floatBitsToUint(depth_view), 0u);
         uint slot = imageAtomicAdd(u_oit_heads, px, 1u);
         if (slot < uint(OIT_SLOTS)) {
@@ -62,7 +68,7 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     }
     frag_color = vec4(0.0);  // (masked: the resolve pass composites)
 #elif defined(OIT_BLEND)
-    frag_color = vec4(color, u_opacity);
+    frag_color = vec4(color, SURFACE_OPACITY);
 #else
     frag_color = vec4(color, 1.0);
 #endif

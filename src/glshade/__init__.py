@@ -30,6 +30,7 @@ _EXPORTS = {
     "Camera": ("scene.camera", "Camera"), "default_camera": ("scene.camera", "default_camera"),
     "CameraPath": ("scene.keyframes", "CameraPath"), "Keyframe": ("scene.keyframes", "Keyframe"),
     "Material": ("scene.material", "Material"), "PointLight": ("scene.lights", "PointLight"),
+    "Texture": ("scene.texture", "Texture"),
     "DirectionalLight": ("scene.lights", "DirectionalLight"), "Scene": ("scene.scene", "Scene"),
     # drawing options
     "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
@@ -87,6 +88,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .scene.lights import DirectionalLight, PointLight
     from .scene.material import Material
     from .scene.scene import Scene
+    from .scene.texture import Texture
 
 
 if "IPython" in sys.modules:  # (in a notebook: objects' reprs draw their thumbnails)

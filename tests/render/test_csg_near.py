@@ -69,9 +69,12 @@ def test_a_csg_surface_is_where_it_is_whatever_the_clip_planes(
     distance = float(np.linalg.norm(eye - centre))
     scene = glshade.Scene()
     scene.add(solid)
-    forward = centre + np.asarray(aim) * size - eye
+    target = centre + np.asarray(aim) * size
+    if np.linalg.norm(target - eye) < 0.05 * size:  # (the eye on its target: look at the centre)
+        target = centre
+    forward = target - eye
     up = (0, 1, 0) if abs(forward[1]) < 0.9 * np.linalg.norm(forward) else (1, 0, 0)
-    cam = glshade.Camera.look_at(eye, centre + np.asarray(aim) * size, up=up, fov_y=50,
+    cam = glshade.Camera.look_at(eye, target, up=up, fov_y=50,
                                  near=10 ** -nearer * distance, far=10 ** far * distance)
     with glshade.Renderer(N, N, samples=0, context=gl_context) as renderer:
         frame = renderer.render_frame(scene, cam, "phong", outputs=Outputs.DEPTH)

@@ -20,10 +20,13 @@ from .tolerance import tol
 __all__ = ["weld", "split_creases", "split_point_contacts", "oriented", "concatenate"]
 
 
-def _with(mesh: Mesh, vertices, indices, offsets, normals=None, groups=None) -> Mesh:
+def _with(mesh: Mesh, vertices, indices, offsets, normals=None, groups=None,
+          uv=None) -> Mesh:
     out = Mesh.from_csr(vertices, indices, offsets, normals=normals,
-                        groups=mesh.groups if groups is None else groups, name=mesh.name)
+                        groups=mesh.groups if groups is None else groups, name=mesh.name,
+                        uv=uv)
     out.analytic = mesh.analytic
+    out.materials, out.material_groups = mesh.materials, mesh.material_groups
     return out
 
 
@@ -52,7 +55,7 @@ def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
     source = mesh.face_indices[uniq]
     normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
     return _with(mesh, mesh.vertices[source], corner_vertex.astype(np.int64),
-                 mesh.face_offsets.copy(), normals)
+                 mesh.face_offsets.copy(), normals, uv=mesh.uv)  # (the same corners)
 
 
 def dihedral_angles(mesh: Mesh) -> np.ndarray:
@@ -104,7 +107,7 @@ def split_point_contacts(mesh: Mesh) -> Mesh:
     source = uniq // max(mesh.n_faces, 1)
     normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
     return _with(mesh, mesh.vertices[source], corner_vertex.ravel().astype(np.int64),
-                 mesh.face_offsets.copy(), normals)
+                 mesh.face_offsets.copy(), normals, uv=mesh.uv)
 
 
 def oriented(mesh: Mesh) -> Mesh:
@@ -151,7 +154,11 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
         normals = mesh.normals_from_file[first][used]
     face_number = np.cumsum(ok_face) - 1
     groups = {name: face_number[g[ok_face[g]]] for name, g in mesh.groups.items()}
-    return _with(mesh, vertices[used], remap[idx[keep]], offsets, normals, groups)
+    out = _with(mesh, vertices[used], remap[idx[keep]], offsets, normals, groups,
+                uv=mesh.uv[keep] if mesh.uv is not None else None)
+    out.material_groups = {name: face_number[g[ok_face[g]]]
+                           for name, g in mesh.material_groups.items()}
+    return out
 
 
 def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:

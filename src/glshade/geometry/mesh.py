@@ -43,6 +43,10 @@ class Mesh:
         Vertex normals read from a file; used by smooth shading instead of computed ones.
     groups : mapping of name to face indices, optional
         Named parts (OBJ objects, the Cornell box's walls ...).
+    uv : (C, 2) array_like, optional
+        Texture coordinates per corner (one per entry of the faces, in order: a vertex on a
+        texture seam has one per face, as OBJ's ``vt`` gives them); (0, 0) is an image's
+        bottom-left.
 
     Raises
     ------
@@ -59,6 +63,7 @@ class Mesh:
         normals: ArrayLike | None = None,
         groups: Mapping[str, ArrayLike] | None = None,
         name: str | None = None,
+        uv: ArrayLike | None = None,
     ):
         v = np.array(vertices, dtype=np.float64)
         if v.ndim != 2 or v.shape[1] != 3:
@@ -101,6 +106,24 @@ class Mesh:
         #: the exact surface this mesh approximates, when known (sphere primitives carry an
         #: AnalyticSphere): analytic references ray-cast it
         self.analytic: AnalyticSurface | None = None
+        self.uv: NDArray[np.float64] | None = None
+        if uv is not None:
+            t = np.array(uv, dtype=np.float64)
+            if t.shape != (len(self.face_indices), 2):
+                raise GeometryError(f"uv must have one (u, v) per face corner, shape "
+                                    f"({len(self.face_indices)}, 2), got {t.shape}")
+            bad = ~np.isfinite(t).all(axis=1)
+            if bad.any():
+                c = int(np.flatnonzero(bad)[0])
+                raise GeometryError(f"texture coordinate of corner {c} (face "
+                                    f"{int(self.corner_face[c])}) is not finite: {t[c].tolist()}")
+            self.uv = _readonly(t)
+        #: materials by name and the faces of each (an OBJ's ``usemtl`` parts); a scene
+        #: draws each part with its material (Scene.add)
+        self.materials: dict[str, object] = {}
+        self.material_groups: dict[str, NDArray[np.int64]] = {}
+        #: what the material files said that is not drawn ("file:line: statement")
+        self.material_notes: list[str] = []
 
     def _init_arrays(self, v, indices, offsets) -> None:
         sizes = np.diff(offsets)
@@ -345,6 +368,30 @@ class Mesh:
         """Cached :meth:`triangulate`."""
         return self.triangulate()
 
+    @cached_property
+    def corner_triangles(self) -> NDArray[np.int64]:
+        """:attr:`triangles` as corners ``(T, 3)`` (entries of ``face_indices``): the same
+        triangulation, for data kept per corner (texture coordinates)."""
+        groups = {k: (ids, self.face_offsets[ids][:, None] + np.arange(k))
+                  for k, (ids, _) in self.size_groups.items()}
+        tri, _ = triangulate_groups(self.vertices[self.face_indices], groups,
+                                    self.newell_normals)
+        return _readonly(tri)
+
+    def subset(self, faces: ArrayLike) -> Mesh:
+        """The faces ``faces`` (indices) as a mesh of their own, with only the vertices they
+        use (and their normals and texture coordinates); groups are dropped."""
+        f = np.asarray(faces, np.int64)
+        sizes = self.face_sizes[f]
+        corners = (np.repeat(self.face_offsets[f], sizes) +
+                   np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes))
+        used, idx = np.unique(self.face_indices[corners], return_inverse=True)
+        normals = self.normals_from_file[used] if self.normals_from_file is not None else None
+        return Mesh.from_csr(self.vertices[used], idx.astype(np.int64),
+                             np.concatenate([[0], np.cumsum(sizes)]), normals=normals,
+                             name=self.name,
+                             uv=self.uv[corners] if self.uv is not None else None)
+
     def signed_volume(self) -> float:
         """Signed volume enclosed (divergence theorem); positive for outward orientation of
         a closed mesh."""
@@ -406,9 +453,13 @@ class Mesh:
             rev = np.where(local == 0, 0, np.repeat(self.face_sizes, self.face_sizes) - local)
             rev = np.where(flip_face[self.corner_face], rev, local)
             idx = idx[start + rev]
+            uv = self.uv[start + rev] if self.uv is not None else None
+        else:
+            uv = self.uv
         out = Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(), normals=normals,
-                            groups=self.groups, name=self.name)
+                            groups=self.groups, name=self.name, uv=uv)
         out.analytic = analytic
+        out.materials, out.material_groups = self.materials, self.material_groups
         return out
 
     @classmethod

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -90,30 +91,133 @@ def read(path, data: bytes) -> Mesh:
     b0 = np.where(ends > starts, b0, 10)
     skip = (b0 == 10) | (b0 == ord("#")) | (
         (b0 == ord("v")) & ((b1 == ord("n")) | (b1 == ord("t")) | (b1 == ord("p"))))
-    group_lines, group_names = [], []
+    is_vt = (b0 == ord("v")) & (b1 == ord("t"))
+    parts: dict[bytes, tuple[list, list]] = {b"g": ([], []), b"usemtl": ([], []),
+                                             b"mtllib": ([], [])}
     for i in np.flatnonzero(~(is_v | is_f | skip)).tolist():
         line = data[starts[i]:ends[i]].split(b"#", 1)[0].split()
         if not line:
             continue
         if line[0] not in _OBJ_KEYWORDS:
             _obj_diagnose(path, data)
-        if line[0] in (b"o", b"g"):
-            group_lines.append(i)
-            group_names.append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
+        key = b"g" if line[0] == b"o" else line[0]
+        if key in parts:
+            parts[key][0].append(i)
+            parts[key][1].append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
     v_lines, f_lines = np.flatnonzero(is_v), np.flatnonzero(is_f)
     vertices = _vertices(path, data, starts, ends, v_lines)
     idx, sizes = _faces(path, data, starts, ends, f_lines, v_lines, len(vertices))
+    uv = _texture_coordinates(path, data, starts, ends, np.flatnonzero(is_vt), f_lines, sizes) \
+        if is_vt.any() else None
+    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes),
+                      line_of_face=lambda f: int(f_lines[f]) + 1,
+                      line_of_vertex=lambda i: int(v_lines[i]) + 1,
+                      groups=_named_parts(*parts[b"g"], f_lines), uv=uv)
+    if parts[b"usemtl"][0]:
+        mesh.material_groups = _named_parts(*parts[b"usemtl"], f_lines)
+        mesh.materials, mesh.material_notes = _materials(
+            path, parts[b"mtllib"], mesh.material_groups, parts[b"usemtl"])
+    return mesh
+
+
+def _named_parts(lines: list, names: list, f_lines: np.ndarray) -> dict[str, np.ndarray]:
+    """The faces after each of ``lines`` (until the next), by the names given there."""
     groups: dict[str, Any] = {}
-    if group_lines:
-        owner = np.searchsorted(np.asarray(group_lines), f_lines) - 1
-        for g, name in enumerate(group_names):
+    if lines:
+        owner = np.searchsorted(np.asarray(lines), f_lines) - 1
+        for g, name in enumerate(names):
             members = np.flatnonzero(owner == g)
             if len(members):
                 groups[name] = np.concatenate([groups[name], members]) if name in groups \
                     else members
-    return build_mesh(path, vertices, idx, offsets_from_sizes(sizes),
-                      line_of_face=lambda f: int(f_lines[f]) + 1,
-                      line_of_vertex=lambda i: int(v_lines[i]) + 1, groups=groups)
+    return groups
+
+
+def _materials(path, mtllib: tuple, used: dict, usemtl: tuple) -> tuple[dict, list]:
+    """The materials ``usemtl`` names, read from the ``mtllib`` files beside the OBJ; a
+    missing library or material is a warning naming the OBJ line (its faces are drawn
+    with the default material)."""
+    import warnings
+
+    from .mtl import MaterialLibrary, read_mtl
+
+    library = MaterialLibrary()
+    read = 0
+    for line, names in zip(*mtllib):
+        for name in names.split():
+            file = Path(path).parent / name
+            if not file.is_file():
+                warnings.warn(f"{Path(path).name}:{line + 1}: material library {name!r} not "
+                              f"found beside the OBJ; its materials are drawn with defaults",
+                              UserWarning, stacklevel=4)
+                continue
+            read_mtl(file, library=library)
+            read += 1
+    missing = {}
+    for line, name in zip(*usemtl):
+        if name in used and name not in library.materials and name not in missing:
+            missing[name] = line + 1
+    for name, line in missing.items():
+        if read:  # (without a library read, the warning above said it, or there is none)
+            warnings.warn(f"{Path(path).name}:{line}: material {name!r} is in no material "
+                          "library; drawn with the default material", UserWarning,
+                          stacklevel=4)
+    return ({name: m for name, m in library.materials.items() if name in used},
+            library.unused)
+
+
+def _texture_coordinates(path, data: bytes, starts, ends, vt_lines, f_lines, sizes):
+    """Each face corner's ``vt`` (C, 2) -- (0, 0) where a corner names none."""
+    blob = join_lines(data, starts, ends, vt_lines)
+    counts = token_counts(normalize_whitespace(blob), len(vt_lines)) - 1
+    values = parse_numbers(blob.replace(b"vt", b"  "))
+    if values is None or (counts < 1).any() or (counts > 3).any() or \
+            counts.sum() != len(values):
+        bad = int(np.flatnonzero((counts < 1) | (counts > 3))[0]) if ((counts < 1) |
+                                                                        (counts > 3)).any() else 0
+        raise MeshFormatError(path, "a texture coordinate (vt) needs 1 to 3 numbers",
+                              line=int(vt_lines[bad]) + 1)
+    first = offsets_from_sizes(counts)[:-1]
+    if not np.isfinite(values).all():
+        bad = int(np.searchsorted(first, int(np.flatnonzero(~np.isfinite(values))[0]),
+                                  side="right") - 1)
+        raise MeshFormatError(path, "a texture coordinate (vt) is not finite",
+                              line=int(vt_lines[bad]) + 1)
+    table = np.zeros((len(vt_lines), 2))
+    table[:, 0] = values[first]
+    two = counts >= 2
+    table[two, 1] = values[first[two] + 1]
+    fblob = _blank_keyword(join_lines(data, starts, ends, f_lines), b"f")
+    n = int(sizes.sum())
+    corner_vt = np.zeros(n, np.int64)
+    if b"/" in fblob:
+        fields = parse_numbers(fblob.replace(b"//", b"/0/").replace(b"/", b" "), np.int64)
+        for k in (2, 3):
+            if fields is not None and len(fields) == k * n:
+                corner_vt = fields.reshape(n, k)[:, 1]
+                break
+        else:
+            corner_vt = _corner_vt_slow(fblob, n)
+    vt_before = np.repeat(np.searchsorted(vt_lines, f_lines), sizes)
+    index = np.where(corner_vt < 0, corner_vt + vt_before, corner_vt - 1)
+    bad = (corner_vt != 0) & ((index < 0) | (index >= len(vt_lines)))
+    if bad.any():
+        c = int(np.flatnonzero(bad)[0])
+        f = int(np.searchsorted(offsets_from_sizes(sizes), c, side="right") - 1)
+        raise MeshFormatError(path, f"texture coordinate index {int(corner_vt[c])} is out of "
+                              f"range: the file defines {len(vt_lines)}",
+                              line=int(f_lines[f]) + 1)
+    return np.where((corner_vt != 0)[:, None], table[np.clip(index, 0, None)], 0.0)
+
+
+def _corner_vt_slow(fblob: bytes, n: int) -> np.ndarray:
+    """Corners' vt indices where faces mix ``v``, ``v/vt`` and ``v/vt/vn`` forms."""
+    out = np.zeros(n, np.int64)
+    for c, token in enumerate(fblob.split()):
+        fields = token.split(b"/")
+        if len(fields) > 1 and fields[1]:
+            out[c] = int(fields[1])
+    return out
 
 
 def _clean(path, data: bytes) -> bytes:

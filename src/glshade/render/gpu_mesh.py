@@ -64,7 +64,18 @@ class GpuMesh(GLResource):
         self.closed = mesh.closed_and_oriented
         self._corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])  # (homogeneous)
         normals = drawable_normals(mesh)
-        interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
+        #: whether the vertices carry texture coordinates (``in_uv``)
+        self.textured = mesh.uv is not None
+        if self.textured:
+            # a vertex per distinct (vertex, uv) pair: a texture seam splits its vertices
+            pairs = np.column_stack([mesh.face_indices, mesh.uv])
+            unique, corner_vertex = np.unique(pairs, axis=0, return_inverse=True)
+            source = unique[:, 0].astype(np.int64)
+            interleaved = np.hstack([mesh.vertices[source], normals[source],
+                                     unique[:, 1:]]).astype("f4")
+            tri = corner_vertex.ravel()[mesh.corner_triangles]
+        else:
+            interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
         width = min(self.n_triangles, _ID_TEXTURE_WIDTH)
@@ -89,8 +100,10 @@ class GpuMesh(GLResource):
             tri, owner = m.triangles
             corners = tri.ravel()
             face = np.repeat(owner, 3)
-            data = np.hstack([m.vertices[corners], m.face_normals[face],
-                              m.face_centroids[face]]).astype("f4")
+            parts = [m.vertices[corners], m.face_normals[face], m.face_centroids[face]]
+            if self.textured:
+                parts.append(m.uv[m.corner_triangles.ravel()])
+            data = np.hstack(parts).astype("f4")
             self._flat_vbo = self._keep(self.context.ctx.buffer(data.tobytes()))
         return self._flat_vbo
 
@@ -152,12 +165,17 @@ class GpuMesh(GLResource):
         if vao is None:
             ctx = self.context.ctx
             if mode.per_polygon:
-                vao = ctx.vertex_array(program, [(self._flat_buffer(), "3f 3f 3f", "in_position",
-                                                  "in_face_normal", "in_face_centroid")])
+                layout = [("in_position", "3f"), ("in_face_normal", "3f"),
+                          ("in_face_centroid", "3f")]
+                buffer, ibo = self._flat_buffer(), None
             else:
-                names = [n for n in ("in_position", "in_normal") if n in program]
-                fmt = "3f 3f" if len(names) == 2 else "3f 12x"
-                vao = ctx.vertex_array(program, [(self.vbo, fmt, *names)], self.ibo, 4)
+                layout = [("in_position", "3f"), ("in_normal", "3f")]
+                buffer, ibo = self.vbo, self.ibo
+            if self.textured:
+                layout.append(("in_uv", "2f"))
+            names = [n for n, _ in layout if n in program]
+            fmt = " ".join(f if n in names else f"{4 * int(f[0])}x" for n, f in layout)
+            vao = ctx.vertex_array(program, [(buffer, fmt, *names)], ibo, 4)
             self._vaos[key] = vao
         return vao
 

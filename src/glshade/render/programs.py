@@ -28,12 +28,18 @@ def light_kind(light) -> str:
 
 def material_uniforms(material, lights, ambient) -> list:
     """The lighting formula's per-draw products for one material: Ia ka C, and per light
-    Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms)."""
-    base = np.asarray(material.color, np.float64)
+    Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms) -- with the
+    RGB coefficients where the material has them. ``illum`` 1 drops the specular
+    products; 0 makes the diffuse colour the whole (ambient) term, unlit."""
     ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
-    diffuse = (ip * material.kd * base).astype("f4")
-    specular = (ip * material.ks).astype("f4")
-    ambient_term = np.asarray(ambient, np.float64) * material.ka * base
+    kd = np.asarray(material.diffuse_rgb, np.float64)
+    diffuse = (ip * kd).astype("f4")
+    specular = (ip * np.asarray(material.specular_rgb, np.float64)).astype("f4")
+    ambient_term = np.asarray(ambient, np.float64) * np.asarray(material.ambient_rgb)
+    if material.illum < 2:
+        specular[:] = 0
+    if material.illum == 0:
+        ambient_term, diffuse[:] = kd, 0
     return [("u_ambient_term", tuple(float(x) for x in ambient_term)),
             ("u_light_diffuse", diffuse.tobytes()), ("u_light_specular", specular.tobytes()),
             ("u_shininess", float(material.shininess))]
@@ -67,15 +73,19 @@ class MaterialUniforms:
 FLAT_CONSTANTS_PIXELS = 128
 
 
-def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors: int) -> bool:
+def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors: int,
+                       textured: bool = False) -> bool:
     """Whether a Phong program's lighting constants fit the driver's varyings alongside its
     own (position, normal and, with aux outputs, the world normal): one vector for ambient
     and n, then per light its position, diffuse and specular (and attenuation)."""
     if mode is not ShadingMode.PHONG:
         return False
     per_light = 3 + ("ATTENUATED" in lights)
-    return 2 + bool(aux) + 1 + per_light * len(lights) <= max_vectors
+    return 2 + bool(aux) + bool(textured) + 1 + per_light * len(lights) <= max_vectors
 
+
+#: the shading modes that show a material's textures (the others show geometry)
+TEXTURED_MODES = (ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)
 
 #: a pixel's own slots for its first transparent fragments (the rest: a shared pool)
 OIT_SLOTS = 8
@@ -109,15 +119,17 @@ class ProgramKey:
     #: a transparent surface's draw: "capture" (into per-pixel fragment lists) or "blend"
     #: (its opacity as alpha, blended in drawing order); "" for an opaque one
     oit: str = ""
+    #: the surface has texture coordinates and its material's maps are sampled (textures.glsl)
+    textured: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
-           flat_constants: bool = False, oit: str = "") -> ProgramKey:
+           flat_constants: bool = False, oit: str = "", textured: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model."""
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
                    variant.orthographic, two_sided, flat_constants,
-                   variant.shadows and not oit, oit)
+                   variant.shadows and not oit, oit, textured and variant.mode in TEXTURED_MODES)
 
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS
@@ -126,7 +138,8 @@ class ProgramKey:
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", self.oit == "capture"),
-                 ("GLSL_430", self.oit == "capture"), ("OIT_BLEND", self.oit == "blend"))
+                 ("GLSL_430", self.oit == "capture"), ("OIT_BLEND", self.oit == "blend"),
+                 ("TEXTURED", self.textured))
         out = [name for name, on in flags if on]
         if self.oit == "capture":
             out.append(f"OIT_SLOTS {OIT_SLOTS}")

@@ -34,11 +34,13 @@ from ..scene.camera import MAX_PLANE_RATIO
 from .context import RenderContext, create_context
 from .gpu_mesh import GpuMesh
 from .programs import (
-    FLAT_CONSTANTS_PIXELS, MaterialUniforms, ProgramKey, UniformWriter, Variant,
+    FLAT_CONSTANTS_PIXELS, TEXTURED_MODES, MaterialUniforms, ProgramKey, UniformWriter,
+    Variant,
     flat_constants_fit, light_kind,
 )
 from .shaders import ShaderLibrary
 from .state import DrawState
+from .textures import TextureCache
 from .passes.csg import CsgPass
 from .passes.edges import EdgePass
 from .diagnostics import why_blank
@@ -206,6 +208,7 @@ class Renderer:
         self._patches: Any = None  # (a PatchPass, made for the first GPU patch model)
         self._shadow_pass: Any = None  # (a ShadowPass, made for the first shadowed draw)
         self._oit: Any = None  # (a TransparencyPass, made for the first transparent surface)
+        self._textures: Any = None  # (a TextureCache, made for the first textured draw)
         self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
         self._targets: dict[str, OffscreenTarget] = {}
         self._query: Any = None
@@ -239,6 +242,8 @@ class Renderer:
             self._patches.release()
         if self._shadow_pass is not None:
             self._shadow_pass.release()
+        if self._textures is not None:
+            self._textures.release()
         if self._oit is not None:
             self._oit.release()
         self.shaders.release()  # (moderngl's Query has no release: its context frees it)
@@ -474,7 +479,9 @@ class Renderer:
             options.cull is Culling.AUTO and gpu.closed
             and gpu.beyond(model_view, near) and not oit)  # (seen from outside)
         flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
-        prog = self._program(state.variant, not cull, flat, oit)
+        textured = (gpu.textured and bool(model.material.textures)
+                    and options.mode in TEXTURED_MODES)
+        prog = self._program(state.variant, not cull, flat, oit, textured)
         if id(prog) not in prepared:  # the frame's uniforms, once per program used
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
@@ -502,6 +509,10 @@ class Renderer:
             ctx.disable(moderngl.CULL_FACE)
         if state.variant.aux and not oit:
             gpu.face_ids.use(0)
+        if textured:
+            if self._textures is None:
+                self._textures = TextureCache(self.context)
+            self._textures.bind(model.material, put, prog)
         if options.mode is ShadingMode.RADIOSITY:
             vao = gpu.color_array(prog, model.display_colors(scene.ambient))
         else:
@@ -532,16 +543,19 @@ class Renderer:
                                                bool(np.linalg.det(model[:3, :3]) < 0))
         return found
 
-    def _program(self, variant: Variant, two_sided: bool, flat: bool = False, oit: str = ""):
+    def _program(self, variant: Variant, two_sided: bool, flat: bool = False, oit: str = "",
+                 textured: bool = False):
         """The compiled program of a variant (mode, aux, light kinds, srgb, orthographic),
         with flat lighting constants if asked for and they fit; ``oit``: a transparent
-        surface's ("capture" into fragment lists, or "blend")."""
-        found = (variant, two_sided, flat, oit)
+        surface's ("capture" into fragment lists, or "blend"); ``textured``: its material's
+        maps sampled."""
+        found = (variant, two_sided, flat, oit, textured)
         program = self._programs.get(found)
         if program is None:
             flat = flat and flat_constants_fit(variant.mode, variant.aux and not oit,
-                                               variant.lights, self._max_varyings)
-            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=oit)
+                                               variant.lights, self._max_varyings, textured)
+            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=oit,
+                                textured=textured)
             program = self._programs[found] = self.shaders.program(key)
         return program
 

@@ -6,6 +6,7 @@ from .keyframes import CameraPath, Keyframe
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material
 from .scene import Model, Scene
+from .texture import Texture
 
 __all__ = ["Camera", "View", "default_camera", "CameraPath", "Keyframe", "Material", "PointLight",
-           "DirectionalLight", "lights_for", "MAX_LIGHTS", "Model", "Scene"]
+           "DirectionalLight", "lights_for", "MAX_LIGHTS", "Model", "Scene", "Texture"]

@@ -4,10 +4,12 @@ and number values that scene data is made of."""
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from pathlib import Path
 
 import numpy as np
 
 from ..errors import SceneError
+from .texture import Texture
 
 __all__ = ["Material", "color3", "nonnegative"]
 
@@ -41,7 +43,15 @@ class Material:
     (RGB, each in [0, 1]); without it, rho_d = kd * color.
 
     ``opacity`` in [0, 1]: below 1 the surface is transparent, composited "over" what lies
-    behind it (:class:`~glshade.DrawOptions` ``transparency``) after the opaque ones."""
+    behind it (:class:`~glshade.DrawOptions` ``transparency``) after the opaque ones.
+
+    The RGB form (as MTL files give it): ``ambient``, ``diffuse``, ``specular`` colours
+    (Ka, Kd, Ks) stand in for ``ka * color``, ``kd * color`` and ``ks`` (white) where
+    given. ``illum``: 2 the whole formula, 1 no specular term, 0 no lighting at all (the
+    diffuse colour as it is). Textures (:class:`~glshade.Texture`), sampled per pixel at the
+    mesh's texture coordinates: ``texture`` multiplies the ambient and diffuse colours (it
+    is the notes' surface colour C), ``specular_texture`` the specular one,
+    ``opacity_texture`` the opacity."""
 
     color: tuple = (0.8, 0.8, 0.8)
     ka: float = 0.2
@@ -51,8 +61,30 @@ class Material:
     emission: tuple = (0.0, 0.0, 0.0)
     reflectance: tuple | None = None
     opacity: float = 1.0
+    ambient: tuple | None = None
+    diffuse: tuple | None = None
+    specular: tuple | None = None
+    illum: int = 2
+    texture: Texture | None = None
+    specular_texture: Texture | None = None
+    opacity_texture: Texture | None = None
+    #: the name it has in its file (an MTL ``newmtl``), for reports
+    name: str | None = None
 
     def __post_init__(self):
+        for name in ("ambient", "diffuse", "specular"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, color3(getattr(self, name), name))
+        if self.illum not in (0, 1, 2):
+            raise SceneError(f"illum must be 0 (no lighting), 1 (no specular) or 2, got "
+                             f"{self.illum!r}")
+        for name in ("texture", "specular_texture", "opacity_texture"):
+            value = getattr(self, name)
+            if isinstance(value, (str, Path)):
+                object.__setattr__(self, name, Texture(value))
+            elif value is not None and not isinstance(value, Texture):
+                raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
+                                 f"{type(value).__name__}")
         object.__setattr__(self, "color", color3(self.color, "color"))
         for name in ("ka", "kd", "ks", "shininess"):
             object.__setattr__(self, name, nonnegative(getattr(self, name), name))
@@ -69,15 +101,42 @@ class Material:
             object.__setattr__(self, "reflectance", rho)
 
     @property
+    def ambient_rgb(self) -> tuple[float, float, float]:
+        """The ambient coefficient as a colour: ``ambient``, else ``ka * color``."""
+        if self.ambient is not None:
+            return self.ambient
+        return tuple(self.ka * c for c in self.color)  # type: ignore[return-value]
+
+    @property
+    def diffuse_rgb(self) -> tuple[float, float, float]:
+        """The diffuse coefficient as a colour: ``diffuse``, else ``kd * color``."""
+        if self.diffuse is not None:
+            return self.diffuse
+        return tuple(self.kd * c for c in self.color)  # type: ignore[return-value]
+
+    @property
+    def specular_rgb(self) -> tuple[float, float, float]:
+        """The specular coefficient as a colour: ``specular``, else ``ks`` (white)."""
+        if self.specular is not None:
+            return self.specular
+        return (self.ks, self.ks, self.ks)
+
+    @property
+    def textures(self) -> dict[str, Texture]:
+        """The material's textures by field name."""
+        return {name: t for name in ("texture", "specular_texture", "opacity_texture")
+                if (t := getattr(self, name)) is not None}
+
+    @property
     def rho(self) -> tuple[float, float, float]:
         """The diffuse reflectance rho_d (RGB) radiosity uses."""
         if self.reflectance is not None:
             return self.reflectance
-        return tuple(self.kd * c for c in self.color)
+        return self.diffuse_rgb
 
     @property
     def transparent(self) -> bool:
-        return self.opacity < 1.0
+        return self.opacity < 1.0 or self.opacity_texture is not None
 
     @classmethod
     def from_values(cls, values: dict) -> Material:

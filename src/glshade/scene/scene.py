@@ -195,10 +195,31 @@ class Scene:
                                     f"non-negative numbers, one per vertex; got shape "
                                     f"{colors.shape}")
             colors.flags.writeable = False
+        if material is None and mesh.material_groups and colors is None:
+            return self._add_material_parts(mesh, m, name or mesh.name)
         model = Model(mesh, material or Material(), m, name or mesh.name,
                       vertex_colors=colors)
         self.models.append(model)
         return model
+
+    def _add_material_parts(self, mesh: Mesh, m: np.ndarray, name: str | None) -> Model:
+        """A mesh whose faces name materials (an OBJ's ``usemtl`` parts): a model per part,
+        drawn with its material (named ``NAME:MATERIAL``); faces in no part, or whose
+        material was not found, get the default Material. Returns the first."""
+        parts = list(mesh.material_groups.items())
+        covered = np.zeros(mesh.n_faces, bool)
+        for _, faces in parts:
+            covered[faces] = True
+        if not covered.all():
+            parts.append(("", np.flatnonzero(~covered)))
+        models = []
+        for part, faces in parts:
+            material = mesh.materials.get(part)
+            sub = mesh.subset(faces)
+            models.append(Model(sub, material if isinstance(material, Material) else Material(),
+                                m, f"{name}:{part}" if part and name else (part or name)))
+        self.models.extend(models)
+        return models[0]
 
     def _add_patches(self, patches, material, transform, rotation, translation, scale, name,
                      level):

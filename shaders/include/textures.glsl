@@ -1,0 +1,23 @@
+// A textured surface's maps (scene/texture.py), sampled at the interpolated texture
+// coordinate -- perspective-correct: the rasterizer interpolates v_uv in 3D, not on screen.
+// Colour maps are sRGB textures, decoded to linear light by the sampler before filtering;
+// a map the material lacks is a 1x1 white texture (no branch per pixel).
+#ifndef TEXTURES_GLSL
+#define TEXTURES_GLSL
+#ifdef TEXTURED
+uniform sampler2D u_map_diffuse;   // map_Kd: multiplies the ambient and diffuse terms
+uniform sampler2D u_map_specular;  // map_Ks: multiplies the specular term
+uniform sampler2D u_map_opacity;   // map_d: multiplies the opacity (red channel)
+uniform vec4 u_map_st[3];          // each map's (scale u, v, offset u, v): MTL -s, -o
+
+// The lit colour of a textured point: its two parts (lighting.glsl) times their maps.
+vec3 textured_color(vec3 ambient_diffuse, vec3 specular, vec2 uv) {
+    return ambient_diffuse * texture(u_map_diffuse, uv * u_map_st[0].xy + u_map_st[0].zw).rgb +
+           specular * texture(u_map_specular, uv * u_map_st[1].xy + u_map_st[1].zw).rgb;
+}
+
+float map_opacity(vec2 uv) {
+    return texture(u_map_opacity, uv * u_map_st[2].xy + u_map_st[2].zw).r;
+}
+#endif
+#endif

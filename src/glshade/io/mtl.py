@@ -1,0 +1,213 @@
+"""Wavefront MTL material libraries: the notes' lighting model as files give it.
+
+=================  ==============================================================
+MTL                glshade
+=================  ==============================================================
+``newmtl NAME``    a :class:`~glshade.Material` named NAME
+``Ka r g b``       ``ambient`` (an RGB ka)
+``Kd r g b``       ``diffuse`` (an RGB kd C), and ``color``
+``Ks r g b``       ``specular`` (an RGB ks)
+``Ns n``           ``shininess`` (the exponent n)
+``d a``            ``opacity`` a (``Tr t``: opacity 1 - t)
+``Ke r g b``       ``emission`` (what radiosity gives off)
+``illum 0|1|2``    ``illum``: 0 the colour unlit, 1 no specular, 2 the whole formula
+                   (3 and up -- reflection, refraction -- are drawn as 2, and reported)
+``map_Kd FILE``    ``texture`` (sRGB; multiplies the ambient and diffuse terms)
+``map_Ks FILE``    ``specular_texture`` (sRGB)
+``map_d FILE``     ``opacity_texture`` (its alpha, or its red channel if opaque)
+``-clamp on``      the map's ``wrap="clamp"`` (default: repeat)
+``-o u v``         the map's texture-coordinate ``offset``
+``-s u v``         the map's texture-coordinate ``scale``
+=================  ==============================================================
+
+Anything else (``Ni``, ``Tf``, ``map_Ka``, ``bump``, other map options ...) is kept in the
+library's ``unused`` report, by statement and line, and does not change the picture. A
+malformed line is an error naming the file and line; a map whose image is missing or
+unreadable is a warning naming the line, and the material is drawn without it.
+"""
+
+from __future__ import annotations
+
+import shlex
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import MeshFormatError, SceneError
+from ..scene.material import Material
+from ..scene.texture import Texture
+
+__all__ = ["MaterialLibrary", "read_mtl", "write_mtl"]
+
+_COLOURS = {"Ka": "ambient", "Kd": "diffuse", "Ks": "specular", "Ke": "emission"}
+_MAPS = {"map_Kd": "texture", "map_Ks": "specular_texture", "map_d": "opacity_texture"}
+#: map options and how many values each takes (those glshade applies: -clamp, -o, -s)
+_MAP_OPTIONS = {"-clamp": 1, "-o": None, "-s": None, "-t": None, "-blendu": 1, "-blendv": 1,
+                "-bm": 1, "-boost": 1, "-mm": 2, "-texres": 1, "-imfchan": 1, "-cc": 1,
+                "-type": 1}
+
+
+@dataclass
+class MaterialLibrary:
+    """Materials by name, in file order, and what the files said that glshade does not
+    use (``unused``: ``"file:line: statement"``)."""
+
+    materials: dict[str, Material] = field(default_factory=dict)
+    unused: list[str] = field(default_factory=list)
+
+
+def read_mtl(path, filter: str | None = None, library: MaterialLibrary | None = None
+             ) -> MaterialLibrary:
+    """The materials of an MTL file (added to ``library`` if given). ``filter``: the
+    textures' filter (``"nearest"``, ``"linear"``, ``"mipmap"``; default linear)."""
+    path = Path(path)
+    library = library if library is not None else MaterialLibrary()
+    try:
+        text = path.read_bytes().decode("utf-8", "replace")
+    except OSError as exc:
+        raise MeshFormatError(path, f"cannot read: {exc.strerror or exc}") from None
+    current: dict | None = None
+    name = ""
+
+    def finish():
+        if current is not None:
+            try:
+                library.materials[name] = Material(name=name, **current)
+            except SceneError as exc:
+                raise MeshFormatError(path, f"material {name!r}: {exc}") from None
+
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        key, _, rest = line.partition(" ")
+        args = rest.split()
+        where = f"{path.name}:{number}"
+        if key == "newmtl":
+            finish()
+            if not rest.strip():
+                raise MeshFormatError(path, "newmtl needs a material name", line=number)
+            name, current = rest.strip(), {}
+            continue
+        if current is None:
+            raise MeshFormatError(path, f"{key!r} before any newmtl", line=number)
+        _statement(path, number, where, key, args, rest, current, library, filter)
+    finish()
+    return library
+
+
+def _numbers(path, number: int, key: str, args: list, counts: tuple) -> list[float]:
+    try:
+        values = [float(a) for a in args]
+    except ValueError:
+        values = []
+    if len(values) not in counts or not all(v == v and abs(v) < 1e300 for v in values):
+        want = " or ".join(str(c) for c in counts)
+        raise MeshFormatError(path, f"{key} needs {want} number(s), got {' '.join(args)!r}",
+                              line=number)
+    return values
+
+
+def _statement(path, number, where, key, args, rest, current, library, filter) -> None:
+    """One statement of a material's block into ``current`` (Material fields)."""
+    if key in _COLOURS:
+        if args[:1] in (["spectral"], ["xyz"]):
+            library.unused.append(f"{where}: {key} {args[0]} (only RGB is read)")
+            return
+        values = _numbers(path, number, key, args, (1, 3))
+        current[_COLOURS[key]] = tuple(values * 3 if len(values) == 1 else values)
+        if key == "Kd":
+            current["color"] = current["diffuse"]
+    elif key == "Ns":
+        current["shininess"] = _numbers(path, number, key, args, (1,))[0]
+    elif key in ("d", "Tr"):
+        if args[:1] == ["-halo"]:
+            library.unused.append(f"{where}: d -halo")
+            args = args[1:]
+        value = _numbers(path, number, key, args, (1,))[0]
+        current["opacity"] = value if key == "d" else 1.0 - value
+    elif key == "illum":
+        value = _numbers(path, number, key, args, (1,))[0]
+        if value != int(value) or not 0 <= value <= 10:
+            raise MeshFormatError(path, f"illum must be a model number 0..10, got {rest!r}",
+                                  line=number)
+        if value > 2:
+            library.unused.append(f"{where}: illum {int(value)} (drawn as illum 2)")
+        current["illum"] = min(int(value), 2)
+    elif key in _MAPS:
+        texture = _map(path, number, where, key, rest, library, filter)
+        if texture is not None:
+            current[_MAPS[key]] = texture
+    else:
+        library.unused.append(f"{where}: {key}")
+
+
+def _map(path, number, where, key, rest, library, filter) -> Texture | None:
+    """A map statement's texture (None, with a warning, if its image cannot be read)."""
+    try:
+        tokens = shlex.split(rest, posix=True)
+    except ValueError:
+        tokens = rest.split()
+    options: dict[str, list[str]] = {}
+    i = 0
+    while i < len(tokens) and tokens[i].startswith("-") and tokens[i] in _MAP_OPTIONS:
+        option, count = tokens[i], _MAP_OPTIONS[tokens[i]]
+        i += 1
+        values = []
+        while i < len(tokens) - 1 and (count is None or len(values) < count):
+            if count is None and not _is_number(tokens[i]):
+                break
+            values.append(tokens[i])
+            i += 1
+        options[option] = values
+    if i >= len(tokens):
+        raise MeshFormatError(path, f"{key} names no image file", line=number)
+    image = " ".join(tokens[i:])
+    for option in options:
+        if option not in ("-clamp", "-o", "-s"):
+            library.unused.append(f"{where}: {key} {option}")
+    uv = {}
+    for option, field_name in (("-o", "offset"), ("-s", "scale")):
+        if option in options:
+            values = _numbers(path, number, f"{key} {option}", options[option], (1, 2, 3))
+            uv[field_name] = (values[0], values[1] if len(values) > 1 else
+                              (values[0] if option == "-s" else 0.0))
+    clamp = options.get("-clamp", ["off"])[:1] == ["on"]
+    file = (path.parent / image.replace("\\", "/"))
+    try:
+        return Texture(file, filter=filter or "linear", wrap="clamp" if clamp else "repeat",
+                       **uv)
+    except SceneError as exc:
+        warnings.warn(f"{where}: {key}: {exc}; the material is drawn without it",
+                      UserWarning, stacklevel=2)
+        return None
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _colour(name: str, value) -> str:
+    return f"{name} {value[0]:.9g} {value[1]:.9g} {value[2]:.9g}\n"
+
+
+def write_mtl(materials: dict[str, Material], f) -> None:
+    """``materials`` as MTL text into the open text file ``f`` (maps by their file
+    paths; a map made from an array has none and is left out)."""
+    for name, m in materials.items():
+        f.write(f"newmtl {name}\n")
+        f.write(_colour("Ka", m.ambient_rgb) + _colour("Kd", m.diffuse_rgb) +
+                _colour("Ks", m.specular_rgb))
+        if any(m.emission):
+            f.write(_colour("Ke", m.emission))
+        f.write(f"Ns {m.shininess:.9g}\nd {m.opacity:.9g}\nillum {m.illum}\n")
+        for key, attr in _MAPS.items():
+            t = getattr(m, attr)
+            if t is not None and t.path is not None:
+                clamp = " -clamp on" if t.wrap == "clamp" else ""
+                f.write(f"{key}{clamp} {t.path}\n")
+        f.write("\n")

@@ -5,8 +5,8 @@ it is. Through the whole inverse view-projection, the rounding of the far point'
 it about the world's origin, off the pixel's ray: a sphere's depth was off by 0.75% at a
 near plane of 1e-4 (0.028 at 3.7 units). Swept (hypothesis, derandomized in CI) over
 near planes 0.5..1e-5 of the eye's distance and far planes 2..1000 times it (far / near
-up to 1e5, the depth buffer's own range), eyes anywhere outside and inside, spheres and boxes in any pose,
-against float64 closed forms."""
+up to 1e5, the depth buffer's own range), eyes anywhere outside and inside, spheres and
+boxes in any pose, against float64 closed forms."""
 
 import numpy as np
 import pytest

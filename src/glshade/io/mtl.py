@@ -153,7 +153,7 @@ def _map(path, number, where, key, rest, library, filter) -> Texture | None:
     while i < len(tokens) and tokens[i].startswith("-") and tokens[i] in _MAP_OPTIONS:
         option, count = tokens[i], _MAP_OPTIONS[tokens[i]]
         i += 1
-        values = []
+        values: list[str] = []
         while i < len(tokens) - 1 and (count is None or len(values) < count):
             if count is None and not _is_number(tokens[i]):
                 break
@@ -169,9 +169,9 @@ def _map(path, number, where, key, rest, library, filter) -> Texture | None:
     uv = {}
     for option, field_name in (("-o", "offset"), ("-s", "scale")):
         if option in options:
-            values = _numbers(path, number, f"{key} {option}", options[option], (1, 2, 3))
-            uv[field_name] = (values[0], values[1] if len(values) > 1 else
-                              (values[0] if option == "-s" else 0.0))
+            given = _numbers(path, number, f"{key} {option}", options[option], (1, 2, 3))
+            uv[field_name] = (given[0], given[1] if len(given) > 1 else
+                              (given[0] if option == "-s" else 0.0))
     clamp = options.get("-clamp", ["off"])[:1] == ["on"]
     file = (path.parent / image.replace("\\", "/"))
     try:

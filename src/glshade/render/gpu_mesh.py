@@ -66,7 +66,7 @@ class GpuMesh(GLResource):
         normals = drawable_normals(mesh)
         #: whether the vertices carry texture coordinates (``in_uv``)
         self.textured = mesh.uv is not None
-        if self.textured:
+        if mesh.uv is not None:
             # a vertex per distinct (vertex, uv) pair: a texture seam splits its vertices
             pairs = np.column_stack([mesh.face_indices, mesh.uv])
             unique, corner_vertex = np.unique(pairs, axis=0, return_inverse=True)

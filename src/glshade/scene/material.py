@@ -105,14 +105,14 @@ class Material:
         """The ambient coefficient as a colour: ``ambient``, else ``ka * color``."""
         if self.ambient is not None:
             return self.ambient
-        return tuple(self.ka * c for c in self.color)  # type: ignore[return-value]
+        return tuple(self.ka * c for c in self.color)
 
     @property
     def diffuse_rgb(self) -> tuple[float, float, float]:
         """The diffuse coefficient as a colour: ``diffuse``, else ``kd * color``."""
         if self.diffuse is not None:
             return self.diffuse
-        return tuple(self.kd * c for c in self.color)  # type: ignore[return-value]
+        return tuple(self.kd * c for c in self.color)
 
     @property
     def specular_rgb(self) -> tuple[float, float, float]:

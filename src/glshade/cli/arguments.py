@@ -42,6 +42,7 @@ class RenderArgs:
     ks: float | None = None
     shininess: float | None = None
     opacity: float | None = None
+    texture_filter: str | None = None
     transparency: tuple | None = None  # (Transparency members; several only for compare)
     crease: float | None = None
     tolerance: float | None = None

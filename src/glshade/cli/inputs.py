@@ -70,9 +70,10 @@ class Job:
 def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
     """A one-mesh scene and its camera from the render options (render, view, compare)."""
     scene = Scene(**args.given("background"))
-    scene.add(mesh, Material.from_values(args.given("color", "ka", "kd", "ks", "shininess",
-                                                            "opacity")),
-              crease=args.crease)
+    given = args.given("color", "ka", "kd", "ks", "shininess", "opacity")
+    # (an OBJ's own materials, unless the command line gives one)
+    own = bool(getattr(mesh, "material_groups", None)) and not given
+    scene.add(mesh, None if own else Material.from_values(given), crease=args.crease)
     lens = {"fov_y": args.fov} if args.fov is not None else {}
     eye, target = args.eye, args.target
     if eye is not None or target is not None:  # (animate has neither: it turns round)
@@ -151,6 +152,8 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
             scene, camera = build_scene(mesh, args, size[0] / size[1])
         except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
+    if args.texture_filter is not None:
+        scene.set_texture_filter(args.texture_filter)
     overrides = args.given("mode", "srgb", "edges")
     for option in ("shadows", "transparency"):  # (several methods: compare's alone)
         methods = getattr(args, option, None)

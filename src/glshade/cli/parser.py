@@ -84,6 +84,9 @@ def add_render_options(p: argparse.ArgumentParser, size_default: str | None = No
                    help=f"specular exponent n (default {mat['shininess']:g})")
     p.add_argument("--opacity", type=v.unit_float, help="the mesh's opacity, 0..1 (below 1: "
                    "transparent; default 1)")
+    p.add_argument("--texture-filter", type=v.texture_filter, metavar="nearest|linear|mipmap",
+                   help="how textures are sampled: the nearest texel, bilinear, or trilinear "
+                   "between mipmap levels (default: linear, or the scene file's)")
     p.add_argument("--transparency", type=v.transparency, metavar="exact|weighted|blend",
                    help="how transparent surfaces are composited: exact (per-pixel lists, "
                    "sorted), weighted (McGuire-Bavoil) or blend (drawing order); default: "

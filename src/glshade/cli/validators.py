@@ -227,6 +227,16 @@ shadows = _methods(Shadows, "exact,map")
 transparency = _methods(Transparency, "exact,weighted")
 
 
+def texture_filter(text: str) -> str:
+    """--texture-filter: nearest, linear or mipmap."""
+    from ..scene.texture import FILTERS
+
+    name = text.strip().lower()
+    if name not in FILTERS:
+        raise argparse.ArgumentTypeError(f"expected one of {', '.join(FILTERS)}, got {text!r}")
+    return name
+
+
 def fps(text: str) -> float:
     """Frames a second, in the range an animation file can hold."""
     from ..animate.writers import MAX_FPS, MIN_FPS

@@ -51,7 +51,12 @@ def box(size=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0)) -> Mesh:
         [0, 2, 6, 4],  # -z
         [1, 5, 7, 3],  # +z
     ]
-    return Mesh(corners * s + np.asarray(center, float), quads, name="box")
+    return Mesh(corners * s + np.asarray(center, float), quads, name="box",
+                uv=np.tile(_QUAD_UV, (6, 1)))
+
+
+#: a quad's corners' texture coordinates: the whole image, counter-clockwise
+_QUAD_UV = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
 
 
 def cube() -> Mesh:
@@ -82,7 +87,23 @@ def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
     last = 1 + (stacks - 2) * slices
     bottom = np.stack([np.full(slices, south), last + s1[0], last + s[0]], -1)
     faces = [*top.tolist(), *quads.tolist(), *bottom.tolist()]
-    m = Mesh(v, faces, name="uv_sphere")
+    # texture: u the longitude (0 at +z, growing towards +x), v the latitude (1 at the
+    # north pole); a pole's corner takes its triangle's middle longitude
+    u0, u1 = s[0] / slices, (s[0] + 1) / slices
+    lat = 1 - np.arange(1, stacks) / stacks
+    top_uv = np.stack([np.stack([(u0 + u1) / 2, np.ones(slices)], -1),
+                       np.stack([u0, np.full(slices, lat[0])], -1),
+                       np.stack([u1, np.full(slices, lat[0])], -1)], 1)
+    qu0, qu1 = np.broadcast_to(u0, (stacks - 2, slices)), np.broadcast_to(u1, (stacks - 2, slices))
+    la, lb = np.broadcast_to(lat[:-1, None], qu0.shape), np.broadcast_to(lat[1:, None], qu0.shape)
+    quad_uv = np.stack([np.stack([qu0, la], -1), np.stack([qu0, lb], -1),
+                        np.stack([qu1, lb], -1), np.stack([qu1, la], -1)], 2)
+    bottom_uv = np.stack([np.stack([(u0 + u1) / 2, np.zeros(slices)], -1),
+                          np.stack([u1, np.full(slices, lat[-1])], -1),
+                          np.stack([u0, np.full(slices, lat[-1])], -1)], 1)
+    uv = np.concatenate([top_uv.reshape(-1, 2), quad_uv.reshape(-1, 2),
+                         bottom_uv.reshape(-1, 2)])
+    m = Mesh(v, faces, name="uv_sphere", uv=uv)
     m.analytic = AnalyticSphere(radius)
     return m
 
@@ -144,7 +165,12 @@ def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
     j = np.arange(m)[None, :]
     i1, j1 = (i + 1) % n, (j + 1) % m
     quads = np.stack([i * m + j, i1 * m + j, i1 * m + j1, i * m + j1], -1).reshape(-1, 4)
-    return Mesh(v, quads, name="torus")
+    # texture: u around the ring, v around the tube (each from 0 to 1 once)
+    a, b = np.broadcast_to(i / n, (n, m)), np.broadcast_to(j / m, (n, m))
+    a1, b1 = a + 1 / n, b + 1 / m
+    uv = np.stack([np.stack([a, b], -1), np.stack([a1, b], -1), np.stack([a1, b1], -1),
+                   np.stack([a, b1], -1)], 2).reshape(-1, 2)
+    return Mesh(v, quads, name="torus", uv=uv)
 
 
 def cylinder(n: int = 32, radius: float = 1.0, height: float = 2.0) -> Mesh:
@@ -165,7 +191,8 @@ def cylinder(n: int = 32, radius: float = 1.0, height: float = 2.0) -> Mesh:
 def plane(size: float = 2.0) -> Mesh:
     """One square quad in the xy plane, centred at the origin, facing +z."""
     s = size / 2
-    return Mesh([[-s, -s, 0], [s, -s, 0], [s, s, 0], [-s, s, 0]], [[0, 1, 2, 3]], name="plane")
+    return Mesh([[-s, -s, 0], [s, -s, 0], [s, s, 0], [-s, s, 0]], [[0, 1, 2, 3]], name="plane",
+                uv=_QUAD_UV)
 
 
 #: Diffuse colours of the Cornell box's parts (linear RGB).

@@ -32,6 +32,7 @@ a side, ``tessellation = "cpu"`` or ``"gpu"``), with the mesh's material and pla
 
 from __future__ import annotations
 
+import dataclasses
 import re
 import sys
 from dataclasses import dataclass, field, fields
@@ -100,7 +101,10 @@ _SCHEMA = {
     "mesh": {"source": "str", "name": "str", "color": "color", "ka": "unit", "kd": "unit",
              "ks": "unit", "shininess": "nonneg", "translation": "vec3", "rotation": "quat",
              "scale": "scale", "transform": "mat4", "visible": "bool", "crease": "degrees",
-             "emission": "color", "reflectance": "reflectance", "opacity": "unit"},
+             "emission": "color", "reflectance": "reflectance", "opacity": "unit",
+             "ambient": "color", "diffuse": "color", "specular": "color", "illum": "illum",
+             "texture": "str", "specular_texture": "str", "opacity_texture": "str",
+             "texture_filter": "texture_filter", "texture_wrap": "texture_wrap"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
@@ -108,10 +112,13 @@ _SCHEMA = {
                "interpolation": "interp", "position_interpolation": "pinterp",
                "keyframe": "keyframes"},
 }
+_TEXTURE_KEYS = ("texture", "specular_texture", "opacity_texture", "texture_filter",
+                 "texture_wrap")  # (meshes only: solids and patches have no uv)
 _SCHEMA["solid"] = {k: v for k, v in _SCHEMA["mesh"].items()
-                    if k not in ("source", "crease")} | {"tree": "str"}
+                    if k not in ("source", "crease", *_TEXTURE_KEYS)} | {"tree": "str"}
 # patches: source = "patches:NAME" or a .bpt file; level segments a side; tessellation
-_SCHEMA["patches"] = {k: v for k, v in _SCHEMA["mesh"].items() if k != "crease"} | {
+_SCHEMA["patches"] = {k: v for k, v in _SCHEMA["mesh"].items()
+                      if k not in ("crease", *_TEXTURE_KEYS)} | {
     "level": "level", "tessellation": "tessellation"}
 _TOP = {"render", "mesh", "solid", "patches", "light", "camera"}
 _MANY = ("mesh", "solid", "patches", "light")
@@ -225,6 +232,14 @@ def _check(kind: str, value, where: str):
     if kind == "level":
         return value if isinstance(value, int) and not isinstance(value, bool) and \
             value >= 1 else fail("a whole number of segments >= 1")
+    if kind == "illum":
+        return value if value in (0, 1, 2) and not isinstance(value, bool) else \
+            fail("0 (no lighting), 1 (no specular) or 2")
+    if kind in ("texture_filter", "texture_wrap"):
+        from ..scene.texture import FILTERS, WRAPS
+
+        names = FILTERS if kind == "texture_filter" else WRAPS
+        return value if value in names else fail(" or ".join(repr(n) for n in names))
     if kind == "tessellation":
         return value if value in ("cpu", "gpu") else fail("'cpu' or 'gpu'")
     if kind == "light_type":
@@ -336,7 +351,7 @@ def load_scene(path) -> SceneFile:
             raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1} "
                                    "needs a 'source' (a file or primitive:NAME)")
         mesh = _load_mesh(m["source"], path.parent, f"{source}:{line}")
-        material = Material.from_values(m)
+        material = _material(m, mesh, path.parent, f"{source}:{loc.line('mesh', i, None)}")
         try:
             model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
                               translation=m.get("translation", (0, 0, 0)),
@@ -373,6 +388,39 @@ def load_scene(path) -> SceneFile:
     if settings.duration is None:
         settings.duration = camera_path.duration or 0.0
     return SceneFile(scene, camera_path, settings, path)
+
+
+#: a [[mesh]]'s keys that make its material (without any, an OBJ's own materials are kept)
+_MATERIAL_KEYS = ("color", "ka", "kd", "ks", "shininess", "emission", "reflectance", "opacity",
+                  "ambient", "diffuse", "specular", "illum", "texture", "specular_texture",
+                  "opacity_texture")
+
+
+def _material(m: dict, mesh, base: Path, where: str) -> Material | None:
+    """A [[mesh]]'s material: its keys (textures' paths relative to the scene file), or
+    None where it gives none and the mesh has its own (an OBJ's MTL); ``texture_filter``
+    and ``texture_wrap`` apply to either's textures."""
+    from ..scene.texture import Texture
+
+    look = {k: m[k] for k in ("texture_filter", "texture_wrap") if k in m}
+    sampling = {"filter": look["texture_filter"]} if "texture_filter" in look else {}
+    if "texture_wrap" in look:
+        sampling["wrap"] = look["texture_wrap"]
+    if not any(k in m for k in _MATERIAL_KEYS) and getattr(mesh, "material_groups", None):
+        if sampling:
+            mesh.materials = {name: dataclasses.replace(
+                mat, **{k: t.replace(**sampling) for k, t in mat.textures.items()})
+                for name, mat in mesh.materials.items()}
+        return None
+    values = dict(m)
+    try:
+        for key in ("texture", "specular_texture", "opacity_texture"):
+            if key in m:
+                file = base / m[key] if not Path(m[key]).is_absolute() else Path(m[key])
+                values[key] = Texture(file, **sampling)
+        return Material.from_values(values)
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{where}: {exc}") from None
 
 
 def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) -> None:

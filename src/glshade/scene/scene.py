@@ -5,6 +5,9 @@ Plain data (numpy arrays), no GL handles: the renderer keeps the GPU copies.
 
 from __future__ import annotations
 
+import dataclasses
+import warnings
+
 from typing import Any
 
 from dataclasses import dataclass, field
@@ -197,6 +200,10 @@ class Scene:
             colors.flags.writeable = False
         if material is None and mesh.material_groups and colors is None:
             return self._add_material_parts(mesh, m, name or mesh.name)
+        if material is not None and material.textures and mesh.uv is None:
+            warnings.warn(f"{name or mesh.name or 'the mesh'} has no texture coordinates "
+                          f"(uv); its material's {', '.join(material.textures)} is not shown",
+                          UserWarning, stacklevel=2)
         model = Model(mesh, material or Material(), m, name or mesh.name,
                       vertex_colors=colors)
         self.models.append(model)
@@ -254,6 +261,20 @@ class Scene:
         model = SolidModel(solid, material or Material(), name or type(solid).__name__)
         self.solids.append(model)
         return model
+
+    def set_texture_filter(self, filter: str) -> None:
+        """Sample every texture of the scene's models with ``filter`` ("nearest",
+        "linear" or "mipmap"; the command line's ``--texture-filter``)."""
+        from .texture import FILTERS
+
+        if filter not in FILTERS:
+            raise SceneError(f"texture filter must be one of {', '.join(FILTERS)}, got "
+                             f"{filter!r}")
+        for model in self.models:
+            maps = model.material.textures
+            if maps:
+                model.material = dataclasses.replace(
+                    model.material, **{k: t.replace(filter=filter) for k, t in maps.items()})
 
     def add_light(self, light) -> None:
         """Add a PointLight or DirectionalLight (at most MAX_LIGHTS)."""

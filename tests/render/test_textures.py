@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import glshade
-from glshade import Camera, DirectionalLight, Material, Mesh, PointLight, Scene, Texture
+from glshade import Camera, DirectionalLight, Material, Mesh, Scene, Texture
 
 W, H = 96, 80
 # 7 x 5 texels (odd sizes), every texel's colour far from every other's (so that which texel

@@ -184,11 +184,11 @@ def notes_formula(n, p, eye, light_dir, ambient, ka, kd, ks, shininess, illum, i
     diffuse colour unlit."""
     if illum == 0:
         return np.broadcast_to(np.asarray(kd, float), p.shape)
-    l = np.asarray(light_dir, float) / np.linalg.norm(light_dir)
-    ln = float(n @ l)
+    to_light = np.asarray(light_dir, float) / np.linalg.norm(light_dir)
+    ln = float(n @ to_light)
     v = eye - p
     v /= np.linalg.norm(v, axis=-1, keepdims=True)
-    r = 2 * ln * n - l
+    r = 2 * ln * n - to_light
     rv = np.clip(v @ r, 0, None)
     spec = rv ** shininess if illum == 2 else np.zeros_like(rv)
     out = np.asarray(ambient) * ka + ip * (np.asarray(kd) * max(ln, 0.0) +

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from ..errors import EXIT_OK, UsageError
 from ..io.meshes import load_source
@@ -27,7 +28,57 @@ def mesh_summary(mesh) -> dict:
         "degenerate_faces": int(len(mesh.degenerate_faces)),
         "euler_characteristic": mesh.n_vertices - mesh.n_edges + mesh.n_faces,
         "signed_volume": mesh.signed_volume(),
+        "texture_coordinates": mesh.uv is not None,
+        "materials": materials_summary(mesh),
+        "unused_material_statements": list(mesh.material_notes),
     }
+
+
+def material_summary(material, faces: int | None = None) -> dict:
+    """One material's coefficients and textures, as plain JSON-able data."""
+    out = {"name": material.name, "ambient": list(material.ambient_rgb),
+           "diffuse": list(material.diffuse_rgb), "specular": list(material.specular_rgb),
+           "shininess": material.shininess, "opacity": material.opacity,
+           "illum": material.illum,
+           "textures": {k: {"file": str(t.path) if t.path else None, "size": list(t.size),
+                            "filter": t.filter, "wrap": t.wrap}
+                        for k, t in material.textures.items()}}
+    if faces is not None:
+        out["faces"] = faces
+    return out
+
+
+def materials_summary(mesh) -> list[dict]:
+    """The material parts of a mesh (an OBJ's usemtl): each part's material and faces; a
+    part whose material no library defined is listed with ``name`` and no coefficients."""
+    out = []
+    for name, faces in mesh.material_groups.items():
+        material = mesh.materials.get(name)
+        out.append(material_summary(material, len(faces)) if material is not None else
+                   {"name": name, "faces": len(faces), "missing": True})
+    return out
+
+
+def _print_materials(materials: list[dict], notes: list[str]) -> None:
+    if not materials:
+        return
+    print(f"materials ({len(materials)}):      faces  Kd (diffuse)            Ns  illum  "
+          "textures")
+    for m in materials:
+        if m.get("missing"):
+            print(f"  {str(m['name'])[:18]:<18} {m['faces']:>7,}  (in no material library: "
+                  "drawn with the default)")
+            continue
+        kd = ", ".join(f"{x:.3g}" for x in m["diffuse"])
+        maps = "; ".join(f"{k} {Path(t['file']).name if t['file'] else 'an image'} "
+                         f"{t['size'][0]}x{t['size'][1]} {t['filter']}"
+                         for k, t in m["textures"].items()) or "-"
+        faces = f"{m['faces']:>7,}" if "faces" in m else " " * 7
+        print(f"  {str(m['name'])[:18]:<18} {faces}  ({kd}){' ' * max(0, 20 - len(kd))} "
+              f"{m['shininess']:>5g}  {m['illum']:>5}  {maps}")
+    if notes:
+        print(f"  not drawn ({len(notes)}): " + "; ".join(notes[:6]) +
+              (f"; ... {len(notes) - 6} more" if len(notes) > 6 else ""))
 
 
 def topology_summary(mesh) -> dict:
@@ -112,6 +163,7 @@ def scene_summary(scene_file) -> dict:
         models.append({"name": m.name, "faces": m.mesh.n_faces, "vertices": m.mesh.n_vertices,
                        "closed": bool(m.mesh.closed_and_oriented), "visible": m.visible,
                        "emission": list(map(float, m.material.emission)),
+                       "material": material_summary(m.material),
                        "bounds": {"min": corners.min(0).tolist(),
                                   "max": corners.max(0).tolist()}})
     lights = [{"kind": "directional" if isinstance(x, DirectionalLight) else "point",
@@ -147,6 +199,9 @@ def _scene_info(args: InfoArgs) -> int:
               f"  [{', '.join(f'{x:.4g}' for x in lo)}] .. [{', '.join(f'{x:.4g}' for x in hi)}]")
     for x in s["solids"]:
         print(f"  {str(x['name'])[:18]:<18} CSG solid, {x['leaves']} leaves")
+    textured = [dict(m["material"], name=m["name"]) for m in s["models"]
+                if m["material"]["textures"]]
+    _print_materials(textured, [])
     print(f"lights ({len(s['lights'])}):" if s["lights"] else
           "lights: none (a headlight at the camera)")
     for x in s["lights"]:
@@ -259,6 +314,9 @@ def info(args: InfoArgs) -> int:
           f"{t['formula']}")
     if t["problems"]:
         print(f"  problems: {t['problems']}")
+    if info["texture_coordinates"]:
+        print("texture coordinates: yes (vt, one per face corner)")
+    _print_materials(info["materials"], info["unused_material_statements"])
     return EXIT_OK
 
 

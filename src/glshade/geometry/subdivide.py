@@ -16,7 +16,7 @@ __all__ = ["phong_tessellate"]
 def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
     """A finer, curved version of ``mesh``: every triangle of its triangulation becomes
     ``level^2`` triangles (vertices are not shared between source triangles). The result
-    carries interpolated vertex normals (``normals_from_file``)."""
+    carries interpolated vertex normals (``normals_from_file``) and texture coordinates."""
     if int(level) != level or level < 1:
         raise GeometryError(f"level must be an integer >= 1, got {level!r}")
     k = int(level)
@@ -48,4 +48,9 @@ def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
     nn /= np.maximum(np.linalg.norm(nn, axis=-1, keepdims=True), 1e-300)
     t = len(tri)
     faces = (corners[None] + (np.arange(t) * len(bary))[:, None, None]).reshape(-1, 3)
-    return Mesh(curved.reshape(-1, 3), faces, normals=nn.reshape(-1, 3), name=mesh.name)
+    uv = None
+    if mesh.uv is not None:  # (texture coordinates interpolated like the points)
+        points_uv = np.einsum("pc,tcx->tpx", bary, mesh.uv[mesh.corner_triangles])
+        uv = points_uv.reshape(-1, 2)[faces.ravel()]
+    return Mesh(curved.reshape(-1, 3), faces, normals=nn.reshape(-1, 3), name=mesh.name,
+                uv=uv)

@@ -98,9 +98,20 @@ def load_source(spec: str) -> Any:
 
 def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = True) -> None:
     """Write ``mesh`` to ``path`` (atomically). PLY and STL are binary unless
-    ``binary=False``; STL stores the triangulation. Coordinates keep full precision."""
+    ``binary=False``; STL stores the triangulation. Coordinates keep full precision. An
+    OBJ keeps texture coordinates and material parts, its materials written to an MTL
+    file of the same name beside it (textures by their paths)."""
     path = Path(path)
     fmt = _format_of(path, format)
+    if fmt == "obj" and mesh.material_groups:
+        from .mtl import write_mtl
+
+        library = path.with_suffix(".mtl")
+        with atomic_write(library, "w") as text:
+            write_mtl(dict(mesh.materials), text, library.parent)
+        with atomic_write(path, "wb") as f:
+            obj.write(mesh, f, binary, mtllib=library.name)
+        return
     with atomic_write(path, "wb") as f:
         _MODULES[fmt].write(mesh, f, binary)
 

@@ -28,7 +28,6 @@ unreadable is a warning naming the line, and the material is drawn without it.
 
 from __future__ import annotations
 
-import shlex
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -85,9 +84,8 @@ def read_mtl(path, filter: str | None = None, library: MaterialLibrary | None = 
         where = f"{path.name}:{number}"
         if key == "newmtl":
             finish()
-            if not rest.strip():
-                raise MeshFormatError(path, "newmtl needs a material name", line=number)
-            name, current = rest.strip(), {}
+            # (no name: the one an OBJ's bare "usemtl" gets -- Blender writes both)
+            name, current = rest.strip() or "default", {}
             continue
         if current is None:
             raise MeshFormatError(path, f"{key!r} before any newmtl", line=number)
@@ -144,21 +142,19 @@ def _statement(path, number, where, key, args, rest, current, library, filter) -
 
 def _map(path, number, where, key, rest, library, filter) -> Texture | None:
     """A map statement's texture (None, with a warning, if its image cannot be read)."""
-    try:
-        tokens = shlex.split(rest, posix=True)
-    except ValueError:
-        tokens = rest.split()
+    tokens = rest.split()  # (not shell rules: Windows paths' backslashes are separators)
     options: dict[str, list[str]] = {}
     i = 0
     while i < len(tokens) and tokens[i].startswith("-") and tokens[i] in _MAP_OPTIONS:
         option, count = tokens[i], _MAP_OPTIONS[tokens[i]]
         i += 1
         values: list[str] = []
-        while i < len(tokens) - 1 and (count is None or len(values) < count):
-            if count is None and not _is_number(tokens[i]):
-                break
-            values.append(tokens[i])
-            i += 1
+        if count is not None:   # (a fixed count: taken whatever follows)
+            values, i = tokens[i:i + count], i + count
+        else:                   # (1 to 3 numbers, the file name after them)
+            while i < len(tokens) - 1 and len(values) < 3 and _is_number(tokens[i]):
+                values.append(tokens[i])
+                i += 1
         options[option] = values
     if i >= len(tokens):
         raise MeshFormatError(path, f"{key} names no image file", line=number)
@@ -195,9 +191,12 @@ def _colour(name: str, value) -> str:
     return f"{name} {value[0]:.9g} {value[1]:.9g} {value[2]:.9g}\n"
 
 
-def write_mtl(materials: dict[str, Material], f) -> None:
-    """``materials`` as MTL text into the open text file ``f`` (maps by their file
-    paths; a map made from an array has none and is left out)."""
+def write_mtl(materials: dict[str, Material], f, base: Path | None = None) -> None:
+    """``materials`` as MTL text into the open text file ``f`` (maps by their file paths,
+    relative to ``base``, the library's folder, where they can be; a map made from an
+    array has none and is left out)."""
+    import os
+
     for name, m in materials.items():
         f.write(f"newmtl {name}\n")
         f.write(_colour("Ka", m.ambient_rgb) + _colour("Kd", m.diffuse_rgb) +
@@ -208,6 +207,16 @@ def write_mtl(materials: dict[str, Material], f) -> None:
         for key, attr in _MAPS.items():
             t = getattr(m, attr)
             if t is not None and t.path is not None:
-                clamp = " -clamp on" if t.wrap == "clamp" else ""
-                f.write(f"{key}{clamp} {t.path}\n")
+                options = " -clamp on" if t.wrap == "clamp" else ""
+                if t.scale != (1.0, 1.0):
+                    options += f" -s {t.scale[0]:.9g} {t.scale[1]:.9g}"
+                if t.offset != (0.0, 0.0):
+                    options += f" -o {t.offset[0]:.9g} {t.offset[1]:.9g}"
+                file = str(t.path)
+                if base is not None:
+                    try:
+                        file = os.path.relpath(t.path, base)
+                    except ValueError:  # (another drive)
+                        pass
+                f.write(f"{key}{options} {file}\n")
         f.write("\n")

@@ -12,9 +12,7 @@ import numpy as np
 
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
-from ._common import (
-    COMMENT, build_mesh, join_lines, offsets_from_sizes, write_faces, write_vertices,
-)
+from ._common import COMMENT, build_mesh, join_lines, offsets_from_sizes, write_vertices
 from .text import (
     line_starts, normalize_whitespace, parse_decimals, parse_numbers, ragged_take, token_counts,
 )
@@ -287,8 +285,43 @@ def _faces(path, data: bytes, starts, ends, f_lines, v_lines, n_vertices: int):
     return idx, sizes
 
 
-def write(mesh: Mesh, f, binary: bool) -> None:
-    """Write ``mesh`` as OBJ to the open file ``f`` (text; ``binary`` is ignored)."""
+def write(mesh: Mesh, f, binary: bool, mtllib: str | None = None) -> None:
+    """Write ``mesh`` as OBJ to the open file ``f`` (text; ``binary`` is ignored): its
+    texture coordinates as ``vt`` (``f v/vt``), its material parts as ``usemtl`` runs, in
+    face order, after ``mtllib`` (the library's file name) when given."""
     f.write(f"# glshade: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n".encode())
+    if mtllib is not None and mesh.material_groups:
+        f.write(f"mtllib {mtllib}\n".encode())
     write_vertices(f, mesh.vertices, "v ")
-    write_faces(f, mesh, "f ", 1, with_count=False)
+    corner_vt = None
+    if mesh.uv is not None:
+        table, corner_vt = np.unique(mesh.uv, axis=0, return_inverse=True)
+        corner_vt = corner_vt.ravel()
+        f.write(("vt %.17g %.17g\n" * len(table) % tuple(table.ravel())).encode())
+    part = np.full(mesh.n_faces, -1)
+    names = list(mesh.material_groups)
+    for k, faces in enumerate(mesh.material_groups.values()):
+        part[faces] = k
+    cuts = np.flatnonzero(np.diff(part)) + 1
+    for start, stop in zip(np.r_[0, cuts].tolist(), np.r_[cuts, mesh.n_faces].tolist()):
+        if names and part[start] >= 0:
+            f.write(f"usemtl {names[part[start]]}\n".encode())
+        elif names:
+            f.write(b"usemtl default\n")
+        _write_faces(f, mesh, start, stop, corner_vt)
+
+
+def _write_faces(f, mesh: Mesh, start: int, stop: int, corner_vt) -> None:
+    """Faces ``start:stop`` as ``f`` lines (``v/vt`` pairs where there are coordinates)."""
+    sizes = mesh.face_sizes[start:stop]
+    a, b = int(mesh.face_offsets[start]), int(mesh.face_offsets[stop])
+    if corner_vt is None:
+        cell, values = "%d", mesh.face_indices[a:b] + 1
+    else:
+        cell = "%d/%d"
+        values = np.stack([mesh.face_indices[a:b] + 1, corner_vt[a:b] + 1], 1).ravel()
+    kinds = np.unique(sizes)
+    fmt = np.empty(int(kinds.max()) + 1, dtype=object)
+    for k in kinds.tolist():
+        fmt[k] = "f " + " ".join([cell] * k) + "\n"
+    f.write(("".join(fmt[sizes]) % tuple(values.tolist())).encode())

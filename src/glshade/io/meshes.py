@@ -104,11 +104,13 @@ def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = Tru
     path = Path(path)
     fmt = _format_of(path, format)
     if fmt == "obj" and mesh.material_groups:
+        from ..scene.material import Material
         from .mtl import write_mtl
 
         library = path.with_suffix(".mtl")
         with atomic_write(library, "w") as text:
-            write_mtl(dict(mesh.materials), text, library.parent)
+            write_mtl({k: m for k, m in mesh.materials.items() if isinstance(m, Material)},
+                      text, library.parent)
         with atomic_write(path, "wb") as f:
             obj.write(mesh, f, binary, mtllib=library.name)
         return

@@ -4,6 +4,7 @@ and number values that scene data is made of."""
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import Any
 from pathlib import Path
 
 import numpy as np
@@ -122,7 +123,7 @@ class Material:
         return (self.ks, self.ks, self.ks)
 
     @property
-    def textures(self) -> dict[str, Texture]:
+    def textures(self) -> dict[str, Any]:
         """The material's textures by field name."""
         return {name: t for name in ("texture", "specular_texture", "opacity_texture")
                 if (t := getattr(self, name)) is not None}

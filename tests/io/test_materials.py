@@ -274,3 +274,38 @@ def test_render_and_compare_take_a_textured_obj_and_the_filter(tmp_path):
                          capture_output=True, text=True)
     assert bad.returncode == 2 and "--texture-filter: expected one of nearest, linear, " \
         "mipmap, got 'cubic'" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_a_gltf_base_colour_texture_comes_through_trimesh(tmp_path, gl_context):
+    """A GLB written by another library (trimesh's exporter; the formats extra) with a
+    base colour factor and texture: read back with its texture coordinates and a material
+    whose texture is the image, drawn textured (illum 0 here: the texel times the factor)."""
+    from tests.conftest import require
+
+    trimesh = require("trimesh", "glTF is read through the formats extra")
+    from PIL import Image
+
+    image = np.array([[[200, 30, 30], [30, 200, 30]], [[30, 30, 200], [200, 200, 30]]],
+                     np.uint8)
+    quad = trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+                           [[0, 1, 2], [0, 2, 3]], process=False)
+    quad.visual = trimesh.visual.TextureVisuals(
+        uv=[[0, 0], [1, 0], [1, 1], [0, 1]], material=trimesh.visual.material.PBRMaterial(
+            name="painted", baseColorTexture=Image.fromarray(image),
+            baseColorFactor=[255, 255, 255, 255]))
+    quad.export(tmp_path / "quad.glb")
+    mesh = glshade.load_mesh(tmp_path / "quad.glb")
+    assert mesh.uv is not None and list(mesh.materials) == ["painted"]
+    material = mesh.materials["painted"]
+    assert np.array_equal(material.texture.pixels[..., :3], image)
+    mesh.materials = {"painted": dataclasses.replace(
+        material, illum=0, texture=material.texture.replace(filter="nearest"))}
+    scene = Scene()
+    scene.add(mesh)
+    camera = Camera.look_at((0.5, 0.5, 2), (0.5, 0.5, 0), fov_y=30)
+    with glshade.Renderer(40, 40, samples=0, context=gl_context) as r:
+        got = r.render_frame(scene, camera, "phong", color_dtype="f4").color[..., :3]
+    lin = material.texture.linear()[..., :3]
+    # the quad's lower-left quarter shows the image's bottom-left texel (row 1: v up)
+    assert np.abs(got[26, 14] - lin[1, 0]).max() <= 2e-3
+    assert np.abs(got[13, 26] - lin[0, 1]).max() <= 2e-3

@@ -48,8 +48,12 @@ def light_intensity(p: F, n: F, v: F, material, lights, ambient) -> F:
     empty scene gets the default headlight) and the ambient intensity ``Ia``."""
     p = np.asarray(p, np.float64)
     n = np.asarray(n, np.float64)
-    base = np.asarray(material.color, np.float64)
-    color = np.broadcast_to(np.asarray(ambient) * material.ka * base, p.shape).copy()
+    kd = np.asarray(material.diffuse_rgb, np.float64)
+    ks = np.asarray(material.specular_rgb, np.float64) * (material.illum == 2)
+    if material.illum == 0:  # (the diffuse colour, unlit)
+        return np.broadcast_to(kd, p.shape).copy()
+    color = np.broadcast_to(np.asarray(ambient) * np.asarray(material.ambient_rgb),
+                            p.shape).copy()
     for light in lights:
         ip = np.asarray(light.color) * light.intensity
         if isinstance(light, DirectionalLight):
@@ -68,7 +72,7 @@ def light_intensity(p: F, n: F, v: F, material, lights, ambient) -> F:
         rv = np.maximum(_dot(r, v), 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             spec = np.where(rv > 0, rv ** material.shininess, 0.0)
-        term = material.kd * ln[..., None] * base + material.ks * spec[..., None]
+        term = kd * ln[..., None] + ks * spec[..., None]
         color += np.where(lit[..., None], (k[..., None] * ip) * term, 0.0)
     return color
 

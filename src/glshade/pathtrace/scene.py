@@ -176,7 +176,9 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
 
 def _material_row(material, name: str) -> list:
     rho = np.asarray(material.rho, np.float64)
-    ks, n = float(material.ks), float(material.shininess)
+    # (the tracer's Phong lobe is grey: a coloured Ks gives its largest component)
+    ks = float(max(material.specular_rgb)) if material.illum == 2 else 0.0
+    n = float(material.shininess)
     if rho.max() > 1:
         raise SceneError(f"{name}: diffuse reflectance rho_d = {tuple(rho.round(4))} is above "
                          "1 (it would reflect more light than arrives)")

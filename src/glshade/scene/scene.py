@@ -65,7 +65,7 @@ class Model:
         key = (self.mesh.n_vertices, self.material, tuple(ambient))
         if self._constant is None or self._constant[0] != key:  # (the same array each frame)
             m = self.material
-            c = np.add(m.emission, np.multiply(ambient, m.color) * m.ka)
+            c = np.add(m.emission, np.multiply(ambient, m.ambient_rgb))
             self._constant = (key, np.broadcast_to(np.asarray(c, np.float32),
                                                    (self.mesh.n_vertices, 3)))
         return self._constant[1]

@@ -35,17 +35,22 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
 class Texture:
     """An image for a material's diffuse colour, specular colour or opacity.
 
-    Parameters
-    ----------
-    source : path, PIL image, or array ``(H, W)``, ``(H, W, 3)`` or ``(H, W, 4)`` (uint8,
-        or floats in [0, 1]) with row 0 at the top, as images are stored.
-    filter : ``"nearest"``, ``"linear"`` (bilinear) or ``"mipmap"`` (trilinear).
-    wrap : ``"repeat"`` or ``"clamp"`` (to the edge texels).
-    scale, offset : ``(u, v)``: the map is sampled at ``uv * scale + offset`` (MTL's ``-s``
-        and ``-o``).
-
     ``pixels`` is the image as ``(H, W, 4)`` uint8, row 0 at the top (alpha 255 where the
     image has none); ``path`` the file it came from, if any.
+
+    Parameters
+    ----------
+    source : path, PIL image or array
+        An array is ``(H, W)``, ``(H, W, 3)`` or ``(H, W, 4)``, uint8 or floats in [0, 1],
+        row 0 at the top, as images are stored.
+    filter : str
+        ``"nearest"``, ``"linear"`` (bilinear) or ``"mipmap"`` (trilinear).
+    wrap : str
+        ``"repeat"`` or ``"clamp"`` (to the edge texels).
+    scale : (u, v)
+        Multiplies the texture coordinates (MTL's -s option).
+    offset : (u, v)
+        Is added to them after the scale (MTL's -o option).
     """
 
     source: object

@@ -309,3 +309,26 @@ def test_a_gltf_base_colour_texture_comes_through_trimesh(tmp_path, gl_context):
     # the quad's lower-left quarter shows the image's bottom-left texel (row 1: v up)
     assert np.abs(got[26, 14] - lin[1, 0]).max() <= 2e-3
     assert np.abs(got[13, 26] - lin[0, 1]).max() <= 2e-3
+
+
+@pytest.mark.parametrize("names", [("u", "v"), ("s", "t"), ("texture_u", "texture_v")])
+@pytest.mark.parametrize("binary", [False, True])
+def test_ply_texture_coordinates_are_read_per_corner(tmp_path, names, binary):
+    """A PLY's per-vertex texture coordinates, by any of the names writers give them, ASCII
+    or binary: each face corner takes its vertex's."""
+    header = ("ply\nformat {} 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+              f"property float z\nproperty float {names[0]}\nproperty float {names[1]}\n"
+              "element face 2\nproperty list uchar int vertex_indices\nend_header\n")
+    table = np.array([[0, 0, 0, 0, 0], [1, 0, 0, 1, 0], [1, 1, 0, 1, 1], [0, 1, 0, 0, 0.5]],
+                     np.float32)
+    faces = [[0, 1, 2], [0, 2, 3]]
+    if binary:
+        body = table.astype("<f4").tobytes() + b"".join(
+            np.uint8(3).tobytes() + np.array(f, "<i4").tobytes() for f in faces)
+        data = header.format("binary_little_endian").encode() + body
+    else:
+        rows = "\n".join(" ".join(f"{x:g}" for x in r) for r in table)
+        data = (header.format("ascii") + rows + "\n3 0 1 2\n3 0 2 3\n").encode()
+    (tmp_path / "q.ply").write_bytes(data)
+    mesh = glshade.load_mesh(tmp_path / "q.ply")
+    assert np.array_equal(mesh.uv, table[[0, 1, 2, 0, 2, 3], 3:])

@@ -195,7 +195,7 @@ def _texture_coordinates(path, data: bytes, starts, ends, vt_lines, f_lines, siz
                 corner_vt = fields.reshape(n, k)[:, 1]
                 break
         else:
-            corner_vt = _corner_vt_slow(fblob, n)
+            corner_vt = _corner_vt_slow(path, data, starts, ends, f_lines, n)
     vt_before = np.repeat(np.searchsorted(vt_lines, f_lines), sizes)
     index = np.where(corner_vt < 0, corner_vt + vt_before, corner_vt - 1)
     bad = (corner_vt != 0) & ((index < 0) | (index >= len(vt_lines)))
@@ -208,13 +208,22 @@ def _texture_coordinates(path, data: bytes, starts, ends, vt_lines, f_lines, siz
     return np.where((corner_vt != 0)[:, None], table[np.clip(index, 0, None)], 0.0)
 
 
-def _corner_vt_slow(fblob: bytes, n: int) -> np.ndarray:
-    """Corners' vt indices where faces mix ``v``, ``v/vt`` and ``v/vt/vn`` forms."""
+def _corner_vt_slow(path, data: bytes, starts, ends, f_lines, n: int) -> np.ndarray:
+    """Corners' vt indices where faces mix ``v``, ``v/vt`` and ``v/vt/vn`` forms (a line
+    at a time: the bulk parse found them uneven)."""
     out = np.zeros(n, np.int64)
-    for c, token in enumerate(fblob.split()):
-        fields = token.split(b"/")
-        if len(fields) > 1 and fields[1]:
-            out[c] = int(fields[1])
+    c = 0
+    for i in f_lines.tolist():
+        for token in data[starts[i]:ends[i]].split()[1:]:
+            fields = token.split(b"/")
+            if len(fields) > 1 and fields[1]:
+                try:
+                    out[c] = int(fields[1])
+                except ValueError:
+                    raise MeshFormatError(path, "a texture coordinate index is not an "
+                                          f"integer: {token.decode(errors='replace')!r}",
+                                          line=i + 1) from None
+            c += 1
     return out
 
 

@@ -81,7 +81,33 @@ def _vertex_columns(path, props):
     cols = [names.index(c) for c in "xyz"]
     ncols = [names.index(c) for c in ("nx", "ny", "nz")] if all(
         c in names for c in ("nx", "ny", "nz")) else None
-    return cols, ncols
+    return cols, ncols, _uv_columns(names)
+
+
+#: the names PLY writers give a vertex's texture coordinates
+_UV_NAMES = (("u", "v"), ("s", "t"), ("texture_u", "texture_v"), ("texture_s", "texture_t"))
+
+
+def _uv_columns(names: list) -> list | None:
+    for pair in _UV_NAMES:
+        if all(c in names for c in pair):
+            return [names.index(c) for c in pair]
+    return None
+
+
+def _finish(path, vertices, idx, sizes, normals, uv) -> Mesh:
+    """The mesh, with file normals and per-vertex texture coordinates (made per corner)
+    where the file has them."""
+    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
+    if normals is not None and not np.isfinite(normals).all():
+        normals = None
+    if uv is not None and not np.isfinite(uv).all():
+        raise MeshFormatError(path, f"vertex {int(np.flatnonzero(~np.isfinite(uv).all(1))[0])}"
+                              " has a non-finite texture coordinate")
+    if normals is None and uv is None:
+        return mesh
+    return Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets, normals=normals,
+                         uv=None if uv is None else uv[mesh.face_indices])
 
 
 def _face_layout(path, props):
@@ -99,10 +125,10 @@ def read(path, data: bytes) -> Mesh:
     if fmt == "ascii":
         return _read_ply_ascii(path, data[pos:], elements, first_body_line)
     order = "<" if fmt == "binary_little_endian" else ">"
-    vertices = normals = idx = sizes = None
+    vertices = normals = idx = sizes = uv = None
     for name, count, props in elements:
         if name == "vertex":
-            cols, ncols = _vertex_columns(path, props)
+            cols, ncols, uvcols = _vertex_columns(path, props)
             dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
             if pos + count * dt.itemsize > len(data):
                 raise MeshFormatError(path, f"truncated: {count} vertices need "
@@ -112,6 +138,8 @@ def read(path, data: bytes) -> Mesh:
             vertices = np.stack([rec[f"p{c}"] for c in cols], 1).astype(np.float64)
             if ncols:
                 normals = np.stack([rec[f"p{c}"] for c in ncols], 1).astype(np.float64)
+            if uvcols:
+                uv = np.stack([rec[f"p{c}"] for c in uvcols], 1).astype(np.float64)
             pos += count * dt.itemsize
         elif name == "face":
             li = _face_layout(path, props)
@@ -122,11 +150,7 @@ def read(path, data: bytes) -> Mesh:
                 raise MeshFormatError(path, f"element {name!r} with list properties before "
                                       "the faces is not supported")
             pos += count * sum(np.dtype(p[2]).itemsize for p in props)
-    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
-    if normals is not None and np.isfinite(normals).all():
-        mesh = Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets,
-                             normals=normals)
-    return mesh
+    return _finish(path, vertices, idx, sizes, normals, uv)
 
 
 def _ply_binary_faces(path, data, pos, count, props, li, order):
@@ -202,7 +226,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
     starts, ends = line_starts(text)
     keep = np.flatnonzero(ends > starts)
     line = 0
-    vertices = normals = idx = sizes = None
+    vertices = normals = idx = sizes = uv = None
     for name, count, props in elements:
         lines = keep[line:line + count]
         if len(lines) < count:
@@ -215,7 +239,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
         if vals is None or len(vals) != counts.sum():
             numeric_diagnose(path, text, starts, ends, lines, name, first_line)
         if name == "vertex":
-            cols, ncols = _vertex_columns(path, props)
+            cols, ncols, uvcols = _vertex_columns(path, props)
             bad = counts != len(props)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
@@ -225,6 +249,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
             table = vals.reshape(count, len(props))
             vertices = table[:, cols]
             normals = table[:, ncols] if ncols else None
+            uv = table[:, uvcols] if uvcols else None
         elif name == "face":
             li = _face_layout(path, props)
             off = offsets_from_sizes(counts)[:-1]
@@ -240,11 +265,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
             sizes = k.astype(np.int64)
             idx = ragged_take(vals, off + li + 1, sizes)
             break
-    mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
-    if normals is not None:
-        mesh = Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets,
-                             normals=normals)
-    return mesh
+    return _finish(path, vertices, idx, sizes, normals, uv)
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:

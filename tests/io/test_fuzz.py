@@ -155,3 +155,45 @@ def test_binary_ply_face_lists_with_hostile_counts(tmp_path, endian, count_type,
         assert code in (0, 2), f"{path.name}: exit {code}: {err}"
         if code == 2:
             assert err.count("\n") == 1 and str(path) in err, err
+
+
+MTL_SEED = b"""# a library
+newmtl a
+Ka 0.1 0.1 0.1
+Kd 0.8 0.5 0.2
+Ks 0.5 0.5 0.5
+Ns 40
+d 0.9
+illum 2
+map_Kd -clamp on -s 2 2 -o 0.5 0 t.png
+newmtl b
+Kd 0.2 0.3 0.9
+map_d t.png
+"""
+
+
+def test_mutated_material_libraries_exit_0_or_2_with_one_line(tmp_path):
+    """An OBJ whose MTL is mutated (and its texture line with it): ``info`` ends with exit 0
+    (warnings, one line each, for what it cannot use) or exit 2 and one line naming the
+    MTL file -- never a traceback."""
+    import warnings
+
+    from PIL import Image
+
+    Image.fromarray(np.zeros((2, 2, 3), np.uint8)).save(tmp_path / "t.png")
+    rng = np.random.default_rng(45)
+    outcomes = {0: 0, 2: 0}
+    for i in range(200):
+        (tmp_path / f"case{i}.mtl").write_bytes(mutate(MTL_SEED, rng))
+        obj = tmp_path / f"case{i}.obj"
+        obj.write_text(f"mtllib case{i}.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                       "vt 0 1\nusemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 2/2\n")
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            code, err = run("info", str(obj), "--json")
+        assert code in (0, 2), f"case{i}: exit {code}: {err}"
+        assert "Traceback" not in err, err
+        if code == 2:
+            assert err.count("\n") == 1 and f"case{i}.mtl" in err, err
+        outcomes[code] += 1
+    assert outcomes[2] > 10 and outcomes[0] > 10, outcomes

@@ -120,7 +120,7 @@ def _pixels(source) -> tuple[Path | None, np.ndarray]:
             with Image.open(path) as im:
                 im.load()
                 source = im.copy()
-        except (UnidentifiedImageError, OSError) as exc:
+        except (UnidentifiedImageError, OSError, Image.DecompressionBombError) as exc:
             raise SceneError(f"{path}: not an image Pillow can read "
                              f"({type(exc).__name__}: {exc})") from None
     if isinstance(source, Image.Image):

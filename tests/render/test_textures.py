@@ -289,3 +289,24 @@ def test_the_specular_map_multiplies_the_specular_term(gl_context):
     want = lit + spec * nearest_texels(uv)
     assert keep.sum() > 1000 and spec[keep].max() > 0.2   # (a highlight to see)
     assert np.abs(got - np.clip(want, 0, 1))[keep].max() <= DECODE
+
+
+@pytest.mark.parametrize("transparency", ["exact", "blend"])
+def test_the_opacity_map_lets_what_is_behind_show(gl_context, transparency):
+    """A white quad whose opacity map is 0 on its left half and 255 on its right, over a
+    red one: unlit (illum 0), the left shows the red quad, the right the white one, and
+    the opacity (0.5 everywhere) weighs them: 0.5 white + 0.5 red on the right."""
+    alpha = np.zeros((2, 2), np.uint8)
+    alpha[:, 1] = 255
+    front = Material(diffuse=(1, 1, 1), illum=0, opacity=0.5,
+                     opacity_texture=Texture(alpha, filter="nearest"))
+    scene = Scene(background=(0, 0, 0))
+    back = glshade.geometry.primitives.plane(2.0)
+    scene.add(back, Material(diffuse=(1, 0, 0), illum=0), translation=(0, 0, -0.5))
+    scene.add(glshade.geometry.primitives.plane(2.0), front)
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30)
+    with glshade.Renderer(W, H, samples=0, context=gl_context) as r:
+        got = r.render_frame(scene, camera, "phong", color_dtype="f4",
+                             transparency=transparency).color[..., :3]
+    assert np.abs(got[H // 2, W // 2 - 8] - [1, 0, 0]).max() <= 2e-3       # left: red
+    assert np.abs(got[H // 2, W // 2 + 8] - [1, 0.5, 0.5]).max() <= 4e-3   # right: mixed

@@ -32,7 +32,7 @@ def render(args: a.RenderCommandArgs) -> int:
     with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(job.scene, job.camera, options)
         shadows = _shadow_summary(renderer, options)
-        if any(m.visible and m.material.opacity < 1.0 for m in job.scene.models) and \
+        if any(m.visible and m.material.transparent for m in job.scene.models) and \
                 renderer.transparency is not None:
             shadows += f"; {renderer.transparency}"
     save_image(image, args.output)

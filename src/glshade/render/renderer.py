@@ -455,7 +455,7 @@ class Renderer:
     def _transparent(model, options) -> bool:
         """Whether a model is drawn by the transparency pass (not in the debug modes, whose
         colours are values to read, not surfaces to see through)."""
-        return model.material.opacity < 1.0 and options.mode in SHADOWED_MODES + (
+        return model.material.transparent and options.mode in SHADOWED_MODES + (
             ShadingMode.RADIOSITY,)
 
     def _draw_models(self, state: DrawState, models, oit: str = "",

@@ -68,7 +68,7 @@ class _Occluding:
 def _geometry_key(scene) -> tuple:
     """What the occluders depend on: each mesh and patch model, its transform, whether it
     is shown and whether it is opaque (transparent surfaces cast no shadows)."""
-    return tuple((id(m.mesh), m.transform.tobytes(), m.visible, m.material.opacity >= 1.0)
+    return tuple((id(m.mesh), m.transform.tobytes(), m.visible, not m.material.transparent)
                  for m in scene.models) + \
         tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
               for p in scene.patch_models)
@@ -232,11 +232,11 @@ class ShadowPass(GLResource):
         options = state.options.replace(shadows=Shadows.OFF, mode=ShadingMode.NORMALS,
                                         outputs=Outputs.ALL, edges=False, srgb=False)
         scene = state.scene
-        if any(m.material.opacity < 1.0 for m in scene.models):
+        if any(m.material.transparent for m in scene.models):
             # the opaque surfaces' points (transparent ones receive no shadows), hidden
             # copies keeping the polygon ids of the transparent ones
             scene = copy.copy(scene)
-            scene.models = [m if m.material.opacity >= 1.0 else _hidden(m)
+            scene.models = [m if not m.material.transparent else _hidden(m)
                             for m in scene.models]
         renderer.draw(gbuf, scene, state.camera, options, viewport=state.viewport)
         lights = state.lights

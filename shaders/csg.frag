@@ -8,7 +8,9 @@
 #include "csg.glsl"
 
 uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
+#ifndef HAS_CAMERA_TO_WORLD
 uniform mat4 u_camera_to_world; // view -> world
+#endif
 uniform mat4 u_solid_view_proj;  // world -> clip (the box's own is the vertex stage's)
 uniform mat4 u_view;
 uniform mat3 u_view_normal;        // world -> view, for normals (the view is rigid)
@@ -84,6 +86,7 @@ void main() {
         n_view = -n_view;
         n_world = -n_world;
     }
+    SHADOW_PREPARE(p_view, n_world);
 #if defined(SHOW_NORMALS)
     vec3 color = 0.5 * n_world + 0.5;
 #elif defined(SHOW_DEPTH)

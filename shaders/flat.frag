@@ -42,6 +42,7 @@ void main() {
     vec3 n_world = vec3(0.0, 0.0, 1.0);  // (not written: no normal output)
 #endif
     face_viewer(n_view, n_world);
+    SHADOW_PREPARE(v_position_view, n_world);
 #ifdef TWO_SIDED
 #ifdef SHADOW_MASK
     vec3 color = gl_FrontFacing ? visible_sum(v_color_front, v_terms_front)

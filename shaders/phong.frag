@@ -24,6 +24,7 @@ void main() {
     vec3 n_world = vec3(0.0, 0.0, 1.0);  // (not written: no normal output)
 #endif
     face_viewer(n, n_world);
+    SHADOW_PREPARE(v_position_view, n_world);
 #ifdef TEXTURED
     vec3 specular;
     vec3 lit = light_parts(v_position_view, n, view_dir(v_position_view), specular);

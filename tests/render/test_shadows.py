@@ -565,3 +565,56 @@ def test_exact_shadows_over_lights_and_eyes(renderers, kind, elevation, azimuth,
     decided &= np.abs(np.einsum("hwk,hwk->hw", flat, to)) > 2 / 255
     wrong = ((frame.visibility[..., 0] > 0.5) != seen) & decided
     assert wrong.sum() == 0, np.argwhere(wrong)[:5].tolist()
+
+
+@pytest.mark.parametrize("light", sorted(LIGHTS))
+@pytest.mark.parametrize("kind", ["cube", "sphere", "torus", "bored"])
+@pytest.mark.parametrize("mode", ["flat", "gouraud", "phong"])
+@pytest.mark.filterwarnings("ignore:CSG solids receive map shadows")
+def test_forward_map_lookups_are_the_g_buffers(renderers, kind, light, mode):
+    """``render`` looks the maps up in the fragment stage (no G-buffer: SHADOW_MAPS_FORWARD);
+    ``render_frame`` through the G-buffer, to read the visibility back. Same maps, same
+    lookup (shadow_lookup.glsl), so the same picture: within 1/255 except at most a few
+    pixels (where the two surface points differ by a rounding at a shadow's edge), for
+    meshes, CSG solids (which receive map shadows), every mode, both light kinds, MSAA and
+    an orthographic view. (Under MSAA a silhouette pixel's two surfaces each get their own
+    visibility forward, the pixel centre's through the G-buffer: silhouettes are left out.)"""
+    scene = scene_of(kind, LIGHTS[light])
+    eye, target = EYES["above"]
+    for samples, camera in ((0, g.Camera.look_at(eye, target, fov_y=FOV)),
+                            (4, g.Camera.look_at(eye, target).replace(
+                                projection="orthographic", height=5.0))):
+        r = renderers[samples]
+        forward = r.render(scene, camera, mode, shadows="map")
+        frame = r.render_frame(scene, camera, mode, shadows="map")
+        d = np.abs(forward.astype(int) - frame.color.astype(int)).max(-1)
+        ids = np.pad(frame.face_id, 1, mode="edge")
+        inner = np.ones(d.shape, bool)
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                inner &= ids[1 + dy:H + 1 + dy, 1 + dx:W + 1 + dx] == frame.face_id
+        d = d[inner]
+        assert (d > 1).sum() <= 0.002 * d.size, ((d > 1).sum(), d.max())
+        if kind in ("cube", "torus"):  # (CSG solids cast no map shadows: they receive them)
+            plain = r.render(scene, camera, mode)
+            assert (plain.astype(int) - forward.astype(int)).max() > 40
+
+
+def test_forward_map_shadows_on_a_textured_mesh_and_gpu_patches(make_renderer):
+    """Textured meshes (their own program variant) and GPU-tessellated patches take the
+    forward lookup too."""
+    from glshade.patches import named
+
+    scene = g.Scene(ambient=(0.2, 0.2, 0.2))
+    scene.add(P.plane(6.0), g.Material(texture=g.Texture(np.full((2, 2, 3), 230, np.uint8))),
+              rotation=Q.from_axis_angle((1, 0, 0), -np.pi / 2))
+    scene.add(named("teapot"), g.Material(color=(0.8, 0.5, 0.3)), tessellation="gpu",
+              level=6, scale=0.5)
+    scene.add_light(g.PointLight((2.0, 5.0, 1.0)))
+    camera = g.Camera.look_at((4, 4, 5), (0, 0.5, 0))
+    r = make_renderer(96, 72, samples=0)
+    forward = r.render(scene, camera, "phong", shadows="map")
+    through = r.render_frame(scene, camera, "phong", shadows="map").color
+    d = np.abs(forward.astype(int) - through.astype(int)).max(-1)
+    assert (d > 1).sum() <= 0.002 * d.size
+    assert (r.render(scene, camera, "phong").astype(int) - forward.astype(int)).max() > 40

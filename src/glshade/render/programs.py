@@ -101,6 +101,8 @@ class Variant(NamedTuple):
     orthographic: bool
     #: each light's term is weighed by its visibility at the pixel (a shadow pass's)
     shadows: bool = False
+    #: ... which the fragment finds in the lights' shadow maps itself (no visibility array)
+    forward_maps: bool = False
 
 
 @dataclass(frozen=True)
@@ -121,6 +123,8 @@ class ProgramKey:
     oit: str = ""
     #: the surface has texture coordinates and its material's maps are sampled (textures.glsl)
     textured: bool = False
+    #: shadows looked up in the lights' maps by the fragment stage (SHADOW_MAPS_FORWARD)
+    forward_maps: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
@@ -129,17 +133,19 @@ class ProgramKey:
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
                    variant.orthographic, two_sided, flat_constants,
-                   variant.shadows and not oit, oit, textured and variant.mode in TEXTURED_MODES)
+                   variant.shadows and not oit, oit, textured and variant.mode in TEXTURED_MODES,
+                   variant.forward_maps and variant.shadows and not oit)
 
     def defines(self) -> tuple[str, ...]:
-        world = self.aux or self.mode is ShadingMode.NORMALS
+        world = self.aux or self.mode is ShadingMode.NORMALS or self.forward_maps
         flat = self.flat_constants and self.mode is ShadingMode.PHONG
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", self.oit == "capture"),
-                 ("GLSL_430", self.oit == "capture"), ("OIT_BLEND", self.oit == "blend"),
-                 ("TEXTURED", self.textured))
+                 ("GLSL_430", self.oit == "capture" or self.forward_maps),
+                 ("OIT_BLEND", self.oit == "blend"), ("TEXTURED", self.textured),
+                 ("SHADOW_MAPS_FORWARD", self.forward_maps))
         out = [name for name, on in flags if on]
         if self.oit == "capture":
             out.append(f"OIT_SLOTS {OIT_SLOTS}")

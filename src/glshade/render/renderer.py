@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import dataclasses
 import math
 import warnings
 import weakref
@@ -53,6 +54,8 @@ __all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
 SHADOWED_MODES = (ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)
 #: the texture unit of a shadowed draw's visibility array (shaders/include/shadow_mask.glsl)
 SHADOW_UNIT = 6
+#: the first texture unit of a forward map-shadowed draw's maps (a light each, up to 8)
+MAP_FORWARD_UNIT = 16
 
 #: how far a camera may be from the origin or its scene (beyond, the view and projection
 #: matrices overflow float64 products)
@@ -216,6 +219,7 @@ class Renderer:
         self._programs: dict[tuple, Any] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         self._warned: set[int] = set()  # scenes told that the radiosity mode needs a solve
+        self._visibility_wanted = False  # (render_frame: shadows through a G-buffer)
         # (shaders/include/constants.glsl; per model: programs.FLAT_CONSTANTS_PIXELS)
         self.flat_constants = self.context.software
         self._max_varyings = int(self.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
@@ -322,6 +326,10 @@ class Renderer:
         state = self._state(target, scene, camera, options, viewport)
         ctx = self.ctx
         visibility = self._shadows_of(state)
+        if isinstance(visibility, dict):  # (maps looked up as the programs shade)
+            state = dataclasses.replace(
+                state, frame_uniforms=state.frame_uniforms + tuple(visibility.items()))
+            visibility = None
         if clear:
             target.begin(scene.background, options.outputs)
         else:
@@ -368,6 +376,8 @@ class Renderer:
             from .passes.shadows import ShadowPass
 
             self._shadow_pass = ShadowPass(self.context, self.shaders)
+        if state.variant.forward_maps:
+            return self._shadow_pass.forward(state, MAP_FORWARD_UNIT)
         return self._shadow_pass.prepare(self, state)
 
     def _transparency_pass(self):
@@ -426,11 +436,14 @@ class Renderer:
         lights = tuple(scene.lights_for(camera))
         shadows = options.shadows is not Shadows.OFF and options.mode in SHADOWED_MODES \
             and not options.wireframe
+        # shadow maps looked up as the programs shade, unless the frame reads the visibility
+        # back (render_frame: Frame.visibility) -- then through a G-buffer
+        forward = shadows and options.shadows is Shadows.MAP and not self._visibility_wanted
         variant = Variant(options.mode, options.outputs.auxiliary,
                           tuple(light_kind(x) for x in lights), options.srgb,
-                          camera.projection is Projection.ORTHOGRAPHIC, shadows)
+                          camera.projection is Projection.ORTHOGRAPHIC, shadows, forward)
         frame = self._frame_uniforms(scene, camera, lights, view, proj, options.mode)
-        if shadows:
+        if shadows and not forward:
             frame.append(("u_visibility", SHADOW_UNIT))
         return DrawState(scene, camera, options, view, proj, lights, variant, tuple(frame),
                          (vx, vy, vw, vh), flip_rows, target)
@@ -552,8 +565,9 @@ class Renderer:
         found = (variant, two_sided, flat, oit, textured)
         program = self._programs.get(found)
         if program is None:
-            flat = flat and flat_constants_fit(variant.mode, variant.aux and not oit,
-                                               variant.lights, self._max_varyings, textured)
+            world = (variant.aux or (variant.forward_maps and variant.shadows)) and not oit
+            flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
+                                               self._max_varyings, textured)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=oit,
                                 textured=textured)
             program = self._programs[found] = self.shaders.program(key)
@@ -617,6 +631,14 @@ class Renderer:
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         dtype = "f1" if color_dtype == "u1" else "f4"
         want = options.outputs
+        self._visibility_wanted = True
+        try:
+            return self._frame(options, dtype, want, scene, camera)
+        finally:
+            self._visibility_wanted = False
+
+    def _frame(self, options, dtype, want, scene, camera) -> Frame:
+        """render_frame's draws and reads."""
         with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
             target = self._target(dtype)
             if self.samples and want.auxiliary:  # colour multisampled, the rest exact

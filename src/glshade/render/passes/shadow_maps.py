@@ -138,21 +138,60 @@ class ShadowMaps(GLResource):
         self._maps[index] = (key, tex, fbo)
         return tex
 
-    def fill(self, owner, renderer, state, gbuf, vis) -> None:
-        """Each light's map (drawn when its geometry or light changed), then its layer of
-        ``vis`` by PCF lookups at the G-buffer's points."""
-        from ...scene.camera import Projection
-
+    def draw_maps(self, owner, state) -> list[tuple]:
+        """Each light's map, drawn when its geometry or light changed: ``[(texture, light
+        row, face views, facts)]``; :attr:`facts` keeps each one's size and footprint."""
         if state.scene.solids and not self._warned_solids:
             self._warned_solids = True
             warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
                           "not drawn into the maps): shadows='exact' casts theirs",
-                          RenderWarning, stacklevel=5)
+                          RenderWarning, stacklevel=6)
         occ = owner.occluding(state.scene)
-        geometry = occ.key
-        soup = self._soup_for(geometry, occ.found.triangles)
+        soup = self._soup_for(occ.key, occ.found.triangles)
         bounds = np.asarray(state.scene.bounds, np.float64)
-        rows = shadow_lights(state.lights)
+        out = []
+        self.facts = []
+        for i, row in enumerate(shadow_lights(state.lights)[:len(state.lights)]):
+            views, proj, facts = light_frames(row.astype(np.float64), bounds)
+            key = (occ.key, row.tobytes(), bounds.tobytes())
+            out.append((self._draw_map(i, key, soup, views, proj, facts), row, views, facts))
+            self.facts.append((facts["faces"], facts["size"],
+                               self._footprint(state, views, facts, bounds)))
+        return out
+
+    @staticmethod
+    def lookup_uniforms(maps: list[tuple], units: list[int]) -> dict:
+        """shadow_lookup.glsl's arrays for ``maps`` (from :meth:`draw_maps`), their
+        textures on ``units``."""
+        views = []
+        for _, _, v, _ in maps:
+            views += [gl_bytes(m) for m in v] + [gl_bytes(np.eye(4))] * (6 - len(v))
+        return {"u_maps": np.array(units, "i4"),
+                "u_map_light": np.array([row for _, row, _, _ in maps], "f4"),
+                "u_map_shape": np.array([(f["faces"], f["size"]) for *_, f in maps], "i4"),
+                "u_face_view": b"".join(views),
+                "u_face_planes": np.array([f.get("planes", (1.0, 2.0)) for *_, f in maps],
+                                          "f4"),
+                "u_ortho": np.array([f.get("ortho", (1.0, 1.0, 0.0, 1.0)) for *_, f in maps],
+                                    "f4")}
+
+    def forward(self, owner, state, first_unit: int) -> dict:
+        """For a draw that looks its maps up as it shades (SHADOW_MAPS_FORWARD): the maps
+        bound from ``first_unit`` on, and the uniforms every program of the draw takes."""
+        maps = self.draw_maps(owner, state)
+        units = [first_unit + i for i in range(len(maps))]
+        for (tex, *_), unit in zip(maps, units):
+            tex.use(unit)
+        values = self.lookup_uniforms(maps, units)
+        values["u_camera_to_world"] = gl_bytes(np.linalg.inv(state.view))
+        return values
+
+    def fill(self, owner, renderer, state, gbuf, vis) -> None:
+        """Each light's map, then its layer of ``vis`` by PCF lookups at the G-buffer's
+        points (the visibility a frame reads back)."""
+        from ...scene.camera import Projection
+
+        maps = self.draw_maps(owner, state)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
         prog = self._lookup.get(ortho)
         if prog is None:
@@ -161,32 +200,20 @@ class ShadowMaps(GLResource):
             source, _ = assemble("shadow_maps.comp",
                                  defines=("ORTHOGRAPHIC",) if ortho else ())
             prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
-        self.facts = []
         inverse_view = np.linalg.inv(state.view)
-        for i, row in enumerate(rows[:len(state.lights)]):
-            views, proj, facts = light_frames(row.astype(np.float64), bounds)
-            key = (geometry, row.tobytes(), bounds.tobytes())
-            tex = self._draw_map(i, key, soup, views, proj, facts)
+        put = owner._put
+        for i, one in enumerate(maps):
             owner.bind_gbuffer(prog, state, gbuf)
             gbuf.normal.use(3)
-            tex.use(4)
-            put = owner._put
-            for name, value in {"u_normals": 3, "u_map": 4, "u_layer": i,
-                                "u_light": tuple(float(x) for x in row),
-                                "u_faces": facts["faces"], "u_size": facts["size"],
-                                "u_face_planes": facts.get("planes", (1.0, 2.0)),
-                                "u_ortho": facts.get("ortho", (1.0, 1.0, 0.0, 1.0)),
-                                "u_eye": tuple(inverse_view[:3, 3]),
-                                "u_forward": tuple(-inverse_view[:3, 2]),
-                                "u_face_view": b"".join(
-                                    [gl_bytes(v) for v in views] +
-                                    [gl_bytes(np.eye(4))] * (6 - len(views)))}.items():
+            one[0].use(4)
+            values = {"u_normals": 3, "u_layer": i, "u_eye": tuple(inverse_view[:3, 3]),
+                      "u_forward": tuple(-inverse_view[:3, 2]),
+                      **self.lookup_uniforms([one], [4])}
+            for name, value in values.items():
                 put(prog, name, value)
             vis.bind_to_image(0, read=False, write=True)
             _, _, w, h = (int(v) for v in state.viewport)
             prog.run(math.ceil(w / 8), math.ceil(h / 8), 1)
-            self.facts.append((facts["faces"], facts["size"],
-                               self._footprint(state, views, facts, bounds)))
         self.context.ctx.memory_barrier()
         owner.undecided = 0
 

@@ -250,6 +250,16 @@ class ShadowPass(GLResource):
             self._trace(state, gbuf, vis)
         return vis
 
+    def forward(self, state, first_unit: int) -> dict:
+        """A map-shadowed draw that needs no visibility array: no G-buffer; the maps are
+        drawn (when changed) and bound from ``first_unit``, and the draw's programs look
+        them up as they shade (SHADOW_MAPS_FORWARD). The uniforms they take."""
+        self._check()
+        if self.maps is None:
+            self.maps = ShadowMaps(self.context, self.shaders)
+        self._lights_drawn = 0
+        return self.maps.forward(self, state, first_unit)
+
     def read(self) -> np.ndarray:
         """The last draw's visibility ``(H, W, L)`` float32 in [0, 1] (row 0 at the top of
         an offscreen target's image)."""

@@ -9,7 +9,8 @@ import numpy as np
 from ..errors import EnvironmentFailure, MeshFormatError
 from .mesh import Mesh
 
-__all__ = ["from_trimesh", "to_trimesh", "trimesh_formats", "trimesh_module", "HINT"]
+__all__ = ["from_trimesh", "to_trimesh", "trimesh_formats", "trimesh_module", "trimesh_parts",
+           "HINT"]
 
 HINT = "pip install 'glshade[formats]'"
 
@@ -34,15 +35,11 @@ def trimesh_formats() -> tuple[str, ...]:
 
 def from_trimesh(tm, name: str | None = None) -> Mesh:
     """A glshade Mesh from a ``trimesh.Trimesh`` (triangles), or from a ``trimesh.Scene``
-    with every node's transform applied (all its meshes joined). Texture coordinates and
-    a glTF material's base colour (factor and texture) come along: each source mesh is a
-    material part (:attr:`Mesh.material_groups`) with its own Material."""
+    with every node's transform applied (all its meshes joined, in the order of
+    :func:`trimesh_parts`), with their texture coordinates. (Their materials are the
+    reader's: ``glshade.io.meshes``.)"""
     trimesh = trimesh_module()
-    meshes = [tm]
-    if isinstance(tm, trimesh.Scene):
-        meshes = [g for g in tm.dump() if isinstance(g, trimesh.Trimesh)]
-        if not meshes:
-            raise MeshFormatError(name or "<trimesh scene>", "the scene holds no triangle mesh")
+    meshes = trimesh_parts(tm, name)
     if not all(isinstance(m, trimesh.Trimesh) for m in meshes):
         raise MeshFormatError(name or "<trimesh object>", f"holds a {type(tm).__name__}, not "
                               "a surface (a point cloud or a path has no faces)")
@@ -61,35 +58,18 @@ def from_trimesh(tm, name: str | None = None) -> Mesh:
                name=name or meshes[0].metadata.get("name"),
                uv=np.concatenate([u if u is not None else np.zeros((3 * len(f), 2))
                                   for u, f in zip(uvs, faces)]) if textured else None)
-    _materials_from_trimesh(out, meshes)
     return out
 
 
-def _materials_from_trimesh(mesh: Mesh, meshes: list) -> None:
-    """Each source mesh's glTF base colour as a material part of ``mesh``."""
-    from ..scene.material import Material
-    from ..scene.texture import Texture
-
-    start = 0
-    for k, m in enumerate(meshes):
-        count = len(m.faces)
-        material = getattr(m.visual, "material", None)
-        factor = getattr(material, "baseColorFactor", None)
-        image = getattr(material, "baseColorTexture", None)
-        if factor is not None or image is not None:
-            rgba = np.asarray(factor if factor is not None else [255] * 4, np.float64)
-            rgba = rgba / 255.0 if rgba.max() > 1 else rgba
-            name = getattr(material, "name", None) or f"material {k}"
-            if name in mesh.materials and getattr(mesh.materials[name], "texture", None):
-                name = f"{name} ({k})"   # (a name used twice: one part each)
-            mesh.materials[name] = Material(
-                name=name, color=tuple(rgba[:3]), diffuse=tuple(rgba[:3]),
-                opacity=float(rgba[3]) if len(rgba) > 3 else 1.0,
-                texture=Texture(image) if image is not None else None)
-            faces = np.arange(start, start + count)
-            old = mesh.material_groups.get(name)
-            mesh.material_groups[name] = faces if old is None else np.concatenate([old, faces])
-        start += count
+def trimesh_parts(tm, name: str | None = None) -> list:
+    """The triangle meshes a trimesh object holds, placed: itself, or a scene's dumped."""
+    trimesh = trimesh_module()
+    if not isinstance(tm, trimesh.Scene):
+        return [tm]
+    meshes = [g for g in tm.dump() if isinstance(g, trimesh.Trimesh)]
+    if not meshes:
+        raise MeshFormatError(name or "<trimesh scene>", "the scene holds no triangle mesh")
+    return meshes
 
 
 def to_trimesh(mesh: Mesh):

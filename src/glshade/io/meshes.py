@@ -12,11 +12,15 @@ from typing import Any
 
 from pathlib import Path
 
+import numpy as np
+
 from ..atomic import atomic_write
 from .._paths import file_fault
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
-from ..geometry.trimesh_bridge import HINT, from_trimesh, trimesh_formats, trimesh_module
+from ..geometry.trimesh_bridge import (
+    HINT, from_trimesh, trimesh_formats, trimesh_module, trimesh_parts,
+)
 from . import obj, off, ply, stl
 
 __all__ = ["load_mesh", "load_source", "save_mesh", "FORMATS"]
@@ -127,4 +131,34 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
         lines = [x for x in str(exc).strip().splitlines() if x.strip()]
         reason = lines[-1] if lines else type(exc).__name__
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
-    return from_trimesh(loaded, name=path.stem)
+    mesh = from_trimesh(loaded, name=path.stem)
+    _materials_from_trimesh(mesh, trimesh_parts(loaded, path.stem))
+    return mesh
+
+
+def _materials_from_trimesh(mesh: Mesh, meshes: list) -> None:
+    """Each source mesh's glTF base colour as a material part of ``mesh``."""
+    from ..scene.material import Material
+    from ..scene.texture import Texture
+
+    start = 0
+    for k, m in enumerate(meshes):
+        count = len(m.faces)
+        material = getattr(m.visual, "material", None)
+        factor = getattr(material, "baseColorFactor", None)
+        image = getattr(material, "baseColorTexture", None)
+        if factor is not None or image is not None:
+            rgba = np.asarray(factor if factor is not None else [255] * 4, np.float64)
+            rgba = rgba / 255.0 if rgba.max() > 1 else rgba
+            name = getattr(material, "name", None) or f"material {k}"
+            if name in mesh.materials and getattr(mesh.materials[name], "texture", None):
+                name = f"{name} ({k})"   # (a name used twice: one part each)
+            mesh.materials[name] = Material(
+                name=name, color=tuple(rgba[:3]), diffuse=tuple(rgba[:3]),
+                opacity=float(rgba[3]) if len(rgba) > 3 else 1.0,
+                texture=Texture(image) if image is not None else None)
+            faces = np.arange(start, start + count)
+            old = mesh.material_groups.get(name)
+            mesh.material_groups[name] = faces if old is None else np.concatenate([old, faces])
+        start += count
+

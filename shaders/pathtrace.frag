@@ -88,13 +88,43 @@ vec4 fetch(int i) {
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
+// Moller-Trumbore against triangle k: the nearer hit kept
+void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
+    vec4 p0 = fetch(u_tris + 3 * k);
+    vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    if (abs(det) < 1e-30) return;
+    float f = 1.0 / det;
+    vec3 s = o - p0.xyz;
+    float u = f * dot(s, pv);
+    if (u < 0.0 || u > 1.0) return;
+    vec3 q = cross(s, e1);
+    float v = f * dot(d, q);
+    if (v < 0.0 || u + v > 1.0) return;
+    float t = f * dot(e2, q);
+    if (t > 0.0 && t < t_hit) {
+        t_hit = t;
+        tri_hit = k;
+        g_uv = vec2(u, v);
+    }
+}
+
 bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
+    t_hit = t_max;
+    tri_hit = -1;
+#ifdef FLAT_TRIANGLES
+    // a small scene: every triangle in turn, no hierarchy (on a few dozen triangles the
+    // nodes' fetches and the stack cost more than the tests they save; measured)
+    for (int k = 0; k < FLAT_TRIANGLES; ++k) {
+        ++g_iter;
+        test_triangle(k, o, d, t_hit, tri_hit);
+    }
+#else
     vec3 inv = 1.0 / d;
     int stack[STACK];
     int top = 0;
     stack[top++] = 0;
-    t_hit = t_max;
-    tri_hit = -1;
 #ifdef NO_TRIANGLES
     top = 0;  // (a solid alone: no hierarchy to walk; its root box would hold every ray)
 #endif
@@ -118,26 +148,10 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
         }
         for (int k = first; k < first + count; ++k) {
             ++g_iter;
-            vec4 p0 = fetch(u_tris + 3 * k);
-            vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
-            vec3 pv = cross(d, e2);
-            float det = dot(e1, pv);
-            if (abs(det) < 1e-30) continue;
-            float f = 1.0 / det;
-            vec3 s = o - p0.xyz;
-            float u = f * dot(s, pv);
-            if (u < 0.0 || u > 1.0) continue;
-            vec3 q = cross(s, e1);
-            float v = f * dot(d, q);
-            if (v < 0.0 || u + v > 1.0) continue;
-            float t = f * dot(e2, q);
-            if (t > 0.0 && t < t_hit) {
-                t_hit = t;
-                tri_hit = k;
-                g_uv = vec2(u, v);
-            }
+            test_triangle(k, o, d, t_hit, tri_hit);
         }
     }
+#endif
 #ifdef CSG_SOLID
     float tc;
     int leaf = csg_first_hit(o, d, tc);

@@ -41,14 +41,17 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
 @settings(max_examples=24)
 @given(rho=st.floats(0.0, 0.99), spp=st.integers(8, 48),
        per_pass=st.sampled_from([None, 1, 3, 16]),
-       depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16))
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0)   # (the issue's furnace)
-@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1)
-@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2)
+       depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16),
+       accel=st.sampled_from(["bvh", "flat"]))
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh")  # (the issue's)
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat")
+@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat")
+@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh")
 def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
-                                                     seed):
+                                                     seed, accel):
+    """Both ways of finding triangles (the hierarchy, every triangle in turn)."""
     r = trace(furnace(rho), INSIDE, (16, 16), spp=spp, samples_per_pass=per_pass, seed=seed,
-              max_depth=depth, context=gl_context, progress=False)
+              max_depth=depth, context=gl_context, progress=False, accel=accel)
     assert r.samples == spp and r.near_limit == 0
     want = closed_form(rho, depth)
     pixels = r.image.mean(-1).ravel()
@@ -78,3 +81,34 @@ def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, r
     assert (got[0][..., 3] == total).all()
     for a, b in zip(got, want):
         assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("scene_of", ["cornell", "cornell and a sphere"])
+def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene_of):
+    """Every variant draws the same random stream and finds the same nearest hits: the
+    Cornell box (32 triangles, flat by default) and the box with a 320-triangle sphere
+    (the hierarchy by default), traced both ways, are the same bytes."""
+    from glshade.radiosity import cornell_scene
+
+    scene, camera = cornell_scene()
+    if scene_of != "cornell":
+        scene.add(primitives.icosphere(2), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
+                  scale=90.0, translation=(280.0, 90.0, 280.0))
+    images = {a: trace(scene, camera, (24, 24), spp=6, context=gl_context, progress=False,
+                       accel=a).image for a in ("bvh", "flat")}
+    assert np.array_equal(images["bvh"], images["flat"])
+
+
+def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
+    from glshade.errors import OptionError
+    from glshade.pathtrace import PathTracer
+    from glshade.radiosity import cornell_scene
+
+    scene, _ = cornell_scene()
+    with PathTracer(scene, (8, 8), context=gl_context) as tracer:
+        assert tracer.gpu.accel == "flat"
+    scene.add(primitives.icosphere(3), Material())
+    with PathTracer(scene, (8, 8), context=gl_context) as tracer:
+        assert tracer.gpu.accel == "bvh"
+    with pytest.raises(OptionError, match="accel must be 'auto', 'bvh' or 'flat'"):
+        PathTracer(scene, (8, 8), context=gl_context, accel="kd-tree")

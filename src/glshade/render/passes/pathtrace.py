@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...errors import OptionError
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
@@ -24,7 +25,9 @@ _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_ac
 class GpuPathTracer(GLResource):
     """Path-trace ``scene`` (a :class:`glshade.pathtrace.TraceScene`, whose ``tables()``
     give the texels) at ``width x height``: :meth:`run` makes every pixel finish
-    ``samples`` more paths; :meth:`read` returns the sums. Each pixel traces its samples in
+    ``samples`` more paths; :meth:`read` returns the sums. ``accel``: how rays find
+    triangles -- ``"bvh"``, ``"flat"`` (every triangle in turn) or ``"auto"`` (flat up to
+    ``FLAT_LIMIT`` triangles). Each pixel traces its samples in
     order and sample k's random stream is seeded by (seed, pixel, k); a path in flight is
     kept between passes (shaders/pathtrace.frag), so one invocation's work stays under
     ``budget`` loop iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th
@@ -34,10 +37,14 @@ class GpuPathTracer(GLResource):
     #: loop iterations under which an invocation starts another bounce (a bounce of a
     #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
     BUDGET = 8192
+    #: triangles up to which a ray tests every triangle rather than walk the hierarchy
+    #: (``accel="auto"``; measured on llvmpipe: benchmarks/pathtrace_bench.py)
+    FLAT_LIMIT = 64
 
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
-                 rays: np.ndarray | None = None, budget: int = BUDGET):
+                 rays: np.ndarray | None = None, budget: int = BUDGET,
+                 accel: str = "auto"):
         from ..renderer import check_fits
 
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
@@ -54,6 +61,14 @@ class GpuPathTracer(GLResource):
             defines += ("SMOOTH_NORMALS",)
         if not len(scene.triangles):
             defines += ("NO_TRIANGLES",)
+        if accel not in ("auto", "bvh", "flat"):
+            raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
+        n = len(scene.triangles)
+        #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
+        self.accel = "bvh" if not n or accel == "bvh" or (
+            accel == "auto" and n > self.FLAT_LIMIT) else "flat"
+        if self.accel == "flat":
+            defines += (f"FLAT_TRIANGLES {n}",)
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]

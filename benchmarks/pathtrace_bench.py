@@ -30,11 +30,15 @@ def main() -> None:
     scene, camera = cornell_scene()
     rows = []
     with create_context("egl") as ctx:
-        pathtrace.trace(scene, camera, (32, 32), spp=1, context=ctx, progress=False)  # (compiles)
-        r = pathtrace.trace(scene, camera, (n, n), spp=32, context=ctx, progress=False)
-        paths = r.samples * n * n / r.seconds
-        rows.append(["GPU (this GL)", f"{n}x{n}", r.samples, f"{r.seconds:.2f}",
-                     f"{paths / 1e6:.2f}", f"{r.relative_error:.2%}"])
+        for accel, label in (("bvh", "GPU, hierarchy"), ("flat", "GPU, flat loop"),
+                             ("auto", "GPU (default)")):
+            pathtrace.trace(scene, camera, (32, 32), spp=1, context=ctx, progress=False,
+                            accel=accel)  # (compiles)
+            r = pathtrace.trace(scene, camera, (n, n), spp=32, context=ctx, progress=False,
+                                accel=accel)
+            paths = r.samples * n * n / r.seconds
+            rows.append([label, f"{n}x{n}", r.samples, f"{r.seconds:.2f}",
+                         f"{paths / 1e6:.2f}", f"{r.relative_error:.2%}"])
         t0 = time.perf_counter()
         r5 = pathtrace.trace(scene, camera, (n, n), until=0.05, context=ctx, progress=False)
         t5 = time.perf_counter() - t0

@@ -332,3 +332,18 @@ def test_ply_texture_coordinates_are_read_per_corner(tmp_path, names, binary):
     (tmp_path / "q.ply").write_bytes(data)
     mesh = glshade.load_mesh(tmp_path / "q.ply")
     assert np.array_equal(mesh.uv, table[[0, 1, 2, 0, 2, 3], 3:])
+
+
+def test_meshes_joined_keep_their_coordinates_and_material_parts():
+    from glshade.geometry import primitives
+
+    spider = glshade.load_mesh(ASSIMP / "spider.obj")
+    cube = primitives.cube()
+    sphere = primitives.icosphere(0)   # (no texture coordinates: its corners get (0, 0))
+    joined = glshade.concatenate([cube, sphere, spider])
+    assert np.array_equal(joined.uv[:24], cube.uv)
+    assert (joined.uv[24:24 + 60] == 0).all()
+    assert np.array_equal(joined.uv[84:], spider.uv)
+    offset = cube.n_faces + sphere.n_faces
+    assert np.array_equal(joined.material_groups["Skin"], spider.material_groups["Skin"] + offset)
+    assert joined.materials["Skin"] is spider.materials["Skin"]

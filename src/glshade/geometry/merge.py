@@ -162,12 +162,16 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
 
 
 def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
-    """Join meshes into one; with ``names`` each input becomes a named group of faces."""
+    """Join meshes into one; with ``names`` each input becomes a named group of faces.
+    Texture coordinates are kept where any input has them ((0, 0) for the corners of one
+    that has none); material parts and their materials too."""
     meshes = list(meshes)
     labels: list[str | None] = list(names) if names is not None else [None] * len(meshes)
     if len(labels) != len(meshes):
         raise GeometryError(f"got {len(meshes)} meshes but {len(labels)} names")
     vert, idx, sizes, groups = [], [], [], {}
+    parts: dict = {}
+    materials: dict = {}
     v0 = f0 = 0
     for m, name in zip(meshes, labels):
         vert.append(m.vertices)
@@ -177,14 +181,24 @@ def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> M
             groups[name] = np.arange(f0, f0 + m.n_faces)
         for gname, g in m.groups.items():
             groups[f"{name}/{gname}" if name else gname] = g + f0
+        for part, g in m.material_groups.items():
+            old = parts.get(part)
+            parts[part] = g + f0 if old is None else np.concatenate([old, g + f0])
+        materials.update(m.materials)
         v0 += m.n_vertices
         f0 += m.n_faces
     size = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
     offsets = np.zeros(len(size) + 1, np.int64)
     np.cumsum(size, out=offsets[1:])
-    return Mesh.from_csr(
+    uv = None
+    if any(m.uv is not None for m in meshes):
+        uv = np.concatenate([m.uv if m.uv is not None else np.zeros((len(m.face_indices), 2))
+                             for m in meshes])
+    out = Mesh.from_csr(
         np.concatenate(vert) if vert else np.zeros((0, 3)),
         np.concatenate(idx) if idx else np.zeros(0, np.int64),
         offsets,
-        groups=groups,
+        groups=groups, uv=uv,
     )
+    out.material_groups, out.materials = parts, materials
+    return out

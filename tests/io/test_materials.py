@@ -16,6 +16,7 @@ import glshade
 from glshade import Camera, Material, Mesh, Scene, Texture
 from glshade.errors import MeshFormatError
 from glshade.io.mtl import read_mtl
+from tests.oracle.neighbours import inside_regions
 
 ASSIMP = Path(__file__).resolve().parents[2] / "assets" / "assimp"
 
@@ -117,12 +118,7 @@ def _ray_cast_texels(scene, camera, size):
             frac = full[:, axis] - np.floor(full[:, axis])
             near_edge |= sel & (np.minimum(frac, 1 - frac) <= 0.01 * np.nan_to_num(rate, nan=1e9))
     owner = owner.reshape(h, w)
-    pad = np.pad(owner, 1, constant_values=-2)
-    inside = np.ones_like(owner, bool)
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            inside &= pad[1 + dy:h + 1 + dy, 1 + dx:w + 1 + dx] == owner
-    keep = inside & (owner >= 0) & ~near_edge.reshape(h, w)
+    keep = inside_regions(owner) & (owner >= 0) & ~near_edge.reshape(h, w)
     return colour.reshape(h, w, 3), keep
 
 

@@ -10,6 +10,7 @@ import pytest
 
 import glshade
 from glshade import Camera, DirectionalLight, Material, Mesh, Scene, Texture
+from tests.oracle.neighbours import inside_regions
 
 W, H = 96, 80
 # 7 x 5 texels (odd sizes), every texel's colour far from every other's (so that which texel
@@ -65,12 +66,7 @@ def oracle_uv(mesh, camera, size):
         best_t[hit], best_uv[hit], which[hit] = t[hit], uvs[hit], k
     w, h = size
     which = which.reshape(h, w)
-    pad = np.pad(which, 1, constant_values=-2)
-    inside = np.ones_like(which, bool)
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            inside &= pad[1 + dy:h + 1 + dy, 1 + dx:w + 1 + dx] == which
-    return best_uv.reshape(h, w, 2), inside & (which >= 0)
+    return best_uv.reshape(h, w, 2), inside_regions(which) & (which >= 0)
 
 
 def nearest_texels(uv):

@@ -88,10 +88,19 @@ vec4 fetch(int i) {
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
+#ifdef FLAT_TRIANGLES
+// a small scene's triangles as uniforms (the table's rows: p0 and material, e1, e2): on a
+// software rasterizer a uniform read costs less than a texel fetch
+uniform vec4 u_flat_tris[3 * FLAT_TRIANGLES];
+#define TRI_ROW(i) u_flat_tris[i]
+#else
+#define TRI_ROW(i) fetch(u_tris + (i))
+#endif
+
 // Moller-Trumbore against triangle k: the nearer hit kept
 void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
-    vec4 p0 = fetch(u_tris + 3 * k);
-    vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+    vec4 p0 = TRI_ROW(3 * k);
+    vec3 e1 = TRI_ROW(3 * k + 1).xyz, e2 = TRI_ROW(3 * k + 2).xyz;
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
     if (abs(det) < 1e-30) return;

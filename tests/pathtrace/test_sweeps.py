@@ -112,3 +112,7 @@ def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
         assert tracer.gpu.accel == "bvh"
     with pytest.raises(OptionError, match="accel must be 'auto', 'bvh' or 'flat'"):
         PathTracer(scene, (8, 8), context=gl_context, accel="kd-tree")
+    scene.add(primitives.icosphere(5), Material())   # (20,480 triangles: past any GL's room)
+    with pytest.raises(OptionError, match=r"accel='flat' holds the triangles as uniforms: "
+                       r"this GL has room for \d+, the scene has 21,?792|21792"):
+        PathTracer(scene, (8, 8), context=gl_context, accel="flat")

@@ -197,7 +197,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     pixel's k-th sample is the same however they are grouped). A Ctrl-C returns the
     picture so far (``interrupted`` set). Seeded: the same call gives the same picture.
     ``accel``: how rays find triangles, ``"bvh"``, ``"flat"`` (each in turn) or ``"auto"``
-    (flat up to 96 triangles); the same picture either way."""
+    (flat up to 192 triangles); the same picture either way."""
     from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress

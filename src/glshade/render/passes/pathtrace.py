@@ -37,10 +37,11 @@ class GpuPathTracer(GLResource):
     #: loop iterations under which an invocation starts another bounce (a bounce of a
     #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
     BUDGET = 8192
-    #: triangles up to which a ray tests every triangle rather than walk the hierarchy
-    #: (``accel="auto"``; measured on llvmpipe, M paths/s, hierarchy vs flat: 32 triangles
-    #: 0.51 vs 0.92, 52: 0.36 vs 0.61, 112: 0.31 vs 0.30, 352: 0.23 vs 0.10)
-    FLAT_LIMIT = 96
+    #: triangles up to which a ray tests every triangle (held as uniforms) rather than walk
+    #: the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a sphere,
+    #: M paths/s, hierarchy vs flat: 32 triangles 0.52 vs 1.39, 52: 0.37 vs 0.95, 112: 0.31
+    #: vs 0.46, 352: 0.23 vs 0.15, 1312: 0.18 vs 0.04)
+    FLAT_LIMIT = 192
 
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
@@ -56,6 +57,9 @@ class GpuPathTracer(GLResource):
         self.max_depth, self.budget = max_depth, int(budget)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
         data, self.layout = scene.tables()
+        first = self.layout["u_tris"]  # (a flat loop's triangles: the table's rows)
+        self._flat_rows = np.ascontiguousarray(
+            data[first:first + 3 * len(scene.triangles)], np.float32)
         width = self.layout["width"]
         defines: tuple[str, ...] = (f"DATA_WIDTH {width}",)
         if scene.shading is not None:
@@ -65,9 +69,14 @@ class GpuPathTracer(GLResource):
         if accel not in ("auto", "bvh", "flat"):
             raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
         n = len(scene.triangles)
+        # (a flat loop's triangles are uniforms: three vectors each, beside the others')
+        room = (int(ctx.info.get("GL_MAX_FRAGMENT_UNIFORM_VECTORS") or 256) - 64) // 3
+        if accel == "flat" and n > room:
+            raise OptionError(f"accel='flat' holds the triangles as uniforms: this GL has "
+                              f"room for {room}, the scene has {n}")
         #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
         self.accel = "bvh" if not n or accel == "bvh" or (
-            accel == "auto" and n > self.FLAT_LIMIT) else "flat"
+            accel == "auto" and n > min(self.FLAT_LIMIT, room)) else "flat"
         if self.accel == "flat":
             defines += (f"FLAT_TRIANGLES {n}",)
         self._csg = None
@@ -126,6 +135,8 @@ class GpuPathTracer(GLResource):
                         "u_data": _DATA, "u_rays": _RAYS, "u_n_lights": len(self.scene.lights),
                         **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
+        if self.accel == "flat":  # (the triangle table's rows, as uniforms)
+            values["u_flat_tris"] = self._flat_rows.tobytes()
         if self._csg is not None:
             values.update(self._csg_values)
         lights = self.scene.lights

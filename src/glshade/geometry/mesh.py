@@ -110,8 +110,10 @@ class Mesh:
         if uv is not None:
             t = np.array(uv, dtype=np.float64)
             if t.shape != (len(self.face_indices), 2):
+                hint = (f"; coordinates per vertex ({len(v)}, 2) go per corner as "
+                        "uv[mesh.face_indices]" if t.shape == (len(v), 2) else "")
                 raise GeometryError(f"uv must have one (u, v) per face corner, shape "
-                                    f"({len(self.face_indices)}, 2), got {t.shape}")
+                                    f"({len(self.face_indices)}, 2), got {t.shape}{hint}")
             bad = ~np.isfinite(t).all(axis=1)
             if bad.any():
                 c = int(np.flatnonzero(bad)[0])

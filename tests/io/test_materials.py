@@ -343,3 +343,37 @@ def test_meshes_joined_keep_their_coordinates_and_material_parts():
     offset = cube.n_faces + sphere.n_faces
     assert np.array_equal(joined.material_groups["Skin"], spider.material_groups["Skin"] + offset)
     assert joined.materials["Skin"] is spider.materials["Skin"]
+
+
+def test_scene_files_name_a_texture_by_path_and_keep_an_objs_own_materials(tmp_path):
+    """A [[mesh]]'s ``texture`` is relative to the scene file and its ``texture_filter``
+    applies; an OBJ with no material key keeps its MTL's (filtered as asked); a missing
+    image is one error naming the key's line."""
+    import shutil
+
+    from PIL import Image
+
+    from glshade.errors import SceneFormatError
+    from glshade.io.scenefile import load_scene
+
+    for name in ("cube_usemtl.obj", "cube_usemtl.mtl", "spider.obj", "spider.mtl",
+                 "wal67ar_small.jpg", "wal69ar_small.jpg", "SpiderTex.jpg", "drkwood2.jpg",
+                 "engineflare1.jpg"):
+        shutil.copy(ASSIMP / name, tmp_path / name)
+    (tmp_path / "maps").mkdir()
+    Image.fromarray(np.zeros((4, 4, 3), np.uint8)).save(tmp_path / "maps" / "w.png")
+    scene_file = tmp_path / "s.toml"
+    scene_file.write_text('[[mesh]]\nsource = "spider.obj"\ntexture_filter = "nearest"\n\n'
+                          '[[mesh]]\nsource = "primitive:plane"\ntexture = "maps/w.png"\n'
+                          'texture_filter = "mipmap"\n')
+    scene = load_scene(scene_file).scene
+    spider = [m for m in scene.models if m.name.startswith("spider:")]
+    assert len(spider) == 4 and all(m.material.texture.filter == "nearest" for m in spider)
+    plane = scene.models[-1]
+    assert plane.material.texture.path == tmp_path / "maps" / "w.png"
+    assert plane.material.texture.filter == "mipmap"
+    scene_file.write_text('[[mesh]]\nsource = "primitive:plane"\ncolor = [1, 1, 1]\n'
+                          'texture = "gone.png"\n')
+    with pytest.raises(SceneFormatError, match=r"s.toml:4: \[\[mesh\]\] 1 key 'texture': "
+                       ".*gone.png: no such image file"):
+        load_scene(scene_file)

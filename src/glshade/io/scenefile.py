@@ -351,7 +351,9 @@ def load_scene(path) -> SceneFile:
             raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1} "
                                    "needs a 'source' (a file or primitive:NAME)")
         mesh = _load_mesh(m["source"], path.parent, f"{source}:{line}")
-        material = _material(m, mesh, path.parent, f"{source}:{loc.line('mesh', i, None)}")
+        material = _material(m, mesh, path.parent,
+                             lambda key, i=i: f"{source}:{loc.line('mesh', i, key)}: "
+                                              f"[[mesh]] {i + 1}")
         try:
             model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
                               translation=m.get("translation", (0, 0, 0)),
@@ -396,10 +398,11 @@ _MATERIAL_KEYS = ("color", "ka", "kd", "ks", "shininess", "emission", "reflectan
                   "opacity_texture")
 
 
-def _material(m: dict, mesh, base: Path, where: str) -> Material | None:
+def _material(m: dict, mesh, base: Path, where) -> Material | None:
     """A [[mesh]]'s material: its keys (textures' paths relative to the scene file), or
     None where it gives none and the mesh has its own (an OBJ's MTL); ``texture_filter``
-    and ``texture_wrap`` apply to either's textures."""
+    and ``texture_wrap`` apply to either's textures. ``where(key)``: the key's place, for
+    errors."""
     from ..scene.texture import Texture
 
     look = {k: m[k] for k in ("texture_filter", "texture_wrap") if k in m}
@@ -413,14 +416,17 @@ def _material(m: dict, mesh, base: Path, where: str) -> Material | None:
                 for name, mat in mesh.materials.items()}
         return None
     values = dict(m)
-    try:
-        for key in ("texture", "specular_texture", "opacity_texture"):
-            if key in m:
-                file = base / m[key] if not Path(m[key]).is_absolute() else Path(m[key])
+    for key in ("texture", "specular_texture", "opacity_texture"):
+        if key in m:
+            file = base / m[key] if not Path(m[key]).is_absolute() else Path(m[key])
+            try:
                 values[key] = Texture(file, **sampling)
+            except GlshadeError as exc:
+                raise SceneFormatError(f"{where(key)} key '{key}': {exc}") from None
+    try:
         return Material.from_values(values)
     except GlshadeError as exc:
-        raise SceneFormatError(f"{where}: {exc}") from None
+        raise SceneFormatError(f"{where(None)}: {exc}") from None
 
 
 def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) -> None:

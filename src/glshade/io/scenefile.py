@@ -346,23 +346,7 @@ def load_scene(path) -> SceneFile:
         raise SceneFormatError(f"{source}: the scene has no [[mesh]], [[solid]] or "
                                "[[patches]]")
     for i, m in enumerate(meshes):
-        line = loc.line("mesh", i, "source")
-        if "source" not in m:
-            raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1} "
-                                   "needs a 'source' (a file or primitive:NAME)")
-        mesh = _load_mesh(m["source"], path.parent, f"{source}:{line}")
-        material = _material(m, mesh, path.parent,
-                             lambda key, i=i: f"{source}:{loc.line('mesh', i, key)}: "
-                                              f"[[mesh]] {i + 1}")
-        try:
-            model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
-                              translation=m.get("translation", (0, 0, 0)),
-                              scale=m.get("scale", 1.0), name=m.get("name"),
-                              crease=m.get("crease"))
-        except GlshadeError as exc:
-            raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
-                                   f"{exc}") from None
-        model.visible = m.get("visible", True)
+        _add_mesh(scene, m, i, loc, source, path.parent)
     for i, m in enumerate(d.get("solid", [])):
         _add_solid(scene, m, i, loc, source)
     for i, m in enumerate(d.get("patches", [])):
@@ -390,6 +374,26 @@ def load_scene(path) -> SceneFile:
     if settings.duration is None:
         settings.duration = camera_path.duration or 0.0
     return SceneFile(scene, camera_path, settings, path)
+
+
+def _add_mesh(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) -> None:
+    """A ``[[mesh]]`` table: its source (a file relative to the scene file, or
+    primitive:NAME), material and placement."""
+    if "source" not in m:
+        raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1} "
+                               "needs a 'source' (a file or primitive:NAME)")
+    mesh = _load_mesh(m["source"], base, f"{source}:{loc.line('mesh', i, 'source')}")
+    material = _material(m, mesh, base, lambda key: f"{source}:{loc.line('mesh', i, key)}: "
+                                                    f"[[mesh]] {i + 1}")
+    try:
+        model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
+                          translation=m.get("translation", (0, 0, 0)),
+                          scale=m.get("scale", 1.0), name=m.get("name"),
+                          crease=m.get("crease"))
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
+                               f"{exc}") from None
+    model.visible = m.get("visible", True)
 
 
 #: a [[mesh]]'s keys that make its material (without any, an OBJ's own materials are kept)

@@ -1,79 +1,147 @@
-"""Path tracing the Cornell box: paths and ray queries per second on this GL, samples and
-seconds to a relative error of 5% (and 1%, extrapolated by the 1 / sqrt(N) law when it
-is out of reach here), the numpy twin's speed, and Mitsuba 3 (``scalar_rgb``) on the same
-box when it is installed.
+"""Path tracing against Mitsuba 3: paths a second and time to 1% RMS error on the Cornell
+box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
+each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
+Mitsuba's ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads), interleaved rounds in
+one process, medians. Error: RMS over pixels of the difference from a long glshade render
+(``--reference-spp``), relative to the reference's mean; time to 1% by the 1/sqrt(N) law
+from the error measured at ``--spp`` samples.
 
-Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--size 256]``.
+Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 32] [--rounds 3]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import re
+import statistics
 import sys
+import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _timing import table  # noqa: E402
 
 from glshade import pathtrace  # noqa: E402
-from glshade.pathtrace import twin  # noqa: E402
+from glshade.geometry import primitives  # noqa: E402
+from glshade.pathtrace import TraceScene  # noqa: E402
 from glshade.radiosity import cornell_scene  # noqa: E402
+from glshade.radiosity.cornell import CORNELL_CAMERA  # noqa: E402
 from glshade.render.context import create_context  # noqa: E402
+from glshade.scene import Material  # noqa: E402
+
+
+def scenes() -> dict:
+    """The Cornell box (32 triangles), and the box holding a sphere of 81,920 triangles."""
+    small, camera = cornell_scene()
+    large, _ = cornell_scene()
+    large.add(primitives.icosphere(6), Material(color=(0.75, 0.75, 0.75), kd=0.9, ks=0.0),
+              scale=110.0, translation=(280.0, 115.0, 280.0))
+    return {"cornell (32 tris)": small, "cornell + sphere (81,952 tris)": large}, camera
+
+
+def rms(image: np.ndarray, reference: np.ndarray) -> float:
+    return float(np.sqrt(np.mean((image - reference) ** 2)) / reference.mean())
+
+
+def mitsuba_variants() -> list[str]:
+    try:
+        import mitsuba as mi
+    except ImportError:
+        return []
+    usable = ["scalar_rgb"]
+    # llvm_ad_rgb needs an LLVM >= 16, named by DRJIT_LIBLLVM_PATH (apt-get install
+    # libllvm19): with an older one it crashes in code generation -- the whole process
+    library = os.environ.get("DRJIT_LIBLLVM_PATH", "")
+    version = re.search(r"LLVM-?(\d+)", Path(library).name)
+    if library and version and int(version.group(1)) >= 16:
+        mi.set_variant("llvm_ad_rgb")
+        usable.append("llvm_ad_rgb")
+    return usable
+
+
+def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str) -> np.ndarray:
+    import mitsuba as mi
+
+    from tests.oracle import mitsuba_scene
+
+    mi.set_variant(variant)
+    original = mi.set_variant
+    mi.set_variant = lambda *a: None  # (the helper sets scalar_rgb; keep this variant)
+    try:
+        return mitsuba_scene.render(ts, CORNELL_CAMERA, size, spp, folder)
+    finally:
+        mi.set_variant = original
+
+
+def run(name, scene, camera, size, args, ctx, folder) -> list:
+    """One scene at one size: each tracer's paths a second and time to 1%."""
+    reference = pathtrace.trace(scene, camera, (size, size), spp=args.reference_spp,
+                                context=ctx, progress=False, seed=99).image
+    n_tris = sum(len(m.mesh.triangles[0]) for m in scene.models)
+    series: dict = {}
+    for accel in ("bvh", "flat", "auto"):
+        if accel == "flat" and n_tris > 1000:
+            continue  # (a flat loop over 80k triangles: minutes a frame)
+        series[f"glshade {accel}"] = (lambda a=accel: pathtrace.trace(
+            scene, camera, (size, size), spp=args.spp, context=ctx, progress=False,
+            accel=a).image)
+    ts = TraceScene.from_scene(scene)
+    for variant in mitsuba_variants():
+        try:
+            mitsuba_render(variant, ts, 8, 1, folder)  # (compiles, loads its plugins)
+        except Exception as exc:  # (an LLVM that will not load: say so, go on)
+            print(f"{variant}: not usable here ({type(exc).__name__})")
+            continue
+        series[f"Mitsuba {variant}"] = (lambda v=variant: mitsuba_render(
+            v, ts, size, args.spp, folder))
+    for fn in series.values():
+        fn()  # (compiled once before the clock)
+    seconds: dict = {k: [] for k in series}
+    errors: dict = {}
+    for _ in range(args.rounds):
+        for key, fn in series.items():
+            t = time.perf_counter()
+            image = fn()
+            seconds[key].append(time.perf_counter() - t)
+            errors[key] = rms(np.asarray(image)[..., :3], reference[..., :3])
+    rows = []
+    for key in series:
+        s = statistics.median(seconds[key])
+        to_1 = s * (errors[key] / 0.01) ** 2
+        rows.append((name, f"{size}x{size}", key, f"{args.spp * size * size / s / 1e6:.2f}",
+                     f"{errors[key]:.2%}", f"{to_1:.0f}"))
+    return rows
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--size", type=int, default=256)
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", default="128")
+    ap.add_argument("--spp", type=int, default=32)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--reference-spp", type=int, default=512)
     args = ap.parse_args()
-    n = args.size
-    scene, camera = cornell_scene()
+    found, camera = scenes()
     rows = []
-    with create_context("egl") as ctx:
-        for accel, label in (("bvh", "GPU, hierarchy"), ("flat", "GPU, flat loop"),
-                             ("auto", "GPU (default)")):
-            pathtrace.trace(scene, camera, (32, 32), spp=1, context=ctx, progress=False,
-                            accel=accel)  # (compiles)
-            r = pathtrace.trace(scene, camera, (n, n), spp=32, context=ctx, progress=False,
-                                accel=accel)
-            paths = r.samples * n * n / r.seconds
-            rows.append([label, f"{n}x{n}", r.samples, f"{r.seconds:.2f}",
-                         f"{paths / 1e6:.2f}", f"{r.relative_error:.2%}"])
-        t0 = time.perf_counter()
-        r5 = pathtrace.trace(scene, camera, (n, n), until=0.05, context=ctx, progress=False)
-        t5 = time.perf_counter() - t0
-        rows.append(["GPU to 5%", f"{n}x{n}", r5.samples, f"{t5:.2f}",
-                     f"{r5.samples * n * n / r5.seconds / 1e6:.2f}",
-                     f"{r5.relative_error:.2%}"])
-        k = (r5.relative_error / 0.01) ** 2
-        rows.append(["GPU to 1% (extrapolated)", f"{n}x{n}", int(r5.samples * k),
-                     f"{t5 * k:.0f}", "", "1.00%"])
-    t0 = time.perf_counter()
-    c = twin.trace(scene, camera, (32, 32), 16)
-    tc = time.perf_counter() - t0
-    rows.append(["numpy twin", "32x32", c.samples, f"{tc:.2f}",
-                 f"{c.samples * 32 * 32 / tc / 1e6:.3f}", f"{c.relative_error:.2%}"])
-    try:
-        import mitsuba  # noqa: F401
-    except ImportError:
-        rows.append(["Mitsuba 3 scalar_rgb", "not installed", "", "", "", ""])
-    else:
-        import tempfile
-
-        sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-        from tests.oracle import mitsuba_scene
-        from glshade.pathtrace import TraceScene
-        from glshade.radiosity.cornell import CORNELL_CAMERA
-
-        ts = TraceScene.from_scene(scene)
-        with tempfile.TemporaryDirectory() as folder:
-            mitsuba_scene.render(ts, CORNELL_CAMERA, 16, 1, folder)  # (loads its plugins)
-            t0 = time.perf_counter()
-            mitsuba_scene.render(ts, CORNELL_CAMERA, n, 32, folder)
-            tm = time.perf_counter() - t0
-        rows.append(["Mitsuba 3 scalar_rgb", f"{n}x{n}", 32, f"{tm:.2f}",
-                     f"{32 * n * n / tm / 1e6:.2f}", ""])
-    print(table(rows, ("tracer", "size", "spp", "seconds", "M paths/s", "rel. error")))
+    with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder:
+        for size in (int(x) for x in args.sizes.split(",")):
+            for name, scene in found.items():
+                rows += run(name, scene, camera, size, args, ctx, folder)
+                print(rows[-1], flush=True)
+    print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
+          f"glshade at {args.reference_spp} spp (another seed); time to 1% = seconds x "
+          "(error / 1%)^2")
+    print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "s to 1%")))
+    usable = mitsuba_variants()
+    if not usable:
+        print("Mitsuba 3 not installed (pip install mitsuba)")
+    elif "llvm_ad_rgb" not in usable:
+        print("Mitsuba llvm_ad_rgb not run: it needs LLVM >= 16 named by DRJIT_LIBLLVM_PATH "
+              "(apt-get install libllvm19); this machine's is older")
 
 
 if __name__ == "__main__":

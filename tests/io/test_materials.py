@@ -377,3 +377,23 @@ def test_scene_files_name_a_texture_by_path_and_keep_an_objs_own_materials(tmp_p
     with pytest.raises(SceneFormatError, match=r"s.toml:4: \[\[mesh\]\] 1 key 'texture': "
                        ".*gone.png: no such image file"):
         load_scene(scene_file)
+
+
+def test_gltf_parts_sharing_a_material_name_keep_their_own_colours(tmp_path):
+    """Two meshes of a GLB whose materials share a name but not a colour: two parts, each
+    drawn with its own (a name used twice is never merged into one material)."""
+    from tests.conftest import require
+
+    trimesh = require("trimesh", "glTF is read through the formats extra")
+    scene = trimesh.Scene()
+    for k, colour in enumerate(([255, 0, 0, 255], [0, 0, 255, 255])):
+        part = trimesh.Trimesh([[0, 0, k], [1, 0, k], [0, 1, k]], [[0, 1, 2]], process=False)
+        part.visual = trimesh.visual.TextureVisuals(
+            uv=[[0, 0], [1, 0], [0, 1]], material=trimesh.visual.material.PBRMaterial(
+                name="paint", baseColorFactor=colour))
+        scene.add_geometry(part, geom_name=f"part{k}")
+    scene.export(tmp_path / "two.glb")
+    mesh = glshade.load_mesh(tmp_path / "two.glb")
+    colours = {tuple(np.round(mesh.materials[n].diffuse, 3)): len(f)
+               for n, f in mesh.material_groups.items()}
+    assert colours == {(1.0, 0.0, 0.0): 1, (0.0, 0.0, 1.0): 1}

@@ -372,13 +372,19 @@ class Mesh:
 
     @cached_property
     def corner_triangles(self) -> NDArray[np.int64]:
-        """:attr:`triangles` as corners ``(T, 3)`` (entries of ``face_indices``): the same
-        triangulation, for data kept per corner (texture coordinates)."""
-        groups = {k: (ids, self.face_offsets[ids][:, None] + np.arange(k))
-                  for k, (ids, _) in self.size_groups.items()}
-        tri, _ = triangulate_groups(self.vertices[self.face_indices], groups,
-                                    self.newell_normals)
-        return _readonly(tri)
+        """:attr:`triangles` as corners ``(T, 3)`` (entries of ``face_indices``), for data
+        kept per corner (texture coordinates): each triangle vertex's corner in its polygon,
+        found by sorting the corners by (polygon, vertex) -- no second triangulation."""
+        tri, owner = self.triangles
+        key_face, key_vertex = self.corner_face, self.face_indices
+        order = np.lexsort((key_vertex, key_face))          # corners by (polygon, vertex)
+        sorted_face, sorted_vertex = key_face[order], key_vertex[order]
+        span = np.int64(self.n_vertices) + 1
+        keys = sorted_face * span + sorted_vertex
+        want = np.repeat(owner, 3) * span + tri.ravel()
+        # (a polygon that repeats a vertex: its first corner of that vertex)
+        at = np.searchsorted(keys, want)
+        return _readonly(order[at].reshape(-1, 3))
 
     def subset(self, faces: ArrayLike) -> Mesh:
         """The faces ``faces`` (indices) as a mesh of their own, with only the vertices they

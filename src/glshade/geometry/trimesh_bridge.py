@@ -36,10 +36,10 @@ def trimesh_formats() -> tuple[str, ...]:
 def from_trimesh(tm, name: str | None = None) -> Mesh:
     """A glshade Mesh from a ``trimesh.Trimesh`` (triangles), or from a ``trimesh.Scene``
     with every node's transform applied (all its meshes joined, in the order of
-    :func:`trimesh_parts`), with their texture coordinates. (Their materials are the
-    reader's: ``glshade.io.meshes``.)"""
+    :func:`trimesh_parts`; or such a list itself), with their texture coordinates. (Their
+    materials are the reader's: ``glshade.io.meshes``.)"""
     trimesh = trimesh_module()
-    meshes = trimesh_parts(tm, name)
+    meshes = tm if isinstance(tm, list) else trimesh_parts(tm, name)
     if not all(isinstance(m, trimesh.Trimesh) for m in meshes):
         raise MeshFormatError(name or "<trimesh object>", f"holds a {type(tm).__name__}, not "
                               "a surface (a point cloud or a path has no faces)")

@@ -131,8 +131,9 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
         lines = [x for x in str(exc).strip().splitlines() if x.strip()]
         reason = lines[-1] if lines else type(exc).__name__
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
-    mesh = from_trimesh(loaded, name=path.stem)
-    _materials_from_trimesh(mesh, trimesh_parts(loaded, path.stem))
+    parts = trimesh_parts(loaded, path.stem)
+    mesh = from_trimesh(parts, name=path.stem)
+    _materials_from_trimesh(mesh, parts)
     return mesh
 
 
@@ -151,14 +152,12 @@ def _materials_from_trimesh(mesh: Mesh, meshes: list) -> None:
             rgba = np.asarray(factor if factor is not None else [255] * 4, np.float64)
             rgba = rgba / 255.0 if rgba.max() > 1 else rgba
             name = getattr(material, "name", None) or f"material {k}"
-            if name in mesh.materials and getattr(mesh.materials[name], "texture", None):
-                name = f"{name} ({k})"   # (a name used twice: one part each)
+            if name in mesh.materials:
+                name = f"{name} ({k})"   # (a name used twice: a part each, never merged)
             mesh.materials[name] = Material(
                 name=name, color=tuple(rgba[:3]), diffuse=tuple(rgba[:3]),
                 opacity=float(rgba[3]) if len(rgba) > 3 else 1.0,
                 texture=Texture(image) if image is not None else None)
-            faces = np.arange(start, start + count)
-            old = mesh.material_groups.get(name)
-            mesh.material_groups[name] = faces if old is None else np.concatenate([old, faces])
+            mesh.material_groups[name] = np.arange(start, start + count)
         start += count
 

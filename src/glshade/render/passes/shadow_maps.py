@@ -146,14 +146,14 @@ class ShadowMaps(GLResource):
             warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
                           "not drawn into the maps): shadows='exact' casts theirs",
                           RenderWarning, stacklevel=6)
-        occ = owner.occluding(state.scene)
-        soup = self._soup_for(occ.key, occ.found.triangles)
+        geometry, triangles = owner.occluder_triangles(state.scene)
+        soup = self._soup_for(geometry, triangles)
         bounds = np.asarray(state.scene.bounds, np.float64)
         out = []
         self.facts = []
         for i, row in enumerate(shadow_lights(state.lights)[:len(state.lights)]):
             views, proj, facts = light_frames(row.astype(np.float64), bounds)
-            key = (occ.key, row.tobytes(), bounds.tobytes())
+            key = (geometry, row.tobytes(), bounds.tobytes())
             out.append((self._draw_map(i, key, soup, views, proj, facts), row, views, facts))
             self.facts.append((facts["faces"], facts["size"],
                                self._footprint(state, views, facts, bounds)))

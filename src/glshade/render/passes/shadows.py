@@ -126,6 +126,7 @@ class ShadowPass(GLResource):
         self._gbuffer: tuple | None = None
         self._visibility: tuple | None = None
         self._occluding: _Occluding | None = None
+        self._soup: tuple | None = None  # (key, triangles) for the maps alone
         self._programs: dict = {}
         self._counts = self._keep(context.ctx.buffer(reserve=4))
         self.undecided = 0
@@ -161,6 +162,19 @@ class ShadowPass(GLResource):
             tex.filter = (0x2600, 0x2600)
             self._visibility = (key, tex)
         return self._visibility[1]
+
+    def occluder_triangles(self, scene) -> tuple[tuple, np.ndarray]:
+        """``(key, (T, 3, 3) world triangles)`` of the scene's occluders: what the maps draw
+        -- the exact method's BVH's when it has one for this geometry, else gathered (and
+        kept) without building a hierarchy the maps do not use."""
+        from ...scene.occluders import occluders
+
+        key = _geometry_key(scene)
+        if self._occluding is not None and self._occluding.key == key:
+            return key, self._occluding.found.triangles
+        if self._soup is None or self._soup[0] != key:
+            self._soup = (key, occluders(scene).triangles)
+        return self._soup
 
     def occluding(self, scene) -> _Occluding:
         """The scene's occluders on the GPU (a BVH in storage buffers), built again only

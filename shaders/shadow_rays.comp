@@ -7,10 +7,13 @@
 // shown as seen (the pass reports the count; it is never hidden).
 //
 // Buffers (render/passes/shadows.py writes them):
-//   nodes: a Node each: lo, first, hi, count; an inner node (count 0) has children first
-//     and first + 1, a leaf triangles [first, first + count)
-//   tris: a Tri each: v0, its polygon's id (-1: none), v1 - v0, v2 - v0 (the id an int
-//     member: an int carried in a float's bits is a denormal, which a GPU may flush to 0)
+//   nodes: an inner node's two children, packed (geometry/bvh.py, packed_children): a
+//     child's box (16-bit steps, rounded outwards) and index << 4 | count; an inner child
+//     (count 0) has its own children at 2 index and 2 index + 1, a leaf triangles
+//     [index, index + count)
+//   tris: three uvec4 a triangle: v0 and its polygon's id (-1: none), v1 - v0, v2 - v0,
+//     read whole (a struct of vec3s is read a float at a time) and as bits (an int carried
+//     through a float is a denormal, which a GPU may flush to 0)
 // The ray leaves the point eps off the surface (along its polygon's normal, on the light's
 // side) at
 // t_min = eps, eps relative to the point's depth and the scene's scale (the point is
@@ -21,22 +24,13 @@
 // run before found hidden stays hidden (one run a solid, after the triangles').
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-struct Node {
-    vec3 lo;
-    int first;
-    vec3 hi;
-    int count;
-};
-layout(std430, binding = 0) readonly buffer Nodes { Node nodes[]; };
-struct Tri {
-    vec3 v0;
-    int polygon;
-    vec3 e1;
-    float pad1;
-    vec3 e2;
-    float pad2;
-};
-layout(std430, binding = 1) readonly buffer Tris { Tri tris[]; };
+// nodes: an inner node's two children, a uvec4 each (geometry/bvh.py, packed_children):
+// the box's corners in 16-bit steps of the root's box, then index << 4 | count
+layout(std430, binding = 0) readonly buffer Nodes { uvec4 nodes[]; };
+uniform uvec4 u_root;              // the root, packed as a child
+uniform vec3 u_qbase;              // a corner q (in steps) lies at u_qbase + q u_qstep
+uniform vec3 u_qstep;
+layout(std430, binding = 1) readonly buffer Tris { uvec4 tris[]; };
 layout(std430, binding = 2) buffer Counts { uint undecided; };
 // each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
 // patch's, a solid's leaf) take the G-buffer's normal
@@ -77,27 +71,29 @@ uniform int u_big;                 // the first u_big triangles: tested by every
 // when the ray ran out of its budget.
 // Whether the ray o + t d, t in (t_min, t_max), meets triangle k (not of polygon own).
 bool meets(int k, vec3 o, vec3 d, float t_min, float t_max, int own) {
-    Tri tri = tris[k];
-    if (tri.polygon == own) return false;
-    vec3 pv = cross(d, tri.e2);
-    float det = dot(tri.e1, pv);
+    uvec4 a = tris[3 * k];
+    if (int(a.w) == own) return false;
+    vec3 e1 = uintBitsToFloat(tris[3 * k + 1].xyz), e2 = uintBitsToFloat(tris[3 * k + 2].xyz);
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
     if (det == 0.0) return false;
     float f = 1.0 / det;
-    vec3 s = o - tri.v0;
+    vec3 s = o - uintBitsToFloat(a.xyz);
     float u = f * dot(s, pv);
     if (u < 0.0 || u > 1.0) return false;
-    vec3 q = cross(s, tri.e1);
+    vec3 q = cross(s, e1);
     float v = f * dot(d, q);
     if (v < 0.0 || u + v > 1.0) return false;
-    float t = f * dot(tri.e2, q);
+    float t = f * dot(e2, q);
     return t > t_min && t < t_max;
 }
 
-// The ray's entry into a node's box, or a negative number where it misses the box
+// The ray's entry into a packed child's box, or a negative number where it misses the box
 // within (t_min, t_max).
-float enters(int node, vec3 o, vec3 inv, float t_min, float t_max) {
-    Node box = nodes[node];
-    vec3 t0 = (box.lo - o) * inv, t1 = (box.hi - o) * inv;
+float enters(uvec4 c, vec3 o, vec3 inv, float t_min, float t_max) {
+    vec3 lo = u_qbase + vec3(uvec3(c.x & 0xFFFFu, c.x >> 16, c.y & 0xFFFFu)) * u_qstep;
+    vec3 hi = u_qbase + vec3(uvec3(c.y >> 16, c.z & 0xFFFFu, c.z >> 16)) * u_qstep;
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
     vec3 tn = min(t0, t1), tf = max(t0, t1);
     float near = max(max(tn.x, tn.y), max(tn.z, t_min));
     float far = min(min(tf.x, tf.y), min(tf.z, t_max));
@@ -112,33 +108,34 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     }
     if (u_has_triangles == 0) return 0;
     vec3 inv = 1.0 / d;
-    if (enters(0, o, inv, t_min, t_max) < 0.0) return 0;
-    // a node on the stack is one the ray enters: its children are tested before they are
-    // pushed (the nearer one is taken next)
-    int stack[STACK];
+    if (enters(u_root, o, inv, t_min, t_max) < 0.0) return 0;
+    // the stack holds children the ray enters (index << 4 | count): a leaf's triangles are
+    // tested when it is taken, an inner node's children's boxes before they are pushed (the
+    // nearer one taken next); a step loads 32 bytes
+    uint stack[STACK];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = u_root.w;
     while (top > 0) {
         if (++iterations > u_budget) return -1;
-        Node box = nodes[stack[--top]];
-        if (box.count == 0) {
-            float a = enters(box.first, o, inv, t_min, t_max);
-            float b = enters(box.first + 1, o, inv, t_min, t_max);
-            if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
-            if (a >= 0.0 && b >= 0.0) {
-                stack[top++] = a <= b ? box.first + 1 : box.first;
-                stack[top++] = a <= b ? box.first : box.first + 1;
-            } else if (a >= 0.0) {
-                stack[top++] = box.first;
-            } else if (b >= 0.0) {
-                stack[top++] = box.first + 1;
+        uint item = stack[--top];
+        int index = int(item >> 4), count = int(item & 15u);
+        if (count > 0) {
+            for (int k = index; k < index + count; ++k) {
+                ++iterations;
+                if (meets(k, o, d, t_min, t_max, own)) return 1;
             }
             continue;
         }
-        for (int k = box.first; k < box.first + box.count; ++k) {
-            ++iterations;
-            if (meets(k, o, d, t_min, t_max, own)) return 1;
-        }
+        uvec4 left = nodes[2 * index], right = nodes[2 * index + 1];
+        float a = enters(left, o, inv, t_min, t_max);
+        float b = enters(right, o, inv, t_min, t_max);
+        if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
+        // (branch-free: the farther child pushed first, each only if entered)
+        bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
+        stack[top] = left_first ? right.w : left.w;
+        top += (left_first ? b : a) >= 0.0 ? 1 : 0;
+        stack[top] = left_first ? left.w : right.w;
+        top += (left_first ? a : b) >= 0.0 ? 1 : 0;
     }
     return 0;
 }

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BVH", "build"]
+__all__ = ["BVH", "build", "PackedChildren", "packed_children"]
 
 
 @dataclass(frozen=True)
@@ -93,3 +93,59 @@ def build(triangles: np.ndarray, leaf_size: int = 4) -> BVH:
     leaf = child < 0
     return BVH(lo, hi, np.where(leaf, starts, child), np.where(leaf, ends - starts, 0),
                order, len(level))
+
+
+#: a child's box is kept in 16-bit steps of the root box (and its triangle or node index in
+#: 28 bits, its triangle count in 4)
+QUANTUM_STEPS = 65535
+MAX_PACKED_COUNT, MAX_PACKED_INDEX = 15, (1 << 28) - 1
+
+
+@dataclass(frozen=True)
+class PackedChildren:
+    """A hierarchy as a GPU ray reads it: ``entries`` ``(I, 8)`` uint32, a row per inner
+    node holding its two children -- each child four words:
+    its box's corners as 16-bit steps of the root box (``base + q * step`` in float32 lies
+    at or outside the true corner: rounded outward with a margin for float32's own
+    rounding), then ``index << 4 | count`` (count 0: an inner node, its row; else a
+    leaf's triangles from index). A step loads 32 bytes instead of three 32-byte nodes."""
+
+    entries: np.ndarray
+    base: np.ndarray
+    step: np.ndarray
+    root: np.ndarray  # (4,) the root packed as a child
+
+
+def packed_children(bvh: BVH, first_triangle: int = 0) -> PackedChildren:
+    """``bvh``'s children packed for the GPU (``first_triangle``: added to leaves' triangle
+    indices, for triangles stored after others)."""
+    if int(bvh.count.max(initial=0)) > MAX_PACKED_COUNT:
+        raise ValueError(f"a leaf holds more than {MAX_PACKED_COUNT} triangles")
+    lo32, hi32 = bvh.lo[0].astype(np.float32), bvh.hi[0].astype(np.float32)
+    reach = float(np.abs(np.concatenate([lo32, hi32])).max())
+    # (float32's error in base + q * step is a few ulps of the coordinates: padded)
+    ulp = float(np.spacing(np.float32(reach))) + 1e-30
+    base = (lo32.astype(np.float64) - 8 * ulp).astype(np.float32)
+    top = hi32.astype(np.float64) + 8 * ulp
+    step = ((top - base) / QUANTUM_STEPS * (1 + 1e-6)).astype(np.float32)
+    margin = 1 + np.ceil(4 * ulp / step.astype(np.float64))
+    scale = step.astype(np.float64)
+    q_lo = np.clip(np.floor((bvh.lo - base) / scale) - margin, 0, QUANTUM_STEPS)
+    q_hi = np.clip(np.ceil((bvh.hi - base) / scale) + margin, 0, QUANTUM_STEPS)
+    q_lo, q_hi = q_lo.astype(np.uint32), q_hi.astype(np.uint32)
+    n = bvh.n_nodes
+    leaf = bvh.count > 0
+    inner = np.flatnonzero(~leaf)
+    rank = np.cumsum(~leaf) - 1  # (an inner node's row: leaves have none)
+    index = np.where(leaf, bvh.first + first_triangle, rank)
+    if n and int(index.max()) > MAX_PACKED_INDEX:
+        raise ValueError(f"more than {MAX_PACKED_INDEX:,} triangles or nodes to pack")
+    child = np.empty((n, 4), np.uint32)
+    child[:, 0] = q_lo[:, 0] | (q_lo[:, 1] << 16)
+    child[:, 1] = q_lo[:, 2] | (q_hi[:, 0] << 16)
+    child[:, 2] = q_hi[:, 1] | (q_hi[:, 2] << 16)
+    child[:, 3] = (index.astype(np.uint32) << 4) | np.asarray(bvh.count, np.uint32)
+    entries = np.zeros((max(len(inner), 1), 8), np.uint32)
+    entries[:len(inner), :4] = child[bvh.first[inner]]
+    entries[:len(inner), 4:] = child[bvh.first[inner] + 1]
+    return PackedChildren(entries, base, step, child[0].copy())

@@ -59,6 +59,7 @@ class _Occluding:
     found: Any
     big: int
     scale: float
+    root: dict  # (the hierarchy's root and its boxes' quantum, as uniforms)
 
     def release(self) -> None:
         for buf in (self.nodes, self.tris, self.normals):
@@ -179,7 +180,7 @@ class ShadowPass(GLResource):
     def occluding(self, scene) -> _Occluding:
         """The scene's occluders on the GPU (a BVH in storage buffers), built again only
         when the geometry changed (meshes, patches, transforms, visibility, opacity)."""
-        from ...geometry.bvh import build
+        from ...geometry.bvh import build, packed_children
         from ...scene.occluders import occluders
 
         key = _geometry_key(scene)
@@ -191,7 +192,8 @@ class ShadowPass(GLResource):
         found = occluders(scene)
         ctx = self.context.ctx
         big = np.zeros(0, np.int64)
-        nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)  # (a box no ray enters)
+        nodes = np.zeros((1, 8), np.uint32)
+        root = {"u_root": (0, 0, 0, 0), "u_qbase": (0.0, 0.0, 0.0), "u_qstep": (1.0, 1.0, 1.0)}
         tris = np.zeros((2, 4), np.float32)
         if len(found):
             # the largest triangles (a floor's, a wall's) go in a list every ray tests first:
@@ -205,12 +207,11 @@ class ShadowPass(GLResource):
             if len(rest):
                 bvh = build(found.triangles[rest])
                 order = np.concatenate([big, rest[bvh.order]])
-                nodes = np.zeros((2 * bvh.n_nodes, 4), np.float32)
-                nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
-                # (leaves' triangles follow the big ones)
-                first = np.where(bvh.count > 0, bvh.first + len(big), bvh.first)
-                nodes[0::2, 3] = np.asarray(first, np.int32).view(np.float32)
-                nodes[1::2, 3] = np.asarray(bvh.count, np.int32).view(np.float32)
+                packed = packed_children(bvh, len(big))
+                nodes = packed.entries
+                root = {"u_root": tuple(int(w) for w in packed.root),
+                        "u_qbase": tuple(float(v) for v in packed.base),
+                        "u_qstep": tuple(float(v) for v in packed.step)}
             tri = found.triangles[order]
             tris = np.zeros((3 * len(tri), 4), np.float32)
             tris[0::3, :3] = tri[:, 0]
@@ -222,7 +223,7 @@ class ShadowPass(GLResource):
         self._occluding = _Occluding(
             key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()),
             ctx.buffer(normals.tobytes()), found, len(big),
-            float(np.abs(found.bounds).max()) if len(found) else 1.0)
+            float(np.abs(found.bounds).max()) if len(found) else 1.0, root)
         return self._occluding
 
     def _program(self, defines: tuple):
@@ -294,7 +295,7 @@ class ShadowPass(GLResource):
         inverse_view = np.linalg.inv(state.view)
         values = {"u_scale": occ.scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
                   "u_has_triangles": int(len(occ.found) > occ.big),
-                  "u_big": occ.big, "u_polygons": len(occ.found.normals),
+                  "u_big": occ.big, "u_polygons": len(occ.found.normals), **occ.root,
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():

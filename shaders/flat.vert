@@ -4,6 +4,7 @@
 // n-gon included -- computes the same N, L, R and V: one intensity per polygon, evaluated
 // per corner (the notes: N, L, R, V are constant over the polygon), never per pixel, and
 // passed on flat. Two-sided programs (TWO_SIDED: not culled) also light the back.
+#include "polygon_id.glsl"
 #include "transforms.glsl"
 #include "lighting.glsl"
 
@@ -42,6 +43,7 @@ flat out vec3 v_terms_back[LIGHT_COUNT];
 out vec3 v_position_view;
 
 void main() {
+    PASS_POLYGON_ID();
     vec4 p_view = u_model_view * vec4(in_position, 1.0);
     v_position_view = p_view.xyz;
     vec3 n = normalize(u_normal_view * in_face_normal);

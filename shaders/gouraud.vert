@@ -3,6 +3,7 @@
 // interpolates the intensities linearly across each triangle. Two-sided programs
 // (TWO_SIDED: not culled) light both sides and the fragment stage picks the one facing the
 // viewer; with back faces culled only the front is lit.
+#include "polygon_id.glsl"
 #include "stage_gouraud.glsl"
 
 in vec3 in_position;
@@ -13,6 +14,7 @@ out vec2 v_uv;
 #endif
 
 void main() {
+    PASS_POLYGON_ID();
     gouraud_stage(in_position, in_normal);
 #ifdef TEXTURED
     v_uv = in_uv;

@@ -2,6 +2,7 @@
 // Radiosity display: the solution's radiosity at each vertex (an area-weighted average of
 // the patches around it), interpolated across triangles like Gouraud intensities. Nothing
 // is lit here: the light transport was solved beforehand (glshade.radiosity).
+#include "polygon_id.glsl"
 #include "transforms.glsl"
 
 in vec3 in_position;
@@ -15,6 +16,7 @@ out vec3 v_normal_world;
 #endif
 
 void main() {
+    PASS_POLYGON_ID();
     vec4 p_view = u_model_view * vec4(in_position, 1.0);
     v_color = in_color;
     v_position_view = p_view.xyz;

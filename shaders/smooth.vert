@@ -2,6 +2,7 @@
 // Vertex stage of the per-pixel programs (phong, normals, depth): passes view-space
 // position and normal on to be interpolated (and, for Phong on a software rasterizer, the
 // lighting constants as flat values: constants.glsl).
+#include "polygon_id.glsl"
 #include "stage_smooth.glsl"
 #ifdef FLAT_CONSTANTS
 #define FORWARD_CONSTANTS
@@ -16,6 +17,7 @@ out vec2 v_uv;  // (interpolated perspective-correct)
 #endif
 
 void main() {
+    PASS_POLYGON_ID();
     smooth_stage(in_position, in_normal);
 #ifdef TEXTURED
     v_uv = in_uv;

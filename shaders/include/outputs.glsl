@@ -9,7 +9,9 @@ layout(location = 1) out vec4 frag_normal;     // world-space unit normal, w = 1
 layout(location = 2) out int frag_face_id;     // polygon id + 1 (0 = background)
 layout(location = 3) out uint frag_depth_bits; // floatBitsToUint(distance along view axis)
 uniform int u_face_id_base;
-uniform isampler2D u_face_ids;                 // triangle -> polygon id of this mesh
+#ifndef PATCH_IDS
+flat in int v_polygon;                         // this mesh's polygon (polygon_id.glsl)
+#endif
 #endif
 
 // (SRGB is defined for programs that encode for display: no cost for the others)
@@ -76,9 +78,7 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
 #ifdef PATCH_IDS
     int polygon = gl_PrimitiveID;  // (tessellated on the GPU: the patch's number)
 #else
-    int width = textureSize(u_face_ids, 0).x;
-    int tri = gl_PrimitiveID;
-    int polygon = texelFetch(u_face_ids, ivec2(tri % width, tri / width), 0).r;
+    int polygon = v_polygon;
 #endif
     frag_normal = vec4(normalize(n_world), 1.0);
     frag_face_id = u_face_id_base + polygon + 1;

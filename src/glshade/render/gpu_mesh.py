@@ -7,7 +7,6 @@ from typing import Any
 
 import weakref
 
-import moderngl
 import numpy as np
 
 from ..errors import GlshadeError
@@ -17,9 +16,6 @@ from ..modes import ShadingMode
 from .base import GLResource
 
 __all__ = ["GpuMesh", "drawable_normals"]
-
-_ID_TEXTURE_WIDTH = 4096
-
 
 def drawable_normals(mesh: Mesh) -> np.ndarray:
     """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
@@ -78,12 +74,9 @@ class GpuMesh(GLResource):
             interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
         self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
         self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
-        width = min(self.n_triangles, _ID_TEXTURE_WIDTH)
-        height = -(-self.n_triangles // width)
-        ids = np.zeros(width * height, dtype="i4")
-        ids[: self.n_triangles] = owner
-        self.face_ids = self._keep(ctx.texture((width, height), 1, ids.tobytes(), dtype="i4"))
-        self.face_ids.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        # (kept for the draws with polygon ids, made on their first use)
+        self._indexed = (interleaved, tri, owner)
+        self._per_corner: Any = None
 
     def beyond(self, model_view: np.ndarray, near: float) -> bool:
         """Whether the mesh lies wholly beyond a camera's near plane (``model_view``: model
@@ -92,7 +85,8 @@ class GpuMesh(GLResource):
         return bool((model_view[2] @ self._corners < -near).all())
 
     def _flat_buffer(self):
-        """Per-corner copies with the polygon's Newell normal and centroid (flat mode)."""
+        """Per-corner copies with the polygon's Newell normal and centroid (flat mode), and
+        each corner's polygon id."""
         if self._flat_vbo is None:
             m = self._mesh()
             if m is None:
@@ -104,8 +98,21 @@ class GpuMesh(GLResource):
             if self.textured:
                 parts.append(m.uv[m.corner_triangles.ravel()])
             data = np.hstack(parts).astype("f4")
-            self._flat_vbo = self._keep(self.context.ctx.buffer(data.tobytes()))
+            ctx = self.context.ctx
+            self._flat_vbo = (self._keep(ctx.buffer(data.tobytes())),
+                              self._keep(ctx.buffer(face.astype("i4").tobytes())))
         return self._flat_vbo
+
+    def _corner_buffers(self):
+        """The smooth modes' vertices copied per triangle corner, and each corner's polygon
+        id: what a draw with polygon ids reads (polygon_id.glsl), no vertex shared."""
+        if self._per_corner is None:
+            interleaved, tri, owner = self._indexed
+            ctx = self.context.ctx
+            self._per_corner = (
+                self._keep(ctx.buffer(interleaved[tri.ravel()].tobytes())),
+                self._keep(ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())))
+        return self._per_corner
 
     def color_array(self, program, colors: np.ndarray):
         """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the
@@ -117,27 +124,36 @@ class GpuMesh(GLResource):
             if m is None:
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
             data = np.hstack([m.vertices, drawable_normals(m), colors]).astype("f4")
+            tri, owner = m.triangles
             ctx = self.context.ctx
-            vbo = ctx.buffer(data.tobytes())
-            ibo = ctx.buffer(m.triangles[0].astype("u4").tobytes())
-            self._colors = (colors, vbo, ibo, {})
-        colors_, vbo, ibo, vaos = self._colors
+            # (indexed, and per corner with polygon ids for the draws that write them)
+            self._colors = (colors, [ctx.buffer(data.tobytes()),
+                                     ctx.buffer(tri.astype("u4").tobytes()),
+                                     ctx.buffer(data[tri.ravel()].tobytes()),
+                                     ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())],
+                            {})
+        _, (vbo, ibo, corner_vbo, ids), vaos = self._colors
         vao = vaos.get(id(program))
         if vao is None:
             names = [n for n in ("in_position", "in_normal", "in_color") if n in program]
             fmt = " ".join("3f" if n in names else "12x"
                            for n in ("in_position", "in_normal", "in_color"))
-            vao = vaos[id(program)] = self.context.ctx.vertex_array(
-                program, [(vbo, fmt, *names)], ibo, 4)
+            ctx = self.context.ctx
+            if "in_polygon" in program:
+                vao = ctx.vertex_array(program, [(corner_vbo, fmt, *names),
+                                                 (ids, "i", "in_polygon")])
+            else:
+                vao = ctx.vertex_array(program, [(vbo, fmt, *names)], ibo, 4)
+            vaos[id(program)] = vao
         return vao
 
     def _drop_colors(self) -> None:
         if self._colors is not None:
-            _, vbo, ibo, vaos = self._colors
+            _, buffers, vaos = self._colors
             for vao in vaos.values():
                 vao.release()
-            vbo.release()
-            ibo.release()
+            for buf in buffers:
+                buf.release()
             self._colors = None
 
     def edge_array(self, program):
@@ -164,10 +180,14 @@ class GpuMesh(GLResource):
         vao = self._vaos.get(key)
         if vao is None:
             ctx = self.context.ctx
+            ids = None
             if mode.per_polygon:
                 layout = [("in_position", "3f"), ("in_face_normal", "3f"),
                           ("in_face_centroid", "3f")]
-                buffer, ibo = self._flat_buffer(), None
+                (buffer, ids), ibo = self._flat_buffer(), None
+            elif "in_polygon" in program:  # (polygon ids: per corner)
+                layout = [("in_position", "3f"), ("in_normal", "3f")]
+                (buffer, ids), ibo = self._corner_buffers(), None
             else:
                 layout = [("in_position", "3f"), ("in_normal", "3f")]
                 buffer, ibo = self.vbo, self.ibo
@@ -175,7 +195,10 @@ class GpuMesh(GLResource):
                 layout.append(("in_uv", "2f"))
             names = [n for n, _ in layout if n in program]
             fmt = " ".join(f if n in names else f"{4 * int(f[0])}x" for n, f in layout)
-            vao = ctx.vertex_array(program, [(buffer, fmt, *names)], ibo, 4)
+            content = [(buffer, fmt, *names)]
+            if "in_polygon" in program:
+                content.append((ids, "i", "in_polygon"))
+            vao = ctx.vertex_array(program, content, ibo, 4)
             self._vaos[key] = vao
         return vao
 

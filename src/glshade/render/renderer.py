@@ -520,8 +520,6 @@ class Renderer:
             ctx.cull_face = "back"
         else:
             ctx.disable(moderngl.CULL_FACE)
-        if state.variant.aux and not oit:
-            gpu.face_ids.use(0)
         if textured:
             if self._textures is None:
                 self._textures = TextureCache(self.context)
@@ -579,7 +577,7 @@ class Renderer:
         # (only as many entries as lights: a program's arrays are cut to what it uses)
         pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
         att = np.array([light.attenuation for light in lights], dtype="f4")
-        out = [("u_proj", gl_bytes(proj)), ("u_face_ids", 0),
+        out = [("u_proj", gl_bytes(proj)),
                ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)

@@ -114,28 +114,32 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     // nearer one taken next); a step loads 32 bytes
     uint stack[STACK];
     int top = 0;
-    stack[top++] = u_root.w;
-    while (top > 0) {
-        if (++iterations > u_budget) return -1;
-        uint item = stack[--top];
-        int index = int(item >> 4), count = int(item & 15u);
-        if (count > 0) {
-            for (int k = index; k < index + count; ++k) {
-                ++iterations;
-                if (meets(k, o, d, t_min, t_max, own)) return 1;
-            }
-            continue;
+    uint item = u_root.w;
+    const uint DONE = 0xFFFFFFFFu;
+    while (item != DONE) {
+        // down through inner nodes until this ray holds a leaf (or nothing is left): a
+        // SIMD step does one kind of work for all its rays
+        while (item != DONE && (item & 15u) == 0u) {
+            if (++iterations > u_budget) return -1;
+            int index = int(item >> 4);
+            uvec4 left = nodes[2 * index], right = nodes[2 * index + 1];
+            float a = enters(left, o, inv, t_min, t_max);
+            float b = enters(right, o, inv, t_min, t_max);
+            if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
+            // the nearer child entered next (or the only one), the other one kept
+            bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
+            stack[top] = left_first ? right.w : left.w;
+            top += a >= 0.0 && b >= 0.0 ? 1 : 0;
+            item = a >= 0.0 || b >= 0.0 ? (left_first ? left.w : right.w)
+                                        : (top > 0 ? stack[--top] : DONE);
         }
-        uvec4 left = nodes[2 * index], right = nodes[2 * index + 1];
-        float a = enters(left, o, inv, t_min, t_max);
-        float b = enters(right, o, inv, t_min, t_max);
-        if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
-        // (branch-free: the farther child pushed first, each only if entered)
-        bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
-        stack[top] = left_first ? right.w : left.w;
-        top += (left_first ? b : a) >= 0.0 ? 1 : 0;
-        stack[top] = left_first ? left.w : right.w;
-        top += (left_first ? a : b) >= 0.0 ? 1 : 0;
+        if (item == DONE) break;
+        int index = int(item >> 4), count = int(item & 15u);
+        for (int k = index; k < index + count; ++k) {
+            ++iterations;
+            if (meets(k, o, d, t_min, t_max, own)) return 1;
+        }
+        item = top > 0 ? stack[--top] : DONE;
     }
     return 0;
 }
@@ -148,12 +152,9 @@ void main() {
     int face = texelFetch(u_face_ids, px, 0).r;
 #ifdef CSG_SOLID
     if (face == 0 || imageLoad(u_visibility, ivec3(px, light)).r == 0.0) return;
-#else
-    if (face == 0) {
-        imageStore(u_visibility, ivec3(px, light), vec4(1.0));
-        return;
-    }
 #endif
+    // (one store at the end: llvmpipe runs every branch, an early store and return too)
+    bool trace = face != 0;
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
     vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
     vec3 origin, span;
@@ -166,7 +167,7 @@ void main() {
 #endif
     vec4 l = u_lights[light];
     float seen = 1.0;
-    if (l.w < 1.5) {
+    if (trace && l.w < 1.5) {
         vec3 d = l.w > 0.5 ? l.xyz - p : l.xyz;
         float dist = l.w > 0.5 ? length(d) : 3.4e38;
         d = l.w > 0.5 ? d / max(dist, 1e-30) : d;
@@ -182,11 +183,8 @@ void main() {
 #else
         vec3 to_eye = u_eye - p;
 #endif
-        if (polygon && dot(n, d) * dot(n, to_eye) < 0.0) {
-            // the light is behind the polygon as seen: its own plane hides it (no ray)
-            imageStore(u_visibility, ivec3(px, light), vec4(0.0));
-            return;
-        }
+        // the light behind the polygon as seen: its own plane hides it (no ray)
+        bool behind = polygon && dot(n, d) * dot(n, to_eye) < 0.0;
 #endif
         p += (dot(n, d) < 0.0 ? -eps : eps) * n;
 #ifdef CSG_SOLID
@@ -197,7 +195,7 @@ void main() {
         if (g_iter > u_budget) hit = -1;  // (counted as the walk went: flagged, not hidden)
         if (hit == 0) return;  // (the triangles' answer stands)
 #else
-        int hit = occluded(p, d, eps, dist - eps, face - 1);
+        int hit = behind ? 1 : occluded(p, d, eps, dist - eps, face - 1);
 #endif
         if (hit < 0) {
             atomicAdd(undecided, 1u);

@@ -12,9 +12,10 @@
 // Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
-//   BVH nodes at u_nodes, 2 texels each: (lo, first as int bits), (hi, count as int bits);
-//     an inner node (count 0) has children first and first + 1, a leaf triangles
-//     [first, first + count).
+//   the BVH in its own RGBA32UI texture (u_bvh), 2 texels an inner node: its two children
+//     packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the root's,
+//     rounded outwards, then index << 4 | count); an inner child (count 0) has its own
+//     texels at 2 index, a leaf triangles [index, index + count); u_root the root, packed.
 //   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -)
 //   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
 //   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
@@ -43,7 +44,10 @@ uniform int u_csg_material;
 #endif
 
 uniform sampler2D u_data;
-uniform int u_nodes;
+uniform usampler2D u_bvh;
+uniform uvec4 u_root;
+uniform vec3 u_qbase;         // a packed box corner q (in steps) is u_qbase + q u_qstep
+uniform vec3 u_qstep;
 uniform int u_tris;
 uniform int u_mats;
 uniform int u_emit;
@@ -83,6 +87,21 @@ layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near
 
 vec4 fetch(int i) {
     return data_texel(u_data, i, DATA_WIDTH);
+}
+
+uvec4 bvh_texel(int i) {
+    return texelFetch(u_bvh, ivec2(i % DATA_WIDTH, i / DATA_WIDTH), 0);
+}
+
+// where o + t d enters a packed child's box for t in [0, t_max]; negative: it misses
+float box_entry(uvec4 c, vec3 o, vec3 inv, float t_max) {
+    vec3 lo = u_qbase + vec3(uvec3(c.x & 0xFFFFu, c.x >> 16, c.y & 0xFFFFu)) * u_qstep;
+    vec3 hi = u_qbase + vec3(uvec3(c.y >> 16, c.z & 0xFFFFu, c.z >> 16)) * u_qstep;
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    vec3 tn = min(t0, t1), tf = max(t0, t1);
+    float near = max(max(tn.x, tn.y), max(tn.z, 0.0));
+    float far = min(min(tf.x, tf.y), min(tf.z, t_max));
+    return near <= far ? near : -1.0;
 }
 
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
@@ -129,35 +148,43 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
         ++g_iter;
         test_triangle(k, o, d, t_hit, tri_hit);
     }
-#else
+#elif !defined(NO_TRIANGLES)
+    // the hierarchy: a step tests both children of an inner node (the nearer one taken
+    // next, the other kept with its entry distance); a ray walks down inner nodes until it
+    // holds a leaf, then tests the leaf (one kind of work a SIMD step: llvmpipe runs every
+    // branch of a step); kept children farther than the nearest hit so far are dropped
     vec3 inv = 1.0 / d;
-    int stack[STACK];
+    const uint DONE = 0xFFFFFFFFu;
+    uint stack[STACK];
+    float entry[STACK];
     int top = 0;
-    stack[top++] = 0;
-#ifdef NO_TRIANGLES
-    top = 0;  // (a solid alone: no hierarchy to walk; its root box would hold every ray)
-#endif
-    while (top > 0) {
-        ++g_iter;
-        int node = stack[--top];
-        vec4 a = fetch(u_nodes + 2 * node);
-        vec4 b = fetch(u_nodes + 2 * node + 1);
-        vec3 t0 = (a.xyz - o) * inv, t1 = (b.xyz - o) * inv;
-        vec3 tn = min(t0, t1), tf = max(t0, t1);
-        float near = max(max(tn.x, tn.y), max(tn.z, 0.0));
-        float far = min(min(tf.x, tf.y), min(tf.z, t_hit));
-        if (near > far) continue;
-        int first = floatBitsToInt(a.w), count = floatBitsToInt(b.w);
-        if (count == 0) {
-            if (top < STACK - 1) {
-                stack[top++] = first + 1;
-                stack[top++] = first;
+    uint item = box_entry(u_root, o, inv, t_hit) >= 0.0 ? u_root.w : DONE;
+    while (item != DONE) {
+        while (item != DONE && (item & 15u) == 0u) {
+            ++g_iter;
+            int row = 2 * int(item >> 4);
+            uvec4 left = bvh_texel(row), right = bvh_texel(row + 1);
+            float a = box_entry(left, o, inv, t_hit), b = box_entry(right, o, inv, t_hit);
+            bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
+            stack[top] = left_first ? right.w : left.w;
+            entry[top] = left_first ? b : a;
+            top += a >= 0.0 && b >= 0.0 && top < STACK - 1 ? 1 : 0;
+            item = a >= 0.0 || b >= 0.0 ? (left_first ? left.w : right.w) : DONE;
+            while (item == DONE && top > 0) {
+                --top;
+                item = entry[top] <= t_hit ? stack[top] : DONE;
             }
-            continue;
         }
+        if (item == DONE) break;
+        int first = int(item >> 4), count = int(item & 15u);
         for (int k = first; k < first + count; ++k) {
             ++g_iter;
             test_triangle(k, o, d, t_hit, tri_hit);
+        }
+        item = DONE;
+        while (item == DONE && top > 0) {
+            --top;
+            item = entry[top] <= t_hit ? stack[top] : DONE;
         }
     }
 #endif

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.bvh import build
+from ..geometry.bvh import build, packed_children
 
 __all__ = ["pack", "DATA_WIDTH"]
 
@@ -18,20 +18,32 @@ def _bits(values) -> np.ndarray:
     return np.asarray(values, np.int32).view(np.float32)
 
 
+def _rows(texels: np.ndarray) -> np.ndarray:
+    """``texels (N, 4)`` padded with zeros to whole rows of DATA_WIDTH."""
+    rows = -(-len(texels) // DATA_WIDTH)
+    out = np.zeros((rows * DATA_WIDTH, 4), texels.dtype)
+    out[:len(texels)] = texels
+    return out
+
+
 def pack(scene) -> tuple[np.ndarray, dict]:
     """A :class:`~glshade.pathtrace.scene.TraceScene` as RGBA32F texels ``(rows *
-    DATA_WIDTH, 4)`` and the offset of each table (see the shader's header): BVH nodes,
-    triangles in BVH order, materials, emitters."""
+    DATA_WIDTH, 4)`` and the offset of each table (see the shader's header): triangles in
+    BVH order, materials, emitters; the layout's ``hierarchy`` holds the BVH as packed
+    children (:func:`glshade.geometry.bvh.packed_children`), RGBA32UI texels in rows of
+    DATA_WIDTH, its root and quantum as uniforms."""
     if len(scene.triangles):
         bvh = build(scene.triangles)
-        order, depth = bvh.order, bvh.depth
-        n_nodes = bvh.n_nodes
-        nodes = np.zeros((2 * n_nodes, 4), np.float32)
-        nodes[0::2, :3], nodes[1::2, :3] = bvh.lo, bvh.hi
-        nodes[0::2, 3], nodes[1::2, 3] = _bits(bvh.first), _bits(bvh.count)
-    else:  # (a solid alone: one empty box no ray enters)
-        order, depth, n_nodes = np.zeros(0, np.int64), 0, 1
-        nodes = np.array([[1, 1, 1, 0], [-1, -1, -1, 0]], np.float32)
+        order, depth, n_nodes = bvh.order, bvh.depth, bvh.n_nodes
+        packed = packed_children(bvh)
+        entries, root = packed.entries, {
+            "u_root": tuple(int(w) for w in packed.root),
+            "u_qbase": tuple(float(v) for v in packed.base),
+            "u_qstep": tuple(float(v) for v in packed.step)}
+    else:  # (a solid alone: no hierarchy)
+        order, depth, n_nodes = np.zeros(0, np.int64), 0, 0
+        entries = np.zeros((1, 8), np.uint32)
+        root = {"u_root": (0, 0, 0, 0), "u_qbase": (0.0, 0.0, 0.0), "u_qstep": (1.0, 1.0, 1.0)}
     tri = scene.triangles[order]
     n_tris = len(tri)
     tris = np.zeros((3 * n_tris, 4), np.float32)
@@ -52,13 +64,12 @@ def pack(scene) -> tuple[np.ndarray, dict]:
     emit[:len(scene.emitters), 0] = scene.emitter_cdf
     emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
     emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
-    tables = [nodes, tris, mats, emit, norms]
+    tables = [tris, mats, emit, norms]
     offsets = np.cumsum([0] + [len(t) for t in tables])
-    data = np.concatenate(tables)
-    rows = -(-len(data) // DATA_WIDTH)
-    data = np.concatenate([data, np.zeros((rows * DATA_WIDTH - len(data), 4), np.float32)])
-    layout = {"u_nodes": int(offsets[0]), "u_tris": int(offsets[1]), "u_mats": int(offsets[2]),
-              "u_emit": int(offsets[3]), "u_n_emit": len(scene.emitters),
-              "u_norms": int(offsets[4]),
-              "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH}
+    data = _rows(np.concatenate(tables))
+    layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
+              "u_emit": int(offsets[2]), "u_n_emit": len(scene.emitters),
+              "u_norms": int(offsets[3]), **root,
+              "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH,
+              "hierarchy": _rows(entries.reshape(-1, 4))}
     return data, layout

@@ -19,6 +19,7 @@ __all__ = ["GpuPathTracer"]
 
 #: texture units: the scene's tables, given rays, the solid's tree, then the seven targets
 _DATA, _RAYS, _CSG, _TARGETS = 0, 1, 2, 3
+_BVH = _TARGETS + 7  # (after the seven targets)
 _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
 
 
@@ -39,9 +40,9 @@ class GpuPathTracer(GLResource):
     BUDGET = 8192
     #: triangles up to which a ray tests every triangle (held as uniforms) rather than walk
     #: the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a sphere,
-    #: M paths/s, hierarchy vs flat: 32 triangles 0.52 vs 1.39, 52: 0.37 vs 0.95, 112: 0.31
-    #: vs 0.46, 352: 0.23 vs 0.15, 1312: 0.18 vs 0.04)
-    FLAT_LIMIT = 192
+    #: 128x128 x 8 spp, M paths/s, hierarchy vs flat: 32 triangles 0.61 vs 1.17, 52: 0.46
+    #: vs 0.84, 112: 0.45 vs 0.44, 352: 0.46 vs 0.15; 1312: hierarchy 0.36)
+    FLAT_LIMIT = 112
 
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
@@ -101,6 +102,10 @@ class GpuPathTracer(GLResource):
                                                         defines=defines))
         self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
         self.texture = self._keep(data_texture(ctx, data, width))
+        tree = self.layout["hierarchy"]
+        self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4, tree.tobytes(),
+                                           dtype="u4"))
+        self._bvh.filter = (0x2600, 0x2600)  # (NEAREST: a texel read whole)
         # two sets of the seven targets, read and written in turn
         size = (self.width, self.height)
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
@@ -132,7 +137,8 @@ class GpuPathTracer(GLResource):
         values: dict = {"u_size": (float(self.width), float(self.height)),
                         "u_max_depth": int(self.max_depth or 0),
                         "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
-                        "u_data": _DATA, "u_rays": _RAYS, "u_n_lights": len(self.scene.lights),
+                        "u_data": _DATA, "u_bvh": _BVH, "u_rays": _RAYS,
+                        "u_n_lights": len(self.scene.lights),
                         **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
         if self.accel == "flat":  # (the triangle table's rows, as uniforms)
@@ -177,6 +183,7 @@ class GpuPathTracer(GLResource):
         if self._csg is not None:
             self._csg.use(location=_CSG)
         self.texture.use(location=_DATA)
+        self._bvh.use(location=_BVH)
         if self._rays is not None:
             self._rays.use(location=_RAYS)
         ctx.viewport = (0, 0, self.width, self.height)

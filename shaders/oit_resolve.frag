@@ -11,12 +11,14 @@
 // order-free: C = sum(w a c) / sum(w a) x (1 - prod(1 - a)).
 // A list walk is bounded (LIST_BUDGET steps: llvmpipe stops a shader at 65,535): a pixel
 // that runs out is counted (u_counts[2]) and composited from what it read.
-layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;  // fragments a pixel
-layout(r32ui, binding = 2) uniform coherent uimage2D u_oit_more;   // pool list head + 1
+// a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
+layout(std430, binding = 4) readonly buffer OitHeads { uint oit_heads[]; };
 layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
-layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };  // pixels over, fragments
-                                                                     // over, cut short, all
+// pixels over, fragments over, cut short, -; then each row's fragments (an atomic a row,
+// not one for the whole picture: llvmpipe's threads would contend for it)
+layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; uint u_rows[]; };
 uniform uint u_oit_width;
+uniform uint u_oit_pixels;
 uniform uint u_oit_base;
 #ifndef OIT_SLOTS
 #error "OIT_SLOTS comes from render/programs.py (OIT_SLOTS)"
@@ -56,12 +58,13 @@ bool next_node(out uvec4 node) {
 
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    uint count = imageLoad(u_oit_heads, px).r;
+    uint pixel = uint(px.y) * u_oit_width + uint(px.x);
+    uint count = oit_heads[pixel];
     if (count == 0u) discard;
-    atomicAdd(u_counts[3], count);
-    g_first = (uint(px.y) * u_oit_width + uint(px.x)) * uint(OIT_SLOTS);
+    atomicAdd(u_rows[px.y], count);
+    g_first = pixel * uint(OIT_SLOTS);
     g_slots = min(count, uint(OIT_SLOTS));
-    g_next = imageLoad(u_oit_more, px).r;
+    g_next = oit_heads[u_oit_pixels + pixel];
     uvec4 node;
     int steps = 0;
 #ifdef WEIGHTED

@@ -30,15 +30,17 @@ float g_map_opacity = 1.0;                     // its opacity map here (textures
 // A transparent surface's fragment joins its pixel's list (render/passes/transparency.py):
 // a node is (colour RG, BA as 16-bit fractions, view depth, the next node). A pixel's first
 // OIT_SLOTS fragments take its own slots (a per-pixel count, no shared counter to contend
-// for); the rest go to a shared pool, linked from a second head image. The opaque depth
-// test runs first (nothing hidden joins).
+// for); the rest go to a shared pool, linked from the pixel's pool head. Counts and heads
+// are storage-buffer words (atomics on them cost llvmpipe less than on an image's texels).
+// The opaque depth test runs first (nothing hidden joins).
 layout(early_fragment_tests) in;
-layout(r32ui, binding = 1) uniform coherent uimage2D u_oit_heads;  // fragments a pixel
-layout(r32ui, binding = 2) uniform coherent uimage2D u_oit_more;   // pool list head + 1
+// a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
+layout(std430, binding = 4) coherent buffer OitHeads { uint oit_heads[]; };
 layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
 layout(std430, binding = 6) buffer OitCount { uint oit_count; };
 uniform uint u_oit_capacity;  // nodes in the pool
-uniform uint u_oit_width;     // the target's width (a pixel's slots: its index x OIT_SLOTS)
+uniform uint u_oit_width;     // the target's width (a pixel's index: y width + x)
+uniform uint u_oit_pixels;    // the target's pixels
 uniform uint u_oit_base;      // where the pool starts (after every pixel's slots)
 #ifndef OIT_SLOTS
 #error "OIT_SLOTS comes from render/programs.py (OIT_SLOTS)"
@@ -54,16 +56,16 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     // (with MSAA a pixel's fragment is its sample 0's: two triangles that share an edge
     // through the pixel would both be listed otherwise)
     if ((gl_SampleMaskIn[0] & 1) != 0) {
-        ivec2 px = ivec2(gl_FragCoord.xy);
+        uint pixel = uint(gl_FragCoord.y) * u_oit_width + uint(gl_FragCoord.x);
         uvec4 node = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, SURFACE_OPACITY)),
                            floatBitsToUint(depth_view), 0u);
-        uint slot = imageAtomicAdd(u_oit_heads, px, 1u);
+        uint slot = atomicAdd(oit_heads[pixel], 1u);
         if (slot < uint(OIT_SLOTS)) {
-            oit_nodes[(uint(px.y) * u_oit_width + uint(px.x)) * uint(OIT_SLOTS) + slot] = node;
+            oit_nodes[pixel * uint(OIT_SLOTS) + slot] = node;
         } else {
             uint i = atomicAdd(oit_count, 1u);
             if (i < u_oit_capacity) {  // (beyond: counted; the pass runs again with room)
-                node.w = imageAtomicExchange(u_oit_more, px, i + 1u);
+                node.w = atomicExchange(oit_heads[u_oit_pixels + pixel], i + 1u);
                 oit_nodes[u_oit_base + i] = node;
             }
         }

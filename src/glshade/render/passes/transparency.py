@@ -2,11 +2,12 @@
 
 - ``exact``: every transparent fragment that passes the opaque depth test joins its pixel's
   list (shaders/include/outputs.glsl): the pixel's first ``OIT_SLOTS`` fragments take slots
-  of its own (a per-pixel atomic count), the rest a shared pool linked from a second head
-  image; a full-viewport pass (shaders/oit_resolve.frag) sorts each list nearest first,
-  keeps ``max_layers`` of it and composites "over" front to back onto a float copy of the
-  opaque picture. A list longer than ``max_layers`` is counted (pixels, fragments) and
-  reported; the pool grows and the capture runs again when a frame needs more room.
+  of its own (a per-pixel atomic count), the rest a shared pool linked from the pixel's
+  pool head (counts and heads: a storage buffer, two words a pixel); a full-viewport pass
+  (shaders/oit_resolve.frag) sorts each list nearest first, keeps ``max_layers`` of it and
+  composites "over" front to back onto a float copy of the opaque picture. A list longer
+  than ``max_layers`` is counted (pixels, fragments) and reported; the pool grows and the
+  capture runs again when a frame needs more room.
 - ``weighted``: the same lists, resolved by McGuire and Bavoil's weighted blended estimate
   (order-free, approximate: for comparison).
 - ``blend``: each surface blended "over" as it is drawn, in the scene's order (what a
@@ -64,30 +65,25 @@ class TransparencyPass(GLResource):
         super().__init__(context)
         self.shaders = shaders
         ctx = context.ctx
-        self._heads = None  # (size, texture, framebuffer to clear it)
+        self._heads = None  # (size, the heads' buffer, the report's buffer)
         self._nodes = None
         self._capacity = 0  # (the pool's nodes)
         self._slots = 0     # (the pixels' own slots)
         self._count = self._keep(ctx.buffer(reserve=4))
-        self._report = self._keep(ctx.buffer(reserve=16))
         self._programs: dict = {}
         self._behind = None  # (size, the opaque picture's copy)
         self.report = TransparencyReport(Transparency.EXACT.value)
 
     def _heads_for(self, width: int, height: int):
-        """The per-pixel fragment counts and pool list heads, and a framebuffer that clears
-        both (made once a size)."""
+        """The per-pixel fragment counts and pool list heads (a storage buffer of two words a
+        pixel; made once a size) and the report's buffer (four counts, then one a row)."""
         if self._heads is None or self._heads[0] != (width, height):
             if self._heads is not None:
-                for obj in self._heads[1:][::-1]:
+                for obj in self._heads[1:]:
                     obj.release()
             ctx = self.context.ctx
-            made = []
-            for _ in range(2):
-                tex = ctx.texture((width, height), 1, dtype="u4")
-                tex.filter = (0x2600, 0x2600)
-                made.append(tex)
-            self._heads = ((width, height), made[0], made[1], ctx.framebuffer(made))
+            self._heads = ((width, height), ctx.buffer(reserve=2 * width * height * 4),
+                           ctx.buffer(reserve=(4 + height) * 4))
         return self._heads
 
     def _behind_for(self, target):
@@ -156,17 +152,16 @@ class TransparencyPass(GLResource):
             self.report = TransparencyReport(Transparency.BLEND.value)
             return
         width, height = int(target.width), int(target.height)
-        _, heads, more, clear = self._heads_for(width, height)
+        _, heads, report = self._heads_for(width, height)
         self._room(width * height * SLOTS, width * height * START_POOL_PER_PIXEL)
-        layout = {"u_oit_width": width, "u_oit_base": self._slots}
+        layout = {"u_oit_width": width, "u_oit_pixels": width * height,
+                  "u_oit_base": self._slots}
         for _ in range(2):  # (a second time with room for every fragment, when short)
-            clear.use()
-            clear.clear(0.0, 0.0, 0.0, 0.0)
+            heads.clear()
             self._count.write(np.zeros(1, np.uint32).tobytes())
             target.bind(Outputs.COLOR)
             ctx.viewport = state.viewport
-            heads.bind_to_image(1, read=True, write=True)
-            more.bind_to_image(2, read=True, write=True)
+            heads.bind_to_storage_buffer(4)
             self._nodes.bind_to_storage_buffer(5)
             self._count.bind_to_storage_buffer(6)
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
@@ -186,9 +181,9 @@ class TransparencyPass(GLResource):
                 break
             self._room(self._slots, int(pooled * 1.25) + 1024)
             layout["u_oit_base"] = self._slots
-        self._resolve(state, heads, more, layout)
+        self._resolve(state, heads, report, layout)
 
-    def _resolve(self, state, heads, more, layout: dict) -> None:
+    def _resolve(self, state, heads, report, layout: dict) -> None:
         import moderngl
 
         ctx = self.context.ctx
@@ -196,10 +191,9 @@ class TransparencyPass(GLResource):
         layers = options.max_layers
         prog = self._resolve_program(options.transparency, layers)
         vao = ctx.vertex_array(prog, [])
-        self._report.write(np.zeros(4, np.uint32).tobytes())
-        self._report.bind_to_storage_buffer(7)
-        heads.bind_to_image(1, read=True, write=False)
-        more.bind_to_image(2, read=True, write=False)
+        report.clear()
+        report.bind_to_storage_buffer(7)
+        heads.bind_to_storage_buffer(4)
         self._nodes.bind_to_storage_buffer(5)
         for name, value in layout.items():
             prog[name].value = value
@@ -222,8 +216,8 @@ class TransparencyPass(GLResource):
                 ctx.enable(moderngl.DEPTH_TEST)
             vao.release()
         ctx.memory_barrier()
-        over, dropped, short, count = (int(x) for x in np.frombuffer(self._report.read(),
-                                                                      np.uint32))
+        rep = np.frombuffer(report.read(), np.uint32)
+        over, dropped, short, count = int(rep[0]), int(rep[1]), int(rep[2]), int(rep[4:].sum())
         self.report = TransparencyReport(options.transparency.value, count, layers, over,
                                          dropped, short)
         if over and options.transparency is Transparency.EXACT:
@@ -241,7 +235,7 @@ class TransparencyPass(GLResource):
             p.release()
         self._programs.clear()
         if self._heads is not None:
-            for obj in self._heads[1:][::-1]:
+            for obj in self._heads[1:]:
                 obj.release()
             self._heads = None
         if self._behind is not None:

@@ -11,8 +11,12 @@
 // order-free: C = sum(w a c) / sum(w a) x (1 - prod(1 - a)).
 // A list walk is bounded (LIST_BUDGET steps: llvmpipe stops a shader at 65,535): a pixel
 // that runs out is counted (u_counts[2]) and composited from what it read.
+#ifdef OIT_FETCH
+uniform usampler2D u_oit_heads;  // a pixel's fragment count, pool list head + 1
+#else
 // a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
 layout(std430, binding = 4) readonly buffer OitHeads { uint oit_heads[]; };
+#endif
 layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
 // pixels over, fragments over, cut short, -; then each row's fragments (an atomic a row,
 // not one for the whole picture: llvmpipe's threads would contend for it)
@@ -59,12 +63,17 @@ bool next_node(out uvec4 node) {
 void main() {
     ivec2 px = ivec2(gl_FragCoord.xy);
     uint pixel = uint(px.y) * u_oit_width + uint(px.x);
-    uint count = oit_heads[pixel];
+#ifdef OIT_FETCH
+    uvec2 head = texelFetch(u_oit_heads, px, 0).xy;
+#else
+    uvec2 head = uvec2(oit_heads[pixel], oit_heads[u_oit_pixels + pixel]);
+#endif
+    uint count = head.x;
     if (count == 0u) discard;
     atomicAdd(u_rows[px.y], count);
     g_first = pixel * uint(OIT_SLOTS);
     g_slots = min(count, uint(OIT_SLOTS));
-    g_next = oit_heads[u_oit_pixels + pixel];
+    g_next = head.y;
     uvec4 node;
     int steps = 0;
 #ifdef WEIGHTED

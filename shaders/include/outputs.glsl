@@ -3,7 +3,14 @@
 
 // Programs compiled without GLSHADE_AUX_OUTPUTS write colour only (plain renders).
 
+#ifdef OIT_FETCH
+// a transparent surface's capture: this pixel's fragment count and pool list head + 1, read
+// as the earlier fragments left them (framebuffer fetch keeps primitive order per pixel:
+// no atomics) and written back
+layout(location = 0) inout uvec2 oit_head;
+#else
 layout(location = 0) out vec4 frag_color;
+#endif
 #ifdef GLSHADE_AUX_OUTPUTS
 layout(location = 1) out vec4 frag_normal;     // world-space unit normal, w = 1 where drawn
 layout(location = 2) out int frag_face_id;     // polygon id + 1 (0 = background)
@@ -34,8 +41,10 @@ float g_map_opacity = 1.0;                     // its opacity map here (textures
 // are storage-buffer words (atomics on them cost llvmpipe less than on an image's texels).
 // The opaque depth test runs first (nothing hidden joins).
 layout(early_fragment_tests) in;
+#ifndef OIT_FETCH
 // a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
 layout(std430, binding = 4) coherent buffer OitHeads { uint oit_heads[]; };
+#endif
 layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
 layout(std430, binding = 6) buffer OitCount { uint oit_count; };
 uniform uint u_oit_capacity;  // nodes in the pool
@@ -59,18 +68,30 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
         uint pixel = uint(gl_FragCoord.y) * u_oit_width + uint(gl_FragCoord.x);
         uvec4 node = uvec4(packUnorm2x16(color.rg), packUnorm2x16(vec2(color.b, SURFACE_OPACITY)),
                            floatBitsToUint(depth_view), 0u);
+#ifdef OIT_FETCH
+        uint slot = oit_head.x;
+        oit_head.x = slot + 1u;
+#else
         uint slot = atomicAdd(oit_heads[pixel], 1u);
+#endif
         if (slot < uint(OIT_SLOTS)) {
             oit_nodes[pixel * uint(OIT_SLOTS) + slot] = node;
         } else {
             uint i = atomicAdd(oit_count, 1u);
             if (i < u_oit_capacity) {  // (beyond: counted; the pass runs again with room)
+#ifdef OIT_FETCH
+                node.w = oit_head.y;
+                oit_head.y = i + 1u;
+#else
                 node.w = atomicExchange(oit_heads[u_oit_pixels + pixel], i + 1u);
+#endif
                 oit_nodes[u_oit_base + i] = node;
             }
         }
     }
+#ifndef OIT_FETCH
     frag_color = vec4(0.0);  // (masked: the resolve pass composites)
+#endif
 #elif defined(OIT_BLEND)
     frag_color = vec4(color, SURFACE_OPACITY);
 #else

@@ -147,8 +147,25 @@ def scene_of(triangles, colors, opacity, order=None):
 CAMERA = g.Camera.look_at(EYE, TARGET, fov_y=FOV)
 
 
+@pytest.fixture(params=["fetch", "atomics"])
+def counting(request, monkeypatch):
+    """Both ways a pixel's fragments are counted and linked: framebuffer fetch (where the
+    GL has it) and storage-buffer atomics."""
+    from glshade.render.passes.transparency import TransparencyPass
+
+    monkeypatch.setattr(TransparencyPass, "use_fetch", request.param == "fetch")
+    return request.param
+
+
+def _counted_by(renderer, counting):
+    """The path the last exact draw took is the one asked for (where the GL has fetch)."""
+    used = renderer._transparency_pass()._fetch is not None
+    has = "GL_EXT_shader_framebuffer_fetch" in renderer.ctx.extensions
+    assert used == (counting == "fetch" and has)
+
+
 @pytest.mark.parametrize("n, seed, deepest", [(6, 1, 2), (24, 2, 6), (64, 3, 64)])
-def test_exact_matches_the_a_buffer(make_renderer, n, seed, deepest):
+def test_exact_matches_the_a_buffer(make_renderer, counting, n, seed, deepest):
     """Random soups; the last one's triangles all cross the middle: up to 64 layers."""
     tri, col, a = soup(n, seed, 0.9, 1.0) if n < 64 else crossing(n, seed)
     expected, judge = a_buffer(tri, col, a)
@@ -159,8 +176,25 @@ def test_exact_matches_the_a_buffer(make_renderer, n, seed, deepest):
     assert judge.mean() > 0.3
     assert err[judge].max() <= 1.0, (err[judge].max(), np.argwhere((err > 1) & judge)[:5])
     assert r.transparency.pixels_over == 0
+    _counted_by(r, counting)
     layers = max(int((window(t)[:, 2] > 0).all()) for t in tri)  # (all in front)
     assert layers == 1 and covered_at_most(tri) >= deepest
+
+
+def test_both_ways_of_counting_give_the_same_bytes_and_counts(make_renderer, monkeypatch):
+    from glshade.render.passes.transparency import TransparencyPass
+
+    tri, col, a = crossing(64, 3)
+    r = make_renderer(W, H)
+    out = {}
+    for fetch in (True, False):
+        monkeypatch.setattr(TransparencyPass, "use_fetch", fetch)
+        with pytest.warns(g.RenderWarning, match="more than max_layers=16"):
+            img = r.render(scene_of(tri, col, a), CAMERA, "phong", cull=False,
+                           max_layers=16)
+        out[fetch] = (img, r.transparency)
+    assert np.array_equal(out[True][0], out[False][0])
+    assert out[True][1] == out[False][1] and out[True][1].fragments_over > 0
 
 
 def test_weighted_and_blend_are_the_approximations_they_are(make_renderer):
@@ -203,7 +237,7 @@ def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, op
         assert abs(img[16, 16, 0] - 255 * (1 - (1 - opacity) ** n)) <= 1.0, (n, img[16, 16])
 
 
-def test_more_layers_than_max_layers_are_reported(make_renderer):
+def test_more_layers_than_max_layers_are_reported(make_renderer, counting):
     r = make_renderer(32, 32)
     s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
     for k in range(12):
@@ -216,6 +250,7 @@ def test_more_layers_than_max_layers_are_reported(make_renderer):
     covered = int((img[..., 0] > 0).sum())
     assert report.pixels_over == covered and report.fragments_over == 4 * covered
     assert abs(img[16, 16, 0] - 255 * (1 - 0.7 ** 8)) <= 1.0  # (the nearest 8)
+    _counted_by(r, counting)
 
 
 def glass_over_cube():

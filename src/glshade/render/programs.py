@@ -118,7 +118,8 @@ class ProgramKey:
     #: Phong's lighting constants reach the fragment stage as flat varyings (constants.glsl)
     flat_constants: bool = False
     shadows: bool = False
-    #: a transparent surface's draw: "capture" (into per-pixel fragment lists) or "blend"
+    #: a transparent surface's draw: "capture" (into per-pixel fragment lists; "fetch": the
+    #: same, counted through framebuffer fetch, OIT_FETCH) or "blend"
     #: (its opacity as alpha, blended in drawing order); "" for an opaque one
     oit: str = ""
     #: the surface has texture coordinates and its material's maps are sampled (textures.glsl)
@@ -139,15 +140,16 @@ class ProgramKey:
     def defines(self) -> tuple[str, ...]:
         world = self.aux or self.mode is ShadingMode.NORMALS or self.forward_maps
         flat = self.flat_constants and self.mode is ShadingMode.PHONG
+        capture = self.oit in ("capture", "fetch")
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
-                 ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", self.oit == "capture"),
-                 ("GLSL_430", self.oit == "capture" or self.forward_maps),
+                 ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", capture),
+                 ("OIT_FETCH", self.oit == "fetch"), ("GLSL_430", capture or self.forward_maps),
                  ("OIT_BLEND", self.oit == "blend"), ("TEXTURED", self.textured),
                  ("SHADOW_MAPS_FORWARD", self.forward_maps))
         out = [name for name, on in flags if on]
-        if self.oit == "capture":
+        if capture:
             out.append(f"OIT_SLOTS {OIT_SLOTS}")
         out.append(f"LIGHT_COUNT {len(self.lights)}")
         out.append(f"LIGHT_KINDS {', '.join(self.lights)}")

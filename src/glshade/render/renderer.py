@@ -473,7 +473,8 @@ class Renderer:
 
     def _draw_models(self, state: DrawState, models, oit: str = "",
                      extra: dict | None = None) -> None:
-        """Draw ``models`` (the transparency pass's: ``oit`` "capture" or "blend")."""
+        """Draw ``models`` (the transparency pass's: ``oit`` "capture", "fetch" or
+        "blend")."""
         prepared: set[int] = set()
         for model in models:
             self._draw_model(state, model, self._gpu_mesh(model.mesh), 0, prepared, oit,
@@ -577,7 +578,7 @@ class Renderer:
         # (only as many entries as lights: a program's arrays are cut to what it uses)
         pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
         att = np.array([light.attenuation for light in lights], dtype="f4")
-        out = [("u_proj", gl_bytes(proj)),
+        out: list[tuple[str, Any]] = [("u_proj", gl_bytes(proj)),
                ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)

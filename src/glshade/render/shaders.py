@@ -33,6 +33,8 @@ PROGRAMS = {
 
 _INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$')
 _MAX_DEPTH = 8
+#: defines whose programs need a GL extension enabled (an #extension line after #version)
+_EXTENSIONS = {"OIT_FETCH": "GL_EXT_shader_framebuffer_fetch"}
 
 
 def shader_dir() -> Path:
@@ -76,6 +78,8 @@ def assemble(name: str, root: Path | None = None,
                     raise ShaderError(f"{files[number]}:1: the first line must be #version, "
                                       f"got {line!r}")
                 out.append("#version 430 core" if "GLSL_430" in defines else line)
+                out.extend(f"#extension {_EXTENSIONS[d]} : require" for d in defines
+                           if d in _EXTENSIONS)
                 out.extend(f"#define {d}" for d in defines)
                 out.append(f"#line 2 {number}")
                 continue

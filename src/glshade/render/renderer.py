@@ -578,8 +578,9 @@ class Renderer:
         # (only as many entries as lights: a program's arrays are cut to what it uses)
         pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
         att = np.array([light.attenuation for light in lights], dtype="f4")
-        out: list[tuple[str, Any]] = [("u_proj", gl_bytes(proj)),
-               ("u_light_pos_view", pos.tobytes()), ("u_light_attenuation", att.tobytes())]
+        out: list[tuple[str, Any]] = [
+            ("u_proj", gl_bytes(proj)), ("u_light_pos_view", pos.tobytes()),
+            ("u_light_attenuation", att.tobytes())]
         if mode is ShadingMode.DEPTH:
             corners = box_corners(scene.bounds)
             d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]

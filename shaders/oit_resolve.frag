@@ -11,6 +11,8 @@
 // order-free: C = sum(w a c) / sum(w a) x (1 - prod(1 - a)).
 // A list walk is bounded (LIST_BUDGET steps: llvmpipe stops a shader at 65,535): a pixel
 // that runs out is counted (u_counts[2]) and composited from what it read.
+// SORTED_SLOTS n (EXACT, where no pixel has more than n <= OIT_SLOTS fragments, so all are
+// in its own slots): no list walk; the n slots sorted in registers by a network.
 #ifdef OIT_FETCH
 uniform usampler2D u_oit_heads;  // a pixel's fragment count, pool list head + 1
 #else
@@ -18,9 +20,9 @@ uniform usampler2D u_oit_heads;  // a pixel's fragment count, pool list head + 1
 layout(std430, binding = 4) readonly buffer OitHeads { uint oit_heads[]; };
 #endif
 layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
-// pixels over, fragments over, cut short, -; then each row's fragments (an atomic a row,
-// not one for the whole picture: llvmpipe's threads would contend for it)
-layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; uint u_rows[]; };
+// pixels over, fragments over, cut short, - (the fragments are summed from the heads when
+// asked for: render/passes/transparency.py)
+layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };
 uniform uint u_oit_width;
 uniform uint u_oit_pixels;
 uniform uint u_oit_base;
@@ -43,6 +45,13 @@ float weight(float z, float a) {
 bool before(float da, uint rga, uint baa, float db, uint rgb, uint bab) {
     return da < db || (da == db && (rga < rgb || (rga == rgb && baa < bab)));
 }
+
+// put elements i < j of the registers' slots in order (one comparator of a sorting network)
+#define ORDER(i, j) { \
+    bool swap = before(sd[j], srg[j], sba[j], sd[i], srg[i], sba[i]); \
+    float d_ = sd[i]; uint rg_ = srg[i], ba_ = sba[i]; \
+    sd[i] = swap ? sd[j] : d_; srg[i] = swap ? srg[j] : rg_; sba[i] = swap ? sba[j] : ba_; \
+    sd[j] = swap ? d_ : sd[j]; srg[j] = swap ? rg_ : srg[j]; sba[j] = swap ? ba_ : sba[j]; }
 
 // The pixel's k-th fragment: its own slots first, then the pool's list (``i``: the next
 // pool node + 1, advanced as the list is walked; 0 at its end).
@@ -70,7 +79,6 @@ void main() {
 #endif
     uint count = head.x;
     if (count == 0u) discard;
-    atomicAdd(u_rows[px.y], count);
     g_first = pixel * uint(OIT_SLOTS);
     g_slots = min(count, uint(OIT_SLOTS));
     g_next = head.y;
@@ -91,6 +99,47 @@ void main() {
     vec3 c = sum_w > 0.0 ? sum_c / sum_w : vec3(0.0);
     vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
     frag_color = vec4(c * (1.0 - t) + t * behind.rgb, behind.a);
+#elif defined(SORTED_SLOTS)
+    // no pixel has more than SORTED_SLOTS fragments, all in its own slots: read them into
+    // registers (the empty ones last: depth +inf, opacity 0), sort them by a network and
+    // composite the same way as the lists below (an empty slot adds 0 and keeps t: the
+    // same bytes). (llvmpipe runs every branch of a shader: a frame's resolve carries only
+    // the code its deepest pixel needs.)
+    vec3 c = vec3(0.0);
+    float t = 1.0;
+    float sd[SORTED_SLOTS];
+    uint srg[SORTED_SLOTS], sba[SORTED_SLOTS];
+    for (int i = 0; i < SORTED_SLOTS; ++i) {
+        bool used = uint(i) < count;
+        uvec4 slot = used ? oit_nodes[g_first + uint(i)] : uvec4(0u);
+        sd[i] = used ? uintBitsToFloat(slot.z) : uintBitsToFloat(0x7F800000u);
+        srg[i] = used ? slot.x : 0u;
+        sba[i] = used ? slot.y : 0u;
+    }
+#if SORTED_SLOTS == 2
+    ORDER(0, 1)
+#elif SORTED_SLOTS == 4
+    ORDER(0, 1) ORDER(2, 3) ORDER(0, 2) ORDER(1, 3) ORDER(1, 2)
+#elif SORTED_SLOTS == 8
+    ORDER(0, 1) ORDER(2, 3) ORDER(4, 5) ORDER(6, 7) ORDER(0, 2) ORDER(1, 3) ORDER(4, 6)
+    ORDER(5, 7) ORDER(1, 2) ORDER(5, 6) ORDER(0, 4) ORDER(1, 5) ORDER(2, 6) ORDER(3, 7)
+    ORDER(2, 4) ORDER(3, 5) ORDER(1, 2) ORDER(3, 4) ORDER(5, 6)
+#elif SORTED_SLOTS != 1
+#error "SORTED_SLOTS: 1, 2, 4 or 8 (render/passes/transparency.py)"
+#endif
+    for (int k = 0; k < SORTED_SLOTS; ++k) {
+        vec2 cr = unpackUnorm2x16(srg[k]), ca = unpackUnorm2x16(sba[k]);
+        float a = k < MAX_LAYERS ? ca.y : 0.0;
+        c += t * a * vec3(cr, ca.x);
+        t *= 1.0 - a;
+    }
+    uint dropped = count > uint(MAX_LAYERS) ? count - uint(MAX_LAYERS) : 0u;
+    if (dropped > 0u) {
+        atomicAdd(u_counts[0], 1u);
+        atomicAdd(u_counts[1], dropped);
+    }
+    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
+    frag_color = vec4(c + t * behind.rgb, behind.a);
 #else
     // (three arrays, element by element: llvmpipe lost whole-uvec4 copies between
     // dynamically indexed elements of one local array)

@@ -46,7 +46,9 @@ layout(early_fragment_tests) in;
 layout(std430, binding = 4) coherent buffer OitHeads { uint oit_heads[]; };
 #endif
 layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
-layout(std430, binding = 6) buffer OitCount { uint oit_count; };
+// the pool's nodes taken; oit_deep[i] set where some pixel reached 2, 3, 5 fragments (plain
+// stores of one value: the resolve sorts only as many slots as the deepest pixel needs)
+layout(std430, binding = 6) buffer OitCount { uint oit_count; uint oit_deep[3]; };
 uniform uint u_oit_capacity;  // nodes in the pool
 uniform uint u_oit_width;     // the target's width (a pixel's index: y width + x)
 uniform uint u_oit_pixels;    // the target's pixels
@@ -74,6 +76,7 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
 #else
         uint slot = atomicAdd(oit_heads[pixel], 1u);
 #endif
+        if (slot == 1u || slot == 2u || slot == 4u) oit_deep[findMSB(slot)] = 1u;
         if (slot < uint(OIT_SLOTS)) {
             oit_nodes[pixel * uint(OIT_SLOTS) + slot] = node;
         } else {

@@ -7,7 +7,10 @@
   (shaders/oit_resolve.frag) sorts each list nearest first, keeps ``max_layers`` of it and
   composites "over" front to back onto a float copy of the opaque picture. A list longer
   than ``max_layers`` is counted (pixels, fragments) and reported; the pool grows and the
-  capture runs again when a frame needs more room.
+  capture runs again when a frame needs more room. Where no pixel has more fragments than
+  its own slots, the resolve sorts just as many slots as the deepest pixel has (1, 2, 4 or
+  8, flagged by the capture) in registers: llvmpipe runs every branch of a shader, so a
+  resolve carrying the list walk costs a frame of depth one as much as one of depth eight.
 - ``weighted``: the same lists, resolved by McGuire and Bavoil's weighted blended estimate
   (order-free, approximate: for comparison).
 - ``blend``: each surface blended "over" as it is drawn, in the scene's order (what a
@@ -17,7 +20,7 @@
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -75,24 +78,41 @@ class TransparencyPass(GLResource):
         self._nodes = None
         self._capacity = 0  # (the pool's nodes)
         self._slots = 0     # (the pixels' own slots)
-        self._count = self._keep(ctx.buffer(reserve=4))
+        # the pool's nodes taken, then whether some pixel reached 2, 3, 5 fragments
+        self._count = self._keep(ctx.buffer(reserve=16))
         self._programs: dict = {}
         self._behind = None  # (size, the opaque picture's copy)
         self._fetch: tuple | None = None  # (size, depth buffer, heads texture, fbos)
         self._has_fetch = "GL_EXT_shader_framebuffer_fetch" in ctx.extensions
-        self.report = TransparencyReport(Transparency.EXACT.value)
+        self._last = TransparencyReport(Transparency.EXACT.value)
+        self._counted_in: tuple | None = None  # (the last lists' counts: texture or buffer)
 
     def _heads_for(self, width: int, height: int):
         """The per-pixel fragment counts and pool list heads (a storage buffer of two words a
-        pixel; made once a size) and the report's buffer (four counts, then one a row)."""
+        pixel; made once a size) and the report's buffer (four counts)."""
         if self._heads is None or self._heads[0] != (width, height):
             if self._heads is not None:
                 for obj in self._heads[1:]:
                     obj.release()
             ctx = self.context.ctx
             self._heads = ((width, height), ctx.buffer(reserve=2 * width * height * 4),
-                           ctx.buffer(reserve=(4 + height) * 4))
+                           ctx.buffer(reserve=16))
         return self._heads
+
+    @property
+    def report(self) -> TransparencyReport:
+        """What the last draw kept and left out; its ``fragments`` are summed from the
+        lists' counts when first read (a readback that frames nobody asks about skip)."""
+        if self._last.fragments < 0 and self._counted_in is not None:
+            import moderngl
+
+            heads, pixels = self._counted_in
+            if isinstance(heads, moderngl.Buffer):
+                counts = np.frombuffer(heads.read(size=4 * pixels), np.uint32)
+            else:  # (the fetch capture's texture: count, pool head a pixel)
+                counts = np.frombuffer(heads.read(), np.uint32)[0::2]
+            self._last = replace(self._last, fragments=int(counts.sum(dtype=np.int64)))
+        return self._last
 
     def _fetch_for(self, target):
         """The fetch capture's heads texture (count, pool head + 1 a pixel), a framebuffer of
@@ -142,13 +162,18 @@ class TransparencyPass(GLResource):
             self._nodes = self.context.ctx.buffer(
                 reserve=(self._slots + self._capacity) * NODE_BYTES)
 
-    def _resolve_program(self, method: Transparency, layers: int, fetch: bool):
-        key = (method, layers, fetch)
+    def _resolve_program(self, method: Transparency, layers: int, fetch: bool, deepest: int):
+        """The resolve for ``method``; ``deepest``: the most fragments a pixel has where all
+        fit in its own slots (a power of two, up to OIT_SLOTS), else 0 (lists)."""
+        if method is not Transparency.EXACT:
+            deepest = 0
+        key = (method, layers, fetch, deepest)
         prog = self._programs.get(key)
         if prog is None:
             defines = (f"MAX_LAYERS {layers}", f"OIT_SLOTS {SLOTS}") + (
                 ("WEIGHTED",) if method is Transparency.WEIGHTED else ()) + (
-                ("OIT_FETCH",) if fetch else ())
+                ("OIT_FETCH",) if fetch else ()) + (
+                (f"SORTED_SLOTS {deepest}",) if deepest else ())
             prog = self._programs[key] = self.shaders.compile(
                 "oit_resolve.vert", "oit_resolve.frag", defines=defines)
         return prog
@@ -182,7 +207,7 @@ class TransparencyPass(GLResource):
                 fbo.depth_mask = True
                 fbo.use()
                 ctx.disable(moderngl.BLEND)
-            self.report = TransparencyReport(Transparency.BLEND.value)
+            self._last, self._counted_in = TransparencyReport(Transparency.BLEND.value), None
             return
         width, height = int(target.width), int(target.height)
         _, heads, report = self._heads_for(width, height)
@@ -192,18 +217,20 @@ class TransparencyPass(GLResource):
         fetch = self._fetch_for(target)
         for _ in range(2):  # (a second time with room for every fragment, when short)
             self._capture(renderer, state, models, heads, fetch, layout)
-            pooled = int(np.frombuffer(self._count.read(), np.uint32)[0])
+            pooled, *deep = (int(v) for v in np.frombuffer(self._count.read(), np.uint32))
             if pooled <= self._capacity:
                 break
             self._room(self._slots, int(pooled * 1.25) + 1024)
             layout["u_oit_base"] = self._slots
-        self._resolve(state, heads if fetch is None else fetch[2], report, layout)
+        # the most fragments a pixel has, rounded up to 1, 2, 4, 8 (0: some have more)
+        deepest = 0 if pooled else 2 ** sum(deep)
+        self._resolve(state, heads if fetch is None else fetch[2], report, layout, deepest)
 
     def _capture(self, renderer, state, models, heads, fetch, layout: dict) -> None:
         """Draw the transparent ``models`` into their pixels' lists: counted through
         ``fetch`` (:meth:`_fetch_for`) when given, else through the ``heads`` buffer."""
         ctx = self.context.ctx
-        self._count.write(np.zeros(1, np.uint32).tobytes())
+        self._count.clear()
         if fetch is None:
             heads.clear()
             state.target.bind(Outputs.COLOR)
@@ -229,15 +256,16 @@ class TransparencyPass(GLResource):
             state.target.bind(Outputs.COLOR)
         ctx.memory_barrier()
 
-    def _resolve(self, state, heads, report, layout: dict) -> None:
-        """Composite the lists (``heads``: the fetch capture's texture, or the buffer)."""
+    def _resolve(self, state, heads, report, layout: dict, deepest: int) -> None:
+        """Composite the lists (``heads``: the fetch capture's texture, or the buffer;
+        ``deepest``: :meth:`_resolve_program`'s)."""
         import moderngl
 
         ctx = self.context.ctx
         options = state.options
         layers = options.max_layers
         fetch = not isinstance(heads, moderngl.Buffer)
-        prog = self._resolve_program(options.transparency, layers, fetch)
+        prog = self._resolve_program(options.transparency, layers, fetch, deepest)
         vao = ctx.vertex_array(prog, [])
         report.clear()
         report.bind_to_storage_buffer(7)
@@ -270,8 +298,9 @@ class TransparencyPass(GLResource):
             vao.release()
         ctx.memory_barrier()
         rep = np.frombuffer(report.read(), np.uint32)
-        over, dropped, short, count = int(rep[0]), int(rep[1]), int(rep[2]), int(rep[4:].sum())
-        self.report = TransparencyReport(options.transparency.value, count, layers, over,
+        over, dropped, short = int(rep[0]), int(rep[1]), int(rep[2])
+        self._counted_in = (heads, int(target.width) * int(target.height))
+        self._last = TransparencyReport(options.transparency.value, -1, layers, over,
                                          dropped, short)
         if over and options.transparency is Transparency.EXACT:
             warnings.warn(f"{over:,} pixels had more than max_layers={layers} transparent "

@@ -69,22 +69,10 @@ bool next_node(out uvec4 node) {
     return true;
 }
 
-void main() {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    uint pixel = uint(px.y) * u_oit_width + uint(px.x);
-#ifdef OIT_FETCH
-    uvec2 head = texelFetch(u_oit_heads, px, 0).xy;
-#else
-    uvec2 head = uvec2(oit_heads[pixel], oit_heads[u_oit_pixels + pixel]);
-#endif
-    uint count = head.x;
-    if (count == 0u) discard;
-    g_first = pixel * uint(OIT_SLOTS);
-    g_slots = min(count, uint(OIT_SLOTS));
-    g_next = head.y;
+// WEIGHTED: the estimate over the whole list, over ``behind``
+vec4 weighted(vec4 behind) {
     uvec4 node;
     int steps = 0;
-#ifdef WEIGHTED
     vec3 sum_c = vec3(0.0);
     float sum_w = 0.0, t = 1.0;
     while (steps < LIST_BUDGET && next_node(node)) {
@@ -97,16 +85,16 @@ void main() {
     }
     if (steps >= LIST_BUDGET) atomicAdd(u_counts[2], 1u);
     vec3 c = sum_w > 0.0 ? sum_c / sum_w : vec3(0.0);
-    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
-    frag_color = vec4(c * (1.0 - t) + t * behind.rgb, behind.a);
-#elif defined(SORTED_SLOTS)
-    // no pixel has more than SORTED_SLOTS fragments, all in its own slots: read them into
-    // registers (the empty ones last: depth +inf, opacity 0), sort them by a network and
-    // composite the same way as the lists below (an empty slot adds 0 and keeps t: the
-    // same bytes). (llvmpipe runs every branch of a shader: a frame's resolve carries only
-    // the code its deepest pixel needs.)
-    vec3 c = vec3(0.0);
-    float t = 1.0;
+    return vec4(c * (1.0 - t) + t * behind.rgb, behind.a);
+}
+
+#ifdef SORTED_SLOTS
+// no pixel has more than SORTED_SLOTS fragments, all in its own slots: read them into
+// registers (the empty ones last: depth +inf, opacity 0), sort them by a network and
+// composite the same way as the lists (an empty slot adds 0 and keeps t: the same bytes).
+// (llvmpipe runs every branch of a shader: a frame's resolve carries only the code its
+// deepest pixel needs.) Returns the fragments past MAX_LAYERS.
+uint composite_slots(uint count, out vec3 c, out float t) {
     float sd[SORTED_SLOTS];
     uint srg[SORTED_SLOTS], sba[SORTED_SLOTS];
     for (int i = 0; i < SORTED_SLOTS; ++i) {
@@ -127,20 +115,23 @@ void main() {
 #elif SORTED_SLOTS != 1
 #error "SORTED_SLOTS: 1, 2, 4 or 8 (render/passes/transparency.py)"
 #endif
+    c = vec3(0.0);
+    t = 1.0;
     for (int k = 0; k < SORTED_SLOTS; ++k) {
         vec2 cr = unpackUnorm2x16(srg[k]), ca = unpackUnorm2x16(sba[k]);
         float a = k < MAX_LAYERS ? ca.y : 0.0;
         c += t * a * vec3(cr, ca.x);
         t *= 1.0 - a;
     }
-    uint dropped = count > uint(MAX_LAYERS) ? count - uint(MAX_LAYERS) : 0u;
-    if (dropped > 0u) {
-        atomicAdd(u_counts[0], 1u);
-        atomicAdd(u_counts[1], dropped);
-    }
-    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
-    frag_color = vec4(c + t * behind.rgb, behind.a);
-#else
+    return count > uint(MAX_LAYERS) ? count - uint(MAX_LAYERS) : 0u;
+}
+#endif
+
+// the pixel's list kept sorted nearest first, at most MAX_LAYERS of it, composited front to
+// back; returns the fragments left out
+uint composite_list(out vec3 c, out float t) {
+    uvec4 node;
+    int steps = 0;
     // (three arrays, element by element: llvmpipe lost whole-uvec4 copies between
     // dynamically indexed elements of one local array)
     float depth[MAX_LAYERS];
@@ -173,18 +164,44 @@ void main() {
         ++n;
     }
     if (steps >= LIST_BUDGET) atomicAdd(u_counts[2], 1u);
-    if (dropped > 0u) {
-        atomicAdd(u_counts[0], 1u);
-        atomicAdd(u_counts[1], dropped);
-    }
-    vec3 c = vec3(0.0);
-    float t = 1.0;
+    c = vec3(0.0);
+    t = 1.0;
     for (int k = 0; k < n; ++k) {
         vec2 cr = unpackUnorm2x16(rg[k]), ca = unpackUnorm2x16(ba[k]);
         c += t * ca.y * vec3(cr, ca.x);
         t *= 1.0 - ca.y;
     }
-    vec4 behind = texelFetch(u_behind, ivec2(gl_FragCoord.xy), 0);
+    return dropped;
+}
+
+void main() {
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    uint pixel = uint(px.y) * u_oit_width + uint(px.x);
+#ifdef OIT_FETCH
+    uvec2 head = texelFetch(u_oit_heads, px, 0).xy;
+#else
+    uvec2 head = uvec2(oit_heads[pixel], oit_heads[u_oit_pixels + pixel]);
+#endif
+    uint count = head.x;
+    if (count == 0u) discard;
+    g_first = pixel * uint(OIT_SLOTS);
+    g_slots = min(count, uint(OIT_SLOTS));
+    g_next = head.y;
+    vec4 behind = texelFetch(u_behind, px, 0);
+#ifdef WEIGHTED
+    frag_color = weighted(behind);
+#else
+    vec3 c;
+    float t;
+#ifdef SORTED_SLOTS
+    uint dropped = composite_slots(count, c, t);
+#else
+    uint dropped = composite_list(c, t);
+#endif
+    if (dropped > 0u) {
+        atomicAdd(u_counts[0], 1u);
+        atomicAdd(u_counts[1], dropped);
+    }
     frag_color = vec4(c + t * behind.rgb, behind.a);
 #endif
 }

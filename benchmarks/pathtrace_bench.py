@@ -84,12 +84,13 @@ def run(name, scene, camera, size, args, ctx, folder) -> list:
                                 context=ctx, progress=False, seed=99).image
     n_tris = sum(len(m.mesh.triangles[0]) for m in scene.models)
     series: dict = {}
-    for accel in ("bvh", "flat", "auto"):
+    for accel, sampler in (("bvh", "pcg"), ("flat", "pcg"), ("auto", "pcg"),
+                           ("auto", "sobol")):
         if accel == "flat" and n_tris > 1000:
             continue  # (a flat loop over 80k triangles: minutes a frame)
-        series[f"glshade {accel}"] = (lambda a=accel: pathtrace.trace(
+        series[f"glshade {accel} {sampler}"] = (lambda a=accel, s=sampler: pathtrace.trace(
             scene, camera, (size, size), spp=args.spp, context=ctx, progress=False,
-            accel=a).image)
+            accel=a, sampler=s).image)
     ts = TraceScene.from_scene(scene)
     for variant in mitsuba_variants():
         try:

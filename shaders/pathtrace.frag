@@ -85,6 +85,38 @@ layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near
 #include "rays.glsl"
 #include "data.glsl"
 
+// The random numbers a path's vertex draws: three for next-event estimation (which
+// emitter, then where on it: part 0) and three for the bounce (which lobe, then the
+// direction: part 1). LOW_DISCREPANCY: at the first SOBOL_VERTICES vertices they come
+// from Owen-scrambled Sobol pairs (random.glsl; a part's point from one pair, its choice
+// from the next pair's first coordinate), deeper ones and the roulette from the PCG stream -- consumed all the same,
+// so the stream's place never depends on which was used.
+uint g_sample;  // this path's sample number in its pixel
+int g_vertex;   // the vertex being made (0: the camera ray's hit)
+#ifndef SOBOL_VERTICES
+#define SOBOL_VERTICES 3
+#endif
+
+vec3 sample3(uint part) {
+    vec3 u = vec3(rand(), rand(), rand());
+#ifdef LOW_DISCREPANCY
+    if (g_vertex < SOBOL_VERTICES) {
+        uint base = 1u + 2u * (2u * uint(g_vertex) + part);
+        u = vec3(sobol_pair(g_sample, base + 1u).x, sobol_pair(g_sample, base));
+    }
+#endif
+    return u;
+}
+
+// the camera ray's place in its pixel (Sobol's pair 0 where LOW_DISCREPANCY)
+vec2 jitter() {
+    vec2 u = vec2(rand(), rand());
+#ifdef LOW_DISCREPANCY
+    u = sobol_pair(g_sample, 0u);
+#endif
+    return u;
+}
+
 vec4 fetch(int i) {
     return data_texel(u_data, i, DATA_WIDTH);
 }
@@ -224,7 +256,8 @@ vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
 // power, a point uniform on it, its light through the BRDF where xo sees it
 vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
     if (u_n_emit <= 0) return vec3(0.0);
-    float r = rand();
+    vec3 u = sample3(0u);  // (the emitter, then a point on it)
+    float r = u.x;
     int lo = 0, hi = u_n_emit - 1;
     while (lo < hi) {
         ++g_iter;
@@ -236,7 +269,7 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
     int ek = floatBitsToInt(em.y);
     vec4 q0 = fetch(u_tris + 3 * ek);
     vec3 q1 = fetch(u_tris + 3 * ek + 1).xyz, q2 = fetch(u_tris + 3 * ek + 2).xyz;
-    float a = rand(), b = rand();
+    float a = u.y, b = u.z;
     if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
     vec3 y = q0.xyz + a * q1 + b * q2;
     vec3 ny = normalize(cross(q1, q2));
@@ -284,6 +317,7 @@ struct Path {
 // one bounce of ``p``: the next vertex, its emission (first vertex), next-event estimation
 // and the next direction; false when the path ends
 bool bounce(inout Path p) {
+    g_vertex = p.bounces;
     float t;
     int k;
     if (!intersect(p.o, p.d, 1e30, t, k)) return false;
@@ -335,8 +369,11 @@ bool bounce(inout Path p) {
     if (wd + ks <= 0.0) return false;
     float pd = wd / (wd + ks);
     vec3 r = reflect(p.d, n);
-    vec3 wi = rand() < pd ? around(n, sqrt(rand()), 2.0 * PI * rand())
-                          : around(r, pow(rand(), 1.0 / (shin + 1.0)), 2.0 * PI * rand());
+    vec3 wi;
+    vec3 u = sample3(1u);  // (the lobe, then a direction in it)
+    bool diffuse = u.x < pd;
+    wi = around(diffuse ? n : r, diffuse ? sqrt(u.y) : pow(u.y, 1.0 / (shin + 1.0)),
+                2.0 * PI * u.z);
     float cx = dot(wi, n);
     if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) return false;
     float ca = max(dot(wi, r), 0.0);
@@ -357,12 +394,13 @@ bool bounce(inout Path p) {
 // sample k of this pixel, from its start: its random stream and its camera (or given) ray
 Path start(uvec2 pixel, uint k) {
     g_state = pcg(pcg(pcg(pcg(u_seed) + pixel.x) + pixel.y) + k);
+    g_sample = k;
     Path p;
 #ifdef PROBES
     p.o = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y)), 0).xyz;
     p.d = texelFetch(u_rays, ivec2(pixel.x, 2 * int(pixel.y) + 1), 0).xyz;
 #else
-    vec2 ndc = 2.0 * (vec2(pixel) + vec2(rand(), rand())) / u_size - 1.0;
+    vec2 ndc = 2.0 * (vec2(pixel) + jitter()) / u_size - 1.0;
     pixel_ray(u_inverse_proj, u_camera_to_world, ndc, p.o, p.d);
     p.d = normalize(p.d);
 #endif
@@ -392,12 +430,16 @@ void main() {
     p.flags = s3.w;
     g_state = uint(s1.w) | (uint(s2.w) << 16u);
     g_iter = 0;
+#ifdef LOW_DISCREPANCY
+    g_pixel_seed = pcg(pcg(pcg(u_seed ^ 0x5bd1e995u) + pixel.x) + pixel.y);
+#endif
     for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
         if (!flying) {
             if (sum.w >= u_target) break;
             p = start(pixel, uint(sum.w));  // (samples finish in order: k is the count)
             flying = true;
         }
+        g_sample = uint(sum.w);
         bool going = bounce(p);
         if (g_iter >= NEAR_LIMIT) hit.y += 1.0;
         if (!going) {

@@ -18,4 +18,51 @@ float rand() {
     word = (word >> 22u) ^ word;
     return float(word >> 8u) * (1.0 / 16777216.0);
 }
+
+#ifdef LOW_DISCREPANCY
+// Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"): each
+// pair of dimensions a path uses is the first two Sobol dimensions, "padded" (each pair
+// with its own seeds), the sample's index shuffled by an Owen scramble and each coordinate
+// Owen-scrambled -- uniform in [0, 1)^2 for each sample (so unbiased), and the first 2^m
+// samples of a pixel stratified over the pair's 2^m elementary intervals.
+uint g_pixel_seed;  // the pixel's seed (set where its sample starts)
+
+uint reverse_bits(uint x) {
+    x = ((x >> 1u) & 0x55555555u) | ((x & 0x55555555u) << 1u);
+    x = ((x >> 2u) & 0x33333333u) | ((x & 0x33333333u) << 2u);
+    x = ((x >> 4u) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4u);
+    x = ((x >> 8u) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8u);
+    return (x >> 16u) | (x << 16u);
+}
+
+// Laine and Karras's nested uniform scramble of x's bits in reverse order (each bit
+// flipped by a hash of the bits below it), Burley's constants
+uint laine_karras(uint x, uint seed) {
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+// the sample's point of dimension pair ``pair`` (sample k of this pixel)
+vec2 sobol_pair(uint k, uint pair) {
+    uint seed = pcg(g_pixel_seed ^ pcg(pair + 0x68bc21ebu));
+    // the index Owen-scrambled: a shuffle within every aligned power-of-two block
+    uint i = reverse_bits(laine_karras(reverse_bits(k), seed));
+    // Sobol's second dimension (the Pascal matrix mod 2) as a zeta transform over the bit
+    // positions, left reversed: Owen scrambling reverses it back
+    uint y = i;
+    y ^= (y >> 1u) & 0x55555555u;
+    y ^= (y >> 2u) & 0x33333333u;
+    y ^= (y >> 4u) & 0x0F0F0F0Fu;
+    y ^= (y >> 8u) & 0x00FF00FFu;
+    y ^= (y >> 16u) & 0x0000FFFFu;
+    // the first dimension is reverse_bits(i): reversed, it is i itself
+    uint a = reverse_bits(laine_karras(i, pcg(seed + 1u)));
+    uint b = reverse_bits(laine_karras(y, pcg(seed + 2u)));
+    return vec2(float(a >> 8u), float(b >> 8u)) * (1.0 / 16777216.0);
+}
+#endif
 #endif

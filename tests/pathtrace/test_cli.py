@@ -26,6 +26,24 @@ def test_the_cornell_box_from_the_command_line(tmp_path):
     assert red[0] > red[1] and green[1] > green[0]  # (the walls bleed their colours)
 
 
+def test_the_sobol_sampler_from_the_command_line(tmp_path):
+    """--sampler sobol: the summary names it, the mean agrees with pcg's within noise, and
+    an unknown sampler is one line naming the choices."""
+    means = {}
+    for sampler in ("pcg", "sobol"):
+        out = tmp_path / f"{sampler}.png"
+        r = glshade("pathtrace", "cornell-box", "-o", str(out), "--spp", "16", "--size",
+                    "32x32", "--backend", BACKEND, "--sampler", sampler, "--exposure", "1")
+        assert r.returncode == 0, r.stderr
+        assert f"M paths/s, {sampler})" in r.stdout + r.stderr
+        means[sampler] = np.asarray(Image.open(out))[..., :3].astype(float).mean()
+    assert abs(means["sobol"] - means["pcg"]) < 0.03 * means["pcg"], means
+    r = glshade("pathtrace", "cornell-box", "-o", str(tmp_path / "x.png"), "--sampler",
+                "halton")
+    assert r.returncode == 2 and "invalid choice: 'halton'" in r.stderr
+    assert "Traceback" not in r.stderr
+
+
 def test_an_energy_making_material_is_one_line_naming_the_scene(tmp_path):
     r = glshade("pathtrace", "primitive:cube", "-o", str(tmp_path / "x.png"), "--kd", "0.9",
                 "--ks", "0.5", "--color", "1,1,1", "--backend", BACKEND)

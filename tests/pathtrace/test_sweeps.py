@@ -42,16 +42,19 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
 @given(rho=st.floats(0.0, 0.99), spp=st.integers(8, 48),
        per_pass=st.sampled_from([None, 1, 3, 16]),
        depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16),
-       accel=st.sampled_from(["bvh", "flat"]))
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh")  # (the issue's)
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat")
-@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat")
-@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh")
+       accel=st.sampled_from(["bvh", "flat"]), sampler=st.sampled_from(["pcg", "sobol"]))
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh", sampler="pcg")
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="pcg")
+@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat", sampler="sobol")
+@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol")
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="sobol")
 def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
-                                                     seed, accel):
-    """Both ways of finding triangles (the hierarchy, every triangle in turn)."""
+                                                     seed, accel, sampler):
+    """Both ways of finding triangles (the hierarchy, every triangle in turn), both
+    samplers (independent numbers, Owen-scrambled Sobol points)."""
     r = trace(furnace(rho), INSIDE, (16, 16), spp=spp, samples_per_pass=per_pass, seed=seed,
-              max_depth=depth, context=gl_context, progress=False, accel=accel)
+              max_depth=depth, context=gl_context, progress=False, accel=accel,
+              sampler=sampler)
     assert r.samples == spp and r.near_limit == 0
     want = closed_form(rho, depth)
     pixels = r.image.mean(-1).ravel()
@@ -64,17 +67,18 @@ def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_
 
 @settings(max_examples=12)
 @given(rho=st.floats(0.3, 0.95), budget=st.integers(16, 20000),
-       chunks=st.lists(st.integers(1, 6), min_size=1, max_size=4))
+       chunks=st.lists(st.integers(1, 6), min_size=1, max_size=4),
+       sampler=st.sampled_from(["pcg", "sobol"]))
 def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, rho, budget,
-                                                                  chunks):
+                                                                  chunks, sampler):
     """Every pixel ends with exactly the samples asked, and the same bytes, whether they
     came in one run or several, with much or little work per invocation."""
     ts = TraceScene.from_scene(furnace(rho))
     total = sum(chunks)
-    with GpuPathTracer(gl_context, ts, 12, 10) as one:
+    with GpuPathTracer(gl_context, ts, 12, 10, sampler=sampler) as one:
         one.run(INSIDE, total, seed=5)
         want = one.read()
-    with GpuPathTracer(gl_context, ts, 12, 10, budget=budget) as split:
+    with GpuPathTracer(gl_context, ts, 12, 10, budget=budget, sampler=sampler) as split:
         for n in chunks:
             split.run(INSIDE, n, seed=5)
         got = split.read()

@@ -148,6 +148,7 @@ class PathtraceArgs(RenderArgs):
     max_depth: int | None = None
     exposure: float | None = None
     no_lights: bool = False
+    sampler: str = "pcg"
     quiet: bool = False
 
 

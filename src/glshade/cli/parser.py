@@ -359,6 +359,10 @@ def add_pathtrace(sub) -> None:
                    "display (default: the brightest lit surface shows as white)")
     p.add_argument("--no-lights", action="store_true", help="only emitting surfaces give "
                    "light (the scene's lights left out, as radiosity sees it)")
+    p.add_argument("--sampler", choices=("pcg", "sobol"), default="pcg",
+                   help="the paths' random numbers: pcg (independent, default) or sobol "
+                   "(Owen-scrambled Sobol points at the first three vertices: less error for "
+                   "the same samples; its --until estimate errs on the safe side)")
     add_render_options(p)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=pathtrace_command.pathtrace, arguments=a.PathtraceArgs)

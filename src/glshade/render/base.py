@@ -42,6 +42,10 @@ class GLResource:
         """Free every GL object this one made (reverse creation order); idempotent."""
         if self.released:
             return
+        # (never release the bound framebuffer: moderngl would bind the deleted one again)
+        rest = getattr(self.context, "rest", None)
+        if rest is not None:
+            rest()
         self._release_extra()
         for obj in reversed(self._objects):
             obj.release()

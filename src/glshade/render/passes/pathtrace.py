@@ -33,7 +33,11 @@ class GpuPathTracer(GLResource):
     kept between passes (shaders/pathtrace.frag), so one invocation's work stays under
     ``budget`` loop iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th
     sample is the same however the work is grouped. ``max_depth``: vertices a path may
-    have (None: no limit, Russian roulette ends it)."""
+    have (None: no limit, Russian roulette ends it). ``sampler``: ``"pcg"`` (independent
+    random numbers) or ``"sobol"`` (the first three vertices' from Owen-scrambled Sobol
+    points: lower error for the same samples, unbiased all the same)."""
+
+    SAMPLERS = ("pcg", "sobol")
 
     #: loop iterations under which an invocation starts another bounce (a bounce of a
     #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
@@ -47,7 +51,7 @@ class GpuPathTracer(GLResource):
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, budget: int = BUDGET,
-                 accel: str = "auto"):
+                 accel: str = "auto", sampler: str = "pcg"):
         from ..renderer import check_fits
 
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
@@ -69,6 +73,12 @@ class GpuPathTracer(GLResource):
             defines += ("NO_TRIANGLES",)
         if accel not in ("auto", "bvh", "flat"):
             raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
+        if sampler not in self.SAMPLERS:
+            raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
+        #: where the paths' random numbers come from (``SAMPLERS``)
+        self.sampler = sampler
+        if sampler == "sobol":
+            defines += ("LOW_DISCREPANCY",)
         n = len(scene.triangles)
         # (a flat loop's triangles are uniforms: three vectors each, beside the others')
         room = (int(ctx.info.get("GL_MAX_FRAGMENT_UNIFORM_VECTORS") or 256) - 64) // 3

@@ -1,10 +1,13 @@
 """Path tracing against Mitsuba 3: paths a second and time to 1% RMS error on the Cornell
 box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
-Mitsuba's ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads), interleaved rounds in
-one process, medians. Error: RMS over pixels of the difference from a long glshade render
-(``--reference-spp``), relative to the reference's mean; time to 1% by the 1/sqrt(N) law
-from the error measured at ``--spp`` samples.
+samplers (independent PCG numbers, Owen-scrambled Sobol points) and Mitsuba's
+``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
+low-discrepancy sampler, interleaved rounds in one process, medians. Error: RMS over pixels
+of the difference from a long glshade render (``--reference-spp``, Sobol, another seed),
+relative to the reference's mean; time to 1% by the 1/sqrt(N) law from the error measured
+at ``--spp`` samples (for a low-discrepancy sampler, whose error falls faster at first, an
+upper bound).
 
 Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 32] [--rounds 3]``.
 """
@@ -64,7 +67,8 @@ def mitsuba_variants() -> list[str]:
     return usable
 
 
-def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str) -> np.ndarray:
+def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str,
+                   sampler: str = "independent") -> np.ndarray:
     import mitsuba as mi
 
     from tests.oracle import mitsuba_scene
@@ -73,7 +77,7 @@ def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str) -> np.nda
     original = mi.set_variant
     mi.set_variant = lambda *a: None  # (the helper sets scalar_rgb; keep this variant)
     try:
-        return mitsuba_scene.render(ts, CORNELL_CAMERA, size, spp, folder)
+        return mitsuba_scene.render(ts, CORNELL_CAMERA, size, spp, folder, sampler=sampler)
     finally:
         mi.set_variant = original
 
@@ -81,7 +85,8 @@ def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str) -> np.nda
 def run(name, scene, camera, size, args, ctx, folder) -> list:
     """One scene at one size: each tracer's paths a second and time to 1%."""
     reference = pathtrace.trace(scene, camera, (size, size), spp=args.reference_spp,
-                                context=ctx, progress=False, seed=99).image
+                                context=ctx, progress=False, seed=99,
+                                sampler="sobol").image
     n_tris = sum(len(m.mesh.triangles[0]) for m in scene.models)
     series: dict = {}
     for accel, sampler in (("bvh", "pcg"), ("flat", "pcg"), ("auto", "pcg"),
@@ -98,8 +103,11 @@ def run(name, scene, camera, size, args, ctx, folder) -> list:
         except Exception as exc:  # (an LLVM that will not load: say so, go on)
             print(f"{variant}: not usable here ({type(exc).__name__})")
             continue
-        series[f"Mitsuba {variant}"] = (lambda v=variant: mitsuba_render(
-            v, ts, size, args.spp, folder))
+        # its default sampler, and its low-discrepancy one (as glshade's sobol is)
+        for sampler in ("independent", "ldsampler"):
+            series[f"Mitsuba {variant} {sampler}"] = (lambda v=variant, sm=sampler:
+                                                      mitsuba_render(v, ts, size, args.spp,
+                                                                     folder, sm))
     for fn in series.values():
         fn()  # (compiled once before the clock)
     seconds: dict = {k: [] for k in series}
@@ -134,7 +142,7 @@ def main() -> None:
                 rows += run(name, scene, camera, size, args, ctx, folder)
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
-          f"glshade at {args.reference_spp} spp (another seed); time to 1% = seconds x "
+          f"glshade at {args.reference_spp} spp (Sobol, another seed); time to 1% = seconds x "
           "(error / 1%)^2")
     print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "s to 1%")))
     usable = mitsuba_variants()

@@ -10,9 +10,11 @@ import os
 import numpy as np
 
 
-def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0):
+def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,
+           sampler: str = "independent"):
     """Mitsuba's ``scalar_rgb`` picture ``(size, size, 3)`` in radiosity units (pi x its
-    radiance). ``camera``: eye, target, up, fov_y (degrees)."""
+    radiance). ``camera``: eye, target, up, fov_y (degrees); ``sampler``: Mitsuba's
+    (``independent``; ``ldsampler`` its low-discrepancy one)."""
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
@@ -23,7 +25,7 @@ def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0
                             up=list(camera["up"])),
                         "film": {"type": "hdrfilm", "width": size, "height": size,
                                  "rfilter": {"type": "box"}},
-                        "sampler": {"type": "independent", "sample_count": spp,
+                        "sampler": {"type": sampler, "sample_count": spp,
                                     "seed": seed}}}
     ts = trace_scene
     for m, row in enumerate(ts.materials):

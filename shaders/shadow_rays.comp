@@ -48,8 +48,9 @@ layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
 uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
 uniform sampler2D u_normals;       // world normal as (n + 1) / 2 (the shading one, seen side)
-uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
-uniform mat4 u_camera_to_world; // view -> world
+// a pixel's ray: its origin and span at the viewport's first pixel and a pixel's steps
+uniform vec3 u_origin0, u_origin_dx, u_origin_dy;
+uniform vec3 u_span0, u_span_dx, u_span_dy;
 uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
 uniform vec3 u_eye;
 uniform vec3 u_forward;            // the view axis (world, unit)
@@ -63,7 +64,6 @@ uniform vec4 u_lights[8];          // world: point (xyz, 1), direction TO it (xy
 uniform int u_has_triangles;      // 0: no hierarchy (no triangles but the big ones)
 uniform int u_big;                 // the first u_big triangles: tested by every ray
 
-#include "rays.glsl"
 
 #define STACK 64
 
@@ -156,14 +156,14 @@ void main() {
     // (one store at the end: llvmpipe runs every branch, an early store and return too)
     bool trace = face != 0;
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
-    vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
-    vec3 origin, span;
-    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, origin, span);
-    vec3 dir = normalize(span);
+    // the pixel's ray, affine in the pixel (geometry/transforms.py, pixel_rays)
+    vec2 at = vec2(id.xy);
 #ifdef ORTHOGRAPHIC
-    vec3 p = origin + dir * (depth - u_near);
+    vec3 origin = u_origin0 + at.x * u_origin_dx + at.y * u_origin_dy;
+    vec3 p = origin + u_forward * (depth - u_near);
 #else
-    vec3 p = u_eye + dir * (depth / dot(dir, u_forward));
+    vec3 span = u_span0 + at.x * u_span_dx + at.y * u_span_dy;
+    vec3 p = u_eye + span * (depth / dot(span, u_forward));
 #endif
     vec4 l = u_lights[light];
     float seen = 1.0;

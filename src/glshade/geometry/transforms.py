@@ -118,6 +118,31 @@ def ray_uniforms(proj: ArrayLike, view: ArrayLike) -> dict[str, bytes]:
             "u_camera_to_world": gl_bytes(np.linalg.inv(np.asarray(view, np.float64)))}
 
 
+def pixel_rays(proj: ArrayLike, view: ArrayLike, viewport) -> dict[str, tuple]:
+    """Each pixel's ray as affine uniforms, computed in float64 (a ray's origin on the near
+    plane and its span to the far plane are affine in the pixel): ``u_origin0`` /
+    ``u_span0`` at the centre of the viewport's first pixel, ``u_origin_dx`` /
+    ``u_span_dx`` and ``..._dy`` a pixel's step in x and y. Pixel (i, j) of the viewport
+    then has origin ``u_origin0 + i u_origin_dx + j u_origin_dy`` -- two fused
+    multiply-adds a pixel where unprojecting costs three matrix products."""
+    inverse_proj = np.linalg.inv(np.asarray(proj, np.float64))
+    camera_to_world = np.linalg.inv(np.asarray(view, np.float64))
+    _, _, w, h = (float(v) for v in viewport)
+
+    def ray(i: float, j: float):
+        ndc = np.array([(i + 0.5) / w * 2 - 1, (j + 0.5) / h * 2 - 1])
+        a = inverse_proj @ np.array([*ndc, -1.0, 1.0])
+        b = inverse_proj @ np.array([*ndc, 1.0, 1.0])
+        near = a[:3] / a[3]
+        origin = camera_to_world[:3, :3] @ near + camera_to_world[:3, 3]
+        return origin, camera_to_world[:3, :3] @ (b[:3] / b[3] - near)
+
+    (o0, s0), (ox, sx), (oy, sy) = ray(0, 0), ray(1, 0), ray(0, 1)
+    return {"u_origin0": tuple(o0), "u_origin_dx": tuple(ox - o0),
+            "u_origin_dy": tuple(oy - o0), "u_span0": tuple(s0), "u_span_dx": tuple(sx - s0),
+            "u_span_dy": tuple(sy - s0)}
+
+
 def box_corners(bounds) -> NDArray[np.float64]:
     """The 8 corners ``(..., 8, 3)`` of boxes given as ``(..., 2, 3)`` minimum and maximum."""
     b = np.asarray(bounds, np.float64)

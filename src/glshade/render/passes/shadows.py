@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import RenderWarning
-from ...geometry.transforms import ray_uniforms
+from ...geometry.transforms import pixel_rays, ray_uniforms
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
 from ..programs import UniformWriter
@@ -346,6 +346,7 @@ class ShadowPass(GLResource):
         rows = shadow_lights(state.lights)
         values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
                   **ray_uniforms(state.proj, state.view),
+                  **pixel_rays(state.proj, state.view, state.viewport),
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}

@@ -71,25 +71,7 @@ class GpuPathTracer(GLResource):
             defines += ("SMOOTH_NORMALS",)
         if not len(scene.triangles):
             defines += ("NO_TRIANGLES",)
-        if accel not in ("auto", "bvh", "flat"):
-            raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
-        if sampler not in self.SAMPLERS:
-            raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
-        #: where the paths' random numbers come from (``SAMPLERS``)
-        self.sampler = sampler
-        if sampler == "sobol":
-            defines += ("LOW_DISCREPANCY",)
-        n = len(scene.triangles)
-        # (a flat loop's triangles are uniforms: three vectors each, beside the others')
-        room = (int(ctx.info.get("GL_MAX_FRAGMENT_UNIFORM_VECTORS") or 256) - 64) // 3
-        if accel == "flat" and n > room:
-            raise OptionError(f"accel='flat' holds the triangles as uniforms: this GL has "
-                              f"room for {room}, the scene has {n}")
-        #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
-        self.accel = "bvh" if not n or accel == "bvh" or (
-            accel == "auto" and n > min(self.FLAT_LIMIT, room)) else "flat"
-        if self.accel == "flat":
-            defines += (f"FLAT_TRIANGLES {n}",)
+        defines += self._choose(accel, sampler, len(scene.triangles))
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]
@@ -130,6 +112,27 @@ class GpuPathTracer(GLResource):
         self.passes = 0
         self.samples = 0
         self.reset()
+
+    def _choose(self, accel: str, sampler: str, n: int) -> tuple[str, ...]:
+        """Check ``accel`` and ``sampler`` for a scene of ``n`` triangles, set
+        :attr:`accel` and :attr:`sampler`; the defines they need."""
+        if accel not in ("auto", "bvh", "flat"):
+            raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
+        if sampler not in self.SAMPLERS:
+            raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
+        #: where the paths' random numbers come from (``SAMPLERS``)
+        self.sampler = sampler
+        # (a flat loop's triangles are uniforms: three vectors each, beside the others')
+        info = self.context.ctx.info
+        room = (int(info.get("GL_MAX_FRAGMENT_UNIFORM_VECTORS") or 256) - 64) // 3
+        if accel == "flat" and n > room:
+            raise OptionError(f"accel='flat' holds the triangles as uniforms: this GL has "
+                              f"room for {room}, the scene has {n}")
+        #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
+        self.accel = "bvh" if not n or accel == "bvh" or (
+            accel == "auto" and n > min(self.FLAT_LIMIT, room)) else "flat"
+        return (("LOW_DISCREPANCY",) if sampler == "sobol" else ()) + (
+            (f"FLAT_TRIANGLES {n}",) if self.accel == "flat" else ())
 
     def _write(self, values: dict) -> None:
         prog = self.program

@@ -24,7 +24,8 @@
 // own texture; a hit on its leaf L is "triangle" -2 - L, of material u_csg_material.
 // BRDF: rho_d / pi + k_s (n + 2) / (2 pi) cos^n(alpha), two-sided; emission one-sided.
 // Next-event estimation to the emitters and the lights, then a BRDF-sampled bounce (lobe
-// chosen by albedo); emission found by a bounce is not counted again (no double counting);
+// chosen by albedo); emission found by a bounce is not counted again (no double counting) --
+// MIS: it is, each way weighed by Veach's power heuristic against the other's density;
 // Russian roulette from the fourth vertex (RR_CAP: the most a path may go on with, so a
 // lossless room still ends). Random numbers: a PCG stream seeded by nested PCG hashes of
 // the seed, the pixel's x and y and the sample k.
@@ -52,6 +53,7 @@ uniform int u_tris;
 uniform int u_mats;
 uniform int u_emit;
 uniform int u_n_emit;
+uniform float u_emit_power;   // the emitters' power, sum of area x mean(E) (MIS)
 uniform int u_norms;
 uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
 uniform mat4 u_camera_to_world; // view -> world
@@ -78,7 +80,8 @@ layout(location = 2) out vec4 out_state2;  // throughput, random state's high 16
 layout(location = 3) out vec4 out_state3;  // the path's value so far, flags (1 emits, 2 hit)
 layout(location = 4) out vec4 out_sum;     // finished samples: sum of values, count
 layout(location = 5) out vec4 out_square;  // sum of squares, first hits on an emitter
-layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near the limit
+layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near the limit,
+                                           // the path in flight's last bounce density
 
 
 #include "random.glsl"
@@ -252,9 +255,28 @@ vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
     return rho + vec3(ks * 0.5 * (shin + 2.0) * pow(ca, shin));
 }
 
+// the density (solid angle) with which a bounce at normal n, leaving along wo, samples wi
+// (the lobe chosen by albedo, as bounce does)
+float bounce_pdf(vec3 rho, float ks, float shin, vec3 n, vec3 wo, vec3 wi) {
+    float wd = (rho.x + rho.y + rho.z) / 3.0;
+    if (wd + ks <= 0.0) return 0.0;
+    float pd = wd / (wd + ks);
+    float ca = max(dot(wi, reflect(-wo, n)), 0.0);
+    return pd * max(dot(wi, n), 0.0) / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) *
+           pow(ca, shin);
+}
+
+// MIS (Veach's power heuristic): the weight of a sample drawn with density a where another
+// strategy would have drawn it with density b
+float power_weight(float a, float b) {
+    return a * a / max(a * a + b * b, 1e-38);
+}
+
 // next-event estimation (pi x radiance, before the throughput): one emitter triangle by
-// power, a point uniform on it, its light through the BRDF where xo sees it
-vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
+// power, a point uniform on it, its light through the BRDF where xo sees it. MIS: weighed
+// against the bounce's chance of finding the same point (``last``: no bounce follows)
+vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin,
+                   bool last) {
     if (u_n_emit <= 0) return vec3(0.0);
     vec3 u = sample3(0u);  // (the emitter, then a point on it)
     float r = u.x;
@@ -280,7 +302,12 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
     if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
         visible(xo, wi, dist * (1.0 - 1e-4))) {
         vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
-        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (em.z / p);
+        float w = 1.0;
+#ifdef MIS
+        float light_pdf = p / em.z * dist2 / cy;  // (solid angle)
+        w = last ? 1.0 : power_weight(light_pdf, bounce_pdf(rho, ks, shin, n, wo, wi));
+#endif
+        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (em.z / p) * w;
     }
     return vec3(0.0);
 }
@@ -312,7 +339,11 @@ struct Path {
     vec3 o, d, beta, value;
     int bounces;      // vertices found so far
     float flags;      // 1: its first hit emits; 2: its camera ray hit anything
+    float pdf;        // the density d was drawn with by the last bounce (0: a camera ray)
 };
+
+bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks,
+                    float shin);
 
 // one bounce of ``p``: the next vertex, its emission (first vertex), next-event estimation
 // and the next direction; false when the path ends
@@ -343,6 +374,18 @@ bool bounce(inout Path p) {
         p.value += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
         p.flags += float(dot(mb.xyz, vec3(1.0)) > 0.0);
     }
+#ifdef MIS
+    // later vertices: emission the bounce found, weighed against next-event estimation's
+    // chance of choosing this point (none on a solid: its surfaces are not sampled)
+    float e_mean = (mb.x + mb.y + mb.z) / 3.0;
+    if (p.bounces > 0 && dot(ng, p.d) < 0.0 && e_mean > 0.0) {
+        float light_pdf = e_mean / u_emit_power * t * t / -dot(ng, p.d);
+#ifdef CSG_SOLID
+        light_pdf = on_solid ? 0.0 : light_pdf;
+#endif
+        p.value += p.beta * mb.xyz * power_weight(p.pdf, light_pdf);
+    }
+#endif
     vec3 n = dot(ng, p.d) < 0.0 ? ng : -ng;
     vec3 xo = x + n * u_eps;  // (offsets along the true surface)
     vec3 n_geo = n;
@@ -360,11 +403,18 @@ bool bounce(inout Path p) {
     vec3 wo = -p.d;
     vec3 rho = ma.xyz;
     float ks = ma.w, shin = mb.w;
-    p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin)
+    bool last = u_max_depth > 0 && p.bounces + 1 >= u_max_depth;
+    p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin, last)
                          + lights_seen(xo, n, n_geo, wo, rho, ks, shin));
     p.bounces += 1;
     if (u_max_depth > 0 && p.bounces >= u_max_depth) return false;
-    // the next direction: a lobe by albedo, then the BRDF-weighted throughput
+    return next_direction(p, xo, n, n_geo, wo, rho, ks, shin);
+}
+
+// the path's next direction from xo: a lobe by albedo, then the BRDF-weighted throughput
+// and Russian roulette; false when the path ends
+bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks,
+                    float shin) {
     float wd = (rho.x + rho.y + rho.z) / 3.0;
     if (wd + ks <= 0.0) return false;
     float pd = wd / (wd + ks);
@@ -388,6 +438,7 @@ bool bounce(inout Path p) {
     }
     p.o = xo;
     p.d = wi;
+    p.pdf = pdf;
     return true;
 }
 
@@ -408,6 +459,7 @@ Path start(uvec2 pixel, uint k) {
     p.value = vec3(0.0);
     p.bounces = 0;
     p.flags = 0.0;
+    p.pdf = 0.0;
     return p;
 }
 
@@ -428,6 +480,7 @@ void main() {
     p.o = s0.xyz; p.d = s1.xyz; p.beta = s2.xyz; p.value = s3.xyz;
     p.bounces = int(s0.w) - 1;
     p.flags = s3.w;
+    p.pdf = hit.z;  // (the path in flight's last bounce density)
     g_state = uint(s1.w) | (uint(s2.w) << 16u);
     g_iter = 0;
 #ifdef LOW_DISCREPANCY
@@ -455,5 +508,5 @@ void main() {
     out_state3 = vec4(p.value, p.flags);
     out_sum = sum;
     out_square = square;
-    out_hit = hit;
+    out_hit = vec4(hit.xy, flying ? p.pdf : 0.0, hit.w);
 }

@@ -38,23 +38,29 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
     return emission * (1 - rho ** (depth + 1)) / (1 - rho)
 
 
-@settings(max_examples=24)
+@settings(max_examples=32)
 @given(rho=st.floats(0.0, 0.99), spp=st.integers(8, 48),
        per_pass=st.sampled_from([None, 1, 3, 16]),
        depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16),
-       accel=st.sampled_from(["bvh", "flat"]), sampler=st.sampled_from(["pcg", "sobol"]))
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh", sampler="pcg")
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="pcg")
-@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat", sampler="sobol")
-@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol")
-@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="sobol")
+       accel=st.sampled_from(["bvh", "flat"]), sampler=st.sampled_from(["pcg", "sobol"]),
+       mis=st.booleans())
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh", sampler="pcg",
+         mis=False)
+@example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="pcg",
+         mis=True)
+@example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat", sampler="sobol",
+         mis=True)
+@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol", mis=True)
+@example(rho=0.9, spp=32, per_pass=None, depth=3, seed=0, accel="flat", sampler="sobol",
+         mis=True)
 def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
-                                                     seed, accel, sampler):
+                                                     seed, accel, sampler, mis):
     """Both ways of finding triangles (the hierarchy, every triangle in turn), both
-    samplers (independent numbers, Owen-scrambled Sobol points)."""
-    r = trace(furnace(rho), INSIDE, (16, 16), spp=spp, samples_per_pass=per_pass, seed=seed,
+    samplers (independent numbers, Owen-scrambled Sobol points), with and without multiple
+    importance sampling (in a room that all emits, every bounce finds emission)."""
+    r = trace(furnace(rho), INSIDE, (32, 32), spp=spp, samples_per_pass=per_pass, seed=seed,
               max_depth=depth, context=gl_context, progress=False, accel=accel,
-              sampler=sampler)
+              sampler=sampler, mis=mis)
     assert r.samples == spp and r.near_limit == 0
     want = closed_form(rho, depth)
     pixels = r.image.mean(-1).ravel()

@@ -149,6 +149,7 @@ class PathtraceArgs(RenderArgs):
     exposure: float | None = None
     no_lights: bool = False
     sampler: str = "pcg"
+    no_mis: bool = False
     quiet: bool = False
 
 

@@ -363,6 +363,10 @@ def add_pathtrace(sub) -> None:
                    help="the paths' random numbers: pcg (independent, default) or sobol "
                    "(Owen-scrambled Sobol points at the first three vertices: less error for "
                    "the same samples; its --until estimate errs on the safe side)")
+    p.add_argument("--no-mis", action="store_true", help="count emission found by a "
+                   "bounce only at the first vertex (next-event estimation alone after it), "
+                   "not weighed against next-event estimation by multiple importance "
+                   "sampling (the default)")
     add_render_options(p)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=pathtrace_command.pathtrace, arguments=a.PathtraceArgs)

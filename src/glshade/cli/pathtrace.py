@@ -40,7 +40,8 @@ def pathtrace(args: PathtraceArgs) -> int:
     spp = None if args.until is not None else (args.spp or 64)
     result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
                       max_depth=args.max_depth, backend=args.backend.value,
-                      progress=False if args.quiet else None, sampler=args.sampler)
+                      progress=False if args.quiet else None, sampler=args.sampler,
+                      mis=not args.no_mis)
     if result.interrupted and not result.samples:  # (nothing traced: nothing to keep)
         print("glshade: interrupted before the first sample; nothing written",
               file=sys.stderr)

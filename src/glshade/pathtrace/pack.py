@@ -69,6 +69,9 @@ def pack(scene) -> tuple[np.ndarray, dict]:
     data = _rows(np.concatenate(tables))
     layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
               "u_emit": int(offsets[2]), "u_n_emit": len(scene.emitters),
+              # (the emitters' power, as their cdf sums it: MIS's light density)
+              "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
+                  scene.material[scene.emitters], 5:8].mean(1)).sum()),
               "u_norms": int(offsets[3]), **root,
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH,
               "hierarchy": _rows(entries.reshape(-1, 4))}

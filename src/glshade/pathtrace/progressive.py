@@ -97,7 +97,8 @@ class PathTracer:
 
     def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int | None = None,
                  context=None, backend: str = "auto", lights: bool = True, camera=None,
-                 smooth: bool = False, accel: str = "auto", sampler: str = "pcg"):
+                 smooth: bool = False, accel: str = "auto", sampler: str = "pcg",
+                 mis: bool = True):
         from ..render.context import create_context
         from ..render.passes.pathtrace import GpuPathTracer
 
@@ -116,7 +117,8 @@ class PathTracer:
         self.context = create_context(backend) if context is None else context
         try:
             self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h,
-                                     max_depth=max_depth, accel=accel, sampler=sampler)
+                                     max_depth=max_depth, accel=accel, sampler=sampler,
+                                     mis=mis)
         except BaseException:
             self.close()
             raise
@@ -187,7 +189,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
           until: float | None = None, max_samples: int = 65536, seed: int = 0,
           max_depth: int | None = None, samples_per_pass: int | None = None,
           backend: str = "auto", context=None, lights: bool = True,
-          progress=None, accel: str = "auto", sampler: str = "pcg") -> PathTraced:
+          progress=None, accel: str = "auto", sampler: str = "pcg",
+          mis: bool = True) -> PathTraced:
     """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
     exactly ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
     :func:`relative_error`; checked after each doubling, at most ``max_samples``).
@@ -199,7 +202,9 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     ``accel``: how rays find triangles, ``"bvh"``, ``"flat"`` (each in turn) or ``"auto"``
     (flat up to 112 triangles); the same picture either way. ``sampler``: ``"pcg"``
     (independent random numbers) or ``"sobol"`` (Owen-scrambled Sobol points at the first
-    three vertices: less error for the same samples; unbiased either way)."""
+    three vertices: less error for the same samples; unbiased either way); ``mis``: emission
+    found by next-event estimation and by the bounce alike, weighed by multiple importance
+    sampling (False: next-event estimation alone after the first vertex)."""
     from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress
@@ -222,7 +227,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     if samples_per_pass is not None:
         per_pass = check_whole("samples_per_pass", samples_per_pass, 1)
     with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, context=context,
-                    backend=backend, lights=lights, accel=accel, sampler=sampler) as tracer:
+                    backend=backend, lights=lights, accel=accel, sampler=sampler,
+                    mis=mis) as tracer:
         history: list = []
         interrupted = False
         try:

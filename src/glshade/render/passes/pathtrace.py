@@ -35,7 +35,9 @@ class GpuPathTracer(GLResource):
     sample is the same however the work is grouped. ``max_depth``: vertices a path may
     have (None: no limit, Russian roulette ends it). ``sampler``: ``"pcg"`` (independent
     random numbers) or ``"sobol"`` (the first three vertices' from Owen-scrambled Sobol
-    points: lower error for the same samples, unbiased all the same)."""
+    points: lower error for the same samples, unbiased all the same). ``mis``: emission
+    found both by next-event estimation and by the bounce, each weighed by Veach's power
+    heuristic (default; False: next-event estimation alone after the first vertex)."""
 
     SAMPLERS = ("pcg", "sobol")
 
@@ -51,7 +53,7 @@ class GpuPathTracer(GLResource):
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, budget: int = BUDGET,
-                 accel: str = "auto", sampler: str = "pcg"):
+                 accel: str = "auto", sampler: str = "pcg", mis: bool = True):
         from ..renderer import check_fits
 
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
@@ -72,6 +74,9 @@ class GpuPathTracer(GLResource):
         if not len(scene.triangles):
             defines += ("NO_TRIANGLES",)
         defines += self._choose(accel, sampler, len(scene.triangles))
+        #: whether emission is found both ways, weighed by multiple importance sampling
+        self.mis = bool(mis)
+        defines += ("MIS",) if self.mis else ()
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]

@@ -206,6 +206,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
             top += a >= 0.0 && b >= 0.0 && top < STACK - 1 ? 1 : 0;
             item = a >= 0.0 || b >= 0.0 ? (left_first ? left.w : right.w) : DONE;
             while (item == DONE && top > 0) {
+                ++g_iter;  // (the driver counts these too)
                 --top;
                 item = entry[top] <= t_hit ? stack[top] : DONE;
             }
@@ -218,6 +219,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
         }
         item = DONE;
         while (item == DONE && top > 0) {
+            ++g_iter;
             --top;
             item = entry[top] <= t_hit ? stack[top] : DONE;
         }

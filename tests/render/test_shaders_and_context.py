@@ -173,3 +173,29 @@ def test_a_context_used_from_another_thread_is_refused_with_the_reason(gl_contex
         t.join()
         assert len(errors) == 1 and "belongs to the thread that made it" in errors[0]
         assert (r.render(scene, camera)[..., :3] > 0).any()  # its own thread still draws
+
+
+def test_releasing_a_bound_framebuffer_leaves_the_next_draw_clean(gl_context):
+    """A GL object released while its framebuffer is bound: moderngl would bind the deleted
+    name again at the next viewport change (GL_INVALID_OPERATION at the next draw); a
+    GLResource rests the context on its own framebuffer first -- for every subclass, and
+    for a path tracer made next, whose first act is such a viewport change."""
+    from glshade.pathtrace import trace
+    from glshade.radiosity import cornell_scene
+    from glshade.render.base import GLResource
+
+    class Holder(GLResource):
+        def __init__(self, context):
+            super().__init__(context)
+            ctx = context.ctx
+            tex = self._keep(ctx.texture((8, 8), 4))
+            self.fbo = self._keep(ctx.framebuffer([tex]))
+
+    ctx = gl_context.ctx
+    for _ in range(2):
+        holder = Holder(gl_context)
+        holder.fbo.use()
+        holder.release()
+        scene, camera = cornell_scene()
+        trace(scene, camera, (8, 8), spp=1, context=gl_context, progress=False)
+        assert ctx.error == "GL_NO_ERROR"

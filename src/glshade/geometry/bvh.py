@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BVH", "build", "PackedChildren", "packed_children"]
+__all__ = ["BVH", "build", "PackedChildren", "packed_children", "NO_CHILDREN"]
 
 
 @dataclass(frozen=True)
@@ -114,6 +114,19 @@ class PackedChildren:
     base: np.ndarray
     step: np.ndarray
     root: np.ndarray  # (4,) the root packed as a child
+
+    def uniforms(self) -> dict:
+        """The root and the boxes' quantum as the shaders take them (``u_root``,
+        ``u_qbase``, ``u_qstep``)."""
+        return {"u_root": tuple(int(w) for w in self.root),
+                "u_qbase": tuple(float(v) for v in self.base),
+                "u_qstep": tuple(float(v) for v in self.step)}
+
+
+#: the stand-in for no hierarchy (no triangles: the shaders skip the walk, NO_TRIANGLES or
+#: ``u_has_triangles``): one row of zeros, a root of zeros
+NO_CHILDREN = PackedChildren(np.zeros((1, 8), np.uint32), np.zeros(3, np.float32),
+                             np.ones(3, np.float32), np.zeros(4, np.uint32))
 
 
 def packed_children(bvh: BVH, first_triangle: int = 0) -> PackedChildren:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.bvh import build, packed_children
+from ..geometry.bvh import NO_CHILDREN, build, packed_children
 
 __all__ = ["pack", "DATA_WIDTH"]
 
@@ -36,14 +36,9 @@ def pack(scene) -> tuple[np.ndarray, dict]:
         bvh = build(scene.triangles)
         order, depth, n_nodes = bvh.order, bvh.depth, bvh.n_nodes
         packed = packed_children(bvh)
-        entries, root = packed.entries, {
-            "u_root": tuple(int(w) for w in packed.root),
-            "u_qbase": tuple(float(v) for v in packed.base),
-            "u_qstep": tuple(float(v) for v in packed.step)}
     else:  # (a solid alone: no hierarchy)
         order, depth, n_nodes = np.zeros(0, np.int64), 0, 0
-        entries = np.zeros((1, 8), np.uint32)
-        root = {"u_root": (0, 0, 0, 0), "u_qbase": (0.0, 0.0, 0.0), "u_qstep": (1.0, 1.0, 1.0)}
+        packed = NO_CHILDREN
     tri = scene.triangles[order]
     n_tris = len(tri)
     tris = np.zeros((3 * n_tris, 4), np.float32)
@@ -72,7 +67,7 @@ def pack(scene) -> tuple[np.ndarray, dict]:
               # (the emitters' power, as their cdf sums it: MIS's light density)
               "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
-              "u_norms": int(offsets[3]), **root,
+              "u_norms": int(offsets[3]), **packed.uniforms(),
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH,
-              "hierarchy": _rows(entries.reshape(-1, 4))}
+              "hierarchy": _rows(packed.entries.reshape(-1, 4))}
     return data, layout

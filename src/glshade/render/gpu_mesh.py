@@ -126,13 +126,11 @@ class GpuMesh(GLResource):
             data = np.hstack([m.vertices, drawable_normals(m), colors]).astype("f4")
             tri, owner = m.triangles
             ctx = self.context.ctx
-            # (indexed, and per corner with polygon ids for the draws that write them)
+            # (indexed; per corner with polygon ids made for the first draw that writes them)
             self._colors = (colors, [ctx.buffer(data.tobytes()),
-                                     ctx.buffer(tri.astype("u4").tobytes()),
-                                     ctx.buffer(data[tri.ravel()].tobytes()),
-                                     ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())],
-                            {})
-        _, (vbo, ibo, corner_vbo, ids), vaos = self._colors
+                                     ctx.buffer(tri.astype("u4").tobytes())], {},
+                            (data, tri, owner))
+        _, buffers, vaos, (data, tri, owner) = self._colors
         vao = vaos.get(id(program))
         if vao is None:
             names = [n for n in ("in_position", "in_normal", "in_color") if n in program]
@@ -140,16 +138,19 @@ class GpuMesh(GLResource):
                            for n in ("in_position", "in_normal", "in_color"))
             ctx = self.context.ctx
             if "in_polygon" in program:
-                vao = ctx.vertex_array(program, [(corner_vbo, fmt, *names),
-                                                 (ids, "i", "in_polygon")])
+                if len(buffers) == 2:
+                    buffers += [ctx.buffer(data[tri.ravel()].tobytes()),
+                                ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())]
+                vao = ctx.vertex_array(program, [(buffers[2], fmt, *names),
+                                                 (buffers[3], "i", "in_polygon")])
             else:
-                vao = ctx.vertex_array(program, [(vbo, fmt, *names)], ibo, 4)
+                vao = ctx.vertex_array(program, [(buffers[0], fmt, *names)], buffers[1], 4)
             vaos[id(program)] = vao
         return vao
 
     def _drop_colors(self) -> None:
         if self._colors is not None:
-            _, buffers, vaos = self._colors
+            _, buffers, vaos, _ = self._colors
             for vao in vaos.values():
                 vao.release()
             for buf in buffers:

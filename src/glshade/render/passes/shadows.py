@@ -180,7 +180,7 @@ class ShadowPass(GLResource):
     def occluding(self, scene) -> _Occluding:
         """The scene's occluders on the GPU (a BVH in storage buffers), built again only
         when the geometry changed (meshes, patches, transforms, visibility, opacity)."""
-        from ...geometry.bvh import build, packed_children
+        from ...geometry.bvh import NO_CHILDREN, build, packed_children
         from ...scene.occluders import occluders
 
         key = _geometry_key(scene)
@@ -192,8 +192,7 @@ class ShadowPass(GLResource):
         found = occluders(scene)
         ctx = self.context.ctx
         big = np.zeros(0, np.int64)
-        nodes = np.zeros((1, 8), np.uint32)
-        root = {"u_root": (0, 0, 0, 0), "u_qbase": (0.0, 0.0, 0.0), "u_qstep": (1.0, 1.0, 1.0)}
+        packed = NO_CHILDREN
         tris = np.zeros((2, 4), np.float32)
         if len(found):
             # the largest triangles (a floor's, a wall's) go in a list every ray tests first:
@@ -208,10 +207,6 @@ class ShadowPass(GLResource):
                 bvh = build(found.triangles[rest])
                 order = np.concatenate([big, rest[bvh.order]])
                 packed = packed_children(bvh, len(big))
-                nodes = packed.entries
-                root = {"u_root": tuple(int(w) for w in packed.root),
-                        "u_qbase": tuple(float(v) for v in packed.base),
-                        "u_qstep": tuple(float(v) for v in packed.step)}
             tri = found.triangles[order]
             tris = np.zeros((3 * len(tri), 4), np.float32)
             tris[0::3, :3] = tri[:, 0]
@@ -221,9 +216,9 @@ class ShadowPass(GLResource):
         normals = np.zeros((max(len(found.normals), 1), 4), np.float32)
         normals[:len(found.normals), :3] = found.normals
         self._occluding = _Occluding(
-            key, ctx.buffer(nodes.tobytes()), ctx.buffer(tris.tobytes()),
+            key, ctx.buffer(packed.entries.tobytes()), ctx.buffer(tris.tobytes()),
             ctx.buffer(normals.tobytes()), found, len(big),
-            float(np.abs(found.bounds).max()) if len(found) else 1.0, root)
+            float(np.abs(found.bounds).max()) if len(found) else 1.0, packed.uniforms())
         return self._occluding
 
     def _program(self, defines: tuple):

@@ -74,7 +74,8 @@ class TransparencyPass(GLResource):
         super().__init__(context)
         self.shaders = shaders
         ctx = context.ctx
-        self._heads = None  # (size, the heads' buffer, the report's buffer)
+        self._heads = None  # (size, the heads' buffer: the atomics path's)
+        self._report = self._keep(ctx.buffer(reserve=16))  # (the resolve's four counts)
         self._nodes = None
         self._capacity = 0  # (the pool's nodes)
         self._slots = 0     # (the pixels' own slots)
@@ -88,22 +89,30 @@ class TransparencyPass(GLResource):
         self._counted_in: tuple | None = None  # (the last lists' counts: texture or buffer)
 
     def _heads_for(self, width: int, height: int):
-        """The per-pixel fragment counts and pool list heads (a storage buffer of two words a
-        pixel; made once a size) and the report's buffer (four counts)."""
+        """The atomics path's per-pixel fragment counts and pool list heads (a storage
+        buffer of two words a pixel, made once a size)."""
         if self._heads is None or self._heads[0] != (width, height):
-            if self._heads is not None:
-                for obj in self._heads[1:]:
-                    obj.release()
-            ctx = self.context.ctx
-            self._heads = ((width, height), ctx.buffer(reserve=2 * width * height * 4),
-                           ctx.buffer(reserve=16))
-        return self._heads
+            self._drop_heads()
+            self._heads = ((width, height),
+                           self.context.ctx.buffer(reserve=2 * width * height * 4))
+        return self._heads[1]
+
+    def _drop_heads(self) -> None:
+        if self._heads is not None:
+            self._count_fragments()  # (the last report's, before its lists go)
+            self._heads[1].release()
+            self._heads = None
 
     @property
     def report(self) -> TransparencyReport:
         """What the last draw kept and left out; its ``fragments`` are summed from the
         lists' counts when first read (a readback that frames nobody asks about skip)."""
-        if self._last.fragments < 0 and self._counted_in is not None:
+        self._count_fragments()
+        return self._last
+
+    def _count_fragments(self) -> None:
+        """Sum the last draw's lists' counts into its report (once)."""
+        if self._counted_in is not None:
             import moderngl
 
             heads, pixels = self._counted_in
@@ -112,7 +121,7 @@ class TransparencyPass(GLResource):
             else:  # (the fetch capture's texture: count, pool head a pixel)
                 counts = np.frombuffer(heads.read(), np.uint32)[0::2]
             self._last = replace(self._last, fragments=int(counts.sum(dtype=np.int64)))
-        return self._last
+            self._counted_in = None
 
     def _fetch_for(self, target):
         """The fetch capture's heads texture (count, pool head + 1 a pixel), a framebuffer of
@@ -134,6 +143,7 @@ class TransparencyPass(GLResource):
 
     def _drop_fetch(self) -> None:
         if self._fetch is not None:
+            self._count_fragments()  # (the last report's, before its lists go)
             for obj in self._fetch[:1:-1]:
                 obj.release()
             self._fetch = None
@@ -210,11 +220,11 @@ class TransparencyPass(GLResource):
             self._last, self._counted_in = TransparencyReport(Transparency.BLEND.value), None
             return
         width, height = int(target.width), int(target.height)
-        _, heads, report = self._heads_for(width, height)
         self._room(width * height * SLOTS, width * height * START_POOL_PER_PIXEL)
         layout = {"u_oit_width": width, "u_oit_pixels": width * height,
                   "u_oit_base": self._slots}
         fetch = self._fetch_for(target)
+        heads = self._heads_for(width, height) if fetch is None else fetch[2]
         for _ in range(2):  # (a second time with room for every fragment, when short)
             self._capture(renderer, state, models, heads, fetch, layout)
             pooled, *deep = (int(v) for v in np.frombuffer(self._count.read(), np.uint32))
@@ -224,11 +234,12 @@ class TransparencyPass(GLResource):
             layout["u_oit_base"] = self._slots
         # the most fragments a pixel has, rounded up to 1, 2, 4, 8 (0: some have more)
         deepest = 0 if pooled else 2 ** sum(deep)
-        self._resolve(state, heads if fetch is None else fetch[2], report, layout, deepest)
+        self._resolve(state, heads, layout, deepest)
 
     def _capture(self, renderer, state, models, heads, fetch, layout: dict) -> None:
         """Draw the transparent ``models`` into their pixels' lists: counted through
-        ``fetch`` (:meth:`_fetch_for`) when given, else through the ``heads`` buffer."""
+        ``fetch`` (:meth:`_fetch_for`; ``heads`` its texture) when given, else through the
+        ``heads`` buffer."""
         ctx = self.context.ctx
         self._count.clear()
         if fetch is None:
@@ -256,7 +267,7 @@ class TransparencyPass(GLResource):
             state.target.bind(Outputs.COLOR)
         ctx.memory_barrier()
 
-    def _resolve(self, state, heads, report, layout: dict, deepest: int) -> None:
+    def _resolve(self, state, heads, layout: dict, deepest: int) -> None:
         """Composite the lists (``heads``: the fetch capture's texture, or the buffer;
         ``deepest``: :meth:`_resolve_program`'s)."""
         import moderngl
@@ -267,6 +278,7 @@ class TransparencyPass(GLResource):
         fetch = not isinstance(heads, moderngl.Buffer)
         prog = self._resolve_program(options.transparency, layers, fetch, deepest)
         vao = ctx.vertex_array(prog, [])
+        report = self._report
         report.clear()
         report.bind_to_storage_buffer(7)
         if fetch:
@@ -316,10 +328,7 @@ class TransparencyPass(GLResource):
         for p in self._programs.values():
             p.release()
         self._programs.clear()
-        if self._heads is not None:
-            for obj in self._heads[1:]:
-                obj.release()
-            self._heads = None
+        self._drop_heads()
         self._drop_fetch()
         if self._behind is not None:
             self._behind[2].release()

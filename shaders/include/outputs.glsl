@@ -15,9 +15,11 @@ layout(location = 0) out vec4 frag_color;
 layout(location = 1) out vec4 frag_normal;     // world-space unit normal, w = 1 where drawn
 layout(location = 2) out int frag_face_id;     // polygon id + 1 (0 = background)
 layout(location = 3) out uint frag_depth_bits; // floatBitsToUint(distance along view axis)
+#ifndef POLYGON_ID_IN  // (else shadow_mask.glsl declared them)
 uniform int u_face_id_base;
 #ifndef PATCH_IDS
 flat in int v_polygon;                         // this mesh's polygon (polygon_id.glsl)
+#endif
 #endif
 #endif
 

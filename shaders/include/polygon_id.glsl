@@ -1,8 +1,9 @@
-// The polygon id of the id output (outputs.glsl), for a mesh program's vertex stage: each
+// The polygon id of the id output (outputs.glsl) and of a fragment's own shadow rays
+// (shadow_mask.glsl, SHADOW_RAYS_FORWARD), for a mesh program's vertex stage: each
 // corner of a triangle carries its polygon's id (such draws share no vertices between
 // triangles: render/gpu_mesh.py), passed on flat. Reading gl_PrimitiveID in the fragment
 // stage instead cost llvmpipe 4 ms of a 100k-triangle draw that took 8 without it.
-#ifdef GLSHADE_AUX_OUTPUTS
+#if defined(GLSHADE_AUX_OUTPUTS) || defined(SHADOW_RAYS_FORWARD)
 in int in_polygon;
 flat out int v_polygon;
 #define PASS_POLYGON_ID() v_polygon = in_polygon

@@ -23,6 +23,46 @@ void shadow_prepare(vec3 p_view, vec3 n_world) {
 }
 #define SHADOW_PREPARE(p_view, n_world) shadow_prepare(p_view, n_world)
 #define LIGHT_VISIBLE(i) g_visible[i]
+#elif defined(SHADOW_RAYS_FORWARD)
+// Without a visibility array: the fragment traces a ray to each light itself, from its own
+// surface point (shadow_trace.glsl; SHADOW_PREPARE, called by the program's main before
+// lighting). Its rays' loop iterations share one budget (the pass divides it). The depth
+// test runs first (a hidden fragment traces nothing; the count of rays that ran out is a
+// storage-buffer write, which would otherwise keep the test late).
+layout(early_fragment_tests) in;
+#include "shadow_trace.glsl"
+uniform mat4 u_camera_to_world;
+#define HAS_CAMERA_TO_WORLD
+#ifdef PATCH_IDS
+#define SHADOW_OWN_POLYGON -2  // (a patch's triangles are no mesh polygon's)
+#else
+#ifndef POLYGON_ID_IN
+#define POLYGON_ID_IN
+uniform int u_face_id_base;
+flat in int v_polygon;  // this mesh's polygon (polygon_id.glsl)
+#endif
+#define SHADOW_OWN_POLYGON (u_face_id_base + v_polygon)
+#endif
+float g_visible[LIGHT_COUNT];
+
+void shadow_prepare(vec3 p_view, vec3 n_world) {
+    vec3 p = (u_camera_to_world * vec4(p_view, 1.0)).xyz;
+#ifdef ORTHOGRAPHIC
+    vec3 to_eye = u_camera_to_world[2].xyz;
+#else
+    vec3 to_eye = u_camera_to_world[3].xyz - p;
+#endif
+    vec3 n = normalize(n_world);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        int seen = light_seen(p, -p_view.z, u_shadow_lights[i], SHADOW_OWN_POLYGON, n, to_eye);
+        if (seen < 0) {
+            atomicAdd(undecided, 1u);
+        }
+        g_visible[i] = seen == 0 ? 0.0 : 1.0;
+    }
+}
+#define SHADOW_PREPARE(p_view, n_world) shadow_prepare(p_view, n_world)
+#define LIGHT_VISIBLE(i) g_visible[i]
 #else
 uniform sampler2DArray u_visibility;
 #define LIGHT_VISIBLE(i) texelFetch(u_visibility, ivec3(ivec2(gl_FragCoord.xy), i), 0).r

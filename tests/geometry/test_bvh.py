@@ -52,17 +52,51 @@ def _walk(bvh, packed):
 @given(seed=st.integers(0, 2**31), n=st.integers(1, 300),
        centre=st.sampled_from([0.0, 1.0, -37.5, 1e4, 3e6]),
        size=st.sampled_from([1e-4, 1.0, 50.0]),
-       flat_axis=st.sampled_from([None, 0, 2]))
+       flat_axis=st.sampled_from([None, 0, 2]), sah=st.booleans())
 def test_packed_boxes_hold_their_triangles_and_reach_every_one(seed, n, centre, size,
-                                                               flat_axis):
+                                                               flat_axis, sah):
     # far from the origin (1e4, 3e6) a float32 step of the box is below the coordinates'
     # own rounding; flat scenes have a zero-width axis
     rng = np.random.default_rng(seed)
     tri = _triangles(rng, n, np.array([centre, -centre, 0.5 * centre]), size, flat_axis)
     tri = tri.astype(np.float32).astype(np.float64)  # (what the GPU holds)
-    bvh = build(tri)
+    bvh = build(tri, sah=sah)
     packed = packed_children(bvh)
     assert np.array_equal(_walk(bvh, packed), np.arange(n))
+    # each node's box holds its triangles (found from the tree's ranges, not its boxes)
+    for node in range(bvh.n_nodes):
+        leaves = [node]
+        found = []
+        while leaves:
+            k = leaves.pop()
+            if bvh.count[k]:
+                found.extend(bvh.order[bvh.first[k]:bvh.first[k] + bvh.count[k]])
+            else:
+                leaves += [bvh.first[k], bvh.first[k] + 1]
+        pts = tri[found].reshape(-1, 3)
+        assert (pts >= bvh.lo[node]).all() and (pts <= bvh.hi[node]).all()
+    assert bvh.count.max() <= 4
+
+
+def _sah_cost(bvh):
+    """The expected cost of a ray through the tree (unit cost a node, a triangle), each
+    node weighed by its box's area over the root's."""
+    d = np.maximum(bvh.hi - bvh.lo, 0.0)
+    area = d[:, 0] * d[:, 1] + d[:, 1] * d[:, 2] + d[:, 2] * d[:, 0]
+    inner = bvh.count == 0
+    return (area[inner].sum() + (area * bvh.count)[~inner].sum()) / area[0]
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_sah_splits_cost_less_than_median_ones_where_triangles_cluster(seed):
+    """A dense cluster beside sparse triangles (a detailed model on a wide floor): the
+    median splits cut through empty space the heuristic avoids."""
+    rng = np.random.default_rng(seed)
+    centres = np.concatenate([rng.uniform(-0.1, 0.1, (2000, 3)),
+                              rng.uniform(-10.0, 10.0, (200, 3))])
+    tri = centres[:, None] + rng.uniform(-0.01, 0.01, (2200, 3, 3))
+    sah, median = build(tri), build(tri, sah=False)
+    assert _sah_cost(sah) < 0.8 * _sah_cost(median)
 
 
 def test_packed_boxes_are_tight_where_float32_allows():

@@ -615,3 +615,85 @@ def test_forward_map_shadows_on_a_textured_mesh_and_gpu_patches(make_renderer):
     d = np.abs(forward.astype(int) - through.astype(int)).max(-1)
     assert (d > 1).sum() <= 0.002 * d.size
     assert (r.render(scene, camera, "phong").astype(int) - forward.astype(int)).max() > 40
+
+
+@pytest.mark.parametrize("eye", sorted(EYES))
+@pytest.mark.parametrize("kind", ["cube", "torus", "sphere"])
+@pytest.mark.parametrize("mode", ["flat", "gouraud", "phong"])
+def test_forward_rays_are_the_g_buffers(renderers, monkeypatch, kind, mode, eye):
+    """``render`` traces each fragment's own rays as it shades (no G-buffer:
+    SHADOW_RAYS_FORWARD) where no CSG solid casts; ``render_frame`` traces the G-buffer's
+    points in a compute pass (shadow_rays.comp), whose visibility the oracle tests check.
+    One traversal (shadow_trace.glsl), so the same picture: within 1/255 except at most a
+    few pixels (the two surface points differ by a rounding at a shadow's edge), under both
+    lights at once (one fragment shares one loop budget among them), every mode, MSAA and
+    an orthographic view. A scene with a solid ("sphere") takes the compute pass both ways.
+    (Under MSAA a silhouette pixel's surfaces each trace forward: silhouettes left out.)"""
+    from glshade.render.passes.shadows import ShadowPass
+    from tests.oracle.neighbours import inside_regions
+
+    traced = []
+    trace = ShadowPass._trace
+    monkeypatch.setattr(ShadowPass, "_trace", lambda *a: traced.append(1) or trace(*a))
+    scene = scene_of(kind, LIGHTS["point"])
+    scene.add_light(LIGHTS["directional"])
+    position, target = EYES[eye]
+    for samples, camera in ((0, g.Camera.look_at(position, target, fov_y=FOV)),
+                            (4, g.Camera.look_at(position, target).replace(
+                                projection="orthographic", height=5.0))):
+        r = renderers[samples]
+        traced.clear()
+        forward = r.render(scene, camera, mode, shadows="exact")
+        assert bool(traced) == (kind == "sphere")
+        frame = r.render_frame(scene, camera, mode, shadows="exact")
+        d = np.abs(forward.astype(int) - frame.color.astype(int)).max(-1)
+        d = d[inside_regions(frame.face_id)]
+        assert (d > 1).sum() <= 0.002 * d.size, ((d > 1).sum(), d.max())
+        shadowed = (frame.visibility < 0.5).any(-1) & (frame.face_id > 0)
+        assert shadowed.sum() > 50  # (there were shadows to agree on)
+
+
+def test_forward_rays_on_a_textured_mesh_and_gpu_patches(make_renderer):
+    """Textured meshes (their own program variant) and GPU-tessellated patches (no mesh
+    polygon: nothing of theirs skipped) trace forward too, as the G-buffer's points do."""
+    from glshade.patches import named
+
+    scene = g.Scene(ambient=(0.2, 0.2, 0.2))
+    scene.add(P.plane(6.0), g.Material(texture=g.Texture(np.full((2, 2, 3), 230, np.uint8))),
+              rotation=Q.from_axis_angle((1, 0, 0), -np.pi / 2))
+    scene.add(named("teapot"), g.Material(color=(0.8, 0.5, 0.3)), tessellation="gpu",
+              level=6, scale=0.5)
+    scene.add_light(g.PointLight((2.0, 5.0, 1.0)))
+    camera = g.Camera.look_at((4, 4, 5), (0, 0.5, 0))
+    r = make_renderer(96, 72, samples=0)
+    forward = r.render(scene, camera, "phong", shadows="exact")
+    frame = r.render_frame(scene, camera, "phong", shadows="exact")
+    d = np.abs(forward.astype(int) - frame.color.astype(int)).max(-1)
+    assert (d > 1).sum() <= 0.002 * d.size
+    assert (r.render(scene, camera, "phong").astype(int) - forward.astype(int)).max() > 40
+
+
+@pytest.mark.parametrize("through", ["forward", "g-buffer"])
+def test_rays_that_run_out_are_counted_and_shown_seen(renderers, monkeypatch, through):
+    """A ray past its loop budget (llvmpipe's limit, here made tiny) is never silent: a
+    RenderWarning with the count, ``shadow_pass.undecided``, and its light shown as seen."""
+    from glshade.errors import RenderWarning
+    from glshade.render.passes import shadows
+
+    scene = scene_of("torus", LIGHTS["point"])
+    position, target = EYES["above"]
+    camera = g.Camera.look_at(position, target, fov_y=FOV)
+    r = renderers[0]
+    draw = r.render if through == "forward" else (
+        lambda *a, **k: r.render_frame(*a, **k).color)
+    full = draw(scene, camera, "phong", shadows="exact")
+    assert r.shadow_pass.undecided == 0
+    monkeypatch.setattr(shadows, "RAY_BUDGET", 2)
+    with pytest.warns(RenderWarning, match=r"shadow rays ran past"):
+        cut = draw(scene, camera, "phong", shadows="exact")
+    assert r.shadow_pass.undecided > 100
+    lit = r.render(scene, camera, "phong")
+    # (every changed pixel went from the shadowed colour to the lit one)
+    changed = np.abs(cut.astype(int) - full.astype(int)).max(-1) > 1
+    assert changed.sum() > 50
+    assert (np.abs(cut[changed].astype(int) - lit[changed].astype(int)) <= 1).all()

@@ -1,13 +1,15 @@
 """A bounding-volume hierarchy over triangles, built in numpy for the GPU (the path
 tracer and the exact shadow rays).
 
-Median splits, built a level at a time: every node of a level that holds more than
-``leaf_size`` triangles sorts its triangles by centroid along the longest axis of their
-centroids' box (one ``lexsort`` for the whole level, keyed by node) and hands each half to
-a child. So the build is O(T log T) with a Python loop per *level* (about log2(T / 4) of
-them), never per node or triangle. Children are numbered consecutively (the right child is
-the left one plus one) and leaves point into the triangles in their sorted order, which is
-what a stack traversal on the GPU wants."""
+Built a level at a time: every node of a level that holds more than ``leaf_size``
+triangles is split along the longest axis of its triangles' centroids, at the plane of
+SAH_BINS - 1 evenly spaced ones that minimises the surface-area heuristic (the children's
+box areas times their triangle counts: what a ray that enters the node expects to pay),
+or at the median where no plane separates anything (all centroids in one bin). One
+``lexsort`` orders the whole level, keyed by node, so the build is O(T log T) with a
+Python loop per *level*, never per node or triangle. Children are numbered consecutively
+(the right child is the left one plus one) and leaves point into the triangles in their
+sorted order, which is what a stack traversal on the GPU wants."""
 
 from __future__ import annotations
 
@@ -43,8 +45,50 @@ def _ranges(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return np.arange(counts.sum()) - np.repeat(offsets - starts, counts)
 
 
-def build(triangles: np.ndarray, leaf_size: int = 4) -> BVH:
-    """The hierarchy of ``triangles`` ``(T, 3, 3)``."""
+#: candidate split planes a node's surface-area heuristic weighs, along its longest axis
+SAH_BINS = 16
+
+
+def _sah_splits(c: np.ndarray, box_lo: np.ndarray, box_hi: np.ndarray, seg: np.ndarray,
+                offsets: np.ndarray, n_seg: int) -> tuple[np.ndarray, np.ndarray]:
+    """For the triangles of ``n_seg`` nodes (their centroids ``c`` along each node's axis,
+    their boxes, ``seg`` the node of each, nodes' ranges starting at ``offsets``): each
+    triangle's side (True: right) and each node's left count, by the binned surface-area
+    heuristic (the plane of SAH_BINS - 1 that minimises the children's area x count);
+    nodes where no plane separates anything get the median (count 0 returned: the caller's)."""
+    cmin = np.minimum.reduceat(c, offsets)
+    width = np.maximum.reduceat(c, offsets) - cmin
+    scale = np.where(width > 0, SAH_BINS / np.where(width > 0, width, 1.0), 0.0)
+    b = np.minimum(((c - cmin[seg]) * scale[seg]).astype(np.int64), SAH_BINS - 1)
+    key = seg * SAH_BINS + b
+    count = np.bincount(key, minlength=n_seg * SAH_BINS).reshape(n_seg, SAH_BINS)
+    flat_lo = np.full((n_seg * SAH_BINS, 3), np.inf)
+    flat_hi = np.full((n_seg * SAH_BINS, 3), -np.inf)
+    np.minimum.at(flat_lo, key, box_lo)
+    np.maximum.at(flat_hi, key, box_hi)
+    lo, hi = flat_lo.reshape(n_seg, SAH_BINS, 3), flat_hi.reshape(n_seg, SAH_BINS, 3)
+
+    def area(a, z):
+        d = np.maximum(z - a, 0.0)
+        return d[..., 0] * d[..., 1] + d[..., 1] * d[..., 2] + d[..., 2] * d[..., 0]
+
+    left = area(np.minimum.accumulate(lo, 1), np.maximum.accumulate(hi, 1))
+    right = area(np.minimum.accumulate(lo[:, ::-1], 1), np.maximum.accumulate(hi[:, ::-1], 1))
+    n_left = np.cumsum(count, 1)
+    n_right = np.cumsum(count[:, ::-1], 1)[:, ::-1]
+    # plane k: bins [0, k] left, (k, SAH_BINS) right
+    cost = left[:, :-1] * n_left[:, :-1] + right[:, ::-1][:, 1:] * n_right[:, 1:]
+    cost = np.where((n_left[:, :-1] > 0) & (n_right[:, 1:] > 0), cost, np.inf)
+    plane = cost.argmin(1)
+    ok = np.isfinite(cost[np.arange(n_seg), plane])
+    side = b > plane[seg]
+    side &= ok[seg]
+    return side, np.where(ok, n_left[np.arange(n_seg), plane], 0)
+
+
+def build(triangles: np.ndarray, leaf_size: int = 4, sah: bool = True) -> BVH:
+    """The hierarchy of ``triangles`` ``(T, 3, 3)``: nodes split by the binned surface-area
+    heuristic (``sah``) or at the median along their longest axis."""
     tri = np.asarray(triangles, np.float64)
     n = len(tri)
     if n == 0:
@@ -70,9 +114,15 @@ def build(triangles: np.ndarray, leaf_size: int = 4) -> BVH:
         offsets = np.cumsum(counts) - counts
         extent = np.maximum.reduceat(c, offsets) - np.minimum.reduceat(c, offsets)
         axis = extent.argmax(1)
-        perm = np.lexsort((c[np.arange(len(idx)), axis[seg]], seg))
-        order[idx] = order[idx][perm]
+        along = c[np.arange(len(idx)), axis[seg]]
         mid = (s + e) // 2
+        side = np.zeros(len(idx), bool)
+        if sah:
+            tri_ids = order[idx]
+            side, n_left = _sah_splits(along, tlo[tri_ids], thi[tri_ids], seg, offsets, len(s))
+            mid = np.where(n_left > 0, s + n_left, mid)
+        perm = np.lexsort((along, side, seg))
+        order[idx] = order[idx][perm]
         child[split] = total + 2 * np.arange(len(s))
         first.append(child)
         start.append(np.stack([s, mid], 1).ravel())

@@ -101,8 +101,9 @@ class Variant(NamedTuple):
     orthographic: bool
     #: each light's term is weighed by its visibility at the pixel (a shadow pass's)
     shadows: bool = False
-    #: ... which the fragment finds in the lights' shadow maps itself (no visibility array)
-    forward_maps: bool = False
+    #: ... which the fragment finds itself, at its own point (no G-buffer, no visibility
+    #: array): "maps" (looked up in the lights' shadow maps) or "rays" (traced); "" not
+    forward: str = ""
 
 
 @dataclass(frozen=True)
@@ -124,8 +125,9 @@ class ProgramKey:
     oit: str = ""
     #: the surface has texture coordinates and its material's maps are sampled (textures.glsl)
     textured: bool = False
-    #: shadows looked up in the lights' maps by the fragment stage (SHADOW_MAPS_FORWARD)
-    forward_maps: bool = False
+    #: shadows found by the fragment stage: "maps" looked up (SHADOW_MAPS_FORWARD), "rays"
+    #: traced (SHADOW_RAYS_FORWARD)
+    forward: str = ""
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
@@ -135,19 +137,20 @@ class ProgramKey:
         return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
                    variant.orthographic, two_sided, flat_constants,
                    variant.shadows and not oit, oit, textured and variant.mode in TEXTURED_MODES,
-                   variant.forward_maps and variant.shadows and not oit)
+                   variant.forward if variant.shadows and not oit else "")
 
     def defines(self) -> tuple[str, ...]:
-        world = self.aux or self.mode is ShadingMode.NORMALS or self.forward_maps
+        world = self.aux or self.mode is ShadingMode.NORMALS or bool(self.forward)
         flat = self.flat_constants and self.mode is ShadingMode.PHONG
         capture = self.oit in ("capture", "fetch")
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", capture),
-                 ("OIT_FETCH", self.oit == "fetch"), ("GLSL_430", capture or self.forward_maps),
+                 ("OIT_FETCH", self.oit == "fetch"), ("GLSL_430", capture or bool(self.forward)),
                  ("OIT_BLEND", self.oit == "blend"), ("TEXTURED", self.textured),
-                 ("SHADOW_MAPS_FORWARD", self.forward_maps))
+                 ("SHADOW_MAPS_FORWARD", self.forward == "maps"),
+                 ("SHADOW_RAYS_FORWARD", self.forward == "rays"))
         out = [name for name, on in flags if on]
         if capture:
             out.append(f"OIT_SLOTS {OIT_SLOTS}")

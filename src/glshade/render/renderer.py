@@ -361,6 +361,8 @@ class Renderer:
             target.bind(options.outputs)
             ctx.viewport = state.viewport
         id_base = self._edges.draw(state, id_base)  # (the overlay: when asked for, on top)
+        if state.variant.forward == "rays":  # (the rays that ran out, reported)
+            self._shadow_pass.forward_done()
         ctx.disable(moderngl.CULL_FACE)
         ctx.front_face = "ccw"
         if clear:
@@ -376,7 +378,7 @@ class Renderer:
             from .passes.shadows import ShadowPass
 
             self._shadow_pass = ShadowPass(self.context, self.shaders)
-        if state.variant.forward_maps:
+        if state.variant.forward:
             return self._shadow_pass.forward(state, MAP_FORWARD_UNIT)
         return self._shadow_pass.prepare(self, state)
 
@@ -436,9 +438,15 @@ class Renderer:
         lights = tuple(scene.lights_for(camera))
         shadows = options.shadows is not Shadows.OFF and options.mode in SHADOWED_MODES \
             and not options.wireframe
-        # shadow maps looked up as the programs shade, unless the frame reads the visibility
-        # back (render_frame: Frame.visibility) -- then through a G-buffer
-        forward = shadows and options.shadows is Shadows.MAP and not self._visibility_wanted
+        # shadows found by the programs as they shade (maps looked up, rays traced), unless
+        # the frame reads the visibility back (render_frame: Frame.visibility) or a CSG solid
+        # casts (its rays are a compute pass's) -- then through a G-buffer
+        forward = ""
+        if shadows and not self._visibility_wanted:
+            if options.shadows is Shadows.MAP:
+                forward = "maps"
+            elif not scene.solids:
+                forward = "rays"
         variant = Variant(options.mode, options.outputs.auxiliary,
                           tuple(light_kind(x) for x in lights), options.srgb,
                           camera.projection is Projection.ORTHOGRAPHIC, shadows, forward)
@@ -564,7 +572,7 @@ class Renderer:
         found = (variant, two_sided, flat, oit, textured)
         program = self._programs.get(found)
         if program is None:
-            world = (variant.aux or (variant.forward_maps and variant.shadows)) and not oit
+            world = (variant.aux or (bool(variant.forward) and variant.shadows)) and not oit
             flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
                                                self._max_varyings, textured)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=oit,

@@ -1,16 +1,18 @@
-"""Cast shadows: how much of each light reaches each pixel's surface point, left in a
-texture array (a layer a light) that the shading programs read (shaders/include/
-shadow_mask.glsl) before they sum the lights' terms.
+"""Cast shadows: how much of each light reaches each pixel's surface point.
 
-A draw with shadows first draws the scene into a G-buffer of its own (view depth and
-polygon ids, at the draw's viewport), then finds, per pixel and light:
+``exact``: one ray from the point to the light through a BVH of the scene's triangles
+(shaders/include/shadow_trace.glsl). A plain draw traces them in its fragment stage, each
+fragment its own point's rays as it shades (SHADOW_RAYS_FORWARD: no G-buffer, no second
+pass); a draw whose visibility is read back (``render_frame``) or where a CSG solid casts
+first draws the scene into a G-buffer of its own (view depth, polygon ids, normals) and
+traces its points in a compute pass (shaders/shadow_rays.comp, one invocation a ray; a
+solid's rays after the triangles'), leaving a texture array (a layer a light) that the
+shading programs read (shaders/include/shadow_mask.glsl). Either way a ray's work is
+bounded, and the rays that ran out are counted and reported.
 
-- ``exact``: one ray from the point to the light through a BVH of the scene's triangles
-  (shaders/shadow_rays.comp, a compute shader: one invocation a ray, its work bounded);
-- ``map``: the light's depth map (2D for a directional light, six faces of a cube for a
-  point light) with percentage-closer filtering (shaders/shadow_maps.comp).
-
-Then the renderer draws the picture, each light's term weighed by its layer at the pixel.
+``map``: the light's depth map (2D for a directional light, six faces of a cube for a point
+light) with percentage-closer filtering, looked up the same two ways
+(shaders/include/shadow_lookup.glsl, shaders/shadow_maps.comp).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import RenderWarning
-from ...geometry.transforms import pixel_rays, ray_uniforms
+from ...geometry.transforms import gl_bytes, pixel_rays, ray_uniforms
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
 from ..programs import UniformWriter
@@ -261,14 +263,37 @@ class ShadowPass(GLResource):
         return vis
 
     def forward(self, state, first_unit: int) -> dict:
-        """A map-shadowed draw that needs no visibility array: no G-buffer; the maps are
-        drawn (when changed) and bound from ``first_unit``, and the draw's programs look
-        them up as they shade (SHADOW_MAPS_FORWARD). The uniforms they take."""
+        """A shadowed draw that needs no visibility array, no G-buffer: the draw's programs
+        find each light's visibility as they shade, at their own point -- tracing its ray
+        (SHADOW_RAYS_FORWARD: the BVH's buffers bound) or looking the maps up
+        (SHADOW_MAPS_FORWARD: the maps drawn when changed and bound from ``first_unit``).
+        The uniforms they take; :meth:`forward_done` after the draw."""
         self._check()
+        self._lights_drawn = 0
+        if state.options.shadows is Shadows.EXACT:
+            occ = self.occluding(state.scene)
+            self._counts.write(np.zeros(1, np.uint32).tobytes())
+            self._bind_occluding(occ)
+            # (one fragment traces every light: they share its loop budget)
+            return {**self._ray_uniforms(state, occ, len(state.lights)),
+                    "u_camera_to_world": gl_bytes(np.linalg.inv(state.view))}
         if self.maps is None:
             self.maps = ShadowMaps(self.context, self.shaders)
-        self._lights_drawn = 0
         return self.maps.forward(self, state, first_unit)
+
+    def forward_done(self) -> None:
+        """After a draw that traced its own rays: count those that ran out (a warning)."""
+        self.context.ctx.memory_barrier()  # (the fragments' counts, before they are read)
+        undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
+        self.undecided = undecided
+        if undecided:
+            self._warn_undecided(undecided, 3)  # (at the draw)
+
+    @staticmethod
+    def _warn_undecided(count: int, stacklevel: int) -> None:
+        warnings.warn(f"{count:,} shadow rays ran past their share of {RAY_BUDGET:,} steps "
+                      "(the GL's loop limit) and show their light as seen", RenderWarning,
+                      stacklevel=stacklevel + 1)
 
     def read(self) -> np.ndarray:
         """The last draw's visibility ``(H, W, L)`` float32 in [0, 1] (row 0 at the top of
@@ -279,6 +304,21 @@ class ShadowPass(GLResource):
         n = self._lights_drawn
         return np.ascontiguousarray(data[:n].transpose(1, 2, 0), np.float32) / 255.0
 
+    def _ray_uniforms(self, state, occ: _Occluding, rays_a_pixel: int) -> dict:
+        """What shadow_trace.glsl takes: the hierarchy's facts, its lights, and the loop
+        budget of one ray (an invocation that traces ``rays_a_pixel`` rays shares one)."""
+        return {"u_scale": occ.scale, "u_eps": SHADOW_EPS,
+                "u_budget": RAY_BUDGET // max(rays_a_pixel, 1),
+                "u_has_triangles": int(len(occ.found) > occ.big), "u_big": occ.big,
+                "u_polygons": len(occ.found.normals), **occ.root,
+                "u_shadow_lights": shadow_lights(state.lights).astype("f4")}
+
+    def _bind_occluding(self, occ: _Occluding) -> None:
+        occ.nodes.bind_to_storage_buffer(0)
+        occ.tris.bind_to_storage_buffer(1)
+        self._counts.bind_to_storage_buffer(2)
+        occ.normals.bind_to_storage_buffer(3)
+
     def _trace(self, state, gbuf: _GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
         from ...scene.camera import Projection
@@ -288,16 +328,12 @@ class ShadowPass(GLResource):
         prog = self._program(("ORTHOGRAPHIC",) if ortho else ())
         self.bind_gbuffer(prog, state, gbuf)
         inverse_view = np.linalg.inv(state.view)
-        values = {"u_scale": occ.scale, "u_eps": SHADOW_EPS, "u_budget": RAY_BUDGET,
-                  "u_has_triangles": int(len(occ.found) > occ.big),
-                  "u_big": occ.big, "u_polygons": len(occ.found.normals), **occ.root,
+        values = {**self._ray_uniforms(state, occ, 1),
                   "u_eye": tuple(inverse_view[:3, 3]),
                   "u_forward": tuple(-inverse_view[:3, 2])}
         for name, value in values.items():
             self._put(prog, name, value)
-        occ.nodes.bind_to_storage_buffer(0)
-        occ.tris.bind_to_storage_buffer(1)
-        occ.normals.bind_to_storage_buffer(4)
+        self._bind_occluding(occ)
         self.dispatch(prog, state, vis)
         for model in state.scene.solids:  # (each hides more of what the triangles left)
             if model.visible:
@@ -338,14 +374,12 @@ class ShadowPass(GLResource):
         gbuf.face.use(0)
         gbuf.depth.use(1)
         gbuf.normal.use(3)
-        rows = shadow_lights(state.lights)
         values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
                   **ray_uniforms(state.proj, state.view),
                   **pixel_rays(state.proj, state.view, state.viewport),
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}
-        values["u_lights"] = rows.astype("f4")
         for name, value in values.items():
             self._put(prog, name, value)
 
@@ -355,7 +389,6 @@ class ShadowPass(GLResource):
         ctx = self.context.ctx
         if not keep_count:
             self._counts.write(np.zeros(1, np.uint32).tobytes())
-        self._counts.bind_to_storage_buffer(2)
         vis.bind_to_image(0, read=True, write=True)
         _, _, w, h = (int(v) for v in state.viewport)
         prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
@@ -363,9 +396,7 @@ class ShadowPass(GLResource):
         undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
         self.undecided, new = undecided, undecided - (self.undecided if keep_count else 0)
         if new:
-            warnings.warn(f"{new:,} shadow rays ran past {RAY_BUDGET:,} steps (the "
-                          "GL's loop limit) and show their light as seen", RenderWarning,
-                          stacklevel=5)
+            self._warn_undecided(new, 6)  # (at the draw)
 
     def _release_extra(self) -> None:
         for p in self._programs.values():

@@ -15,6 +15,8 @@ Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 32] [
 from __future__ import annotations
 
 import argparse
+import glob
+import math
 import os
 import re
 import statistics
@@ -51,17 +53,32 @@ def rms(image: np.ndarray, reference: np.ndarray) -> float:
     return float(np.sqrt(np.mean((image - reference) ** 2)) / reference.mean())
 
 
+def llvm_library() -> str:
+    """An LLVM >= 16 for Mitsuba's ``llvm_ad_rgb``: DRJIT_LIBLLVM_PATH, else the newest
+    installed one (``apt-get install libllvm19``), else ""."""
+    named = os.environ.get("DRJIT_LIBLLVM_PATH", "")
+    if named:
+        return named
+    found = []
+    for path in glob.glob("/usr/lib/*/libLLVM-*.so*") + glob.glob("/usr/lib/*/libLLVM.so.*"):
+        version = re.search(r"LLVM(?:-|\.so\.)(\d+)", Path(path).name)
+        if version and int(version.group(1)) >= 16:
+            found.append((int(version.group(1)), path))
+    return max(found)[1] if found else ""
+
+
 def mitsuba_variants() -> list[str]:
+    # llvm_ad_rgb needs an LLVM >= 16, named by DRJIT_LIBLLVM_PATH before Mitsuba loads:
+    # with an older one it crashes in code generation -- the whole process
+    library = llvm_library()
+    if library:
+        os.environ["DRJIT_LIBLLVM_PATH"] = library
     try:
         import mitsuba as mi
     except ImportError:
         return []
     usable = ["scalar_rgb"]
-    # llvm_ad_rgb needs an LLVM >= 16, named by DRJIT_LIBLLVM_PATH (apt-get install
-    # libllvm19): with an older one it crashes in code generation -- the whole process
-    library = os.environ.get("DRJIT_LIBLLVM_PATH", "")
-    version = re.search(r"LLVM-?(\d+)", Path(library).name)
-    if library and version and int(version.group(1)) >= 16:
+    if library:
         mi.set_variant("llvm_ad_rgb")
         usable.append("llvm_ad_rgb")
     return usable
@@ -80,6 +97,14 @@ def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str,
         return mitsuba_scene.render(ts, CORNELL_CAMERA, size, spp, folder, sampler=sampler)
     finally:
         mi.set_variant = original
+
+
+def drawn_spp(tracer: str, spp: int) -> int:
+    """The samples a pixel ``tracer`` draws when asked for ``spp``: Mitsuba's ldsampler
+    rounds up to a square power of two (32 -> 64)."""
+    if "ldsampler" in tracer:
+        return 4 ** math.ceil(math.log(spp, 4))
+    return spp
 
 
 def run(name, scene, camera, size, args, ctx, folder) -> list:
@@ -122,7 +147,8 @@ def run(name, scene, camera, size, args, ctx, folder) -> list:
     for key in series:
         s = statistics.median(seconds[key])
         to_1 = s * (errors[key] / 0.01) ** 2
-        rows.append((name, f"{size}x{size}", key, f"{args.spp * size * size / s / 1e6:.2f}",
+        spp = drawn_spp(key, args.spp)
+        rows.append((name, f"{size}x{size}", key, f"{spp * size * size / s / 1e6:.2f}",
                      f"{errors[key]:.2%}", f"{to_1:.0f}"))
     return rows
 
@@ -150,7 +176,7 @@ def main() -> None:
         print("Mitsuba 3 not installed (pip install mitsuba)")
     elif "llvm_ad_rgb" not in usable:
         print("Mitsuba llvm_ad_rgb not run: it needs LLVM >= 16 named by DRJIT_LIBLLVM_PATH "
-              "(apt-get install libllvm19); this machine's is older")
+              "(apt-get install libllvm19); none was found")
 
 
 if __name__ == "__main__":

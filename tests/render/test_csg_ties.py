@@ -181,6 +181,22 @@ def agree(depth, want, ok, tie):
 @example(tree=([("box", np.array([2.0, 2, 2]), np.zeros(3)),
                 ("box", np.array([2.0, 2, 1]), np.array([0, 0, 0.5]))], ["|"] * 4),
          q=(0.3, 0.5, 0.1, 0.8), shift=(0, 0, 0), look=(0.6, 0.45, 0.7), distance=3.5)
+# a zero-thickness intersection (two boxes that touch along a face) seen at grazing rays:
+# the face, computed in the two boxes' frames, came apart by more than the tie's length
+@example(tree=([("box", np.array([0.5, 0.5, 0.5]), np.full(3, -0.125)),
+                ("box", np.array([0.5, 0.5, 0.5]), np.full(3, -0.125)),
+                ("box", np.array([0.5, 0.5, 1.0]), np.array([0.125, 0.125, -0.25])),
+                ("box", np.array([0.5, 0.5, 1.0]), np.array([0.125, 0.125, 0.75]))],
+               ["|", "|", "&", "|"]),
+         q=(0.5, 0.0, 0.0, 1.0), shift=(0, 0, 0), look=(1.0, 0.0, 0.0625), distance=0.3)
+# a box's face met by a cylinder's side at a grazing angle: a plane and a curved surface
+# keep the plain tie (the reference's), so the surface is the cylinder's
+@example(tree=([("box", np.array([0.5, 0.5, 1.0]), np.array([-0.125, -0.125, -0.25])),
+                ("box", np.array([0.5, 0.5, 0.5]), np.array([-0.125, 0.375, 0.375])),
+                ("box", np.array([2.0, 0.5, 0.5]), np.array([0.0, -0.125, -0.125])),
+                ("cylinder", np.array([0.5, 1.0]), np.array([-0.5, 0.0, 0.0]))],
+               ["|", "|", "&", "|"]),
+         q=(0.0, 0.15625, -0.5, -0.25), shift=(0, 0, 0), look=(0.0, -1.0, 0.0), distance=2.0)
 def test_coincident_faces_follow_one_rule(gl_context, tree, q, shift, look, distance):
     check(gl_context, tree, q, shift, look, distance)
 

@@ -44,21 +44,44 @@ bool table_inside(uint bits) {
 
 #define HAS_TORUS ((CSG_KINDS & (1 << LEAF_TORUS)) != 0)
 
+// The tie rule at a plane seen at a grazing angle. Two leaves' coincident faces are one
+// plane computed through two frames, and where a ray crosses it moves with a frame's
+// rounding over the cosine between the ray and the plane's normal: a ray grazing a face
+// two leaves share found them apart (a box touching another along a face, intersected: a
+// zero-thickness slab showed as a surface at grazing pixels). So two boundaries that are
+// both planes (a box's faces, a half-space, a cylinder's or a cone's flat end) are tied
+// within the rule's length over the larger of their cosines (at most MAX_OBLIQUITY times
+// it); a curved boundary's cosine counts as 1 (grazing it is a silhouette), so a plane
+// and a curved surface keep the plain length, as the reference's walk does.
+#define MAX_OBLIQUITY 64.0
+float plane_cosine(int s, int kind, float t) {
+    if (!(t > -INF && t < INF)) return 1.0;
+    vec3 d = v_slot_span[s];
+    vec3 g = leaf_gradient(kind, u_csg_slot[4 * s + 3], v_slot_origin[s] + t * d);
+    bool planar = IS(kind, LEAF_BOX) || IS(kind, LEAF_HALFSPACE) ||
+        ((IS(kind, LEAF_CYLINDER) || IS(kind, LEAF_CONE)) && g.x == 0.0 && g.z == 0.0);
+    float cosine = abs(dot(g, d)) / max(length(g) * length(d), 1e-30);
+    return planar ? max(cosine, 1.0 / MAX_OBLIQUITY) : 1.0;
+}
+
 // the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
-// point just past ``t``: a boundary is passed where it is below ``t`` (a candidate's t
-// plus the tie rule's length: its tied boundaries passed with it, csg/layout.glsl)
-uint group_bits(vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
-    uvec4 inside = uvec4(lessThan(a, t)) & uvec4(greaterThanEqual(b, t));
+// point just past a candidate: a boundary is passed where it is below its threshold
+// (``ta`` for the runs' entries, ``tb`` their exits, ``t`` a torus's second run: the
+// candidate's t plus the tie rule's length, the pair's: its tied boundaries passed with it)
+uint group_bits(vec4 ta, vec4 tb, vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint shift) {
+    uvec4 inside = uvec4(lessThan(a, ta)) & uvec4(greaterThanEqual(b, tb));
 #if HAS_TORUS
     inside |= uvec4(lessThan(c, t)) & uvec4(greaterThanEqual(d, t));
 #endif
     return (inside.x | (inside.y << 1u) | (inside.z << 2u) | (inside.w << 3u)) << shift;
 }
 
-// the lowest leaf of a group of four slots with a boundary within ``tie`` of ``t``
-float group_tied(vec4 leaf, float t, float tie, vec4 a, vec4 b, vec4 c, vec4 d) {
-    bvec4 near = bvec4(uvec4(lessThanEqual(abs(a - t), vec4(tie))) |
-                       uvec4(lessThanEqual(abs(b - t), vec4(tie))));
+// the lowest leaf of a group of four slots with a boundary tied with the surface at ``t``
+// (its plane's cosine ``cosine``; the runs' ends' ``qa``, ``qb``)
+float group_tied(vec4 leaf, float t, float tie, float cosine, vec4 a, vec4 b, vec4 c,
+                 vec4 d, vec4 qa, vec4 qb) {
+    bvec4 near = bvec4(uvec4(lessThanEqual(abs(a - t), tie / max(vec4(cosine), qa))) |
+                       uvec4(lessThanEqual(abs(b - t), tie / max(vec4(cosine), qb))));
 #if HAS_TORUS
     near = bvec4(uvec4(near) | uvec4(lessThanEqual(abs(c - t), vec4(tie))) |
                  uvec4(lessThanEqual(abs(d - t), vec4(tie))));
@@ -66,60 +89,75 @@ float group_tied(vec4 leaf, float t, float tie, vec4 a, vec4 b, vec4 c, vec4 d) 
     vec4 l = mix(vec4(INF), leaf, near);
     return min(min(l.x, l.y), min(l.z, l.w));
 }
-#define TIED(g, K0, K1, K2, K3, A, B, C, D) \
-    tied = min(tied, group_tied(u_csg_slot_leaf[g], t_best, tie, A, B, C, D));
+#define TIED(g, K0, K1, K2, K3, A, B, C, D, QA, QB) \
+    tied = min(tied, group_tied(u_csg_slot_leaf[g], t_best, tie, best_cosine, A, B, C, D, \
+                                QA, QB));
 
+#define GROUP_BITS(t, c, S, A, B, C, D, QA, QB, SHIFT) \
+    group_bits(S(t, c, QA), S(t, c, QB), S(t, c, vec4(1.0)), A, B, C, D, SHIFT)
 #if CSG_SLOTS == 4
-#define GROUP_SUM(t, c, S) group_bits(S(0, t, c), A0, B0, C0, D0, 0u)
+#define GROUP_SUM(t, c, S) GROUP_BITS(t, c, S, A0, B0, C0, D0, QA0, QB0, 0u)
 #elif CSG_SLOTS == 8
-#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
-                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u))
+#define GROUP_SUM(t, c, S) (GROUP_BITS(t, c, S, A0, B0, C0, D0, QA0, QB0, 0u) | \
+                            GROUP_BITS(t, c, S, A1, B1, C1, D1, QA1, QB1, 4u))
 #else
-#define GROUP_SUM(t, c, S) (group_bits(S(0, t, c), A0, B0, C0, D0, 0u) | \
-                            group_bits(S(1, t, c), A1, B1, C1, D1, 4u) | \
-                            group_bits(S(2, t, c), A2, B2, C2, D2, 8u) | \
-                            group_bits(S(3, t, c), A3, B3, C3, D3, 12u))
+#define GROUP_SUM(t, c, S) (GROUP_BITS(t, c, S, A0, B0, C0, D0, QA0, QB0, 0u) | \
+                            GROUP_BITS(t, c, S, A1, B1, C1, D1, QA1, QB1, 4u) | \
+                            GROUP_BITS(t, c, S, A2, B2, C2, D2, QA2, QB2, 8u) | \
+                            GROUP_BITS(t, c, S, A3, B3, C3, D3, QA3, QB3, 12u))
 #endif
-// group g's thresholds for a candidate t: past its ties
-#define UPTO(g, t, c) vec4(t + tie)
+// the thresholds for a candidate t (its plane's cosine ``cosine_at``) of boundaries whose
+// cosines are ``q``: past its ties
+#define UPTO(t, c, q) (vec4(t) + tie / max(vec4(cosine_at), q))
 // the start: the boundaries before t = 0 passed, none at it
-#define BEFORE(g, t, c) vec4(0.0)
+#define BEFORE(t, c, q) vec4(0.0)
 
-// candidate t of leaf c: the surface if the answer after it differs from the start's
-#define CANDIDATE(t, c, s, KIND) { \
+// candidate t of leaf c (its plane's cosine q): the surface if the answer after it
+// differs from the start's
+#define CANDIDATE(t, q, c, s, KIND) { \
     float tc_ = (t); \
+    float cosine_at = (q); \
     if (tc_ >= 0.0 && tc_ < t_best && \
         table_inside(GROUP_SUM(tc_, float(c), UPTO)) != start) { \
-        t_best = tc_; best = (c); csg_hit_slot = (s); csg_hit_kind = (KIND); } }
+        t_best = tc_; best = (c); best_cosine = cosine_at; csg_hit_slot = (s); \
+        csg_hit_kind = (KIND); } }
 
-// slot c (its runs a..dd): its one candidate (two for a torus), the leaf's own number
-#define SLOT_CANDIDATES(c, KIND, a, b, cc, dd) \
+// slot c (its runs a..dd, its run's ends' cosines qa, qb): its one candidate (two for a
+// torus), the leaf's own number
+#define SLOT_CANDIDATES(c, KIND, a, b, cc, dd, qa, qb) \
     if (KIND >= 0) { \
         int leaf_ = slot_leaf(c); \
         bool rises = (u_csg_slot_sign[(c) >> 2][(c) & 3] > 0.0) != start; \
-        CANDIDATE(rises ? (a) : (b), leaf_, c, KIND) \
-        if (KIND == LEAF_TORUS) CANDIDATE(rises ? (cc) : (dd), leaf_, c, KIND) \
+        CANDIDATE(rises ? (a) : (b), rises ? (qa) : (qb), leaf_, c, KIND) \
+        if (KIND == LEAF_TORUS) CANDIDATE(rises ? (cc) : (dd), 1.0, leaf_, c, KIND) \
     }
 
 // slot s holds leaf slot_leaf(s), of kind CSG_KIND_s (-1: empty), the slots in kind order
-#define SLOT(s, KIND, a, b, cc, dd) { \
+#define SLOT(s, KIND, a, b, cc, dd, qa, qb) { \
     vec4 r_ = KIND >= 0 ? slot_runs_as(KIND, s) : vec4(INF); \
-    a = r_.x; b = r_.y; cc = r_.z; dd = r_.w; }
-#define GROUP(g, K0, K1, K2, K3, A, B, C, D) \
+    a = r_.x; b = r_.y; cc = r_.z; dd = r_.w; \
+    qa = KIND >= 0 ? plane_cosine(s, KIND, a) : 1.0; \
+    qb = KIND >= 0 ? plane_cosine(s, KIND, b) : 1.0; }
+#define GROUP(g, K0, K1, K2, K3, A, B, C, D, QA, QB) \
     vec4 A = vec4(INF), B = vec4(INF), C = vec4(INF), D = vec4(INF); \
-    SLOT(4 * g, K0, A.x, B.x, C.x, D.x) SLOT(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
-    SLOT(4 * g + 2, K2, A.z, B.z, C.z, D.z) SLOT(4 * g + 3, K3, A.w, B.w, C.w, D.w)
-#define GROUP_CANDIDATES(g, K0, K1, K2, K3, A, B, C, D) \
-    SLOT_CANDIDATES(4 * g, K0, A.x, B.x, C.x, D.x) \
-    SLOT_CANDIDATES(4 * g + 1, K1, A.y, B.y, C.y, D.y) \
-    SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z) \
-    SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w)
+    vec4 QA = vec4(1.0), QB = vec4(1.0); \
+    SLOT(4 * g, K0, A.x, B.x, C.x, D.x, QA.x, QB.x) \
+    SLOT(4 * g + 1, K1, A.y, B.y, C.y, D.y, QA.y, QB.y) \
+    SLOT(4 * g + 2, K2, A.z, B.z, C.z, D.z, QA.z, QB.z) \
+    SLOT(4 * g + 3, K3, A.w, B.w, C.w, D.w, QA.w, QB.w)
+#define GROUP_CANDIDATES(g, K0, K1, K2, K3, A, B, C, D, QA, QB) \
+    SLOT_CANDIDATES(4 * g, K0, A.x, B.x, C.x, D.x, QA.x, QB.x) \
+    SLOT_CANDIDATES(4 * g + 1, K1, A.y, B.y, C.y, D.y, QA.y, QB.y) \
+    SLOT_CANDIDATES(4 * g + 2, K2, A.z, B.z, C.z, D.z, QA.z, QB.z) \
+    SLOT_CANDIDATES(4 * g + 3, K3, A.w, B.w, C.w, D.w, QA.w, QB.w)
 
-// M(group, its four slots' kinds, its runs' four vectors) for each group of four slots
-#define GROUP_0(M) M(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0)
-#define GROUP_1(M) M(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1)
-#define GROUPS_23(M) M(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2) \
-    M(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3)
+// M(group, its four slots' kinds, its runs' four vectors, their ends' cosines) for each
+// group of four slots
+#define GROUP_0(M) M(0, CSG_KIND_0, CSG_KIND_1, CSG_KIND_2, CSG_KIND_3, A0, B0, C0, D0, QA0, QB0)
+#define GROUP_1(M) M(1, CSG_KIND_4, CSG_KIND_5, CSG_KIND_6, CSG_KIND_7, A1, B1, C1, D1, QA1, QB1)
+#define GROUPS_23(M) \
+    M(2, CSG_KIND_8, CSG_KIND_9, CSG_KIND_10, CSG_KIND_11, A2, B2, C2, D2, QA2, QB2) \
+    M(3, CSG_KIND_12, CSG_KIND_13, CSG_KIND_14, CSG_KIND_15, A3, B3, C3, D3, QA3, QB3)
 #if CSG_SLOTS == 4
 #define EACH_GROUP(M) GROUP_0(M)
 #elif CSG_SLOTS == 8
@@ -135,9 +173,10 @@ int csg_first_hit(vec3 ro, vec3 rd, out float t_hit) {
     EACH_GROUP(GROUP)
     // the solid can hold the ray's start only where a leaf's box meets the near plane
     bool start = false;
+    float cosine_at = 1.0;
     if (u_csg_start > 0)
         start = table_inside(GROUP_SUM(0.0, 0.0, BEFORE));
-    float t_best = INF;
+    float t_best = INF, best_cosine = 1.0;
     int best = -1;
     EACH_GROUP(GROUP_CANDIDATES)
     t_hit = t_best;

@@ -577,6 +577,10 @@ def test_exact_shadows_over_lights_and_eyes(renderers, kind, elevation, azimuth,
     decided &= np.abs(np.einsum("hwk,hwk->hw", flat, to)) > 2 / 255
     wrong = ((frame.visibility[..., 0] > 0.5) != seen) & decided
     assert wrong.sum() == 0, np.argwhere(wrong)[:5].tolist()
+    # the plain render (traced as it shades) is this picture wherever the oracle decides
+    forward = renderers[0].render(scene_of(kind, light), camera, "phong", shadows="exact")
+    off = np.abs(forward.astype(int) - frame.color.astype(int)).max(-1) > 1
+    assert (off & decided).sum() == 0, np.argwhere(off & decided)[:5].tolist()
 
 
 @pytest.mark.parametrize("light", sorted(LIGHTS))

@@ -613,9 +613,11 @@ def test_forward_map_lookups_are_the_g_buffers(renderers, kind, light, mode):
             assert (plain.astype(int) - forward.astype(int)).max() > 40
 
 
-def test_forward_map_shadows_on_a_textured_mesh_and_gpu_patches(make_renderer):
-    """Textured meshes (their own program variant) and GPU-tessellated patches take the
-    forward lookup too."""
+@pytest.mark.parametrize("method", ["map", "exact"])
+def test_forward_shadows_on_a_textured_mesh_and_gpu_patches(make_renderer, method):
+    """Textured meshes (their own program variant) and GPU-tessellated patches (no mesh
+    polygon: nothing of theirs skipped by a ray) find their shadows as they shade too --
+    maps looked up, rays traced -- as the G-buffer's points do."""
     from glshade.patches import named
 
     scene = g.Scene(ambient=(0.2, 0.2, 0.2))
@@ -626,8 +628,8 @@ def test_forward_map_shadows_on_a_textured_mesh_and_gpu_patches(make_renderer):
     scene.add_light(g.PointLight((2.0, 5.0, 1.0)))
     camera = g.Camera.look_at((4, 4, 5), (0, 0.5, 0))
     r = make_renderer(96, 72, samples=0)
-    forward = r.render(scene, camera, "phong", shadows="map")
-    through = r.render_frame(scene, camera, "phong", shadows="map").color
+    forward = r.render(scene, camera, "phong", shadows=method)
+    through = r.render_frame(scene, camera, "phong", shadows=method).color
     d = np.abs(forward.astype(int) - through.astype(int)).max(-1)
     assert (d > 1).sum() <= 0.002 * d.size
     assert (r.render(scene, camera, "phong").astype(int) - forward.astype(int)).max() > 40
@@ -667,26 +669,6 @@ def test_forward_rays_are_the_g_buffers(renderers, monkeypatch, kind, mode, eye)
         assert (d > 1).sum() <= 0.002 * d.size, ((d > 1).sum(), d.max())
         shadowed = (frame.visibility < 0.5).any(-1) & (frame.face_id > 0)
         assert shadowed.sum() > 50  # (there were shadows to agree on)
-
-
-def test_forward_rays_on_a_textured_mesh_and_gpu_patches(make_renderer):
-    """Textured meshes (their own program variant) and GPU-tessellated patches (no mesh
-    polygon: nothing of theirs skipped) trace forward too, as the G-buffer's points do."""
-    from glshade.patches import named
-
-    scene = g.Scene(ambient=(0.2, 0.2, 0.2))
-    scene.add(P.plane(6.0), g.Material(texture=g.Texture(np.full((2, 2, 3), 230, np.uint8))),
-              rotation=Q.from_axis_angle((1, 0, 0), -np.pi / 2))
-    scene.add(named("teapot"), g.Material(color=(0.8, 0.5, 0.3)), tessellation="gpu",
-              level=6, scale=0.5)
-    scene.add_light(g.PointLight((2.0, 5.0, 1.0)))
-    camera = g.Camera.look_at((4, 4, 5), (0, 0.5, 0))
-    r = make_renderer(96, 72, samples=0)
-    forward = r.render(scene, camera, "phong", shadows="exact")
-    frame = r.render_frame(scene, camera, "phong", shadows="exact")
-    d = np.abs(forward.astype(int) - frame.color.astype(int)).max(-1)
-    assert (d > 1).sum() <= 0.002 * d.size
-    assert (r.render(scene, camera, "phong").astype(int) - forward.astype(int)).max() > 40
 
 
 @pytest.mark.parametrize("through", ["forward", "g-buffer"])

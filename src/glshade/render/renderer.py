@@ -371,7 +371,8 @@ class Renderer:
     def _shadows_of(self, state: DrawState):
         """The visibility of each light at each pixel (a texture array), when the draw casts
         shadows: the shadow pass draws the scene's surface points first, then traces or
-        looks up each light (render/passes/shadows.py)."""
+        looks up each light (render/passes/shadows.py); or, for a draw whose programs find
+        it themselves as they shade (``variant.forward``), the uniforms they take."""
         if not state.variant.shadows:
             return None
         if self._shadow_pass is None:

@@ -690,3 +690,18 @@ def test_rays_that_run_out_are_counted_and_shown_seen(renderers, monkeypatch, th
     changed = np.abs(cut.astype(int) - full.astype(int)).max(-1) > 1
     assert changed.sum() > 50
     assert (np.abs(cut[changed].astype(int) - lit[changed].astype(int)) <= 1).all()
+
+
+@pytest.mark.parametrize("method", ["exact", "map"])
+def test_a_gl_without_compute_is_told_what_to_use(make_renderer, monkeypatch, method):
+    """Shadows need GL 4.3 (compute shaders, storage buffers); an older GL gets one line
+    that names it and the way that works, and a plain draw still works."""
+    r = make_renderer(32, 24)
+    monkeypatch.setattr(r.ctx, "version_code", 410)
+    scene = scene_of("cube", LIGHTS["point"])
+    camera = g.Camera.look_at(*EYES["above"], fov_y=FOV)
+    with pytest.raises(g.errors.EnvironmentFailure,
+                       match=rf"shadows='{method}' needs OpenGL 4\.3; this GL is 4\.1 .*"
+                             r"use shadows='off'"):
+        r.render(scene, camera, "phong", shadows=method)
+    assert r.render(scene, camera, "phong").shape == (24, 32, 4)

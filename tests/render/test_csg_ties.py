@@ -197,6 +197,15 @@ def agree(depth, want, ok, tie):
                 ("cylinder", np.array([0.5, 1.0]), np.array([-0.5, 0.0, 0.0]))],
                ["|", "|", "&", "|"]),
          q=(0.0, 0.15625, -0.5, -0.25), shift=(0, 0, 0), look=(0.0, -1.0, 0.0), distance=2.0)
+# a cylinder's flat end and a box's face that cross, both seen at a grazing angle near
+# their common line: not one plane, so apart (the nearer leaf is the surface)
+@example(tree=([("ball", np.array([0.5]), np.zeros(3)), ("ball", np.array([0.5]), np.zeros(3)),
+                ("cylinder", np.array([0.5, 2.0]), np.zeros(3)),
+                ("ball", np.array([0.5]), np.array([0.5, 0.0, 0.0])),
+                ("box", np.array([1.0, 2.0, 1.5]), np.array([-0.25, 0.5, -0.375]))],
+               ["|", "&", "|", "|"]),
+         q=(0.0625, 0.0, -1.0, 0.40625), shift=(0, 0, 0), look=(0.03125, 0.75, -0.875),
+         distance=0.0)
 def test_coincident_faces_follow_one_rule(gl_context, tree, q, shift, look, distance):
     check(gl_context, tree, q, shift, look, distance)
 

@@ -49,10 +49,12 @@ bool table_inside(uint bits) {
 // rounding over the cosine between the ray and the plane's normal: a ray grazing a face
 // two leaves share found them apart (a box touching another along a face, intersected: a
 // zero-thickness slab showed as a surface at grazing pixels). So two boundaries that are
-// both planes (a box's faces, a half-space, a cylinder's or a cone's flat end) are tied
-// within the rule's length over the larger of their cosines (at most MAX_OBLIQUITY times
-// it); a curved boundary's cosine counts as 1 (grazing it is a silhouette), so a plane
-// and a curved surface keep the plain length, as the reference's walk does.
+// both planes (a box's faces, a half-space, a cylinder's or a cone's flat end) at the same
+// angle to the ray -- one plane, or parallel ones -- are tied within the rule's length
+// over their cosine (at most MAX_OBLIQUITY times it); other pairs keep the plain length,
+// as the reference's walk does: a plane and a curved surface (whose cosine counts as 1:
+// grazing it is a silhouette), and two planes that cross (grazing both near their common
+// line, they are apart, and the nearer leaf is the surface).
 #define MAX_OBLIQUITY 64.0
 float plane_cosine(int s, int kind, float t) {
     if (!(t > -INF && t < INF)) return 1.0;
@@ -62,6 +64,13 @@ float plane_cosine(int s, int kind, float t) {
         ((IS(kind, LEAF_CYLINDER) || IS(kind, LEAF_CONE)) && g.x == 0.0 && g.z == 0.0);
     float cosine = abs(dot(g, d)) / max(length(g) * length(d), 1e-30);
     return planar ? max(cosine, 1.0 / MAX_OBLIQUITY) : 1.0;
+}
+
+// the tie rule's lengths between a boundary whose cosine is ``c`` and four whose cosines
+// are ``q``: widened where the two are parallel planes (equal cosines, to rounding)
+vec4 tie_lengths(float tie, float c, vec4 q) {
+    bvec4 parallel = lessThanEqual(abs(vec4(c) - q), 1e-4 * max(vec4(c), q));
+    return tie / mix(vec4(1.0), max(vec4(c), q), parallel);
 }
 
 // the leaf states (as a number) of a group of four slots, with runs ``a``..``d``, at a
@@ -80,8 +89,8 @@ uint group_bits(vec4 ta, vec4 tb, vec4 t, vec4 a, vec4 b, vec4 c, vec4 d, uint s
 // (its plane's cosine ``cosine``; the runs' ends' ``qa``, ``qb``)
 float group_tied(vec4 leaf, float t, float tie, float cosine, vec4 a, vec4 b, vec4 c,
                  vec4 d, vec4 qa, vec4 qb) {
-    bvec4 near = bvec4(uvec4(lessThanEqual(abs(a - t), tie / max(vec4(cosine), qa))) |
-                       uvec4(lessThanEqual(abs(b - t), tie / max(vec4(cosine), qb))));
+    bvec4 near = bvec4(uvec4(lessThanEqual(abs(a - t), tie_lengths(tie, cosine, qa))) |
+                       uvec4(lessThanEqual(abs(b - t), tie_lengths(tie, cosine, qb))));
 #if HAS_TORUS
     near = bvec4(uvec4(near) | uvec4(lessThanEqual(abs(c - t), vec4(tie))) |
                  uvec4(lessThanEqual(abs(d - t), vec4(tie))));
@@ -108,7 +117,7 @@ float group_tied(vec4 leaf, float t, float tie, float cosine, vec4 a, vec4 b, ve
 #endif
 // the thresholds for a candidate t (its plane's cosine ``cosine_at``) of boundaries whose
 // cosines are ``q``: past its ties
-#define UPTO(t, c, q) (vec4(t) + tie / max(vec4(cosine_at), q))
+#define UPTO(t, c, q) (vec4(t) + tie_lengths(tie, cosine_at, q))
 // the start: the boundaries before t = 0 passed, none at it
 #define BEFORE(t, c, q) vec4(0.0)
 

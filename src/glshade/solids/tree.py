@@ -43,9 +43,9 @@ MAX_DEPTH = 200
 #: lowest-numbered (leftmost) leaf among them. Coincident faces computed through
 #: different transforms differ by rounding (float32 on the GPU), so without it their order
 #: is noise: a box minus a box that shares a face speckles, a union shows either leaf.
-#: 2^-16: some 100 times float32's rounding; thinner features than this vanish. Where
-#: both boundaries are planes seen at a grazing angle, the GPU's one-step cast widens the
-#: length by the inverse of the larger of their cosines with the ray (at most 64 times,
+#: 2^-16: some 100 times float32's rounding; thinner features than this vanish. Between
+#: two planes at the same angle to the ray (one plane, or parallel ones), the GPU's one-step
+#: cast widens the length by the inverse of their cosine with the ray (at most 64 times,
 #: shaders/include/csg/onestep.glsl): a crossing's rounding grows so along the ray.
 TIE = 2.0 ** -16
 

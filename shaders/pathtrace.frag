@@ -46,9 +46,7 @@ uniform int u_csg_material;
 
 uniform sampler2D u_data;
 uniform usampler2D u_bvh;
-uniform uvec4 u_root;
-uniform vec3 u_qbase;         // a packed box corner q (in steps) is u_qbase + q u_qstep
-uniform vec3 u_qstep;
+#include "packed_box.glsl"
 uniform int u_tris;
 uniform int u_mats;
 uniform int u_emit;
@@ -128,17 +126,6 @@ uvec4 bvh_texel(int i) {
     return texelFetch(u_bvh, ivec2(i % DATA_WIDTH, i / DATA_WIDTH), 0);
 }
 
-// where o + t d enters a packed child's box for t in [0, t_max]; negative: it misses
-float box_entry(uvec4 c, vec3 o, vec3 inv, float t_max) {
-    vec3 lo = u_qbase + vec3(uvec3(c.x & 0xFFFFu, c.x >> 16, c.y & 0xFFFFu)) * u_qstep;
-    vec3 hi = u_qbase + vec3(uvec3(c.y >> 16, c.z & 0xFFFFu, c.z >> 16)) * u_qstep;
-    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
-    vec3 tn = min(t0, t1), tf = max(t0, t1);
-    float near = max(max(tn.x, tn.y), max(tn.z, 0.0));
-    float far = min(min(tf.x, tf.y), min(tf.z, t_max));
-    return near <= far ? near : -1.0;
-}
-
 // nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
@@ -193,13 +180,14 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     uint stack[STACK];
     float entry[STACK];
     int top = 0;
-    uint item = box_entry(u_root, o, inv, t_hit) >= 0.0 ? u_root.w : DONE;
+    uint item = packed_box_entry(u_root, o, inv, 0.0, t_hit) >= 0.0 ? u_root.w : DONE;
     while (item != DONE) {
         while (item != DONE && (item & 15u) == 0u) {
             ++g_iter;
             int row = 2 * int(item >> 4);
             uvec4 left = bvh_texel(row), right = bvh_texel(row + 1);
-            float a = box_entry(left, o, inv, t_hit), b = box_entry(right, o, inv, t_hit);
+            float a = packed_box_entry(left, o, inv, 0.0, t_hit);
+            float b = packed_box_entry(right, o, inv, 0.0, t_hit);
             bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
             stack[top] = left_first ? right.w : left.w;
             entry[top] = left_first ? b : a;
@@ -428,8 +416,7 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
                 2.0 * PI * u.z);
     float cx = dot(wi, n);
     if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) return false;
-    float ca = max(dot(wi, r), 0.0);
-    float pdf = pd * cx / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) * pow(ca, shin);
+    float pdf = bounce_pdf(rho, ks, shin, n, wo, wi);
     p.beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
     if (p.bounces >= 4) {  // (Russian roulette from the fourth vertex on)
         // continue with the throughput's chance (the weight then stays near 1: in a grey

@@ -7,18 +7,9 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
-uniform isampler2D u_face_ids;
-uniform usampler2D u_depth_bits;
-uniform sampler2D u_normals;       // world normal as (n + 1) / 2
-uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
-uniform mat4 u_camera_to_world; // view -> world
-uniform vec4 u_viewport;
-uniform vec3 u_eye;
-uniform vec3 u_forward;
-uniform float u_near;
 uniform int u_layer;               // the light's layer of u_visibility
 
-#include "rays.glsl"
+#include "gbuffer_point.glsl"
 #include "shadow_lookup.glsl"
 
 void main() {
@@ -31,15 +22,8 @@ void main() {
         return;
     }
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
-    vec2 ndc = (vec2(px) + 0.5 - u_viewport.xy) / u_viewport.zw * 2.0 - 1.0;
-    vec3 origin, span;
-    pixel_ray(u_inverse_proj, u_camera_to_world, ndc, origin, span);
-    vec3 dir = normalize(span);
-#ifdef ORTHOGRAPHIC
-    vec3 p = origin + dir * (depth - u_near);
-#else
-    vec3 p = u_eye + dir * (depth / dot(dir, u_forward));
-#endif
+    vec3 to_eye;
+    vec3 p = gbuffer_point(id.xy, depth, to_eye);
     vec3 n = normalize(texelFetch(u_normals, px, 0).xyz * 2.0 - 1.0);
     imageStore(u_visibility, ivec3(px, u_layer), vec4(map_visibility(0, p, n)));
 }

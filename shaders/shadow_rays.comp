@@ -19,16 +19,7 @@ int g_iter;
 layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
 #endif
 
-uniform isampler2D u_face_ids;     // polygon id + 1 (0: background), the G-buffer's
-uniform usampler2D u_depth_bits;   // floatBitsToUint(view depth)
-uniform sampler2D u_normals;       // world normal as (n + 1) / 2 (the shading one, seen side)
-// a pixel's ray: its origin and span at the viewport's first pixel and a pixel's steps
-uniform vec3 u_origin0, u_origin_dx, u_origin_dy;
-uniform vec3 u_span0, u_span_dx, u_span_dy;
-uniform vec4 u_viewport;           // x, y, w, h of the draw in the G-buffer's pixels
-uniform vec3 u_eye;
-uniform vec3 u_forward;            // the view axis (world, unit)
-uniform float u_near;
+#include "gbuffer_point.glsl"
 uniform int u_light_count;
 
 void main() {
@@ -42,17 +33,8 @@ void main() {
 #endif
     // (one store at the end: llvmpipe runs every branch, an early store and return too)
     float depth = uintBitsToFloat(texelFetch(u_depth_bits, px, 0).r);
-    // the pixel's ray, affine in the pixel (geometry/transforms.py, pixel_rays)
-    vec2 at = vec2(id.xy);
-#ifdef ORTHOGRAPHIC
-    vec3 origin = u_origin0 + at.x * u_origin_dx + at.y * u_origin_dy;
-    vec3 p = origin + u_forward * (depth - u_near);
-    vec3 to_eye = -u_forward;
-#else
-    vec3 span = u_span0 + at.x * u_span_dx + at.y * u_span_dy;
-    vec3 p = u_eye + span * (depth / dot(span, u_forward));
-    vec3 to_eye = u_eye - p;
-#endif
+    vec3 to_eye;
+    vec3 p = gbuffer_point(id.xy, depth, to_eye);
     vec4 l = u_shadow_lights[light];
     vec3 shading_n = texelFetch(u_normals, px, 0).xyz * 2.0 - 1.0;
     int seen = 1;

@@ -20,9 +20,7 @@
 #define SHADOW_TRACE_GLSL
 
 layout(std430, binding = 0) readonly buffer Nodes { uvec4 nodes[]; };
-uniform uvec4 u_root;              // the root, packed as a child
-uniform vec3 u_qbase;              // a corner q (in steps) lies at u_qbase + q u_qstep
-uniform vec3 u_qstep;
+#include "packed_box.glsl"
 layout(std430, binding = 1) readonly buffer Tris { uvec4 tris[]; };
 layout(std430, binding = 2) buffer Counts { uint undecided; };
 // each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
@@ -58,17 +56,6 @@ bool meets(int k, vec3 o, vec3 d, float t_min, float t_max, int own) {
     return t > t_min && t < t_max;
 }
 
-// The ray's entry into a packed child's box, or a negative number where it misses the box
-// within (t_min, t_max).
-float enters(uvec4 c, vec3 o, vec3 inv, float t_min, float t_max) {
-    vec3 lo = u_qbase + vec3(uvec3(c.x & 0xFFFFu, c.x >> 16, c.y & 0xFFFFu)) * u_qstep;
-    vec3 hi = u_qbase + vec3(uvec3(c.y >> 16, c.z & 0xFFFFu, c.z >> 16)) * u_qstep;
-    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
-    vec3 tn = min(t0, t1), tf = max(t0, t1);
-    float near = max(max(tn.x, tn.y), max(tn.z, t_min));
-    float far = min(min(tf.x, tf.y), min(tf.z, t_max));
-    return near <= far ? near : -1.0;
-}
 
 // 1 where something lies on o + t d for t in (t_min, t_max), skipping polygon ``own``; 0
 // where nothing does; -1 when the ray ran out of its budget.
@@ -80,7 +67,7 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
     }
     if (u_has_triangles == 0) return 0;
     vec3 inv = 1.0 / d;
-    if (enters(u_root, o, inv, t_min, t_max) < 0.0) return 0;
+    if (packed_box_entry(u_root, o, inv, t_min, t_max) < 0.0) return 0;
     // the stack holds children the ray enters (index << 4 | count): a leaf's triangles are
     // tested when it is taken, an inner node's children's boxes before they are pushed (the
     // nearer one taken next); a step loads 32 bytes
@@ -95,8 +82,8 @@ int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
             if (++iterations > u_budget) return -1;
             int index = int(item >> 4);
             uvec4 left = nodes[2 * index], right = nodes[2 * index + 1];
-            float a = enters(left, o, inv, t_min, t_max);
-            float b = enters(right, o, inv, t_min, t_max);
+            float a = packed_box_entry(left, o, inv, t_min, t_max);
+            float b = packed_box_entry(right, o, inv, t_min, t_max);
             if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
             // the nearer child entered next (or the only one), the other one kept
             bool left_first = b < 0.0 || (a >= 0.0 && a <= b);

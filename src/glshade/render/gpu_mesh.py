@@ -107,12 +107,15 @@ class GpuMesh(GLResource):
         """The smooth modes' vertices copied per triangle corner, and each corner's polygon
         id: what a draw with polygon ids reads (polygon_id.glsl), no vertex shared."""
         if self._per_corner is None:
-            interleaved, tri, owner = self._indexed
-            ctx = self.context.ctx
-            self._per_corner = (
-                self._keep(ctx.buffer(interleaved[tri.ravel()].tobytes())),
-                self._keep(ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())))
+            self._per_corner = tuple(self._keep(b) for b in self._corner_copies(*self._indexed))
         return self._per_corner
+
+    def _corner_copies(self, vertices: np.ndarray, tri: np.ndarray, owner: np.ndarray):
+        """Buffers of ``vertices`` (V, k) float32 copied to every corner of ``tri`` (T, 3),
+        and each corner's polygon id from ``owner`` (T,); the caller owns them."""
+        ctx = self.context.ctx
+        return (ctx.buffer(vertices[tri.ravel()].tobytes()),
+                ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes()))
 
     def color_array(self, program, colors: np.ndarray):
         """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the
@@ -139,8 +142,7 @@ class GpuMesh(GLResource):
             ctx = self.context.ctx
             if "in_polygon" in program:
                 if len(buffers) == 2:
-                    buffers += [ctx.buffer(data[tri.ravel()].tobytes()),
-                                ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes())]
+                    buffers += self._corner_copies(data, tri, owner)
                 vao = ctx.vertex_array(program, [(buffers[2], fmt, *names),
                                                  (buffers[3], "i", "in_polygon")])
             else:

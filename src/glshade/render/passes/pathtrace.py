@@ -44,11 +44,14 @@ class GpuPathTracer(GLResource):
     #: loop iterations under which an invocation starts another bounce (a bounce of a
     #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
     BUDGET = 8192
-    #: triangles up to which a ray tests every triangle (held as uniforms) rather than walk
-    #: the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a sphere,
-    #: 128x128 x 8 spp, M paths/s, hierarchy vs flat: 32 triangles 0.61 vs 1.17, 52: 0.46
-    #: vs 0.84, 112: 0.45 vs 0.44, 352: 0.46 vs 0.15; 1312: hierarchy 0.36)
-    FLAT_LIMIT = 112
+    #: triangles up to which a ray tests every triangle, compiled into the program, rather
+    #: than walk the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a
+    #: sphere, 128x128 x 8 spp, M paths/s hierarchy vs flat, and the flat program's first
+    #: compile: 32 triangles 0.72 vs 2.52 (0.4 s), 52: 0.64 vs 1.76 (0.6 s), 112: 0.63 vs
+    #: 0.91 (1.5 s), 352: 0.63 vs 0.30 (8 s); Mesa keeps compiled programs on disk)
+    FLAT_LIMIT = 64
+    #: the most triangles ``accel="flat"`` compiles in (the compile grows faster than them)
+    FLAT_MAX = 256
 
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
@@ -127,17 +130,14 @@ class GpuPathTracer(GLResource):
             raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
         #: where the paths' random numbers come from (``SAMPLERS``)
         self.sampler = sampler
-        # (a flat loop's triangles are uniforms: three vectors each, beside the others')
-        info = self.context.ctx.info
-        room = (int(info.get("GL_MAX_FRAGMENT_UNIFORM_VECTORS") or 256) - 64) // 3
-        if accel == "flat" and n > room:
-            raise OptionError(f"accel='flat' holds the triangles as uniforms: this GL has "
-                              f"room for {room}, the scene has {n}")
+        if accel == "flat" and n > self.FLAT_MAX:
+            raise OptionError(f"accel='flat' compiles the triangles into the program: at most "
+                              f"{self.FLAT_MAX}, the scene has {n:,} (use accel='bvh')")
         #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
         self.accel = "bvh" if not n or accel == "bvh" or (
-            accel == "auto" and n > min(self.FLAT_LIMIT, room)) else "flat"
+            accel == "auto" and n > self.FLAT_LIMIT) else "flat"
         return (("LOW_DISCREPANCY",) if sampler == "sobol" else ()) + (
-            (f"FLAT_TRIANGLES {n}",) if self.accel == "flat" else ())
+            _flat_defines(self._flat_rows) if self.accel == "flat" else ())
 
     def _write(self, values: dict) -> None:
         prog = self.program
@@ -159,8 +159,6 @@ class GpuPathTracer(GLResource):
                         "u_n_lights": len(self.scene.lights),
                         **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
-        if self.accel == "flat":  # (the triangle table's rows, as uniforms)
-            values["u_flat_tris"] = self._flat_rows.tobytes()
         if self._csg is not None:
             values.update(self._csg_values)
         lights = self.scene.lights
@@ -265,3 +263,16 @@ class GpuPathTracer(GLResource):
             a = np.frombuffer(tex.read(), np.float32).reshape(self.height, self.width, 4)
             out.append(a[::-1].astype(np.float64))
         return out[0], out[1], out[2]
+
+
+def _flat_defines(rows: np.ndarray) -> tuple[str, ...]:
+    """The defines that compile a small scene's triangles into the program
+    (shaders/pathtrace.frag, FLAT_TRIANGLES): ``rows`` ``(3n, 4)`` float32, each
+    triangle's p0, e1, e2 (the table's rows; the fourth column is not read). Each
+    component is written as its float bits, so the constants are the table's exactly."""
+    bits = np.ascontiguousarray(rows[:, :3], np.float32).view(np.uint32)
+    vectors = ",".join("vec4(" + ",".join(f"uintBitsToFloat({b}u)" for b in row) + ",0.0)"
+                       for row in bits.tolist())
+    n = len(rows) // 3
+    return (f"FLAT_TRIANGLES {n}", f"FLAT_ROWS {vectors}",
+            "FLAT_TESTS " + " ".join(f"FLAT_TEST({k})" for k in range(n)))

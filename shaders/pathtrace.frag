@@ -63,10 +63,11 @@ uniform int u_max_depth;      // vertices a path may have (<= 0: no limit; roule
 // the state and sums of the last pass (see the header), read at this pixel
 uniform sampler2D u_state0, u_state1, u_state2, u_state3, u_acc0, u_acc1, u_acc2;
 uniform float u_eps;
-uniform int u_n_lights;
-uniform vec4 u_light_pos[8];   // (position or direction to the light, kind: 0 dir, 1 point)
-uniform vec3 u_light_irr[8];
-uniform vec3 u_light_att[8];
+#if LIGHTS > 0  // (the scene's point and directional lights, LIGHTS of them)
+uniform vec4 u_light_pos[LIGHTS];  // (position or direction to the light, kind: 0 dir, 1 point)
+uniform vec3 u_light_irr[LIGHTS];
+uniform vec3 u_light_att[LIGHTS];
+#endif
 #ifdef PROBES
 // rays given per pixel (PROBES: origin at u_rays row 2y, direction at row 2y + 1)
 uniform sampler2D u_rays;
@@ -267,7 +268,9 @@ float power_weight(float a, float b) {
 // against the bounce's chance of finding the same point (``last``: no bounce follows)
 vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin,
                    bool last) {
-    if (u_n_emit <= 0) return vec3(0.0);
+#ifndef EMITTERS
+    return vec3(0.0);  // (none: compiled away -- llvmpipe would run the code all the same)
+#endif
     vec3 u = sample3(0u);  // (the emitter, then a point on it)
     float r = u.x;
     int lo = 0, hi = u_n_emit - 1;
@@ -305,7 +308,8 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
 // the point and directional lights' contribution where xo sees them
 vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
     vec3 sum = vec3(0.0);
-    for (int i = 0; i < u_n_lights; ++i) {
+#if LIGHTS > 0  // (none: no loop, whose body llvmpipe would run once, its ray's tests too)
+    for (int i = 0; i < LIGHTS; ++i) {
         ++g_iter;
         vec3 wi = u_light_pos[i].xyz;
         float dist = 1e30, att = 1.0;
@@ -321,6 +325,7 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
             sum += brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
         }
     }
+#endif
     return sum;
 }
 

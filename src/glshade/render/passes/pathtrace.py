@@ -77,6 +77,9 @@ class GpuPathTracer(GLResource):
         if not len(scene.triangles):
             defines += ("NO_TRIANGLES",)
         defines += self._choose(accel, sampler, len(scene.triangles))
+        # (what the scene has no use for is compiled away: llvmpipe runs every branch)
+        defines += (f"LIGHTS {len(scene.lights)}",) + (
+            ("EMITTERS",) if len(scene.emitters) else ())
         #: whether emission is found both ways, weighed by multiple importance sampling
         self.mis = bool(mis)
         defines += ("MIS",) if self.mis else ()
@@ -156,21 +159,16 @@ class GpuPathTracer(GLResource):
                         "u_max_depth": int(self.max_depth or 0),
                         "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
                         "u_data": _DATA, "u_bvh": _BVH, "u_rays": _RAYS,
-                        "u_n_lights": len(self.scene.lights),
                         **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
         if self._csg is not None:
             values.update(self._csg_values)
         lights = self.scene.lights
-        if len(lights):
-            pos = np.zeros((8, 4), np.float32)
-            pos[:len(lights), :3], pos[:len(lights), 3] = lights[:, 1:4], lights[:, 0]
-            irr = np.zeros((8, 3), np.float32)
-            irr[:len(lights)] = lights[:, 4:7]
-            att = np.zeros((8, 3), np.float32)
-            att[:len(lights)] = lights[:, 7:10]
-            values.update(u_light_pos=pos.tobytes(), u_light_irr=irr.tobytes(),
-                          u_light_att=att.tobytes())
+        if len(lights):  # (arrays of LIGHTS entries: kind and position, irradiance, falloff)
+            pos = np.ascontiguousarray(lights[:, [1, 2, 3, 0]], np.float32)
+            values.update(u_light_pos=pos.tobytes(),
+                          u_light_irr=np.ascontiguousarray(lights[:, 4:7], np.float32).tobytes(),
+                          u_light_att=np.ascontiguousarray(lights[:, 7:10], np.float32).tobytes())
         return values
 
     def reset(self) -> None:

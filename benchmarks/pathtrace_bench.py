@@ -3,7 +3,9 @@ box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
 samplers (independent PCG numbers, Owen-scrambled Sobol points) and Mitsuba's
 ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
-low-discrepancy sampler, interleaved rounds in one process, medians. Error: RMS over pixels
+low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer is made
+once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
+and kd-tree: built before the clock, as a user's second render finds them). Error: RMS over pixels
 of the difference from a long glshade render (``--reference-spp``, Sobol, another seed),
 relative to the reference's mean; time to 1% by the 1/sqrt(N) law from the error measured
 at ``--spp`` samples (for a low-discrepancy sampler, whose error falls faster at first, an
@@ -15,6 +17,7 @@ Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 32] [
 from __future__ import annotations
 
 import argparse
+import contextlib
 import glob
 import math
 import os
@@ -33,10 +36,11 @@ from _timing import table  # noqa: E402
 
 from glshade import pathtrace  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
-from glshade.pathtrace import TraceScene  # noqa: E402
+from glshade.pathtrace import PathTracer, TraceScene  # noqa: E402
 from glshade.radiosity import cornell_scene  # noqa: E402
 from glshade.radiosity.cornell import CORNELL_CAMERA  # noqa: E402
 from glshade.render.context import create_context  # noqa: E402
+from glshade.render.passes.pathtrace import GpuPathTracer  # noqa: E402
 from glshade.scene import Material  # noqa: E402
 
 
@@ -84,19 +88,20 @@ def mitsuba_variants() -> list[str]:
     return usable
 
 
-def mitsuba_render(variant: str, ts, size: int, spp: int, folder: str,
-                   sampler: str = "independent") -> np.ndarray:
+def mitsuba_series(variant: str, ts, size: int, spp: int, folder: str, sampler: str):
+    """A render of Mitsuba's scene, loaded once (its file, its kd-tree: not timed, as
+    glshade's tables are built once), by ``variant``: a function of no arguments."""
     import mitsuba as mi
 
     from tests.oracle import mitsuba_scene
 
     mi.set_variant(variant)
-    original = mi.set_variant
-    mi.set_variant = lambda *a: None  # (the helper sets scalar_rgb; keep this variant)
-    try:
-        return mitsuba_scene.render(ts, CORNELL_CAMERA, size, spp, folder, sampler=sampler)
-    finally:
-        mi.set_variant = original
+    scene = mitsuba_scene.load(ts, CORNELL_CAMERA, size, spp, folder, sampler=sampler)
+
+    def render():
+        mi.set_variant(variant)
+        return mitsuba_scene.picture(scene)
+    return render
 
 
 def drawn_spp(tracer: str, spp: int) -> int:
@@ -107,32 +112,30 @@ def drawn_spp(tracer: str, spp: int) -> int:
     return spp
 
 
-def run(name, scene, camera, size, args, ctx, folder) -> list:
+def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
     """One scene at one size: each tracer's paths a second and time to 1%."""
-    reference = pathtrace.trace(scene, camera, (size, size), spp=args.reference_spp,
+    ts = TraceScene.from_scene(scene)
+    reference = pathtrace.trace(ts, camera, (size, size), spp=args.reference_spp,
                                 context=ctx, progress=False, seed=99,
                                 sampler="sobol").image
-    n_tris = sum(len(m.mesh.triangles[0]) for m in scene.models)
     series: dict = {}
     for accel, sampler in (("bvh", "pcg"), ("flat", "pcg"), ("auto", "pcg"),
                            ("auto", "sobol")):
-        if accel == "flat" and n_tris > 1000:
-            continue  # (a flat loop over 80k triangles: minutes a frame)
-        series[f"glshade {accel} {sampler}"] = (lambda a=accel, s=sampler: pathtrace.trace(
-            scene, camera, (size, size), spp=args.spp, context=ctx, progress=False,
-            accel=a, sampler=s).image)
-    ts = TraceScene.from_scene(scene)
+        if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
+            continue  # (too many to compile in)
+        tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
+                                                sampler=sampler))
+        series[f"glshade {accel} {sampler}"] = lambda t=tracer: _glshade(t, camera, args.spp)
     for variant in mitsuba_variants():
-        try:
-            mitsuba_render(variant, ts, 8, 1, folder)  # (compiles, loads its plugins)
-        except Exception as exc:  # (an LLVM that will not load: say so, go on)
-            print(f"{variant}: not usable here ({type(exc).__name__})")
-            continue
         # its default sampler, and its low-discrepancy one (as glshade's sobol is)
         for sampler in ("independent", "ldsampler"):
-            series[f"Mitsuba {variant} {sampler}"] = (lambda v=variant, sm=sampler:
-                                                      mitsuba_render(v, ts, size, args.spp,
-                                                                     folder, sm))
+            try:
+                render = mitsuba_series(variant, ts, size, args.spp, folder, sampler)
+                render()  # (compiles, loads its plugins)
+            except Exception as exc:  # (an LLVM that will not load: say so, go on)
+                print(f"{variant}: not usable here ({type(exc).__name__})")
+                break
+            series[f"Mitsuba {variant} {sampler}"] = render
     for fn in series.values():
         fn()  # (compiled once before the clock)
     seconds: dict = {k: [] for k in series}
@@ -153,19 +156,27 @@ def run(name, scene, camera, size, args, ctx, folder) -> list:
     return rows
 
 
+def _glshade(tracer, camera, spp: int) -> np.ndarray:
+    """``spp`` samples a pixel from a tracer made once (its program and tables kept)."""
+    tracer.reset()
+    tracer.add(camera, spp)
+    return tracer.result().image
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", default="128")
     ap.add_argument("--spp", type=int, default=32)
     ap.add_argument("--rounds", type=int, default=3)
-    ap.add_argument("--reference-spp", type=int, default=512)
+    ap.add_argument("--reference-spp", type=int, default=2048)
     args = ap.parse_args()
     found, camera = scenes()
     rows = []
-    with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder:
+    with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder, \
+            contextlib.ExitStack() as stack:
         for size in (int(x) for x in args.sizes.split(",")):
             for name, scene in found.items():
-                rows += run(name, scene, camera, size, args, ctx, folder)
+                rows += run(name, scene, camera, size, args, ctx, folder, stack)
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
           f"glshade at {args.reference_spp} spp (Sobol, another seed); time to 1% = seconds x "

@@ -18,6 +18,22 @@ def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
+    return picture(load(trace_scene, camera, size, spp, folder, seed, sampler))
+
+
+def picture(scene, spp: int = 0) -> np.ndarray:
+    """A loaded scene rendered by the variant set now (``spp``: 0 for the sampler's own
+    count), in radiosity units."""
+    import mitsuba as mi
+
+    return np.array(mi.render(scene, spp=spp), np.float64)[..., :3] * np.pi
+
+
+def load(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,
+         sampler: str = "independent"):
+    """The scene loaded by the variant set now (see :func:`render`)."""
+    import mitsuba as mi
+
     scene = {"type": "scene", "integrator": {"type": "path", "max_depth": 64},
              "sensor": {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
                         "to_world": mi.ScalarTransform4f().look_at(
@@ -43,4 +59,4 @@ def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0
             entry["emitter"] = {"type": "area",
                                 "radiance": {"type": "rgb", "value": (row[5:8] / np.pi).tolist()}}
         scene[f"material{m}"] = entry
-    return np.array(mi.render(mi.load_dict(scene)), np.float64)[..., :3] * np.pi
+    return mi.load_dict(scene)

@@ -168,6 +168,27 @@ def test_seeded_and_reproducible(gl_context):
     assert np.array_equal(a.image, b.image) and not np.array_equal(a.image, c.image)
 
 
+def test_a_reset_tracer_starts_the_picture_over(gl_context):
+    """A tracer reset and run again is a fresh tracer's picture, to the byte; the scene's
+    tables are built once and kept, unwritable (a tracer made again reuses them)."""
+    from glshade.pathtrace import PathTracer
+
+    scene, camera = cornell_scene()
+    ts = TraceScene.from_scene(scene)
+    fresh = trace(ts, camera, (16, 16), spp=4, seed=5, context=gl_context, progress=False)
+    with PathTracer(ts, (16, 16), seed=5, context=gl_context) as tracer:
+        tracer.add(camera, 3)
+        tracer.reset()
+        assert tracer.samples == 0
+        tracer.add(camera, 4)
+        again = tracer.result()
+    assert again.samples == 4 and np.array_equal(again.image, fresh.image)
+    data, layout = ts.tables()
+    assert ts.tables()[0] is data and not data.flags.writeable
+    layout["u_tris"] = -1  # (a copy: the kept layout stays)
+    assert ts.tables()[1]["u_tris"] == 0
+
+
 def test_the_stop_rule_reaches_its_relative_error(gl_context):
     scene, camera = cornell_scene()
     r = trace(scene, camera, (32, 32), until=0.15, context=gl_context, progress=False)

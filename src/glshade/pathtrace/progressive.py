@@ -130,13 +130,18 @@ class PathTracer:
         """Samples every pixel has finished."""
         return self.gpu.samples
 
+    def reset(self) -> None:
+        """Forget every sample (the next :meth:`add` starts the picture over, as a new
+        camera does)."""
+        self.gpu.reset()
+        self.seconds = 0.0
+
     def add(self, camera, samples: int = 1) -> bool:
         """Add exactly ``samples`` paths per pixel seen from ``camera``; whether that
         started the picture over (a new camera)."""
         restarted = self.camera is not None and camera != self.camera
         if restarted:
-            self.gpu.reset()
-            self.seconds = 0.0
+            self.reset()
         self.camera = camera
         t0 = time.perf_counter()
         self.gpu.run(camera, int(samples), self.seed)

@@ -16,6 +16,7 @@ radiosity's patches emit); reflection is two-sided."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -70,10 +71,20 @@ class TraceScene:
 
     def tables(self) -> tuple[np.ndarray, dict]:
         """The texels ``(rows * width, 4) float32`` the GPU program reads, and where each
-        table starts (:func:`glshade.pathtrace.pack.pack`)."""
+        table starts (:func:`glshade.pathtrace.pack.pack`). Built once a scene (the
+        hierarchy of 82k triangles takes 0.4 s) and kept, read-only: a tracer made again
+        for the same scene starts at once."""
+        data, layout = self._tables
+        return data, dict(layout)
+
+    @cached_property
+    def _tables(self) -> tuple[np.ndarray, dict]:
         from .pack import pack
 
-        return pack(self)
+        data, layout = pack(self)
+        for a in (data, layout["hierarchy"]):
+            a.setflags(write=False)
+        return data, layout
 
     @classmethod
     def from_scene(cls, scene, *, lights: bool = True, camera=None,

@@ -241,6 +241,9 @@ vec3 around(vec3 n, float cos_t, float phi) {
 
 // pi x BRDF for light arriving from wi, leaving along wo, at normal n
 vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
+#ifndef GLOSSY
+    return rho;  // (no material has a Phong lobe: its pow compiled away)
+#endif
     vec3 r = reflect(-wo, n);
     float ca = max(dot(r, wi), 0.0);
     return rho + vec3(ks * 0.5 * (shin + 2.0) * pow(ca, shin));
@@ -251,6 +254,9 @@ vec3 brdf_pi(vec3 rho, float ks, float shin, vec3 n, vec3 wi, vec3 wo) {
 float bounce_pdf(vec3 rho, float ks, float shin, vec3 n, vec3 wo, vec3 wi) {
     float wd = (rho.x + rho.y + rho.z) / 3.0;
     if (wd + ks <= 0.0) return 0.0;
+#ifndef GLOSSY
+    return max(dot(wi, n), 0.0) / PI;
+#endif
     float pd = wd / (wd + ks);
     float ca = max(dot(wi, reflect(-wo, n)), 0.0);
     return pd * max(dot(wi, n), 0.0) / PI + (1.0 - pd) * (shin + 1.0) / (2.0 * PI) *
@@ -416,9 +422,13 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
     vec3 r = reflect(p.d, n);
     vec3 wi;
     vec3 u = sample3(1u);  // (the lobe, then a direction in it)
+#ifdef GLOSSY
     bool diffuse = u.x < pd;
     wi = around(diffuse ? n : r, diffuse ? sqrt(u.y) : pow(u.y, 1.0 / (shin + 1.0)),
                 2.0 * PI * u.z);
+#else
+    wi = around(n, sqrt(u.y), 2.0 * PI * u.z);  // (every lobe diffuse)
+#endif
     float cx = dot(wi, n);
     if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) return false;
     float pdf = bounce_pdf(rho, ks, shin, n, wo, wi);

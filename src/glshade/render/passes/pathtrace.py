@@ -79,7 +79,8 @@ class GpuPathTracer(GLResource):
         defines += self._choose(accel, sampler, len(scene.triangles))
         # (what the scene has no use for is compiled away: llvmpipe runs every branch)
         defines += (f"LIGHTS {len(scene.lights)}",) + (
-            ("EMITTERS",) if len(scene.emitters) else ())
+            ("EMITTERS",) if len(scene.emitters) else ()) + (
+            ("GLOSSY",) if (scene.materials[:, 3] > 0).any() else ())
         #: whether emission is found both ways, weighed by multiple importance sampling
         self.mis = bool(mis)
         defines += ("MIS",) if self.mis else ()

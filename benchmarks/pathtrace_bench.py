@@ -11,7 +11,10 @@ relative to the reference's mean; time to 1% by the 1/sqrt(N) law from the error
 at ``--spp`` samples (for a low-discrepancy sampler, whose error falls faster at first, an
 upper bound).
 
-Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 32] [--rounds 3]``.
+Samples a pixel default to 64, a power of 4: Mitsuba's ``ldsampler`` draws what it is asked
+for, so every tracer's error is measured at the same count (asked for 32, it draws 64).
+
+Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 64] [--rounds 3]``.
 """
 
 from __future__ import annotations
@@ -166,7 +169,7 @@ def _glshade(tracer, camera, spp: int) -> np.ndarray:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", default="128")
-    ap.add_argument("--spp", type=int, default=32)
+    ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--reference-spp", type=int, default=2048)
     args = ap.parse_args()

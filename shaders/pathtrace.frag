@@ -131,25 +131,24 @@ uvec4 bvh_texel(int i) {
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
 #ifdef FLAT_TRIANGLES
-// a small scene compiled into the program: its triangles' rows (p0, e1, e2) as constants
-// (FLAT_ROWS: each component's float bits), tested by straight-line code (FLAT_TESTS: one
-// FLAT_TEST(k) a triangle), so every read is a constant the compiler folds into the test --
-// on llvmpipe 2.6x the speed of a loop over the same rows held as uniforms (measured)
+// triangles compiled into the program (all of a small scene's, or a larger one's small
+// models beside a HIERARCHY of the rest: the table's first FLAT_TRIANGLES): their rows
+// (p0, e1, e2) as constants (FLAT_ROWS: each component's float bits), tested by
+// straight-line code (FLAT_TESTS: one FLAT_TEST(k) a triangle), so every read is a
+// constant the compiler folds into the test -- on llvmpipe 2.6x the speed of a loop over
+// the same rows held as uniforms (measured)
 const vec4 FLAT_ROW[3 * FLAT_TRIANGLES] = vec4[](FLAT_ROWS);
-#define TRI_ROW(i) FLAT_ROW[i]
-#else
-#define TRI_ROW(i) fetch(u_tris + (i))
 #endif
 
-// Moller-Trumbore against triangle k: the nearer hit kept
-void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
-    vec4 p0 = TRI_ROW(3 * k);
-    vec3 e1 = TRI_ROW(3 * k + 1).xyz, e2 = TRI_ROW(3 * k + 2).xyz;
+// Moller-Trumbore against triangle k (rows p0, e1 = p1 - p0, e2 = p2 - p0): the nearer hit
+// kept
+void test_rows(int k, vec3 p0, vec3 e1, vec3 e2, vec3 o, vec3 d, inout float t_hit,
+               inout int tri_hit) {
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
     if (abs(det) < 1e-30) return;
     float f = 1.0 / det;
-    vec3 s = o - p0.xyz;
+    vec3 s = o - p0;
     float u = f * dot(s, pv);
     if (u < 0.0 || u > 1.0) return;
     vec3 q = cross(s, e1);
@@ -163,15 +162,23 @@ void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) 
     }
 }
 
+// triangle k of the table (a hierarchy's leaf)
+void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
+    test_rows(k, fetch(u_tris + 3 * k).xyz, fetch(u_tris + 3 * k + 1).xyz,
+              fetch(u_tris + 3 * k + 2).xyz, o, d, t_hit, tri_hit);
+}
+
 bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     t_hit = t_max;
     tri_hit = -1;
 #ifdef FLAT_TRIANGLES
-    // a small scene: every triangle in turn, no hierarchy (on a few dozen triangles the
-    // nodes' fetches and the stack cost more than the tests they save; measured), no loop
-#define FLAT_TEST(k) test_triangle(k, o, d, t_hit, tri_hit);
+    // the triangles compiled in: every one in turn, no loop (on a few dozen triangles the
+    // nodes' fetches and the walk cost more than the tests they save; measured)
+#define FLAT_TEST(k) test_rows(k, FLAT_ROW[3 * k].xyz, FLAT_ROW[3 * k + 1].xyz, \
+                               FLAT_ROW[3 * k + 2].xyz, o, d, t_hit, tri_hit);
     FLAT_TESTS
-#elif !defined(NO_TRIANGLES)
+#endif
+#ifdef HIERARCHY
     // the hierarchy: a step tests both children of an inner node (the nearer one taken
     // next, the other kept with its entry distance); a ray walks down inner nodes until it
     // holds a leaf, then tests the leaf (one kind of work a SIMD step: llvmpipe runs every

@@ -189,6 +189,22 @@ def test_a_reset_tracer_starts_the_picture_over(gl_context):
     assert ts.tables()[1]["u_tris"] == 0
 
 
+def test_small_models_are_whole_models_under_the_limit():
+    """The smallest models, whole, while their triangles add up to at most the limit; none
+    when every model would be taken (nothing left for a hierarchy)."""
+    scene = Scene()
+    for level, at in ((0, 0.0), (1, 3.0), (3, 6.0)):  # 20, 80 and 1,280 triangles
+        scene.add(primitives.icosphere(level), Material(), translation=(at, 0.0, 0.0))
+    scene.add(primitives.cube(), Material(), translation=(9.0, 0.0, 0.0))  # 12
+    ts = TraceScene.from_scene(scene, camera=Camera())
+    counts = np.bincount(ts.model)
+    for limit, want in ((11, []), (12, [3]), (32, [0, 3]), (111, [0, 3]), (112, [0, 1, 3])):
+        chosen = ts.small_models(limit)
+        assert sorted(np.unique(ts.model[chosen]).tolist()) == want
+        assert chosen.sum() == counts[want].sum() <= limit
+    assert not ts.small_models(10**6).any()  # (all of them: nothing beside)
+
+
 def test_the_stop_rule_reaches_its_relative_error(gl_context):
     scene, camera = cornell_scene()
     r = trace(scene, camera, (32, 32), until=0.15, context=gl_context, progress=False)

@@ -22,10 +22,16 @@ pytestmark = [pytest.mark.gl, pytest.mark.once]
 INSIDE = Camera.look_at((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), fov_y=60.0, near=0.01, far=10.0)
 
 
-def furnace(rho: float, emission: float = 1.0) -> Scene:
+def furnace(rho: float, emission: float = 1.0, ball: bool = False) -> Scene:
+    """A closed room whose every surface reflects ``rho`` and emits ``emission``; ``ball``:
+    with an 80-triangle ball of the same inside (the answer is the same anywhere in a
+    furnace; a small model beside a larger one, as a hybrid tracer splits them)."""
     scene = Scene(ambient=(0, 0, 0))
-    scene.add(primitives.cube().flipped(),
-              Material(color=(1.0, 1.0, 1.0), kd=rho, ka=0.0, ks=0.0, emission=(emission,) * 3))
+    material = Material(color=(1.0, 1.0, 1.0), kd=rho, ka=0.0, ks=0.0,
+                        emission=(emission,) * 3)
+    scene.add(primitives.cube().flipped(), material)
+    if ball:
+        scene.add(primitives.icosphere(1), material, scale=0.12, translation=(0.15, 0.1, -0.3))
     return scene
 
 
@@ -42,7 +48,7 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
 @given(rho=st.floats(0.0, 0.99), spp=st.integers(8, 48),
        per_pass=st.sampled_from([None, 1, 3, 16]),
        depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16),
-       accel=st.sampled_from(["bvh", "flat"]), sampler=st.sampled_from(["pcg", "sobol"]),
+       accel=st.sampled_from(["bvh", "flat", "hybrid"]), sampler=st.sampled_from(["pcg", "sobol"]),
        mis=st.booleans())
 @example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh", sampler="pcg",
          mis=False)
@@ -53,12 +59,16 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
 @example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol", mis=True)
 @example(rho=0.9, spp=32, per_pass=None, depth=3, seed=0, accel="flat", sampler="sobol",
          mis=True)
+@example(rho=0.95, spp=24, per_pass=3, depth=None, seed=4, accel="hybrid", sampler="sobol",
+         mis=True)
 def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
                                                      seed, accel, sampler, mis):
-    """Both ways of finding triangles (the hierarchy, every triangle in turn), both
+    """Every way of finding triangles (the hierarchy, every triangle in turn, both: a ball
+    in the room then, its walls compiled in and the ball's hierarchy), both
     samplers (independent numbers, Owen-scrambled Sobol points), with and without multiple
     importance sampling (in a room that all emits, every bounce finds emission)."""
-    r = trace(furnace(rho), INSIDE, (32, 32), spp=spp, samples_per_pass=per_pass, seed=seed,
+    r = trace(furnace(rho, ball=accel == "hybrid"), INSIDE, (32, 32), spp=spp,
+              samples_per_pass=per_pass, seed=seed,
               max_depth=depth, context=gl_context, progress=False, accel=accel,
               sampler=sampler, mis=mis)
     assert r.samples == spp and r.near_limit == 0
@@ -97,9 +107,10 @@ def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, r
 def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene_of):
     """Every variant draws the same random stream and finds the same nearest hits: the
     Cornell box (32 triangles, flat by default) and the box with an 80-triangle sphere
-    (the hierarchy by default), traced both ways, agree to rounding (the flat program's
-    triangles are constants its compiler folds, so its arithmetic rounds apart; a path
-    that grazes an edge may go another way: at most 1% of pixels)."""
+    (hybrid by default: the walls compiled in, the sphere's hierarchy), traced every way,
+    agree to rounding (compiled triangles are constants the compiler folds, so their
+    arithmetic rounds apart; a path that grazes an edge may go another way: at most 1% of
+    pixels)."""
     from glshade.radiosity import cornell_scene
 
     scene, camera = cornell_scene()
@@ -107,11 +118,14 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
         scene.add(primitives.icosphere(1), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
                   scale=90.0, translation=(280.0, 90.0, 280.0))
     images = {a: trace(scene, camera, (24, 24), spp=6, context=gl_context, progress=False,
-                       accel=a).image for a in ("bvh", "flat")}
-    a, b = images["bvh"], images["flat"]
-    close = np.isclose(a, b, rtol=1e-4, atol=1e-6).all(axis=-1)
-    assert close.mean() >= 0.99 and not np.array_equal(a, np.zeros_like(a))
-    assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean()
+                       accel=a).image for a in ("bvh", "flat", "hybrid")}
+    a = images["bvh"]
+    assert not np.array_equal(a, np.zeros_like(a))
+    for other in ("flat", "hybrid"):
+        b = images[other]
+        close = np.isclose(a, b, rtol=1e-4, atol=1e-6).all(axis=-1)
+        assert close.mean() >= 0.99, other
+        assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean(), other
 
 
 def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
@@ -124,8 +138,16 @@ def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
         assert tracer.gpu.accel == "flat"
     scene.add(primitives.icosphere(3), Material())
     with PathTracer(scene, (8, 8), context=gl_context) as tracer:
+        assert tracer.gpu.accel == "hybrid"  # (the walls compiled in, the sphere's hierarchy)
+        assert tracer.gpu.layout["compiled"] == 32
+    alone = Scene()
+    alone.add(primitives.icosphere(3), Material())  # (one large model)
+    with PathTracer(alone, (8, 8), context=gl_context, camera=Camera()) as tracer:
         assert tracer.gpu.accel == "bvh"
-    with pytest.raises(OptionError, match="accel must be 'auto', 'bvh' or 'flat'"):
+    with PathTracer(alone, (8, 8), context=gl_context, camera=Camera(),
+                    accel="hybrid") as tracer:
+        assert tracer.gpu.accel == "bvh"  # (nothing small to compile in)
+    with pytest.raises(OptionError, match="accel must be 'auto', 'bvh', 'flat' or 'hybrid'"):
         PathTracer(scene, (8, 8), context=gl_context, accel="kd-tree")
     scene.add(primitives.icosphere(5), Material())   # (20,480 triangles: too many to compile)
     with pytest.raises(OptionError, match=r"accel='flat' compiles the triangles into the "

@@ -173,8 +173,8 @@ class PackedChildren:
                 "u_qstep": tuple(float(v) for v in self.step)}
 
 
-#: the stand-in for no hierarchy (no triangles: the shaders skip the walk, NO_TRIANGLES or
-#: ``u_has_triangles``): one row of zeros, a root of zeros
+#: the stand-in for no hierarchy (no triangles, or all compiled in: the shaders skip the
+#: walk, HIERARCHY undefined or ``u_has_triangles``): one row of zeros, a root of zeros
 NO_CHILDREN = PackedChildren(np.zeros((1, 8), np.uint32), np.zeros(3, np.float32),
                              np.ones(3, np.float32), np.zeros(4, np.uint32))
 

@@ -26,18 +26,23 @@ def _rows(texels: np.ndarray) -> np.ndarray:
     return out
 
 
-def pack(scene) -> tuple[np.ndarray, dict]:
+def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     """A :class:`~glshade.pathtrace.scene.TraceScene` as RGBA32F texels ``(rows *
-    DATA_WIDTH, 4)`` and the offset of each table (see the shader's header): triangles in
-    BVH order, materials, emitters; the layout's ``hierarchy`` holds the BVH as packed
-    children (:func:`glshade.geometry.bvh.packed_children`), RGBA32UI texels in rows of
-    DATA_WIDTH, its root and quantum as uniforms."""
-    if len(scene.triangles):
-        bvh = build(scene.triangles)
-        order, depth, n_nodes = bvh.order, bvh.depth, bvh.n_nodes
-        packed = packed_children(bvh)
-    else:  # (a solid alone: no hierarchy)
-        order, depth, n_nodes = np.zeros(0, np.int64), 0, 0
+    DATA_WIDTH, 4)`` and the offset of each table (see the shader's header): triangles
+    (those ``compiled`` marks, ``(T,)`` bool, first, in the scene's order -- the tracer
+    compiles them into its program -- then the rest in BVH order), materials, emitters;
+    the layout's ``hierarchy`` holds the BVH of the rest as packed children
+    (:func:`glshade.geometry.bvh.packed_children`), RGBA32UI texels in rows of DATA_WIDTH,
+    its root and quantum as uniforms; ``compiled`` the count of those first."""
+    apart = np.flatnonzero(compiled) if compiled is not None else np.zeros(0, np.int64)
+    rest = np.setdiff1d(np.arange(len(scene.triangles)), apart)
+    if len(rest):
+        bvh = build(scene.triangles[rest])
+        order = np.concatenate([apart, rest[bvh.order]])
+        depth, n_nodes = bvh.depth, bvh.n_nodes
+        packed = packed_children(bvh, first_triangle=len(apart))
+    else:  # (a solid alone, or every triangle compiled in: no hierarchy)
+        order, depth, n_nodes = apart, 0, 0
         packed = NO_CHILDREN
     tri = scene.triangles[order]
     n_tris = len(tri)
@@ -68,6 +73,6 @@ def pack(scene) -> tuple[np.ndarray, dict]:
               "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
               "u_norms": int(offsets[3]), **packed.uniforms(),
-              "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH,
+              "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH, "compiled": len(apart),
               "hierarchy": _rows(packed.entries.reshape(-1, 4))}
     return data, layout

@@ -204,8 +204,11 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     between two looks at the progress bar and Ctrl-C (they never change the picture: a
     pixel's k-th sample is the same however they are grouped). A Ctrl-C returns the
     picture so far (``interrupted`` set). Seeded: the same call gives the same picture.
-    ``accel``: how rays find triangles, ``"bvh"``, ``"flat"`` (each in turn) or ``"auto"``
-    (flat up to 64 triangles); the same picture either way. ``sampler``: ``"pcg"``
+    ``accel``: how rays find triangles, ``"bvh"`` (a hierarchy), ``"flat"`` (each in turn,
+    compiled into the program), ``"hybrid"`` (the smallest models compiled in, up to 64
+    triangles, the hierarchy for the rest) or ``"auto"`` (flat up to 64 triangles, else
+    hybrid where the scene has small models beside large ones, else the hierarchy); the
+    same picture, to rounding, every way. ``sampler``: ``"pcg"``
     (independent random numbers) or ``"sobol"`` (Owen-scrambled Sobol points at the first
     three vertices: less error for the same samples; unbiased either way); ``mis``: emission
     found by next-event estimation and by the bounce alike, weighed by multiple importance

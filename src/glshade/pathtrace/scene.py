@@ -69,22 +69,41 @@ class TraceScene:
         """The diagonal of :attr:`bounds` (for offsets and epsilons)."""
         return float(np.linalg.norm(np.ptp(self.bounds, 0))) or 1.0
 
-    def tables(self) -> tuple[np.ndarray, dict]:
+    def tables(self, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
         """The texels ``(rows * width, 4) float32`` the GPU program reads, and where each
-        table starts (:func:`glshade.pathtrace.pack.pack`). Built once a scene (the
-        hierarchy of 82k triangles takes 0.4 s) and kept, read-only: a tracer made again
-        for the same scene starts at once."""
-        data, layout = self._tables
+        table starts (:func:`glshade.pathtrace.pack.pack`; ``compiled``: ``(T,)`` bool, the
+        triangles a tracer compiles into its program, kept out of the hierarchy). Built
+        once a scene and choice (the hierarchy of 82k triangles takes 0.4 s) and kept,
+        read-only: a tracer made again for the same scene starts at once."""
+        from .pack import pack
+
+        key = None if compiled is None else np.packbits(compiled).tobytes()
+        if key not in self._tables:
+            data, layout = pack(self, compiled)
+            for a in (data, layout["hierarchy"]):
+                a.setflags(write=False)
+            self._tables[key] = data, layout
+        data, layout = self._tables[key]
         return data, dict(layout)
 
     @cached_property
-    def _tables(self) -> tuple[np.ndarray, dict]:
-        from .pack import pack
+    def _tables(self) -> dict:
+        return {}
 
-        data, layout = pack(self)
-        for a in (data, layout["hierarchy"]):
-            a.setflags(write=False)
-        return data, layout
+    def small_models(self, limit: int) -> np.ndarray:
+        """``(T,)`` bool: the triangles of the scene's smallest models, whole models, at most
+        ``limit`` triangles in all (walls, floors, boxes: what a tracer tests cheaply in
+        straight-line code beside a hierarchy of the large meshes); none when that would
+        leave no model for the hierarchy."""
+        counts = np.bincount(self.model, minlength=len(self.names))
+        chosen = np.zeros(len(counts), bool)
+        order = np.argsort(counts, kind="stable")
+        total = np.cumsum(counts[order])
+        chosen[order[total <= limit]] = True
+        chosen &= counts > 0
+        if chosen.sum() == (counts > 0).sum():
+            chosen[:] = False
+        return chosen[self.model]
 
     @classmethod
     def from_scene(cls, scene, *, lights: bool = True, camera=None,

@@ -40,6 +40,7 @@ class GpuPathTracer(GLResource):
     heuristic (default; False: next-event estimation alone after the first vertex)."""
 
     SAMPLERS = ("pcg", "sobol")
+    ACCELS = ("auto", "bvh", "flat", "hybrid")
 
     #: loop iterations under which an invocation starts another bounce (a bounce of a
     #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
@@ -66,17 +67,22 @@ class GpuPathTracer(GLResource):
         self.scene, self.width, self.height = scene, int(width), int(height)
         self.max_depth, self.budget = max_depth, int(budget)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
-        data, self.layout = scene.tables()
-        first = self.layout["u_tris"]  # (a flat loop's triangles: the table's rows)
-        self._flat_rows = np.ascontiguousarray(
-            data[first:first + 3 * len(scene.triangles)], np.float32)
+        compiled = self._choose(accel, sampler, scene)
+        data, self.layout = scene.tables(compiled if self.accel == "hybrid" else None)
+        # (the triangles compiled in: the table's first rows -- all of them, or the small
+        # models' -- and the hierarchy for the rest)
+        n_compiled = {"flat": len(scene.triangles), "hybrid": self.layout["compiled"]}.get(
+            self.accel, 0)
+        first = self.layout["u_tris"]
         width = self.layout["width"]
         defines: tuple[str, ...] = (f"DATA_WIDTH {width}",)
         if scene.shading is not None:
             defines += ("SMOOTH_NORMALS",)
-        if not len(scene.triangles):
-            defines += ("NO_TRIANGLES",)
-        defines += self._choose(accel, sampler, len(scene.triangles))
+        if n_compiled:
+            defines += _flat_defines(data[first:first + 3 * n_compiled])
+        if self.accel != "flat" and self.layout["nodes"]:
+            defines += ("HIERARCHY",)
+        defines += ("LOW_DISCREPANCY",) if sampler == "sobol" else ()
         # (what the scene has no use for is compiled away: llvmpipe runs every branch)
         defines += (f"LIGHTS {len(scene.lights)}",) + (
             ("EMITTERS",) if len(scene.emitters) else ()) + (
@@ -125,23 +131,28 @@ class GpuPathTracer(GLResource):
         self.samples = 0
         self.reset()
 
-    def _choose(self, accel: str, sampler: str, n: int) -> tuple[str, ...]:
-        """Check ``accel`` and ``sampler`` for a scene of ``n`` triangles, set
-        :attr:`accel` and :attr:`sampler`; the defines they need."""
-        if accel not in ("auto", "bvh", "flat"):
-            raise OptionError(f"accel must be 'auto', 'bvh' or 'flat', got {accel!r}")
+    def _choose(self, accel: str, sampler: str, scene) -> np.ndarray | None:
+        """Check ``accel`` and ``sampler`` for ``scene``, set :attr:`accel` and
+        :attr:`sampler`; the triangles a hybrid compiles in (``(T,)`` bool) or None."""
+        if accel not in self.ACCELS:
+            raise OptionError(f"accel must be 'auto', 'bvh', 'flat' or 'hybrid', got {accel!r}")
         if sampler not in self.SAMPLERS:
             raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
         #: where the paths' random numbers come from (``SAMPLERS``)
         self.sampler = sampler
+        n = len(scene.triangles)
         if accel == "flat" and n > self.FLAT_MAX:
             raise OptionError(f"accel='flat' compiles the triangles into the program: at most "
                               f"{self.FLAT_MAX}, the scene has {n:,} (use accel='bvh')")
-        #: how rays find triangles: "flat" (every one in turn) or "bvh" (the hierarchy)
-        self.accel = "bvh" if not n or accel == "bvh" or (
-            accel == "auto" and n > self.FLAT_LIMIT) else "flat"
-        return (("LOW_DISCREPANCY",) if sampler == "sobol" else ()) + (
-            _flat_defines(self._flat_rows) if self.accel == "flat" else ())
+        small = scene.small_models(self.FLAT_LIMIT) if n else np.zeros(0, bool)
+        if accel == "auto":
+            accel = "flat" if 0 < n <= self.FLAT_LIMIT else "hybrid" if small.any() else "bvh"
+        if accel == "hybrid" and not small.any():
+            accel = "bvh"  # (no small model beside a large one: the hierarchy alone)
+        #: how rays find triangles: "flat" (every one compiled in), "bvh" (the hierarchy)
+        #: or "hybrid" (the small models compiled in, the hierarchy for the rest)
+        self.accel = accel if n else "bvh"
+        return small if self.accel == "hybrid" else None
 
     def _write(self, values: dict) -> None:
         prog = self.program

@@ -276,6 +276,33 @@ float power_weight(float a, float b) {
     return a * a / max(a * a + b * b, 1e-38);
 }
 
+// the emitter triangle r (uniform in [0, 1)) picks by power: its chance p, its area, rows
+// (p0, e1, e2) and emission E
+void pick_emitter(float r, out float p, out float area, out vec3 q0, out vec3 q1,
+                  out vec3 q2, out vec3 e) {
+#ifdef EMITTER_PICK
+    // a few emitters compiled in: each one's numbers as constants, chosen by comparisons
+    // with the cumulative chances (no loop, no fetch; generated, render/passes/pathtrace.py)
+    EMITTER_PICK
+#else
+    int lo = 0, hi = u_n_emit - 1;  // (the first whose cumulative chance reaches r)
+    while (lo < hi) {
+        ++g_iter;
+        int mid = (lo + hi) / 2;
+        if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
+    }
+    vec4 em = fetch(u_emit + lo);
+    p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
+    area = em.z;
+    int ek = floatBitsToInt(em.y);
+    vec4 p0 = fetch(u_tris + 3 * ek);
+    q0 = p0.xyz;
+    q1 = fetch(u_tris + 3 * ek + 1).xyz;
+    q2 = fetch(u_tris + 3 * ek + 2).xyz;
+    e = fetch(u_mats + 2 * floatBitsToInt(p0.w) + 1).xyz;
+#endif
+}
+
 // next-event estimation (pi x radiance, before the throughput): one emitter triangle by
 // power, a point uniform on it, its light through the BRDF where xo sees it. MIS: weighed
 // against the bounce's chance of finding the same point (``last``: no bounce follows)
@@ -285,21 +312,12 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
     return vec3(0.0);  // (none: compiled away -- llvmpipe would run the code all the same)
 #endif
     vec3 u = sample3(0u);  // (the emitter, then a point on it)
-    float r = u.x;
-    int lo = 0, hi = u_n_emit - 1;
-    while (lo < hi) {
-        ++g_iter;
-        int mid = (lo + hi) / 2;
-        if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
-    }
-    vec4 em = fetch(u_emit + lo);
-    float p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
-    int ek = floatBitsToInt(em.y);
-    vec4 q0 = fetch(u_tris + 3 * ek);
-    vec3 q1 = fetch(u_tris + 3 * ek + 1).xyz, q2 = fetch(u_tris + 3 * ek + 2).xyz;
+    float p, area;
+    vec3 q0, q1, q2, e;
+    pick_emitter(u.x, p, area, q0, q1, q2, e);
     float a = u.y, b = u.z;
     if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
-    vec3 y = q0.xyz + a * q1 + b * q2;
+    vec3 y = q0 + a * q1 + b * q2;
     vec3 ny = normalize(cross(q1, q2));
     vec3 to = y - xo;
     float dist2 = dot(to, to), dist = sqrt(dist2);
@@ -307,13 +325,12 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
     float cx = dot(n, wi), cy = -dot(ny, wi);
     if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
         visible(xo, wi, dist * (1.0 - 1e-4))) {
-        vec3 e = fetch(u_mats + 2 * floatBitsToInt(q0.w) + 1).xyz;
         float w = 1.0;
 #ifdef MIS
-        float light_pdf = p / em.z * dist2 / cy;  // (solid angle)
+        float light_pdf = p / area * dist2 / cy;  // (solid angle)
         w = last ? 1.0 : power_weight(light_pdf, bounce_pdf(rho, ks, shin, n, wo, wi));
 #endif
-        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (em.z / p) * w;
+        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (area / p) * w;
     }
     return vec3(0.0);
 }

@@ -128,6 +128,29 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
         assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean(), other
 
 
+def test_compiled_emitters_pick_as_the_tables_search_does(gl_context, monkeypatch):
+    """A few emitters' choice compiled in (constants, comparisons) and the table's binary
+    search pick the same emitter with the same numbers: the Cornell box (two emitting
+    triangles) and a box lit by a ten-triangle emitter, the same picture both ways."""
+    from glshade.radiosity import cornell_scene
+
+    scene, camera = cornell_scene()
+    lamp = Material(color=(0.5, 0.5, 0.5), kd=0.5, ks=0.0, emission=(3.0, 2.0, 1.0))
+    lit = Scene(ambient=(0, 0, 0))
+    lit.add(primitives.cube().flipped(), Material(color=(0.7, 0.6, 0.5), kd=0.8, ks=0.0),
+            scale=4.0)
+    lit.add(primitives.cube(), lamp, scale=0.5, translation=(0.3, 1.2, -0.6))
+    lit.add(primitives.plane(0.8), lamp, translation=(-1.0, -1.9, 0.0))  # (12 + 2 emit)
+    for s, cam in ((scene, camera), (lit, INSIDE)):
+        compiled = trace(s, cam, (20, 20), spp=6, context=gl_context, progress=False).image
+        monkeypatch.setattr(GpuPathTracer, "EMITTERS_COMPILED", 0)
+        searched = trace(s, cam, (20, 20), spp=6, context=gl_context, progress=False).image
+        monkeypatch.undo()
+        assert compiled.mean() > 0
+        close = np.isclose(compiled, searched, rtol=1e-5, atol=1e-7).all(axis=-1)
+        assert close.mean() >= 0.99
+
+
 def test_auto_picks_the_flat_loop_for_a_few_dozen_triangles(gl_context):
     from glshade.errors import OptionError
     from glshade.pathtrace import PathTracer

@@ -51,6 +51,10 @@ class GpuPathTracer(GLResource):
     #: compile: 32 triangles 0.72 vs 2.52 (0.4 s), 52: 0.64 vs 1.76 (0.6 s), 112: 0.63 vs
     #: 0.91 (1.5 s), 352: 0.63 vs 0.30 (8 s); Mesa keeps compiled programs on disk)
     FLAT_LIMIT = 64
+    #: emitting triangles up to which next-event estimation's choice among them is compiled
+    #: in (their numbers as constants; above, a binary search through the table): on the
+    #: Cornell box's two, 40% of the tracer's time was next-event estimation
+    EMITTERS_COMPILED = 16
     #: the most triangles ``accel="flat"`` compiles in (the compile grows faster than them)
     FLAT_MAX = 256
 
@@ -83,6 +87,8 @@ class GpuPathTracer(GLResource):
         if self.accel != "flat" and self.layout["nodes"]:
             defines += ("HIERARCHY",)
         defines += ("LOW_DISCREPANCY",) if sampler == "sobol" else ()
+        if 0 < len(scene.emitters) <= self.EMITTERS_COMPILED:
+            defines += (_emitter_pick(data, self.layout),)
         # (what the scene has no use for is compiled away: llvmpipe runs every branch)
         defines += (f"LIGHTS {len(scene.lights)}",) + (
             ("EMITTERS",) if len(scene.emitters) else ()) + (
@@ -286,3 +292,33 @@ def _flat_defines(rows: np.ndarray) -> tuple[str, ...]:
     n = len(rows) // 3
     return (f"FLAT_TRIANGLES {n}", f"FLAT_ROWS {vectors}",
             "FLAT_TESTS " + " ".join(f"FLAT_TEST({k})" for k in range(n)))
+
+
+def _vec3(values) -> str:
+    """A GLSL vec3 of float32 ``values``, written as their bits (exactly the table's)."""
+    bits = np.asarray(values, np.float32).view(np.uint32)
+    return "vec3(" + ",".join(f"uintBitsToFloat({b}u)" for b in bits.tolist()) + ")"
+
+
+def _float(value) -> str:
+    return f"uintBitsToFloat({int(np.float32(value).view(np.uint32))}u)"
+
+
+def _emitter_pick(data: np.ndarray, layout: dict) -> str:
+    """The define that compiles a few emitters' choice into the program
+    (shaders/pathtrace.frag, pick_emitter): for each, its chance, area, rows and emission
+    from the table, taken where ``r`` is past the cumulative chances before it (as the
+    table's binary search picks: the first whose cumulative chance reaches r)."""
+    emit = data[layout["u_emit"]:layout["u_emit"] + layout["u_n_emit"]]
+    cdf = emit[:, 0].astype(np.float32)
+    chance = cdf - np.concatenate([[np.float32(0)], cdf[:-1]]).astype(np.float32)
+    out = []
+    for i, row in enumerate(emit):
+        k = int(np.float32(row[1]).view(np.int32))
+        rows = data[layout["u_tris"] + 3 * k:layout["u_tris"] + 3 * k + 3]
+        m = int(np.float32(rows[0, 3]).view(np.int32))
+        e = data[layout["u_mats"] + 2 * m + 1, :3]
+        sets = (f"p = {_float(chance[i])}; area = {_float(row[2])}; q0 = {_vec3(rows[0, :3])}; "
+                f"q1 = {_vec3(rows[1, :3])}; q2 = {_vec3(rows[2, :3])}; e = {_vec3(e)};")
+        out.append(sets if i == 0 else f"if ({_float(cdf[i - 1])} < r) {{ {sets} }}")
+    return "EMITTER_PICK " + " ".join(out)

@@ -5,6 +5,7 @@ GPU tracer against its numpy twin."""
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from glshade import Mesh
 from glshade.errors import SceneError
@@ -261,6 +262,51 @@ def test_the_hierarchy_bounds_every_triangle_and_child(rng):
         else:
             for c in (b.first[i], b.first[i] + 1):
                 assert (b.lo[c] >= b.lo[i]).all() and (b.hi[c] <= b.hi[i]).all()
+
+
+def _leaf_ranges(layout) -> list:
+    """The triangle ranges the packed hierarchy's leaves hold, walked from its root."""
+    entries = np.asarray(layout["hierarchy"]).reshape(-1, 8)
+    out, todo = [], [int(layout["u_root"][3])]
+    while todo:
+        word = todo.pop()
+        if word & 15:
+            out.append((word >> 4, (word >> 4) + (word & 15)))
+        else:
+            row = entries[word >> 4]
+            todo += [int(row[3]), int(row[7])]
+    return out
+
+
+@settings(max_examples=25)
+@given(kinds=st.lists(st.sampled_from(["plane", "cube", "ico0", "ico1", "ico2"]), min_size=1,
+                      max_size=6), limit=st.integers(0, 120), lamp=st.integers(0, 5))
+def test_compiled_triangles_come_first_and_the_hierarchy_holds_the_rest(kinds, limit, lamp):
+    """Whatever models a scene has and whatever the limit: the compiled triangles are the
+    table's first rows, in the scene's order, each the triangle it stands for; the
+    hierarchy's leaves hold every other triangle exactly once; each emitter's entry points
+    at its own triangle."""
+    make = {"plane": lambda: primitives.plane(1.0), "cube": primitives.cube,
+            "ico0": lambda: primitives.icosphere(0), "ico1": lambda: primitives.icosphere(1),
+            "ico2": lambda: primitives.icosphere(2)}
+    scene = Scene()
+    for i, kind in enumerate(kinds):
+        glow = (1.0, 1.0, 1.0) if i == lamp % len(kinds) else (0.0, 0.0, 0.0)
+        scene.add(make[kind](), Material(emission=glow), translation=(3.0 * i, 0.0, 0.0))
+    ts = TraceScene.from_scene(scene)
+    compiled = ts.small_models(limit)
+    data, layout = ts.tables(compiled)
+    n, first = int(compiled.sum()), layout["u_tris"]
+    assert layout["compiled"] == n
+    rows = data[first:first + 3 * len(ts.triangles)].reshape(-1, 3, 4)[..., :3]
+    placed = np.concatenate([rows[:, :1], rows[:, :1] + rows[:, 1:]], axis=1)  # (corners)
+    np.testing.assert_allclose(placed[:n], ts.triangles[compiled], atol=1e-5)
+    held = np.concatenate([np.arange(a, b) for a, b in _leaf_ranges(layout)]) if \
+        layout["nodes"] else np.zeros(0, int)
+    assert sorted(held.tolist()) == list(range(n, len(ts.triangles)))
+    emit = data[layout["u_emit"]:layout["u_emit"] + layout["u_n_emit"]]
+    where = emit[:, 1].view(np.int32)
+    np.testing.assert_allclose(placed[where], ts.triangles[ts.emitters], atol=1e-5)
 
 
 def test_progress_counts_every_sample(gl_context):

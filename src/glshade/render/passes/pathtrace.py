@@ -25,19 +25,21 @@ _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_ac
 
 class GpuPathTracer(GLResource):
     """Path-trace ``scene`` (a :class:`glshade.pathtrace.TraceScene`, whose ``tables()``
-    give the texels) at ``width x height``: :meth:`run` makes every pixel finish
-    ``samples`` more paths; :meth:`read` returns the sums. ``accel``: how rays find
-    triangles -- ``"bvh"``, ``"flat"`` (every triangle in turn) or ``"auto"`` (flat up to
-    ``FLAT_LIMIT`` triangles). Each pixel traces its samples in
-    order and sample k's random stream is seeded by (seed, pixel, k); a path in flight is
-    kept between passes (shaders/pathtrace.frag), so one invocation's work stays under
-    ``budget`` loop iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th
-    sample is the same however the work is grouped. ``max_depth``: vertices a path may
-    have (None: no limit, Russian roulette ends it). ``sampler``: ``"pcg"`` (independent
-    random numbers) or ``"sobol"`` (the first three vertices' from Owen-scrambled Sobol
-    points: lower error for the same samples, unbiased all the same). ``mis``: emission
-    found both by next-event estimation and by the bounce, each weighed by Veach's power
-    heuristic (default; False: next-event estimation alone after the first vertex)."""
+    give the texels) at ``width x height``: :meth:`run` makes every pixel finish ``samples``
+    more paths; :meth:`read` returns the sums. ``accel``: how rays find triangles --
+    ``"bvh"``, ``"flat"`` (every triangle in turn, compiled into the program), ``"hybrid"``
+    (the smallest models compiled in, up to ``FLAT_LIMIT`` triangles, the hierarchy for the
+    rest) or ``"auto"`` (flat up to ``FLAT_LIMIT`` triangles, else hybrid where there are
+    small models, else the hierarchy). Each pixel traces its samples in order and sample k's
+    random stream is seeded by (seed, pixel, k); a path in flight is kept between passes
+    (shaders/pathtrace.frag), so one invocation's work stays under ``budget`` loop
+    iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th sample is the same
+    however the work is grouped. ``max_depth``: vertices a path may have (None: no limit,
+    Russian roulette ends it). ``sampler``: ``"pcg"`` (independent random numbers) or
+    ``"sobol"`` (the first three vertices' from Owen-scrambled Sobol points: lower error for
+    the same samples, unbiased all the same). ``mis``: emission found both by next-event
+    estimation and by the bounce, each weighed by Veach's power heuristic (default; False:
+    next-event estimation alone after the first vertex)."""
 
     SAMPLERS = ("pcg", "sobol")
     ACCELS = ("auto", "bvh", "flat", "hybrid")

@@ -12,11 +12,12 @@
 // Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
-//   the BVH in its own RGBA32UI texture (u_bvh), 2 texels an inner node: its two children
-//     packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the root's,
-//     rounded outwards, then index << 4 | count); an inner child (count 0) has its own
+//   HIERARCHY: the BVH in its own RGBA32UI texture (u_bvh), 2 texels an inner node: its
+//     two children packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the
+//     root's, rounded outwards, then index << 4 | count); an inner child (count 0) has its own
 //     texels at 2 index, a leaf triangles [index, index + count); u_root the root, packed.
-//   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -)
+//   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -);
+//     the first FLAT_TRIANGLES also compiled into the program (tested without the BVH)
 //   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
 //   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
 //   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
@@ -91,8 +92,8 @@ layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near
 // emitter, then where on it: part 0) and three for the bounce (which lobe, then the
 // direction: part 1). LOW_DISCREPANCY: at the first SOBOL_VERTICES vertices they come
 // from Owen-scrambled Sobol pairs (random.glsl; a part's point from one pair, its choice
-// from the next pair's first coordinate), deeper ones and the roulette from the PCG stream -- consumed all the same,
-// so the stream's place never depends on which was used.
+// from the next pair's first coordinate), deeper ones and the roulette from the PCG stream
+// -- consumed all the same, so the stream's place never depends on which was used.
 uint g_sample;  // this path's sample number in its pixel
 int g_vertex;   // the vertex being made (0: the camera ray's hit)
 #ifndef SOBOL_VERTICES

@@ -128,6 +128,32 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
         assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean(), other
 
 
+@pytest.mark.parametrize("k", [1e-4, 1e5])
+def test_every_way_draws_the_same_picture_at_any_scale(gl_context, k):
+    """The Cornell box with a sphere and its camera scaled by ``k`` (the rays' offsets and
+    the compiled constants scale with it): the same picture as at scale 1, to rounding,
+    through the hierarchy, every triangle compiled in, and the hybrid."""
+    import dataclasses
+
+    from glshade.radiosity import cornell_scene
+
+    scene, camera = cornell_scene()
+    scene.add(primitives.icosphere(1), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
+              scale=90.0, translation=(280.0, 90.0, 280.0))
+    ts = TraceScene.from_scene(scene)
+    want = trace(ts, camera, (20, 20), spp=4, context=gl_context, progress=False,
+                 accel="bvh").image
+    scaled = dataclasses.replace(ts, triangles=ts.triangles * k, areas=ts.areas * k * k)
+    seen = dataclasses.replace(camera, position=camera.position * k, near=camera.near * k,
+                               far=camera.far * k)
+    for accel in ("bvh", "flat", "hybrid"):
+        got = trace(scaled, seen, (20, 20), spp=4, context=gl_context, progress=False,
+                    accel=accel).image
+        close = np.isclose(got, want, rtol=1e-3, atol=1e-6).all(axis=-1)
+        assert close.mean() >= 0.98, (accel, close.mean())
+        assert got.mean() == pytest.approx(want.mean(), rel=1e-3)
+
+
 def test_compiled_emitters_pick_as_the_tables_search_does(gl_context, monkeypatch):
     """A few emitters' choice compiled in (constants, comparisons) and the table's binary
     search pick the same emitter with the same numbers: the Cornell box (two emitting

@@ -21,7 +21,7 @@ import ctypes.util
 import os
 import re
 
-from ..errors import ContextError, OptionError
+from ..errors import ContextError, EnvironmentFailure, OptionError
 from ..interrupt import held
 from ..modes import Backend
 
@@ -198,6 +198,16 @@ class RenderContext:
     def check(self) -> None:
         if self.released:
             raise ContextError("this RenderContext was released; make a new one")
+
+    def require(self, version: int, what: str, instead: str) -> None:
+        """Refuse, in one line, a feature this GL is too old for: ``version`` as GL's
+        version code (430: 4.3); ``what`` ends in the verb ("shadows='exact' needs");
+        ``instead`` names the way that works."""
+        have = self.ctx.version_code
+        if have < version:
+            raise EnvironmentFailure(
+                f"{what} OpenGL {version // 100}.{version % 100 // 10}; this GL is "
+                f"{have // 100}.{have % 100 // 10} ({self.detail}): {instead}")
 
     def release(self) -> None:
         if self.released:

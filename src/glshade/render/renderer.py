@@ -375,12 +375,9 @@ class Renderer:
         it themselves as they shade (``variant.forward``), the uniforms they take."""
         if not state.variant.shadows:
             return None
-        if self.ctx.version_code < 430:  # (compute shaders, storage buffers, sampler arrays)
-            code = self.ctx.version_code
-            raise EnvironmentFailure(
-                f"shadows={state.options.shadows.value!r} needs OpenGL 4.3; this GL is "
-                f"{code // 100}.{code % 100 // 10} ({self.context.detail}): use "
-                "shadows='off'")
+        # (compute shaders, storage buffers, sampler arrays)
+        self.context.require(430, f"shadows={state.options.shadows.value!r} needs",
+                             "use shadows='off'")
         if self._shadow_pass is None:
             from .passes.shadows import ShadowPass
 

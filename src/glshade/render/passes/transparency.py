@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...errors import EnvironmentFailure, RenderWarning
+from ...errors import RenderWarning
 from ...modes import Outputs, Transparency
 from ..base import GLResource
 from ..programs import OIT_SLOTS as SLOTS  # (a pixel's own slots; then a shared pool)
@@ -195,12 +195,10 @@ class TransparencyPass(GLResource):
         self._check()
         ctx = self.context.ctx
         options = state.options
-        if options.transparency is not Transparency.BLEND and ctx.version_code < 430:
-            raise EnvironmentFailure(
-                f"transparency={options.transparency.value!r} keeps per-pixel fragment lists "
-                f"in storage buffers, which need OpenGL 4.3; this GL is "
-                f"{ctx.version_code // 100}.{ctx.version_code % 100 // 10} "
-                f"({self.context.detail}): use transparency='blend'")
+        if options.transparency is not Transparency.BLEND:
+            self.context.require(430, f"transparency={options.transparency.value!r} keeps "
+                                 "per-pixel fragment lists in storage buffers, which need",
+                                 "use transparency='blend'")
         target = state.target
         if options.transparency is Transparency.BLEND:
             target.bind(Outputs.COLOR)

@@ -138,7 +138,7 @@ vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 // straight-line code (FLAT_TESTS: one FLAT_TEST(k) a triangle), so every read is a
 // constant the compiler folds into the test -- on llvmpipe 2.6x the speed of a loop over
 // the same rows held as uniforms (measured)
-const vec4 FLAT_ROW[3 * FLAT_TRIANGLES] = vec4[](FLAT_ROWS);
+const vec3 FLAT_ROW[3 * FLAT_TRIANGLES] = vec3[](FLAT_ROWS);
 #endif
 
 // Moller-Trumbore against triangle k (rows p0, e1 = p1 - p0, e2 = p2 - p0): the nearer hit
@@ -175,8 +175,8 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
 #ifdef FLAT_TRIANGLES
     // the triangles compiled in: every one in turn, no loop (on a few dozen triangles the
     // nodes' fetches and the walk cost more than the tests they save; measured)
-#define FLAT_TEST(k) test_rows(k, FLAT_ROW[3 * k].xyz, FLAT_ROW[3 * k + 1].xyz, \
-                               FLAT_ROW[3 * k + 2].xyz, o, d, t_hit, tri_hit);
+#define FLAT_TEST(k) test_rows(k, FLAT_ROW[3 * k], FLAT_ROW[3 * k + 1], FLAT_ROW[3 * k + 2], \
+                               o, d, t_hit, tri_hit);
     FLAT_TESTS
 #endif
 #ifdef HIERARCHY

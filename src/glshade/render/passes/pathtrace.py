@@ -286,13 +286,10 @@ class GpuPathTracer(GLResource):
 def _flat_defines(rows: np.ndarray) -> tuple[str, ...]:
     """The defines that compile a small scene's triangles into the program
     (shaders/pathtrace.frag, FLAT_TRIANGLES): ``rows`` ``(3n, 4)`` float32, each
-    triangle's p0, e1, e2 (the table's rows; the fourth column is not read). Each
-    component is written as its float bits, so the constants are the table's exactly."""
-    bits = np.ascontiguousarray(rows[:, :3], np.float32).view(np.uint32)
-    vectors = ",".join("vec4(" + ",".join(f"uintBitsToFloat({b}u)" for b in row) + ",0.0)"
-                       for row in bits.tolist())
+    triangle's p0, e1, e2 (the table's rows; the fourth column is not read), each written
+    by :func:`_vec3`, so the constants are the table's exactly."""
     n = len(rows) // 3
-    return (f"FLAT_TRIANGLES {n}", f"FLAT_ROWS {vectors}",
+    return (f"FLAT_TRIANGLES {n}", "FLAT_ROWS " + ",".join(_vec3(r[:3]) for r in rows),
             "FLAT_TESTS " + " ".join(f"FLAT_TEST({k})" for k in range(n)))
 
 

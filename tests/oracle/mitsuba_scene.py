@@ -21,12 +21,11 @@ def render(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0
     return picture(load(trace_scene, camera, size, spp, folder, seed, sampler))
 
 
-def picture(scene, spp: int = 0) -> np.ndarray:
-    """A loaded scene rendered by the variant set now (``spp``: 0 for the sampler's own
-    count), in radiosity units."""
+def picture(scene) -> np.ndarray:
+    """A loaded scene rendered by the variant set now, in radiosity units."""
     import mitsuba as mi
 
-    return np.array(mi.render(scene, spp=spp), np.float64)[..., :3] * np.pi
+    return np.array(mi.render(scene), np.float64)[..., :3] * np.pi
 
 
 def load(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,

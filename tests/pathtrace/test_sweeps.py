@@ -157,7 +157,7 @@ def test_every_way_draws_the_same_picture_at_any_scale(gl_context, k):
 def test_compiled_emitters_pick_as_the_tables_search_does(gl_context, monkeypatch):
     """A few emitters' choice compiled in (constants, comparisons) and the table's binary
     search pick the same emitter with the same numbers: the Cornell box (two emitting
-    triangles) and a box lit by a ten-triangle emitter, the same picture both ways."""
+    triangles) and a room lit by a cube and a quad (14), the same picture both ways."""
     from glshade.radiosity import cornell_scene
 
     scene, camera = cornell_scene()

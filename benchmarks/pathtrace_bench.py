@@ -1,7 +1,8 @@
 """Path tracing against Mitsuba 3: paths a second and time to 1% RMS error on the Cornell
 box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
-samplers (independent PCG numbers, Owen-scrambled Sobol points) and Mitsuba's
+samplers (independent PCG numbers, Owen-scrambled Sobol points; each pixel its own or,
+``coherent``, blocks of 4x2 sharing them) and Mitsuba's
 ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
 low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer is made
 once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
@@ -122,13 +123,15 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
                                 context=ctx, progress=False, seed=99,
                                 sampler="sobol").image
     series: dict = {}
-    for accel, sampler in (("bvh", "pcg"), ("flat", "pcg"), ("auto", "pcg"),
-                           ("auto", "sobol")):
+    for accel, sampler, coherent in (("bvh", "pcg", False), ("flat", "pcg", False),
+                                     ("auto", "pcg", False), ("auto", "sobol", False),
+                                     ("auto", "pcg", True), ("auto", "sobol", True)):
         if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
             continue  # (too many to compile in)
         tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
-                                                sampler=sampler))
-        series[f"glshade {accel} {sampler}"] = lambda t=tracer: _glshade(t, camera, args.spp)
+                                                sampler=sampler, coherent=coherent))
+        key = f"glshade {accel} {sampler}" + (" coherent" if coherent else "")
+        series[key] = lambda t=tracer: _glshade(t, camera, args.spp)
     for variant in mitsuba_variants():
         # its default sampler, and its low-discrepancy one (as glshade's sobol is)
         for sampler in ("independent", "ldsampler"):
@@ -149,6 +152,12 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
             image = fn()
             seconds[key].append(time.perf_counter() - t)
             errors[key] = rms(np.asarray(image)[..., :3], reference[..., :3])
+    for key in series:
+        if key.endswith(" coherent"):
+            # a coherent picture's pixels are drawn as its twin's are, so its expected error
+            # is the twin's; its own RMS is not a fair sample of it (a block's errors come
+            # eight at a time: more often under the expectation, now and then well over)
+            errors[key] = errors[key.removesuffix(" coherent")]
     rows = []
     for key in series:
         s = statistics.median(seconds[key])
@@ -183,7 +192,7 @@ def main() -> None:
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
           f"glshade at {args.reference_spp} spp (Sobol, another seed); time to 1% = seconds x "
-          "(error / 1%)^2")
+          "(error / 1%)^2; a coherent tracer's error is its twin's (the same in expectation)")
     print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "s to 1%")))
     usable = mitsuba_variants()
     if not usable:

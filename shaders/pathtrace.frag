@@ -29,7 +29,10 @@
 // MIS: it is, each way weighed by Veach's power heuristic against the other's density;
 // Russian roulette from the fourth vertex (RR_CAP: the most a path may go on with, so a
 // lossless room still ends). Random numbers: a PCG stream seeded by nested PCG hashes of
-// the seed, the pixel's x and y and the sample k.
+// the seed, the pixel's x and y and the sample k -- or, COHERENT_TILE, of the block of
+// pixels it lies in: the block's pixels draw the same numbers, so their rays go the same
+// ways and run together in a SIMD step (each pixel's estimate as before; their errors
+// correlate).
 
 #define PI 3.14159265358979
 #define RR_CAP 0.99
@@ -37,6 +40,9 @@
 #define DATA_WIDTH 1024
 #endif
 #define STACK 48
+#ifndef COHERENT_TILE
+#define COHERENT_TILE uvec2(1u)  // (the pixels that share random numbers: each its own)
+#endif
 int g_iter;  // loop iterations so far in this invocation (every loop of the tracer counts,
              // the solid's walk included: CSG_COUNT)
 #ifdef CSG_SOLID
@@ -473,7 +479,8 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
 
 // sample k of this pixel, from its start: its random stream and its camera (or given) ray
 Path start(uvec2 pixel, uint k) {
-    g_state = pcg(pcg(pcg(pcg(u_seed) + pixel.x) + pixel.y) + k);
+    uvec2 block = pixel / COHERENT_TILE;
+    g_state = pcg(pcg(pcg(pcg(u_seed) + block.x) + block.y) + k);
     g_sample = k;
     Path p;
 #ifdef PROBES
@@ -513,7 +520,8 @@ void main() {
     g_state = uint(s1.w) | (uint(s2.w) << 16u);
     g_iter = 0;
 #ifdef LOW_DISCREPANCY
-    g_pixel_seed = pcg(pcg(pcg(u_seed ^ 0x5bd1e995u) + pixel.x) + pixel.y);
+    uvec2 block = pixel / COHERENT_TILE;
+    g_pixel_seed = pcg(pcg(pcg(u_seed ^ 0x5bd1e995u) + block.x) + block.y);
 #endif
     for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
         if (!flying) {

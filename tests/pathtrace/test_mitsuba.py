@@ -13,12 +13,24 @@ from ..oracle import mitsuba_scene
 pytestmark = [pytest.mark.gl, pytest.mark.once]
 
 
-def test_the_cornell_box_agrees_with_mitsuba(gl_context, tmp_path):
+@pytest.fixture(scope="module")
+def mitsubas(tmp_path_factory):
+    """Mitsuba's Cornell box, 64 x 64 x 256 samples (rendered once for every variant)."""
     require("mitsuba", "Mitsuba 3 is part of the test extra")
+    scene, _ = cornell_scene()
+    return mitsuba_scene.render(TraceScene.from_scene(scene), CORNELL_CAMERA, 64, 256,
+                                tmp_path_factory.mktemp("mitsuba"), seed=3)
+
+
+@pytest.mark.parametrize("accel, sampler, coherent", [
+    ("auto", "pcg", False), ("bvh", "sobol", False), ("auto", "sobol", True)])
+def test_the_cornell_box_agrees_with_mitsuba(gl_context, mitsubas, accel, sampler, coherent):
+    """The default tracer, the hierarchy with Sobol points, and blocks of pixels sharing
+    their numbers."""
     scene, camera = cornell_scene()
-    ours = trace(scene, camera, (64, 64), spp=256, seed=3, context=gl_context, progress=False)
-    theirs = mitsuba_scene.render(TraceScene.from_scene(scene), CORNELL_CAMERA, 64, 256,
-                                  tmp_path, seed=3)
+    ours = trace(scene, camera, (64, 64), spp=256, seed=3, context=gl_context, progress=False,
+                 accel=accel, sampler=sampler, coherent=coherent)
+    theirs = mitsubas
     # (pixels that see the light are left out: a pixel half on the light is E = 17 or 0 by
     # where its sample lands, and those few pixels would decide the means)
     lit = (ours.emitting == 0)[..., None]

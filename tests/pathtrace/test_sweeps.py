@@ -49,32 +49,38 @@ def closed_form(rho: float, depth: int | None, emission: float = 1.0) -> float:
        per_pass=st.sampled_from([None, 1, 3, 16]),
        depth=st.one_of(st.none(), st.integers(1, 12)), seed=st.integers(0, 2**16),
        accel=st.sampled_from(["bvh", "flat", "hybrid"]), sampler=st.sampled_from(["pcg", "sobol"]),
-       mis=st.booleans())
+       mis=st.booleans(), coherent=st.sampled_from([False, True, (2, 2), (1, 8)]))
 @example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="bvh", sampler="pcg",
-         mis=False)
+         mis=False, coherent=False)
 @example(rho=0.9, spp=32, per_pass=None, depth=None, seed=0, accel="flat", sampler="pcg",
-         mis=True)
+         mis=True, coherent=False)
 @example(rho=0.99, spp=16, per_pass=16, depth=None, seed=1, accel="flat", sampler="sobol",
-         mis=True)
-@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol", mis=True)
+         mis=True, coherent=True)
+@example(rho=0.0, spp=8, per_pass=1, depth=1, seed=2, accel="bvh", sampler="sobol", mis=True,
+         coherent=False)
 @example(rho=0.9, spp=32, per_pass=None, depth=3, seed=0, accel="flat", sampler="sobol",
-         mis=True)
+         mis=True, coherent=False)
 @example(rho=0.95, spp=24, per_pass=3, depth=None, seed=4, accel="hybrid", sampler="sobol",
-         mis=True)
+         mis=True, coherent=True)
+@example(rho=0.9, spp=16, per_pass=None, depth=None, seed=3, accel="bvh", sampler="pcg",
+         mis=True, coherent=True)
 def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_pass, depth,
-                                                     seed, accel, sampler, mis):
+                                                     seed, accel, sampler, mis, coherent):
     """Every way of finding triangles (the hierarchy, every triangle in turn, both: a ball
     in the room then, its walls compiled in and the ball's hierarchy), both
     samplers (independent numbers, Owen-scrambled Sobol points), with and without multiple
-    importance sampling (in a room that all emits, every bounce finds emission)."""
+    importance sampling (in a room that all emits, every bounce finds emission), each pixel
+    drawing its own numbers or blocks of pixels sharing them."""
     r = trace(furnace(rho, ball=accel == "hybrid"), INSIDE, (32, 32), spp=spp,
               samples_per_pass=per_pass, seed=seed,
               max_depth=depth, context=gl_context, progress=False, accel=accel,
-              sampler=sampler, mis=mis)
+              sampler=sampler, mis=mis, coherent=coherent)
     assert r.samples == spp and r.near_limit == 0
     want = closed_form(rho, depth)
-    pixels = r.image.mean(-1).ravel()
-    # the pixels are independent estimates of one number: their spread is the error bar
+    # the blocks that draw their own numbers are independent estimates of one number:
+    # their spread is the error bar (a block's pixels share numbers: not independent)
+    bw, bh = (4, 2) if coherent is True else (1, 1) if coherent is False else coherent
+    pixels = r.image.mean(-1).reshape(32 // bh, bh, 32 // bw, bw).mean((1, 3)).ravel()
     bar = pixels.std(ddof=1) / np.sqrt(pixels.size)
     # (plus float32 rounding: the tracer sums in float32, a few ulps of the answer)
     assert abs(pixels.mean() - want) <= 5 * bar + 4e-7 * want, (pixels.mean(), want, bar)
@@ -84,17 +90,18 @@ def test_the_furnace_meets_its_closed_form_everywhere(gl_context, rho, spp, per_
 @settings(max_examples=12)
 @given(rho=st.floats(0.3, 0.95), budget=st.integers(16, 20000),
        chunks=st.lists(st.integers(1, 6), min_size=1, max_size=4),
-       sampler=st.sampled_from(["pcg", "sobol"]))
+       sampler=st.sampled_from(["pcg", "sobol"]), coherent=st.booleans())
 def test_a_pixels_kth_sample_is_the_same_however_the_work_is_split(gl_context, rho, budget,
-                                                                  chunks, sampler):
+                                                                  chunks, sampler, coherent):
     """Every pixel ends with exactly the samples asked, and the same bytes, whether they
     came in one run or several, with much or little work per invocation."""
     ts = TraceScene.from_scene(furnace(rho))
     total = sum(chunks)
-    with GpuPathTracer(gl_context, ts, 12, 10, sampler=sampler) as one:
+    with GpuPathTracer(gl_context, ts, 12, 10, sampler=sampler, coherent=coherent) as one:
         one.run(INSIDE, total, seed=5)
         want = one.read()
-    with GpuPathTracer(gl_context, ts, 12, 10, budget=budget, sampler=sampler) as split:
+    with GpuPathTracer(gl_context, ts, 12, 10, budget=budget, sampler=sampler,
+                       coherent=coherent) as split:
         for n in chunks:
             split.run(INSIDE, n, seed=5)
         got = split.read()

@@ -149,6 +149,7 @@ class PathtraceArgs(RenderArgs):
     exposure: float | None = None
     no_lights: bool = False
     sampler: str = "pcg"
+    coherent: bool = False
     no_mis: bool = False
     quiet: bool = False
 

@@ -363,6 +363,9 @@ def add_pathtrace(sub) -> None:
                    help="the paths' random numbers: pcg (independent, default) or sobol "
                    "(Owen-scrambled Sobol points at the first three vertices: less error for "
                    "the same samples; its --until estimate errs on the safe side)")
+    p.add_argument("--coherent", action="store_true", help="blocks of 4x2 pixels draw the "
+                   "same random numbers, so their rays run together (faster on a large mesh; "
+                   "each pixel as noisy, the noise in blocks)")
     p.add_argument("--no-mis", action="store_true", help="count emission found by a "
                    "bounce only at the first vertex (next-event estimation alone after it), "
                    "not weighed against next-event estimation by multiple importance "

@@ -12,7 +12,9 @@
 // Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
-//   HIERARCHY: the BVH in its own RGBA32UI texture (u_bvh), 2 texels an inner node: its
+//   HIERARCHY: the BVH in its own RGBA32UI texture (u_bvh; STORAGE_WALK: a storage buffer,
+//     walk_nodes, and the walk's triangles from the table's copy in another), 2 texels an
+//     inner node: its
 //     two children packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the
 //     root's, rounded outwards, then index << 4 | count); an inner child (count 0) has its own
 //     texels at 2 index, a leaf triangles [index, index + count); u_root the root, packed.
@@ -53,6 +55,13 @@ uniform int u_csg_material;
 
 uniform sampler2D u_data;
 uniform usampler2D u_bvh;
+#ifdef STORAGE_WALK
+// the hierarchy's walk reads its nodes and triangles from storage buffers (GL 4.3: on
+// llvmpipe 1.2x the paths a second of texel fetches through the large scene; the other
+// reads stay texel fetches, which measured faster where few)
+layout(std430, binding = 0) readonly buffer WalkNodes { uvec4 walk_nodes[]; };
+layout(std430, binding = 1) readonly buffer WalkRows { vec4 walk_rows[]; };
+#endif
 #include "packed_box.glsl"
 uniform int u_tris;
 uniform int u_mats;
@@ -131,10 +140,24 @@ vec4 fetch(int i) {
 }
 
 uvec4 bvh_texel(int i) {
+#ifdef STORAGE_WALK
+    return walk_nodes[i];
+#else
     return texelFetch(u_bvh, ivec2(i % DATA_WIDTH, i / DATA_WIDTH), 0);
+#endif
 }
 
-// nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics
+// a row of the table read by the hierarchy's walk (a leaf's triangles)
+vec4 walk_fetch(int i) {
+#ifdef STORAGE_WALK
+    return walk_rows[i];
+#else
+    return fetch(i);
+#endif
+}
+
+// nearest hit along o + t d, t in (0, t_max): its t, triangle, barycentrics (``any_hit``:
+// any hit will do -- a shadow ray's -- so the hierarchy's walk stops at the first)
 vec2 g_uv;  // (the nearest hit's barycentrics, set by intersect)
 
 #ifdef FLAT_TRIANGLES
@@ -171,11 +194,11 @@ void test_rows(int k, vec3 p0, vec3 e1, vec3 e2, vec3 o, vec3 d, inout float t_h
 
 // triangle k of the table (a hierarchy's leaf)
 void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
-    test_rows(k, fetch(u_tris + 3 * k).xyz, fetch(u_tris + 3 * k + 1).xyz,
-              fetch(u_tris + 3 * k + 2).xyz, o, d, t_hit, tri_hit);
+    test_rows(k, walk_fetch(u_tris + 3 * k).xyz, walk_fetch(u_tris + 3 * k + 1).xyz,
+              walk_fetch(u_tris + 3 * k + 2).xyz, o, d, t_hit, tri_hit);
 }
 
-bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
+bool intersect(vec3 o, vec3 d, float t_max, bool any_hit, out float t_hit, out int tri_hit) {
     t_hit = t_max;
     tri_hit = -1;
 #ifdef FLAT_TRIANGLES
@@ -195,7 +218,8 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
     uint stack[STACK];
     float entry[STACK];
     int top = 0;
-    uint item = packed_box_entry(u_root, o, inv, 0.0, t_hit) >= 0.0 ? u_root.w : DONE;
+    uint item = packed_box_entry(u_root, o, inv, 0.0, t_hit) >= 0.0 &&
+                !(any_hit && tri_hit != -1) ? u_root.w : DONE;
     while (item != DONE) {
         while (item != DONE && (item & 15u) == 0u) {
             ++g_iter;
@@ -221,6 +245,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
             test_triangle(k, o, d, t_hit, tri_hit);
         }
         item = DONE;
+        if (any_hit && tri_hit != -1) break;
         while (item == DONE && top > 0) {
             ++g_iter;
             --top;
@@ -242,7 +267,7 @@ bool intersect(vec3 o, vec3 d, float t_max, out float t_hit, out int tri_hit) {
 bool visible(vec3 o, vec3 d, float dist) {
     float t;
     int k;
-    return !intersect(o, d, dist, t, k);
+    return !intersect(o, d, dist, true, t, k);
 }
 
 // a unit vector around n with density cos^e / normalisation (e = 1: cosine-weighted)
@@ -383,7 +408,7 @@ bool bounce(inout Path p) {
     g_vertex = p.bounces;
     float t;
     int k;
-    if (!intersect(p.o, p.d, 1e30, t, k)) return false;
+    if (!intersect(p.o, p.d, 1e30, false, t, k)) return false;
     if (p.bounces == 0) p.flags += 2.0;
     vec3 x = p.o + t * p.d;
     int m;

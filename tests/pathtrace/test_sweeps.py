@@ -135,6 +135,30 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
         assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean(), other
 
 
+@pytest.mark.parametrize("accel", ["bvh", "hybrid"])
+def test_the_walk_reads_storage_buffers_and_textures_alike(gl_context, accel):
+    """The hierarchy's walk from storage buffers (GL 4.3) or from texel fetches (GL 3.3's
+    way): the same bytes (the same rows, the same arithmetic), shadow rays (any hit stops
+    the walk) and bounces alike, both samplers."""
+    from glshade.radiosity import cornell_scene
+
+    scene, camera = cornell_scene()
+    scene.add(primitives.icosphere(2), Material(color=(0.7, 0.7, 0.7), kd=0.9, ks=0.0),
+              scale=90.0, translation=(280.0, 90.0, 280.0))
+    ts = TraceScene.from_scene(scene)
+    for sampler in ("pcg", "sobol"):
+        sums = []
+        for storage in (True, False):
+            with GpuPathTracer(gl_context, ts, 20, 16, accel=accel, sampler=sampler,
+                               storage=storage) as tracer:
+                assert tracer.storage is storage and tracer.accel == accel
+                tracer.run(camera, 6, seed=2)
+                sums.append(tracer.read())
+        assert sums[0][0][..., :3].sum() > 0
+        for a, b in zip(*sums):
+            assert np.array_equal(a, b), sampler
+
+
 @pytest.mark.parametrize("k", [1e-4, 1e5])
 def test_every_way_draws_the_same_picture_at_any_scale(gl_context, k):
     """The Cornell box with a sphere and its camera scaled by ``k`` (the rays' offsets and

@@ -43,7 +43,9 @@ class GpuPathTracer(GLResource):
     (True: ``TILE``; or a (width, height)) draw the same random numbers, so their rays go
     the same ways and run together in a SIMD step -- faster where rays diverge (a
     hierarchy's walk), each pixel's estimate as unbiased and as noisy, but the block's
-    errors correlate (noise in blocks)."""
+    errors correlate (noise in blocks). ``storage``: the hierarchy's walk reads storage
+    buffers (None: where the GL has them, 4.3; False: texel fetches, as on GL 3.3 -- the
+    same picture to the byte)."""
 
     SAMPLERS = ("pcg", "sobol")
     ACCELS = ("auto", "bvh", "flat", "hybrid")
@@ -73,7 +75,7 @@ class GpuPathTracer(GLResource):
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, budget: int = BUDGET,
                  accel: str = "auto", sampler: str = "pcg", mis: bool = True,
-                 coherent: bool | tuple[int, int] = False):
+                 coherent: bool | tuple[int, int] = False, storage: bool | None = None):
         from ..renderer import check_fits
 
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
@@ -96,8 +98,15 @@ class GpuPathTracer(GLResource):
             defines += ("SMOOTH_NORMALS",)
         if n_compiled:
             defines += _flat_defines(data[first:first + 3 * n_compiled])
+        #: whether the hierarchy's walk reads storage buffers (else texel fetches)
+        self.storage = False
         if self.accel != "flat" and self.layout["nodes"]:
             defines += ("HIERARCHY",)
+            have = context.ctx.version_code >= 430
+            self.storage = have if storage is None else bool(storage)
+            if self.storage and not have:
+                context.require(430, "storage=True needs", "leave storage at None")
+            defines += ("GLSL_430", "STORAGE_WALK") if self.storage else ()
         defines += ("LOW_DISCREPANCY",) if sampler == "sobol" else ()
         if 0 < len(scene.emitters) <= self.EMITTERS_COMPILED:
             defines += (_emitter_pick(data, self.layout),)
@@ -138,6 +147,9 @@ class GpuPathTracer(GLResource):
         self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4, tree.tobytes(),
                                            dtype="u4"))
         self._bvh.filter = (0x2600, 0x2600)  # (NEAREST: a texel read whole)
+        if self.storage:  # (the walk's nodes and triangles: the table's bytes, as buffers)
+            self._walk = (self._keep(ctx.buffer(tree.tobytes())),
+                          self._keep(ctx.buffer(np.ascontiguousarray(data, "f4").tobytes())))
         # two sets of the seven targets, read and written in turn
         size = (self.width, self.height)
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
@@ -232,6 +244,9 @@ class GpuPathTracer(GLResource):
             self._csg.use(location=_CSG)
         self.texture.use(location=_DATA)
         self._bvh.use(location=_BVH)
+        if self.storage:
+            for binding, buffer in enumerate(self._walk):
+                buffer.bind_to_storage_buffer(binding)
         if self._rays is not None:
             self._rays.use(location=_RAYS)
         ctx.viewport = (0, 0, self.width, self.height)

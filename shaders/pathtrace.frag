@@ -8,7 +8,9 @@
 // depends on how samples are grouped into passes. Finished samples add to three targets:
 // their values' sum and count, their squares' sum (for a per-pixel variance) and first hits
 // on an emitter, and camera rays that hit anything with the bounces that came near the
-// driver's limit (counted, never hidden). Targets are read and written in turn (ping-pong).
+// driver's limit (counted, never hidden). Targets are read and written in turn (ping-pong),
+// and hold the image in blocks (pixel_blocks.glsl: every llvmpipe thread gets a share of
+// the whole image's work).
 // Values are in radiosity units (pi x radiance): a diffuse surface shows its radiosity B.
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
@@ -102,6 +104,7 @@ layout(location = 6) out vec4 out_hit;     // camera rays that hit, bounces near
 #include "random.glsl"
 #include "rays.glsl"
 #include "data.glsl"
+#include "pixel_blocks.glsl"
 
 // The random numbers a path's vertex draws: three for next-event estimation (which
 // emitter, then where on it: part 0) and three for the bounce (which lobe, then the
@@ -530,8 +533,15 @@ Path start(uvec2 pixel, uint k) {
 #define NEAR_LIMIT 60000
 
 void main() {
-    ivec2 at = ivec2(gl_FragCoord.xy);
-    uvec2 pixel = uvec2(at);
+    ivec2 at = ivec2(gl_FragCoord.xy);  // (the targets' pixel, holding image pixel ``pixel``)
+    ivec2 image = image_of(at);
+    if (image.x >= int(u_size.x) || image.y >= int(u_size.y)) {
+        // (past the image: no path, and finished, so no pass waits for it)
+        out_state0 = out_state1 = out_state2 = out_state3 = out_square = out_hit = vec4(0.0);
+        out_sum = vec4(0.0, 0.0, 0.0, u_target);
+        return;
+    }
+    uvec2 pixel = uvec2(image);
     vec4 s0 = texelFetch(u_state0, at, 0), s1 = texelFetch(u_state1, at, 0);
     vec4 s2 = texelFetch(u_state2, at, 0), s3 = texelFetch(u_state3, at, 0);
     vec4 sum = texelFetch(u_acc0, at, 0), square = texelFetch(u_acc1, at, 0);

@@ -135,6 +135,48 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
         assert abs(a.mean() - b.mean()) <= 1e-3 * a.mean(), other
 
 
+def test_the_targets_hold_every_pixel_once():
+    """The image in 8x8 blocks, 64 a target row (or more for a huge one): every image
+    pixel has its own target pixel, inside the targets, at any size."""
+    from glshade.render.passes.pathtrace import _layout
+
+    for w, h in [(1, 1), (7, 9), (128, 128), (96, 96), (513, 3), (3, 700), (4096, 4096),
+                 (9000, 20)]:
+        (tw, th), blocks = _layout(w, h, GpuPathTracer.LAYOUT_BLOCKS)
+        n = -(-w // 8) * -(-h // 8)  # (the image's blocks: no more than one target row
+        assert tw <= 8192 and th <= 8192 and tw * th < 64 * (n + blocks[1])  # of waste)
+        tracer = GpuPathTracer.__new__(GpuPathTracer)  # (the placement alone: no GL)
+        tracer.width, tracer.height, tracer._blocks = w, h, blocks
+        y, x = tracer._place()
+        assert (x >= 0).all() and (x < tw).all() and (y >= 0).all() and (y < th).all()
+        assert len(np.unique(y * tw + x)) == w * h
+
+
+@settings(max_examples=16)
+@given(w=st.integers(1, 90), h=st.integers(1, 90), shift=st.integers(0, 6))
+@example(w=128, h=128, shift=0)
+@example(w=513, h=2, shift=3)
+def test_each_pixel_shows_its_own_ray(gl_context, w, h, shift):
+    """Given rays, a pattern of pixels looks at an emitting square (E = 2, black, nothing
+    else lit) and the rest into the void: the picture is the pattern, exactly -- so a
+    pixel's path is traced where the tracer keeps it and read back to its own place."""
+    scene = Scene(ambient=(0, 0, 0))
+    scene.add(primitives.plane(8.0), Material(color=(1, 1, 1), kd=0.0, ks=0.0,
+                                              emission=(2.0, 2.0, 2.0)),
+              translation=(0.0, 0.0, -1.0))
+    y, x = np.mgrid[0:h, 0:w]
+    pattern = (7 * x + 3 * y + shift) % 5 == 0  # (top row first, as read gives it)
+    rays = np.zeros((h, w, 2, 3))
+    rays[..., 1, 2] = np.where(pattern, -1.0, 1.0)
+    with GpuPathTracer(gl_context, TraceScene.from_scene(scene), w, h, rays=rays[::-1],
+                       max_depth=1) as tracer:
+        tracer.run(None, 1)
+        total = tracer.read()[0]
+    assert (total[..., 3] == 1).all()
+    np.testing.assert_array_equal(total[..., :3], np.where(pattern, 2.0, 0.0)[..., None]
+                                  * np.ones(3))
+
+
 @pytest.mark.parametrize("accel", ["bvh", "hybrid"])
 def test_the_walk_reads_storage_buffers_and_textures_alike(gl_context, accel):
     """The hierarchy's walk from storage buffers (GL 4.3) or from texel fetches (GL 3.3's

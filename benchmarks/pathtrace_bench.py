@@ -8,14 +8,17 @@ low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer
 once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
 and kd-tree: built before the clock, as a user's second render finds them). Error: RMS over pixels
 of the difference from a long glshade render (``--reference-spp``, Sobol, another seed),
-relative to the reference's mean; time to 1% by the 1/sqrt(N) law from the error measured
-at ``--spp`` samples (for a low-discrepancy sampler, whose error falls faster at first, an
-upper bound).
+relative to the reference's mean. Time to 1%: the samples a pixel that leave 1% RMS error
+at the measured paths a second -- for independent samples by the 1/sqrt(N) law from the
+error at ``--spp``; for a low-discrepancy sampler, whose error falls faster, its error
+measured again at ``--ld-spp`` (256 and 1,024) and the count read off the log-log line
+through the points that bracket 1% (or the last two).
 
 Samples a pixel default to 64, a power of 4: Mitsuba's ``ldsampler`` draws what it is asked
 for, so every tracer's error is measured at the same count (asked for 32, it draws 64).
 
-Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 64] [--rounds 3]``.
+Run: ``.venv/bin/python benchmarks/pathtrace_bench.py [--sizes 128] [--spp 64] [--rounds 3]
+[--reference-spp 16384] [--ld-spp 256,1024]``.
 """
 
 from __future__ import annotations
@@ -123,6 +126,7 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
                                 context=ctx, progress=False, seed=99,
                                 sampler="sobol").image
     series: dict = {}
+    at: dict = {}  # (for a low-discrepancy tracer: its picture at a given count)
     for accel, sampler, coherent in (("bvh", "pcg", False), ("flat", "pcg", False),
                                      ("auto", "pcg", False), ("auto", "sobol", False),
                                      ("auto", "pcg", True), ("auto", "sobol", True)):
@@ -132,6 +136,8 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
                                                 sampler=sampler, coherent=coherent))
         key = f"glshade {accel} {sampler}" + (" coherent" if coherent else "")
         series[key] = lambda t=tracer: _glshade(t, camera, args.spp)
+        if sampler == "sobol" and not coherent:
+            at[key] = lambda n, t=tracer: _glshade(t, camera, n)
     for variant in mitsuba_variants():
         # its default sampler, and its low-discrepancy one (as glshade's sobol is)
         for sampler in ("independent", "ldsampler"):
@@ -142,6 +148,9 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
                 print(f"{variant}: not usable here ({type(exc).__name__})")
                 break
             series[f"Mitsuba {variant} {sampler}"] = render
+            if sampler == "ldsampler":
+                at[f"Mitsuba {variant} {sampler}"] = lambda n, v=variant: mitsuba_series(
+                    v, ts, size, n, folder, "ldsampler")()
     for fn in series.values():
         fn()  # (compiled once before the clock)
     seconds: dict = {k: [] for k in series}
@@ -152,20 +161,41 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
             image = fn()
             seconds[key].append(time.perf_counter() - t)
             errors[key] = rms(np.asarray(image)[..., :3], reference[..., :3])
-    for key in series:
-        if key.endswith(" coherent"):
-            # a coherent picture's pixels are drawn as its twin's are, so its expected error
-            # is the twin's; its own RMS is not a fair sample of it (a block's errors come
-            # eight at a time: more often under the expectation, now and then well over)
-            errors[key] = errors[key.removesuffix(" coherent")]
+    # a low-discrepancy sampler's error falls faster than 1 / sqrt(N): measured at more
+    # samples, not extrapolated
+    curves = {key: [(drawn_spp(key, args.spp), errors[key])] + [
+        (n, rms(np.asarray(fn(n))[..., :3], reference[..., :3])) for n in args.ld_spp]
+        for key, fn in at.items()}
     rows = []
     for key in series:
+        # a coherent picture's pixels are drawn as its twin's are, so its expected error
+        # is the twin's; its own RMS is not a fair sample of it (a block's errors come
+        # eight at a time: more often under the expectation, now and then well over)
+        twin = key.removesuffix(" coherent")
+        curve = curves.get(twin, [(drawn_spp(key, args.spp), errors[twin])])
         s = statistics.median(seconds[key])
-        to_1 = s * (errors[key] / 0.01) ** 2
-        spp = drawn_spp(key, args.spp)
-        rows.append((name, f"{size}x{size}", key, f"{spp * size * size / s / 1e6:.2f}",
-                     f"{errors[key]:.2%}", f"{to_1:.0f}"))
+        rate = drawn_spp(key, args.spp) * size * size / s
+        to_1 = spp_at(curve, 0.01) * size * size / rate
+        rows.append((name, f"{size}x{size}", key, f"{rate / 1e6:.2f}",
+                     " / ".join(f"{e:.2%}" for _, e in curve), f"{spp_at(curve, 0.01):,.0f}",
+                     f"{to_1:.1f}"))
     return rows
+
+
+def spp_at(curve: list, error: float) -> float:
+    """The samples a pixel at which the RMS error reaches ``error``: ``curve`` (samples,
+    error) pairs, rising samples; between the two measured points that bracket it on a
+    log-log line, else from the last two (one point: the 1 / sqrt(N) of independent
+    samples)."""
+    if len(curve) == 1:
+        n, e = curve[0]
+        return n * (e / error) ** 2
+    pairs = list(zip(curve, curve[1:]))
+    (n0, e0), (n1, e1) = next(((a, b) for a, b in pairs if b[1] <= error), pairs[-1])
+    slope = math.log(e1 / e0) / math.log(n1 / n0)  # (error ~ N^slope, slope < 0)
+    if slope >= 0:  # (no fall measured: the reference's own error, or noise)
+        return float("inf")
+    return n0 * (error / e0) ** (1 / slope)
 
 
 def _glshade(tracer, camera, spp: int) -> np.ndarray:
@@ -180,8 +210,11 @@ def main() -> None:
     ap.add_argument("--sizes", default="128")
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--rounds", type=int, default=3)
-    ap.add_argument("--reference-spp", type=int, default=2048)
+    ap.add_argument("--reference-spp", type=int, default=16384)
+    ap.add_argument("--ld-spp", default="256,1024", help="the counts at which the "
+                    "low-discrepancy tracers' error is measured besides --spp")
     args = ap.parse_args()
+    args.ld_spp = [int(n) for n in args.ld_spp.split(",") if n]
     found, camera = scenes()
     rows = []
     with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder, \
@@ -191,9 +224,13 @@ def main() -> None:
                 rows += run(name, scene, camera, size, args, ctx, folder, stack)
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
-          f"glshade at {args.reference_spp} spp (Sobol, another seed); time to 1% = seconds x "
-          "(error / 1%)^2; a coherent tracer's error is its twin's (the same in expectation)")
-    print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "s to 1%")))
+          f"glshade at {args.reference_spp} spp (Sobol, another seed), at {args.spp} spp and, "
+          f"for a low-discrepancy sampler, at {', '.join(map(str, args.ld_spp))}; samples to 1%: "
+          "independent samples by 1 / sqrt(N), low-discrepancy ones on the measured log-log "
+          "line; seconds to 1% = those samples at the measured paths a second; a coherent "
+          "tracer's errors are its twin's (the same in expectation)")
+    print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "spp to 1%",
+                       "s to 1%")))
     usable = mitsuba_variants()
     if not usable:
         print("Mitsuba 3 not installed (pip install mitsuba)")

@@ -2,7 +2,8 @@
 box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
 samplers (independent PCG numbers, Owen-scrambled Sobol points; each pixel its own or,
-``coherent``, blocks of 4x2 sharing them) and Mitsuba's
+``coherent``, blocks of 4x2 sharing them; with the radiosity control variate where the
+scene's radiosity is quick to solve) and Mitsuba's
 ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
 low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer is made
 once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
@@ -45,6 +46,7 @@ from glshade import pathtrace  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.pathtrace import PathTracer, TraceScene  # noqa: E402
 from glshade.radiosity import cornell_scene  # noqa: E402
+from glshade.radiosity.control import radiosity_control  # noqa: E402
 from glshade.radiosity.cornell import CORNELL_CAMERA  # noqa: E402
 from glshade.render.context import create_context  # noqa: E402
 from glshade.render.passes.pathtrace import GpuPathTracer  # noqa: E402
@@ -127,14 +129,25 @@ def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
                                 sampler="sobol").image
     series: dict = {}
     at: dict = {}  # (for a low-discrepancy tracer: its picture at a given count)
-    for accel, sampler, coherent in (("bvh", "pcg", False), ("flat", "pcg", False),
-                                     ("auto", "pcg", False), ("auto", "sobol", False),
-                                     ("auto", "pcg", True), ("auto", "sobol", True)):
+    control = None
+    if len(ts.triangles) <= args.control_limit:  # (the scene's radiosity: solved once)
+        t = time.perf_counter()
+        control = radiosity_control(scene, context=ctx)
+        print(f"{name}: radiosity control values in {time.perf_counter() - t:.1f} s")
+    for accel, sampler, coherent, ctl in (
+            ("bvh", "pcg", False, False), ("flat", "pcg", False, False),
+            ("auto", "pcg", False, False), ("auto", "sobol", False, False),
+            ("auto", "pcg", True, False), ("auto", "sobol", True, False),
+            ("auto", "sobol", False, True)):
         if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
             continue  # (too many to compile in)
+        if ctl and control is None:
+            continue  # (radiosity of the large mesh: too slow to solve here)
         tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
-                                                sampler=sampler, coherent=coherent))
-        key = f"glshade {accel} {sampler}" + (" coherent" if coherent else "")
+                                                sampler=sampler, coherent=coherent,
+                                                control=control if ctl else None))
+        key = f"glshade {accel} {sampler}" + (" coherent" if coherent else "") + (
+            " control" if ctl else "")
         series[key] = lambda t=tracer: _glshade(t, camera, args.spp)
         if sampler == "sobol" and not coherent:
             at[key] = lambda n, t=tracer: _glshade(t, camera, n)
@@ -211,6 +224,9 @@ def main() -> None:
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--reference-spp", type=int, default=16384)
+    ap.add_argument("--scenes", default="cornell,large", help="which: cornell, large")
+    ap.add_argument("--control-limit", type=int, default=1000, help="triangles up to which "
+                    "a scene's radiosity is solved for the control variate")
     ap.add_argument("--ld-spp", default="256,1024", help="the counts at which the "
                     "low-discrepancy tracers' error is measured besides --spp")
     args = ap.parse_args()
@@ -220,7 +236,9 @@ def main() -> None:
     with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder, \
             contextlib.ExitStack() as stack:
         for size in (int(x) for x in args.sizes.split(",")):
-            for name, scene in found.items():
+            for (name, scene), short in zip(found.items(), ("cornell", "large")):
+                if short not in args.scenes.split(","):
+                    continue
                 rows += run(name, scene, camera, size, args, ctx, folder, stack)
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "

@@ -20,7 +20,8 @@
 //     two children packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the
 //     root's, rounded outwards, then index << 4 | count); an inner child (count 0) has its own
 //     texels at 2 index, a leaf triangles [index, index + count); u_root the root, packed.
-//   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, -), (v2 - v0, -);
+//   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, model as int
+//     bits), (v2 - v0, -);
 //     the first FLAT_TRIANGLES also compiled into the program (tested without the BVH)
 //   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
 //   emitters at u_emit, 1 texel each: (cdf, triangle as int bits, area, -)
@@ -394,6 +395,11 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
     return sum;
 }
 
+int g_model;  // the model of the vertex being made (-1: the CSG solid)
+#ifdef CONTROL
+uniform vec3 u_control[CONTROL];  // each model's control value (radiosity units)
+#endif
+
 // One path's state between bounces (see the header).
 struct Path {
     vec3 o, d, beta, value;
@@ -420,14 +426,16 @@ bool bounce(inout Path p) {
     bool on_solid = k <= -2;
     if (on_solid) {
         m = u_csg_material;
+        g_model = -1;
         ng = normalize(csg_normal(-2 - k, x));
     } else
 #endif
     {
-        vec4 p0 = fetch(u_tris + 3 * k);
-        vec3 e1 = fetch(u_tris + 3 * k + 1).xyz, e2 = fetch(u_tris + 3 * k + 2).xyz;
+        vec4 p0 = fetch(u_tris + 3 * k), e1 = fetch(u_tris + 3 * k + 1);
+        vec3 e2 = fetch(u_tris + 3 * k + 2).xyz;
         m = floatBitsToInt(p0.w);
-        ng = normalize(cross(e1, e2));
+        g_model = floatBitsToInt(e1.w);
+        ng = normalize(cross(e1.xyz, e2));
     }
     vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
     if (p.bounces == 0 && dot(ng, p.d) < 0.0) {
@@ -496,8 +504,19 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
         // continue with the throughput's chance (the weight then stays near 1: in a grey
         // room of reflectance rho a path goes on with probability rho), at most RR_CAP
         float q = min(max(p.beta.x, max(p.beta.y, p.beta.z)), RR_CAP);
+#ifdef CONTROL
+        // the radiosity control variate (pathtrace/control.py): c, what the continuation
+        // is expected to bring, added whether the path goes on or not; a path that goes on
+        // then brings the rest less c, weighted 1 / q -- the same expectation
+        vec3 c = g_model >= 0 ? u_control[g_model] : vec3(0.0);
+        p.value += p.beta * c;
         if (rand() >= q) return false;
         p.beta /= q;
+        p.value -= p.beta * c;
+#else
+        if (rand() >= q) return false;
+        p.beta /= q;
+#endif
     }
     p.o = xo;
     p.d = wi;

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from glshade.pathtrace import TraceScene, trace
+from glshade.radiosity.control import radiosity_control
 from glshade.radiosity.cornell import CORNELL_CAMERA, cornell_scene
 
 from ..conftest import require
@@ -22,14 +23,17 @@ def mitsubas(tmp_path_factory):
                                 tmp_path_factory.mktemp("mitsuba"), seed=3)
 
 
-@pytest.mark.parametrize("accel, sampler, coherent", [
-    ("auto", "pcg", False), ("bvh", "sobol", False), ("auto", "sobol", True)])
-def test_the_cornell_box_agrees_with_mitsuba(gl_context, mitsubas, accel, sampler, coherent):
-    """The default tracer, the hierarchy with Sobol points, and blocks of pixels sharing
-    their numbers."""
+@pytest.mark.parametrize("accel, sampler, coherent, control", [
+    ("auto", "pcg", False, False), ("bvh", "sobol", False, False),
+    ("auto", "sobol", True, False), ("auto", "sobol", False, True)])
+def test_the_cornell_box_agrees_with_mitsuba(gl_context, mitsubas, accel, sampler, coherent,
+                                             control):
+    """The default tracer, the hierarchy with Sobol points, blocks of pixels sharing their
+    numbers, and the radiosity control variate."""
     scene, camera = cornell_scene()
+    values = radiosity_control(scene, context=gl_context) if control else None
     ours = trace(scene, camera, (64, 64), spp=256, seed=3, context=gl_context, progress=False,
-                 accel=accel, sampler=sampler, coherent=coherent)
+                 accel=accel, sampler=sampler, coherent=coherent, control=values)
     theirs = mitsubas
     # (pixels that see the light are left out: a pixel half on the light is E = 17 or 0 by
     # where its sample lands, and those few pixels would decide the means)

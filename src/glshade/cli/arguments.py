@@ -150,6 +150,7 @@ class PathtraceArgs(RenderArgs):
     no_lights: bool = False
     sampler: str = "pcg"
     coherent: bool = False
+    control: bool = False
     no_mis: bool = False
     quiet: bool = False
 

@@ -366,6 +366,9 @@ def add_pathtrace(sub) -> None:
     p.add_argument("--coherent", action="store_true", help="blocks of 4x2 pixels draw the "
                    "same random numbers, so their rays run together (faster on a large mesh; "
                    "each pixel as noisy, the noise in blocks)")
+    p.add_argument("--control", action="store_true", help="solve the scene's radiosity "
+                   "and use each model's indirect irradiance as a control variate at Russian "
+                   "roulette (unbiased; less error where light bounces a lot)")
     p.add_argument("--no-mis", action="store_true", help="count emission found by a "
                    "bounce only at the first vertex (next-event estimation alone after it), "
                    "not weighed against next-event estimation by multiple importance "

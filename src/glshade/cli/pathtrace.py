@@ -38,10 +38,15 @@ def pathtrace(args: PathtraceArgs) -> int:
     except InputError as exc:  # (say which scene: the message names a model or a value)
         raise UsageError(f"{args.scene}: {exc}") from None
     spp = None if args.until is not None else (args.spp or 64)
+    control = None
+    if args.control:  # (the scene's radiosity, solved once: the models' control values)
+        from ..radiosity.control import radiosity_control
+
+        control = radiosity_control(job.scene, backend=args.backend.value)
     result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
                       max_depth=args.max_depth, backend=args.backend.value,
                       progress=False if args.quiet else None, sampler=args.sampler,
-                      mis=not args.no_mis, coherent=args.coherent)
+                      mis=not args.no_mis, coherent=args.coherent, control=control)
     if result.interrupted and not result.samples:  # (nothing traced: nothing to keep)
         print("glshade: interrupted before the first sample; nothing written",
               file=sys.stderr)
@@ -64,7 +69,7 @@ def pathtrace(args: PathtraceArgs) -> int:
     said = f"{error:.2%}" if np.isfinite(error) else "none (nothing lit)"
     line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
             f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s, {args.sampler}"
-            f"{', coherent' if args.coherent else ''}), "
+            f"{', coherent' if args.coherent else ''}{', control' if args.control else ''}), "
             f"relative error "
             f"{said}, exposure {exposure:.4g} -> {args.output}")
     if result.interrupted:

@@ -50,6 +50,7 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     tris[0::3, :3] = tri[:, 0]
     tris[0::3, 3] = _bits(scene.material[order])
     tris[1::3, :3] = tri[:, 1] - tri[:, 0]
+    tris[1::3, 3] = _bits(scene.model[order])  # (its model: a control variate's value)
     tris[2::3, :3] = tri[:, 2] - tri[:, 0]
     m = scene.materials
     mats = np.zeros((2 * len(m), 4), np.float32)

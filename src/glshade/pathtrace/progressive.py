@@ -98,7 +98,8 @@ class PathTracer:
     def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int | None = None,
                  context=None, backend: str = "auto", lights: bool = True, camera=None,
                  smooth: bool = False, accel: str = "auto", sampler: str = "pcg",
-                 mis: bool = True, coherent: bool | tuple[int, int] = False):
+                 mis: bool = True, coherent: bool | tuple[int, int] = False,
+                 control: np.ndarray | None = None):
         from ..render.context import create_context
         from ..render.passes.pathtrace import GpuPathTracer
 
@@ -118,7 +119,7 @@ class PathTracer:
         try:
             self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h,
                                      max_depth=max_depth, accel=accel, sampler=sampler,
-                                     mis=mis, coherent=coherent)
+                                     mis=mis, coherent=coherent, control=control)
         except BaseException:
             self.close()
             raise
@@ -195,7 +196,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
           max_depth: int | None = None, samples_per_pass: int | None = None,
           backend: str = "auto", context=None, lights: bool = True,
           progress=None, accel: str = "auto", sampler: str = "pcg",
-          mis: bool = True, coherent: bool | tuple[int, int] = False) -> PathTraced:
+          mis: bool = True, coherent: bool | tuple[int, int] = False,
+          control: np.ndarray | None = None) -> PathTraced:
     """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
     exactly ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
     :func:`relative_error`; checked after each doubling, at most ``max_samples``).
@@ -215,7 +217,11 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     sampling (False: next-event estimation alone after the first vertex); ``coherent``:
     blocks of pixels (True: 4x2, or a (width, height)) draw the same random numbers, so
     their rays run together on SIMD hardware (1.3-1.5x on a large mesh on llvmpipe): each
-    pixel's estimate as unbiased and as noisy, the block's errors correlated."""
+    pixel's estimate as unbiased and as noisy, the block's errors correlated; ``control``:
+    ``(M, 3)`` a value for each model, a control variate at Russian roulette -- each
+    model's indirect irradiance from its radiosity, ``control=radiosity_control(scene)``
+    (:mod:`glshade.radiosity.control`: unbiased whatever the values, less error the nearer
+    they are to what a path's continuation brings)."""
     from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress
@@ -239,7 +245,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
         per_pass = check_whole("samples_per_pass", samples_per_pass, 1)
     with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, context=context,
                     backend=backend, lights=lights, accel=accel, sampler=sampler,
-                    mis=mis, coherent=coherent) as tracer:
+                    mis=mis, coherent=coherent, control=control) as tracer:
         history: list = []
         interrupted = False
         try:

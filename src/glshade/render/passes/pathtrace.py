@@ -45,7 +45,9 @@ class GpuPathTracer(GLResource):
     hierarchy's walk), each pixel's estimate as unbiased and as noisy, but the block's
     errors correlate (noise in blocks). ``storage``: the hierarchy's walk reads storage
     buffers (None: where the GL has them, 4.3; False: texel fetches, as on GL 3.3 -- the
-    same picture to the byte)."""
+    same picture to the byte). ``control``: ``(M, 3)`` a control value for each of the
+    scene's models (:func:`glshade.radiosity.control.radiosity_control`), used at Russian
+    roulette (None: none)."""
 
     SAMPLERS = ("pcg", "sobol")
     ACCELS = ("auto", "bvh", "flat", "hybrid")
@@ -81,7 +83,8 @@ class GpuPathTracer(GLResource):
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, budget: int = BUDGET,
                  accel: str = "auto", sampler: str = "pcg", mis: bool = True,
-                 coherent: bool | tuple[int, int] = False, storage: bool | None = None):
+                 coherent: bool | tuple[int, int] = False, storage: bool | None = None,
+                 control: np.ndarray | None = None):
         from ..renderer import check_fits
 
         self.width, self.height = int(width), int(height)
@@ -96,7 +99,7 @@ class GpuPathTracer(GLResource):
         self._shaders = shaders or self._keep(ShaderLibrary(context))
         compiled = self._choose(accel, sampler, scene)
         data, self.layout = scene.tables(compiled if self.accel == "hybrid" else None)
-        defines = self._defines(context, data, storage, coherent, mis)
+        defines = self._defines(context, data, storage, coherent, mis, control)
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]
@@ -142,9 +145,10 @@ class GpuPathTracer(GLResource):
         self.samples = 0
         self.reset()
 
-    def _defines(self, context, data: np.ndarray, storage, coherent, mis) -> tuple[str, ...]:
+    def _defines(self, context, data: np.ndarray, storage, coherent, mis,
+                 control) -> tuple[str, ...]:
         """The program's defines for this scene, its tables ``data`` and the options (sets
-        :attr:`storage`, :attr:`mis` and :attr:`tile`)."""
+        :attr:`storage`, :attr:`mis`, :attr:`tile` and the control values)."""
         # (the triangles compiled in: the table's first rows -- all of them, or the small
         # models' -- and the hierarchy for the rest)
         n_compiled = {"flat": len(self.scene.triangles), "hybrid": self.layout["compiled"]}.get(
@@ -178,6 +182,9 @@ class GpuPathTracer(GLResource):
         self.tile = _tile(coherent, self.TILE)
         if self.tile != (1, 1):
             defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*self.tile),)
+        self._control = _control(control, len(self.scene.names))
+        if self._control is not None:
+            defines += (f"CONTROL {len(self._control)}",)
         return defines
 
     def _choose(self, accel: str, sampler: str, scene) -> np.ndarray | None:
@@ -225,6 +232,8 @@ class GpuPathTracer(GLResource):
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
         if self._csg is not None:
             values.update(self._csg_values)
+        if self._control is not None:
+            values["u_control"] = self._control
         lights = self.scene.lights
         if len(lights):  # (arrays of LIGHTS entries: kind and position, irradiance, falloff)
             pos = np.ascontiguousarray(lights[:, [1, 2, 3, 0]], np.float32)
@@ -348,6 +357,28 @@ def _layout(width: int, height: int, per_row: int) -> tuple[tuple[int, int], tup
     per_row = max(per_row, -(-n // 1024))  # (at most 1,024 rows of blocks)
     per_row = min(per_row, n)
     return (8 * per_row, 8 * -(-n // per_row)), (nbx, per_row)
+
+
+#: the most models a control variate covers (its values are a uniform array)
+MAX_CONTROL_MODELS = 256
+
+
+def _control(values, models: int) -> np.ndarray | None:
+    """``values`` (M, 3) as the program's ``u_control`` (float32, one row a model, zeros
+    past M), or None; refused unless finite, at least 0 and at most one a model."""
+    if values is None:
+        return None
+    a = np.asarray(values, np.float64)
+    if a.ndim != 2 or a.shape[1] != 3 or len(a) > models or not np.isfinite(a).all() \
+            or (a < 0).any():
+        raise OptionError(f"control must be finite values >= 0, (M, 3) for at most the "
+                          f"scene's {models} models, got shape {a.shape}")
+    if models > MAX_CONTROL_MODELS:
+        raise OptionError(f"a control variate covers at most {MAX_CONTROL_MODELS} models, the "
+                          f"scene has {models}")
+    out = np.zeros((models, 3), np.float32)
+    out[:len(a)] = a
+    return out
 
 
 def _tile(coherent, default: tuple[int, int]) -> tuple[int, int]:

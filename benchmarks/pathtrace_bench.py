@@ -2,8 +2,8 @@
 box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
 samplers (independent PCG numbers, Owen-scrambled Sobol points; each pixel its own or,
-``coherent``, blocks of 4x2 sharing them; with the radiosity control variate where the
-scene's radiosity is quick to solve) and Mitsuba's
+``coherent``, blocks of 4x2 sharing them; with the radiosity control variate, whose values
+for the large scene come from the box with a 320-triangle sphere) and Mitsuba's
 ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
 low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer is made
 once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
@@ -53,11 +53,12 @@ from glshade.render.passes.pathtrace import GpuPathTracer  # noqa: E402
 from glshade.scene import Material  # noqa: E402
 
 
-def scenes() -> dict:
-    """The Cornell box (32 triangles), and the box holding a sphere of 81,920 triangles."""
+def scenes(level: int = 6) -> dict:
+    """The Cornell box (32 triangles), and the box holding a sphere of 81,920 triangles
+    (``level``: the sphere's subdivisions, 6)."""
     small, camera = cornell_scene()
     large, _ = cornell_scene()
-    large.add(primitives.icosphere(6), Material(color=(0.75, 0.75, 0.75), kd=0.9, ks=0.0),
+    large.add(primitives.icosphere(level), Material(color=(0.75, 0.75, 0.75), kd=0.9, ks=0.0),
               scale=110.0, translation=(280.0, 115.0, 280.0))
     return {"cornell (32 tris)": small, "cornell + sphere (81,952 tris)": large}, camera
 
@@ -121,33 +122,33 @@ def drawn_spp(tracer: str, spp: int) -> int:
     return spp
 
 
-def run(name, scene, camera, size, args, ctx, folder, stack) -> list:
-    """One scene at one size: each tracer's paths a second and time to 1%."""
+def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
+    """One scene at one size: each tracer's paths a second and time to 1% (``proxy``: the
+    scene whose radiosity gives the control values)."""
     ts = TraceScene.from_scene(scene)
     reference = pathtrace.trace(ts, camera, (size, size), spp=args.reference_spp,
                                 context=ctx, progress=False, seed=99,
                                 sampler="sobol").image
     series: dict = {}
     at: dict = {}  # (for a low-discrepancy tracer: its picture at a given count)
-    control = None
-    if len(ts.triangles) <= args.control_limit:  # (the scene's radiosity: solved once)
-        t = time.perf_counter()
-        control = radiosity_control(scene, context=ctx)
-        print(f"{name}: radiosity control values in {time.perf_counter() - t:.1f} s")
+    # the control variate's values, one a model, from the scene's radiosity (solved once);
+    # the large sphere is too many patches to solve here, so its scene's come from the same
+    # box with a 320-triangle sphere in its place (any values leave the answer unbiased)
+    t = time.perf_counter()
+    control = radiosity_control(proxy, context=ctx)
+    print(f"{name}: radiosity control values in {time.perf_counter() - t:.1f} s")
     for accel, sampler, coherent, ctl in (
             ("bvh", "pcg", False, False), ("flat", "pcg", False, False),
             ("auto", "pcg", False, False), ("auto", "sobol", False, False),
             ("auto", "pcg", True, False), ("auto", "sobol", True, False),
-            ("auto", "sobol", False, True)):
+            ("auto", "sobol", False, True), ("auto", "sobol", True, True)):
         if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
             continue  # (too many to compile in)
-        if ctl and control is None:
-            continue  # (radiosity of the large mesh: too slow to solve here)
         tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
                                                 sampler=sampler, coherent=coherent,
                                                 control=control if ctl else None))
-        key = f"glshade {accel} {sampler}" + (" coherent" if coherent else "") + (
-            " control" if ctl else "")
+        key = f"glshade {accel} {sampler}" + (" control" if ctl else "") + (
+            " coherent" if coherent else "")
         series[key] = lambda t=tracer: _glshade(t, camera, args.spp)
         if sampler == "sobol" and not coherent:
             at[key] = lambda n, t=tracer: _glshade(t, camera, n)
@@ -225,21 +226,21 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--reference-spp", type=int, default=16384)
     ap.add_argument("--scenes", default="cornell,large", help="which: cornell, large")
-    ap.add_argument("--control-limit", type=int, default=1000, help="triangles up to which "
-                    "a scene's radiosity is solved for the control variate")
     ap.add_argument("--ld-spp", default="256,1024", help="the counts at which the "
                     "low-discrepancy tracers' error is measured besides --spp")
     args = ap.parse_args()
     args.ld_spp = [int(n) for n in args.ld_spp.split(",") if n]
     found, camera = scenes()
+    proxies, _ = scenes(level=2)
     rows = []
     with create_context("egl") as ctx, tempfile.TemporaryDirectory() as folder, \
             contextlib.ExitStack() as stack:
         for size in (int(x) for x in args.sizes.split(",")):
-            for (name, scene), short in zip(found.items(), ("cornell", "large")):
+            for (name, scene), proxy, short in zip(found.items(), proxies.values(),
+                                                   ("cornell", "large")):
                 if short not in args.scenes.split(","):
                     continue
-                rows += run(name, scene, camera, size, args, ctx, folder, stack)
+                rows += run(name, scene, proxy, camera, size, args, ctx, folder, stack)
                 print(rows[-1], flush=True)
     print(f"\n{args.spp} spp, medians of {args.rounds} interleaved rounds; RMS error against "
           f"glshade at {args.reference_spp} spp (Sobol, another seed), at {args.spp} spp and, "

@@ -120,23 +120,24 @@ int g_vertex;   // the vertex being made (0: the camera ray's hit)
 #endif
 
 vec3 sample3(uint part) {
-    vec3 u = vec3(rand(), rand(), rand());
 #ifdef LOW_DISCREPANCY
     if (g_vertex < SOBOL_VERTICES) {
+        skip(3u);  // (the stream moves on as if it had drawn them)
         uint base = 1u + 2u * (2u * uint(g_vertex) + part);
-        u = vec3(sobol_pair(g_sample, base + 1u).x, sobol_pair(g_sample, base));
+        return vec3(sobol_pair(g_sample, base + 1u).x, sobol_pair(g_sample, base));
     }
 #endif
-    return u;
+    return vec3(rand(), rand(), rand());
 }
 
 // the camera ray's place in its pixel (Sobol's pair 0 where LOW_DISCREPANCY)
 vec2 jitter() {
-    vec2 u = vec2(rand(), rand());
 #ifdef LOW_DISCREPANCY
-    u = sobol_pair(g_sample, 0u);
+    skip(2u);
+    return sobol_pair(g_sample, 0u);
+#else
+    return vec2(rand(), rand());
 #endif
-    return u;
 }
 
 vec4 fetch(int i) {

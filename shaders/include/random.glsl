@@ -19,6 +19,16 @@ float rand() {
     return float(word >> 8u) * (1.0 / 16777216.0);
 }
 
+// the stream moved on by n (1, 2 or 3) numbers without drawing them: the LCG's steps
+// composed (a^n s + c (a^(n-1) + ... + 1), mod 2^32), what a low-discrepancy draw that
+// stands in for them costs the stream
+void skip(uint n) {
+    const uint A = 747796405u, C = 2891336453u;
+    uint a = n == 1u ? A : n == 2u ? A * A : A * A * A;
+    uint c = n == 1u ? C : n == 2u ? C * (A + 1u) : C * (A * A + A + 1u);
+    g_state = g_state * a + c;
+}
+
 #ifdef LOW_DISCREPANCY
 // Owen-scrambled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"): each
 // pair of dimensions a path uses is the first two Sobol dimensions, "padded" (each pair

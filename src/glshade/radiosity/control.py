@@ -10,9 +10,10 @@ estimation already took), from two radiosity solves -- the scene's, not the view
 for every camera. In a furnace of albedo 0.95 the pixels spread 10x less.
 
 Measured on the Cornell box (128², Sobol, 1,024 samples a pixel): 1.32% -> 1.21% RMS error
-at the same speed, 16% less time to 1%; a model-by-model ``c`` does as well as one per
-triangle. The values go to the tracer as ``trace(scene, control=radiosity_control(scene))``;
-the solves run on the GPU (:func:`glshade.radiosity.solve`)."""
+at the same speed, 12-15% less time to 1% (benchmarks/pathtrace_bench.py); a
+model-by-model ``c`` does as well as one per triangle. The values go to the tracer as
+``trace(scene, control=radiosity_control(scene))``; the solves run on the GPU
+(:func:`glshade.radiosity.solve`)."""
 
 from __future__ import annotations
 

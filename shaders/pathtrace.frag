@@ -15,11 +15,11 @@
 //
 // Scene data (one RGBA32F texture, DATA_WIDTH texels a row, read by texelFetch):
 //   HIERARCHY: the BVH in its own RGBA32UI texture (u_bvh; STORAGE_WALK: a storage buffer,
-//     walk_nodes, and the walk's triangles from the table's copy in another), 2 texels an
-//     inner node: its
-//     two children packed (geometry/bvh.py, packed_children: a box in 16-bit steps of the
-//     root's, rounded outwards, then index << 4 | count); an inner child (count 0) has its own
-//     texels at 2 index, a leaf triangles [index, index + count); u_root the root, packed.
+//     walk_nodes, and the walk's triangles from a copy of the table's in another,
+//     walk_rows), 2 texels an inner node: its two children packed (geometry/bvh.py,
+//     packed_children: a box in 16-bit steps of the root's, rounded outwards, then
+//     index << 4 | count); an inner child (count 0) has its own texels at 2 index, a leaf
+//     triangles [index, index + count); u_root the root, packed.
 //   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, model as int
 //     bits), (v2 - v0, -);
 //     the first FLAT_TRIANGLES also compiled into the program (tested without the BVH)
@@ -152,12 +152,12 @@ uvec4 bvh_texel(int i) {
 #endif
 }
 
-// a row of the table read by the hierarchy's walk (a leaf's triangles)
+// row i of the triangle table (u_tris + i of the whole), read by the hierarchy's walk
 vec4 walk_fetch(int i) {
 #ifdef STORAGE_WALK
     return walk_rows[i];
 #else
-    return fetch(i);
+    return fetch(u_tris + i);
 #endif
 }
 
@@ -199,8 +199,8 @@ void test_rows(int k, vec3 p0, vec3 e1, vec3 e2, vec3 o, vec3 d, inout float t_h
 
 // triangle k of the table (a hierarchy's leaf)
 void test_triangle(int k, vec3 o, vec3 d, inout float t_hit, inout int tri_hit) {
-    test_rows(k, walk_fetch(u_tris + 3 * k).xyz, walk_fetch(u_tris + 3 * k + 1).xyz,
-              walk_fetch(u_tris + 3 * k + 2).xyz, o, d, t_hit, tri_hit);
+    test_rows(k, walk_fetch(3 * k).xyz, walk_fetch(3 * k + 1).xyz, walk_fetch(3 * k + 2).xyz,
+              o, d, t_hit, tri_hit);
 }
 
 bool intersect(vec3 o, vec3 d, float t_max, bool any_hit, out float t_hit, out int tri_hit) {
@@ -506,17 +506,16 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
         // room of reflectance rho a path goes on with probability rho), at most RR_CAP
         float q = min(max(p.beta.x, max(p.beta.y, p.beta.z)), RR_CAP);
 #ifdef CONTROL
-        // the radiosity control variate (pathtrace/control.py): c, what the continuation
+        // the radiosity control variate (radiosity/control.py): c, what the continuation
         // is expected to bring, added whether the path goes on or not; a path that goes on
         // then brings the rest less c, weighted 1 / q -- the same expectation
         vec3 c = g_model >= 0 ? u_control[g_model] : vec3(0.0);
         p.value += p.beta * c;
+#endif
         if (rand() >= q) return false;
         p.beta /= q;
+#ifdef CONTROL
         p.value -= p.beta * c;
-#else
-        if (rand() >= q) return false;
-        p.beta /= q;
 #endif
     }
     p.o = xo;

@@ -124,12 +124,16 @@ class GpuPathTracer(GLResource):
         width = self.layout["width"]
         self.texture = self._keep(data_texture(ctx, data, width))
         tree = self.layout["hierarchy"]
-        self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4, tree.tobytes(),
-                                           dtype="u4"))
-        self._bvh.filter = (0x2600, 0x2600)  # (NEAREST: a texel read whole)
-        if self.storage:  # (the walk's nodes and triangles: the table's bytes, as buffers)
-            self._walk = (self._keep(ctx.buffer(tree.tobytes())),
-                          self._keep(ctx.buffer(np.ascontiguousarray(data, "f4").tobytes())))
+        if self.storage:  # (the walk's nodes, and the table's triangle rows, as buffers)
+            first, n = self.layout["u_tris"], 3 * len(scene.triangles)
+            self._walk = (self._keep(ctx.buffer(tree.tobytes())), self._keep(ctx.buffer(
+                np.ascontiguousarray(data[first:first + n], "f4").tobytes())))
+        else:  # (the walk's nodes as a texture; its triangles read from the table's)
+            self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4,
+                                               tree.tobytes(), dtype="u4"))
+            self._bvh.filter = (0x2600, 0x2600)  # (NEAREST: a texel read whole)
+        #: each image pixel's row and column in the targets (:meth:`_place`)
+        self._where = self._place()
         # two sets of the seven targets, read and written in turn
         size = self.target_size
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
@@ -268,10 +272,11 @@ class GpuPathTracer(GLResource):
         if self._csg is not None:
             self._csg.use(location=_CSG)
         self.texture.use(location=_DATA)
-        self._bvh.use(location=_BVH)
         if self.storage:
             for binding, buffer in enumerate(self._walk):
                 buffer.bind_to_storage_buffer(binding)
+        else:
+            self._bvh.use(location=_BVH)
         if self._rays is not None:
             self._rays.use(location=_RAYS)
         ctx.viewport = (0, 0, *self.target_size)
@@ -332,7 +337,7 @@ class GpuPathTracer(GLResource):
         came near the driver's loop limit (G)."""
         self._check()
         w, h = self.target_size
-        y, x = self._place()
+        y, x = self._where
         out = []
         for tex in self._targets[self._current][4:]:
             a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]

@@ -3,17 +3,19 @@ box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
 samplers (independent PCG numbers, Owen-scrambled Sobol points; each pixel its own or,
 ``coherent``, blocks of 4x2 sharing them; with the radiosity control variate, whose values
-for the large scene come from the box with a 320-triangle sphere) and Mitsuba's
+for the large scene come from the box with a 320-triangle sphere; ``adaptive``, a pilot's
+time counted) and Mitsuba's
 ``scalar_rgb`` (and ``llvm_ad_rgb`` where its LLVM loads) with its independent and its
 low-discrepancy sampler, interleaved rounds in one process, medians. Each tracer is made
 once and its renders alone are timed (glshade's tables and program, Mitsuba's scene file
 and kd-tree: built before the clock, as a user's second render finds them). Error: RMS over pixels
 of the difference from a long glshade render (``--reference-spp``, Sobol, another seed),
 relative to the reference's mean. Time to 1%: the samples a pixel that leave 1% RMS error
-at the measured paths a second -- for independent samples by the 1/sqrt(N) law from the
-error at ``--spp``; for a low-discrepancy sampler, whose error falls faster, its error
-measured again at ``--ld-spp`` (256 and 1,024) and the count read off the log-log line
-through the points that bracket 1% (or the last two).
+at the paths a second measured nearest that count -- for independent samples by the
+1/sqrt(N) law from the error at ``--spp``, at its speed there; for a low-discrepancy
+sampler, whose error falls faster, its error and its speed measured again at ``--ld-spp``
+(256 and 1,024; Mitsuba's scene for each count loaded and rendered once first) and the
+count read off the log-log line through the points that bracket 1% (or the last two).
 
 Samples a pixel default to 64, a power of 4: Mitsuba's ``ldsampler`` draws what it is asked
 for, so every tracer's error is measured at the same count (asked for 32, it draws 64).
@@ -45,6 +47,7 @@ from _timing import table  # noqa: E402
 from glshade import pathtrace  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.pathtrace import PathTracer, TraceScene  # noqa: E402
+from glshade.pathtrace.adaptive import pilot_samples  # noqa: E402
 from glshade.radiosity import cornell_scene  # noqa: E402
 from glshade.radiosity.control import radiosity_control  # noqa: E402
 from glshade.radiosity.cornell import CORNELL_CAMERA  # noqa: E402
@@ -137,21 +140,24 @@ def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
     t = time.perf_counter()
     control = radiosity_control(proxy, context=ctx)
     print(f"{name}: radiosity control values in {time.perf_counter() - t:.1f} s")
-    for accel, sampler, coherent, ctl in (
-            ("bvh", "pcg", False, False), ("flat", "pcg", False, False),
-            ("auto", "pcg", False, False), ("auto", "sobol", False, False),
-            ("auto", "pcg", True, False), ("auto", "sobol", True, False),
-            ("auto", "sobol", False, True), ("auto", "sobol", True, True)):
+    for accel, sampler, coherent, ctl, adaptive in (
+            ("bvh", "pcg", False, False, False), ("flat", "pcg", False, False, False),
+            ("auto", "pcg", False, False, False), ("auto", "sobol", False, False, False),
+            ("auto", "pcg", True, False, False), ("auto", "sobol", True, False, False),
+            ("auto", "sobol", False, True, False), ("auto", "sobol", True, True, False),
+            ("auto", "sobol", False, False, True), ("auto", "sobol", False, True, True),
+            ("auto", "sobol", True, True, True)):
         if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
             continue  # (too many to compile in)
         tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
                                                 sampler=sampler, coherent=coherent,
                                                 control=control if ctl else None))
         key = f"glshade {accel} {sampler}" + (" control" if ctl else "") + (
-            " coherent" if coherent else "")
-        series[key] = lambda t=tracer: _glshade(t, camera, args.spp)
-        if sampler == "sobol" and not coherent:
-            at[key] = lambda n, t=tracer: _glshade(t, camera, n)
+            " adaptive" if adaptive else "") + (" coherent" if coherent else "")
+        series[key] = lambda t=tracer, a=adaptive: _glshade(t, camera, args.spp, a)
+        if sampler == "sobol":
+            # (a function of the count giving the render: glshade's tracer is warm already)
+            at[key] = lambda n, t=tracer, a=adaptive: lambda: _glshade(t, camera, n, a)
     for variant in mitsuba_variants():
         # its default sampler, and its low-discrepancy one (as glshade's sobol is)
         for sampler in ("independent", "ldsampler"):
@@ -163,8 +169,8 @@ def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
                 break
             series[f"Mitsuba {variant} {sampler}"] = render
             if sampler == "ldsampler":
-                at[f"Mitsuba {variant} {sampler}"] = lambda n, v=variant: mitsuba_series(
-                    v, ts, size, n, folder, "ldsampler")()
+                at[f"Mitsuba {variant} {sampler}"] = lambda n, v=variant: _warm(
+                    mitsuba_series(v, ts, size, n, folder, "ldsampler"))
     for fn in series.values():
         fn()  # (compiled once before the clock)
     seconds: dict = {k: [] for k in series}
@@ -176,10 +182,22 @@ def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
             seconds[key].append(time.perf_counter() - t)
             errors[key] = rms(np.asarray(image)[..., :3], reference[..., :3])
     # a low-discrepancy sampler's error falls faster than 1 / sqrt(N): measured at more
-    # samples, not extrapolated
-    curves = {key: [(drawn_spp(key, args.spp), errors[key])] + [
-        (n, rms(np.asarray(fn(n))[..., :3], reference[..., :3])) for n in args.ld_spp]
-        for key, fn in at.items()}
+    # samples, not extrapolated -- and its time there (adaptive sampling's pilot and last
+    # passes cost more at 64 samples than near 1%), each tracer warm (Mitsuba's scene for
+    # each count loaded and rendered once before the clock)
+    curves, rates = {}, {}
+    for key, fn in at.items():
+        points = []
+        for n in args.ld_spp:
+            fn_n = fn(n)
+            t = time.perf_counter()
+            image = fn_n()
+            points.append((n, time.perf_counter() - t, image))
+        rates[key] = [(n, n * size * size / s) for n, s, _ in points]
+        if not key.endswith(" coherent"):  # (a coherent tracer's error is its twin's)
+            curves[key] = [(drawn_spp(key, args.spp), errors[key])] + [
+                (n, rms(np.asarray(image)[..., :3], reference[..., :3]))
+                for n, _, image in points]
     rows = []
     for key in series:
         # a coherent picture's pixels are drawn as its twin's are, so its expected error
@@ -189,10 +207,14 @@ def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
         curve = curves.get(twin, [(drawn_spp(key, args.spp), errors[twin])])
         s = statistics.median(seconds[key])
         rate = drawn_spp(key, args.spp) * size * size / s
-        to_1 = spp_at(curve, 0.01) * size * size / rate
+        need = spp_at(curve, 0.01)
+        # (the paths a second measured at the count nearest the samples to 1%)
+        near = min(rates.get(key, []) + [(drawn_spp(key, args.spp), rate)],
+                   key=lambda p: abs(math.log(p[0] / need)) if math.isfinite(need) else 0)
+        to_1 = need * size * size / near[1]
         rows.append((name, f"{size}x{size}", key, f"{rate / 1e6:.2f}",
-                     " / ".join(f"{e:.2%}" for _, e in curve), f"{spp_at(curve, 0.01):,.0f}",
-                     f"{to_1:.1f}"))
+                     " / ".join(f"{e:.2%}" for _, e in curve), f"{need:,.0f}",
+                     f"{near[1] / 1e6:.2f}", f"{to_1:.1f}"))
     return rows
 
 
@@ -212,10 +234,21 @@ def spp_at(curve: list, error: float) -> float:
     return n0 * (error / e0) ** (1 / slope)
 
 
-def _glshade(tracer, camera, spp: int) -> np.ndarray:
-    """``spp`` samples a pixel from a tracer made once (its program and tables kept)."""
+def _warm(render):
+    """``render``, a render function, once rendered (compiled, loaded): itself."""
+    render()
+    return render
+
+
+def _glshade(tracer, camera, spp: int, adaptive: bool = False) -> np.ndarray:
+    """``spp`` samples a pixel from a tracer made once (its program and tables kept) --
+    ``adaptive``: a mean of ``spp``, shared out by a pilot (its time counted)."""
     tracer.reset()
-    tracer.add(camera, spp)
+    if adaptive:
+        sigma = tracer.deviations(camera, pilot_samples(spp))
+        tracer.add(camera, counts=tracer.allocate(sigma, spp))
+    else:
+        tracer.add(camera, spp)
     return tracer.result().image
 
 
@@ -246,10 +279,11 @@ def main() -> None:
           f"glshade at {args.reference_spp} spp (Sobol, another seed), at {args.spp} spp and, "
           f"for a low-discrepancy sampler, at {', '.join(map(str, args.ld_spp))}; samples to 1%: "
           "independent samples by 1 / sqrt(N), low-discrepancy ones on the measured log-log "
-          "line; seconds to 1% = those samples at the measured paths a second; a coherent "
-          "tracer's errors are its twin's (the same in expectation)")
+          "line; seconds to 1% = those samples at the paths a second measured at the count "
+          "nearest them; a coherent tracer's errors are its twin's (the same in "
+          "expectation)")
     print(table(rows, ("scene", "size", "tracer", "M paths/s", "RMS error", "spp to 1%",
-                       "s to 1%")))
+                       "M paths/s there", "s to 1%")))
     usable = mitsuba_variants()
     if not usable:
         print("Mitsuba 3 not installed (pip install mitsuba)")

@@ -76,7 +76,9 @@ uniform mat4 u_inverse_proj;     // clip -> view (rays.glsl)
 uniform mat4 u_camera_to_world; // view -> world
 uniform vec2 u_size;
 uniform uint u_seed;
-uniform float u_target;       // samples a pixel should have finished when this run ends
+uniform float u_target;       // samples every pixel should have finished when this run ends
+uniform sampler2D u_extra;    // and the samples past it this pixel should (adaptive sampling)
+uniform float u_cap;          // and at most this many in this step of the run (COHERENT_TILE)
 uniform int u_budget;         // loop iterations under which a new bounce may start
 uniform int u_max_depth;      // vertices a path may have (<= 0: no limit; roulette ends it)
 // the state and sums of the last pass (see the header), read at this pixel
@@ -554,10 +556,11 @@ Path start(uvec2 pixel, uint k) {
 void main() {
     ivec2 at = ivec2(gl_FragCoord.xy);  // (the targets' pixel, holding image pixel ``pixel``)
     ivec2 image = image_of(at);
+    float target = min(u_target + texelFetch(u_extra, at, 0).r, u_cap);
     if (image.x >= int(u_size.x) || image.y >= int(u_size.y)) {
         // (past the image: no path, and finished, so no pass waits for it)
         out_state0 = out_state1 = out_state2 = out_state3 = out_square = out_hit = vec4(0.0);
-        out_sum = vec4(0.0, 0.0, 0.0, u_target);
+        out_sum = vec4(0.0, 0.0, 0.0, target);
         return;
     }
     uvec2 pixel = uvec2(image);
@@ -579,7 +582,7 @@ void main() {
 #endif
     for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
         if (!flying) {
-            if (sum.w >= u_target) break;
+            if (sum.w >= target) break;
             p = start(pixel, uint(sum.w));  // (samples finish in order: k is the count)
             flying = true;
         }

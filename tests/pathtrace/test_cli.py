@@ -27,17 +27,19 @@ def test_the_cornell_box_from_the_command_line(tmp_path):
 
 
 def test_the_sobol_sampler_from_the_command_line(tmp_path):
-    """--sampler sobol (with --coherent and --control): the summary names them, the mean
-    agrees with pcg's within noise, and an unknown sampler is one line naming the
+    """--sampler sobol (with --coherent, --control and --adaptive): the summary names them,
+    the mean agrees with pcg's within noise, and an unknown sampler is one line naming the
     choices."""
     means = {}
     for sampler in ("pcg", "sobol"):
         out = tmp_path / f"{sampler}.png"
         r = glshade("pathtrace", "cornell-box", "-o", str(out), "--spp", "16", "--size",
                     "32x32", "--backend", BACKEND, "--sampler", sampler, "--exposure", "1",
-                    *(["--no-mis"] if sampler == "pcg" else ["--coherent", "--control"]))
+                    *(["--no-mis"] if sampler == "pcg" else
+                      ["--coherent", "--control", "--adaptive"]))
         assert r.returncode == 0, r.stderr
-        said = f"{sampler}, coherent, control)" if sampler == "sobol" else f"{sampler})"
+        said = f"{sampler}, coherent, control, adaptive)" if sampler == "sobol" else \
+            f"{sampler})"
         assert f"M paths/s, {said}" in r.stdout + r.stderr
         means[sampler] = np.asarray(Image.open(out))[..., :3].astype(float).mean()
     assert abs(means["sobol"] - means["pcg"]) < 0.03 * means["pcg"], means

@@ -23,17 +23,19 @@ def mitsubas(tmp_path_factory):
                                 tmp_path_factory.mktemp("mitsuba"), seed=3)
 
 
-@pytest.mark.parametrize("accel, sampler, coherent, control", [
-    ("auto", "pcg", False, False), ("bvh", "sobol", False, False),
-    ("auto", "sobol", True, False), ("auto", "sobol", False, True)])
+@pytest.mark.parametrize("accel, sampler, coherent, control, adaptive", [
+    ("auto", "pcg", False, False, False), ("bvh", "sobol", False, False, False),
+    ("auto", "sobol", True, False, False), ("auto", "sobol", False, True, False),
+    ("auto", "sobol", False, False, True)])
 def test_the_cornell_box_agrees_with_mitsuba(gl_context, mitsubas, accel, sampler, coherent,
-                                             control):
+                                             control, adaptive):
     """The default tracer, the hierarchy with Sobol points, blocks of pixels sharing their
-    numbers, and the radiosity control variate."""
+    numbers, the radiosity control variate, and adaptive sampling (a mean of 256)."""
     scene, camera = cornell_scene()
     values = radiosity_control(scene, context=gl_context) if control else None
     ours = trace(scene, camera, (64, 64), spp=256, seed=3, context=gl_context, progress=False,
-                 accel=accel, sampler=sampler, coherent=coherent, control=values)
+                 accel=accel, sampler=sampler, coherent=coherent, control=values,
+                 adaptive=adaptive)
     theirs = mitsubas
     # (pixels that see the light are left out: a pixel half on the light is E = 17 or 0 by
     # where its sample lands, and those few pixels would decide the means)

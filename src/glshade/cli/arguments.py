@@ -151,6 +151,7 @@ class PathtraceArgs(RenderArgs):
     sampler: str = "pcg"
     coherent: bool = False
     control: bool = False
+    adaptive: bool = False
     no_mis: bool = False
     quiet: bool = False
 

@@ -369,6 +369,9 @@ def add_pathtrace(sub) -> None:
     p.add_argument("--control", action="store_true", help="solve the scene's radiosity "
                    "and use each model's indirect irradiance as a control variate at Russian "
                    "roulette (unbiased; less error where light bounces a lot)")
+    p.add_argument("--adaptive", action="store_true", help="--spp is the mean: a pilot "
+                   "from another seed measures each pixel's spread and the samples go where "
+                   "it is (unbiased; less error for the same paths)")
     p.add_argument("--no-mis", action="store_true", help="count emission found by a "
                    "bounce only at the first vertex (next-event estimation alone after it), "
                    "not weighed against next-event estimation by multiple importance "

@@ -46,7 +46,8 @@ def pathtrace(args: PathtraceArgs) -> int:
     result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
                       max_depth=args.max_depth, backend=args.backend.value,
                       progress=False if args.quiet else None, sampler=args.sampler,
-                      mis=not args.no_mis, coherent=args.coherent, control=control)
+                      mis=not args.no_mis, coherent=args.coherent, control=control,
+                      adaptive=args.adaptive)
     if result.interrupted and not result.samples:  # (nothing traced: nothing to keep)
         print("glshade: interrupted before the first sample; nothing written",
               file=sys.stderr)
@@ -64,12 +65,13 @@ def pathtrace(args: PathtraceArgs) -> int:
     srgb = args.srgb if args.srgb is not None else job.settings.options.srgb
     image = result.rgba8(exposure, srgb=bool(srgb))
     save_image(image, args.output)
-    rays = result.samples * w * h
+    rays = int(result.counts.sum()) if result.counts is not None else result.samples * w * h
     error = result.relative_error
     said = f"{error:.2%}" if np.isfinite(error) else "none (nothing lit)"
     line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
             f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s, {args.sampler}"
-            f"{', coherent' if args.coherent else ''}{', control' if args.control else ''}), "
+            f"{', coherent' if args.coherent else ''}{', control' if args.control else ''}"
+            f"{', adaptive' if args.adaptive else ''}), "
             f"relative error "
             f"{said}, exposure {exposure:.4g} -> {args.output}")
     if result.interrupted:

@@ -20,6 +20,7 @@ __all__ = ["GpuPathTracer"]
 #: texture units: the scene's tables, given rays, the solid's tree, then the seven targets
 _DATA, _RAYS, _CSG, _TARGETS = 0, 1, 2, 3
 _BVH = _TARGETS + 7  # (after the seven targets)
+_EXTRA = _BVH + 1  # (each pixel's samples past the run's target: adaptive sampling)
 _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
 
 
@@ -72,6 +73,13 @@ class GpuPathTracer(GLResource):
     #: sphere, 128x128 x 32 spp, M paths/s: each pixel its own 1.43, blocks of 2x2 1.77,
     #: 2x4 1.75, 4x2 1.92, 4x4 1.93, 8x8 1.89)
     TILE = (4, 2)
+    #: with ``coherent``, a run goes in steps of this many samples, each ending with every
+    #: pixel at the same sample: a block's pixels start their paths together again (they
+    #: drift apart as their paths end at different bounces, and a run of 1,024 samples in
+    #: one step kept little of the blocks' gain -- measured, Cornell box holding an
+    #: 81,920-triangle sphere, 128x128 x 1,024 Sobol samples, M paths/s: one step 2.37,
+    #: steps of 64 2.58, 32 2.69, 16 2.74, 8 2.74; the Cornell box alone 6.86 -> 6.55 at 16)
+    SYNC = 16
     #: the targets hold the image in 8x8 blocks, raster order, this many a row (a target
     #: 512 wide): llvmpipe hands each thread 64x64 tiles, and an image's own layout at 128²
     #: is four tiles of unequal work (a sphere's in two) -- 1.70 of 2 cores busy; rows of
@@ -139,6 +147,10 @@ class GpuPathTracer(GLResource):
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
                          for _ in range(2)]
         self._fbos = [self._keep(ctx.framebuffer(t)) for t in self._targets]
+        #: each pixel's samples past :attr:`samples` (``(H, W)``; adaptive sampling), and
+        #: the same in the targets' layout, read by the program
+        self.extra = np.zeros((self.height, self.width), np.int64)
+        self._extra = self._keep(ctx.texture(size, 1, dtype="f4"))
         self._current = 0
         self.vao = self._keep(ctx.vertex_array(self.program, []))
         self._left = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace_left.frag"))
@@ -232,6 +244,7 @@ class GpuPathTracer(GLResource):
                         "u_max_depth": int(self.max_depth or 0),
                         "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
                         "u_data": _DATA, "u_bvh": _BVH, "u_rays": _RAYS,
+                        "u_extra": _EXTRA,
                         **{name: _TARGETS + i for i, name in enumerate(_TARGET_NAMES)}}
         values.update((k, v) for k, v in self.layout.items() if k.startswith("u_"))
         if self._csg is not None:
@@ -252,15 +265,36 @@ class GpuPathTracer(GLResource):
         for fbo in self._fbos:
             fbo.clear(0.0, 0.0, 0.0, 0.0)
         self.passes = self.samples = 0
+        self._set_extra(np.zeros((self.height, self.width), np.int64))
 
-    def run(self, camera, samples: int = 1, seed: int = 0) -> int:
+    def _set_extra(self, extra: np.ndarray) -> None:
+        self.extra = extra
+        texels = np.zeros(self.target_size[::-1], np.float32)
+        texels[self._where] = extra[::-1]  # (GL's rows: bottom first)
+        self._extra.write(texels.tobytes())
+
+    @property
+    def counts(self) -> np.ndarray:
+        """``(H, W)`` int64: the samples each pixel has finished."""
+        return self.samples + self.extra
+
+    def run(self, camera, samples: int = 1, seed: int = 0,
+            counts: np.ndarray | None = None) -> int:
         """Make every pixel finish ``samples`` more paths seen from ``camera`` (None for
-        given rays); the passes that took."""
+        given rays) -- or, ``counts`` ``(H, W)`` whole numbers, each pixel that many in all
+        (none fewer than it has: adaptive sampling); the passes that took."""
         import moderngl
 
         self._check()
         ctx = self.context.ctx
         target = self.samples + int(samples)
+        if counts is not None:
+            counts = np.asarray(counts)
+            if counts.shape != (self.height, self.width) or (counts < self.counts).any():
+                raise OptionError(f"counts must be ({self.height}, {self.width}) samples, none "
+                                  "fewer than a pixel has")
+            target = int(counts.min())
+            self._set_extra(counts.astype(np.int64) - target)
         values: dict = {"u_seed": int(seed) & 0xFFFFFFFF, "u_target": float(target)}
         if camera is not None:
             aspect = self.width / self.height
@@ -268,7 +302,9 @@ class GpuPathTracer(GLResource):
                                        camera.view_matrix()))
         self._write(values)
         self._left["u_acc0"].value = _TARGETS
+        self._left["u_extra"].value = _EXTRA
         self._left["u_target"].value = float(target)
+        self._extra.use(location=_EXTRA)
         if self._csg is not None:
             self._csg.use(location=_CSG)
         self.texture.use(location=_DATA)
@@ -282,16 +318,22 @@ class GpuPathTracer(GLResource):
         ctx.viewport = (0, 0, *self.target_size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE | moderngl.BLEND)
         passes = 0
-        while True:
-            read, write = self._targets[self._current], self._fbos[1 - self._current]
-            for i, tex in enumerate(read):
-                tex.use(location=_TARGETS + i)
-            write.use()
-            self.vao.render(moderngl.TRIANGLES, vertices=3)
-            self._current = 1 - self._current
-            passes += 1
-            if not self._unfinished():
-                break
+        top = target + int(self.extra.max())
+        # (blocks that share random numbers: in steps of SYNC samples, each ending with all
+        # pixels at one sample; else one step)
+        step = self.SYNC if self.tile != (1, 1) else max(top - self.samples, 1)
+        for cap in range(self.samples + step, top + step, step):
+            self.program["u_cap"].value = self._left["u_cap"].value = float(min(cap, top))
+            while True:
+                read, write = self._targets[self._current], self._fbos[1 - self._current]
+                for i, tex in enumerate(read):
+                    tex.use(location=_TARGETS + i)
+                write.use()
+                self.vao.render(moderngl.TRIANGLES, vertices=3)
+                self._current = 1 - self._current
+                passes += 1
+                if not self._unfinished():
+                    break
         self.passes += passes
         self.samples = target
         return passes

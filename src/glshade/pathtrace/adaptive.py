@@ -52,7 +52,11 @@ def _smooth(a: np.ndarray) -> np.ndarray:
     """Each cell's mean over its 3 x 3 neighbourhood (the edge's cells repeated past it)."""
     p = np.pad(a, 1, mode="edge")
     h, w = a.shape
-    return sum(p[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)) / 9
+    out = np.zeros(a.shape)
+    for dy in range(3):
+        for dx in range(3):
+            out += p[dy:dy + h, dx:dx + w]
+    return out / 9
 
 
 def allocate(sigma: np.ndarray, mean: float, *, tile: tuple[int, int] = (1, 1),

@@ -55,8 +55,9 @@ class PathTraced:
 
     def __repr__(self) -> str:
         h, w = self.image.shape[:2]
-        spread = (f" (adaptive, {int(self.counts.min()):,} to {int(self.counts.max()):,})"
-                  if self.adaptive else "")
+        c = self.counts
+        spread = (f" (adaptive, {int(c.min()):,} to {int(c.max()):,})"
+                  if c is not None and self.adaptive else "")
         return (f"<PathTraced {w}x{h}, {self.samples:,} samples a pixel{spread}, relative error "
                 f"{self.relative_error:.2%}, {self.seconds:.1f} s>")
 

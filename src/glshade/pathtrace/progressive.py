@@ -276,7 +276,6 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     proportion (:func:`~glshade.pathtrace.adaptive.allocate`; unbiased: the picture's
     samples are independent of the pilot's) -- less RMS error for the same paths, most
     where a few pixels hold most of it (``counts`` says how many each drew)."""
-    from ..interrupt import check
     from ..options import check_whole
     from ..parallel.progress import as_progress
     from ..scene.camera import default_camera
@@ -303,22 +302,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
         history: list = []
         interrupted = False
         try:
-            if adaptive:
-                _adaptive(tracer, camera, spp, until, goal, per_pass, bar, history)
-            step, shown = per_pass, 0
-            while not adaptive and tracer.samples < goal:
-                n = min(step, goal - tracer.samples)
-                tracer.add(camera, n)
-                if bar is not None:
-                    bar.update(tracer.samples - shown)
-                    shown = tracer.samples
-                check()
-                if until is not None:
-                    result = tracer.result()
-                    history.append((tracer.seconds, tracer.samples, result.relative_error))
-                    if result.relative_error <= until:
-                        break
-                    step = tracer.samples  # (doubling: a check costs a read-back)
+            (_adaptive if adaptive else _uniform)(tracer, camera, spp, until, goal, per_pass,
+                                                  bar, history)
         except KeyboardInterrupt:
             interrupted = True
         finally:
@@ -327,6 +312,28 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
         out = tracer.result(interrupted)
         out.history = history
         return out
+
+
+def _uniform(tracer: PathTracer, camera, spp: int | None, until: float | None, most: int,
+             per_pass: int, bar, history: list) -> None:
+    """``trace``'s samples, every pixel alike: ``per_pass`` at a time up to ``spp`` -- or,
+    for ``until``, doubling until the relative error is reached (at most ``most``)."""
+    from ..interrupt import check
+
+    goal = int(spp) if spp is not None else most
+    step, shown = per_pass, 0
+    while tracer.samples < goal:
+        tracer.add(camera, min(step, goal - tracer.samples))
+        if bar is not None:
+            bar.update(tracer.samples - shown)
+            shown = tracer.samples
+        check()
+        if until is not None:
+            result = tracer.result()
+            history.append((tracer.seconds, tracer.samples, result.relative_error))
+            if result.relative_error <= until:
+                return
+            step = tracer.samples  # (doubling: a check costs a read-back)
 
 
 def _adaptive(tracer: PathTracer, camera, spp: int | None, until: float | None, most: int,

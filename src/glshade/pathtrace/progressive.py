@@ -27,9 +27,11 @@ class PathTraced:
     """A path-traced picture: ``image`` (H, W, 3) float64 in radiosity units (pi x
     radiance), ``se`` (H, W, 3) each pixel's standard error, ``samples`` per pixel,
     ``emitting`` (H, W) the fraction of a pixel's first hits on an emitter, ``seconds`` of
-    tracing, whether a Ctrl-C ended it early, ``coverage`` (H, W) the fraction of a
-    pixel's camera rays that hit the scene, and ``near_limit`` the bounces that came near
-    the driver's loop limit (0: none could have been cut short)."""
+    tracing (a pilot's included), whether a Ctrl-C ended it early, ``coverage`` (H, W)
+    the fraction of a pixel's camera rays that hit the scene, ``near_limit`` the bounces
+    that came near the driver's loop limit (0: none could have been cut short), and
+    ``counts`` (H, W) the samples each pixel drew (``samples`` their mean, rounded, where
+    adaptive sampling made them differ)."""
 
     image: np.ndarray
     se: np.ndarray

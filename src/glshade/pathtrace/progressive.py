@@ -178,8 +178,7 @@ class PathTracer:
         self.reset()
         t0 = time.perf_counter()
         self.gpu.run(camera, int(samples), (self.seed + PILOT_SEED) & 0xFFFFFFFF)
-        total, square, _ = self.gpu.read()
-        self.context.ctx.finish()
+        total, square, _ = self.gpu.read()  # (a read waits for the passes)
         _, se = _moments(total, square)
         self.gpu.reset()
         self.camera = camera
@@ -365,7 +364,8 @@ def _adaptive(tracer: PathTracer, camera, spp: int | None, until: float | None, 
             check()
 
     mean = spp if spp is not None else 64
-    sigma = tracer.deviations(camera, pilot_samples(mean))
+    # (``until`` goes on to as many samples as it takes: the largest pilot)
+    sigma = tracer.deviations(camera, pilot_samples(spp if spp is not None else most))
 
     def counts(mean: int) -> np.ndarray:
         return np.maximum(tracer.counts, tracer.allocate(sigma, mean))

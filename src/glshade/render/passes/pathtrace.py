@@ -150,7 +150,8 @@ class GpuPathTracer(GLResource):
         #: each pixel's samples past :attr:`samples` (``(H, W)``; adaptive sampling), and
         #: the same in the targets' layout, read by the program
         self.extra = np.zeros((self.height, self.width), np.int64)
-        self._extra = self._keep(ctx.texture(size, 1, dtype="f4"))
+        self._extra = self._keep(ctx.texture(size, 1, np.zeros(size[::-1], "f4").tobytes(),
+                                             dtype="f4"))
         self._current = 0
         self.vao = self._keep(ctx.vertex_array(self.program, []))
         self._left = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace_left.frag"))
@@ -265,7 +266,8 @@ class GpuPathTracer(GLResource):
         for fbo in self._fbos:
             fbo.clear(0.0, 0.0, 0.0, 0.0)
         self.passes = self.samples = 0
-        self._set_extra(np.zeros((self.height, self.width), np.int64))
+        if self.extra.any():  # (a viewer resets at every camera move: upload only if needed)
+            self._set_extra(np.zeros((self.height, self.width), np.int64))
 
     def _set_extra(self, extra: np.ndarray) -> None:
         self.extra = extra

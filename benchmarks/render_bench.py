@@ -18,6 +18,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import moderngl
 import numpy as np
@@ -31,7 +32,8 @@ from glshade.render.programs import FLAT_CONSTANTS_PIXELS  # noqa: E402
 from glshade.geometry import primitives  # noqa: E402
 from glshade.geometry.transforms import gl_bytes  # noqa: E402
 from glshade.render.renderer import Renderer  # noqa: E402
-from glshade.modes import ShadingMode  # noqa: E402
+from glshade.render.state import DrawState  # noqa: E402
+from glshade.options import DrawOptions  # noqa: E402
 from glshade.scene import DirectionalLight, Material, Scene  # noqa: E402
 
 SIZES_TRIANGLES = {"1k": (25, 20), "100k": (250, 200), "1M": (1000, 500)}
@@ -83,7 +85,7 @@ class Floor:
     def __init__(self, renderer: Renderer, scene: Scene, camera: Camera, textbook: bool):
         ctx = renderer.ctx
         self.ctx = ctx
-        gpu = renderer._gpu_mesh(scene.models[0].mesh)
+        gpu = renderer.meshes.gpu_mesh(scene.models[0].mesh)
         if textbook:
             self.prog = ctx.program(vertex_shader=TEXTBOOK_VERT, fragment_shader=TEXTBOOK_FRAG)
             size = (renderer.width, renderer.height)
@@ -99,8 +101,11 @@ class Floor:
             # (the program that draw used: its key depends on the machine and the mesh)
             flat = renderer.flat_constants and \
                 gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= renderer.width * renderer.height
-            [self.prog] = [prog for (variant, two_sided, f), prog in renderer._programs.items()
-                           if variant[0] is ShadingMode.PHONG and two_sided and f == flat]
+            state = DrawState.of(SimpleNamespace(width=renderer.width, height=renderer.height,
+                                                 rows_top_down=True),
+                                 scene, camera.with_planes(scene.bounds),
+                                 DrawOptions.of("phong", cull=False))
+            self.prog = renderer.meshes.program(state.variant, True, flat)
             self.owned = []
             names = ("in_position", "in_normal")
         self.vao = ctx.vertex_array(self.prog, [(gpu.vbo, "3f 3f", *names)], gpu.ibo, 4)

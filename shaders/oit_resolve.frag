@@ -32,7 +32,7 @@ uniform uint u_oit_base;
 #ifndef MAX_LAYERS
 #define MAX_LAYERS 32
 #endif
-#define LIST_BUDGET 60000
+#define LIST_BUDGET LOOP_BUDGET
 
 uniform sampler2D u_behind;
 out vec4 frag_color;

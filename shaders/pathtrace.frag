@@ -551,7 +551,7 @@ Path start(uvec2 pixel, uint k) {
 // the most bounces one invocation makes (a bound the loop-iteration budget rarely reaches)
 #define STEPS 256
 // a bounce that ends above this many counted iterations may have met the driver's limit
-#define NEAR_LIMIT 60000
+#define NEAR_LIMIT LOOP_BUDGET
 
 void main() {
     ivec2 at = ivec2(gl_FragCoord.xy);  // (the targets' pixel, holding image pixel ``pixel``)

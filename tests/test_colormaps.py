@@ -5,7 +5,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from glshade._display import buffers_image
+from glshade.display import buffers_image
 from glshade.colormaps import BACKGROUND_ID_COLOR, id_colors
 from glshade.hidden import HiddenResult
 

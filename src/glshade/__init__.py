@@ -19,7 +19,7 @@ _EXPORTS = {
         "quaternion", "masspoint", "brep", "solids", "octree", "hidden", "radiosity",
         "patches", "pathtrace", "scene", "io", "render", "cpu", "batch", "parallel",
         "viewer", "notebook", "testing", "examples", "modes",
-        "options", "errors", "atomic", "interrupt", "cli", "colormaps")},
+        "options", "errors", "atomic", "interrupt", "cli", "colormaps", "display")},
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
     # the mesh kernel
     "geometry": ("geometry", None),
@@ -61,7 +61,8 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import (atomic, batch, brep, cli, colormaps, cpu, errors, examples, geometry, hidden,
+    from . import (atomic, batch, brep, cli, colormaps, cpu, display, errors, examples,
+                   geometry, hidden,
                    interrupt, io, masspoint, modes, notebook, octree, options,
                    parallel, patches, pathtrace, quaternion, radiosity, render, scene,
                    solids, testing, viewer)

@@ -14,6 +14,8 @@ recover them by parsing another error's message.
 
 from __future__ import annotations
 
+from typing import Any
+
 __all__ = [
     "GlshadeError", "InputError", "EnvironmentFailure",
     "GeometryError", "OptionError", "SceneError", "TopologyError", "MeshFormatError",
@@ -21,7 +23,7 @@ __all__ = [
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError", "ClusterError",
     "DepthSortCycle",
-    "RenderWarning", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
+    "RenderWarning", "warn_user", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
 ]
 
 EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
@@ -186,6 +188,20 @@ class ClusterError(EnvironmentFailure):
 
 class RenderWarning(UserWarning):
     """A render that worked but shows nothing (a blank image), with the reason when known."""
+
+
+def warn_user(message: str, category: type[Warning] = UserWarning) -> None:
+    """Warn at the first caller outside glshade: the line of the user's code that asked for
+    the work, however deep in a pipeline of passes the finding was made."""
+    import sys
+    import warnings
+
+    package = __name__.rsplit(".", 1)[0] + "."
+    level = 2
+    frame: Any = sys._getframe(1)
+    while frame is not None and frame.f_globals.get("__name__", "").startswith(package):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 def exit_status(exc: BaseException) -> int:

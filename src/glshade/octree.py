@@ -108,7 +108,7 @@ class Octree:
 
     def _repr_html_(self) -> str:
         """In a notebook: its inside cells drawn, and the cells per level."""
-        from ._display import facts_html, picture
+        from .display import facts_html, picture
 
         inside = self.to_mesh("inside")
         image = picture(inside, mode="flat") if inside.n_faces else None

@@ -10,7 +10,7 @@ from PIL import Image
 
 from tests.conftest import glshade
 
-from glshade.render.context import _egl_device_count, device_index, egl_devices
+from glshade.render.context import egl_device_count, device_index, egl_devices
 
 pytestmark = [pytest.mark.gl, pytest.mark.once]
 
@@ -28,7 +28,7 @@ def devices():
 def test_doctor_lists_every_egl_device(devices):
     out = glshade("doctor")
     assert out.returncode == 0, out.stderr
-    assert f"EGL devices ({_egl_device_count()};" in out.stdout
+    assert f"EGL devices ({egl_device_count()};" in out.stdout
     for d in devices:
         assert f"  {d['index']:<3} {d['vendor']} | {d['renderer']}" in out.stdout
 

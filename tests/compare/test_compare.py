@@ -224,7 +224,7 @@ def test_the_fine_reference_of_a_cad_part_keeps_its_shape(part, make_renderer):
     edges are found from the mesh (the crease angle, said in the summary) and kept, so the
     reference covers the flat render's pixels within 1.5% -- where the curved refinement of
     the unsplit mesh bulges the part by more than 5% (what compare did by default)."""
-    from glshade.compare.comparison import _reference
+    from glshade.compare.comparison import reference_image
     from glshade.geometry.merge import detect_crease
     from glshade.geometry.subdivide import phong_tessellate
     from glshade.io.meshes import load_source
@@ -238,7 +238,7 @@ def test_the_fine_reference_of_a_cad_part_keeps_its_shape(part, make_renderer):
     centre, reach = (lo + hi) / 2, np.linalg.norm(hi - lo) / 2
     cam = Camera.look_at(centre + reach * np.array([1.6, 1.2, 2.0]), centre, fov_y=45)
     r = make_renderer(96, 96)
-    _, ref_mask, _, crease = _reference(scene, cam, "phong-fine", r, (96, 96), DrawOptions())
+    _, ref_mask, _, crease = reference_image(scene, cam, "phong-fine", r, (96, 96), DrawOptions())
     assert crease is not None and crease == detect_crease(mesh)
     flat = r.render_frame(scene, cam, "flat").face_id >= 0
     assert abs(ref_mask.sum() / flat.sum() - 1) < 0.015

@@ -326,7 +326,7 @@ def test_the_painters_one_triangle_split_agrees_with_the_vectorised_one():
     """Random triangles across random planes: the painter's one-at-a-time split gives
     pieces of the same total area as ``view.split_by_plane`` (and as the triangle), each
     wholly on one side, with the same number of cut edges."""
-    from glshade.hidden._depth_sort import _split_one
+    from glshade.hidden.painter import split_one
     from glshade.hidden.view import split_by_plane
 
     rng = np.random.default_rng(7)
@@ -340,7 +340,7 @@ def test_the_painters_one_triangle_split_agrees_with_the_vectorised_one():
         if not ((side > 1e-9).any() and (side < -1e-9).any()):
             continue
         cut = rng.random(3) < 0.5
-        pieces, cuts = _split_one(tri.tolist(), n.tolist(), d, 1e-12, cut.tolist())
+        pieces, cuts = split_one(tri.tolist(), n.tolist(), d, 1e-12, cut.tolist())
         pieces, cuts = np.array(pieces), np.array(cuts)
         ft, _, fc, bt, _, bc = split_by_plane(tri[None], n, np.array([d]), 1e-12, cut[None])
         assert np.isclose(area(pieces).sum(), area(tri[None])[0])

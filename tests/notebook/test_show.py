@@ -77,7 +77,7 @@ def test_every_object_has_a_short_repr_and_a_picture(make_renderer):
 def test_a_closed_rooms_thumbnail_is_chosen_to_show_it(gl_context):
     """A radiosity solution of the Cornell box is seen from the view that shows most (the
     iso view sees the room's outside, dark): brighter than the iso view's render."""
-    from glshade._display import thumbnail_hook
+    from glshade.display import thumbnail_hook
     from glshade.radiosity import cornell_scene, solve
 
     box, _ = cornell_scene()

@@ -49,6 +49,34 @@ def test_the_sobol_sampler_from_the_command_line(tmp_path):
     assert "Traceback" not in r.stderr
 
 
+@pytest.mark.parametrize("option", [["--samples", "4"], ["--edges"], ["--shadows", "exact"],
+                                    ["--opacity", "0.2"], ["--transparency", "weighted"],
+                                    ["--texture-filter", "nearest"]])
+def test_a_raster_option_is_refused_by_the_parser(tmp_path, option):
+    """An option the path tracer does not apply is one line naming it, exit 2, before any
+    work -- never accepted and ignored."""
+    r = glshade("pathtrace", "cornell-box", "-o", str(tmp_path / "x.png"), *option)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert lines[0].startswith(f"glshade pathtrace: error: {option[0]} is an option of the "
+                               "raster modes")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("scene, words", [("glass", "torus: opacity 0.35 is not traced"),
+                                          ("spider", "its texture maps (texture) are not "
+                                                     "traced")])
+def test_what_the_tracer_cannot_trace_is_refused_by_name(tmp_path, scene, words):
+    """A transparent or textured material would be traced without its opacity or maps:
+    the trace refuses it, naming the scene and the model."""
+    path = ROOT / "assets" / "scenes" / f"{scene}.toml"
+    r = glshade("pathtrace", str(path), "-o", str(tmp_path / "x.png"), "--spp", "1")
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert str(path) in lines[0] and words in lines[0]
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_an_energy_making_material_is_one_line_naming_the_scene(tmp_path):
     r = glshade("pathtrace", "primitive:cube", "-o", str(tmp_path / "x.png"), "--kd", "0.9",
                 "--ks", "0.5", "--color", "1,1,1", "--backend", BACKEND)

@@ -143,16 +143,14 @@ def test_the_flat_loop_and_the_hierarchy_give_the_same_picture(gl_context, scene
 def test_the_targets_hold_every_pixel_once():
     """The image in 8x8 blocks, 64 a target row (or more for a huge one): every image
     pixel has its own target pixel, inside the targets, at any size."""
-    from glshade.render.passes.pathtrace import _layout
+    from glshade.render.film import film_layout, film_places
 
     for w, h in [(1, 1), (7, 9), (128, 128), (96, 96), (513, 3), (3, 700), (4096, 4096),
                  (9000, 20)]:
-        (tw, th), blocks = _layout(w, h, GpuPathTracer.LAYOUT_BLOCKS)
+        (tw, th), blocks = film_layout(w, h)
         n = -(-w // 8) * -(-h // 8)  # (the image's blocks: no more than one target row
         assert tw <= 8192 and th <= 8192 and tw * th < 64 * (n + blocks[1])  # of waste)
-        tracer = GpuPathTracer.__new__(GpuPathTracer)  # (the placement alone: no GL)
-        tracer.width, tracer.height, tracer._blocks = w, h, blocks
-        y, x = tracer._place()
+        y, x = film_places(w, h, blocks)
         assert (x >= 0).all() and (x < tw).all() and (y >= 0).all() and (y < th).all()
         assert len(np.unique(y * tw + x)) == w * h
 

@@ -158,16 +158,16 @@ def test_editing_a_tree_reuses_its_program(make_renderer):
         s.add(Box(2.0) - ball if op == "-" else Box(2.0) | ball if op == "|" else
               Box(2.0) & ball)
         r.render(s, OUTSIDE)
-    assert len(r._csg._programs) == 1
+    assert len(r.csg.compiled) == 1
     s = Scene()
     s.add(Box(2.0) - Sphere(0.5) - Sphere(0.3).translated((1, 1, 1)))  # one more ball
     r.render(s, OUTSIDE)
-    assert len(r._csg._programs) == 2
+    assert len(r.csg.compiled) == 2
     for n in (20, 31):  # (over the 14 leaves a truth table serves: the walk)
         s = Scene()
         s.add(random_union(n))
         r.render(s, OUTSIDE)
-    assert len(r._csg._programs) == 3
+    assert len(r.csg.compiled) == 3
 
 
 def random_union(n):

@@ -244,7 +244,7 @@ def check(gl_context, tree, q, shift, look, distance):
     assert bad.sum() == 0, f"the numpy reference misses the oracle at {bad.sum()} pixels"
     with glshade.Renderer(W, H, samples=0, context=gl_context) as renderer:
         for slots in (16, 0):           # the one-step cast, then the walk
-            renderer._csg.max_slots = slots
+            renderer.csg.max_slots = slots
             frame = renderer.render_frame(scene, camera, "phong")
             bad = ok & ~agree(np.where(frame.face_id >= 0, frame.depth, np.inf), want, ok, tie)
             assert bad.sum() == 0, (f"{'one-step' if slots else 'walk'}: {bad.sum()} of "

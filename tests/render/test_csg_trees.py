@@ -79,9 +79,9 @@ def test_few_varyings_make_a_small_tree_walk(make_renderer):
     centre, reach = (lo + hi) / 2, np.linalg.norm(hi - lo) / 2
     camera = Camera.look_at(centre + 2.6 * reach * np.array([0.55, 0.45, 0.7]), centre)
     r = make_renderer(*size)
-    r._csg.max_slots = 8
+    r.csg.max_slots = 8
     frame = r.render_frame(scene, camera, "phong")
-    assert all(not key[3] for key in r._csg._programs)  # (no slots: the walk)
+    assert all(not key[3] for key in r.csg.compiled)  # (no slots: the walk)
     compare(frame, scene, camera, size, mismatch=0.002)
 
 

@@ -59,10 +59,10 @@ def test_flat_constants_draw_what_uniforms_draw(make_renderer, lights, camera):
         assert plain.max() <= 1 and (plain > 0).mean() < 1e-3
 
     # the flat variant was really drawn where it fits this GL's varyings, and only there
-    used = {k.flat_constants for k in r.shaders._programs if k.mode is ShadingMode.PHONG}
+    used = {k.flat_constants for k in r.shaders.compiled if k.mode is ShadingMode.PHONG}
     n = len(LIGHT_SETS[lights])
     kinds = ("ATTENUATED",) * n if lights == "eight attenuated" else ("POINT",) * n
-    fits = flat_constants_fit(ShadingMode.PHONG, False, kinds, r._max_varyings)
+    fits = flat_constants_fit(ShadingMode.PHONG, False, kinds, r.meshes.max_varyings)
     assert used == ({False, True} if fits else {False})
 
 
@@ -72,7 +72,7 @@ def test_flat_constants_only_for_large_triangles(make_renderer):
     r = make_renderer(64, 64)
     r.flat_constants = True
     r.render(scene, CAMERA, "phong")
-    flat = {k.flat_constants: k for k in r.shaders._programs if k.mode is ShadingMode.PHONG}
+    flat = {k.flat_constants: k for k in r.shaders.compiled if k.mode is ShadingMode.PHONG}
     assert set(flat) == {False, True}  # the sphere's program, and the two-triangle plane's
     assert flat[True].two_sided and not flat[False].two_sided  # (the plane is open)
 

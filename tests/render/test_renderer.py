@@ -276,9 +276,9 @@ def test_meshes_are_uploaded_once(make_renderer):
     mesh = P.icosphere(1)
     s.add(mesh)
     r.render(s, FRONT)
-    gpu = r._gpu_mesh(mesh)
+    gpu = r.meshes.gpu_mesh(mesh)
     r.render(s, FRONT.orbit([0, 0.2, 0, 0.98]))
-    assert r._gpu_mesh(mesh) is gpu
+    assert r.meshes.gpu_mesh(mesh) is gpu
     del s, mesh
     import gc
 

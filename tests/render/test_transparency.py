@@ -159,7 +159,7 @@ def counting(request, monkeypatch):
 
 def _counted_by(renderer, counting):
     """The path the last exact draw took is the one asked for (where the GL has fetch)."""
-    used = renderer._transparency_pass()._fetch is not None
+    used = renderer.transparent.counted_by_fetch
     has = "GL_EXT_shader_framebuffer_fetch" in renderer.ctx.extensions
     assert used == (counting == "fetch" and has)
 
@@ -236,7 +236,7 @@ def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, op
         img = r.render(s, g.Camera.look_at((0, 0, 3), (0, 0, 0)), "flat",
                        max_layers=64)
         assert abs(img[16, 16, 0] - 255 * (1 - (1 - opacity) ** n)) <= 1.0, (n, img[16, 16])
-        used = [key[-1] for key in r._transparency_pass()._programs]
+        used = [key[-1] for key in r.transparent.compiled]
         assert used[-1] == sorted_slots or sorted_slots in used, (n, used)
 
 

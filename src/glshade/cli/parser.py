@@ -34,13 +34,14 @@ def _examples(*lines: str) -> dict:
             "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
-def add_backend(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--backend", choices=HEADLESS_BACKENDS, default="auto",
-                   help="where the GL context comes from: auto (EGL, else OSMesa), egl or "
-                   "osmesa (default auto; GLSHADE_BACKEND overrides auto)")
-    p.add_argument("--device", metavar="INDEX|NAME", default=None,
-                   help="the EGL device, by index or a part of its name (glshade doctor "
-                   "lists them; as GLSHADE_EGL_DEVICE)")
+def add_backend(add) -> None:
+    """The --backend and --device options, through ``add`` (a parser's ``add_argument``)."""
+    add("--backend", choices=HEADLESS_BACKENDS, default="auto",
+        help="where the GL context comes from: auto (EGL, else OSMesa), egl or "
+        "osmesa (default auto; GLSHADE_BACKEND overrides auto)")
+    add("--device", metavar="INDEX|NAME", default=None,
+        help="the EGL device, by index or a part of its name (glshade doctor "
+        "lists them; as GLSHADE_EGL_DEVICE)")
 
 
 def add_quiet(p: argparse.ArgumentParser, what: str = "no summary line") -> None:
@@ -57,61 +58,106 @@ def _defaults(cls) -> dict:
     return {f.name: f.default for f in dataclasses.fields(cls)}
 
 
-def add_render_options(p: argparse.ArgumentParser, size_default: str | None = None) -> None:
+class _Refused(argparse.Action):
+    """An option of the raster modes that a command does not apply: its parser refuses it
+    with the reason (never accepted and ignored)."""
+
+    def __init__(self, option_strings, dest, reason: str = "", **kwargs):
+        kwargs.pop("type", None)
+        super().__init__(option_strings, dest, nargs=kwargs.pop("nargs", None), **kwargs)
+        self.reason = reason
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.error(f"{option_string} {self.reason}")
+
+
+#: the raster modes' options the path tracer does not apply, and why
+NOT_TRACED = {
+    "--samples": "is an option of the raster modes; the path tracer antialiases by its "
+                 "samples (--spp)",
+    "--edges": "is an option of the raster modes; the path tracer draws no edges",
+    "--shadows": "is an option of the raster modes; the path tracer's shadows are always "
+                 "exact",
+    "--opacity": "is an option of the raster modes; the path tracer's surfaces are opaque",
+    "--transparency": "is an option of the raster modes; the path tracer's surfaces are "
+                      "opaque",
+    "--texture-filter": "is an option of the raster modes; the path tracer samples no "
+                        "textures",
+}
+
+
+def add_render_options(p: argparse.ArgumentParser, size_default: str | None = None,
+                       refused: dict[str, str] | None = None) -> None:
     """Options shared by render, view, compare and batch. An option left out is None here:
     its default is decided where the value is used (scene file, then the dataclasses), and
-    the help text quotes those defaults."""
+    the help text quotes those defaults. ``refused``: options the command does not apply,
+    by name, with the reason its parser gives when one is used."""
+    refused = refused or {}
+
+    def add(*names, **kwargs):
+        if names[0] not in refused:
+            return p.add_argument(*names, **kwargs)
+        flag = kwargs.get("action") == "store_true"
+        return p.add_argument(*names, action=_Refused, reason=refused[names[0]],
+                              help=argparse.SUPPRESS, nargs=0 if flag else None, default=None)
+
+    _render_options(add, size_default)
+
+
+def _render_options(add, size_default: str | None) -> None:
+    """add_render_options' options, each through ``add`` (``add_argument``'s signature)."""
     mat, cam = _defaults(Material), _defaults(Camera)
     w, h = DEFAULT_SIZE
-    p.add_argument("--size", type=v.size, metavar="WxH",
-                   help=f"image size (default: the scene file's, else "
-                   f"{size_default or f'{w}x{h}'})")
-    p.add_argument("--samples", type=v.samples, help="MSAA samples, 0 = off (default 4)")
-    p.add_argument("--eye", type=v.vec3, metavar="X,Y,Z", help="camera position "
-                   "(default: auto framing)")
-    p.add_argument("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
-    p.add_argument("--fov", type=v.fov, help=f"vertical field of view in degrees "
-                   f"(default {cam['fov_y']:g})")
-    p.add_argument("--light", type=v.vec3, action="append", metavar="X,Y,Z",
-                   help="a point light (repeat for more; default: a headlight at the eye)")
-    p.add_argument("--color", type=v.vec3, metavar="R,G,B", help="material colour, linear "
-                   f"0..1 (default {','.join(f'{c:g}' for c in mat['color'])})")
-    p.add_argument("--background", type=v.vec3, metavar="R,G,B", help="default black")
+    add("--size", type=v.size, metavar="WxH",
+        help=f"image size (default: the scene file's, else "
+        f"{size_default or f'{w}x{h}'})")
+    add("--samples", type=v.samples, help="MSAA samples, 0 = off (default 4)")
+    add("--eye", type=v.vec3, metavar="X,Y,Z", help="camera position "
+        "(default: auto framing)")
+    add("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
+    add("--fov", type=v.fov, help=f"vertical field of view in degrees "
+        f"(default {cam['fov_y']:g})")
+    add("--light", type=v.vec3, action="append", metavar="X,Y,Z",
+        help="a point light (repeat for more; default: a headlight at the eye)")
+    add("--color", type=v.vec3, metavar="R,G,B", help="material colour, linear "
+        f"0..1 (default {','.join(f'{c:g}' for c in mat['color'])})")
+    add("--background", type=v.vec3, metavar="R,G,B", help="default black")
     for name, what in (("ka", "ambient"), ("kd", "diffuse"), ("ks", "specular")):
-        p.add_argument(f"--{name}", type=v.unit_float, help=f"{what} coefficient "
-                       f"(default {mat[name]:g})")
-    p.add_argument("--shininess", type=v.nonnegative_float,
-                   help=f"specular exponent n (default {mat['shininess']:g})")
-    p.add_argument("--opacity", type=v.unit_float, help="the mesh's opacity, 0..1 (below 1: "
-                   "transparent; default 1)")
-    p.add_argument("--texture-filter", type=v.texture_filter, metavar="nearest|linear|mipmap",
-                   help="how textures are sampled: the nearest texel, bilinear, or trilinear "
-                   "between mipmap levels (default: linear, or the scene file's)")
-    p.add_argument("--transparency", type=v.transparency, metavar="exact|weighted|blend",
-                   help="how transparent surfaces are composited: exact (per-pixel lists, "
-                   "sorted), weighted (McGuire-Bavoil) or blend (drawing order); default: "
-                   "the scene's, else exact; compare takes several, e.g. exact,weighted,blend")
-    p.add_argument("--tolerance", type=v.positive_float, metavar="T", help="patches:NAME: "
-                   "tessellate to within T world units of the exact surface (default: a "
-                   "thousandth of its size)")
-    p.add_argument("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
-                   "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
-    p.add_argument("--view", type=v.view, metavar="NAME", help="a named view, framed: " +
-                   ", ".join(v.VIEW_CHOICES) + " (default: from the front-right, above)")
-    p.add_argument("--ortho", action="store_true", help="parallel (orthographic) projection")
-    p.add_argument("--edges", action="store_true", default=None, help="draw the polygons' "
-                   "edges over the picture (their boundaries, not the triangles')")
-    add_shadows(p)
-    add_backend(p)
-    p.add_argument("--srgb", action="store_true", default=None,
-                   help="encode the linear result as sRGB")
+        add(f"--{name}", type=v.unit_float, help=f"{what} coefficient "
+            f"(default {mat[name]:g})")
+    add("--shininess", type=v.nonnegative_float,
+        help=f"specular exponent n (default {mat['shininess']:g})")
+    add("--opacity", type=v.unit_float, help="the mesh's opacity, 0..1 (below 1: "
+        "transparent; default 1)")
+    add("--texture-filter", type=v.texture_filter, metavar="nearest|linear|mipmap",
+        help="how textures are sampled: the nearest texel, bilinear, or trilinear "
+        "between mipmap levels (default: linear, or the scene file's)")
+    add("--transparency", type=v.transparency, metavar="exact|weighted|blend",
+        help="how transparent surfaces are composited: exact (per-pixel lists, "
+        "sorted), weighted (McGuire-Bavoil) or blend (drawing order); default: "
+        "the scene's, else exact; compare takes several, e.g. exact,weighted,blend")
+    add("--tolerance", type=v.positive_float, metavar="T", help="patches:NAME: "
+        "tessellate to within T world units of the exact surface (default: a "
+        "thousandth of its size)")
+    add("--crease", type=v.degrees, metavar="DEG", help="keep edges sharper than "
+        "DEG degrees sharp in smooth shading (CAD parts; default: all smooth)")
+    add("--view", type=v.view, metavar="NAME", help="a named view, framed: " +
+        ", ".join(v.VIEW_CHOICES) + " (default: from the front-right, above)")
+    add("--ortho", action="store_true", help="parallel (orthographic) projection")
+    add("--edges", action="store_true", default=None, help="draw the polygons' "
+        "edges over the picture (their boundaries, not the triangles')")
+    add_shadows(add)
+    add_backend(add)
+    add("--srgb", action="store_true", default=None,
+        help="encode the linear result as sRGB")
 
 
-def add_shadows(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--shadows", type=v.shadows, metavar="off|exact|map",
-                   help="cast shadows: exact (a ray from each pixel's point to each light), "
-                   "map (shadow maps, PCF) or off (default: the scene's, else off); compare "
-                   "takes two or more, e.g. exact,map, and shows their difference")
+def add_shadows(add) -> None:
+    """The --shadows option, through ``add`` (a parser's ``add_argument``)."""
+    add("--shadows", type=v.shadows, metavar="off|exact|map",
+        help="cast shadows: exact (a ray from each pixel's point to each light), "
+        "map (shadow maps, PCF) or off (default: the scene's, else off); compare "
+        "takes two or more, e.g. exact,map, and shows their difference")
 
 
 def add_executor_options(p: argparse.ArgumentParser, default_jobs: str = "the number of "
@@ -195,8 +241,8 @@ def add_animate(sub) -> None:
     p.add_argument("--size", type=v.size, metavar="WxH", help="frame size (default: the "
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
-    add_shadows(p)
-    add_backend(p)
+    add_shadows(p.add_argument)
+    add_backend(p.add_argument)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=c.animate, arguments=a.AnimateArgs)
 
@@ -285,7 +331,7 @@ def add_view(sub) -> None:
 
 def add_doctor(sub) -> None:
     p = sub.add_parser("doctor", help="say which GL backends work and what they are")
-    add_backend(p)
+    add_backend(p.add_argument)
     p.set_defaults(func=c.doctor, arguments=a.DoctorArgs)
 
 
@@ -330,7 +376,7 @@ def add_radiosity(sub) -> None:
                    "scene's)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples (default: the scene's)")
     p.add_argument("--srgb", action="store_true", default=None, help="encode as sRGB")
-    add_backend(p)
+    add_backend(p.add_argument)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=radiosity_command.radiosity, arguments=a.RadiosityArgs)
 
@@ -376,7 +422,7 @@ def add_pathtrace(sub) -> None:
                    "bounce only at the first vertex (next-event estimation alone after it), "
                    "not weighed against next-event estimation by multiple importance "
                    "sampling (the default)")
-    add_render_options(p)
+    add_render_options(p, refused=NOT_TRACED)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=pathtrace_command.pathtrace, arguments=a.PathtraceArgs)
 
@@ -400,5 +446,5 @@ def add_hidden(sub) -> None:
                    help="camera position (default: auto framing)")
     p.add_argument("--target", type=v.vec3, metavar="X,Y,Z", help="point looked at")
     p.add_argument("--fov", type=v.fov, help="vertical field of view in degrees")
-    add_backend(p)
+    add_backend(p.add_argument)
     p.set_defaults(func=hidden_command.hidden, arguments=a.HiddenArgs)

@@ -24,12 +24,6 @@ def pathtrace(args: PathtraceArgs) -> int:
 
     check_outputs({"the image": args.output})  # (before any work)
 
-    for given, name in ((args.samples, "--samples (MSAA)"), (args.edges, "--edges"),
-                        (args.shadows, "--shadows")):
-        if given is not None:
-            raise UsageError(f"{name} is an option of the raster modes; the path tracer "
-                             "antialiases by its samples (--spp), draws no edges and its "
-                             "shadows are always exact")
     job = load_job(replace(args, mode=None), args.scene)
     w, h = job.size
     try:

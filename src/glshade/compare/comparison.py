@@ -129,7 +129,7 @@ class Comparison:
 
     def _repr_html_(self) -> str:
         """In a notebook: the grid and each mode's numbers."""
-        from .._display import facts_html
+        from ..display import facts_html
 
         facts = [f"{m.mode}: mean {m.mean_abs:.3g}, max {m.max_abs:.0f}, PSNR {m.psnr:.1f} dB,"
                  f" SSIM {m.ssim:.3f}, Mach band {m.mach_band:.2f}" for m in self.metrics]
@@ -143,7 +143,32 @@ class Comparison:
         return buf.getvalue()
 
 
-def _reference(scene, camera, kind, renderer, size, options, spp=64):
+def reference_image(scene, camera, kind, renderer, size, options, spp=64):
+    """The picture a comparison measures the modes against, and what it covers.
+
+    Parameters
+    ----------
+    scene, camera
+        what is seen and from where.
+    kind
+        a reference's name (``phong-fine``, ``raycast``, ``pathtrace``, ...) or an image
+        file's path.
+    renderer
+        the Renderer the raster references draw with.
+    size
+        (width, height) in pixels.
+    options
+        the DrawOptions the compared modes share.
+    spp
+        samples a pixel of a path-traced reference.
+
+    Returns
+    -------
+    image, mask, kind, crease
+        the (H, W, 3) picture (floats, 0 to 255), the (H, W) bool pixels it covers, the
+        reference's name as said in the summary, and the crease angle used (degrees; None
+        where none was).
+    """
     from ..cpu.raycast import raycast_scene
 
     w, h = size
@@ -249,7 +274,7 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             from ..cpu.raycast import has_analytic_surfaces
 
             reference = "analytic" if has_analytic_surfaces(scene) else "phong-fine"
-        ref, ref_mask, ref_kind, crease = _reference(scene, camera, reference, r, size, base,
+        ref, ref_mask, ref_kind, crease = reference_image(scene, camera, reference, r, size, base,
                                                      spp)
         drawn = {ShadingMode.parse(k): v for k, v in (scenes or {}).items()}
         frames = {m: r.render_frame(drawn.get(m, scene), camera, base.replace(mode=m),

@@ -182,7 +182,7 @@ class Mesh:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail and the counts (:mod:`glshade.notebook.display`)."""
-        from .._display import bounds_fact, facts_html, picture
+        from ..display import bounds_fact, facts_html, picture
 
         facts = [f"{self.n_vertices:,} vertices, {self.n_faces:,} polygons",
                  "closed and oriented" if self.closed_and_oriented else "open or unoriented",

@@ -13,7 +13,7 @@ from ._bsp import bsp
 from .raster import edge_pixels
 from .result import HiddenResult
 from .view import Prepared, prepare
-from ._depth_sort import DepthSortCycle, depth_sort
+from .painter import DepthSortCycle, depth_sort
 from ._raycast import raycast
 from ._scanline import scanline
 from ._zbuffer import zbuffer

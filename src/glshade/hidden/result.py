@@ -34,7 +34,7 @@ class HiddenResult:
 
     def _repr_html_(self) -> str:
         """In a notebook: the polygon ids it found, and its counters."""
-        from .._display import facts_html
+        from ..display import facts_html
         from ..colormaps import id_colors
 
         facts = [f"{k}: {v:,}" if isinstance(v, int) else f"{k}: {v}"

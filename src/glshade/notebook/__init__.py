@@ -2,7 +2,7 @@
 animations, and an interactive viewer widget that needs no display on the kernel's machine.
 
 - :mod:`.display`: :func:`show` and the thumbnails every displayable object's
-  ``_repr_html_`` draws (through the hook it installs in ``glshade._display``, the
+  ``_repr_html_`` draws (through the hook it installs in ``glshade.display``, the
   layer-free half that the lower layers' reprs call).
 - :mod:`.widget`: :func:`view`, the anywidget viewer (``pip install 'glshade[notebook]'``);
   its browser side is ``static/viewer.js``.

@@ -1,5 +1,5 @@
 """Notebook display: glshade's objects show themselves as a small picture and a few facts
-(this module renders the pictures; the HTML and colour maps are in ``_display``).
+(this module renders the pictures; the HTML and colour maps are in ``glshade.display``).
 
 Why: a course runs in notebooks, where a render printed as a numpy array, or a radiosity
 solution as 126,661 characters, teaches nothing. Each displayable object has a short
@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import _display
-from .._display import THUMBNAIL, buffers_image, png_bytes
+from .. import display as _display
+from ..display import THUMBNAIL, buffers_image, png_bytes
 
 __all__ = ["show", "thumbnail", "telling_view", "png_bytes", "buffers_image", "THUMBNAIL"]
 

@@ -105,7 +105,7 @@ class _Behaviour(_Widget):
 
     def refresh(self) -> None:
         """Render the current view and send it to the browser."""
-        from .._display import png_bytes
+        from ..display import png_bytes
 
         png = png_bytes(self.image())
         c = self.controls

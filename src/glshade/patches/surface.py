@@ -61,7 +61,7 @@ class PatchSurface:
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail of a tessellation (exact normals) and the B-Rep's
         counts."""
-        from .._display import bounds_fact, facts_html, picture
+        from ..display import bounds_fact, facts_html, picture
 
         e = self.euler()
         b = self.patches.bounds()

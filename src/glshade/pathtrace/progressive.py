@@ -83,7 +83,7 @@ class PathTraced:
         return np.dstack([rgb, np.full(rgb.shape[:2], 255, np.uint8)])
 
     def _repr_html_(self) -> str:
-        from .._display import facts_html, picture
+        from ..display import facts_html, picture
 
         return facts_html(repr(self), [f"{self.method}", f"exposure {self.auto_exposure():.4g}"],
                           picture(self.rgba8()))
@@ -208,10 +208,12 @@ class PathTracer:
             import warnings
 
             from ..errors import RenderWarning
+            from ..render.shaders import LOOP_CAP
 
-            warnings.warn(f"{near:,} bounces came near the GPU driver's limit of 65,535 loop "
-                          "iterations a pixel and may have been cut short (a scene whose one "
-                          "ray costs that much: simplify it)", RenderWarning, stacklevel=3)
+            warnings.warn(f"{near:,} bounces came near the GPU driver's limit of "
+                          f"{LOOP_CAP:,} loop iterations a pixel and may have been cut "
+                          "short (a scene whose one ray costs that much: simplify it)",
+                          RenderWarning, stacklevel=3)
         return PathTraced(mean, se, int(round(float(counts.mean()))), square[..., 3] / n,
                           self.seconds, interrupted, coverage=hits[..., 0] / n,
                           near_limit=near, counts=counts.copy())

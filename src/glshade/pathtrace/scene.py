@@ -128,6 +128,7 @@ class TraceScene:
         solids = []
         for k, model in enumerate(solid_models):
             name = model.name or f"solid {k}"
+            _refuse_unlit_parts(model.material, name)
             if max(model.material.emission) > 0:
                 raise SceneError(f"{name}: a CSG solid cannot emit here (its surface is not "
                                  "sampled for light); give the emission to a mesh")
@@ -142,6 +143,9 @@ class TraceScene:
         length = np.linalg.norm(cross, axis=1)
         keep = length > 1e-12 * max(float(np.abs(triangles).max(initial=0)), 1e-300) ** 2
         triangles, cross, length = triangles[keep], cross[keep], length[keep]
+        if not len(triangles) and not solids:
+            raise SceneError(f"the scene's {int(keep.size):,} triangles all have zero area "
+                             "(collinear or coincident corners): nothing to trace")
         material = np.concatenate(mats)[keep] if mats else np.zeros(0, np.int64)
         model = np.concatenate(models)[keep] if models else np.zeros(0, np.int64)
         materials = np.array(rows, np.float64)
@@ -168,6 +172,20 @@ class TraceScene:
                    cdf, light_rows, model, tuple(names), shading, tuple(solids))
 
 
+def _refuse_unlit_parts(material, name: str) -> None:
+    """The path tracer traces opaque, untextured Phong surfaces: a material's opacity or
+    maps would be left out of the picture, so the trace refuses them by name."""
+    if material.transparent:
+        raise SceneError(f"{name}: opacity {float(material.opacity):g} is not traced (the path "
+                         "tracer's surfaces are opaque): set opacity = 1, or draw it with "
+                         "glshade render")
+    if material.textures:
+        maps = ", ".join(sorted(material.textures))
+        raise SceneError(f"{name}: its texture maps ({maps}) are not traced (the path "
+                         "tracer's surfaces have one colour): drop them, or draw it with "
+                         "glshade render")
+
+
 def _world_triangles(scene, smooth: bool, names: list, rows: list):
     """The visible meshes' (and tessellated patches') world triangles, their corner normals
     where ``smooth``, and each triangle's material row and model number, as lists of
@@ -186,6 +204,7 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
     for k, model in enumerate(visible):
         mesh = model.mesh
         name = model.name or f"model {k}"
+        _refuse_unlit_parts(model.material, name)
         t, _ = mesh.triangles
         if not len(t):
             continue

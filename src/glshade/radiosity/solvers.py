@@ -55,7 +55,7 @@ class Solution:
 
     def _repr_html_(self) -> str:
         """In a notebook: the solution drawn in the radiosity mode, and its figures."""
-        from .._display import facts_html, picture
+        from ..display import facts_html, picture
 
         facts = [f"{self.hemicubes:,} hemicubes",
                  f"radiosity {float(self.radiosity.min()):.4g} .. "

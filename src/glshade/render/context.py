@@ -233,7 +233,7 @@ class RenderContext:
         return f"<RenderContext {self.backend.value}: {state}>"
 
 
-def _egl_device_count() -> int:
+def egl_device_count() -> int:
     """How many EGL devices the driver lists (EGL_EXT_device_enumeration), 0 when it
     lists none or cannot say."""
     import ctypes
@@ -263,7 +263,7 @@ def egl_devices() -> list[dict]:
     import moderngl
 
     out = []
-    for i in range(_egl_device_count()):
+    for i in range(egl_device_count()):
         try:
             settings: dict[str, Any] = {"backend": "egl", "device_index": i}
             ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
@@ -282,7 +282,7 @@ def device_index(spec) -> int:
     renderer: ``"nvidia"``, ``"llvmpipe"``); one line naming those present when no device
     (or more than one, by name) matches."""
     text = str(spec).strip()
-    if text.isdigit() and int(text) < _egl_device_count():
+    if text.isdigit() and int(text) < egl_device_count():
         return int(text)  # (no need to make a context on each device)
     devices = egl_devices()
     present = "; ".join(f"{d['index']}: {d['vendor']} {d['renderer']}".strip()

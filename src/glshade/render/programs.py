@@ -6,6 +6,7 @@ software rasterizer evaluates on both sides). Programs are compiled lazily and c
 
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -14,8 +15,32 @@ import numpy as np
 from ..modes import ShadingMode
 from ..scene.lights import DirectionalLight
 
-__all__ = ["ProgramKey", "Variant", "light_kind", "UniformWriter", "material_uniforms",
+__all__ = ["ProgramKey", "Variant", "Forward", "Role", "light_kind", "UniformWriter",
+           "material_uniforms",
            "MaterialUniforms", "flat_constants_fit", "FLAT_CONSTANTS_PIXELS"]
+
+
+class Forward(enum.Enum):
+    """Where a shadowed draw's fragments find each light's visibility: in the shadow pass's
+    visibility array (``ARRAY``, drawn from a G-buffer first) or themselves, at their own
+    point, as they shade: ``MAPS`` looked up (SHADOW_MAPS_FORWARD), ``RAYS`` traced
+    (SHADOW_RAYS_FORWARD)."""
+
+    ARRAY = "array"
+    MAPS = "maps"
+    RAYS = "rays"
+
+
+class Role(enum.Enum):
+    """What a model's draw is for: an opaque surface's, or a transparent one's --
+    ``CAPTURE`` (into per-pixel fragment lists through storage-buffer atomics), ``FETCH``
+    (the same, counted through framebuffer fetch, OIT_FETCH) or ``BLEND`` (its opacity as
+    alpha, blended in drawing order)."""
+
+    OPAQUE = "opaque"
+    CAPTURE = "capture"
+    FETCH = "fetch"
+    BLEND = "blend"
 
 
 def light_kind(light) -> str:
@@ -101,9 +126,8 @@ class Variant(NamedTuple):
     orthographic: bool
     #: each light's term is weighed by its visibility at the pixel (a shadow pass's)
     shadows: bool = False
-    #: ... which the fragment finds itself, at its own point (no G-buffer, no visibility
-    #: array): "maps" (looked up in the lights' shadow maps) or "rays" (traced); "" not
-    forward: str = ""
+    #: ... found where (:class:`Forward`; ARRAY when the draw has no shadows)
+    forward: Forward = Forward.ARRAY
 
 
 @dataclass(frozen=True)
@@ -119,38 +143,38 @@ class ProgramKey:
     #: Phong's lighting constants reach the fragment stage as flat varyings (constants.glsl)
     flat_constants: bool = False
     shadows: bool = False
-    #: a transparent surface's draw: "capture" (into per-pixel fragment lists; "fetch": the
-    #: same, counted through framebuffer fetch, OIT_FETCH) or "blend"
-    #: (its opacity as alpha, blended in drawing order); "" for an opaque one
-    oit: str = ""
+    #: an opaque surface's draw or a transparent one's (:class:`Role`)
+    oit: Role = Role.OPAQUE
     #: the surface has texture coordinates and its material's maps are sampled (textures.glsl)
     textured: bool = False
-    #: shadows found by the fragment stage: "maps" looked up (SHADOW_MAPS_FORWARD), "rays"
-    #: traced (SHADOW_RAYS_FORWARD)
-    forward: str = ""
+    #: where the fragment stage finds its lights' visibility (:class:`Forward`)
+    forward: Forward = Forward.ARRAY
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
-           flat_constants: bool = False, oit: str = "", textured: bool = False) -> ProgramKey:
+           flat_constants: bool = False, oit: Role = Role.OPAQUE,
+           textured: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model."""
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
-        return cls(variant.mode, variant.aux and not oit, variant.lights, variant.srgb,
+        opaque = oit is Role.OPAQUE
+        return cls(variant.mode, variant.aux and opaque, variant.lights, variant.srgb,
                    variant.orthographic, two_sided, flat_constants,
-                   variant.shadows and not oit, oit, textured and variant.mode in TEXTURED_MODES,
-                   variant.forward if variant.shadows and not oit else "")
+                   variant.shadows and opaque, oit, textured and variant.mode in TEXTURED_MODES,
+                   variant.forward if variant.shadows and opaque else Forward.ARRAY)
 
     def defines(self) -> tuple[str, ...]:
-        world = self.aux or self.mode is ShadingMode.NORMALS or bool(self.forward)
+        forward = self.forward is not Forward.ARRAY
+        world = self.aux or self.mode is ShadingMode.NORMALS or forward
         flat = self.flat_constants and self.mode is ShadingMode.PHONG
-        capture = self.oit in ("capture", "fetch")
+        capture = self.oit in (Role.CAPTURE, Role.FETCH)
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", capture),
-                 ("OIT_FETCH", self.oit == "fetch"), ("GLSL_430", capture or bool(self.forward)),
-                 ("OIT_BLEND", self.oit == "blend"), ("TEXTURED", self.textured),
-                 ("SHADOW_MAPS_FORWARD", self.forward == "maps"),
-                 ("SHADOW_RAYS_FORWARD", self.forward == "rays"))
+                 ("OIT_FETCH", self.oit is Role.FETCH), ("GLSL_430", capture or forward),
+                 ("OIT_BLEND", self.oit is Role.BLEND), ("TEXTURED", self.textured),
+                 ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
+                 ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS))
         out = [name for name, on in flags if on]
         if capture:
             out.append(f"OIT_SLOTS {OIT_SLOTS}")

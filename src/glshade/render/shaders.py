@@ -19,7 +19,16 @@ from ..modes import ShadingMode
 from .base import GLResource
 from .programs import ProgramKey
 
-__all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS"]
+__all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS", "LOOP_CAP", "LOOP_BUDGET"]
+
+#: llvmpipe stops one shader invocation after this many loop iterations (every loop of the
+#: invocation counted together), silently: what it computed so far stands as its answer
+LOOP_CAP = 65_535
+#: the loop iterations one invocation's bounded work may take in all (a shadow ray, a
+#: transparent list's walk, a path's bounces): under LOOP_CAP with room for the loops
+#: around it; every program is compiled with it (``#define LOOP_BUDGET``), and work that
+#: reaches it is counted and reported, never silently cut
+LOOP_BUDGET = 60_000
 
 #: program of each mode: (vertex shader file, fragment shader file) under shaders/
 PROGRAMS = {
@@ -81,6 +90,7 @@ def assemble(name: str, root: Path | None = None,
                 out.extend(f"#extension {_EXTENSIONS[d]} : require" for d in defines
                            if d in _EXTENSIONS)
                 out.extend(f"#define {d}" for d in defines)
+                out.append(f"#define LOOP_BUDGET {LOOP_BUDGET}")
                 out.append(f"#line 2 {number}")
                 continue
             m = _INCLUDE.match(line)
@@ -131,6 +141,11 @@ class ShaderLibrary(GLResource):
     def __init__(self, context):
         super().__init__(context)
         self._programs: dict[ProgramKey, Any] = {}
+
+    @property
+    def compiled(self) -> tuple:
+        """The :class:`ProgramKey` of every mode program compiled so far."""
+        return tuple(self._programs)
 
     def program(self, mode, aux: bool = True):
         """The program of a :class:`ProgramKey`, compiled on first use; or, given a mode, its

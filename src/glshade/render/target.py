@@ -11,11 +11,51 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import OptionError
+from ..errors import OptionError, SettingError
 from ..modes import Outputs
 from .base import GLResource
 
-__all__ = ["OffscreenTarget", "WindowTarget"]
+__all__ = ["OffscreenTarget", "WindowTarget", "check_fits"]
+
+
+#: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
+#: (16), polygon id (4), view depth (4) and the z-buffer (4)
+_BYTES_PER_SAMPLE = 44
+
+
+def check_fits(context, width: int, height: int, samples: int = 0,
+               bytes_per_pixel: int = 0) -> None:
+    """Refuse, up front and by name, what this GL cannot make: MSAA sample counts it lacks,
+    images wider than its framebuffers, and (on a software renderer, which draws in main
+    memory) images larger than the machine's memory."""
+    import os
+
+    info = context.ctx.info
+    max_samples = context.ctx.max_samples
+    if samples and (samples > max_samples or samples & (samples - 1)):
+        counts = ", ".join(str(2**i) for i in range(int(np.log2(max(max_samples, 1))) + 1))
+        raise SettingError("samples", f"samples must be 0 (off) or one of {counts} on this "
+                                      f"GL ({context.detail}), got {samples}")
+    side = min(int(info.get("GL_MAX_RENDERBUFFER_SIZE") or 16384),
+               *[int(x) for x in (info.get("GL_MAX_VIEWPORT_DIMS") or (16384, 16384))])
+    if max(width, height) > side:
+        raise SettingError("size", f"an image of {width}x{height} is larger than this GL's "
+                                   f"largest framebuffer, {side} pixels a side "
+                                   f"({context.detail})")
+    need = width * height * (bytes_per_pixel or
+                             _BYTES_PER_SAMPLE * (samples + 1 if samples else 1))
+    software = context.software
+    try:
+        memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        memory = 0
+    if software and memory and need > memory // 3:
+        what = f"with {samples} samples " if not bytes_per_pixel else ""
+        raise SettingError("size", f"an image of {width}x{height} {what}"
+                                   f"needs about {need / 2**30:.1f} GiB of framebuffers; this "
+                                   "software renderer draws in main memory "
+                                   f"({memory / 2**30:.0f} GiB): ask for fewer pixels or "
+                                   "samples")
 
 
 class OffscreenTarget(GLResource):

@@ -169,7 +169,7 @@ class CameraPath:
 
     def _repr_html_(self) -> str:
         """In a notebook: the eye's track seen from above (x right, z down) and the keys."""
-        from .._display import facts_html
+        from ..display import facts_html
 
         eyes = np.array([c.position for c in self.sample(200)])
         keys = np.array([k.position for k in self.keyframes])

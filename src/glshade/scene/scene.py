@@ -135,7 +135,7 @@ class Scene:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail from the iso view and the counts."""
-        from .._display import bounds_fact, facts_html, picture
+        from ..display import bounds_fact, facts_html, picture
 
         return facts_html(repr(self), [bounds_fact(self.bounds)], picture(self))
 

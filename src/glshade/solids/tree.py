@@ -194,7 +194,7 @@ class Solid:
 
     def _repr_html_(self) -> str:
         """In a notebook: a thumbnail (ray cast on the GPU) and the tree's counts."""
-        from .._display import bounds_fact, facts_html, picture
+        from ..display import bounds_fact, facts_html, picture
 
         image = picture(self) if self.bounds is not None else None
         return facts_html(repr(self), [bounds_fact(self.bounds)], image)

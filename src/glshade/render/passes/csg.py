@@ -36,6 +36,7 @@ from ..base import GLResource
 from ..data import data_texture
 from ..programs import MaterialUniforms, ProgramKey, UniformWriter
 from ..state import DrawState
+from . import Stage
 
 __all__ = ["CsgPass", "csg_defines"]
 
@@ -56,7 +57,7 @@ def csg_defines(data: TreeData, slots: tuple = (), blocks: bool = True) -> tuple
     return defines
 
 
-class CsgPass(GLResource):
+class CsgPass(GLResource, Stage):
     """The programs (per shading variant and tree class, :meth:`program`), each solid's data
     texture, the screen polygon's buffer and the drawing of solids, for one Renderer: a GL
     owner of the renderer's context, released with it. Shares the renderer's uniform writer
@@ -119,6 +120,12 @@ class CsgPass(GLResource):
             self._programs[(key, words, data.kinds, slots)] = found
         return found
 
+    @property
+    def compiled(self) -> tuple:
+        """The keys of the programs compiled so far: ``(ProgramKey, words of leaf bits,
+        kinds, one-step slots)`` each (one per variant and tree class, never per tree)."""
+        return tuple(self._programs)
+
     def fan(self, program, corners: np.ndarray):
         """The vertex array of a screen polygon (M, 2) NDC (M <= DIRECTIONS + 4), drawn as
         a fan."""
@@ -132,6 +139,9 @@ class CsgPass(GLResource):
         if vao is None:
             vao = vaos[id(program)] = ctx.vertex_array(program, [(vbo, "3f", "in_position")])
         return vao
+
+    def wanted(self, state: DrawState) -> bool:
+        return bool(state.scene.solids) and not state.options.wireframe
 
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the scene's visible solids (their ids, a leaf each, follow from

@@ -25,6 +25,7 @@ from ...geometry.transforms import gl_bytes
 from ...modes import Outputs
 from ..base import GLResource
 from ..state import DrawState
+from . import Stage
 
 __all__ = ["EdgePass", "edge_width", "EDGE_COLOR"]
 
@@ -41,13 +42,23 @@ def edge_width(width: int, height: int) -> float:
     return max(1.0, round(side / 400 * 2) / 2)
 
 
-class EdgePass(GLResource):
-    """The edge program and its drawing, for one Renderer (released with it)."""
+class EdgePass(GLResource, Stage):
+    """The edge program and its drawing, for one Renderer (released with it): the
+    pipeline's last stage, an overlay on top of every surface.
 
-    def __init__(self, context, shaders, uniforms, gpu_mesh):
+    Parameters
+    ----------
+    context
+        the RenderContext drawn with.
+    shaders
+        its shader library.
+    meshes
+        the mesh pass (its GPU meshes' edge arrays and its uniform writer).
+    """
+
+    def __init__(self, context, shaders, meshes):
         super().__init__(context)
-        self.shaders, self.uniforms = shaders, uniforms
-        self.gpu_mesh = gpu_mesh  # (the renderer's cache: Mesh -> GpuMesh)
+        self.shaders, self.meshes = shaders, meshes
         self._program: Any = None
         self._depth: Any = None   # (size, texture, framebuffer): the surfaces' depth
 
@@ -58,17 +69,18 @@ class EdgePass(GLResource):
                                                             geom="edges.geom"))
         return self._program
 
+    def wanted(self, state: DrawState) -> bool:
+        return bool(state.options.edges or state.options.wireframe)
+
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the edges of the scene's visible meshes into the target's colour, in
         ``EDGE_COLOR`` (or, wireframe, each in its material's colour); the id base as it
         was (edges take no ids)."""
         options = state.options
-        if not (options.edges or options.wireframe):
-            return id_base
-        models = [m for m in state.scene.models if m.visible and len(m.mesh.triangles[0])]
+        models = [m for m in state.scene.models if state.drawn(m)]
         if not models:
             return id_base
-        gpu_meshes = [(self.gpu_mesh(m.mesh), m.transform) for m in models]
+        gpu_meshes = [(self.meshes.gpu_mesh(m.mesh), m.transform) for m in models]
         colors = [m.material.color for m in models] if options.wireframe else None
         prog = self.program()
         ctx = self.context.ctx
@@ -76,7 +88,7 @@ class EdgePass(GLResource):
         if hide:
             self._copy_depth(state.target)
         state.target.bind(Outputs.COLOR)
-        put = self.uniforms.put
+        put = self.meshes.uniforms.put
         x, y, w, h = state.viewport
         put(prog, "u_proj", gl_bytes(state.proj))
         put(prog, "u_inverse_proj", gl_bytes(np.linalg.inv(state.proj)))

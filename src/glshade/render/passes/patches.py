@@ -16,6 +16,7 @@ from ...errors import SceneError
 from ...modes import ShadingMode
 from ..base import GLResource
 from ..programs import ProgramKey
+from . import Stage
 
 __all__ = ["PatchPass", "GPU_MODES"]
 
@@ -27,17 +28,24 @@ DRAW_VERTICES = 32768
 GPU_MODES = (ShadingMode.GOURAUD, ShadingMode.PHONG, ShadingMode.NORMALS, ShadingMode.DEPTH)
 
 
-class PatchPass(GLResource):
+class PatchPass(GLResource, Stage):
     """Programs and control-point buffers of GPU-tessellated patch models, for one
-    Renderer (which hands in its uniform writer and material cache)."""
+    Renderer: the stage that draws them beside the meshes.
 
-    def __init__(self, context, shaders, uniforms, materials, normal_matrix):
+    Parameters
+    ----------
+    context
+        the RenderContext drawn with.
+    shaders
+        its shader library.
+    meshes
+        the mesh pass (its uniform writer, material cache and normal matrices).
+    """
+
+    def __init__(self, context, shaders, meshes):
         super().__init__(context)
-        if context.ctx.version_code < 400:
-            raise SceneError(f"GPU tessellation needs OpenGL 4.0; this context is "
-                             f"{context.ctx.version_code / 100:.1f} (tessellate on the CPU)")
-        self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
-        self.normal_matrix = normal_matrix  # (the renderer's cache: (model, key) -> (N, mirrored))
+        self.shaders, self.meshes = shaders, meshes
+        self.uniforms, self.materials = meshes.uniforms, meshes.materials
         self._programs: dict = {}
         self._buffers: dict[int, Any] = {}
 
@@ -74,6 +82,9 @@ class PatchPass(GLResource):
                                                                   "in_control")])
         return vao
 
+    def wanted(self, state) -> bool:
+        return bool(state.scene.patch_models) and not state.options.wireframe
+
     def draw(self, state, id_base: int) -> int:
         """Draw the scene's visible patch models (their ids, one per patch, follow from
         ``id_base``); return the id base after them."""
@@ -83,6 +94,9 @@ class PatchPass(GLResource):
 
         self._check()
         ctx = self.context.ctx
+        if ctx.version_code < 400:
+            raise SceneError(f"GPU tessellation needs OpenGL 4.0; this context is "
+                             f"{ctx.version_code / 100:.1f} (tessellate on the CPU)")
         mode = state.options.mode
         if mode not in GPU_MODES:
             raise SceneError(f"a GPU-tessellated patch model draws in "
@@ -99,7 +113,7 @@ class PatchPass(GLResource):
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
             m = model.transform
-            normal_world, mirrored = self.normal_matrix(m, m.tobytes())
+            normal_world, mirrored = self.meshes.normal_matrix(m, m.tobytes())
             put(prog, "u_normal_view", np.ascontiguousarray(
                 (view3 @ normal_world).T, "f4").tobytes())
             put(prog, "u_normal_world", np.ascontiguousarray(normal_world.T, "f4").tobytes())

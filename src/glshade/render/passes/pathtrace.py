@@ -11,7 +11,8 @@ from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
 from ..base import GLResource
-from ..data import data_texture
+from ..data import NEAREST, data_texture
+from ..film import LAYOUT_BLOCKS, film_layout, film_places
 from ..shaders import ShaderLibrary
 from .csg import csg_defines
 
@@ -53,8 +54,9 @@ class GpuPathTracer(GLResource):
     SAMPLERS = ("pcg", "sobol")
     ACCELS = ("auto", "bvh", "flat", "hybrid")
 
-    #: loop iterations under which an invocation starts another bounce (a bounce of a
-    #: scene of 100k triangles costs a few hundred; llvmpipe's limit is 65,535)
+    #: loop iterations under which an invocation starts another bounce (its own tuning, not
+    #: the cap's: a bounce of a scene of 100k triangles costs a few hundred, so one begun
+    #: just under this ends far below LOOP_BUDGET, where it would be reported as cut short)
     BUDGET = 8192
     #: triangles up to which a ray tests every triangle, compiled into the program, rather
     #: than walk the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a
@@ -85,7 +87,7 @@ class GpuPathTracer(GLResource):
     #: is four tiles of unequal work (a sphere's in two) -- 1.70 of 2 cores busy; rows of
     #: 64 blocks put every part of the image in every tile: 1.98 busy, Cornell box + an
     #: 81,920-triangle sphere 2.24 -> 2.56 M paths/s (measured, 64 spp, coherent)
-    LAYOUT_BLOCKS = 64
+    LAYOUT_BLOCKS = LAYOUT_BLOCKS
 
     def __init__(self, context, scene, width: int, height: int, *,
                  max_depth: int | None = None, shaders: ShaderLibrary | None = None,
@@ -93,11 +95,12 @@ class GpuPathTracer(GLResource):
                  accel: str = "auto", sampler: str = "pcg", mis: bool = True,
                  coherent: bool | tuple[int, int] = False, storage: bool | None = None,
                  control: np.ndarray | None = None):
-        from ..renderer import check_fits
+        from ..target import check_fits
 
         self.width, self.height = int(width), int(height)
-        #: the targets' size (the image in blocks: LAYOUT_BLOCKS, :meth:`_place`)
-        self.target_size, self._blocks = _layout(self.width, self.height, self.LAYOUT_BLOCKS)
+        #: the targets' size (the image in blocks: glshade.pathtrace.film)
+        self.target_size, self._blocks = film_layout(self.width, self.height,
+                                                     self.LAYOUT_BLOCKS)
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
         check_fits(context, *self.target_size, bytes_per_pixel=2 * 7 * 16 + 4)
         super().__init__(context)
@@ -139,9 +142,9 @@ class GpuPathTracer(GLResource):
         else:  # (the walk's nodes as a texture; its triangles read from the table's)
             self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4,
                                                tree.tobytes(), dtype="u4"))
-            self._bvh.filter = (0x2600, 0x2600)  # (NEAREST: a texel read whole)
-        #: each image pixel's row and column in the targets (:meth:`_place`)
-        self._where = self._place()
+            self._bvh.filter = (NEAREST, NEAREST)  # (a texel read whole)
+        #: each image pixel's row and column in the targets (glshade.pathtrace.film)
+        self._where = film_places(self.width, self.height, self._blocks)
         # two sets of the seven targets, read and written in turn
         size = self.target_size
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
@@ -387,25 +390,6 @@ class GpuPathTracer(GLResource):
             a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]
             out.append(a[::-1].astype(np.float64))
         return out[0], out[1], out[2]
-
-    def _place(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(H, W)`` int arrays: each image pixel's row and column in the targets (GL's
-        rows, bottom first; the shaders' ``target_of``)."""
-        y, x = np.mgrid[0:self.height, 0:self.width]
-        nbx, per_row = self._blocks
-        b = (y // 8) * nbx + x // 8
-        return (b // per_row) * 8 + y % 8, (b % per_row) * 8 + x % 8
-
-
-def _layout(width: int, height: int, per_row: int) -> tuple[tuple[int, int], tuple[int, int]]:
-    """The targets' (width, height) for a ``width x height`` image laid out in 8x8 blocks
-    (raster order, ``per_row`` a row, more where the target would pass 8,192 rows), and
-    the shaders' ``u_blocks``: (the image's blocks a row, the target's)."""
-    nbx = -(-width // 8)
-    n = nbx * -(-height // 8)
-    per_row = max(per_row, -(-n // 1024))  # (at most 1,024 rows of blocks)
-    per_row = min(per_row, n)
-    return (8 * per_row, 8 * -(-n // per_row)), (nbx, per_row)
 
 
 #: the most models a control variate covers (its values are a uniform array)

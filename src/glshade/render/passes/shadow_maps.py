@@ -12,12 +12,11 @@ receive map shadows but cast none (they are ray cast, not triangles): ``exact`` 
 from __future__ import annotations
 
 import math
-import warnings
 from typing import Any
 
 import numpy as np
 
-from ...errors import RenderWarning
+from ...errors import RenderWarning, warn_user
 from ...geometry.transforms import gl_bytes, look_at, orthographic, perspective
 from ..base import GLResource
 
@@ -138,15 +137,24 @@ class ShadowMaps(GLResource):
         self._maps[index] = (key, tex, fbo)
         return tex
 
-    def draw_maps(self, owner, state) -> list[tuple]:
+    def draw_maps(self, state, occluders: tuple[tuple, np.ndarray]) -> list[tuple]:
         """Each light's map, drawn when its geometry or light changed: ``[(texture, light
-        row, face views, facts)]``; :attr:`facts` keeps each one's size and footprint."""
+        row, face views, facts)]``; :attr:`facts` keeps each one's size and footprint.
+
+        Parameters
+        ----------
+        state
+            the draw's facts (its scene, lights, camera).
+        occluders
+            ``(key, (T, 3, 3) world triangles)``: what casts, and the key of the geometry it
+            was gathered for (a map is drawn again when it changes).
+        """
         if state.scene.solids and not self._warned_solids:
             self._warned_solids = True
-            warnings.warn("CSG solids receive map shadows but cast none (they are ray cast, "
+            warn_user("CSG solids receive map shadows but cast none (they are ray cast, "
                           "not drawn into the maps): shadows='exact' casts theirs",
-                          RenderWarning, stacklevel=6)
-        geometry, triangles = owner.occluder_triangles(state.scene)
+                          RenderWarning)
+        geometry, triangles = occluders
         soup = self._soup_for(geometry, triangles)
         bounds = np.asarray(state.scene.bounds, np.float64)
         out = []
@@ -175,10 +183,10 @@ class ShadowMaps(GLResource):
                 "u_ortho": np.array([f.get("ortho", (1.0, 1.0, 0.0, 1.0)) for *_, f in maps],
                                     "f4")}
 
-    def forward(self, owner, state, first_unit: int) -> dict:
+    def forward(self, state, occluders: tuple[tuple, np.ndarray], first_unit: int) -> dict:
         """For a draw that looks its maps up as it shades (SHADOW_MAPS_FORWARD): the maps
         bound from ``first_unit`` on, and the uniforms every program of the draw takes."""
-        maps = self.draw_maps(owner, state)
+        maps = self.draw_maps(state, occluders)
         units = [first_unit + i for i in range(len(maps))]
         for (tex, *_), unit in zip(maps, units):
             tex.use(unit)
@@ -186,12 +194,14 @@ class ShadowMaps(GLResource):
         values["u_camera_to_world"] = gl_bytes(np.linalg.inv(state.view))
         return values
 
-    def fill(self, owner, renderer, state, gbuf, vis) -> None:
-        """Each light's map, then its layer of ``vis`` by PCF lookups at the G-buffer's
-        points (the visibility a frame reads back)."""
+    def fill(self, state, occluders: tuple[tuple, np.ndarray], gbuf, vis, put) -> None:
+        """Each light's map (:meth:`draw_maps`), then its layer of ``vis`` by PCF lookups
+        at the G-buffer ``gbuf``'s points (the visibility a frame reads back); ``put``
+        writes the lookup program's uniforms."""
         from ...scene.camera import Projection
+        from .gbuffer import bind_gbuffer
 
-        maps = self.draw_maps(owner, state)
+        maps = self.draw_maps(state, occluders)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
         prog = self._lookup.get(ortho)
         if prog is None:
@@ -200,8 +210,7 @@ class ShadowMaps(GLResource):
             source, _ = assemble("shadow_maps.comp",
                                  defines=("ORTHOGRAPHIC",) if ortho else ())
             prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
-        put = owner._put
-        owner.bind_gbuffer(prog, state, gbuf)
+        bind_gbuffer(put, prog, state, gbuf)
         for i, one in enumerate(maps):
             one[0].use(4)
             values = {"u_layer": i, **self.lookup_uniforms([one], [4])}
@@ -211,7 +220,6 @@ class ShadowMaps(GLResource):
             _, _, w, h = (int(v) for v in state.viewport)
             prog.run(math.ceil(w / 8), math.ceil(h / 8), 1)
         self.context.ctx.memory_barrier()
-        owner.undecided = 0
 
     @staticmethod
     def _footprint(state, views, facts, bounds) -> float:

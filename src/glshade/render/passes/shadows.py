@@ -19,29 +19,36 @@ from __future__ import annotations
 
 import copy
 import math
-import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from ...errors import RenderWarning
-from ...geometry.transforms import gl_bytes, pixel_rays
+from ...errors import RenderWarning, warn_user
+from ...geometry.transforms import gl_bytes
 from ...modes import Outputs, ShadingMode, Shadows
 from ..base import GLResource
-from ..programs import UniformWriter
+from ..data import NEAREST
+from ..programs import Forward, UniformWriter
+from ..shaders import LOOP_BUDGET
+from ..state import DrawState
+from . import Stage, run
+from .gbuffer import GBuffer, bind_gbuffer
 from .shadow_maps import ShadowMaps, shadow_lights
 
-__all__ = ["ShadowPass", "UNIT", "SHADOW_EPS", "RAY_BUDGET"]
+__all__ = ["ShadowPass", "UNIT", "MAP_FORWARD_UNIT", "SHADOW_EPS", "RAY_BUDGET"]
 
 #: texture unit of the visibility array in the shading programs
-UNIT = 6  # (the renderer's SHADOW_UNIT)
+UNIT = 6
+#: the first texture unit of a forward map-shadowed draw's maps (a light each, up to 8)
+MAP_FORWARD_UNIT = 16
 #: a shadow ray starts this far from its point, relative to the point's depth plus the
 #: scene's largest coordinate (the point is rebuilt from a float32 depth, ~1e-7 of those)
 SHADOW_EPS = 2e-5
 #: loop iterations one shadow ray may take (llvmpipe stops a shader at 65,535); a ray that
 #: runs out shows its light as seen, and is counted and reported
-RAY_BUDGET = 60_000
+RAY_BUDGET = LOOP_BUDGET
 #: triangles wider than this fraction of the scene's diagonal are tested by every ray in a
 #: list of their own (at most MAX_BIG of them), the rest through the hierarchy
 BIG_TRIANGLE, MAX_BIG = 0.25, 64
@@ -83,49 +90,29 @@ def _hidden(model):
     return out
 
 
-class _GBuffer:
-    """The draw's surface points: world normal (as (n + 1) / 2), polygon id + 1 (0
-    background) and the view depth's bits, in textures the compute pass reads (drawn into
-    like any target)."""
-
-    def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
-        self.width, self.height, self.rows_top_down = width, height, rows_top_down
-        size = (width, height)
-        # the normals mode's colour is the world normal as (n + 1) / 2, 8 bits a component:
-        # enough for a ray's start and a map's slope, a quarter of a float target's cost
-        self.normal = keep(ctx.texture(size, 4, dtype="f1"))
-        unread = keep(ctx.renderbuffer(size, 4, dtype="f1"))  # (the float normal: unused)
-        self.face = keep(ctx.texture(size, 1, dtype="i4"))
-        self.depth = keep(ctx.texture(size, 1, dtype="u4"))
-        for t in (self.normal, self.face, self.depth):
-            t.filter = (0x2600, 0x2600)  # NEAREST: a pixel's own values, never blended
-        self.zbuf = keep(ctx.depth_renderbuffer(size))
-        self.fbo = keep(ctx.framebuffer([self.normal, unread, self.face, self.depth],
-                                        self.zbuf))
-        self.fbo_color = keep(ctx.framebuffer([self.normal], self.zbuf))
-
-    def begin(self, background, outputs) -> None:
-        self.fbo.use()
-        self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
-
-    def bind(self, outputs) -> None:
-        self.fbo.use()
-
-    def depth_source(self):
-        return self.fbo_color
-
-    def resolve(self, outputs) -> None:
-        pass
-
-
-class ShadowPass(GLResource):
+class ShadowPass(GLResource, Stage):
     """The shadow work of one Renderer: its G-buffer, BVH buffers, shadow maps and the
     visibility array, made for the first draw that asks and kept (per size, per scene
-    geometry) for the next ones."""
+    geometry) for the next ones.
 
-    def __init__(self, context, shaders):
+    Parameters
+    ----------
+    context
+        the RenderContext drawn with.
+    shaders
+        its shader library.
+    opaque
+        the stages that draw the opaque surfaces (meshes, patches, solids): the G-buffer of
+        a draw whose visibility is read back is drawn with them.
+    """
+
+    def __init__(self, context, shaders, opaque: Sequence[Stage]):
         super().__init__(context)
         self.shaders = shaders
+        #: the stages that draw the opaque surfaces, which the G-buffer is drawn with
+        self.opaque = tuple(opaque)
+        self._array: Any = None  # (the visibility array a draw's programs read, or None)
+        self.drawn = False  # (some draw cast shadows)
         self._gbuffer: tuple | None = None
         self._visibility: tuple | None = None
         self._occluding: _Occluding | None = None
@@ -139,7 +126,7 @@ class ShadowPass(GLResource):
         self._lights_drawn = 0
 
     # ---------------------------------------------------------------- resources
-    def _gbuffer_for(self, width: int, height: int, rows_top_down: bool) -> _GBuffer:
+    def _gbuffer_for(self, width: int, height: int, rows_top_down: bool) -> GBuffer:
         key = (width, height, rows_top_down)
         if self._gbuffer is None or self._gbuffer[0] != key:
             if self._gbuffer is not None:
@@ -151,7 +138,7 @@ class ShadowPass(GLResource):
                 made.append(obj)
                 return obj
 
-            self._gbuffer = (key, _GBuffer(self.context.ctx, width, height, rows_top_down,
+            self._gbuffer = (key, GBuffer(self.context.ctx, width, height, rows_top_down,
                                            keep), made)
         return self._gbuffer[1]
 
@@ -162,7 +149,7 @@ class ShadowPass(GLResource):
             if self._visibility is not None:
                 self._visibility[1].release()
             tex = self.context.ctx.texture_array((width, height, layers), 1, dtype="f1")
-            tex.filter = (0x2600, 0x2600)
+            tex.filter = (NEAREST, NEAREST)
             self._visibility = (key, tex)
         return self._visibility[1]
 
@@ -233,11 +220,23 @@ class ShadowPass(GLResource):
             prog = self._programs[defines] = self.context.ctx.compute_shader(source)
         return prog
 
-    # ---------------------------------------------------------------- the pass
-    def prepare(self, renderer, state) -> Any:
-        """Draw the G-buffer of ``state``'s draw and fill the visibility array for it;
-        return the array (bound by the caller to :data:`UNIT`)."""
+    # ---------------------------------------------------------------- the stage
+    def wanted(self, state) -> bool:
+        return bool(state.variant.shadows)
+
+    def prepare(self, state):
+        """Find each light's visibility for ``state``'s draw: for a draw whose programs find
+        it themselves as they shade (``variant.forward`` MAPS or RAYS), bind what they read
+        and add the uniforms they take; else draw the G-buffer with the opaque stages,
+        fill the visibility array at its points and add its unit."""
         self._check()
+        self.drawn = True
+        # (compute shaders, storage buffers, sampler arrays)
+        self.context.require(430, f"shadows={state.options.shadows.value!r} needs",
+                             "use shadows='off'")
+        self._array = None
+        if state.variant.forward is not Forward.ARRAY:
+            return state.with_uniforms(self._forward(state))
         target = state.target
         width, height = int(target.width), int(target.height)
         gbuf = self._gbuffer_for(width, height, bool(state.flip_rows))
@@ -250,36 +249,51 @@ class ShadowPass(GLResource):
             scene = copy.copy(scene)
             scene.models = [m if not m.material.transparent else _hidden(m)
                             for m in scene.models]
-        renderer.draw(gbuf, scene, state.camera, options, viewport=state.viewport)
+        points = DrawState.of(gbuf, scene, state.camera, options, state.viewport)
+        run(self.context.ctx, self.opaque, points)
         lights = state.lights
         vis = self.visibility(width, height, max(len(lights), 1))
         self._lights_drawn = len(lights)
         if state.options.shadows is Shadows.MAP:
-            if self.maps is None:
-                self.maps = ShadowMaps(self.context, self.shaders)
-            self.maps.fill(self, renderer, state, gbuf, vis)
+            self._maps().fill(state, self.occluder_triangles(scene), gbuf, vis, self._put)
+            self.undecided = 0
         else:
             self._trace(state, gbuf, vis)
-        return vis
+        self._array = vis
+        return state.with_uniforms({"u_visibility": UNIT})
 
-    def forward(self, state, first_unit: int) -> dict:
+    def draw(self, state, id_base: int) -> int:
+        """Bind the visibility array (a draw through a G-buffer) for the shading programs."""
+        if self._array is not None:
+            self._array.use(UNIT)
+        return id_base
+
+    def finish(self, state) -> None:
+        """After a draw whose fragments traced their own rays: count those that ran out."""
+        if state.variant.forward is Forward.RAYS:
+            self.forward_done()
+
+    def _maps(self) -> ShadowMaps:
+        if self.maps is None:
+            self.maps = ShadowMaps(self.context, self.shaders)
+        return self.maps
+
+    def _forward(self, state) -> dict:
         """A shadowed draw that needs no visibility array, no G-buffer: the draw's programs
         find each light's visibility as they shade, at their own point -- tracing its ray
         (SHADOW_RAYS_FORWARD: the BVH's buffers bound) or looking the maps up
-        (SHADOW_MAPS_FORWARD: the maps drawn when changed and bound from ``first_unit``).
-        The uniforms they take; :meth:`forward_done` after the draw."""
-        self._check()
+        (SHADOW_MAPS_FORWARD: the maps drawn when changed and bound from
+        :data:`MAP_FORWARD_UNIT`). The uniforms they take."""
         self._lights_drawn = 0
-        if state.options.shadows is Shadows.EXACT:
+        if state.variant.forward is Forward.RAYS:
             occ = self.occluding(state.scene)
             self._counts.write(np.zeros(1, np.uint32).tobytes())
             self._bind_occluding(occ)
             # (one fragment traces every light: they share its loop budget)
             return {**self._ray_uniforms(state, occ, len(state.lights)),
                     "u_camera_to_world": gl_bytes(np.linalg.inv(state.view))}
-        if self.maps is None:
-            self.maps = ShadowMaps(self.context, self.shaders)
-        return self.maps.forward(self, state, first_unit)
+        return self._maps().forward(state, self.occluder_triangles(state.scene),
+                                    MAP_FORWARD_UNIT)
 
     def forward_done(self) -> None:
         """After a draw that traced its own rays: count those that ran out (a warning)."""
@@ -287,13 +301,12 @@ class ShadowPass(GLResource):
         undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
         self.undecided = undecided
         if undecided:
-            self._warn_undecided(undecided, 3)  # (at the draw)
+            self._warn_undecided(undecided)
 
     @staticmethod
-    def _warn_undecided(count: int, stacklevel: int) -> None:
-        warnings.warn(f"{count:,} shadow rays ran past their share of {RAY_BUDGET:,} steps "
-                      "(the GL's loop limit) and show their light as seen", RenderWarning,
-                      stacklevel=stacklevel + 1)
+    def _warn_undecided(count: int) -> None:
+        warn_user(f"{count:,} shadow rays ran past their share of {RAY_BUDGET:,} steps "
+                  "(the GL's loop limit) and show their light as seen", RenderWarning)
 
     def read(self) -> np.ndarray:
         """The last draw's visibility ``(H, W, L)`` float32 in [0, 1] (row 0 at the top of
@@ -319,14 +332,14 @@ class ShadowPass(GLResource):
         self._counts.bind_to_storage_buffer(2)
         occ.normals.bind_to_storage_buffer(3)
 
-    def _trace(self, state, gbuf: _GBuffer, vis) -> None:
+    def _trace(self, state, gbuf: GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
         from ...scene.camera import Projection
 
         occ = self.occluding(state.scene)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
         prog = self._program(("ORTHOGRAPHIC",) if ortho else ())
-        self.bind_gbuffer(prog, state, gbuf)
+        bind_gbuffer(self._put, prog, state, gbuf)
         values = self._ray_uniforms(state, occ, 1)
         for name, value in values.items():
             self._put(prog, name, value)
@@ -336,7 +349,7 @@ class ShadowPass(GLResource):
             if model.visible:
                 self._trace_solid(model.solid, state, gbuf, vis, ortho, values)
 
-    def _trace_solid(self, solid, state, gbuf: _GBuffer, vis, ortho: bool, values) -> None:
+    def _trace_solid(self, solid, state, gbuf: GBuffer, vis, ortho: bool, values) -> None:
         """One CSG solid's shadows over the triangles': the raster pass's exact cast."""
         from ...solids.encoding import ROW, tree_data
         from ...solids.tree import TIE
@@ -354,7 +367,7 @@ class ShadowPass(GLResource):
         defines = ("CSG_SOLID", *csg_defines(tree, blocks=False)) + \
             (("ORTHOGRAPHIC",) if ortho else ())
         prog = self._program(defines)
-        self.bind_gbuffer(prog, state, gbuf)
+        bind_gbuffer(self._put, prog, state, gbuf)
         texture.use(2)
         bounds = np.asarray(solid.bounds, np.float64)
         size = float(np.linalg.norm(bounds[1] - bounds[0])) or 1.0
@@ -365,23 +378,6 @@ class ShadowPass(GLResource):
         for name, value in {**values, **extra}.items():
             self._put(prog, name, value)
         self.dispatch(prog, state, vis, keep_count=True)
-
-    def bind_gbuffer(self, prog, state, gbuf: _GBuffer) -> None:
-        """The G-buffer and what rebuilds its points (shaders/include/gbuffer_point.glsl), the
-        viewport and the lights, for a compute program."""
-        gbuf.face.use(0)
-        gbuf.depth.use(1)
-        gbuf.normal.use(3)
-        inverse_view = np.linalg.inv(state.view)
-        values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
-                  **pixel_rays(state.proj, state.view, state.viewport),
-                  "u_eye": tuple(inverse_view[:3, 3]),
-                  "u_forward": tuple(-inverse_view[:3, 2]),
-                  "u_viewport": tuple(float(v) for v in state.viewport),
-                  "u_near": float(state.camera.planes()[0]),
-                  "u_light_count": len(state.lights)}
-        for name, value in values.items():
-            self._put(prog, name, value)
 
     def dispatch(self, prog, state, vis, keep_count: bool = False) -> None:
         """Run ``prog`` over the viewport's pixels x the lights; count the rays that ran out
@@ -396,7 +392,7 @@ class ShadowPass(GLResource):
         undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
         self.undecided, new = undecided, undecided - (self.undecided if keep_count else 0)
         if new:
-            self._warn_undecided(new, 6)  # (at the draw)
+            self._warn_undecided(new)
 
     def _release_extra(self) -> None:
         for p in self._programs.values():

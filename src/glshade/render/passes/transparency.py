@@ -19,15 +19,17 @@
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...errors import RenderWarning
+from ...errors import RenderWarning, warn_user
 from ...modes import Outputs, Transparency
 from ..base import GLResource
+from ..data import NEAREST
 from ..programs import OIT_SLOTS as SLOTS  # (a pixel's own slots; then a shared pool)
+from ..programs import Role
+from . import Stage
 
 __all__ = ["TransparencyPass", "TransparencyReport", "NODE_BYTES"]
 
@@ -61,8 +63,20 @@ class TransparencyReport:
         return text
 
 
-class TransparencyPass(GLResource):
-    """A Renderer's fragment-list buffers and resolve programs."""
+class TransparencyPass(GLResource, Stage):
+    """A Renderer's fragment-list buffers and resolve programs: the stage that draws the
+    transparent surfaces after every opaque one.
+
+    Parameters
+    ----------
+    context
+        the RenderContext drawn with.
+    shaders
+        its shader library.
+    meshes
+        the mesh pass, whose one drawing routine draws the surfaces (captured into the
+        lists, or blended).
+    """
 
     #: count and link a pixel's fragments through framebuffer fetch (no atomics: the GL
     #: keeps fragments in primitive order per pixel) where the GL has it and the target is a
@@ -70,9 +84,10 @@ class TransparencyPass(GLResource):
     #: llvmpipe, 8 full-view layers, capture alone: 7.2 ms against 12.5.)
     use_fetch = True
 
-    def __init__(self, context, shaders):
+    def __init__(self, context, shaders, meshes):
         super().__init__(context)
-        self.shaders = shaders
+        self.shaders, self.meshes = shaders, meshes
+        self.drawn = False  # (some draw had transparent surfaces)
         ctx = context.ctx
         self._heads = None  # (size, the heads' buffer: the atomics path's)
         self._report = self._keep(ctx.buffer(reserve=16))  # (the resolve's four counts)
@@ -102,6 +117,17 @@ class TransparencyPass(GLResource):
             self._count_fragments()  # (the last report's, before its lists go)
             self._heads[1].release()
             self._heads = None
+
+    @property
+    def compiled(self) -> tuple:
+        """The keys of the resolve programs compiled so far: ``(method, layers, fetch,
+        deepest)`` each (:meth:`_resolve_program`)."""
+        return tuple(self._programs)
+
+    @property
+    def counted_by_fetch(self) -> bool:
+        """Whether the last exact draw counted its fragments through framebuffer fetch."""
+        return self._fetch is not None
 
     @property
     def report(self) -> TransparencyReport:
@@ -136,7 +162,7 @@ class TransparencyPass(GLResource):
             self._drop_fetch()
             ctx = self.context.ctx
             tex = ctx.texture(key, 2, dtype="u4")
-            tex.filter = (0x2600, 0x2600)
+            tex.filter = (NEAREST, NEAREST)
             self._fetch = (key, depth, tex, ctx.framebuffer([tex], depth),
                            ctx.framebuffer([tex]))
         return self._fetch
@@ -159,7 +185,7 @@ class TransparencyPass(GLResource):
                 self._behind[1].release()
             ctx = self.context.ctx
             tex = ctx.texture(key[:2], 4, dtype=dtype)
-            tex.filter = (0x2600, 0x2600)
+            tex.filter = (NEAREST, NEAREST)
             self._behind = (key, tex, ctx.framebuffer([tex]))
         return self._behind[1], self._behind[2]
 
@@ -188,7 +214,26 @@ class TransparencyPass(GLResource):
                 "oit_resolve.vert", "oit_resolve.frag", defines=defines)
         return prog
 
-    def draw(self, renderer, state, models) -> None:
+    @staticmethod
+    def _models(state) -> list:
+        """The draw's transparent models (none in a wireframe draw)."""
+        if state.options.wireframe:
+            return []
+        return [m for m in state.scene.models if state.drawn(m) and state.transparent(m)]
+
+    def wanted(self, state) -> bool:
+        return bool(self._models(state))
+
+    def draw(self, state, id_base: int) -> int:
+        """Draw the transparent models of ``state``'s draw over its opaque picture (their
+        ids were counted by the mesh pass); the target bound again after."""
+        self.drawn = True
+        self._composite(state, self._models(state))
+        state.target.bind(state.options.outputs)
+        self.context.ctx.viewport = state.viewport
+        return id_base
+
+    def _composite(self, state, models) -> None:
         """Draw the transparent ``models`` of ``state``'s draw over its opaque picture."""
         import moderngl
 
@@ -210,7 +255,7 @@ class TransparencyPass(GLResource):
             fbo.depth_mask = False  # (tested against everything, written by nothing)
             fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
             try:
-                renderer._draw_models(state, models, oit="blend")
+                self.meshes.draw_models(state, models, Role.BLEND)
             finally:
                 fbo.depth_mask = True
                 fbo.use()
@@ -224,7 +269,7 @@ class TransparencyPass(GLResource):
         fetch = self._fetch_for(target)
         heads = self._heads_for(width, height) if fetch is None else fetch[2]
         for _ in range(2):  # (a second time with room for every fragment, when short)
-            self._capture(renderer, state, models, heads, fetch, layout)
+            self._capture(state, models, heads, fetch, layout)
             pooled, *deep = (int(v) for v in np.frombuffer(self._count.read(), np.uint32))
             if pooled <= self._capacity:
                 break
@@ -234,7 +279,7 @@ class TransparencyPass(GLResource):
         deepest = 0 if pooled else 2 ** sum(deep)
         self._resolve(state, heads, layout, deepest)
 
-    def _capture(self, renderer, state, models, heads, fetch, layout: dict) -> None:
+    def _capture(self, state, models, heads, fetch, layout: dict) -> None:
         """Draw the transparent ``models`` into their pixels' lists: counted through
         ``fetch`` (:meth:`_fetch_for`; ``heads`` its texture) when given, else through the
         ``heads`` buffer."""
@@ -256,8 +301,8 @@ class TransparencyPass(GLResource):
         fbo.depth_mask = False
         fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
         try:
-            renderer._draw_models(state, models, oit="capture" if fetch is None else "fetch",
-                                  extra={"u_oit_capacity": self._capacity, **layout})
+            self.meshes.draw_models(state, models, Role.CAPTURE if fetch is None else Role.FETCH,
+                                    extra={"u_oit_capacity": self._capacity, **layout})
         finally:
             fbo.color_mask = (True, True, True, True)
             fbo.depth_mask = True
@@ -313,14 +358,12 @@ class TransparencyPass(GLResource):
         self._last = TransparencyReport(options.transparency.value, -1, layers, over,
                                          dropped, short)
         if over and options.transparency is Transparency.EXACT:
-            warnings.warn(f"{over:,} pixels had more than max_layers={layers} transparent "
+            warn_user(f"{over:,} pixels had more than max_layers={layers} transparent "
                           f"surfaces: the nearest {layers} were composited, {dropped:,} "
-                          "farther fragments left out (raise max_layers)", RenderWarning,
-                          stacklevel=5)
+                          "farther fragments left out (raise max_layers)", RenderWarning)
         if short:
-            warnings.warn(f"{short:,} pixels' transparent lists were longer than the "
-                          "shader's step bound and composited in part", RenderWarning,
-                          stacklevel=5)
+            warn_user(f"{short:,} pixels' transparent lists were longer than the "
+                          "shader's step bound and composited in part", RenderWarning)
 
     def _release_extra(self) -> None:
         for p in self._programs.values():

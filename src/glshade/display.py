@@ -87,6 +87,13 @@ def facts_html(title: str, facts: list[str], image: np.ndarray | None = None) ->
 
 
 def bounds_fact(bounds) -> str:
+    """One line of a notebook card: an object's box.
+
+    Parameters
+    ----------
+    bounds
+        (2, 3) lowest and highest corner in world units, or None (unbounded).
+    """
     if bounds is None:
         return "unbounded"
     lo, hi = np.asarray(bounds)

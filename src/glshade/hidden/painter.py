@@ -298,7 +298,7 @@ def _resolve(p: Prepared, pieces: Pieces, split: bool, eps: float, counters) -> 
         victim, by = straddling
         n_by, d_by = cache.plane(by)
         t, s, c = pieces.arrays()
-        tris, cuts = _split_one(t[victim].tolist(), n_by.tolist(), float(d_by), eps,
+        tris, cuts = split_one(t[victim].tolist(), n_by.tolist(), float(d_by), eps,
                                 c[victim].tolist())
         counters["splits"] += 1
         new = pieces.add(tris, np.full(len(tris), s[victim]), cuts, pieces._n[victim])
@@ -418,7 +418,7 @@ def _first_blocker(c: _Cache, P: int, left: np.ndarray, eps: float, counters):
 _CHUNK = 64
 
 
-def _split_one(tri: list, n: list, d: float, eps: float, cut: list):
+def split_one(tri: list, n: list, d: float, eps: float, cut: list):
     """One triangle split by the plane ``n.p = d`` (it straddles it): the pieces on each
     side as triangles (fans of the clipped polygons) and their edges' cut flags (a split
     line or a diagonal, or the original edge's flag) -- as ``view.split_by_plane`` does for

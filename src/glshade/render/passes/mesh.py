@@ -1,0 +1,219 @@
+"""The meshes' pass: the one routine that draws a model's triangles.
+
+Every draw of a mesh model goes through :meth:`MeshPass.draw_models` -- the opaque surfaces
+(:meth:`MeshPass.draw`, a stage of the pipeline), the shadow pass's G-buffer (the same
+stage, drawn into the G-buffer's target) and the transparency pass's capture and blend
+(``role``) -- so a model's program, uniforms, culling, winding and textures are chosen in
+one place. It owns the GPU copies of the meshes (uploaded once, dropped with their mesh),
+the compiled programs of each variant and the per-transform normal matrices, which the
+patch and edge passes share.
+"""
+
+from __future__ import annotations
+
+import weakref
+from typing import Any
+
+import moderngl
+import numpy as np
+
+from ...geometry.transforms import gl_bytes
+from ...modes import Culling, ShadingMode
+from ..base import GLResource
+from ..gpu_mesh import GpuMesh
+from ..programs import (
+    FLAT_CONSTANTS_PIXELS, TEXTURED_MODES, Forward, MaterialUniforms, ProgramKey, Role,
+    UniformWriter, Variant, flat_constants_fit,
+)
+from ..state import DrawState
+from ..textures import TextureCache
+from . import Stage
+
+__all__ = ["MeshPass"]
+
+
+def _mat3(m: np.ndarray) -> bytes:
+    return np.ascontiguousarray(np.asarray(m, dtype=np.float32).T).tobytes()
+
+
+class MeshPass(GLResource, Stage):
+    """A Renderer's meshes on the GPU and the drawing of them.
+
+    Parameters
+    ----------
+    context
+        the RenderContext drawn with.
+    shaders
+        its :class:`~glshade.render.shaders.ShaderLibrary`.
+    uniforms, materials
+        the writer and the material cache every pass of the renderer shares (a uniform
+        written once is not written again).
+    flat_constants
+        let Phong programs take the lighting constants as flat varyings for models with
+        large triangles (faster on a software rasterizer, the same pictures).
+    """
+
+    def __init__(self, context, shaders, uniforms: UniformWriter,
+                 materials: MaterialUniforms, flat_constants: bool = False):
+        super().__init__(context)
+        self.shaders, self.uniforms, self.materials = shaders, uniforms, materials
+        self.flat_constants = flat_constants
+        self._meshes: dict[int, tuple[weakref.ref, GpuMesh]] = {}
+        self._normal_cache: dict[bytes, tuple[np.ndarray, bool]] = {}
+        self._programs: dict[tuple, Any] = {}
+        self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
+        self._textures: TextureCache | None = None  # (made for the first textured draw)
+        #: the vectors of varyings this GL interpolates (flat constants must fit in them)
+        self.max_varyings = int(context.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
+
+    # ------------------------------------------------------------------ caches
+    def gpu_mesh(self, mesh) -> GpuMesh:
+        """The GPU copy of ``mesh`` (uploaded on first use, kept while the mesh lives)."""
+        entry = self._meshes.get(id(mesh))
+        if entry is not None and entry[0]() is mesh:
+            return entry[1]
+        if entry is not None:  # the id was reused by a new object
+            entry[1].release()
+        gpu = GpuMesh(self.context, mesh)
+        self._meshes[id(mesh)] = (weakref.ref(mesh), gpu)
+        return gpu
+
+    def sync(self) -> None:
+        """Drop GPU copies of meshes that no longer exist (no GL work in finalizers)."""
+        dead = [k for k, (ref, _) in self._meshes.items() if ref() is None]
+        for k in dead:
+            self._meshes.pop(k)[1].release()
+
+    @property
+    def cached(self) -> int:
+        """How many meshes have a GPU copy."""
+        return len(self._meshes)
+
+    def normal_matrix(self, model: np.ndarray, key: bytes) -> tuple[np.ndarray, bool]:
+        """Inverse transpose of a model matrix's 3x3 part, and whether it mirrors (its
+        faces then wind the other way), cached per transform.
+
+        Parameters
+        ----------
+        model
+            (4, 4) model-to-world matrix.
+        key
+            its bytes (the cache's key).
+        """
+        found = self._normal_cache.get(key)
+        if found is None:
+            if len(self._normal_cache) > 4096:
+                self._normal_cache.clear()
+            found = self._normal_cache[key] = (np.linalg.inv(model[:3, :3]).T,
+                                               bool(np.linalg.det(model[:3, :3]) < 0))
+        return found
+
+    def program(self, variant: Variant, two_sided: bool, flat: bool = False,
+                role: Role = Role.OPAQUE, textured: bool = False):
+        """The compiled program of a variant, with flat lighting constants if asked for and
+        they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
+        material's maps sampled."""
+        found = (variant, two_sided, flat, role, textured)
+        program = self._programs.get(found)
+        if program is None:
+            forwarded = variant.shadows and variant.forward is not Forward.ARRAY
+            world = (variant.aux or forwarded) and role is Role.OPAQUE
+            flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
+                                               self.max_varyings, textured)
+            key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
+                                textured=textured)
+            program = self._programs[found] = self.shaders.program(key)
+        return program
+
+    @property
+    def programs(self) -> int:
+        """How many program variants this pass has compiled (one per variant a draw
+        needed: mode, lights, culling, flat constants, role, textures)."""
+        return len(self._programs)
+
+    # ------------------------------------------------------------------ the stage
+    def draw(self, state: DrawState, id_base: int) -> int:
+        """Draw the scene's visible opaque meshes; the polygon id after theirs (transparent
+        ones keep their ids: the transparency pass draws them later; a wireframe draw
+        leaves the surfaces to the edge pass)."""
+        prepared: set[int] = set()
+        wireframe = state.options.wireframe
+        for model in state.scene.models:
+            if not state.drawn(model):
+                id_base += model.mesh.n_faces
+                continue
+            gpu = self.gpu_mesh(model.mesh)
+            if not wireframe and not state.transparent(model):
+                self._draw_model(state, model, gpu, id_base, prepared)
+            id_base += gpu.n_polygons
+        return id_base
+
+    def draw_models(self, state: DrawState, models, role: Role,
+                    extra: dict | None = None) -> None:
+        """Draw ``models`` as ``role`` (the transparency pass's capture, fetch or blend),
+        with the ``extra`` uniforms its programs take."""
+        prepared: set[int] = set()
+        for model in models:
+            self._draw_model(state, model, self.gpu_mesh(model.mesh), 0, prepared, role,
+                             extra)
+
+    def _draw_model(self, state: DrawState, model, gpu, id_base: int, prepared: set,
+                    role: Role = Role.OPAQUE, extra: dict | None = None) -> None:
+        """One model's draw call, with the uniforms its program does not hold yet."""
+        ctx, put = self.context.ctx, self.uniforms.put
+        scene, options, view, lights = state.scene, state.options, state.view, state.lights
+        near = state.camera.planes()[0]
+        pixels = state.viewport[2] * state.viewport[3]
+        m = model.transform
+        model_view = view @ m
+        cull = options.cull is Culling.ON or (
+            options.cull is Culling.AUTO and gpu.closed
+            and gpu.beyond(model_view, near) and role is Role.OPAQUE)  # (seen from outside)
+        flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
+        textured = (gpu.textured and bool(model.material.textures)
+                    and options.mode in TEXTURED_MODES)
+        prog = self.program(state.variant, not cull, flat, role, textured)
+        if id(prog) not in prepared:  # the frame's uniforms, once per program used
+            for name, value in state.frame_uniforms:
+                put(prog, name, value)
+            for name, value in (extra or {}).items():
+                put(prog, name, value)
+            prepared.add(id(prog))
+        transform = m.tobytes()
+        normal_world, mirrored = self.normal_matrix(m, transform)
+        # (the view is rigid: its inverse transpose is itself)
+        put(prog, "u_normal_view", _mat3(view[:3, :3] @ normal_world))
+        put(prog, "u_model_view", gl_bytes(model_view))
+        held = (transform, id_base, model.material, lights, scene.ambient)
+        if self._model_state.get(id(prog)) != held:  # else all of it is in place
+            put(prog, "u_normal_world", _mat3(normal_world))
+            put(prog, "u_face_id_base", id_base)
+            put(prog, "u_opacity", float(model.material.opacity))
+            for name, value in self.materials(model.material, lights, scene.ambient):
+                put(prog, name, value)
+            self._model_state[id(prog)] = held
+        ctx.front_face = "cw" if mirrored != state.flip_rows else "ccw"
+        if cull:
+            ctx.enable(moderngl.CULL_FACE)
+            ctx.cull_face = "back"
+        else:
+            ctx.disable(moderngl.CULL_FACE)
+        if textured:
+            if self._textures is None:
+                self._textures = TextureCache(self.context)
+            self._textures.bind(model.material, put, prog)
+        if options.mode is ShadingMode.RADIOSITY:
+            vao = gpu.color_array(prog, model.display_colors(scene.ambient))
+        else:
+            vao = gpu.vertex_array(prog, options.mode)
+        vao.render(moderngl.TRIANGLES)
+
+    def _release_extra(self) -> None:
+        for _, gpu in self._meshes.values():
+            gpu.release()
+        self._meshes.clear()
+        if self._textures is not None:
+            self._textures.release()
+            self._textures = None
+        self._programs.clear()  # (the shader library owns and frees them)
+        self._model_state.clear()

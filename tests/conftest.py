@@ -104,6 +104,13 @@ def make_renderer(gl_context):
 #: folders whose GL tests prove what does not depend on the backend -- the command line,
 #: files, processes, pytest plugins: the OSMesa pass leaves them out (marked ``once``)
 ONCE_FOLDERS = ("tests/batch/", "tests/animate/", "tests/testing/", "tests/cli/")
+#: the tests of what a GL context's backend can change -- its version, extensions, sample
+#: counts, framebuffers, compute and tessellation stages: every pass of the renderer and
+#: the path tracer's and tessellation's programs, each against its oracle. The OSMesa pass
+#: runs these (marked ``backend``); the chapters that draw through them (hidden surfaces,
+#: radiosity, compare, notebooks ...) prove their own numbers once, on EGL.
+BACKEND_PATHS = ("tests/render/", "tests/pathtrace/test_pathtrace.py",
+                 "tests/patches/test_gpu_tessellation.py")
 
 
 def pytest_collection_modifyitems(items):
@@ -116,6 +123,8 @@ def pytest_collection_modifyitems(items):
             item.add_marker(pytest.mark.gl)
         if any(folder in path for folder in ONCE_FOLDERS) or path.endswith("tests/test_readme.py"):
             item.add_marker(pytest.mark.once)
+        if any(part in path for part in BACKEND_PATHS):
+            item.add_marker(pytest.mark.backend)
 
 
 @pytest.fixture

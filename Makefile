@@ -36,13 +36,32 @@ lint: setup
 	$(PY) -m ruff check src tests benchmarks scripts
 	$(PY) -m mypy  # src/ and tests/typing/user_api.py (pyproject.toml [tool.mypy])
 
+# Every benchmark in benchmarks/, at quick sizes (a few minutes); FULL=1 for the sizes the
+# guide's tables were measured at (docs/guide/speed.md says which command made each).
+ifdef FULL
+QUICK_RENDER :=
+QUICK_TRACE :=
+QUICK_HIDDEN :=
+else
+QUICK_RENDER := --sizes 512 --meshes 1k,100k --rounds 2
+QUICK_TRACE := --scenes cornell --rounds 1 --reference-spp 1024 --ld-spp 256
+QUICK_HIDDEN := --budget 5
+endif
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
 	$(PY) benchmarks/quaternion_bench.py
-	$(PY) benchmarks/render_bench.py
 	$(PY) benchmarks/brep_bench.py
-	$(PY) benchmarks/animate_bench.py
 	$(PY) benchmarks/startup_bench.py
+	$(PY) benchmarks/render_bench.py $(QUICK_RENDER)
+	$(PY) benchmarks/animate_bench.py
+	$(PY) benchmarks/batch_bench.py
+	$(PY) benchmarks/csg_bench.py
+	$(PY) benchmarks/hidden_bench.py $(QUICK_HIDDEN)
+	$(PY) benchmarks/patch_bench.py
+	$(PY) benchmarks/radiosity_bench.py
+	$(PY) benchmarks/shadows_bench.py
+	$(PY) benchmarks/transparency_bench.py
+	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
 
 # The documentation site: the README, the chapter notebooks (executed) and the API reference
 # from the docstrings, warnings as errors; open docs/_build/html/index.html

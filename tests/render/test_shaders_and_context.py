@@ -12,7 +12,7 @@ import pytest
 from glshade import ShaderError
 from glshade.modes import ShadingMode
 from glshade.render.shaders import PROGRAMS
-from glshade.render.shaders import ShaderLibrary, assemble, shader_dir
+from glshade.render.shaders import LOOP_BUDGET, ShaderLibrary, assemble, shader_dir
 
 from tests.conftest import BACKEND, ROOT
 
@@ -33,7 +33,8 @@ def test_include_expansion_keeps_line_numbers():
     assert files[0] == "phong.frag"
     assert "include/lighting.glsl" in files and "include/outputs.glsl" in files
     assert "#include" not in text
-    assert text.startswith("#version 330 core\n#line 2 0\n")
+    # the one loop budget every program is compiled with, then the file's own line 2
+    assert text.startswith(f"#version 330 core\n#define LOOP_BUDGET {LOOP_BUDGET}\n#line 2 0\n")
 
 
 def test_broken_shader_names_file_and_line(gl_context, tmp_path):

@@ -144,30 +144,25 @@ class Comparison:
 
 
 def reference_image(scene, camera, kind, renderer, size, options, spp=64):
-    """The picture a comparison measures the modes against, and what it covers.
+    """The picture a comparison measures the modes against: ``(image (H, W, 3) floats in
+    0..255, mask (H, W) bool of the pixels it covers, its name as the summary says it, the
+    crease angle used in degrees or None)``.
 
     Parameters
     ----------
     scene, camera
-        what is seen and from where.
+        What is seen and from where.
     kind
-        a reference's name (``phong-fine``, ``raycast``, ``pathtrace``, ...) or an image
-        file's path.
+        A reference's name (``phong-fine``, ``analytic``, ``pathtrace``, ...) or an
+        image file's path.
     renderer
-        the Renderer the raster references draw with.
+        The Renderer the raster references draw with.
     size
-        (width, height) in pixels.
+        ``(width, height)`` in pixels.
     options
-        the DrawOptions the compared modes share.
+        The DrawOptions the compared modes share.
     spp
-        samples a pixel of a path-traced reference.
-
-    Returns
-    -------
-    image, mask, kind, crease
-        the (H, W, 3) picture (floats, 0 to 255), the (H, W) bool pixels it covers, the
-        reference's name as said in the summary, and the crease angle used (degrees; None
-        where none was).
+        Samples a pixel of a path-traced reference.
     """
     from ..cpu.raycast import raycast_scene
 

@@ -1,8 +1,8 @@
 """The path tracer's film: where each image pixel lives in the GPU pass's targets.
 
 The targets hold the image in 8x8 blocks, ``LAYOUT_BLOCKS`` a row, so that every tile of a
-software rasterizer (a thread's unit of work) holds parts of the whole image: at 128x128
-the image's own four tiles kept 1.70 of 2 cores busy, in blocks 1.98. Pure numpy (the
+software rasterizer (a thread's unit of work) holds parts of the whole image (measured:
+docs/guide/speed.md's table of tuning constants). Pure numpy (the
 GL pass, ``render/passes/pathtrace.py``, uploads and reads through it; no GL here), so
 the layout is testable without a GL.
 """

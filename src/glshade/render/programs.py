@@ -93,8 +93,7 @@ class MaterialUniforms:
 
 #: viewport pixels per triangle from which a model's Phong program takes its lighting
 #: constants as flat varyings (on a software rasterizer). Below it the triangle setup they
-#: add costs more than the uniform loads they save: measured on llvmpipe, flat constants
-#: were 5-18% faster at 250 pixels a triangle, even at 50-65, and 20% slower at 16.
+#: add costs more than the uniform loads they save (measured: docs/guide/speed.md).
 FLAT_CONSTANTS_PIXELS = 128
 
 

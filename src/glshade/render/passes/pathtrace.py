@@ -58,35 +58,24 @@ class GpuPathTracer(GLResource):
     #: the cap's: a bounce of a scene of 100k triangles costs a few hundred, so one begun
     #: just under this ends far below LOOP_BUDGET, where it would be reported as cut short)
     BUDGET = 8192
+    # (the tuning below: each constant's measurement, and the benchmark that repeats it, in
+    # docs/guide/speed.md's table of tuning constants)
     #: triangles up to which a ray tests every triangle, compiled into the program, rather
-    #: than walk the hierarchy (``accel="auto"``; measured on llvmpipe, Cornell box and a
-    #: sphere, 128x128 x 8 spp, M paths/s hierarchy vs flat, and the flat program's first
-    #: compile: 32 triangles 0.72 vs 2.52 (0.4 s), 52: 0.64 vs 1.76 (0.6 s), 112: 0.63 vs
-    #: 0.91 (1.5 s), 352: 0.63 vs 0.30 (8 s); Mesa keeps compiled programs on disk)
+    #: than walk the hierarchy (``accel="auto"``)
     FLAT_LIMIT = 64
     #: emitting triangles up to which next-event estimation's choice among them is compiled
-    #: in (their numbers as constants; above, a binary search through the table): on the
-    #: Cornell box's two, 40% of the tracer's time was next-event estimation
+    #: in (their numbers as constants; above, a binary search through the table)
     EMITTERS_COMPILED = 16
     #: the most triangles ``accel="flat"`` compiles in (the compile grows faster than them)
     FLAT_MAX = 256
     #: the pixels that share random numbers with ``coherent=True``: llvmpipe shades a 4x2
-    #: block in one 8-wide SIMD step (measured, the Cornell box holding an 81,920-triangle
-    #: sphere, 128x128 x 32 spp, M paths/s: each pixel its own 1.43, blocks of 2x2 1.77,
-    #: 2x4 1.75, 4x2 1.92, 4x4 1.93, 8x8 1.89)
+    #: block in one 8-wide SIMD step
     TILE = (4, 2)
     #: with ``coherent``, a run goes in steps of this many samples, each ending with every
     #: pixel at the same sample: a block's pixels start their paths together again (they
-    #: drift apart as their paths end at different bounces, and a run of 1,024 samples in
-    #: one step kept little of the blocks' gain -- measured, Cornell box holding an
-    #: 81,920-triangle sphere, 128x128 x 1,024 Sobol samples, M paths/s: one step 2.37,
-    #: steps of 64 2.58, 32 2.69, 16 2.74, 8 2.74; the Cornell box alone 6.86 -> 6.55 at 16)
+    #: drift apart as their paths end at different bounces)
     SYNC = 16
-    #: the targets hold the image in 8x8 blocks, raster order, this many a row (a target
-    #: 512 wide): llvmpipe hands each thread 64x64 tiles, and an image's own layout at 128²
-    #: is four tiles of unequal work (a sphere's in two) -- 1.70 of 2 cores busy; rows of
-    #: 64 blocks put every part of the image in every tile: 1.98 busy, Cornell box + an
-    #: 81,920-triangle sphere 2.24 -> 2.56 M paths/s (measured, 64 spp, coherent)
+    #: the targets hold the image in 8x8 blocks, this many a row (glshade.render.film)
     LAYOUT_BLOCKS = LAYOUT_BLOCKS
 
     def __init__(self, context, scene, width: int, height: int, *,

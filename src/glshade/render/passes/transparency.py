@@ -80,8 +80,8 @@ class TransparencyPass(GLResource, Stage):
 
     #: count and link a pixel's fragments through framebuffer fetch (no atomics: the GL
     #: keeps fragments in primitive order per pixel) where the GL has it and the target is a
-    #: single-sampled offscreen one; else through storage-buffer atomics. (Measured on
-    #: llvmpipe, 8 full-view layers, capture alone: 7.2 ms against 12.5.)
+    #: single-sampled offscreen one; else through storage-buffer atomics (faster: measured
+    #: in docs/guide/speed.md)
     use_fetch = True
 
     def __init__(self, context, shaders, meshes):

@@ -23,7 +23,8 @@ __all__ = [
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
     "ContextError", "ShaderError", "VideoUnavailable", "OutputWriteError", "ClusterError",
     "DepthSortCycle",
-    "RenderWarning", "warn_user", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT", "EXIT_USAGE",
+    "RenderWarning", "warn_user", "plain", "exit_status", "EXIT_OK", "EXIT_ENVIRONMENT",
+    "EXIT_USAGE",
 ]
 
 EXIT_OK, EXIT_ENVIRONMENT, EXIT_USAGE = 0, 1, 2
@@ -188,6 +189,30 @@ class ClusterError(EnvironmentFailure):
 
 class RenderWarning(UserWarning):
     """A render that worked but shows nothing (a blank image), with the reason when known."""
+
+
+def plain(value, digits: int = 4) -> str:
+    """Numbers as a person writes them in a message: ``1.4``, ``(1.4, 0.2, 0)``, ``nan``,
+    ``1e+300`` -- Python's ``g`` format to ``digits`` significant digits, never numpy's
+    reprs (``np.float64(1.4)``, ``array([...])``).
+
+    Parameters
+    ----------
+    value
+        A number, or a sequence or array of them (shown as a tuple).
+    digits
+        Significant digits.
+    """
+    import numpy as np
+
+    a = np.asarray(value)
+    if a.dtype.kind in "iub":
+        items = [f"{int(x):,}" for x in a.ravel()]
+    else:
+        items = [f"{float(x):.{digits}g}" for x in a.astype(np.float64).ravel()]
+    if a.ndim == 0:
+        return items[0]
+    return "(" + ", ".join(items) + ")"
 
 
 def warn_user(message: str, category: type[Warning] = UserWarning) -> None:

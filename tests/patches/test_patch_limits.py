@@ -90,3 +90,39 @@ def test_a_sphere_octant_with_a_collapsed_side_is_exact(exponent, level, raise_b
     points = patch.evaluate(u.ravel(), v.ravel()).reshape(-1, 3)
     normals = patch.normals(u.ravel(), v.ravel()).reshape(-1, 3)
     assert np.abs(normals - points).max() < 1e-9
+
+
+@settings(max_examples=40)
+@given(live=st.integers(0, 3), points=st.integers(0, 3), level=st.integers(1, 6),
+       at=st.floats(-1e6, 1e6), data=st.data())
+def test_patches_collapsed_to_points_leave_the_others_whole(live, points, level, at, data):
+    """A set of patches some of which collapse to a point (every control point the same):
+    each live patch (random, sharing no edge) keeps its 2 L^2 triangles at level L, the
+    collapsed ones add none -- and a set of nothing but points is refused in one line."""
+    rng = np.random.default_rng(live * 7 + points)
+    nets = [rng.random((4, 4, 3)) + 3 * k for k in range(live)] + \
+        [np.full((4, 4, 3), at)] * points
+    if not nets:
+        return
+    order = data.draw(st.permutations(range(len(nets))))
+    patches = PatchSet(np.stack([nets[k] for k in order]))
+    if not live:
+        with pytest.raises(GeometryError, match="collapses to a point"):
+            tessellate(patches, level=level)
+        return
+    mesh = tessellate(patches, level=level).mesh
+    assert mesh.n_faces == 2 * level * level * live
+
+
+@settings(max_examples=30)
+@given(count=st.integers(0, 6), per=st.integers(1, 5))
+def test_a_tolerance_per_patch_must_be_one_per_patch(count, per):
+    """Tolerances as a list: exactly one per patch tessellates; any other count is one
+    line with both numbers (not numpy's broadcasting error)."""
+    patches = PatchSet(np.random.default_rng(1).random((per, 4, 4, 3)))
+    tolerances = [0.01 * (k + 1) for k in range(count)]
+    if count == per:
+        assert tessellate(patches, tolerance=tolerances).mesh.n_faces > 0
+    else:
+        with pytest.raises(GeometryError, match=rf"one per patch \({per}\), got {count} "):
+            tessellate(patches, tolerance=tolerances)

@@ -131,3 +131,51 @@ def test_zero_area_polygons_leave_the_others_as_they_were():
     expected = [f for f in faces if mesh.face_areas[faces.index(f)] > 1e-9]
     assert [list(kept.face(k)) for k in range(kept.n_faces)] == expected
     assert "2 of its 5 polygons have no area" in note
+
+
+ROOM = """[render]
+size = [16, 16]
+[[mesh]]
+source = "primitive:cube"
+scale = 2.0
+color = [1.0, 1.0, 1.0]
+kd = {kd}
+ks = 0.0
+[[mesh]]
+source = "primitive:cube"
+scale = 0.2
+color = [1.0, 1.0, 1.0]
+kd = {kd}
+ks = 0.0
+emission = [1.0, 1.0, 1.0]
+"""
+
+
+@pytest.mark.parametrize("kd", [1.0, 0.5])
+def test_a_room_that_loses_no_light_stops_at_its_cap_and_says_so(kd, tmp_path):
+    """A closed room of reflectance 1 around a lamp of reflectance 1: Russian roulette
+    never ends a particle (it ran without end); each stops at MAX_BOUNCES, counted -- every
+    one of them, and the solution is not converged. A room of 0.5 loses light: none is cut
+    (a particle reaches its thousandth surface with odds 0.5^1000)."""
+    from glshade import load_scene
+    from glshade.radiosity import PatchScene
+    from glshade.radiosity.montecarlo import light_trace
+
+    room = tmp_path / "room.toml"
+    room.write_text(ROOM.format(kd=kd))
+    mc = light_trace(PatchScene.from_scene(load_scene(room).scene, patch_size=1.0), 8, 2, seed=1)
+    assert mc.cut == (8 if kd == 1.0 else 0) and mc.converged == (kd != 1.0)
+
+
+def test_the_command_says_a_capped_monte_carlo_solution_did_not_converge(tmp_path):
+    room = tmp_path / "room.toml"
+    room.write_text(ROOM.format(kd=1.0))
+    out = tmp_path / "r.png"
+    r = subprocess.run([sys.executable, "-m", "glshade", "radiosity", str(room), "-o",
+                        str(out), "--method", "monte-carlo", "--particles", "16", "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 1, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "did not converge: 16 of 16 particles were still going " \
+        "after 1,000 surfaces" in lines[0], r.stderr
+    assert out.exists()  # (how far it got)

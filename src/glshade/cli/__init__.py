@@ -69,7 +69,14 @@ def _main(argv: list[str] | None) -> int:
     try:  # the Namespace becomes the subcommand's typed arguments here, and only here
         if getattr(args, "device", None) is not None:
             _choose_device(args.device)
-        return args.func(from_namespace(args.arguments, args))
+        import numpy as np
+
+        # numpy's floating-point warnings are silenced here, deliberately: a user reads
+        # "overflow encountered in divide" as the error when it is only on the way to it --
+        # every input is checked by rule and every picture for what it shows, and those
+        # checks say what is wrong in plain numbers
+        with np.errstate(all="ignore"):
+            return args.func(from_namespace(args.arguments, args))
     except (GlshadeError, OSError) as exc:  # expected: one line, no traceback
         if isinstance(exc, BrokenPipeError) and _stdout_closed():
             return 141  # (`glshade info ... | head`: the reader has all it wanted)

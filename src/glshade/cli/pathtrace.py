@@ -58,6 +58,19 @@ def pathtrace(args: PathtraceArgs) -> int:
     exposure = args.exposure or result.auto_exposure()
     srgb = args.srgb if args.srgb is not None else job.settings.options.srgb
     image = result.rgba8(exposure, srgb=bool(srgb))
+    lit = float(np.nanmax(result.image, initial=0.0))
+    if lit > 0 and (image[..., :3] == image[0, 0, :3]).all():
+        import warnings
+
+        from ..errors import RenderWarning, plain
+
+        shown = "black" if not image[0, 0, :3].any() else "white" \
+            if (image[0, 0, :3] == 255).all() else f"one colour {plain(image[0, 0, :3])}"
+        warnings.warn(RenderWarning(f"the picture is {shown} throughout: exposure "
+                                    f"{plain(exposure)} scales its brightest value, "
+                                    f"{plain(lit)}, to {plain(lit * exposure)} (auto "
+                                    f"exposure would be {plain(result.auto_exposure())}: "
+                                    "leave --exposure out)"), stacklevel=2)
     save_image(image, args.output)
     rays = int(result.counts.sum()) if result.counts is not None else result.samples * w * h
     error = result.relative_error

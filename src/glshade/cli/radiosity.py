@@ -153,6 +153,14 @@ def _monte_carlo(args: RadiosityArgs, job, problem, options) -> int:
         print(f"{solution.method}: {mc.particles:,} particles, {seconds:.2f} s, largest "
               f"relative standard error of a surface {worst:.2%}, exposure {exposure:.4g}")
         print(f"{args.output}: {w}x{h}")
+    if mc.cut:  # (a cap, not the goal: said as the hemicube solvers say theirs)
+        from ..radiosity.montecarlo import MAX_BOUNCES
+
+        print(f"glshade: error: Monte Carlo light tracing did not converge: {mc.cut:,} of "
+              f"{mc.particles:,} particles were still going after {MAX_BOUNCES:,} surfaces "
+              "(a room that loses no light: lower a reflectance below 1); "
+              f"{args.output} is how far it got", file=sys.stderr)
+        return EXIT_ENVIRONMENT
     return EXIT_OK
 
 

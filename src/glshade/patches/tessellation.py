@@ -58,9 +58,18 @@ class Tessellation:
 def flatness_levels(patches: PatchSet, tolerance) -> np.ndarray:
     """``(P, 2)`` the fewest samples per side that keep each patch within ``tolerance``
     (world units: a number, or one per patch) of its piecewise-linear interpolant."""
-    tol = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), (len(patches),))
+    try:
+        given = np.asarray(tolerance, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise GeometryError(f"a tolerance must be a positive number, got {tolerance!r}") \
+            from None
+    if given.ndim > 1 or (given.ndim == 1 and len(given) != len(patches)):
+        raise GeometryError(f"tolerance: one number, or one per patch ({len(patches):,}), "
+                            f"got {given.size:,} numbers")
+    tol = np.broadcast_to(given, (len(patches),))
     if not (np.isfinite(tol).all() and (tol > 0).all()):
-        raise GeometryError(f"a tolerance must be a positive number, got {tolerance!r}")
+        bad = float(tol[~(np.isfinite(tol) & (tol > 0))][0])
+        raise GeometryError(f"a tolerance must be a positive number, got {bad:g}")
     h = patches.homogeneous.copy()
     centre = patches.bounds().mean(1)  # (P, 3): differences about it, for rational ones
     h[..., :3] = (patches.points - centre[:, None, None]) * patches.weights[..., None]
@@ -174,6 +183,8 @@ def _build(surface: PatchSurface, levels: np.ndarray) -> Tessellation:
     patches = surface.patches
     e = surface.edges
     flat, offset = _edge_samples(surface, levels)
+    if not len(flat):  # (every side collapsed: no edge samples, each side its corner)
+        flat = np.zeros((1, 3))
     corner_h = np.stack([patches.homogeneous[:, 0, 0], patches.homogeneous[:, -1, 0],
                          patches.homogeneous[:, -1, -1], patches.homogeneous[:, 0, -1]], 1)
     corner_pts = corner_h[..., :3] / corner_h[..., 3:]  # (P, 4, 3)
@@ -223,5 +234,13 @@ def _build(surface: PatchSurface, levels: np.ndarray) -> Tessellation:
     p = vertices[tris]
     flat_tri = (p[:, 0] == p[:, 1]).all(1) | (p[:, 1] == p[:, 2]).all(1) | \
         (p[:, 2] == p[:, 0]).all(1)
+    # ... and a patch whose control points all coincide is a point: none of its triangles
+    # (its inner samples, evaluated, differ from that point in the last bits)
+    owner = np.concatenate(owners)
+    point = np.ptp(patches.points.reshape(len(patches), -1, 3), axis=1).max(1) == 0
+    flat_tri |= point[owner[tris[:, 0]]]
+    if flat_tri.all():
+        raise GeometryError(f"{surface.name or 'the patches'}: every patch collapses to a "
+                            "point (all its control points coincide): no surface to tessellate")
     mesh = Mesh(vertices, tris[~flat_tri], normals=np.concatenate(normals), name=surface.name)
-    return Tessellation(mesh, np.concatenate(uvs), np.concatenate(owners), levels)
+    return Tessellation(mesh, np.concatenate(uvs), owner, levels)

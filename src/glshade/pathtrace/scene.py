@@ -20,7 +20,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, plain
 from ..scene.lights import DirectionalLight
 
 __all__ = ["TraceScene", "MAX_LIGHTS"]
@@ -229,7 +229,7 @@ def _material_row(material, name: str) -> list:
     ks = float(max(material.specular_rgb)) if material.illum == 2 else 0.0
     n = float(material.shininess)
     if rho.max() > 1:
-        raise SceneError(f"{name}: diffuse reflectance rho_d = {tuple(rho.round(4))} is above "
+        raise SceneError(f"{name}: diffuse reflectance rho_d = {plain(rho)} is above "
                          "1 (it would reflect more light than arrives)")
     if rho.max() + ks > 1 + 1e-9:
         raise SceneError(f"{name}: rho_d + k_s = {rho.max():.4g} + {ks:.4g} > 1: the Phong "

@@ -80,6 +80,7 @@ def _solve(problem, chosen, until, max_shots, hemicube, quadrature, seed, contex
                             "Monte Carlo light tracing")
         solution.history.append((0.0, mc.particles, 0.0))
         solution.se = mc.se
+        solution.converged = mc.converged  # (False: particles stopped at MAX_BOUNCES)
         return solution
     with FormFactors(problem, hemicube, quadrature, seed, context, backend) as ff:
         if chosen is Method.PROGRESSIVE:

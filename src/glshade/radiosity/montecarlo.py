@@ -20,16 +20,30 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["MonteCarlo", "light_trace"]
+__all__ = ["MonteCarlo", "light_trace", "MAX_BOUNCES"]
+
+#: the most surfaces a particle reaches: Russian roulette ends a path with the mean
+#: reflectance's odds, so in a room that loses no light (every reflectance 1) nothing would;
+#: particles still going at the cap are counted (``MonteCarlo.cut``) and their light past it
+#: left out -- a solution that stopped at its cap says so, never silently
+MAX_BOUNCES = 1_000
 
 
 class MonteCarlo:
     """What :func:`light_trace` estimates: radiosity ``B (P, 3)``, its standard error
-    ``se (P, 3)``, and per model the area-weighted mean radiosity and its error."""
+    ``se (P, 3)``, and per model the area-weighted mean radiosity and its error; ``cut``:
+    the particles still going after MAX_BOUNCES surfaces (their later light left out:
+    ``converged`` is False)."""
 
-    def __init__(self, problem, b, se, model_b, model_se, particles: int):
+    def __init__(self, problem, b, se, model_b, model_se, particles: int, cut: int = 0):
         self.problem, self.radiosity, self.se = problem, b, se
         self.model_radiosity, self.model_se, self.particles = model_b, model_se, particles
+        self.cut = int(cut)
+
+    @property
+    def converged(self) -> bool:
+        """Whether every particle's path ended by roulette or by leaving the scene."""
+        return self.cut == 0
 
 
 def _triangles(meshes):
@@ -110,6 +124,7 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
                                          minlength=p.n_patches)[p.triangle_patch[etri]]
     n_batch = int(particles) // batches
     arrived = np.zeros((batches, p.n_patches, 3))
+    cut = 0
     for batch in range(batches):
         for start in range(0, n_batch, chunk):
             n = min(chunk, n_batch - start)
@@ -127,7 +142,7 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
             power = problem.emission[src] * p.areas[src, None] / (pick[src, None] * n_batch)
             o = o + normal * eps * 10
             scene = (problem, tris, owner, first_polygon, table, counts, eps)
-            _follow(scene, o, d, power, arrived[batch], rng)
+            cut += _follow(scene, o, d, power, arrived[batch], rng)
         if progress is not None:
             progress.update(1)
     per_batch = problem.emission[None] + problem.rho[None] * arrived / p.areas[None, :, None]
@@ -139,7 +154,7 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
                                             p.areas, minlength=models) / area
                                 for c in range(3)], 1) for j in range(batches)])
     return MonteCarlo(problem, b, se, means.mean(0),
-                      means.std(0, ddof=1) / np.sqrt(batches), n_batch * batches)
+                      means.std(0, ddof=1) / np.sqrt(batches), n_batch * batches, cut)
 
 
 def _patch_of(x, polygon, table, counts, centers):
@@ -173,18 +188,21 @@ def _polygon_patches(problem):
     return first_polygon, table, counts
 
 
-def _follow(scene, o, d, power, arrived, rng) -> None:
+def _follow(scene, o, d, power, arrived, rng) -> int:
     """Follow particles from ``o`` along ``d`` carrying ``power`` (N, 3) until they leave
     the scene or are absorbed (Russian roulette by the mean reflectance), adding the power
-    each brings to a patch into ``arrived`` (P, 3)."""
+    each brings to a patch into ``arrived`` (P, 3); the number still going after
+    MAX_BOUNCES surfaces (then left)."""
     problem, tris, owner, first_polygon, table, counts, eps = scene
     p = problem.patches
-    while len(o):
+    for _ in range(MAX_BOUNCES):
+        if not len(o):
+            return 0
         t, k = _hit(o, d, tris, eps)
         going = np.isfinite(t)
         o, d, power, t, k = o[going], d[going], power[going], t[going], k[going]
         if not len(o):
-            break
+            return 0
         x = o + t[:, None] * d
         model, face = owner[k, 0], owner[k, 1]
         patch = _patch_of(x, first_polygon[model] + face, table, counts, p.centers)
@@ -199,3 +217,4 @@ def _follow(scene, o, d, power, arrived, rng) -> None:
         power = power[keep] * rho[keep] / survive[keep, None]
         o = x[keep] + n_hit * eps * 10
         d = _cosine(n_hit, rng)
+    return len(o)

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError, SceneError
+from ..errors import GeometryError, SceneError, plain
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.transforms import box_corners, compose_transform
@@ -191,12 +191,7 @@ class Scene:
             if crease is not None:
                 raise SceneError("vertex_colors and crease cannot be combined (crease "
                                     "splits the vertices the colours belong to)")
-            colors = np.array(vertex_colors, dtype=np.float32)
-            if colors.shape != (mesh.n_vertices, 3) or not np.isfinite(colors).all() \
-                    or (colors < 0).any():
-                raise SceneError(f"vertex_colors must be ({mesh.n_vertices}, 3) "
-                                    f"non-negative numbers, one per vertex; got shape "
-                                    f"{colors.shape}")
+            colors = _vertex_colors(vertex_colors, mesh.n_vertices)
             colors.flags.writeable = False
         if material is None and mesh.material_groups and colors is None:
             return self._add_material_parts(mesh, m, name or mesh.name)
@@ -329,3 +324,22 @@ def _tessellated(patches, level: int | None = None) -> Mesh:
     size = float(np.ptp(np.concatenate([b[:, 0], b[:, 1]]), 0).max()) or 1.0
     assert isinstance(surface.patches, PatchSet)
     return tessellate(surface, tolerance=PATCH_TOLERANCE * size).mesh
+
+
+def _vertex_colors(values, n_vertices: int) -> np.ndarray:
+    """``(N, 3)`` float32 radiosities a vertex, or a SceneError saying which rule a value
+    breaks (the shape, a number that is not finite, below 0 or past float32), in plain
+    numbers."""
+    rule = f"vertex_colors must be ({n_vertices:,}, 3) non-negative numbers, one per vertex"
+    try:
+        colors = np.array(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise SceneError(f"{rule}; got something that is not numbers") from None
+    if colors.shape != (n_vertices, 3):
+        raise SceneError(f"{rule}; got shape {tuple(int(n) for n in colors.shape)}")
+    bad = ~np.isfinite(colors) | (colors < 0) | (colors > np.finfo(np.float32).max)
+    if bad.any():
+        i, j = (int(k) for k in np.argwhere(bad)[0])
+        raise SceneError(f"{rule}; vertex {i:,} has {plain(colors[i, j])} in channel {j} "
+                         f"({int(bad.any(1).sum()):,} vertices like it)")
+    return colors.astype(np.float32)

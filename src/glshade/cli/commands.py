@@ -7,7 +7,7 @@ import json
 import os
 import sys
 
-from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, InputError, UsageError
+from ..errors import EXIT_ENVIRONMENT, EXIT_OK, EXIT_USAGE, InputError, SceneError, UsageError
 from ..io.scenefile import RenderSettings
 from ..options import RenderConfig
 from . import arguments as a
@@ -250,9 +250,14 @@ def compare(args: a.CompareArgs) -> int:
     scenes, surfaces = {}, None
     if "radiosity" in modes:
         scenes["radiosity"], surfaces = _radiosity_for_compare(args, job)
-    result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
-                 options=job.options, config=job.config(args.backend).replace(samples=0),
-                 scale=args.scale, spp=args.spp, scenes=scenes)
+    try:
+        result = run(job.scene, job.camera, modes, args.reference, diff=args.diff,
+                     options=job.options, config=job.config(args.backend).replace(samples=0),
+                     scale=args.scale, spp=args.spp, scenes=scenes)
+    except SceneError as exc:  # (the path tracer's refusal of the scene: say which input)
+        if str(exc).startswith(str(args.mesh)):
+            raise
+        raise SceneError(f"{args.mesh}: {exc}") from None
     if args.save_tiles:
         result.save_tiles(args.save_tiles)
     save_image(result.image, args.output)

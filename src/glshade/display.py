@@ -27,14 +27,28 @@ THUMBNAIL = (256, 192)
 thumbnail_hook: Callable | None = None
 
 
-def picture(drawable, mode: str = "phong", choose: bool = False):
+def picture(drawable, mode: str = "phong", choose: bool = False, polygons=None):
     """A thumbnail of ``drawable`` (a Scene, a Mesh or a solid) through the installed
-    hook (``choose``: from the view that shows most, for a closed room), or None; an
-    image ``(H, W, 4)`` uint8 is its own picture."""
+    hook, or None; an image ``(H, W, 4)`` uint8 is its own picture.
+
+    Parameters
+    ----------
+    drawable
+        What is drawn.
+    mode
+        The shading mode.
+    choose
+        From the view that shows most (a closed room is dark from outside).
+    polygons
+        ``(labels (F,) int, emits (L,) bool)``: the part each polygon of the scene belongs
+        to and which parts emit, for ``choose`` to judge views by (default: the scene's
+        models and their materials' emission).
+    """
     if isinstance(drawable, np.ndarray):
         return drawable
     return None if thumbnail_hook is None else thumbnail_hook(drawable, mode=mode,
-                                                              choose=choose)
+                                                              choose=choose,
+                                                              polygons=polygons)
 
 
 def png_bytes(image: np.ndarray) -> bytes:

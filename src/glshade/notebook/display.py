@@ -25,11 +25,11 @@ __all__ = ["show", "thumbnail", "telling_view", "png_bytes", "buffers_image", "T
 
 
 def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str = "phong",
-              choose: bool = False):
+              choose: bool = False, polygons=None):
     """A ``(H, W, 4)`` uint8 render of ``scene`` (a Scene, or a Mesh or solid put in one;
     framed from the iso view unless a camera is given, or, ``choose``, from the view that
     shows most: see :func:`telling_view`), or None where no GL context can be made or there
-    is nothing to draw."""
+    is nothing to draw; ``polygons``: :func:`telling_view`'s."""
     import warnings
 
     from ..errors import EnvironmentFailure
@@ -50,17 +50,40 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
         with warnings.catch_warnings(), Renderer(*size, samples=0) as r:
             warnings.simplefilter("ignore")
             if camera is None and choose:
-                camera = telling_view(r, scene, bounds, size[0] / size[1], mode)
+                camera = telling_view(r, scene, bounds, size[0] / size[1], mode, polygons)
             cam = camera or Camera.named("iso", bounds, aspect=size[0] / size[1])
             return r.render(scene, cam, mode)
     except EnvironmentFailure:
         return None
 
 
-def telling_view(renderer, scene, bounds, aspect: float, mode: str):
-    """Of the iso view, the six axis views from outside and a wide view from the middle
-    (a closed room is dark from every outside view), the camera whose small render is
-    brightest on average: a thumbnail that shows something."""
+def telling_view(renderer, scene, bounds, aspect: float, mode: str, polygons=None):
+    """The camera whose picture tells most of ``scene``, among the iso view, the six axis
+    views from outside and six wide views from inside, near each wall, across the middle (a
+    closed room is dark from every outside view).
+
+    A view is judged by its small render's polygon ids and colours, in order: whether it
+    shows an emitter (a radiosity solution's picture shows what was solved: the light and
+    the walls it lights), how many of the scene's models it shows, then how bright it is.
+
+    Parameters
+    ----------
+    renderer
+        The Renderer whose context the small renders share.
+    scene
+        What is shown.
+    bounds
+        ``(2, 3)`` the scene's box, world units.
+    aspect
+        The thumbnail's width over its height.
+    mode
+        The shading mode it is drawn in.
+    polygons
+        ``(labels (F,) int, emits (L,) bool)``: the part each polygon id belongs to and
+        which parts emit (default: the scene's models, and whether each one's material
+        emits). A radiosity solution's one display mesh says its models this way.
+    """
+    from ..modes import Outputs
     from ..scene.camera import Camera
 
     lo, hi = np.asarray(bounds, np.float64)
@@ -73,14 +96,25 @@ def telling_view(renderer, scene, bounds, aspect: float, mode: str):
             up = (0, 0, 1) if axis == 1 else (0, 1, 0)
             cameras.append(Camera.look_at(centre + 2.5 * reach * look, centre, up=up,
                                           fov_y=40))
-    cameras.append(Camera.look_at(centre - 0.45 * (hi - lo)[2] * np.array([0, 0, 1.0]),
-                                  centre, fov_y=75))
+            inside = centre + 0.45 * (hi - lo)[axis] * look
+            cameras.append(Camera.look_at(inside, centre - 0.45 * (hi - lo)[axis] * look,
+                                          up=up, fov_y=75))
+    if polygons is None:  # each polygon id's model, and whether that model emits
+        faces = np.array([m.mesh.n_faces for m in scene.models], np.int64)
+        polygons = (np.repeat(np.arange(len(faces)), faces),
+                    np.array([max(m.material.emission) > 0 for m in scene.models], bool))
+    model_of, emits = (np.asarray(a) for a in polygons)
     small = renderer.__class__(48, max(1, int(48 / aspect)), samples=0,
                                context=renderer.context)
+    scores = []
     with small:
-        means = [float(np.asarray(small.render(scene, cam, mode))[..., :3].mean())
-                 for cam in cameras]
-    return cameras[int(np.argmax(means))]
+        for cam in cameras:
+            frame = small.render_frame(scene, cam, mode, outputs=Outputs.FACE_ID)
+            ids = frame.face_id[(frame.face_id >= 0) & (frame.face_id < len(model_of))]
+            seen = np.unique(model_of[ids]) if len(ids) else np.zeros(0, np.int64)
+            scores.append((bool(emits[seen].any()), len(seen),
+                           float(frame.color[..., :3].mean())))
+    return cameras[max(range(len(cameras)), key=scores.__getitem__)]
 
 
 def show(x) -> None:

@@ -60,9 +60,14 @@ class Solution:
         facts = [f"{self.hemicubes:,} hemicubes",
                  f"radiosity {float(self.radiosity.min()):.4g} .. "
                  f"{float(self.radiosity.max()):.4g}"]
-        # (a room is closed: from the view that shows most, inside it where need be)
+        # (a room is closed: from the view that shows most, inside it where need be -- the
+        # emitters and the walls they light, judged by the models each patch came from)
+        p = self.problem
+        emits = np.zeros(len(p.names), bool)
+        emits[p.model[p.emission.sum(1) > 0]] = True
+        polygons = (p.model[p.patches.triangle_patch], emits)
         return facts_html(repr(self), facts, picture(self.scene(), mode="radiosity",
-                                                     choose=True))
+                                                     choose=True, polygons=polygons))
 
     @property
     def unshot_fraction(self) -> float:

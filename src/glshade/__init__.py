@@ -6,9 +6,13 @@ then), so ``import glshade`` and ``glshade --help`` are instant.
 """
 
 import sys
-from typing import TYPE_CHECKING
 
 from ._version import __version__
+
+#: (typing's own constant, without importing typing: ``python -m glshade`` imports this
+#: package before the command can catch a Ctrl-C, and importing typing was most of that
+#: window; type checkers read any name TYPE_CHECKING as true)
+TYPE_CHECKING = False
 
 #: public name -> (module, attribute); attribute None: the module itself. The names are
 #: typed for checkers and IDEs by the TYPE_CHECKING imports below (a test keeps both equal).

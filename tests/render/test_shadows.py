@@ -153,6 +153,9 @@ class Oracle:
         elif self.kind == "torus":
             t = hit_triangles(o, d, TORUS_TRIANGLES)
             yield t, t, False, None
+        elif self.kind == "ball":
+            t = hit_triangles(o, d, BALL_TRIANGLES)
+            yield t, t, False, None
 
 
 def _bored_first(box_in, box_out, c0, c1):
@@ -167,6 +170,9 @@ TORUS_ROTATION = Q.from_axis_angle((1, 0, 0.3), 0.6)
 TORUS_MESH = P.torus(0.7, 0.22, 24, 12)
 _tv = Q.rotate(TORUS_ROTATION, TORUS_MESH.vertices) + np.array([0.0, 1.1, 0.0])
 TORUS_TRIANGLES = _tv[TORUS_MESH.triangles[0]]
+#: a mesh sphere over the floor (a point light's cube map: the reported seam class)
+BALL_MESH = P.icosphere(2, 0.6)
+BALL_TRIANGLES = (BALL_MESH.vertices + np.array([0.0, 1.0, 0.0]))[BALL_MESH.triangles[0]]
 
 LIGHTS = {"point": g.PointLight(position=(-1.2, 3.5, -1.0)),
           "directional": g.DirectionalLight(direction=(0.8, -1.5, 0.6))}
@@ -237,6 +243,8 @@ def scene_of(kind, light):
     elif kind == "torus":
         s.add(TORUS_MESH, g.Material(color=(0.7, 0.6, 0.2)), rotation=TORUS_ROTATION,
               translation=(0, 1.1, 0))
+    elif kind == "ball":
+        s.add(BALL_MESH, g.Material(color=(0.3, 0.5, 0.9)), translation=(0, 1.0, 0))
     s.add_light(light)
     return s
 
@@ -396,9 +404,10 @@ def test_egl_and_osmesa_give_the_same_bytes(tmp_path):
     assert np.array_equal(images["egl"], images["osmesa"])
 
 
-@pytest.mark.parametrize("eye", sorted(EYES))
-@pytest.mark.parametrize("light", sorted(LIGHTS))
-@pytest.mark.parametrize("kind", ["cube", "torus"])
+@pytest.mark.parametrize("kind, light, eye", [
+    *[(k, light, eye) for k in ("cube", "torus") for light in sorted(LIGHTS)
+      for eye in sorted(EYES)],
+    ("ball", "point", "above"), ("ball", "point", "grazing")])  # (a cube map's seams)
 def test_map_shadows_differ_only_within_their_band(renderers, kind, light, eye):
     """Shadow maps against the same oracle: every pixel whose polygon faces the light and
     whose samples agree across a half pixel plus the band -- the texel footprint (from the

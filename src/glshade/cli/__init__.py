@@ -18,14 +18,14 @@ __all__ = ["main"]
 
 def main(argv: list[str] | None = None) -> int:
     """The command line: parse ``argv``, run the command; the exit status (2: bad input)."""
-    import signal
+    # (the signal module's C half: ``import signal`` builds its enums, milliseconds in
+    # which a Ctrl-C would land before the handler below is up)
+    import _signal as signal
 
-    from ..interrupt import catch_dropped
-
-    catch_dropped()
     seen: list[int] = []
     if argv is None and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-        # (noted too: a Ctrl-C inside an extension's import can surface as that import's
+        # (first of all, before any import: a Ctrl-C from here on is the command's; noted
+        # too, as one inside an extension's import can surface as that import's
         # ImportError -- numpy's does -- and is still a Ctrl-C)
         def interrupt(signum, frame):
             seen.append(signum)
@@ -33,6 +33,9 @@ def main(argv: list[str] | None = None) -> int:
 
         signal.signal(signal.SIGINT, interrupt)
     try:
+        from ..interrupt import catch_dropped
+
+        catch_dropped()
         return _main(argv)
     except KeyboardInterrupt:
         return _interrupted()

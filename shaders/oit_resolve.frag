@@ -17,12 +17,12 @@
 uniform usampler2D u_oit_heads;  // a pixel's fragment count, pool list head + 1
 #else
 // a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
-layout(std430, binding = 4) readonly buffer OitHeads { uint oit_heads[]; };
+layout(std430, binding = BINDING_OIT_HEADS) readonly buffer OitHeads { uint oit_heads[]; };
 #endif
-layout(std430, binding = 5) readonly buffer OitNodes { uvec4 oit_nodes[]; };
+layout(std430, binding = BINDING_OIT_NODES) readonly buffer OitNodes { uvec4 oit_nodes[]; };
 // pixels over, fragments over, cut short, - (the fragments are summed from the heads when
 // asked for: render/passes/transparency.py)
-layout(std430, binding = 7) buffer OitReport { uint u_counts[4]; };
+layout(std430, binding = BINDING_OIT_REPORT) buffer OitReport { uint u_counts[4]; };
 uniform uint u_oit_width;
 uniform uint u_oit_pixels;
 uniform uint u_oit_base;

@@ -62,8 +62,8 @@ uniform usampler2D u_bvh;
 // the hierarchy's walk reads its nodes and triangles from storage buffers (GL 4.3: on
 // llvmpipe 1.2x the paths a second of texel fetches through the large scene; the other
 // reads stay texel fetches, which measured faster where few)
-layout(std430, binding = 0) readonly buffer WalkNodes { uvec4 walk_nodes[]; };
-layout(std430, binding = 1) readonly buffer WalkRows { vec4 walk_rows[]; };
+layout(std430, binding = BINDING_WALK_NODES) readonly buffer WalkNodes { uvec4 walk_nodes[]; };
+layout(std430, binding = BINDING_WALK_TRIANGLES) readonly buffer WalkRows { vec4 walk_rows[]; };
 #endif
 #include "packed_box.glsl"
 uniform int u_tris;

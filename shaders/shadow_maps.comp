@@ -6,7 +6,7 @@
 // they shade instead (SHADOW_MAPS_FORWARD, shadow_mask.glsl).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
+layout(r8, binding = BINDING_VISIBILITY_IMAGE) writeonly uniform image2DArray u_visibility;
 uniform int u_layer;               // the light's layer of u_visibility
 
 #include "gbuffer_point.glsl"

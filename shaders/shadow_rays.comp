@@ -11,12 +11,12 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "shadow_trace.glsl"
 #ifdef CSG_SOLID
-layout(r8, binding = 0) uniform image2DArray u_visibility;
+layout(r8, binding = BINDING_VISIBILITY_IMAGE) uniform image2DArray u_visibility;
 int g_iter;
 #define CSG_COUNT ++g_iter
 #include "csg.glsl"
 #else
-layout(r8, binding = 0) writeonly uniform image2DArray u_visibility;
+layout(r8, binding = BINDING_VISIBILITY_IMAGE) writeonly uniform image2DArray u_visibility;
 #endif
 
 #include "gbuffer_point.glsl"

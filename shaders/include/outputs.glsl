@@ -45,12 +45,12 @@ float g_map_opacity = 1.0;                     // its opacity map here (textures
 layout(early_fragment_tests) in;
 #ifndef OIT_FETCH
 // a pixel's fragment count at its index, its pool list head + 1 at u_oit_pixels + index
-layout(std430, binding = 4) coherent buffer OitHeads { uint oit_heads[]; };
+layout(std430, binding = BINDING_OIT_HEADS) coherent buffer OitHeads { uint oit_heads[]; };
 #endif
-layout(std430, binding = 5) buffer OitNodes { uvec4 oit_nodes[]; };
+layout(std430, binding = BINDING_OIT_NODES) buffer OitNodes { uvec4 oit_nodes[]; };
 // the pool's nodes taken; oit_deep[i] set where some pixel reached 2, 3, 5 fragments (plain
 // stores of one value: the resolve sorts only as many slots as the deepest pixel needs)
-layout(std430, binding = 6) buffer OitCount { uint oit_count; uint oit_deep[3]; };
+layout(std430, binding = BINDING_OIT_COUNT) buffer OitCount { uint oit_count; uint oit_deep[3]; };
 uniform uint u_oit_capacity;  // nodes in the pool
 uniform uint u_oit_width;     // the target's width (a pixel's index: y width + x)
 uniform uint u_oit_pixels;    // the target's pixels

@@ -19,13 +19,13 @@
 #ifndef SHADOW_TRACE_GLSL
 #define SHADOW_TRACE_GLSL
 
-layout(std430, binding = 0) readonly buffer Nodes { uvec4 nodes[]; };
+layout(std430, binding = BINDING_WALK_NODES) readonly buffer Nodes { uvec4 nodes[]; };
 #include "packed_box.glsl"
-layout(std430, binding = 1) readonly buffer Tris { uvec4 tris[]; };
-layout(std430, binding = 2) buffer Counts { uint undecided; };
+layout(std430, binding = BINDING_WALK_TRIANGLES) readonly buffer Tris { uvec4 tris[]; };
+layout(std430, binding = BINDING_RAY_COUNTS) buffer Counts { uint undecided; };
 // each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
 // patch's, a solid's leaf) take the surface's shading normal
-layout(std430, binding = 3) readonly buffer Normals { vec4 polygon_normals[]; };
+layout(std430, binding = BINDING_POLYGON_NORMALS) readonly buffer Normals { vec4 polygon_normals[]; };
 uniform int u_polygons;
 uniform float u_scale;             // the scene's largest coordinate (float32 precision)
 uniform float u_eps;               // relative offset of a ray's start

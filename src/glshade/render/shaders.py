@@ -18,6 +18,7 @@ from ..interrupt import held
 from ..modes import ShadingMode
 from .base import GLResource
 from .programs import ProgramKey
+from .units import glsl_defines
 
 __all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS", "LOOP_CAP", "LOOP_BUDGET"]
 
@@ -91,6 +92,7 @@ def assemble(name: str, root: Path | None = None,
                            if d in _EXTENSIONS)
                 out.extend(f"#define {d}" for d in defines)
                 out.append(f"#define LOOP_BUDGET {LOOP_BUDGET}")
+                out.extend(f"#define {d}" for d in glsl_defines())
                 out.append(f"#line 2 {number}")
                 continue
             m = _INCLUDE.match(line)

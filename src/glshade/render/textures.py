@@ -12,11 +12,13 @@ import numpy as np
 
 from ..errors import SceneError
 from .base import GLResource
+from .units import Unit
 
 __all__ = ["TextureCache", "MAP_UNITS"]
 
-#: the texture units of the three maps (diffuse, specular, opacity); below them the passes'
-MAP_UNITS = {"texture": 10, "specular_texture": 11, "opacity_texture": 12}
+#: the texture units of the three maps (diffuse, specular, opacity): render/units.py's
+MAP_UNITS = {"texture": Unit.MAP_DIFFUSE, "specular_texture": Unit.MAP_SPECULAR,
+             "opacity_texture": Unit.MAP_OPACITY}
 _UNIFORMS = {"texture": "u_map_diffuse", "specular_texture": "u_map_specular",
              "opacity_texture": "u_map_opacity"}
 _SRGB8_ALPHA8 = 0x8C43

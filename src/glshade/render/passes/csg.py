@@ -36,6 +36,7 @@ from ..base import GLResource
 from ..data import data_texture
 from ..programs import MaterialUniforms, ProgramKey, UniformWriter
 from ..state import DrawState
+from ..units import Unit
 from . import Stage
 
 __all__ = ["CsgPass", "csg_defines"]
@@ -64,7 +65,7 @@ class CsgPass(GLResource, Stage):
     and material cache (public collaborators, handed in)."""
 
     #: the texture unit the tree data is bound to
-    UNIT = 7
+    UNIT = Unit.CSG_TREE
 
     def __init__(self, context, shaders, uniforms: UniformWriter,
                  materials: MaterialUniforms):

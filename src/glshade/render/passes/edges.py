@@ -25,14 +25,13 @@ from ...geometry.transforms import gl_bytes
 from ...modes import Outputs
 from ..base import GLResource
 from ..state import DrawState
+from ..units import Unit
 from . import Stage
 
 __all__ = ["EdgePass", "edge_width", "EDGE_COLOR"]
 
 #: the overlay's colour (linear RGB): dark, readable on every shading
 EDGE_COLOR = (0.06, 0.06, 0.07)
-#: texture unit of the surfaces' depth
-_DEPTH_UNIT = 7
 
 
 def edge_width(width: int, height: int) -> float:
@@ -96,7 +95,7 @@ class EdgePass(GLResource, Stage):
         put(prog, "u_viewport_size", (float(w), float(h)))
         put(prog, "u_edge_width", float(edge_width(w, h)))
         put(prog, "u_hide", int(hide))
-        put(prog, "u_scene_depth", _DEPTH_UNIT)
+        put(prog, "u_scene_depth", Unit.EDGE_DEPTH)
         ctx.disable(moderngl.CULL_FACE)
         ctx.disable(moderngl.DEPTH_TEST)  # (seen or not is edges.frag's judgement)
         for i, (gpu, model) in enumerate(gpu_meshes):
@@ -120,7 +119,7 @@ class EdgePass(GLResource, Stage):
             colour = ctx.renderbuffer(size, 4)
             self._depth = (size, texture, ctx.framebuffer([colour], texture), colour)
         ctx.copy_framebuffer(self._depth[2], source)
-        self._depth[1].use(location=_DEPTH_UNIT)
+        self._depth[1].use(location=Unit.EDGE_DEPTH)
 
     def _release_extra(self) -> None:
         """The depth copy (remade when the target's size changes)."""

@@ -8,6 +8,7 @@ import numpy as np
 
 from ...geometry.transforms import pixel_rays
 from ..data import NEAREST
+from ..units import Unit
 
 __all__ = ["GBuffer", "bind_gbuffer"]
 
@@ -62,11 +63,12 @@ def bind_gbuffer(put, prog, state, gbuf: GBuffer) -> None:
     gbuf
         the G-buffer drawn for it.
     """
-    gbuf.face.use(0)
-    gbuf.depth.use(1)
-    gbuf.normal.use(3)
+    gbuf.face.use(Unit.GBUFFER_FACE)
+    gbuf.depth.use(Unit.GBUFFER_DEPTH)
+    gbuf.normal.use(Unit.GBUFFER_NORMAL)
     inverse_view = np.linalg.inv(state.view)
-    values = {"u_face_ids": 0, "u_depth_bits": 1, "u_normals": 3,
+    values = {"u_face_ids": Unit.GBUFFER_FACE, "u_depth_bits": Unit.GBUFFER_DEPTH,
+              "u_normals": Unit.GBUFFER_NORMAL,
               **pixel_rays(state.proj, state.view, state.viewport),
               "u_eye": tuple(inverse_view[:3, 3]),
               "u_forward": tuple(-inverse_view[:3, 2]),

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...io.images import LABEL_HEIGHT, label_image
 from ..base import GLResource
+from ..units import Unit
 
 __all__ = ["LabelOverlay"]
 
@@ -43,8 +44,8 @@ class LabelOverlay(GLResource):
         ctx = self.context.ctx
         band = min(LABEL_HEIGHT, h)
         ctx.viewport = (x, y + h - band, w, band)
-        self._texture(text, w).use(0)
-        self.program["u_image"].value = 0
+        self._texture(text, w).use(Unit.LABEL)
+        self.program["u_image"].value = Unit.LABEL
         ctx.disable(ctx.DEPTH_TEST)
         self.vao.render(mode=ctx.TRIANGLE_STRIP)
         ctx.viewport = viewport

@@ -14,14 +14,16 @@ from ..base import GLResource
 from ..data import NEAREST, data_texture
 from ..film import LAYOUT_BLOCKS, film_layout, film_places
 from ..shaders import ShaderLibrary
+from ..units import Binding, Unit
 from .csg import csg_defines
 
 __all__ = ["GpuPathTracer"]
 
-#: texture units: the scene's tables, given rays, the solid's tree, then the seven targets
-_DATA, _RAYS, _CSG, _TARGETS = 0, 1, 2, 3
-_BVH = _TARGETS + 7  # (after the seven targets)
-_EXTRA = _BVH + 1  # (each pixel's samples past the run's target: adaptive sampling)
+#: texture units (render/units.py): the scene's tables, given rays, the solid's tree, the
+#: seven targets, the hierarchy, each pixel's samples past the run's target (adaptive)
+_DATA, _RAYS, _CSG, _TARGETS = Unit.TRACE_DATA, Unit.TRACE_RAYS, Unit.TRACE_CSG, \
+    Unit.TRACE_TARGETS
+_BVH, _EXTRA = Unit.TRACE_BVH, Unit.TRACE_EXTRA
 _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
 
 
@@ -303,7 +305,8 @@ class GpuPathTracer(GLResource):
             self._csg.use(location=_CSG)
         self.texture.use(location=_DATA)
         if self.storage:
-            for binding, buffer in enumerate(self._walk):
+            for binding, buffer in zip((Binding.WALK_NODES, Binding.WALK_TRIANGLES),
+                                       self._walk):
                 buffer.bind_to_storage_buffer(binding)
         else:
             self._bvh.use(location=_BVH)
@@ -356,8 +359,8 @@ class GpuPathTracer(GLResource):
         ctx = self.context.ctx
         ctx.viewport = (0, 0, self.width, self.height)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
-        self._targets[self._current][4].use(location=0)
-        self._show["u_sum"].value = 0
+        self._targets[self._current][4].use(location=Unit.TRACE_SHOW)
+        self._show["u_sum"].value = Unit.TRACE_SHOW
         self._show["u_blocks"].value = self._blocks
         self._show["u_exposure"].value = float(exposure)
         self._show["u_srgb"].value = bool(srgb)

@@ -19,6 +19,7 @@ import numpy as np
 from ...errors import RenderWarning, warn_user
 from ...geometry.transforms import gl_bytes, look_at, orthographic, perspective
 from ..base import GLResource
+from ..units import Binding, Unit
 
 __all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
 
@@ -212,11 +213,11 @@ class ShadowMaps(GLResource):
             prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
         bind_gbuffer(put, prog, state, gbuf)
         for i, one in enumerate(maps):
-            one[0].use(4)
-            values = {"u_layer": i, **self.lookup_uniforms([one], [4])}
+            one[0].use(Unit.LOOKUP_MAP)
+            values = {"u_layer": i, **self.lookup_uniforms([one], [Unit.LOOKUP_MAP])}
             for name, value in values.items():
                 put(prog, name, value)
-            vis.bind_to_image(0, read=False, write=True)
+            vis.bind_to_image(Binding.VISIBILITY_IMAGE, read=False, write=True)
             _, _, w, h = (int(v) for v in state.viewport)
             prog.run(math.ceil(w / 8), math.ceil(h / 8), 1)
         self.context.ctx.memory_barrier()

@@ -32,6 +32,7 @@ from ..base import GLResource
 from ..data import NEAREST
 from ..programs import Forward, UniformWriter
 from ..shaders import LOOP_BUDGET
+from ..units import Binding, Unit
 from ..state import DrawState
 from . import Stage, run
 from .gbuffer import GBuffer, bind_gbuffer
@@ -40,9 +41,9 @@ from .shadow_maps import ShadowMaps, shadow_lights
 __all__ = ["ShadowPass", "UNIT", "MAP_FORWARD_UNIT", "SHADOW_EPS", "RAY_BUDGET"]
 
 #: texture unit of the visibility array in the shading programs
-UNIT = 6
+UNIT = Unit.SHADOW_VISIBILITY
 #: the first texture unit of a forward map-shadowed draw's maps (a light each, up to 8)
-MAP_FORWARD_UNIT = 16
+MAP_FORWARD_UNIT = Unit.LIGHT_MAPS
 #: a shadow ray starts this far from its point, relative to the point's depth plus the
 #: scene's largest coordinate (the point is rebuilt from a float32 depth, ~1e-7 of those)
 SHADOW_EPS = 2e-5
@@ -327,10 +328,10 @@ class ShadowPass(GLResource, Stage):
                 "u_shadow_lights": shadow_lights(state.lights).astype("f4")}
 
     def _bind_occluding(self, occ: _Occluding) -> None:
-        occ.nodes.bind_to_storage_buffer(0)
-        occ.tris.bind_to_storage_buffer(1)
-        self._counts.bind_to_storage_buffer(2)
-        occ.normals.bind_to_storage_buffer(3)
+        occ.nodes.bind_to_storage_buffer(Binding.WALK_NODES)
+        occ.tris.bind_to_storage_buffer(Binding.WALK_TRIANGLES)
+        self._counts.bind_to_storage_buffer(Binding.RAY_COUNTS)
+        occ.normals.bind_to_storage_buffer(Binding.POLYGON_NORMALS)
 
     def _trace(self, state, gbuf: GBuffer, vis) -> None:
         """The exact method: a ray a pixel and light (shaders/shadow_rays.comp)."""
@@ -368,10 +369,10 @@ class ShadowPass(GLResource, Stage):
             (("ORTHOGRAPHIC",) if ortho else ())
         prog = self._program(defines)
         bind_gbuffer(self._put, prog, state, gbuf)
-        texture.use(2)
+        texture.use(Unit.CAST_TREE)
         bounds = np.asarray(solid.bounds, np.float64)
         size = float(np.linalg.norm(bounds[1] - bounds[0])) or 1.0
-        extra = {"u_csg": 2, **tree.offsets(), "u_csg_start": tree.nodes,
+        extra = {"u_csg": Unit.CAST_TREE, **tree.offsets(), "u_csg_start": tree.nodes,
                  "u_csg_tie": TIE * size, "u_scale": max(values["u_scale"],
                                                          float(np.abs(bounds).max()))}
         extra["u_csg_kind_start"] = np.array(tree.kind_start, "i4")
@@ -385,7 +386,7 @@ class ShadowPass(GLResource, Stage):
         ctx = self.context.ctx
         if not keep_count:
             self._counts.write(np.zeros(1, np.uint32).tobytes())
-        vis.bind_to_image(0, read=True, write=True)
+        vis.bind_to_image(Binding.VISIBILITY_IMAGE, read=True, write=True)
         _, _, w, h = (int(v) for v in state.viewport)
         prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
         ctx.memory_barrier()

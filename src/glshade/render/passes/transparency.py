@@ -29,6 +29,7 @@ from ..base import GLResource
 from ..data import NEAREST
 from ..programs import OIT_SLOTS as SLOTS  # (a pixel's own slots; then a shared pool)
 from ..programs import Role
+from ..units import Binding, Unit
 from . import Stage
 
 __all__ = ["TransparencyPass", "TransparencyReport", "NODE_BYTES"]
@@ -288,7 +289,7 @@ class TransparencyPass(GLResource, Stage):
         if fetch is None:
             heads.clear()
             state.target.bind(Outputs.COLOR)
-            heads.bind_to_storage_buffer(4)
+            heads.bind_to_storage_buffer(Binding.OIT_HEADS)
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
             fbo.color_mask = (False, False, False, False)
         else:
@@ -296,8 +297,8 @@ class TransparencyPass(GLResource, Stage):
             fetch[4].clear(0.0, 0.0, 0.0, 0.0)
             fbo = fetch[3]
         ctx.viewport = state.viewport
-        self._nodes.bind_to_storage_buffer(5)
-        self._count.bind_to_storage_buffer(6)
+        self._nodes.bind_to_storage_buffer(Binding.OIT_NODES)
+        self._count.bind_to_storage_buffer(Binding.OIT_COUNT)
         fbo.depth_mask = False
         fbo.use()  # (moderngl applies a framebuffer's masks when it is bound)
         try:
@@ -323,13 +324,13 @@ class TransparencyPass(GLResource, Stage):
         vao = ctx.vertex_array(prog, [])
         report = self._report
         report.clear()
-        report.bind_to_storage_buffer(7)
+        report.bind_to_storage_buffer(Binding.OIT_REPORT)
         if fetch:
-            heads.use(3)
-            prog["u_oit_heads"].value = 3
+            heads.use(Unit.OIT_HEADS)
+            prog["u_oit_heads"].value = Unit.OIT_HEADS
         else:
-            heads.bind_to_storage_buffer(4)
-        self._nodes.bind_to_storage_buffer(5)
+            heads.bind_to_storage_buffer(Binding.OIT_HEADS)
+        self._nodes.bind_to_storage_buffer(Binding.OIT_NODES)
         for name, value in layout.items():
             if name in prog:  # (the fetch variant reads no buffer offsets)
                 prog[name].value = value
@@ -340,8 +341,8 @@ class TransparencyPass(GLResource, Stage):
         behind, behind_fbo = self._behind_for(target)
         ctx.copy_framebuffer(behind_fbo, ctx.fbo)  # (a multisampled picture: resolved)
         state.target.bind(Outputs.COLOR)
-        behind.use(2)
-        prog["u_behind"].value = 2
+        behind.use(Unit.OIT_BEHIND)
+        prog["u_behind"].value = Unit.OIT_BEHIND
         ctx.viewport = state.viewport
         ctx.disable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.CULL_FACE)

@@ -279,11 +279,42 @@ def test_a_missing_test_extra_fails_in_ci_and_skips_elsewhere(monkeypatch):
 LONGEST = 80
 
 
+def glsl_functions(source: str):
+    """``(first line, lines, name)`` of each GLSL function defined in ``source``: from its
+    signature (at the margin, wrapped over lines or not) to its closing brace at the margin;
+    a prototype (a signature ending in ``;`` before any brace) is not a definition."""
+    import re
+
+    start = name = None
+    opened = False
+    for i, line in enumerate(source.splitlines(), start=1):
+        found = re.match(r"^[a-z]\w*\s+(\w+)\s*\(", line)
+        if start is None and found:
+            start, name, opened = i, found.group(1), False
+        if start is None:
+            continue
+        opened = opened or "{" in line
+        if not opened and line.rstrip().endswith(";"):
+            start = None  # (a prototype)
+        elif opened and line.startswith("}"):
+            yield start, i - start + 1, name
+            start = None
+
+
+def test_the_glsl_length_check_sees_wrapped_signatures():
+    """The check's own parser: a signature over three lines counts from its first line; a
+    one-line one too; a wrapped prototype is no function."""
+    source = ("float wrapped(vec3 a,\n              vec3 b,\n              vec3 c) {\n"
+              "    return 1.0;\n}\n"
+              "vec3 declared(vec3 a,\n              vec3 b);\n"
+              "void main() {\n    x = 1;\n    y = 2;\n}\n")
+    assert list(glsl_functions(source)) == [(1, 5, "wrapped"), (8, 4, "main")]
+
+
 def test_no_function_is_a_chapter():
     """Every Python function of glshade and every GLSL function of its shaders fits in
     LONGEST lines: past that, it holds parts that have names of their own."""
     import ast
-    import re
 
     long = []
     for path in PACKAGE.rglob("*.py"):
@@ -296,14 +327,8 @@ def test_no_function_is_a_chapter():
     for path in (ROOT / "shaders").rglob("*"):
         if path.suffix == ".md" or not path.is_file():
             continue
-        text = path.read_text(encoding="utf-8").splitlines()
-        start = None
-        for i, line in enumerate(text):
-            if re.match(r"^[a-z]\w*\s+\w+\(.*\)\s*\{\s*$", line):
-                start = i
-            elif line.startswith("}") and start is not None:
-                if i - start + 1 > LONGEST:
-                    long.append(f"shaders/{path.relative_to(ROOT / 'shaders')}:{start + 1} "
-                                f"({i - start + 1} lines)")
-                start = None
+        for start, lines, name in glsl_functions(path.read_text(encoding="utf-8")):
+            if lines > LONGEST:
+                long.append(f"shaders/{path.relative_to(ROOT / 'shaders')}:{start} {name} "
+                            f"({lines} lines)")
     assert long == []

@@ -10,8 +10,8 @@ from typing import TypeVar
 from .errors import OptionError
 
 __all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Transparency", "Projection",
-           "Backend",
-           "HEADLESS_BACKENDS", "parse_enum"]
+           "Backend", "Sampler", "Accel", "Tessellation",
+           "HEADLESS_BACKENDS", "parse_enum", "choose"]
 
 
 E = TypeVar("E", bound=enum.Enum)
@@ -27,6 +27,31 @@ def parse_enum(cls: type[E], value: object, what: str) -> E:
     except ValueError:
         choices = ", ".join(str(m.value) for m in cls)
         raise OptionError(f"unknown {what} {value!r}; choose one of {choices}") from None
+
+
+def choose(cls: type[E], value: object, what: str, error: type = OptionError) -> E:
+    """``cls``'s member for ``value`` (itself, or its value in any case); else ``error``
+    saying ``"{what} must be 'a', 'b' or 'c', got {value!r}"``.
+
+    Parameters
+    ----------
+    cls
+        The enum.
+    value
+        A member, or its value as a string.
+    what
+        The option's name, as the message says it.
+    error
+        The exception class to raise (OptionError; SceneError where a scene is built).
+    """
+    if isinstance(value, cls):
+        return value
+    try:
+        return cls(str(value).lower())
+    except ValueError:
+        names = [f"'{m.value}'" for m in cls]
+        listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+        raise error(f"{what} must be {listed}, got {value!r}") from None
 
 
 def _option_member(cls: type[E], value: object, option: str, true: E | None = None,
@@ -163,3 +188,26 @@ class Backend(enum.Enum):
 
 #: the backends a headless render may name (the command line's --backend choices)
 HEADLESS_BACKENDS = tuple(b.value for b in Backend if b is not Backend.WINDOW)
+
+
+class Sampler(str, enum.Enum):
+    """Where a path tracer's random numbers come from (equal to its value as a string)."""
+
+    PCG = "pcg"      # independent: a PCG stream per pixel and sample
+    SOBOL = "sobol"  # Owen-scrambled Sobol points at the first three vertices
+
+
+class Accel(str, enum.Enum):
+    """How a path tracer's rays find triangles (equal to its value as a string)."""
+
+    AUTO = "auto"      # flat up to FLAT_LIMIT triangles, hybrid with small models, else bvh
+    BVH = "bvh"        # the hierarchy's walk
+    FLAT = "flat"      # every triangle in turn, compiled into the program
+    HYBRID = "hybrid"  # the small models compiled in, the hierarchy for the rest
+
+
+class Tessellation(str, enum.Enum):
+    """Where a patch model is tessellated (equal to its value as a string)."""
+
+    CPU = "cpu"  # once, when it is added: a mesh
+    GPU = "gpu"  # at every draw, by GL 4.0 tessellation shaders: a PatchModel

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import OptionError
+from ..modes import Accel, Sampler, choose
 from .scene import TraceScene
 
 __all__ = ["PathTraced", "PathTracer", "trace", "relative_error"]
@@ -112,7 +113,8 @@ class PathTracer:
 
     def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int | None = None,
                  context=None, backend: str = "auto", lights: bool = True, camera=None,
-                 smooth: bool = False, accel: str = "auto", sampler: str = "pcg",
+                 smooth: bool = False, accel: Accel | str = "auto",
+                 sampler: Sampler | str = "pcg",
                  mis: bool = True, coherent: bool | tuple[int, int] = False,
                  control: np.ndarray | None = None):
         from ..render.context import create_context
@@ -121,6 +123,7 @@ class PathTracer:
         from ..options import check_whole
 
         w, h = _size(size)
+        accel, sampler = choose(Accel, accel, "accel"), choose(Sampler, sampler, "sampler")
         if max_depth is not None:
             max_depth = check_whole("max_depth", max_depth, 1)
             if max_depth > MAX_PATH_DEPTH:  # (a GL int; checked before any arithmetic)
@@ -247,7 +250,7 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
           until: float | None = None, max_samples: int = 65536, seed: int = 0,
           max_depth: int | None = None, samples_per_pass: int | None = None,
           backend: str = "auto", context=None, lights: bool = True,
-          progress=None, accel: str = "auto", sampler: str = "pcg",
+          progress=None, accel: Accel | str = "auto", sampler: Sampler | str = "pcg",
           mis: bool = True, coherent: bool | tuple[int, int] = False,
           control: np.ndarray | None = None, adaptive: bool = False) -> PathTraced:
     """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
@@ -283,6 +286,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     from ..parallel.progress import as_progress
     from ..scene.camera import default_camera
 
+    # (every option checked here, before a context or a scene is made)
+    accel, sampler = choose(Accel, accel, "accel"), choose(Sampler, sampler, "sampler")
     if spp is not None and until is not None:
         raise OptionError("give spp (samples a pixel) or until (a relative error), not both")
     if until is not None and not (0 < float(until) < 1):

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, SceneError, plain
+from ..modes import Tessellation, choose
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.transforms import box_corners, compose_transform
@@ -144,7 +145,7 @@ class Scene:
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None,
-            tessellation: str = "cpu", level: int | None = None):
+            tessellation: Tessellation | str = "cpu", level: int | None = None):
         """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
         :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
         normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
@@ -162,9 +163,8 @@ class Scene:
                                    name)
         from ..patches import PatchSet, PatchSurface
 
-        if tessellation not in ("cpu", "gpu"):
-            raise SceneError(f"tessellation must be 'cpu' or 'gpu', got {tessellation!r}")
-        if tessellation == "gpu":
+        tessellation = choose(Tessellation, tessellation, "tessellation", SceneError)
+        if tessellation is Tessellation.GPU:
             if not isinstance(mesh, (PatchSurface, PatchSet)):
                 raise SceneError(f"tessellation='gpu' is for patches (glshade.patches), not "
                                  f"a {type(mesh).__name__}")

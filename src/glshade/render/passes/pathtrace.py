@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import OptionError
+from ...modes import Accel, Sampler, choose
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
@@ -53,8 +54,8 @@ class GpuPathTracer(GLResource):
     scene's models (:func:`glshade.radiosity.control.radiosity_control`), used at Russian
     roulette (None: none)."""
 
-    SAMPLERS = ("pcg", "sobol")
-    ACCELS = ("auto", "bvh", "flat", "hybrid")
+    SAMPLERS = tuple(Sampler)
+    ACCELS = tuple(Accel)
 
     #: loop iterations under which an invocation starts another bounce (its own tuning, not
     #: the cap's: a bounce of a scene of 100k triangles costs a few hundred, so one begun
@@ -100,7 +101,7 @@ class GpuPathTracer(GLResource):
         self.max_depth, self.budget = max_depth, int(budget)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
         compiled = self._choose(accel, sampler, scene)
-        data, self.layout = scene.tables(compiled if self.accel == "hybrid" else None)
+        data, self.layout = scene.tables(compiled if self.accel is Accel.HYBRID else None)
         defines = self._defines(context, data, storage, coherent, mis, control)
         self._csg = None
         if scene.solids:
@@ -162,8 +163,8 @@ class GpuPathTracer(GLResource):
         :attr:`storage`, :attr:`mis`, :attr:`tile` and the control values)."""
         # (the triangles compiled in: the table's first rows -- all of them, or the small
         # models' -- and the hierarchy for the rest)
-        n_compiled = {"flat": len(self.scene.triangles), "hybrid": self.layout["compiled"]}.get(
-            self.accel, 0)
+        n_compiled = {Accel.FLAT: len(self.scene.triangles),
+                      Accel.HYBRID: self.layout["compiled"]}.get(self.accel, 0)
         first = self.layout["u_tris"]
         defines: tuple[str, ...] = (f"DATA_WIDTH {self.layout['width']}",)
         if self.scene.shading is not None:
@@ -172,14 +173,14 @@ class GpuPathTracer(GLResource):
             defines += _flat_defines(data[first:first + 3 * n_compiled])
         #: whether the hierarchy's walk reads storage buffers (else texel fetches)
         self.storage = False
-        if self.accel != "flat" and self.layout["nodes"]:
+        if self.accel is not Accel.FLAT and self.layout["nodes"]:
             defines += ("HIERARCHY",)
             have = context.ctx.version_code >= 430
             self.storage = have if storage is None else bool(storage)
             if self.storage and not have:
                 context.require(430, "storage=True needs", "leave storage at None")
             defines += ("GLSL_430", "STORAGE_WALK") if self.storage else ()
-        defines += ("LOW_DISCREPANCY",) if self.sampler == "sobol" else ()
+        defines += ("LOW_DISCREPANCY",) if self.sampler is Sampler.SOBOL else ()
         if 0 < len(self.scene.emitters) <= self.EMITTERS_COMPILED:
             defines += (_emitter_pick(data, self.layout),)
         # (what the scene has no use for is compiled away: llvmpipe runs every branch)
@@ -201,25 +202,24 @@ class GpuPathTracer(GLResource):
     def _choose(self, accel: str, sampler: str, scene) -> np.ndarray | None:
         """Check ``accel`` and ``sampler`` for ``scene``, set :attr:`accel` and
         :attr:`sampler`; the triangles a hybrid compiles in (``(T,)`` bool) or None."""
-        if accel not in self.ACCELS:
-            raise OptionError(f"accel must be 'auto', 'bvh', 'flat' or 'hybrid', got {accel!r}")
-        if sampler not in self.SAMPLERS:
-            raise OptionError(f"sampler must be 'pcg' or 'sobol', got {sampler!r}")
+        accel = choose(Accel, accel, "accel")
+        sampler = choose(Sampler, sampler, "sampler")
         #: where the paths' random numbers come from (``SAMPLERS``)
         self.sampler = sampler
         n = len(scene.triangles)
-        if accel == "flat" and n > self.FLAT_MAX:
+        if accel is Accel.FLAT and n > self.FLAT_MAX:
             raise OptionError(f"accel='flat' compiles the triangles into the program: at most "
                               f"{self.FLAT_MAX}, the scene has {n:,} (use accel='bvh')")
         small = scene.small_models(self.FLAT_LIMIT) if n else np.zeros(0, bool)
-        if accel == "auto":
-            accel = "flat" if 0 < n <= self.FLAT_LIMIT else "hybrid" if small.any() else "bvh"
-        if accel == "hybrid" and not small.any():
-            accel = "bvh"  # (no small model beside a large one: the hierarchy alone)
+        if accel is Accel.AUTO:
+            accel = Accel.FLAT if 0 < n <= self.FLAT_LIMIT else \
+                Accel.HYBRID if small.any() else Accel.BVH
+        if accel is Accel.HYBRID and not small.any():
+            accel = Accel.BVH  # (no small model beside a large one: the hierarchy alone)
         #: how rays find triangles: "flat" (every one compiled in), "bvh" (the hierarchy)
         #: or "hybrid" (the small models compiled in, the hierarchy for the rest)
-        self.accel = accel if n else "bvh"
-        return small if self.accel == "hybrid" else None
+        self.accel = accel if n else Accel.BVH
+        return small if self.accel is Accel.HYBRID else None
 
     def _write(self, values: dict) -> None:
         prog = self.program

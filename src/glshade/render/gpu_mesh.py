@@ -110,12 +110,12 @@ class GpuMesh(GLResource):
             self._per_corner = tuple(self._keep(b) for b in self._corner_copies(*self._indexed))
         return self._per_corner
 
-    def _corner_copies(self, vertices: np.ndarray, tri: np.ndarray, owner: np.ndarray):
+    def _corner_copies(self, vertices: np.ndarray, tri: np.ndarray, polygon: np.ndarray):
         """Buffers of ``vertices`` (V, k) float32 copied to every corner of ``tri`` (T, 3),
-        and each corner's polygon id from ``owner`` (T,); the caller owns them."""
+        and each corner's polygon id from ``polygon`` (T,); the caller owns them."""
         ctx = self.context.ctx
         return (ctx.buffer(vertices[tri.ravel()].tobytes()),
-                ctx.buffer(np.repeat(owner, 3).astype("i4").tobytes()))
+                ctx.buffer(np.repeat(polygon, 3).astype("i4").tobytes()))
 
     def color_array(self, program, colors: np.ndarray):
         """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the

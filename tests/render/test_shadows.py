@@ -7,6 +7,7 @@ The shadow of a sphere on a plane is the conic its closed form gives.
 agree -- one surface, one answer for each light -- shows what the centre's ray finds: 0
 mismatches outside that half-pixel band, at MSAA 0 and 4, EGL and OSMesa the same bytes."""
 
+import os
 import subprocess
 import sys
 
@@ -389,17 +390,24 @@ camera = g.Camera.look_at(position, target, fov_y=FOV)
 with g.Renderer(W, H, samples=0, backend=sys.argv[1]) as r:
     out = [r.render(scene_of(k, LIGHTS["point"]), camera, m, shadows="exact")
            for k in ("cube", "sphere") for m in ("flat", "phong")]
+    print(r.backend)  # (the front-end that really drew: no fallback, no override)
 np.save(sys.argv[2], np.stack(out))
 """
 
 
 def test_egl_and_osmesa_give_the_same_bytes(tmp_path):
+    """The same shadowed pictures through EGL and through OSMesa, each in a process of its
+    own that says which front-end it drew with. (Here both front-ends drive Mesa's
+    llvmpipe: what this proves is that the context, its framebuffers and its programs are
+    made alike through either -- not that two rasterizers agree.)"""
     images = {}
     for backend in ("egl", "osmesa"):
         path = tmp_path / f"{backend}.npy"
         out = subprocess.run([sys.executable, "-c", SNIPPET, backend, str(path)],
-                             capture_output=True, text=True, cwd=ROOT, timeout=300)
+                             capture_output=True, text=True, cwd=ROOT, timeout=300,
+                             env={**os.environ, "GLSHADE_BACKEND": ""})
         assert out.returncode == 0, out.stderr
+        assert out.stdout.split() == [backend], out.stdout  # (not the other, by fallback)
         images[backend] = np.load(path)
     assert np.array_equal(images["egl"], images["osmesa"])
 

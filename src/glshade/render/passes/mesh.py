@@ -125,12 +125,6 @@ class MeshPass(GLResource, Stage):
             program = self._programs[found] = self.shaders.program(key)
         return program
 
-    @property
-    def programs(self) -> int:
-        """How many program variants this pass has compiled (one per variant a draw
-        needed: mode, lights, culling, flat constants, role, textures)."""
-        return len(self._programs)
-
     # ------------------------------------------------------------------ the stage
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the scene's visible opaque meshes; the polygon id after theirs (transparent

@@ -54,9 +54,6 @@ class GpuPathTracer(GLResource):
     scene's models (:func:`glshade.radiosity.control.radiosity_control`), used at Russian
     roulette (None: none)."""
 
-    SAMPLERS = tuple(Sampler)
-    ACCELS = tuple(Accel)
-
     #: loop iterations under which an invocation starts another bounce (its own tuning, not
     #: the cap's: a bounce of a scene of 100k triangles costs a few hundred, so one begun
     #: just under this ends far below LOOP_BUDGET, where it would be reported as cut short)
@@ -204,7 +201,7 @@ class GpuPathTracer(GLResource):
         :attr:`sampler`; the triangles a hybrid compiles in (``(T,)`` bool) or None."""
         accel = choose(Accel, accel, "accel")
         sampler = choose(Sampler, sampler, "sampler")
-        #: where the paths' random numbers come from (``SAMPLERS``)
+        #: where the paths' random numbers come from (a :class:`~glshade.modes.Sampler`)
         self.sampler = sampler
         n = len(scene.triangles)
         if accel is Accel.FLAT and n > self.FLAT_MAX:

@@ -256,7 +256,9 @@ class ShadowPass(GLResource, Stage):
         vis = self.visibility(width, height, max(len(lights), 1))
         self._lights_drawn = len(lights)
         if state.options.shadows is Shadows.MAP:
-            self._maps().fill(state, self.occluder_triangles(scene), gbuf, vis, self._put)
+            # (the draw's own scene: the G-buffer's hidden copies would key the maps anew)
+            self._maps().fill(state, self.occluder_triangles(state.scene), gbuf, vis,
+                              self._put)
             self.undecided = 0
         else:
             self._trace(state, gbuf, vis)

@@ -95,9 +95,12 @@ def allocate(sigma: np.ndarray, mean: float, *, tile: tuple[int, int] = (1, 1),
         n = np.full(s.shape, float(mean))
     else:  # (the scale that spends the budget, clipped to [floor, most]: by bisection)
         budget = float(mean) * h * w
-        lo, hi = 0.0, most / s[s > 0].min()
+        # (in proportion to log scale: the deviations may span hundreds of orders of
+        # magnitude -- a pixel of 1e-60 beside one of 1 -- where halving the bracket 200
+        # times from most / 1e-60 would leave it wider than the answer)
+        lo, hi = floor / s.max(), most / s[s > 0].min()
         for _ in range(200):
-            scale = 0.5 * (lo + hi)
+            scale = float(np.sqrt(lo) * np.sqrt(hi))
             if (area * np.clip(scale * s, floor, most)).sum() > budget:
                 hi = scale
             else:

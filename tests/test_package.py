@@ -312,8 +312,9 @@ def test_the_glsl_length_check_sees_wrapped_signatures():
 
 
 def test_no_function_is_a_chapter():
-    """Every Python function of glshade and every GLSL function of its shaders fits in
-    LONGEST lines: past that, it holds parts that have names of their own."""
+    """Every Python function of glshade (its docstring aside) and every GLSL function of
+    its shaders fits in LONGEST lines: past that, it holds parts that have names of their
+    own."""
     import ast
 
     long = []
@@ -321,6 +322,9 @@ def test_no_function_is_a_chapter():
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 lines = node.end_lineno - node.lineno + 1
+                if ast.get_docstring(node) is not None:  # (its words are not its parts)
+                    doc = node.body[0]
+                    lines -= doc.end_lineno - doc.lineno + 1
                 if lines > LONGEST:
                     long.append(f"{path.relative_to(PACKAGE)}:{node.lineno} {node.name} "
                                 f"({lines} lines)")
@@ -332,3 +336,57 @@ def test_no_function_is_a_chapter():
                 long.append(f"shaders/{path.relative_to(ROOT / 'shaders')}:{start} {name} "
                             f"({lines} lines)")
     assert long == []
+
+
+#: the most lines a shader file may have: past that it holds several concerns, each of which
+#: can be an include of its own (the path tracer was one file of 606)
+LONGEST_SHADER = 250
+
+
+def test_no_shader_file_holds_several_concerns():
+    """Every shader file (programs and includes) stays under LONGEST_SHADER lines."""
+    long = [f"{p.relative_to(ROOT)} ({n} lines)" for p in sorted((ROOT / "shaders").rglob("*"))
+            if p.is_file() and p.suffix != ".md"
+            and (n := len(p.read_text(encoding="utf-8").splitlines())) > LONGEST_SHADER]
+    assert long == []
+
+
+def test_the_ray_triangle_test_is_written_once():
+    """Moller-Trumbore (its first step, ``cross(d, e2)``) is in one shader file, which the
+    path tracer and the shadow rays both include: one test, one way of judging a
+    degenerate triangle."""
+    import re
+
+    step = re.compile(r"cross\(\s*d\s*,\s*e2\s*\)")
+    files = [p.relative_to(ROOT / "shaders").as_posix()
+             for p in sorted((ROOT / "shaders").rglob("*"))
+             if p.is_file() and p.suffix != ".md" and step.search(p.read_text(encoding="utf-8"))]
+    assert files == ["include/bvh_walk.glsl"]
+    users = {p.name for p in (ROOT / "shaders").rglob("*.glsl")
+             if '#include "bvh_walk.glsl"' in p.read_text(encoding="utf-8")}
+    assert users == {"trace_scene.glsl", "shadow_trace.glsl"}
+
+
+def test_uniforms_are_written_by_one_writer():
+    """No module but render/programs.py (UniformWriter) sets a program member itself
+    (``prog[name].value = ...`` or ``prog[name].write(...)``): the writer alone skips what a
+    variant's compiler dropped, fits arrays and skips values already held."""
+    import ast
+
+    found = []
+    for path in sorted((PACKAGE / "render").rglob("*.py")):
+        if path.name == "programs.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            target = None
+            if isinstance(node, ast.Assign):
+                target = node.targets[0]
+                if not (isinstance(target, ast.Attribute) and target.attr == "value"):
+                    continue
+                target = target.value
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                    and node.func.attr == "write":
+                target = node.func.value
+            if isinstance(target, ast.Subscript):
+                found.append(f"{path.relative_to(PACKAGE)}:{node.lineno}")
+    assert found == []

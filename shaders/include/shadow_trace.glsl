@@ -20,7 +20,6 @@
 #define SHADOW_TRACE_GLSL
 
 layout(std430, binding = BINDING_WALK_NODES) readonly buffer Nodes { uvec4 nodes[]; };
-#include "packed_box.glsl"
 layout(std430, binding = BINDING_WALK_TRIANGLES) readonly buffer Tris { uvec4 tris[]; };
 layout(std430, binding = BINDING_RAY_COUNTS) buffer Counts { uint undecided; };
 // each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
@@ -35,72 +34,34 @@ uniform int u_big;                 // the first u_big triangles: tested by every
 uniform vec4 u_shadow_lights[8];   // world: point (xyz, 1), direction TO it (xyz, 0);
                                    // w = 2: casts no shadows (always seen)
 
-#define STACK 64
+int g_own;  // the polygon the ray leaves from (a planar polygon cannot shade itself)
 
-// Whether the ray o + t d, t in (t_min, t_max), meets triangle k (not of polygon own).
-bool meets(int k, vec3 o, vec3 d, float t_min, float t_max, int own) {
-    uvec4 a = tris[3 * k];
-    if (int(a.w) == own) return false;
-    vec3 e1 = uintBitsToFloat(tris[3 * k + 1].xyz), e2 = uintBitsToFloat(tris[3 * k + 2].xyz);
-    vec3 pv = cross(d, e2);
-    float det = dot(e1, pv);
-    if (det == 0.0) return false;
-    float f = 1.0 / det;
-    vec3 s = o - uintBitsToFloat(a.xyz);
-    float u = f * dot(s, pv);
-    if (u < 0.0 || u > 1.0) return false;
-    vec3 q = cross(s, e1);
-    float v = f * dot(d, q);
-    if (v < 0.0 || u + v > 1.0) return false;
-    float t = f * dot(e2, q);
-    return t > t_min && t < t_max;
+uvec4 walk_node(int i) {
+    return nodes[i];
 }
 
+bool walk_rows(int k, out vec3 p0, out vec3 e1, out vec3 e2) {
+    uvec4 a = tris[3 * k];
+    p0 = uintBitsToFloat(a.xyz);
+    e1 = uintBitsToFloat(tris[3 * k + 1].xyz);
+    e2 = uintBitsToFloat(tris[3 * k + 2].xyz);
+    return int(a.w) != g_own;
+}
+#include "bvh_walk.glsl"
 
 // 1 where something lies on o + t d for t in (t_min, t_max), skipping polygon ``own``; 0
 // where nothing does; -1 when the ray ran out of its budget.
 int occluded(vec3 o, vec3 d, float t_min, float t_max, int own) {
+    g_own = own;
     int iterations = 0;
+    Hit hit = Hit(t_max, -1, vec2(0.0));
     for (int k = 0; k < u_big; ++k) {
         ++iterations;
-        if (meets(k, o, d, t_min, t_max, own)) return 1;
+        if (walk_triangle(k, o, d, t_min, hit)) return 1;
     }
     if (u_has_triangles == 0) return 0;
-    vec3 inv = 1.0 / d;
-    if (packed_box_entry(u_root, o, inv, t_min, t_max) < 0.0) return 0;
-    // the stack holds children the ray enters (index << 4 | count): a leaf's triangles are
-    // tested when it is taken, an inner node's children's boxes before they are pushed (the
-    // nearer one taken next); a step loads 32 bytes
-    uint stack[STACK];
-    int top = 0;
-    uint item = u_root.w;
-    const uint DONE = 0xFFFFFFFFu;
-    while (item != DONE) {
-        // down through inner nodes until this ray holds a leaf (or nothing is left): a
-        // SIMD step does one kind of work for all its rays
-        while (item != DONE && (item & 15u) == 0u) {
-            if (++iterations > u_budget) return -1;
-            int index = int(item >> 4);
-            uvec4 left = nodes[2 * index], right = nodes[2 * index + 1];
-            float a = packed_box_entry(left, o, inv, t_min, t_max);
-            float b = packed_box_entry(right, o, inv, t_min, t_max);
-            if (top > STACK - 2) return -1;  // (deeper than a median-split tree gets)
-            // the nearer child entered next (or the only one), the other one kept
-            bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
-            stack[top] = left_first ? right.w : left.w;
-            top += a >= 0.0 && b >= 0.0 ? 1 : 0;
-            item = a >= 0.0 || b >= 0.0 ? (left_first ? left.w : right.w)
-                                        : (top > 0 ? stack[--top] : DONE);
-        }
-        if (item == DONE) break;
-        int index = int(item >> 4), count = int(item & 15u);
-        for (int k = index; k < index + count; ++k) {
-            ++iterations;
-            if (meets(k, o, d, t_min, t_max, own)) return 1;
-        }
-        item = top > 0 ? stack[--top] : DONE;
-    }
-    return 0;
+    int found = any_hit(o, d, t_min, u_budget, iterations, hit);
+    return found == WALK_UNDECIDED ? -1 : found;
 }
 
 // A shadow ray to a light: its start moved eps off the surface on the light's side, its

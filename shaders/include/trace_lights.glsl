@@ -1,0 +1,106 @@
+// The path tracer's light (pathtrace.frag): next-event estimation to the emitting
+// triangles (one by power, a point uniform on it) and to the point and directional lights,
+// each through a shadow ray (trace_scene.glsl's visible); MIS weights (Veach's power
+// heuristic) against the bounce's density (trace_bsdf.glsl).
+#ifndef TRACE_LIGHTS_GLSL
+#define TRACE_LIGHTS_GLSL
+// emitters at u_emit (trace_scene.glsl's table), 1 texel each: (cdf, triangle as int bits,
+// area, -)
+uniform int u_emit;
+uniform int u_n_emit;
+uniform float u_emit_power;   // the emitters' power, sum of area x mean(E) (MIS)
+#if LIGHTS > 0  // (the scene's point and directional lights, LIGHTS of them)
+uniform vec4 u_light_pos[LIGHTS];  // (position or direction to the light, kind: 0 dir, 1 point)
+uniform vec3 u_light_irr[LIGHTS];
+uniform vec3 u_light_att[LIGHTS];
+#endif
+
+// MIS (Veach's power heuristic): the weight of a sample drawn with density a where another
+// strategy would have drawn it with density b
+float power_weight(float a, float b) {
+    return a * a / max(a * a + b * b, 1e-38);
+}
+
+// the emitter triangle r (uniform in [0, 1)) picks by power: its chance p, its area, rows
+// (p0, e1, e2) and emission E
+void pick_emitter(float r, out float p, out float area, out vec3 q0, out vec3 q1,
+                  out vec3 q2, out vec3 e) {
+#ifdef EMITTER_PICK
+    // a few emitters compiled in: each one's numbers as constants, chosen by comparisons
+    // with the cumulative chances (no loop, no fetch; generated, render/passes/pathtrace.py)
+    EMITTER_PICK
+#else
+    int lo = 0, hi = u_n_emit - 1;  // (the first whose cumulative chance reaches r)
+    while (lo < hi) {
+        ++g_iter;
+        int mid = (lo + hi) / 2;
+        if (fetch(u_emit + mid).x < r) lo = mid + 1; else hi = mid;
+    }
+    vec4 em = fetch(u_emit + lo);
+    p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
+    area = em.z;
+    int ek = floatBitsToInt(em.y);
+    vec4 p0 = fetch(u_tris + 3 * ek);
+    q0 = p0.xyz;
+    q1 = fetch(u_tris + 3 * ek + 1).xyz;
+    q2 = fetch(u_tris + 3 * ek + 2).xyz;
+    e = fetch(u_mats + 2 * floatBitsToInt(p0.w) + 1).xyz;
+#endif
+}
+
+// next-event estimation (pi x radiance, before the throughput): one emitter triangle by
+// power, a point uniform on it, its light through the BRDF where xo sees it. MIS: weighed
+// against the bounce's chance of finding the same point (``last``: no bounce follows)
+vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin,
+                   bool last) {
+#ifndef EMITTERS
+    return vec3(0.0);  // (none: compiled away -- llvmpipe would run the code all the same)
+#endif
+    vec3 u = sample3(0u);  // (the emitter, then a point on it)
+    float p, area;
+    vec3 q0, q1, q2, e;
+    pick_emitter(u.x, p, area, q0, q1, q2, e);
+    float a = u.y, b = u.z;
+    if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+    vec3 y = q0 + a * q1 + b * q2;
+    vec3 ny = normalize(cross(q1, q2));
+    vec3 to = y - xo;
+    float dist2 = dot(to, to), dist = sqrt(dist2);
+    vec3 wi = to / dist;
+    float cx = dot(n, wi), cy = -dot(ny, wi);
+    if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
+        visible(xo, wi, dist * (1.0 - 1e-4))) {
+        float w = 1.0;
+#ifdef MIS
+        float light_pdf = p / area * dist2 / cy;  // (solid angle)
+        w = last ? 1.0 : power_weight(light_pdf, bounce_pdf(rho, ks, shin, n, wo, wi));
+#endif
+        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (area / p) * w;
+    }
+    return vec3(0.0);
+}
+
+// the point and directional lights' contribution where xo sees them
+vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
+    vec3 sum = vec3(0.0);
+#if LIGHTS > 0  // (none: no loop, whose body llvmpipe would run once, its ray's tests too)
+    for (int i = 0; i < LIGHTS; ++i) {
+        ++g_iter;
+        vec3 wi = u_light_pos[i].xyz;
+        float dist = 1e30, att = 1.0;
+        if (u_light_pos[i].w > 0.5) {
+            vec3 to = u_light_pos[i].xyz - xo;
+            dist = length(to);
+            wi = to / dist;
+            vec3 c = u_light_att[i];
+            att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+        }
+        float cx = dot(n, wi);
+        if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
+            sum += brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
+        }
+    }
+#endif
+    return sum;
+}
+#endif

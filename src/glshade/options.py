@@ -17,10 +17,12 @@ from typing import Any
 import numpy as np
 
 from .errors import OptionError
-from .modes import Backend, Culling, Outputs, ShadingMode, Shadows, Transparency
+from .modes import (Accel, Backend, Culling, Outputs, Sampler, ShadingMode, Shadows,
+                    Transparency, choose)
 
-__all__ = ["DrawOptions", "RenderConfig", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS",
-           "check_whole", "check_size", "check_samples", "HEMICUBE_RESOLUTION"]
+__all__ = ["DrawOptions", "RenderConfig", "TraceOptions", "MAX_PATH_DEPTH", "COHERENT_TILE",
+           "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS", "check_whole", "check_size",
+           "check_samples", "HEMICUBE_RESOLUTION"]
 
 #: the largest image side glshade makes (GL's framebuffers go no further on most drivers)
 MAX_SIZE = 16384
@@ -239,3 +241,129 @@ class RenderConfig:
         if backend is not None:
             changes["backend"] = backend
         return out.replace(**changes) if changes else out
+
+
+# ---- the path tracer's options ------------------------------------------------------------
+# How paths are traced, as one value: TraceOptions, checked when it is made and then passed
+# whole -- from the ``glshade pathtrace`` command or glshade.pathtrace.trace through
+# PathTracer down to the GL pass that compiles it into its program. No layer below checks
+# an option again, and none can be lost on the way: a new option is a field here, not a
+# keyword threaded through three signatures.
+
+#: the most vertices ``max_depth`` may ask of a path (a GL int, checked before any
+#: arithmetic; far past what Russian roulette lets a path reach)
+MAX_PATH_DEPTH = 1_000_000
+#: the pixels that share random numbers with ``coherent=True``: llvmpipe shades a 4x2 block
+#: in one 8-wide SIMD step (docs/guide/speed.md: measured against 2x2 to 8x8)
+COHERENT_TILE = (4, 2)
+
+
+def _tile(coherent: Any) -> tuple[int, int]:
+    """The (width, height) of the blocks of pixels ``coherent`` asks to share random
+    numbers: False (1, 1), True ``COHERENT_TILE``, or a pair of whole numbers 1 to 64."""
+    if coherent is False or coherent is None:
+        return (1, 1)
+    if coherent is True:
+        return COHERENT_TILE
+    try:
+        pair = tuple(coherent)
+        ok = len(pair) == 2 and all(float(v) == int(v) and 1 <= int(v) <= 64 for v in pair)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise OptionError(f"coherent must be True, False or a block's (width, height) in "
+                          f"pixels, each from 1 to 64, got {coherent!r}")
+    return int(pair[0]), int(pair[1])
+
+
+def _path_depth(value: object) -> int:
+    """``max_depth`` as an int: a whole number of vertices, 1 to MAX_PATH_DEPTH."""
+    number = check_whole("max_depth", value, 1)
+    if number > MAX_PATH_DEPTH:  # (a GL int; checked before any arithmetic)
+        raise OptionError(f"max_depth must be at most {MAX_PATH_DEPTH:,} (vertices a path "
+                          f"may have), got {number:,}")
+    return number
+
+
+@dataclass(frozen=True)
+class TraceOptions:
+    """Everything that decides how paths are traced, apart from the scene, the camera and
+    how many samples: checked once, when made (each field takes an enum member or its
+    name; a bad value raises :class:`~glshade.errors.OptionError` naming the field).
+
+    Parameters
+    ----------
+    max_depth : int or None
+        Vertices a path may have, 1 to ``MAX_PATH_DEPTH`` (None: no limit -- Russian
+        roulette ends paths, so the answer is the rendering equation's).
+    accel : Accel or str
+        How rays find triangles: ``"bvh"`` (a hierarchy), ``"flat"`` (each in turn,
+        compiled into the program), ``"hybrid"`` (the smallest models compiled in, the
+        hierarchy for the rest) or ``"auto"`` (flat for small scenes, else hybrid where
+        small models sit beside large ones, else the hierarchy) -- the same picture, to
+        rounding, every way.
+    sampler : Sampler or str
+        ``"pcg"`` (independent random numbers) or ``"sobol"`` (Owen-scrambled Sobol points
+        at a path's first vertices: less error for the same samples, unbiased either way).
+    mis : bool
+        Emission found by next-event estimation and by the bounce alike, weighed by Veach's
+        power heuristic (False: next-event estimation alone after the first vertex).
+    coherent : bool or (int, int)
+        Blocks of pixels (True: ``COHERENT_TILE``, or a (width, height) in pixels, 1 to 64)
+        that draw the same random numbers, so their rays run together in a SIMD step: each
+        pixel's estimate as unbiased and as noisy, the block's errors correlated. Stored as
+        the block's size, (1, 1) for none.
+    storage : bool or None
+        Whether the hierarchy's walk reads storage buffers (GL 4.3) rather than texel
+        fetches (GL 3.3's way) -- the same picture to the byte (None: where the GL has
+        them).
+
+    Examples
+    --------
+    >>> from glshade.pathtrace import TraceOptions
+    >>> options = TraceOptions.of(sampler="sobol", coherent=True)
+    >>> options.sampler, options.coherent
+    (<Sampler.SOBOL: 'sobol'>, (4, 2))
+    """
+
+    max_depth: int | None = None
+    accel: Accel = Accel.AUTO
+    sampler: Sampler = Sampler.PCG
+    mis: bool = True
+    coherent: tuple[int, int] = (1, 1)
+    storage: bool | None = None
+
+    def __post_init__(self) -> None:
+        put = object.__setattr__  # (frozen: each field replaced by its checked form)
+        if self.max_depth is not None:
+            put(self, "max_depth", _path_depth(self.max_depth))
+        put(self, "accel", choose(Accel, self.accel, "accel"))
+        put(self, "sampler", choose(Sampler, self.sampler, "sampler"))
+        if not isinstance(self.mis, bool):
+            raise OptionError(f"mis must be True or False, got {self.mis!r}")
+        if not isinstance(self.storage, bool) and self.storage is not None:
+            raise OptionError(f"storage must be True, False or None (where the GL has "
+                              f"storage buffers), got {self.storage!r}")
+        put(self, "coherent", _tile(self.coherent))
+
+    @classmethod
+    def of(cls, options: TraceOptions | None = None, **changes: Any) -> TraceOptions:
+        """``options`` (default: the defaults) with ``changes`` applied and checked: what
+        every tracing function accepts beside its own keywords.
+
+        Parameters
+        ----------
+        options : TraceOptions or None
+            The base value.
+        **changes
+            Fields to replace, by name (an unknown name is refused, naming the fields).
+        """
+        if options is not None and not isinstance(options, cls):
+            raise OptionError(f"options must be a TraceOptions, got {type(options).__name__}")
+        base = options or cls()
+        names = {f.name for f in fields(cls)}
+        unknown = sorted(set(changes) - names)
+        if unknown:
+            raise OptionError(f"TraceOptions has no {', '.join(unknown)}: its fields are "
+                              f"{', '.join(sorted(names))}")
+        return replace(base, **changes) if changes else base

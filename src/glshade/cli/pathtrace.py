@@ -23,6 +23,9 @@ def pathtrace(args: PathtraceArgs) -> int:
     from .validators import check_outputs
 
     check_outputs({"the image": args.output})  # (before any work)
+    # (how paths are traced: one value, checked before the scene is read, passed whole)
+    options = pt.TraceOptions.of(max_depth=args.max_depth, sampler=args.sampler,
+                                 mis=not args.no_mis, coherent=args.coherent)
 
     job = load_job(replace(args, mode=None), args.scene)
     w, h = job.size
@@ -37,10 +40,9 @@ def pathtrace(args: PathtraceArgs) -> int:
         from ..radiosity.control import radiosity_control
 
         control = radiosity_control(job.scene, backend=args.backend.value)
-    result = pt.trace(scene, job.camera, (w, h), spp=spp, until=args.until, seed=args.seed,
-                      max_depth=args.max_depth, backend=args.backend.value,
-                      progress=False if args.quiet else None, sampler=args.sampler,
-                      mis=not args.no_mis, coherent=args.coherent, control=control,
+    result = pt.trace(scene, job.camera, (w, h), options=options, spp=spp, until=args.until,
+                      seed=args.seed, backend=args.backend.value,
+                      progress=False if args.quiet else None, control=control,
                       adaptive=args.adaptive)
     if result.interrupted and not result.samples:  # (nothing traced: nothing to keep)
         print("glshade: interrupted before the first sample; nothing written",
@@ -76,8 +78,9 @@ def pathtrace(args: PathtraceArgs) -> int:
     error = result.relative_error
     said = f"{error:.2%}" if np.isfinite(error) else "none (nothing lit)"
     line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
-            f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s, {args.sampler}"
-            f"{', coherent' if args.coherent else ''}{', control' if args.control else ''}"
+            f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s, "
+            f"{options.sampler.value}{', coherent' if options.coherent != (1, 1) else ''}"
+            f"{', control' if args.control else ''}"
             f"{', adaptive' if args.adaptive else ''}), "
             f"relative error "
             f"{said}, exposure {exposure:.4g} -> {args.output}")

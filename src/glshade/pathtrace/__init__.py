@@ -16,7 +16,8 @@ costs on glossy ones. Conventions (units, BRDF, lights): :mod:`glshade.pathtrace
 (64, 64, 3)
 """
 
+from ..options import TraceOptions
 from .progressive import PathTraced, PathTracer, relative_error, trace
 from .scene import TraceScene
 
-__all__ = ["trace", "PathTracer", "PathTraced", "TraceScene", "relative_error"]
+__all__ = ["trace", "TraceOptions", "PathTracer", "PathTraced", "TraceScene", "relative_error"]

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import OptionError
-from ..modes import Accel, Sampler, choose
+from ..options import COHERENT_TILE, TraceOptions
 from .scene import TraceScene
 
 __all__ = ["PathTraced", "PathTracer", "trace", "relative_error"]
@@ -93,10 +93,6 @@ class PathTraced:
 #: what the pilot's seed differs from the picture's by (any other seed: independent numbers)
 PILOT_SEED = 0x9E3779B9
 
-#: the most vertices a path may be asked to have (Russian roulette ends paths long before)
-MAX_PATH_DEPTH = 1_000_000
-
-
 def _moments(total: np.ndarray, square: np.ndarray):
     n = np.maximum(total[..., 3:4], 1)
     mean = total[..., :3] / n
@@ -108,36 +104,52 @@ class PathTracer:
     """A GPU path tracer for one scene and image size: ``add`` samples seen from a
     camera (a new camera starts over), ``result`` the picture so far. Owns its GL objects
     (and its context when it made one): use it in a ``with`` block or ``close`` it.
-    ``camera``: the headlight's place for a scene with no lights or emitters; ``smooth``:
-    shade with the renderer's vertex normals (see :class:`TraceScene`)."""
 
-    def __init__(self, scene, size=(256, 256), *, seed: int = 0, max_depth: int | None = None,
-                 context=None, backend: str = "auto", lights: bool = True, camera=None,
-                 smooth: bool = False, accel: Accel | str = "auto",
-                 sampler: Sampler | str = "pcg",
-                 mis: bool = True, coherent: bool | tuple[int, int] = False,
-                 control: np.ndarray | None = None):
+    Parameters
+    ----------
+    scene : Scene or TraceScene
+        What to trace (a Scene is converted once, :meth:`TraceScene.from_scene`).
+    size : (int, int)
+        The picture's width and height in pixels.
+    options : TraceOptions or None
+        How paths are traced (None: the defaults); the keywords ``max_depth``, ``accel``,
+        ``sampler``, ``mis``, ``coherent``, ``storage`` and ``budget`` replace its fields
+        (checked once, by TraceOptions).
+    seed : int
+        The random streams' seed: the same seed, the same picture.
+    context : GLContext or None
+        The context to trace in (None: one of its own, from ``backend``).
+    backend : str
+        ``"auto"``, ``"egl"`` or ``"osmesa"``, where it makes its own context.
+    lights : bool
+        Whether a Scene's point and directional lights are traced (emitters always are).
+    camera : Camera or None
+        The headlight's place for a scene with no lights or emitters.
+    smooth : bool
+        Shade with the renderer's vertex normals (see :class:`TraceScene`).
+    control : ndarray or None
+        ``(M, 3)`` a control value for each model in radiosity units, used at Russian
+        roulette (:mod:`glshade.radiosity.control`).
+    """
+
+    def __init__(self, scene, size=(256, 256), options: TraceOptions | None = None, *,
+                 seed: int = 0, context=None, backend: str = "auto", lights: bool = True,
+                 camera=None, smooth: bool = False, control: np.ndarray | None = None,
+                 **changes):
         from ..render.context import create_context
         from ..render.passes.pathtrace import GpuPathTracer
 
-        from ..options import check_whole
-
         w, h = _size(size)
-        accel, sampler = choose(Accel, accel, "accel"), choose(Sampler, sampler, "sampler")
-        if max_depth is not None:
-            max_depth = check_whole("max_depth", max_depth, 1)
-            if max_depth > MAX_PATH_DEPTH:  # (a GL int; checked before any arithmetic)
-                raise OptionError(f"max_depth must be at most {MAX_PATH_DEPTH:,} (vertices "
-                                  f"a path may have), got {max_depth:,}")
+        #: how paths are traced (checked here, once; the GL pass takes it whole)
+        self.options = TraceOptions.of(options, **changes)
         self.trace_scene = scene if isinstance(scene, TraceScene) else \
             TraceScene.from_scene(scene, lights=lights, camera=camera, smooth=smooth)
         self.seed = int(seed)
         self._own = context is None
         self.context = create_context(backend) if context is None else context
         try:
-            self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h,
-                                     max_depth=max_depth, accel=accel, sampler=sampler,
-                                     mis=mis, coherent=coherent, control=control)
+            self.gpu = GpuPathTracer(self.context, self.trace_scene, w, h, self.options,
+                                     control=control)
         except BaseException:
             self.close()
             raise
@@ -198,7 +210,8 @@ class PathTracer:
         # one count a 4x2 block too: llvmpipe shades 4x2 fragments in one SIMD step, and a
         # block whose pixels finish together leaves no lane idle -- measured 5% faster on
         # the Cornell box)
-        unit = self.gpu.tile if self.gpu.tile != (1, 1) else (4, 2)
+        tile = self.options.coherent
+        unit = tile if tile != (1, 1) else COHERENT_TILE
         return allocate(sigma, mean, tile=unit, most=min(3 * int(mean), MOST_SAMPLES))
 
     def result(self, interrupted: bool = False) -> PathTraced:
@@ -246,48 +259,73 @@ def _size(size) -> tuple[int, int]:
     return check_size(*pair)
 
 
-def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
-          until: float | None = None, max_samples: int = 65536, seed: int = 0,
-          max_depth: int | None = None, samples_per_pass: int | None = None,
-          backend: str = "auto", context=None, lights: bool = True,
-          progress=None, accel: Accel | str = "auto", sampler: Sampler | str = "pcg",
-          mis: bool = True, coherent: bool | tuple[int, int] = False,
-          control: np.ndarray | None = None, adaptive: bool = False) -> PathTraced:
-    """Path-trace ``scene`` from ``camera`` (default: the scene framed) at ``size``:
-    exactly ``spp`` samples a pixel (default 64), or ``until`` a relative error (see
-    :func:`relative_error`; checked after each doubling, at most ``max_samples``).
-    ``max_depth``: vertices a path may have (default None: no limit, Russian roulette ends
-    paths, so the answer is the rendering equation's); ``samples_per_pass``: samples
-    between two looks at the progress bar and Ctrl-C (they never change the picture: a
-    pixel's k-th sample is the same however they are grouped). A Ctrl-C returns the
-    picture so far (``interrupted`` set). Seeded: the same call gives the same picture.
-    ``accel``: how rays find triangles, ``"bvh"`` (a hierarchy), ``"flat"`` (each in turn,
-    compiled into the program), ``"hybrid"`` (the smallest models compiled in, up to 64
-    triangles, the hierarchy for the rest) or ``"auto"`` (flat up to 64 triangles, else
-    hybrid where the scene has small models beside large ones, else the hierarchy); the
-    same picture, to rounding, every way. ``sampler``: ``"pcg"``
-    (independent random numbers) or ``"sobol"`` (Owen-scrambled Sobol points at the first
-    three vertices: less error for the same samples; unbiased either way); ``mis``: emission
-    found by next-event estimation and by the bounce alike, weighed by multiple importance
-    sampling (False: next-event estimation alone after the first vertex); ``coherent``:
-    blocks of pixels (True: 4x2, or a (width, height)) draw the same random numbers, so
-    their rays run together on SIMD hardware (1.3-1.5x on a large mesh on llvmpipe): each
-    pixel's estimate as unbiased and as noisy, the block's errors correlated; ``control``:
-    ``(M, 3)`` a value for each model, a control variate at Russian roulette -- each
-    model's indirect irradiance from its radiosity, ``control=radiosity_control(scene)``
-    (:mod:`glshade.radiosity.control`: unbiased whatever the values, less error the nearer
-    they are to what a path's continuation brings); ``adaptive``: ``spp`` is the mean --
-    a pilot (:func:`glshade.pathtrace.adaptive.pilot_samples` a pixel, from another seed,
-    thrown away) measures each pixel's spread, and the pixels draw their samples in
-    proportion (:func:`~glshade.pathtrace.adaptive.allocate`; unbiased: the picture's
-    samples are independent of the pilot's) -- less RMS error for the same paths, most
-    where a few pixels hold most of it (``counts`` says how many each drew)."""
+def trace(scene, camera=None, size=(256, 256), *, options: TraceOptions | None = None,
+          spp: int | None = None, until: float | None = None, max_samples: int = 65536,
+          seed: int = 0, samples_per_pass: int | None = None, backend: str = "auto",
+          context=None, lights: bool = True, progress=None,
+          control: np.ndarray | None = None, adaptive: bool = False,
+          **changes) -> PathTraced:
+    """Path-trace ``scene`` from ``camera``: exactly ``spp`` samples a pixel, or until a
+    relative error. A Ctrl-C returns the picture so far (``interrupted`` set). Seeded: the
+    same call gives the same picture, however its samples are grouped into passes.
+
+    Parameters
+    ----------
+    scene : Scene or TraceScene
+        What to trace.
+    camera : Camera or None
+        Where from (None: the scene framed).
+    size : (int, int)
+        The picture's width and height in pixels.
+    options : TraceOptions or None
+        How paths are traced (None: the defaults). Its fields may be given as keywords
+        instead -- ``max_depth``, ``accel``, ``sampler``, ``mis``, ``coherent``,
+        ``storage``, ``budget`` (see :class:`TraceOptions`) -- checked once, here, before a
+        context or a scene is made.
+    spp : int or None
+        Samples a pixel (default 64 when ``until`` is None too).
+    until : float or None
+        A relative error in (0, 1) (:func:`relative_error`) to stop at, checked after each
+        doubling of the samples, at most ``max_samples`` a pixel.
+    max_samples : int
+        The most samples a pixel draws for ``until``.
+    seed : int
+        The random streams' seed.
+    samples_per_pass : int or None
+        Samples between two looks at the progress bar and Ctrl-C (never changing the
+        picture: a pixel's k-th sample is the same however they are grouped).
+    backend : str
+        ``"auto"``, ``"egl"`` or ``"osmesa"``, where no ``context`` is given.
+    context : GLContext or None
+        A context to trace in (None: one made and closed here).
+    lights : bool
+        Whether a Scene's point and directional lights are traced.
+    progress : bool, tqdm-like or None
+        The progress bar (None: one on a terminal; False: none).
+    control : ndarray or None
+        ``(M, 3)`` a value for each model, a control variate at Russian roulette -- each
+        model's indirect irradiance from its radiosity, ``control=radiosity_control(scene)``
+        (:mod:`glshade.radiosity.control`: unbiased whatever the values, less error the
+        nearer they are to what a path's continuation brings).
+    adaptive : bool
+        ``spp`` is the mean: a pilot (:func:`glshade.pathtrace.adaptive.pilot_samples` a
+        pixel, from another seed, thrown away) measures each pixel's spread, and the pixels
+        draw their samples in proportion (:func:`~glshade.pathtrace.adaptive.allocate`;
+        unbiased: the picture's samples are independent of the pilot's) -- less RMS error
+        for the same paths, most where a few pixels hold most of it (``counts`` says how
+        many each drew).
+
+    Returns
+    -------
+    PathTraced
+        The picture (radiosity units), its standard errors, samples and timings.
+    """
     from ..options import check_whole
     from ..parallel.progress import as_progress
     from ..scene.camera import default_camera
 
     # (every option checked here, before a context or a scene is made)
-    accel, sampler = choose(Accel, accel, "accel"), choose(Sampler, sampler, "sampler")
+    options = TraceOptions.of(options, **changes)
     if spp is not None and until is not None:
         raise OptionError("give spp (samples a pixel) or until (a relative error), not both")
     if until is not None and not (0 < float(until) < 1):
@@ -304,9 +342,8 @@ def trace(scene, camera=None, size=(256, 256), *, spp: int | None = None,
     bar, owned = as_progress(progress, goal, "samples")
     if samples_per_pass is not None:
         per_pass = check_whole("samples_per_pass", samples_per_pass, 1)
-    with PathTracer(scene, (w, h), seed=seed, max_depth=max_depth, context=context,
-                    backend=backend, lights=lights, accel=accel, sampler=sampler,
-                    mis=mis, coherent=coherent, control=control) as tracer:
+    with PathTracer(scene, (w, h), options, seed=seed, context=context, backend=backend,
+                    lights=lights, control=control) as tracer:
         history: list = []
         interrupted = False
         try:

@@ -7,18 +7,20 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import OptionError
-from ...modes import Accel, Sampler, choose
+from ...modes import Accel, Sampler
+from ...options import TraceOptions
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
 from ..base import GLResource
 from ..data import NEAREST, data_texture
 from ..film import LAYOUT_BLOCKS, film_layout, film_places
-from ..shaders import ShaderLibrary
+from ..programs import UniformWriter
+from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary
 from ..units import Binding, Unit
 from .csg import csg_defines
 
-__all__ = ["GpuPathTracer"]
+__all__ = ["GpuPathTracer", "program_defines"]
 
 #: texture units (render/units.py): the scene's tables, given rays, the solid's tree, the
 #: seven targets, the hierarchy, each pixel's samples past the run's target (adaptive)
@@ -30,29 +32,37 @@ _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_ac
 
 class GpuPathTracer(GLResource):
     """Path-trace ``scene`` (a :class:`glshade.pathtrace.TraceScene`, whose ``tables()``
-    give the texels) at ``width x height``: :meth:`run` makes every pixel finish ``samples``
-    more paths; :meth:`read` returns the sums. ``accel``: how rays find triangles --
-    ``"bvh"``, ``"flat"`` (every triangle in turn, compiled into the program), ``"hybrid"``
-    (the smallest models compiled in, up to ``FLAT_LIMIT`` triangles, the hierarchy for the
-    rest) or ``"auto"`` (flat up to ``FLAT_LIMIT`` triangles, else hybrid where there are
-    small models, else the hierarchy). Each pixel traces its samples in order and sample k's
-    random stream is seeded by (seed, pixel, k); a path in flight is kept between passes
-    (shaders/pathtrace.frag), so one invocation's work stays under ``budget`` loop
+    give the texels) at ``width x height`` as ``options`` say (a
+    :class:`~glshade.pathtrace.TraceOptions`, checked where it was made: this pass only
+    compiles it into its program): :meth:`run` makes every pixel finish ``samples`` more
+    paths; :meth:`read` returns the sums. Each pixel traces its samples in order and sample
+    k's random stream is seeded by (seed, pixel, k); a path in flight is kept between passes
+    (shaders/pathtrace.frag), so one invocation's work stays under ``options.budget`` loop
     iterations (llvmpipe stops a shader at 65,535) and a pixel's k-th sample is the same
-    however the work is grouped. ``max_depth``: vertices a path may have (None: no limit,
-    Russian roulette ends it). ``sampler``: ``"pcg"`` (independent random numbers) or
-    ``"sobol"`` (the first three vertices' from Owen-scrambled Sobol points: lower error for
-    the same samples, unbiased all the same). ``mis``: emission found both by next-event
-    estimation and by the bounce, each weighed by Veach's power heuristic (default; False:
-    next-event estimation alone after the first vertex). ``coherent``: blocks of pixels
-    (True: ``TILE``; or a (width, height)) draw the same random numbers, so their rays go
-    the same ways and run together in a SIMD step -- faster where rays diverge (a
-    hierarchy's walk), each pixel's estimate as unbiased and as noisy, but the block's
-    errors correlate (noise in blocks). ``storage``: the hierarchy's walk reads storage
-    buffers (None: where the GL has them, 4.3; False: texel fetches, as on GL 3.3 -- the
-    same picture to the byte). ``control``: ``(M, 3)`` a control value for each of the
-    scene's models (:func:`glshade.radiosity.control.radiosity_control`), used at Russian
-    roulette (None: none)."""
+    however the work is grouped.
+
+    Parameters
+    ----------
+    context : GLContext
+        The context the GL objects live in.
+    scene : TraceScene
+        The scene's tables, lights and solids.
+    width, height : int
+        The picture's size in pixels.
+    options : TraceOptions or None
+        How paths are traced (None: the defaults); ``**changes`` replace its fields by name
+        (checked as TraceOptions checks them).
+    shaders : ShaderLibrary or None
+        Where programs are compiled and kept (None: a library of its own).
+    rays : ndarray or None
+        ``(height, width, 2, 3)`` float: each pixel's own ray, origin then unit direction
+        (world units), traced instead of the camera's (probes); None: a camera's.
+    control : ndarray or None
+        ``(M, 3)`` a control value for each of the scene's models in radiosity units
+        (:func:`glshade.radiosity.control.radiosity_control`), used at Russian roulette.
+    budget : int
+        Loop iterations under which one invocation starts another bounce (``BUDGET``).
+    """
 
     #: loop iterations under which an invocation starts another bounce (its own tuning, not
     #: the cap's: a bounce of a scene of 100k triangles costs a few hundred, so one begun
@@ -68,9 +78,6 @@ class GpuPathTracer(GLResource):
     EMITTERS_COMPILED = 16
     #: the most triangles ``accel="flat"`` compiles in (the compile grows faster than them)
     FLAT_MAX = 256
-    #: the pixels that share random numbers with ``coherent=True``: llvmpipe shades a 4x2
-    #: block in one 8-wide SIMD step
-    TILE = (4, 2)
     #: with ``coherent``, a run goes in steps of this many samples, each ending with every
     #: pixel at the same sample: a block's pixels start their paths together again (they
     #: drift apart as their paths end at different bounces)
@@ -78,12 +85,10 @@ class GpuPathTracer(GLResource):
     #: the targets hold the image in 8x8 blocks, this many a row (glshade.render.film)
     LAYOUT_BLOCKS = LAYOUT_BLOCKS
 
-    def __init__(self, context, scene, width: int, height: int, *,
-                 max_depth: int | None = None, shaders: ShaderLibrary | None = None,
-                 rays: np.ndarray | None = None, budget: int = BUDGET,
-                 accel: str = "auto", sampler: str = "pcg", mis: bool = True,
-                 coherent: bool | tuple[int, int] = False, storage: bool | None = None,
-                 control: np.ndarray | None = None):
+    def __init__(self, context, scene, width: int, height: int,
+                 options: TraceOptions | None = None, *, shaders: ShaderLibrary | None = None,
+                 rays: np.ndarray | None = None, control: np.ndarray | None = None,
+                 budget: int = BUDGET, **changes):
         from ..target import check_fits
 
         self.width, self.height = int(width), int(height)
@@ -95,11 +100,17 @@ class GpuPathTracer(GLResource):
         super().__init__(context)
         ctx = context.ctx
         self.scene = scene
-        self.max_depth, self.budget = max_depth, int(budget)
+        #: how paths are traced (a TraceOptions)
+        self.options = options = TraceOptions.of(options, **changes)
+        if not 1 <= int(budget) <= LOOP_BUDGET:
+            raise OptionError(f"budget must be 1 to {LOOP_BUDGET:,} loop iterations (the "
+                              f"driver stops a shader at {LOOP_CAP:,}), got {budget!r}")
+        self.max_depth, self.budget = options.max_depth, int(budget)
         self._shaders = shaders or self._keep(ShaderLibrary(context))
-        compiled = self._choose(accel, sampler, scene)
+        self._put = UniformWriter().put
+        compiled = self._choose(options.accel, scene)
         data, self.layout = scene.tables(compiled if self.accel is Accel.HYBRID else None)
-        defines = self._defines(context, data, storage, coherent, mis, control)
+        defines = self._defines(context, data, options, control)
         self._csg = None
         if scene.solids:
             solid, material = scene.solids[0]
@@ -154,55 +165,25 @@ class GpuPathTracer(GLResource):
         self.samples = 0
         self.reset()
 
-    def _defines(self, context, data: np.ndarray, storage, coherent, mis,
+    def _defines(self, context, data: np.ndarray, options: TraceOptions,
                  control) -> tuple[str, ...]:
-        """The program's defines for this scene, its tables ``data`` and the options (sets
-        :attr:`storage`, :attr:`mis`, :attr:`tile` and the control values)."""
-        # (the triangles compiled in: the table's first rows -- all of them, or the small
-        # models' -- and the hierarchy for the rest)
-        n_compiled = {Accel.FLAT: len(self.scene.triangles),
-                      Accel.HYBRID: self.layout["compiled"]}.get(self.accel, 0)
-        first = self.layout["u_tris"]
-        defines: tuple[str, ...] = (f"DATA_WIDTH {self.layout['width']}",)
-        if self.scene.shading is not None:
-            defines += ("SMOOTH_NORMALS",)
-        if n_compiled:
-            defines += _flat_defines(data[first:first + 3 * n_compiled])
+        """Decide :attr:`storage` and the control values, then the program's defines
+        (:func:`program_defines`)."""
         #: whether the hierarchy's walk reads storage buffers (else texel fetches)
         self.storage = False
         if self.accel is not Accel.FLAT and self.layout["nodes"]:
-            defines += ("HIERARCHY",)
             have = context.ctx.version_code >= 430
-            self.storage = have if storage is None else bool(storage)
+            self.storage = have if options.storage is None else options.storage
             if self.storage and not have:
                 context.require(430, "storage=True needs", "leave storage at None")
-            defines += ("GLSL_430", "STORAGE_WALK") if self.storage else ()
-        defines += ("LOW_DISCREPANCY",) if self.sampler is Sampler.SOBOL else ()
-        if 0 < len(self.scene.emitters) <= self.EMITTERS_COMPILED:
-            defines += (_emitter_pick(data, self.layout),)
-        # (what the scene has no use for is compiled away: llvmpipe runs every branch)
-        defines += (f"LIGHTS {len(self.scene.lights)}",) + (
-            ("EMITTERS",) if len(self.scene.emitters) else ()) + (
-            ("GLOSSY",) if (self.scene.materials[:, 3] > 0).any() else ())
-        #: whether emission is found both ways, weighed by multiple importance sampling
-        self.mis = bool(mis)
-        defines += ("MIS",) if self.mis else ()
-        #: the blocks of pixels that draw the same random numbers ((1, 1): none share)
-        self.tile = _tile(coherent, self.TILE)
-        if self.tile != (1, 1):
-            defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*self.tile),)
         self._control = _control(control, len(self.scene.names))
-        if self._control is not None:
-            defines += (f"CONTROL {len(self._control)}",)
-        return defines
+        return program_defines(self.scene, data, self.layout, self.accel, options,
+                               storage=self.storage, controls=None if self._control is None
+                               else len(self._control), most_emitters=self.EMITTERS_COMPILED)
 
-    def _choose(self, accel: str, sampler: str, scene) -> np.ndarray | None:
-        """Check ``accel`` and ``sampler`` for ``scene``, set :attr:`accel` and
-        :attr:`sampler`; the triangles a hybrid compiles in (``(T,)`` bool) or None."""
-        accel = choose(Accel, accel, "accel")
-        sampler = choose(Sampler, sampler, "sampler")
-        #: where the paths' random numbers come from (a :class:`~glshade.modes.Sampler`)
-        self.sampler = sampler
+    def _choose(self, accel: Accel, scene) -> np.ndarray | None:
+        """Check ``accel`` against ``scene``'s size, set :attr:`accel`; the triangles a
+        hybrid compiles in (``(T,)`` bool) or None."""
         n = len(scene.triangles)
         if accel is Accel.FLAT and n > self.FLAT_MAX:
             raise OptionError(f"accel='flat' compiles the triangles into the program: at most "
@@ -218,16 +199,12 @@ class GpuPathTracer(GLResource):
         self.accel = accel if n else Accel.BVH
         return small if self.accel is Accel.HYBRID else None
 
-    def _write(self, values: dict) -> None:
-        prog = self.program
+    def _write(self, values: dict, program=None) -> None:
+        """``values`` into ``program`` (default the tracer's) through the one uniform
+        writer (what a variant's compiler dropped is skipped; arrays fitted)."""
+        prog = self.program if program is None else program
         for name, value in values.items():
-            if name in prog:  # (the compiler drops what a variant does not use)
-                if isinstance(value, np.ndarray):  # (an int array; the compiler may trim it)
-                    prog[name].write(value[:prog[name].array_length].tobytes())
-                elif isinstance(value, bytes):
-                    prog[name].write(value)
-                else:
-                    prog[name].value = value
+            self._put(prog, name, value)
 
     def _static_uniforms(self) -> dict:
         """The uniforms that stay for this tracer's life: sizes, tables, lights, the solid."""
@@ -294,9 +271,8 @@ class GpuPathTracer(GLResource):
             values.update(ray_uniforms(camera.projection_matrix(aspect),
                                        camera.view_matrix()))
         self._write(values)
-        self._left["u_acc0"].value = _TARGETS
-        self._left["u_extra"].value = _EXTRA
-        self._left["u_target"].value = float(target)
+        self._write({"u_acc0": _TARGETS, "u_extra": _EXTRA, "u_target": float(target)},
+                    self._left)
         self._extra.use(location=_EXTRA)
         if self._csg is not None:
             self._csg.use(location=_CSG)
@@ -315,9 +291,10 @@ class GpuPathTracer(GLResource):
         top = target + int(self.extra.max())
         # (blocks that share random numbers: in steps of SYNC samples, each ending with all
         # pixels at one sample; else one step)
-        step = self.SYNC if self.tile != (1, 1) else max(top - self.samples, 1)
+        step = self.SYNC if self.options.coherent != (1, 1) else max(top - self.samples, 1)
         for cap in range(self.samples + step, top + step, step):
-            self.program["u_cap"].value = self._left["u_cap"].value = float(min(cap, top))
+            for program in (self.program, self._left):
+                self._put(program, "u_cap", float(min(cap, top)))
             while True:
                 read, write = self._targets[self._current], self._fbos[1 - self._current]
                 for i, tex in enumerate(read):
@@ -357,10 +334,8 @@ class GpuPathTracer(GLResource):
         ctx.viewport = (0, 0, self.width, self.height)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
         self._targets[self._current][4].use(location=Unit.TRACE_SHOW)
-        self._show["u_sum"].value = Unit.TRACE_SHOW
-        self._show["u_blocks"].value = self._blocks
-        self._show["u_exposure"].value = float(exposure)
-        self._show["u_srgb"].value = bool(srgb)
+        self._write({"u_sum": Unit.TRACE_SHOW, "u_blocks": self._blocks,
+                     "u_exposure": float(exposure), "u_srgb": bool(srgb)}, self._show)
         self._show_vao.render(moderngl.TRIANGLES, vertices=3)
 
     def _release_extra(self) -> None:
@@ -379,6 +354,60 @@ class GpuPathTracer(GLResource):
             a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]
             out.append(a[::-1].astype(np.float64))
         return out[0], out[1], out[2]
+
+
+def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
+                    options: TraceOptions, *, storage: bool, controls: int | None,
+                    most_emitters: int) -> tuple[str, ...]:
+    """The path tracer's program for one scene, as the defines that specialise
+    ``shaders/pathtrace.frag`` -- its source made apart from any GL object, so what a scene
+    and its options compile to can be read and tested without a context.
+
+    Parameters
+    ----------
+    scene : TraceScene
+        The scene (its triangles, emitters, lights, materials and shading normals).
+    data : ndarray
+        ``(N, 4)`` float32: the scene's tables (``scene.tables()``), whose triangle rows
+        are compiled in where ``accel`` says.
+    layout : dict
+        Where each table starts in ``data`` (``scene.tables()``'s second value).
+    accel : Accel
+        How rays find triangles, as decided for this scene (not AUTO).
+    options : TraceOptions
+        How paths are traced.
+    storage : bool
+        Whether the hierarchy's walk reads storage buffers (GL 4.3).
+    controls : int or None
+        The models with a control value (None: no control variate).
+    most_emitters : int
+        Emitting triangles up to which next-event estimation's choice is compiled in.
+    """
+    # (the triangles compiled in: the table's first rows -- all of them, or the small
+    # models' -- and the hierarchy for the rest)
+    n_compiled = {Accel.FLAT: len(scene.triangles),
+                  Accel.HYBRID: layout["compiled"]}.get(accel, 0)
+    first = layout["u_tris"]
+    defines: tuple[str, ...] = (f"DATA_WIDTH {layout['width']}",)
+    if scene.shading is not None:
+        defines += ("SMOOTH_NORMALS",)
+    if n_compiled:
+        defines += _flat_defines(data[first:first + 3 * n_compiled])
+    if accel is not Accel.FLAT and layout["nodes"]:
+        defines += ("HIERARCHY",) + (("GLSL_430", "STORAGE_WALK") if storage else ())
+    defines += ("LOW_DISCREPANCY",) if options.sampler is Sampler.SOBOL else ()
+    if 0 < len(scene.emitters) <= most_emitters:
+        defines += (_emitter_pick(data, layout),)
+    # (what the scene has no use for is compiled away: llvmpipe runs every branch)
+    defines += (f"LIGHTS {len(scene.lights)}",) + (
+        ("EMITTERS",) if len(scene.emitters) else ()) + (
+        ("GLOSSY",) if (scene.materials[:, 3] > 0).any() else ())
+    defines += ("MIS",) if options.mis else ()
+    if options.coherent != (1, 1):
+        defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)
+    if controls is not None:
+        defines += (f"CONTROL {controls}",)
+    return defines
 
 
 #: the most models a control variate covers (its values are a uniform array)
@@ -401,24 +430,6 @@ def _control(values, models: int) -> np.ndarray | None:
     out = np.zeros((models, 3), np.float32)
     out[:len(a)] = a
     return out
-
-
-def _tile(coherent, default: tuple[int, int]) -> tuple[int, int]:
-    """The (width, height) of the blocks of pixels ``coherent`` asks to share random
-    numbers: False (1, 1), True ``default``, or a pair of whole numbers from 1 to 64."""
-    if coherent is False or coherent is None:
-        return (1, 1)
-    if coherent is True:
-        return default
-    try:
-        pair = tuple(coherent)
-        ok = len(pair) == 2 and all(float(v) == int(v) and 1 <= int(v) <= 64 for v in pair)
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise OptionError(f"coherent must be True, False or a block's (width, height) in "
-                          f"pixels, each from 1 to 64, got {coherent!r}")
-    return int(pair[0]), int(pair[1])
 
 
 def _flat_defines(rows: np.ndarray) -> tuple[str, ...]:

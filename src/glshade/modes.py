@@ -51,7 +51,9 @@ def choose(cls: type[E], value: object, what: str, error: type = OptionError) ->
     except ValueError:
         names = [f"'{m.value}'" for m in cls]
         listed = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
-        raise error(f"{what} must be {listed}, got {value!r}") from None
+        must = getattr(error, "must", None)  # (a GlshadeError keeps its subject and rule)
+        raise (must(what, f"be {listed}, got {value!r}") if must else
+               error(f"{what} must be {listed}, got {value!r}")) from None
 
 
 def _option_member(cls: type[E], value: object, option: str, true: E | None = None,

@@ -40,11 +40,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import GlshadeError, PathFormatError, SceneFormatError
-from ..modes import Culling, ShadingMode, Shadows, Transparency
+from ..errors import GlshadeError, PathFormatError, SceneError, SceneFormatError
+from ..modes import Culling, ShadingMode, Shadows, Tessellation, Transparency, choose
 from ..options import DEFAULT_SIZE, DrawOptions, check_samples, check_size
 from ..scene.camera import check_fov
 from ..scene.keyframes import OrientationInterp, PositionInterp
+from ..scene.material import check_illum
+from ..scene.texture import check_texture_filter, check_texture_wrap
 from ..scene import (
     Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, default_camera,
 )
@@ -159,93 +161,107 @@ def _size(value: object) -> tuple[int, int]:
     return check_size(*value)
 
 
-#: the rules of the values that the API checks where they are made: one rule, one message
-_RULES = {"size": _size, "samples": check_samples, "fov": check_fov,
-          "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
-          "pinterp": PositionInterp.parse, "cull": Culling.parse, "shadows": Shadows.parse,
-          "transparency": Transparency.parse}
+def _expected(what: str, value) -> SceneFormatError:
+    """What a scene file's value must be, in the file's words (:func:`_check` puts the
+    key's place as its subject)."""
+    return SceneFormatError.must("the value", f"be {what}, got {value!r}")
+
+
+def _number(value) -> float:
+    if not isinstance(value, NUMBER) or isinstance(value, bool) or not np.isfinite(value):
+        raise _expected("a finite number", value)
+    return float(value)
+
+
+def _numbers(n: int):
+    def check(value) -> list:
+        if not isinstance(value, list) or len(value) != n or \
+                not all(isinstance(v, NUMBER) and not isinstance(v, bool) for v in value):
+            raise _expected(f"a list of {n} numbers", value)
+        if not all(np.isfinite(v) for v in value):
+            raise _expected(f"a list of {n} finite numbers", value)
+        return [float(v) for v in value]
+    return check
+
+
+def _such(convert, holds, expected: str):
+    """A check: ``convert`` the value, then it must satisfy ``holds`` (else ``expected``)."""
+    def check(value):
+        v = convert(value)
+        if not holds(v):
+            raise _expected(expected, value)
+        return v
+    return check
+
+
+def _is(test, expected: str):
+    return _such(lambda v: v, test, expected)
+
+
+def _whole(minimum: int, expected: str):
+    return _is(lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= minimum,
+               expected)
+
+
+def _scale(value):
+    if isinstance(value, NUMBER) and not isinstance(value, bool) and value > 0:
+        return float(value)
+    return _such(_numbers(3), lambda s: min(s) > 0,
+                 "a positive number or three positive numbers")(value)
+
+
+def _mat4(value):
+    if not isinstance(value, list) or len(value) != 4 or \
+            not all(isinstance(r, list) and len(r) == 4 for r in value):
+        raise _expected("a 4x4 list of lists", value)
+    if not all(isinstance(v, NUMBER) and not isinstance(v, bool) and np.isfinite(v)
+               for r in value for v in r):
+        raise _expected("a 4x4 list of lists of finite numbers", value)
+    return np.array(value, dtype=float)
+
+
+#: each kind of value a scene file holds, and its check: the file's own forms (lists of
+#: numbers, TOML's types), or the API's rule for the value where the API has one -- one
+#: rule, one message, restated with the file's key as its subject
+_KINDS = {
+    "str": _is(lambda v: isinstance(v, str) and bool(v), "a non-empty string"),
+    "bool": _is(lambda v: isinstance(v, bool), "true or false"),
+    "level": _whole(1, "a whole number of segments >= 1"),
+    "unit": _such(_number, lambda v: 0 <= v <= 1, "a number in [0, 1]"),
+    "nonneg": _such(_number, lambda v: v >= 0, "a number >= 0"),
+    "positive": _such(_number, lambda v: v > 0, "a number > 0"),
+    "degrees": _such(_number, lambda v: 0 <= v <= 180, "an angle in degrees from 0 to 180"),
+    "color": _such(_numbers(3), lambda c: min(c) >= 0, "three numbers >= 0 (linear r, g, b)"),
+    "reflectance": _such(_numbers(3), lambda c: 0 <= min(c) and max(c) <= 1,
+                         "three numbers in [0, 1] (a surface reflects at most what it "
+                         "receives)"),
+    "vec3": _numbers(3),
+    "quat": _such(_numbers(4), any, "a non-zero quaternion [x, y, z, w]"),
+    "scale": _scale,
+    "mat4": _mat4,
+    "light_type": _is(lambda v: v in ("point", "directional"), "'point' or 'directional'"),
+    # (the API's own rules)
+    "size": _size, "samples": check_samples, "fov": check_fov,
+    "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
+    "pinterp": PositionInterp.parse, "cull": Culling.parse, "shadows": Shadows.parse,
+    "transparency": Transparency.parse, "illum": check_illum,
+    "texture_filter": check_texture_filter, "texture_wrap": check_texture_wrap,
+    "tessellation": lambda v: choose(Tessellation, v, "tessellation", SceneError),
+}
 
 
 def _check(kind: str, value, where: str):
-    """Validate one value; return it converted, or raise with a readable reason."""
-    def fail(expected):
-        raise SceneFormatError(f"{where} must be {expected}, got {value!r}")
-
-    def numbers(n):
-        if not isinstance(value, list) or len(value) != n or \
-                not all(isinstance(v, NUMBER) and not isinstance(v, bool) for v in value):
-            fail(f"a list of {n} numbers")
-        if not all(np.isfinite(v) for v in value):
-            fail(f"a list of {n} finite numbers")
-        return [float(v) for v in value]
-
-    if kind == "str":
-        return value if isinstance(value, str) and value else fail("a non-empty string")
-    if kind == "bool":
-        return value if isinstance(value, bool) else fail("true or false")
-    if kind == "int":
-        return value if isinstance(value, int) and not isinstance(value, bool) and value >= 0 \
-            else fail("a non-negative integer")
-    if kind in ("unit", "nonneg", "positive", "degrees"):
-        if not isinstance(value, NUMBER) or isinstance(value, bool) or not np.isfinite(value):
-            fail("a finite number")
-        v = float(value)
-        ok = {"unit": 0 <= v <= 1, "nonneg": v >= 0, "positive": v > 0,
-              "degrees": 0 <= v <= 180}
-        return v if ok[kind] else fail({"unit": "a number in [0, 1]", "nonneg":
-                                        "a number >= 0", "positive": "a number > 0",
-                                        "degrees": "an angle in degrees from 0 to 180"}[kind])
-    if kind == "color":
-        c = numbers(3)
-        return c if min(c) >= 0 else fail("three numbers >= 0 (linear r, g, b)")
-    if kind == "reflectance":
-        c = numbers(3)
-        return c if 0 <= min(c) and max(c) <= 1 else \
-            fail("three numbers in [0, 1] (a surface reflects at most what it receives)")
-    if kind == "vec3":
-        return numbers(3)
-    if kind == "quat":
-        q = numbers(4)
-        return q if any(q) else fail("a non-zero quaternion [x, y, z, w]")
-    if kind == "scale":
-        if isinstance(value, NUMBER) and not isinstance(value, bool) and value > 0:
-            return float(value)
-        s = numbers(3)
-        return s if min(s) > 0 else fail("a positive number or three positive numbers")
-    if kind == "mat4":
-        if not isinstance(value, list) or len(value) != 4 or \
-                not all(isinstance(r, list) and len(r) == 4 for r in value):
-            fail("a 4x4 list of lists")
-        if not all(isinstance(v, NUMBER) and not isinstance(v, bool) and np.isfinite(v)
-                   for r in value for v in r):
-            fail("a 4x4 list of lists of finite numbers")
-        return np.array(value, dtype=float)
-    if kind in ("size", "samples", "fov", "mode", "interp", "pinterp", "cull", "shadows",
-                "transparency"):
-        try:
-            return _RULES[kind](value)
-        except (GlshadeError, ValueError, TypeError) as exc:
-            # the rule's own words, with the file's key as their subject
-            rule = getattr(exc, "rule", None)
-            raise SceneFormatError(f"{where} must {rule}" if rule else
-                                   f"{where}: {exc}") from None
-    if kind == "level":
-        return value if isinstance(value, int) and not isinstance(value, bool) and \
-            value >= 1 else fail("a whole number of segments >= 1")
-    if kind == "illum":
-        return value if value in (0, 1, 2) and not isinstance(value, bool) else \
-            fail("0 (no lighting), 1 (no specular) or 2")
-    if kind in ("texture_filter", "texture_wrap"):
-        from ..scene.texture import FILTERS, WRAPS
-
-        names = FILTERS if kind == "texture_filter" else WRAPS
-        return value if value in names else fail(" or ".join(repr(n) for n in names))
-    if kind == "tessellation":
-        return value if value in ("cpu", "gpu") else fail("'cpu' or 'gpu'")
-    if kind == "light_type":
-        return value if value in ("point", "directional") else fail("'point' or "
-                                                                    "'directional'")
-    return value
+    """Validate one value by its kind's check (:data:`_KINDS`); return it converted, or
+    raise one line naming the file's place."""
+    check = _KINDS.get(kind)
+    if check is None:
+        return value
+    try:
+        return check(value)
+    except (GlshadeError, ValueError, TypeError) as exc:
+        # the rule's own words, with the file's key as their subject
+        rule = getattr(exc, "rule", None)
+        raise SceneFormatError(f"{where} must {rule}" if rule else f"{where}: {exc}") from None
 
 
 def _add_solid(scene, m: dict, i: int, loc: _Locator, source: str) -> None:

@@ -24,7 +24,7 @@ from ..errors import (
     UsageError,
 )
 from ..interrupt import held
-from ..modes import Backend, Outputs, Projection, ShadingMode
+from ..modes import Backend, Outputs, ShadingMode
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from ..scene.camera import MAX_PLANE_RATIO
@@ -413,17 +413,10 @@ class Renderer:
         if face < 0:
             return None
         depth = float(frame.depth[py, px])
-        # the pixel centre's ray, in view space, to the depth drawn there
-        ndc_x = 2 * (px + 0.5) / self.width - 1
-        ndc_y = 1 - 2 * (py + 0.5) / self.height
-        aspect = self.width / self.height
-        if camera.projection is Projection.PERSPECTIVE:
-            t = np.tan(np.radians(camera.fov_y) / 2)
-            p_view = np.array([ndc_x * t * aspect * depth, ndc_y * t * depth, -depth])
-        else:
-            half = camera.height / 2
-            p_view = np.array([ndc_x * half * aspect, ndc_y * half, -depth])
-        p_world = camera.rotation @ p_view + camera.position
+        # the pixel centre's ray (Camera's one convention) to the depth drawn there, a
+        # distance along the view axis
+        eye, ray = camera.rays_through((self.width, self.height), px + 0.5, py + 0.5)
+        p_world = eye + ray * (depth / float(ray @ camera.forward))
         return Pick(face, p_world, np.asarray(frame.normal[py, px], np.float64), depth)
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:

@@ -165,8 +165,31 @@ class Camera:
         if jitter is not None:
             offset = np.broadcast_to(np.asarray(jitter, np.float64), (height, width, 2))
             j, i = j + offset[..., 0], i + offset[..., 1]
-        x = 2 * j / width - 1
-        y = 1 - 2 * i / height
+        return self.rays_through((width, height), j, i)
+
+    def rays_through(self, size: tuple[int, int], x: ArrayLike, y: ArrayLike
+                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The rays through image points ``(x, y)`` of a ``size = (width, height)`` image,
+        in pixels from its top-left corner (x right, y down: pixel (i, j)'s centre is
+        (i + 0.5, j + 0.5)) -- :meth:`rays`'s convention at any points (a picked pixel, a
+        sample).
+
+        Parameters
+        ----------
+        size : (int, int)
+            The image's width and height in pixels.
+        x, y : array_like
+            The points' coordinates in pixels, any broadcastable shapes.
+
+        Returns
+        -------
+        origins, directions : ndarray
+            ``(..., 3)`` float64 world-space origins and unit directions.
+        """
+        width, height = int(size[0]), int(size[1])
+        x = 2 * np.asarray(x, np.float64) / width - 1
+        y = 1 - 2 * np.asarray(y, np.float64) / height
+        x, y = np.broadcast_arrays(x, y)
         r = self.rotation
         if self.projection == "perspective":
             t = np.tan(np.radians(self.fov_y) / 2)

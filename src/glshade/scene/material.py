@@ -12,7 +12,7 @@ import numpy as np
 from ..errors import SceneError
 from .texture import Texture
 
-__all__ = ["Material", "color3", "nonnegative"]
+__all__ = ["Material", "color3", "nonnegative", "check_illum"]
 
 
 def color3(value, name) -> tuple[float, float, float]:
@@ -31,6 +31,21 @@ def nonnegative(value, name) -> float:
     if not np.isfinite(v) or v < 0:
         raise SceneError(f"{name} must be a non-negative number, got {value!r}")
     return v
+
+
+def check_illum(illum: object) -> int:
+    """The one rule for an illumination model (MTL's ``illum``): 0, 1 or 2, a whole
+    number (True is not 1).
+
+    Parameters
+    ----------
+    illum
+        The value given.
+    """
+    if isinstance(illum, bool) or illum not in (0, 1, 2):
+        raise SceneError.must("illum", f"be 0 (no lighting), 1 (no specular) or 2, got "
+                                       f"{illum!r}")
+    return int(illum)
 
 
 @dataclass(frozen=True)
@@ -76,9 +91,7 @@ class Material:
         for name in ("ambient", "diffuse", "specular"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, color3(getattr(self, name), name))
-        if self.illum not in (0, 1, 2):
-            raise SceneError(f"illum must be 0 (no lighting), 1 (no specular) or 2, got "
-                             f"{self.illum!r}")
+        check_illum(self.illum)
         for name in ("texture", "specular_texture", "opacity_texture"):
             value = getattr(self, name)
             if isinstance(value, (str, Path)):

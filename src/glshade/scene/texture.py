@@ -16,7 +16,8 @@ import numpy as np
 
 from ..errors import SceneError
 
-__all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear"]
+__all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear", "check_texture_filter",
+           "check_texture_wrap"]
 
 #: how a texel is chosen: the nearest texel's value, bilinear between the four nearest,
 #: or trilinear between mipmap levels (minified images without shimmer)
@@ -29,6 +30,36 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
     """sRGB-encoded values in [0, 1] to linear light (IEC 61966-2-1), float64."""
     c = np.asarray(c, np.float64)
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def check_texture_filter(value: object, what: str = "texture filter") -> str:
+    """The one rule for a texture's filter: one of FILTERS.
+
+    Parameters
+    ----------
+    value
+        The filter's name.
+    what
+        Its name in the message.
+    """
+    if value not in FILTERS:
+        raise SceneError.must(what, f"be one of {', '.join(FILTERS)}, got {value!r}")
+    return str(value)
+
+
+def check_texture_wrap(value: object, what: str = "texture wrap") -> str:
+    """The one rule for a texture's wrap: one of WRAPS.
+
+    Parameters
+    ----------
+    value
+        The wrap's name.
+    what
+        Its name in the message.
+    """
+    if value not in WRAPS:
+        raise SceneError.must(what, f"be one of {', '.join(WRAPS)}, got {value!r}")
+    return str(value)
 
 
 @dataclass(eq=False, frozen=True)
@@ -62,12 +93,8 @@ class Texture:
     path: Path | None = field(init=False, default=None)
 
     def __post_init__(self):
-        if self.filter not in FILTERS:
-            raise SceneError(f"texture filter must be one of {', '.join(FILTERS)}, got "
-                             f"{self.filter!r}")
-        if self.wrap not in WRAPS:
-            raise SceneError(f"texture wrap must be one of {', '.join(WRAPS)}, got "
-                             f"{self.wrap!r}")
+        check_texture_filter(self.filter)
+        check_texture_wrap(self.wrap)
         for name in ("scale", "offset"):
             v = np.asarray(getattr(self, name), np.float64)
             if v.shape != (2,) or not np.isfinite(v).all() or (abs(v) > 1e15).any():

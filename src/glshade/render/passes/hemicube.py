@@ -16,6 +16,7 @@ import numpy as np
 
 from ...errors import OptionError, UsageError
 from ..base import GLResource
+from ..programs import UniformWriter
 from ..shaders import ShaderLibrary
 
 __all__ = ["Hemicube", "BATCH", "BATCH_PIXELS"]
@@ -103,8 +104,8 @@ class Hemicube(GLResource):
         # patch ids of the k-th atlas of a batch counted from k (P + 1): one histogram
         self._offsets = np.repeat(np.arange(self.batch, dtype=np.int32) * (self.n_patches + 2),
                                   3 * self.resolution ** 2)
-        if "u_back_id" in self.program:
-            self.program["u_back_id"].value = self.n_patches + 1
+        self._put = UniformWriter().put
+        self._put(self.program, "u_back_id", self.n_patches + 1)
         lo, hi = corners.min(0), corners.max(0)
         self.extent = float(np.linalg.norm(hi - lo)) or 1.0
 
@@ -147,7 +148,6 @@ class Hemicube(GLResource):
         self.context.make_current()
         n, p1 = self.resolution, self.n_patches + 2
         out = np.empty((len(origins), self.n_patches))
-        member = self.program["u_view_proj"]
         try:
             for start in range(0, len(origins), self.batch):
                 chunk = origins[start:start + self.batch]
@@ -160,7 +160,8 @@ class Hemicube(GLResource):
                     origin = origin + 1e-6 * self.extent * normal
                     for (x, y, w, h), matrix in self.faces(origin, normal, tangents[start + k]):
                         ctx.viewport = (x, y + k * n, w, h)
-                        member.write(np.ascontiguousarray(matrix.T, dtype="f4").tobytes())
+                        self._put(self.program, "u_view_proj",
+                                  np.ascontiguousarray(matrix.T, dtype="f4"))
                         self._vao.render(moderngl.TRIANGLES)
                 m = len(chunk) * 3 * n * n
                 self.fbo.read_into(self._buffer, viewport=used, components=1, dtype="i4")

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...io.images import LABEL_HEIGHT, label_image
 from ..base import GLResource
+from ..programs import UniformWriter
 from ..units import Unit
 
 __all__ = ["LabelOverlay"]
@@ -23,6 +24,7 @@ class LabelOverlay(GLResource):
         super().__init__(context)
         self.program = shaders.compile("overlay.vert", "overlay.frag")
         self._keep(self.program)
+        UniformWriter().put(self.program, "u_image", Unit.LABEL)  # (the one unit it reads)
         quad = np.array([[-1, -1, 0, 0], [1, -1, 1, 0], [-1, 1, 0, 1], [1, 1, 1, 1]], "f4")
         self.vbo = self._keep(context.ctx.buffer(quad.tobytes()))
         self.vao = self._keep(context.ctx.vertex_array(
@@ -45,7 +47,6 @@ class LabelOverlay(GLResource):
         band = min(LABEL_HEIGHT, h)
         ctx.viewport = (x, y + h - band, w, band)
         self._texture(text, w).use(Unit.LABEL)
-        self.program["u_image"].value = Unit.LABEL
         ctx.disable(ctx.DEPTH_TEST)
         self.vao.render(mode=ctx.TRIANGLE_STRIP)
         ctx.viewport = viewport

@@ -19,6 +19,7 @@ import numpy as np
 from ...errors import RenderWarning, warn_user
 from ...geometry.transforms import gl_bytes, look_at, orthographic, perspective
 from ..base import GLResource
+from ..programs import UniformWriter
 from ..units import Binding, Unit
 
 __all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
@@ -88,6 +89,7 @@ class ShadowMaps(GLResource):
         self._maps: dict[int, tuple] = {}    # light index -> (key, texture, framebuffer)
         self._soup: tuple | None = None      # (key, buffer, vertex array)
         self._program = None
+        self._put = UniformWriter().put
         self._lookup: dict[bool, Any] = {}
         #: per light of the last draw: (faces, texels a side, texel footprint in pixels)
         self.facts: list[tuple[int, int, float]] = []
@@ -132,7 +134,7 @@ class ShadowMaps(GLResource):
         for f, view in enumerate(views):
             ctx.viewport = ((f % 3) * size, (f // 3) * size, size, size) if faces == 6 else \
                 (0, 0, size, size)
-            self._program["u_mvp"].write(gl_bytes(proj @ view))
+            self._put(self._program, "u_mvp", gl_bytes(proj @ view))
             if soup[3]:
                 soup[2].render(moderngl.TRIANGLES)
         self._maps[index] = (key, tex, fbo)

@@ -88,6 +88,7 @@ class TransparencyPass(GLResource, Stage):
     def __init__(self, context, shaders, meshes):
         super().__init__(context)
         self.shaders, self.meshes = shaders, meshes
+        self._put = meshes.uniforms.put  # (the one uniform writer, the meshes')
         self.drawn = False  # (some draw had transparent surfaces)
         ctx = context.ctx
         self._heads = None  # (size, the heads' buffer: the atomics path's)
@@ -327,13 +328,12 @@ class TransparencyPass(GLResource, Stage):
         report.bind_to_storage_buffer(Binding.OIT_REPORT)
         if fetch:
             heads.use(Unit.OIT_HEADS)
-            prog["u_oit_heads"].value = Unit.OIT_HEADS
+            self._put(prog, "u_oit_heads", Unit.OIT_HEADS)
         else:
             heads.bind_to_storage_buffer(Binding.OIT_HEADS)
         self._nodes.bind_to_storage_buffer(Binding.OIT_NODES)
-        for name, value in layout.items():
-            if name in prog:  # (the fetch variant reads no buffer offsets)
-                prog[name].value = value
+        for name, value in layout.items():  # (the fetch variant reads no buffer offsets)
+            self._put(prog, name, value)
         target = state.target
         state.target.bind(Outputs.COLOR)
         # the opaque picture, read in float by the resolve: "over" it in one rounding (8-bit
@@ -342,7 +342,7 @@ class TransparencyPass(GLResource, Stage):
         ctx.copy_framebuffer(behind_fbo, ctx.fbo)  # (a multisampled picture: resolved)
         state.target.bind(Outputs.COLOR)
         behind.use(Unit.OIT_BEHIND)
-        prog["u_behind"].value = Unit.OIT_BEHIND
+        self._put(prog, "u_behind", Unit.OIT_BEHIND)
         ctx.viewport = state.viewport
         ctx.disable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.CULL_FACE)

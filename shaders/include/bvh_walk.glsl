@@ -24,6 +24,20 @@
 #ifndef WALK_STACK
 #define WALK_STACK 64
 #endif
+// WALK_NEAREST (a program that asks for nearest hits): a kept child's entry distance is
+// kept with it, and kept children farther than the nearest hit so far are dropped as they
+// are popped (each pop a loop iteration); without it (any-hit rays alone: the shadow
+// rays) the next kept child is taken as it is
+#ifdef WALK_NEAREST
+#define WALK_POP() \
+    while (item == DONE && top > 0) { \
+        ++iterations; \
+        --top; \
+        item = entry[top] <= hit.t ? stack[top] : DONE; \
+    }
+#else
+#define WALK_POP() if (item == DONE && top > 0) item = stack[--top]
+#endif
 #define WALK_MISS 0
 #define WALK_HIT 1
 #define WALK_UNDECIDED -1
@@ -69,7 +83,9 @@ int walk(vec3 o, vec3 d, float t_min, bool any, int limit, inout int iterations,
     vec3 inv = 1.0 / d;
     const uint DONE = 0xFFFFFFFFu;
     uint stack[WALK_STACK];
+#ifdef WALK_NEAREST
     float entry[WALK_STACK];
+#endif
     int top = 0;
     bool found = false;
     uint item = packed_box_entry(u_root, o, inv, t_min, hit.t) >= 0.0 ? u_root.w : DONE;
@@ -81,32 +97,28 @@ int walk(vec3 o, vec3 d, float t_min, bool any, int limit, inout int iterations,
             float a = packed_box_entry(left, o, inv, t_min, hit.t);
             float b = packed_box_entry(right, o, inv, t_min, hit.t);
             bool left_first = b < 0.0 || (a >= 0.0 && a <= b);
-            if (a >= 0.0 && b >= 0.0) {
-                if (top == WALK_STACK) return WALK_UNDECIDED;
-                stack[top] = left_first ? right.w : left.w;
-                entry[top] = left_first ? b : a;
-                ++top;
-            }
+            // (the other child kept where the ray enters both: written always, kept by
+            // moving the top -- no branch, which a SIMD step would run both sides of)
+            if (top > WALK_STACK - 2) return WALK_UNDECIDED;
+            stack[top] = left_first ? right.w : left.w;
+#ifdef WALK_NEAREST
+            entry[top] = left_first ? b : a;
+#endif
+            top += a >= 0.0 && b >= 0.0 ? 1 : 0;
             item = a >= 0.0 || b >= 0.0 ? (left_first ? left.w : right.w) : DONE;
-            while (item == DONE && top > 0) {
-                ++iterations;
-                --top;
-                item = entry[top] <= hit.t ? stack[top] : DONE;
-            }
+            WALK_POP();
         }
         if (item == DONE) break;
         int first = int(item >> 4), count = int(item & 15u);
         for (int k = first; k < first + count; ++k) {
             ++iterations;
-            found = walk_triangle(k, o, d, t_min, hit) || found;
+            if (walk_triangle(k, o, d, t_min, hit)) {
+                if (any) return WALK_HIT;  // (a shadow ray's question is answered)
+                found = true;
+            }
         }
-        if (any && found) return WALK_HIT;
         item = DONE;
-        while (item == DONE && top > 0) {
-            ++iterations;
-            --top;
-            item = entry[top] <= hit.t ? stack[top] : DONE;
-        }
+        WALK_POP();
     }
     return found ? WALK_HIT : WALK_MISS;
 }

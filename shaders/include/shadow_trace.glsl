@@ -42,10 +42,11 @@ uvec4 walk_node(int i) {
 
 bool walk_rows(int k, out vec3 p0, out vec3 e1, out vec3 e2) {
     uvec4 a = tris[3 * k];
+    if (int(a.w) == g_own) return false;  // (before the other rows are read)
     p0 = uintBitsToFloat(a.xyz);
     e1 = uintBitsToFloat(tris[3 * k + 1].xyz);
     e2 = uintBitsToFloat(tris[3 * k + 2].xyz);
-    return int(a.w) != g_own;
+    return true;
 }
 #include "bvh_walk.glsl"
 

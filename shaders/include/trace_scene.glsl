@@ -53,6 +53,7 @@ bool walk_rows(int k, out vec3 p0, out vec3 e1, out vec3 e2) {
     return true;
 }
 #define WALK_STACK 48
+#define WALK_NEAREST
 #include "bvh_walk.glsl"
 
 #ifdef FLAT_TRIANGLES

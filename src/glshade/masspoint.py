@@ -20,6 +20,13 @@ class MassPoint:
     """Arrays of mass-points: ``weighted (..., 3)`` = ``m P`` and ``mass (...)``.
 
     ``MassPoint(point, mass)`` needs ``mass != 0``; vectors are ``MassPoint.vector(v)``.
+
+    Parameters
+    ----------
+    point : array_like
+        ``(..., 3)`` positions (scene units).
+    mass : array_like
+        ``(...)`` masses, non-zero (broadcast against the points).
     """
 
     __slots__ = ("weighted", "mass")
@@ -45,7 +52,13 @@ class MassPoint:
 
     @classmethod
     def vector(cls, v: ArrayLike) -> MassPoint:
-        """Vectors as mass-points of mass zero: ``(v, 0)``."""
+        """Vectors as mass-points of mass zero: ``(v, 0)``.
+
+        Parameters
+        ----------
+        v : array_like
+            ``(..., 3)`` vectors.
+        """
         v = np.asarray(v, dtype=np.float64)
         if v.shape[-1:] != (3,):
             raise GeometryError(f"vector must have shape (..., 3), got {v.shape}")
@@ -83,7 +96,13 @@ class MassPoint:
         return self * -1.0
 
     def sum(self, axis: int = 0) -> MassPoint:
-        """Sum along an axis of the array of mass-points."""
+        """Sum along an axis of the array of mass-points.
+
+        Parameters
+        ----------
+        axis : int
+            The axis of the array of mass-points to sum along.
+        """
         return MassPoint._raw(self.weighted.sum(axis=axis), self.mass.sum(axis=axis))
 
     def to_quaternion(self) -> NDArray[np.float64]:
@@ -92,7 +111,13 @@ class MassPoint:
 
     @classmethod
     def from_quaternion(cls, q: ArrayLike) -> MassPoint:
-        """Inverse of :meth:`to_quaternion`: the ``O`` part is the mass."""
+        """Inverse of :meth:`to_quaternion`: the ``O`` part is the mass.
+
+        Parameters
+        ----------
+        q : array_like
+            ``(..., 4)`` quaternions ``(x, y, z, w)``, w the mass.
+        """
         q = np.asarray(q, dtype=np.float64)
         if q.shape[-1:] != (4,):
             raise GeometryError(f"q must have shape (..., 4), got {q.shape}")
@@ -113,7 +138,15 @@ class MassPoint:
 
 def centroid(points: ArrayLike, masses: ArrayLike | None = None) -> NDArray[np.float64]:
     """Centre of mass of points ``(n, 3)`` with masses ``(n,)`` (default equal): the point of
-    the sum of the mass-points. Masses may be negative (a hole) but must not sum to zero."""
+    the sum of the mass-points. Masses may be negative (a hole) but must not sum to zero.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(n, 3)`` positions.
+    masses : array_like or None
+        ``(n,)`` masses (None: all 1).
+    """
     p = np.asarray(points, dtype=np.float64)
     m = np.ones(len(p)) if masses is None else np.asarray(masses, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 3 or m.shape != (len(p),):

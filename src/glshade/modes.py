@@ -86,7 +86,13 @@ class ShadingMode(enum.Enum):
 
     @classmethod
     def parse(cls, value) -> ShadingMode:
-        """Accept a ShadingMode or its name; a bad name lists the choices."""
+        """Accept a ShadingMode or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : ShadingMode or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "shading mode")
 
     @property
@@ -120,7 +126,13 @@ class Culling(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Culling:
-        """A Culling, True (ON), False (OFF) or a member's name."""
+        """A Culling, True (ON), False (OFF) or a member's name.
+
+        Parameters
+        ----------
+        value : Culling, bool or str
+            A member, a bool or a member's name.
+        """
         return _option_member(cls, value, "cull", cls.ON, cls.OFF,
                               "be 'auto', True or False (or one of {names})")
 
@@ -138,7 +150,13 @@ class Shadows(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Shadows:
-        """A Shadows, its name, or True (EXACT) / False or None (OFF)."""
+        """A Shadows, its name, or True (EXACT) / False or None (OFF).
+
+        Parameters
+        ----------
+        value : Shadows, bool, None or str
+            A member, a bool, None or a member's name.
+        """
         return _option_member(cls, cls.OFF if value is None else value, "shadows",
                               cls.EXACT, cls.OFF)
 
@@ -153,6 +171,13 @@ class Transparency(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Transparency:
+        """A Transparency or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : Transparency or str
+            A member or its name.
+        """
         return _option_member(cls, value, "transparency")
 
 
@@ -164,6 +189,13 @@ class Projection(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Projection:
+        """A Projection or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : Projection or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "projection")
 
 
@@ -178,7 +210,13 @@ class Backend(enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Backend:
-        """A Backend or a headless backend's name; a bad name lists the choices."""
+        """A Backend or a headless backend's name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : Backend or str
+            A member or its name.
+        """
         if isinstance(value, cls):
             return value
         try:

@@ -112,7 +112,13 @@ class DrawOptions:
                                 f"{self.outputs!r}")
 
     def replace(self, **changes: Any) -> DrawOptions:
-        """A copy with ``changes``; an unknown option is named with the valid ones."""
+        """A copy with ``changes``; an unknown option is named with the valid ones.
+
+        Parameters
+        ----------
+        **changes
+            Options to replace, by name.
+        """
         names = {f.name for f in fields(self)}
         unknown = sorted(set(changes) - names)
         if unknown:
@@ -125,7 +131,15 @@ class DrawOptions:
            **changes: Any) -> DrawOptions:
         """Options from a DrawOptions, a shading mode (or its name) or nothing, with
         ``changes`` applied: what every public drawing function accepts. (The earlier
-        keyword ``cull_back_faces`` is accepted for ``cull``.)"""
+        keyword ``cull_back_faces`` is accepted for ``cull``.)
+
+        Parameters
+        ----------
+        options : DrawOptions, ShadingMode, str or None
+            The base (None: the defaults).
+        **changes
+            Options to replace, by name.
+        """
         if "cull_back_faces" in changes:
             changes["cull"] = changes.pop("cull_back_faces")
         if options is None:
@@ -218,7 +232,13 @@ class RenderConfig:
         return self.width, self.height
 
     def replace(self, **changes: Any) -> RenderConfig:
-        """A copy with ``changes`` (checked like the original)."""
+        """A copy with ``changes`` (checked like the original).
+
+        Parameters
+        ----------
+        **changes
+            Fields to replace, by name.
+        """
         return replace(self, **changes)
 
     @classmethod
@@ -226,7 +246,21 @@ class RenderConfig:
            samples: int | None = None, backend: Backend | str | None = None,
            base: RenderConfig | None = None) -> RenderConfig:
         """The config a function was given, or one from its convenience keywords laid over
-        ``base`` (the function's defaults): what animate, compare, sweeps and batches take."""
+        ``base`` (the function's defaults): what animate, compare, sweeps and batches take.
+
+        Parameters
+        ----------
+        config : RenderConfig or None
+            A whole config (then no other keyword may be given).
+        size : (int, int) or None
+            Width and height in pixels.
+        samples : int or None
+            MSAA samples (0 or a power of two up to 64).
+        backend : Backend, str or None
+            The headless backend.
+        base : RenderConfig or None
+            The calling function's defaults.
+        """
         if config is not None:
             if not isinstance(config, RenderConfig):
                 raise OptionError(f"config must be a RenderConfig, got "

@@ -66,7 +66,27 @@ class ModeMetrics:
 
 @dataclass
 class Comparison:
-    """The grid image, the per-mode metrics and the images they came from."""
+    """The grid image, the per-mode metrics and the images they came from.
+
+    Parameters
+    ----------
+    image : ndarray
+        ``(H, W, 4)`` uint8 the grid: each mode's picture and heat map.
+    metrics : list of ModeMetrics
+        Each mode's numbers against the reference.
+    images : dict
+        Each mode's picture, by name.
+    reference : ndarray or None
+        The reference picture.
+    reference_kind : str
+        What the reference is (``"phong-fine"``, ``"analytic"``, ``"pathtrace"`` ...).
+    reference_crease : float or None
+        The crease angle the reference was drawn with.
+    masks : dict
+        Each mode's pixels its numbers are over, by name.
+    scale : float
+        The heat maps' full scale (the largest difference shown).
+    """
 
     image: np.ndarray
     metrics: list[ModeMetrics]
@@ -81,7 +101,13 @@ class Comparison:
 
     def save_tiles(self, folder) -> None:
         """Write what was measured: ``MODE.png`` per mode, ``reference.png`` and
-        ``MODE-mask.png`` (white: the pixels each mode's numbers are over)."""
+        ``MODE-mask.png`` (white: the pixels each mode's numbers are over).
+
+        Parameters
+        ----------
+        folder : str or Path
+            Where the tiles go (made if missing).
+        """
         from ..io.images import save_image
 
         out = Path(folder)
@@ -109,11 +135,25 @@ class Comparison:
         return [asdict(m) for m in self.metrics]
 
     def write_json(self, path) -> None:
+        """Write the metrics as JSON (atomically).
+
+        Parameters
+        ----------
+        path : str or Path
+            Where.
+        """
         with atomic_write(path, "w") as f:
             json.dump({"reference": self.reference_kind, "crease": self.reference_crease,
                        "modes": self.as_dicts()}, f, indent=2, default=lambda x: None)
 
     def write_csv(self, path) -> None:
+        """Write the metrics as CSV, a row a mode (atomically).
+
+        Parameters
+        ----------
+        path : str or Path
+            Where.
+        """
         rows = self.as_dicts()
         with atomic_write(path, "w") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))

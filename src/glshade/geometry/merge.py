@@ -164,7 +164,15 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
 def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
     """Join meshes into one; with ``names`` each input becomes a named group of faces.
     Texture coordinates are kept where any input has them ((0, 0) for the corners of one
-    that has none); material parts and their materials too."""
+    that has none); material parts and their materials too.
+
+    Parameters
+    ----------
+    meshes : iterable of Mesh
+        The meshes, in order.
+    names : iterable of str or None
+        One group name a mesh (None: no groups).
+    """
     meshes = list(meshes)
     labels: list[str | None] = list(names) if names is not None else [None] * len(meshes)
     if len(labels) != len(meshes):

@@ -47,6 +47,8 @@ class Mesh:
         Texture coordinates per corner (one per entry of the faces, in order: a vertex on a
         texture seam has one per face, as OBJ's ``vt`` gives them); (0, 0) is an image's
         bottom-left.
+    name : str, optional
+        The mesh's name (a file's stem; what a scene calls its model by default).
 
     Raises
     ------
@@ -152,7 +154,19 @@ class Mesh:
     # ------------------------------------------------------------------ basics
     @classmethod
     def from_csr(cls, vertices, indices, offsets, **kwargs) -> Mesh:
-        """Build from the flat layout directly (no per-face Python objects)."""
+        """Build from the flat layout directly (no per-face Python objects).
+
+        Parameters
+        ----------
+        vertices : array_like
+            ``(V, 3)`` positions.
+        indices : array_like
+            ``(N,)`` the faces' vertex indices, one face after another.
+        offsets : array_like
+            ``(F + 1,)`` where each face starts in ``indices`` (the last: ``N``).
+        **kwargs
+            Mesh's other fields (name, normals, uv ...).
+        """
         return cls(vertices, (np.asarray(indices), np.asarray(offsets)), **kwargs)
 
     @property
@@ -168,7 +182,13 @@ class Mesh:
         return len(self.edges)
 
     def face(self, f: int) -> NDArray[np.int64]:
-        """Vertex indices of face ``f``."""
+        """Vertex indices of face ``f``.
+
+        Parameters
+        ----------
+        f : int
+            The face's index.
+        """
         return self.face_indices[self.face_offsets[f] : self.face_offsets[f + 1]]
 
     @property
@@ -337,7 +357,13 @@ class Mesh:
 
     def vertex_normals_weighted(self, by: str = "area") -> NDArray[np.float64]:
         """Vertex normals with each face's unit normal weighted ``by`` "area", "angle" or
-        "unit" (equal weights, the same as :attr:`vertex_normals`)."""
+        "unit" (equal weights, the same as :attr:`vertex_normals`).
+
+        Parameters
+        ----------
+        by : str
+            ``"area"``, ``"angle"`` or ``"unit"``.
+        """
         if by == "unit":
             return self.vertex_normals
         if by == "area":
@@ -388,7 +414,13 @@ class Mesh:
 
     def subset(self, faces: ArrayLike) -> Mesh:
         """The faces ``faces`` (indices) as a mesh of their own, with only the vertices they
-        use (and their normals and texture coordinates); groups are dropped."""
+        use (and their normals and texture coordinates); groups are dropped.
+
+        Parameters
+        ----------
+        faces : array_like
+            ``(k,)`` face indices (or a ``(F,)`` bool mask).
+        """
         f = np.asarray(faces, np.int64)
         sizes = self.face_sizes[f]
         corners = (np.repeat(self.face_offsets[f], sizes) +
@@ -410,7 +442,13 @@ class Mesh:
     def center_of_mass(self, kind: str = "solid") -> NDArray[np.float64]:
         """Centre of mass ``(3,)`` of the solid a closed mesh bounds (``kind="solid"``, the
         tetrahedra from the origin to each triangle, with signed volumes as masses) or of
-        its surface (``"surface"``, triangle centroids weighted by area)."""
+        its surface (``"surface"``, triangle centroids weighted by area).
+
+        Parameters
+        ----------
+        kind : str
+            ``"solid"`` (a closed mesh's volume) or ``"surface"``.
+        """
         from ..masspoint import mesh_center_of_mass
 
         return mesh_center_of_mass(self.vertices[self.triangles[0]], kind)
@@ -428,7 +466,13 @@ class Mesh:
     def transformed(self, matrix: ArrayLike) -> Mesh:
         """A copy mapped by an affine 4x4 (or 3x3) matrix for column vectors. File normals
         follow by the inverse transpose; a mirroring matrix reverses the faces, so they stay
-        front faces."""
+        front faces.
+
+        Parameters
+        ----------
+        matrix : array_like
+            ``(4, 4)`` affine or ``(3, 3)`` linear map, for column vectors.
+        """
         m = affine_matrix(matrix)
         v = self.vertices @ m[:3, :3].T + m[:3, 3]
         normals = None
@@ -472,7 +516,15 @@ class Mesh:
 
     @classmethod
     def from_trimesh(cls, tm, name: str | None = None) -> Mesh:
-        """From a ``trimesh.Trimesh`` or ``trimesh.Scene`` (the ``formats`` extra)."""
+        """From a ``trimesh.Trimesh`` or ``trimesh.Scene`` (the ``formats`` extra).
+
+        Parameters
+        ----------
+        tm : trimesh.Trimesh or trimesh.Scene
+            The mesh (a scene's geometry is joined, each part a group).
+        name : str or None
+            The mesh's name (None: trimesh's).
+        """
         from .trimesh_bridge import from_trimesh
 
         return from_trimesh(tm, name)
@@ -485,13 +537,26 @@ class Mesh:
 
     def split_creases(self, angle_deg: float = 30.0) -> Mesh:
         """Duplicate vertices along edges sharper than ``angle_deg``, so smooth shading
-        keeps creases (see :func:`glshade.geometry.merge.split_creases`)."""
+        keeps creases (see :func:`glshade.geometry.merge.split_creases`).
+
+        Parameters
+        ----------
+        angle_deg : float
+            Edges whose faces meet at more than this many degrees stay sharp.
+        """
         from .merge import split_creases
 
         return split_creases(self, angle_deg)
 
     def weld(self, tolerance: float | None = None) -> Mesh:
-        """Merge vertices closer than ``tolerance`` (see :func:`glshade.geometry.merge.weld`)."""
+        """Merge vertices closer than ``tolerance`` (see :func:`glshade.geometry.merge.weld`).
+
+        Parameters
+        ----------
+        tolerance : float or None
+            The distance in scene units under which vertices merge (None: a millionth of the
+            bounding box's diagonal).
+        """
         from .merge import weld
 
         return weld(self, tolerance)

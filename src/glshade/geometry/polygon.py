@@ -83,7 +83,13 @@ def unit_normals(
 
 
 def polygon_area(points: ArrayLike) -> NDArray[np.float64]:
-    """Area of planar polygons ``(..., K, 3) -> (...)``: half the Newell normal's length."""
+    """Area of planar polygons ``(..., K, 3) -> (...)``: half the Newell normal's length.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(..., K, 3)`` the polygons' corners in order.
+    """
     return 0.5 * np.linalg.norm(newell_normal(points), axis=-1)
 
 

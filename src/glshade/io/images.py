@@ -37,7 +37,17 @@ def image_format(path) -> str:
 
 def save_image(array, path, format: str | None = None) -> None:
     """Write an ``(H, W, 3|4)`` uint8 (or float in [0, 1]) image. The format comes from the
-    extension (:func:`image_format`); nothing is left behind if writing fails."""
+    extension (:func:`image_format`); nothing is left behind if writing fails.
+
+    Parameters
+    ----------
+    array : ndarray
+        ``(H, W, 3|4)`` uint8, or float in [0, 1], row 0 at the top.
+    path : str or Path
+        Where (PNG, JPEG, PPM ...).
+    format : str or None
+        The format (None: from the extension).
+    """
     from PIL import Image
 
     path = Path(path)

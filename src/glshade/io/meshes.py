@@ -44,6 +44,13 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     """Load a mesh from an OBJ, OFF, PLY or STL file (format from the extension); with
     the ``formats`` extra, also any format trimesh reads (glTF/GLB, 3MF, ...).
 
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    format : str or None
+        ``"obj"``, ``"off"``, ``"ply"``, ``"stl"`` ... (None: from the extension).
+
     Raises
     ------
     MeshFormatError
@@ -104,7 +111,19 @@ def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = Tru
     """Write ``mesh`` to ``path`` (atomically). PLY and STL are binary unless
     ``binary=False``; STL stores the triangulation. Coordinates keep full precision. An
     OBJ keeps texture coordinates and material parts, its materials written to an MTL
-    file of the same name beside it (textures by their paths)."""
+    file of the same name beside it (textures by their paths).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        What to write.
+    path : str or Path
+        Where.
+    format : str or None
+        As :func:`load_mesh`.
+    binary : bool
+        PLY and STL: binary (else ASCII).
+    """
     path = Path(path)
     fmt = _format_of(path, format)
     if fmt == "obj" and mesh.material_groups:

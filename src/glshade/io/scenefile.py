@@ -326,7 +326,13 @@ def _validate(data: dict, loc: _Locator, source: str):
 
 
 def load_scene(path) -> SceneFile:
-    """Read a scene file: the Scene, its CameraPath and its RenderSettings."""
+    """Read a scene file: the Scene, its CameraPath and its RenderSettings.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML scene file.
+    """
     path = Path(path)
     from .._paths import file_fault
 

@@ -120,7 +120,13 @@ def telling_view(renderer, scene, bounds, aspect: float, mode: str, polygons=Non
 def show(x) -> None:
     """Display ``x`` in a notebook: an image array, a Frame (its buffers side by side), an
     animation file (.gif, .png, .mp4) or anything with ``_repr_html_``. Outside IPython
-    nothing is displayed and a ValueError says so only for what cannot be shown at all."""
+    nothing is displayed and a ValueError says so only for what cannot be shown at all.
+
+    Parameters
+    ----------
+    x : object
+        What to show.
+    """
     from ..render.renderer import Frame
 
     if isinstance(x, (str, Path)):

@@ -18,21 +18,48 @@ __all__ = ["PathTraced", "PathTracer", "trace", "relative_error"]
 
 def relative_error(image: np.ndarray, se: np.ndarray) -> float:
     """The stop rule's figure: the pixels' root-mean-square standard error over the
-    image's mean, both averaged over channels (``inf`` for a black image)."""
+    image's mean, both averaged over channels (``inf`` for a black image).
+
+    Parameters
+    ----------
+    image : ndarray
+        ``(H, W, 3)`` the picture.
+    se : ndarray
+        ``(H, W, 3)`` each pixel's standard error.
+    """
     mean = float(image.mean())
     return float(np.sqrt((se ** 2).mean())) / mean if mean > 0 else float("inf")
 
 
 @dataclass
 class PathTraced:
-    """A path-traced picture: ``image`` (H, W, 3) float64 in radiosity units (pi x
-    radiance), ``se`` (H, W, 3) each pixel's standard error, ``samples`` per pixel,
-    ``emitting`` (H, W) the fraction of a pixel's first hits on an emitter, ``seconds`` of
-    tracing (a pilot's included), whether a Ctrl-C ended it early, ``coverage`` (H, W)
-    the fraction of a pixel's camera rays that hit the scene, ``near_limit`` the bounces
-    that came near the driver's loop limit (0: none could have been cut short), and
-    ``counts`` (H, W) the samples each pixel drew (``samples`` their mean, rounded, where
-    adaptive sampling made them differ)."""
+    """A path-traced picture, its per-pixel errors and how it was made.
+
+    Parameters
+    ----------
+    image : ndarray
+        ``(H, W, 3)`` float64 in radiosity units (pi x radiance).
+    se : ndarray
+        ``(H, W, 3)`` each pixel's standard error.
+    samples : int
+        Samples a pixel (their mean, rounded, where adaptive sampling made them differ).
+    emitting : ndarray
+        ``(H, W)`` the fraction of a pixel's first hits on an emitter.
+    seconds : float
+        Time spent tracing (a pilot's included).
+    interrupted : bool
+        Whether a Ctrl-C ended it early.
+    method : str
+        How it was made, in words.
+    history : list
+        ``(seconds, samples, relative error)`` after each step of the run.
+    coverage : ndarray or None
+        ``(H, W)`` the fraction of a pixel's camera rays that hit the scene.
+    near_limit : int
+        Bounces that came near the driver's loop limit (0: none could have been cut short).
+    counts : ndarray or None
+        ``(H, W)`` the samples each pixel drew.
+    """
 
     image: np.ndarray
     se: np.ndarray
@@ -73,7 +100,15 @@ class PathTraced:
 
     def rgba8(self, exposure: float | None = None, srgb: bool = False) -> np.ndarray:
         """(H, W, 4) uint8 for display: the image times ``exposure`` (default
-        :meth:`auto_exposure`), clipped, sRGB-encoded if asked."""
+        :meth:`auto_exposure`), clipped, sRGB-encoded if asked.
+
+        Parameters
+        ----------
+        exposure : float or None
+            The factor on the image (None: :meth:`auto_exposure`).
+        srgb : bool
+            Encode as sRGB (else linear).
+        """
         k = self.auto_exposure() if exposure is None else exposure
         linear = np.clip(self.image * k, 0, 1)
         if srgb:
@@ -112,9 +147,7 @@ class PathTracer:
     size : (int, int)
         The picture's width and height in pixels.
     options : TraceOptions or None
-        How paths are traced (None: the defaults); the keywords ``max_depth``, ``accel``,
-        ``sampler``, ``mis``, ``coherent``, ``storage`` and ``budget`` replace its fields
-        (checked once, by TraceOptions).
+        How paths are traced (None: the defaults).
     seed : int
         The random streams' seed: the same seed, the same picture.
     context : GLContext or None
@@ -130,6 +163,8 @@ class PathTracer:
     control : ndarray or None
         ``(M, 3)`` a control value for each model in radiosity units, used at Russian
         roulette (:mod:`glshade.radiosity.control`).
+    **changes
+        TraceOptions' fields, by name, laid over ``options``.
     """
 
     def __init__(self, scene, size=(256, 256), options: TraceOptions | None = None, *,
@@ -175,7 +210,17 @@ class PathTracer:
     def add(self, camera, samples: int = 1, *, counts: np.ndarray | None = None) -> bool:
         """Add exactly ``samples`` paths per pixel seen from ``camera`` -- or make each
         pixel's count ``counts`` ``(H, W)`` (adaptive sampling: none fewer than it has);
-        whether that started the picture over (a new camera)."""
+        whether that started the picture over (a new camera).
+
+        Parameters
+        ----------
+        camera : Camera
+            From where (another camera than the last call's starts the picture over).
+        samples : int
+            Paths to add to every pixel.
+        counts : ndarray or None
+            ``(H, W)`` whole numbers: each pixel's samples in all, instead.
+        """
         restarted = self.camera is not None and camera != self.camera
         if restarted:
             self.reset()
@@ -189,7 +234,15 @@ class PathTracer:
     def deviations(self, camera, samples: int) -> np.ndarray:
         """``(H, W)`` each pixel's per-sample standard deviation (RMS over channels) from
         ``samples`` paths drawn from another seed and then forgotten (the tracer left empty):
-        adaptive sampling's pilot, independent of the picture's own samples."""
+        adaptive sampling's pilot, independent of the picture's own samples.
+
+        Parameters
+        ----------
+        camera : Camera
+            From where.
+        samples : int
+            The pilot's paths a pixel.
+        """
         self.reset()
         t0 = time.perf_counter()
         self.gpu.run(camera, int(samples), (self.seed + PILOT_SEED) & 0xFFFFFFFF)
@@ -203,7 +256,15 @@ class PathTracer:
     def allocate(self, sigma: np.ndarray, mean: int) -> np.ndarray:
         """``(H, W)`` each pixel's samples for a mean of ``mean`` by the pilot's
         deviations ``sigma`` (:meth:`deviations`; :func:`glshade.pathtrace.adaptive.
-        allocate`, at most 3x the mean)."""
+        allocate`, at most 3x the mean).
+
+        Parameters
+        ----------
+        sigma : ndarray
+            ``(H, W)`` the pilot's per-sample standard deviations.
+        mean : int
+            The mean samples a pixel.
+        """
         from .adaptive import allocate
 
         # (pixels that share random numbers draw one count; pixels that draw their own,
@@ -215,6 +276,13 @@ class PathTracer:
         return allocate(sigma, mean, tile=unit, most=min(3 * int(mean), MOST_SAMPLES))
 
     def result(self, interrupted: bool = False) -> PathTraced:
+        """The picture so far, its errors and counts.
+
+        Parameters
+        ----------
+        interrupted : bool
+            Whether a Ctrl-C ended the run (said in the result).
+        """
         total, square, hits = self.gpu.read()
         mean, se = _moments(total, square)
         counts = self.gpu.counts
@@ -280,8 +348,8 @@ def trace(scene, camera=None, size=(256, 256), *, options: TraceOptions | None =
     options : TraceOptions or None
         How paths are traced (None: the defaults). Its fields may be given as keywords
         instead -- ``max_depth``, ``accel``, ``sampler``, ``mis``, ``coherent``,
-        ``storage``, ``budget`` (see :class:`TraceOptions`) -- checked once, here, before a
-        context or a scene is made.
+        ``storage`` (see :class:`TraceOptions`) -- checked once, here, before a context or
+        a scene is made.
     spp : int or None
         Samples a pixel (default 64 when ``until`` is None too).
     until : float or None
@@ -314,6 +382,8 @@ def trace(scene, camera=None, size=(256, 256), *, options: TraceOptions | None =
         unbiased: the picture's samples are independent of the pilot's) -- less RMS error
         for the same paths, most where a few pixels hold most of it (``counts`` says how
         many each drew).
+    **changes
+        TraceOptions' fields, by name, laid over ``options``.
 
     Returns
     -------

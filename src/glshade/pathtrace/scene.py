@@ -31,14 +31,38 @@ MAX_LIGHTS = 8
 
 @dataclass(frozen=True)
 class TraceScene:
-    """triangles ``(T, 3, 3)`` world positions (float64), their unit normals ``(T, 3)`` (by
-    the winding), areas ``(T,)``, material index ``(T,)``; materials ``(M, 8)`` rows of
-    rho_d (RGB), k_s, n, E (RGB); ``emitters`` (K,) triangle indices with ``emitter_cdf``
-    (K,) by emitted power; lights ``(L, 10)`` rows of kind (0 directional, 1 point),
-    position or direction to the light (3), irradiance RGB (3), attenuation (3); names of
-    the models, and ``model`` (T,) of each triangle; ``shading`` (T, 3, 3) unit normals at
-    the corners (smooth shading, the renderer's vertex normals) or None (flat: the
-    triangles' own normals)."""
+    """A scene as the path tracer reads it: world triangles, their materials, emitters
+    and lights (made by :meth:`from_scene`, which checks that it can be traced).
+
+    Parameters
+    ----------
+    triangles : ndarray
+        ``(T, 3, 3)`` world positions (float64).
+    normals : ndarray
+        ``(T, 3)`` unit normals, by the winding.
+    areas : ndarray
+        ``(T,)`` areas (scene units squared).
+    material : ndarray
+        ``(T,)`` each triangle's row of ``materials``.
+    materials : ndarray
+        ``(M, 8)`` rows of rho_d (RGB), k_s, n, E (RGB).
+    emitters : ndarray
+        ``(K,)`` the emitting triangles' indices.
+    emitter_cdf : ndarray
+        ``(K,)`` their cumulative chances, by emitted power.
+    lights : ndarray
+        ``(L, 10)`` rows of kind (0 directional, 1 point), position or direction to the
+        light (3), irradiance RGB (3), attenuation (3).
+    model : ndarray
+        ``(T,)`` each triangle's model.
+    names : tuple
+        The models' names.
+    shading : ndarray or None
+        ``(T, 3, 3)`` unit normals at the corners (smooth shading, the renderer's vertex
+        normals), or None (flat: the triangles' own).
+    solids : tuple
+        ``(solid, material row)`` pairs: CSG solids ray cast exactly (at most one).
+    """
 
     triangles: np.ndarray
     normals: np.ndarray
@@ -74,7 +98,13 @@ class TraceScene:
         table starts (:func:`glshade.pathtrace.pack.pack`; ``compiled``: ``(T,)`` bool, the
         triangles a tracer compiles into its program, kept out of the hierarchy). Built
         once a scene and choice (the hierarchy of 82k triangles takes 0.4 s) and kept,
-        read-only: a tracer made again for the same scene starts at once."""
+        read-only: a tracer made again for the same scene starts at once.
+
+        Parameters
+        ----------
+        compiled : ndarray or None
+            ``(T,)`` bool: triangles kept out of the hierarchy (compiled into the program).
+        """
         from .pack import pack
 
         key = None if compiled is None else np.packbits(compiled).tobytes()
@@ -94,7 +124,13 @@ class TraceScene:
         """``(T,)`` bool: the triangles of the scene's smallest models, whole models, at most
         ``limit`` triangles in all (walls, floors, boxes: what a tracer tests cheaply in
         straight-line code beside a hierarchy of the large meshes); none when that would
-        leave no model for the hierarchy."""
+        leave no model for the hierarchy.
+
+        Parameters
+        ----------
+        limit : int
+            The most triangles in all.
+        """
         counts = np.bincount(self.model, minlength=len(self.names))
         chosen = np.zeros(len(counts), bool)
         order = np.argsort(counts, kind="stable")
@@ -117,7 +153,19 @@ class TraceScene:
         radiosity sees it); given a ``camera``, a scene with neither lights nor emitters
         gets the renderer's headlight (a light at the eye), as ``glshade render`` does.
         ``smooth``: shade with the vertex normals the renderer's Gouraud and Phong modes
-        interpolate (what a comparison with them wants), not the flat triangles'."""
+        interpolate (what a comparison with them wants), not the flat triangles'.
+
+        Parameters
+        ----------
+        scene : Scene
+            What to trace.
+        lights : bool
+            Whether the scene's point and directional lights are traced.
+        camera : Camera or None
+            The headlight's place for a scene with neither lights nor emitters.
+        smooth : bool
+            Shade with the renderer's vertex normals (else the triangles' own).
+        """
         solid_models = [m for m in scene.solids if m.visible]
         if len(solid_models) > 1:
             raise SceneError(f"the path tracer takes one CSG solid, the scene has "

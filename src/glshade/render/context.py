@@ -134,6 +134,17 @@ class RenderContext:
 
     Children register with :meth:`track`; :meth:`release` frees them in reverse creation
     order, then the context. Usable with ``with``; a second release does nothing.
+
+    Parameters
+    ----------
+    ctx : moderngl.Context
+        The context it owns.
+    backend : Backend
+        The headless backend that made it.
+    detail : str
+        What the backend says of itself (the renderer's name, the device).
+    loader : object or None
+        The backend's library handle, kept alive as long as the context.
     """
 
     def __init__(self, ctx, backend: Backend, detail: str = "", loader=None):
@@ -168,10 +179,24 @@ class RenderContext:
             self._idle.use()
 
     def track(self, obj):
+        """Keep ``obj`` to release with the context (in reverse order of making); returns it.
+
+        Parameters
+        ----------
+        obj : GL object
+            A moderngl object or a GLResource.
+        """
         self._children.append(obj)
         return obj
 
     def untrack(self, obj) -> None:
+        """Forget ``obj`` (released by its owner first).
+
+        Parameters
+        ----------
+        obj : GL object
+            What :meth:`track` was given.
+        """
         try:
             self._children.remove(obj)
         except ValueError:
@@ -202,7 +227,17 @@ class RenderContext:
     def require(self, version: int, what: str, instead: str) -> None:
         """Refuse, in one line, a feature this GL is too old for: ``version`` as GL's
         version code (430: 4.3); ``what`` ends in the verb ("shadows='exact' needs");
-        ``instead`` names the way that works."""
+        ``instead`` names the way that works.
+
+        Parameters
+        ----------
+        version : int
+            GL's version code needed (430: 4.3).
+        what : str
+            What needs it, ending in the verb ("shadows='exact' needs").
+        instead : str
+            The way that works on this GL.
+        """
         have = self.ctx.version_code
         if have < version:
             raise EnvironmentFailure(
@@ -350,6 +385,13 @@ def create_context(backend="auto", device: int | str | None = None) -> RenderCon
     """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for;
     ``device`` (or ``GLSHADE_EGL_DEVICE``): an EGL device's index or name (:func:`egl_devices`).
 
+    Parameters
+    ----------
+    backend : Backend or str
+        ``"auto"``, ``"egl"`` or ``"osmesa"``.
+    device : int, str or None
+        An EGL device's index or name (None: ``GLSHADE_EGL_DEVICE``, else the first).
+
     Raises
     ------
     ContextError
@@ -396,6 +438,13 @@ def tune_malloc(mmap_threshold: int = 32 * 2**20, trim_threshold: int = 256 * 2*
     ``M_TRIM_THRESHOLD`` keeps them in the heap. Process-wide, so it is never done behind
     your back: call it once (or set ``GLSHADE_TUNE_MALLOC=1`` before making a Renderer).
     Returns False where glibc's ``mallopt`` is not available.
+
+    Parameters
+    ----------
+    mmap_threshold : int
+        Bytes above which glibc maps an allocation (M_MMAP_THRESHOLD).
+    trim_threshold : int
+        Free bytes at the heap's top above which glibc returns them (M_TRIM_THRESHOLD).
     """
     try:
         libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")

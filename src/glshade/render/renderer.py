@@ -54,7 +54,19 @@ MAX_CAMERA_REACH = 1e150
 class Pick:
     """What a pixel shows (:meth:`Renderer.pick`): ``face_id`` (as :class:`Frame` numbers
     polygons: the scene's mesh polygons in order, then its solids' leaves), the world
-    ``point (3,)``, the unit world ``normal (3,)`` and the view ``depth``."""
+    ``point (3,)``, the unit world ``normal (3,)`` and the view ``depth``.
+
+    Parameters
+    ----------
+    face_id : int
+        The polygon's id.
+    point : ndarray
+        ``(3,)`` the world point (scene units).
+    normal : ndarray
+        ``(3,)`` the unit world normal.
+    depth : float
+        Distance along the view axis (scene units).
+    """
 
     face_id: int
     point: np.ndarray
@@ -70,14 +82,22 @@ class Pick:
 class Frame:
     """What one pass produces (row 0 at the top); outputs not asked for are None.
 
-    color : (H, W, 4) uint8 (float32 with ``color_dtype="f4"``), linear unless ``srgb``.
-    depth : (H, W) float32 distance along the view axis; ``inf`` where nothing was drawn.
-    normal : (H, W, 3) float32 world-space unit normal (zero where nothing was drawn).
-    face_id : (H, W) int32 id of the source polygon (not the triangle); -1 for background;
-    with several models, ids continue from one model to the next in scene order.
-    visibility : (H, W, L) float32, a draw with shadows: how much of each of its L lights
-    reaches the surface point each pixel centre sees (1 seen, 0 hidden; a shadow map's PCF
-    gives fractions; 1 on the background).
+    Parameters
+    ----------
+    color : ndarray
+        ``(H, W, 4)`` uint8 (float32 with ``color_dtype="f4"``), linear unless ``srgb``.
+    depth : ndarray or None
+        ``(H, W)`` float32 distance along the view axis in scene units; ``inf`` where
+        nothing was drawn.
+    normal : ndarray or None
+        ``(H, W, 3)`` float32 world-space unit normal (zero where nothing was drawn).
+    face_id : ndarray or None
+        ``(H, W)`` int32 id of the source polygon (not the triangle); -1 for background;
+        with several models, ids continue from one model to the next in scene order.
+    visibility : ndarray or None
+        ``(H, W, L)`` float32, a draw with shadows: how much of each of its L lights
+        reaches the surface point each pixel centre sees (1 seen, 0 hidden; a shadow map's
+        PCF gives fractions; 1 on the background).
     """
 
     color: np.ndarray
@@ -110,20 +130,25 @@ class Frame:
 class Renderer:
     """Renders scenes into images of ``width`` x ``height`` pixels.
 
+    On a software rasterizer Phong programs take the lighting constants as flat varyings
+    for models with large triangles (``flat_constants``): faster there, the same pictures.
+
     Parameters
     ----------
-    width, height : image size in pixels.
-    samples : MSAA samples (0 = off; exact per-pixel comparisons use 0).
-    backend : "auto" (EGL, then OSMesa), "egl" or "osmesa"; ``GLSHADE_BACKEND`` overrides
-        "auto".
-    device : EGL device index, for machines with several GPUs.
-    context : an existing RenderContext to draw with (not released by ``close()``).
-    config : all of the above but the context as one :class:`~glshade.RenderConfig`
-        (``Renderer(config=c)``; then the other arguments are not given).
-
-    ``flat_constants`` (on by default on a software rasterizer) lets Phong programs take the
-    lighting constants as flat varyings for models with large triangles: faster there, the
-    same pictures.
+    width, height : int
+        Image size in pixels.
+    samples : int
+        MSAA samples (0 = off; the id, depth and normal outputs are exact either way).
+    backend : Backend or str
+        ``"auto"`` (EGL, then OSMesa), ``"egl"`` or ``"osmesa"``; ``GLSHADE_BACKEND``
+        overrides ``"auto"``.
+    device : int or None
+        EGL device index, for machines with several GPUs.
+    context : RenderContext or None
+        An existing context to draw with (not released by ``close()``).
+    config : RenderConfig or None
+        All of the above but the context as one value (``Renderer(config=c)``; then the
+        other arguments are not given).
     """
 
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
@@ -345,6 +370,17 @@ class Renderer:
 
         ``options``: DrawOptions or a shading mode's name; ``changes`` override single
         options (``mode="flat"``, ``depth_test=False``, ``cull=True``, ``srgb=True`` ...).
+
+        Parameters
+        ----------
+        scene : Scene
+            What to draw.
+        camera : Camera
+            From where.
+        options : DrawOptions, ShadingMode, str or None
+            How (None: the defaults, Phong).
+        **changes
+            Single options replaced, by name.
         """
         options = DrawOptions.of(options, **changes)
         if options.outputs is not Outputs.COLOR:
@@ -364,7 +400,23 @@ class Renderer:
         id, depth and unit normal are those of the surface its centre sees (zero normal,
         ``inf`` depth and id -1 where nothing is drawn), never a blend of a silhouette's
         samples. Without MSAA they come from the colour's own pass (several render
-        targets); with it, from a second, single-sampled pass of the same draw."""
+        targets); with it, from a second, single-sampled pass of the same draw.
+
+        Parameters
+        ----------
+        scene : Scene
+            What to draw.
+        camera : Camera
+            From where.
+        options : DrawOptions, ShadingMode, str or None
+            How (None: the defaults, Phong).
+        outputs : Outputs
+            The buffers to read back (flags: COLOR, DEPTH, NORMAL, FACE_ID ...).
+        color_dtype : str
+            ``"u1"`` (uint8) or ``"f4"`` (float32, unquantised).
+        **changes
+            Single options replaced, by name.
+        """
         if color_dtype not in ("u1", "f4"):
             raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
@@ -394,7 +446,19 @@ class Renderer:
         numbers them), the world point, the world normal and the view depth -- read from
         the id, depth and normal buffers of one draw. None where the pixel shows background.
         The normal is the polygon's own (a flat draw) unless ``options`` say another mode
-        (Phong's: the interpolated normal there)."""
+        (Phong's: the interpolated normal there).
+
+        Parameters
+        ----------
+        scene : Scene
+            What is drawn.
+        camera : Camera
+            From where.
+        x, y : float
+            The pixel, x right and y down from the top-left corner, in pixels.
+        options : DrawOptions, ShadingMode, str or None
+            How it is drawn (None: flat, so the normal is the polygon's).
+        """
         try:
             fx, fy = float(x), float(y)
         except (TypeError, ValueError):
@@ -420,7 +484,17 @@ class Renderer:
         return Pick(face, p_world, np.asarray(frame.normal[py, px], np.float64), depth)
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
-        """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn."""
+        """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn.
+
+        Parameters
+        ----------
+        scene : Scene
+            What to draw.
+        camera : Camera
+            From where.
+        **changes
+            Single options replaced, by name.
+        """
         depth = self.render_frame(scene, camera, "depth", outputs=Outputs.DEPTH,
                                   **changes).depth
         assert depth is not None  # (asked for)
@@ -428,7 +502,19 @@ class Renderer:
 
     def render_many(self, scene: Scene, cameras: Iterable[Camera], options=None,
                     **changes) -> Iterator[np.ndarray]:
-        """Stream colour images for a sequence of cameras; meshes are uploaded once."""
+        """Stream colour images for a sequence of cameras; meshes are uploaded once.
+
+        Parameters
+        ----------
+        scene : Scene
+            What to draw.
+        cameras : iterable of Camera
+            From where, in turn.
+        options : DrawOptions, ShadingMode, str or None
+            How (None: the defaults, Phong).
+        **changes
+            Single options replaced, by name.
+        """
         for camera in cameras:
             yield self.render(scene, camera, options, **changes)
 

@@ -101,7 +101,19 @@ class Camera:
     @classmethod
     def look_at(cls, eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0),
                 **kwargs) -> Camera:
-        """A camera at ``eye`` looking at ``target`` with ``up`` roughly up."""
+        """A camera at ``eye`` looking at ``target`` with ``up`` roughly up.
+
+        Parameters
+        ----------
+        eye : array_like
+            ``(3,)`` the camera's position (world).
+        target : array_like
+            ``(3,)`` the point it looks at.
+        up : array_like
+            ``(3,)`` roughly up (not parallel to the view direction).
+        **kwargs
+            The camera's other fields (``fov_y``, ``near``, ``far``, ``projection`` ...).
+        """
         view = look_at(eye, target, up)
         camera = cls(position=np.asarray(eye, np.float64),
                      orientation=quat.from_matrix(view[:3, :3].T), **kwargs)
@@ -110,6 +122,13 @@ class Camera:
         return camera
 
     def replace(self, **changes) -> Camera:
+        """A copy of this camera with ``changes``.
+
+        Parameters
+        ----------
+        **changes
+            Fields to replace, by name (checked as the constructor checks them).
+        """
         return replace(self, **changes)
 
     # ------------------------------------------------------------------ frames
@@ -146,7 +165,13 @@ class Camera:
 
     def projection_matrix(self, aspect: float) -> NDArray[np.float64]:
         """View-to-clip ``(4, 4)`` for column vectors; ``aspect`` = width / height. (Planes
-        not given and not yet fitted to a scene by :meth:`with_planes`: 0.1 and 100.)"""
+        not given and not yet fitted to a scene by :meth:`with_planes`: 0.1 and 100.)
+
+        Parameters
+        ----------
+        aspect : float
+            The image's width over its height.
+        """
         near, far = self.planes()
         if self.projection is Projection.PERSPECTIVE:
             return perspective(self.fov_y, aspect, near, far)
@@ -159,7 +184,15 @@ class Camera:
         convention every numpy ray caster, picker and oracle-facing twin uses (the GPU's is
         ``shaders/include/rays.glsl``). Perspective rays start at the eye, orthographic ones
         on the image plane through it. ``jitter`` ``(H, W, 2)`` (or broadcastable) moves each
-        sample from its pixel's centre, in pixels (x right, y down)."""
+        sample from its pixel's centre, in pixels (x right, y down).
+
+        Parameters
+        ----------
+        size : (int, int)
+            The image's width and height in pixels.
+        jitter : array_like or None
+            ``(H, W, 2)`` (or broadcastable) offsets from each pixel's centre, in pixels.
+        """
         width, height = int(size[0]), int(size[1])
         j, i = np.meshgrid(np.arange(width) + 0.5, np.arange(height) + 0.5)
         if jitter is not None:
@@ -207,7 +240,13 @@ class Camera:
         """``(near, far)``: the camera's own, else fitted to ``bounds`` ``(2, 3)`` -- the far
         plane just beyond the farthest corner of the box, the near plane just before the
         nearest (``PLANE_RATIO`` of the far one when the camera is inside the box) -- else
-        (no bounds) 0.1 and 100."""
+        (no bounds) 0.1 and 100.
+
+        Parameters
+        ----------
+        bounds : array_like or None
+            ``(2, 3)`` the scene's box (min and max corners), to fit missing planes to.
+        """
         if self.near is not None and self.far is not None:
             return self.near, self.far
         if bounds is None:
@@ -235,7 +274,13 @@ class Camera:
     def with_planes(self, bounds: ArrayLike) -> Camera:
         """This camera with its missing clip planes fitted to ``bounds`` (itself when it has
         both): what every draw uses, so a camera made by :meth:`frame` or :meth:`look_at`
-        never clips the scene in front of it, however it is moved."""
+        never clips the scene in front of it, however it is moved.
+
+        Parameters
+        ----------
+        bounds : array_like
+            ``(2, 3)`` the scene's box (min and max corners).
+        """
         if self.near is not None and self.far is not None:
             return self
         near, far = self.planes(bounds)
@@ -247,7 +292,15 @@ class Camera:
     # ------------------------------------------------------------------ moves
     def orbit(self, q: ArrayLike, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
         """Rotate the camera about ``center`` by the rotation ``q`` (position and
-        orientation alike, so the centre stays where it is on screen)."""
+        orientation alike, so the centre stays where it is on screen).
+
+        Parameters
+        ----------
+        q : array_like
+            ``(4,)`` a unit quaternion ``(x, y, z, w)``.
+        center : array_like
+            ``(3,)`` the point orbited (world).
+        """
         q = quat.normalize(q)
         center = _vec3(center, "center")
         return self.replace(position=quat.transform_points(q, self.position, center),
@@ -256,7 +309,17 @@ class Camera:
     def frame(self, target, aspect: float = 1.0, margin: float = 1.1) -> Camera:
         """Move the camera along its view axis so that the bounding sphere of ``target`` (a
         Mesh, or bounds ``(2, 3)``) fits in view with the given ``margin``; the clip planes
-        are left to each draw (None: fitted to the scene then)."""
+        are left to each draw (None: fitted to the scene then).
+
+        Parameters
+        ----------
+        target : Mesh or array_like
+            What to fit: a Mesh or bounds ``(2, 3)``.
+        aspect : float
+            The image's width over its height.
+        margin : float
+            How much larger than the bounding sphere the view is (1: touching).
+        """
         bounds = getattr(target, "bounds", target)
         b = np.asarray(bounds, dtype=np.float64)
         if b.shape != (2, 3):
@@ -276,27 +339,61 @@ class Camera:
     # ------------------------------------------------------------------ the usual moves
     def azimuth(self, degrees: float, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
         """Orbit ``degrees`` about the world's up axis (+y) through ``center``
-        (counter-clockwise seen from above)."""
+        (counter-clockwise seen from above).
+
+        Parameters
+        ----------
+        degrees : float
+            The angle to orbit by.
+        center : array_like
+            ``(3,)`` the point orbited (world).
+        """
         return self.orbit(quat.from_axis_angle((0.0, 1.0, 0.0), np.radians(degrees)), center)
 
     def elevation(self, degrees: float, center: ArrayLike = (0.0, 0.0, 0.0)) -> Camera:
         """Orbit ``degrees`` up (positive) or down about the camera's right axis through
-        ``center``."""
+        ``center``.
+
+        Parameters
+        ----------
+        degrees : float
+            The angle to orbit by (positive: up).
+        center : array_like
+            ``(3,)`` the point orbited (world).
+        """
         return self.orbit(quat.from_axis_angle(self.right, -np.radians(degrees)), center)
 
     def roll(self, degrees: float) -> Camera:
-        """Turn ``degrees`` about the view axis (counter-clockwise on screen)."""
+        """Turn ``degrees`` about the view axis (counter-clockwise on screen).
+
+        Parameters
+        ----------
+        degrees : float
+            The angle to turn by.
+        """
         q = quat.from_axis_angle(self.forward, -np.radians(degrees))
         return self.replace(orientation=quat.multiply(q, self.orientation))
 
     def dolly(self, distance: float) -> Camera:
         """Move ``distance`` along the view axis (positive: forward), looking the same way;
-        the clip planes follow at the next draw (None planes are fitted to the scene)."""
+        the clip planes follow at the next draw (None planes are fitted to the scene).
+
+        Parameters
+        ----------
+        distance : float
+            Scene units along the view axis (positive: forward).
+        """
         return self.replace(position=self.position + self.forward * float(distance))
 
     def zoom(self, factor: float) -> Camera:
         """Magnify by ``factor`` (> 1: closer) without moving: a narrower field of view, or
-        a smaller orthographic view height."""
+        a smaller orthographic view height.
+
+        Parameters
+        ----------
+        factor : float
+            The magnification, > 0 (> 1: closer).
+        """
         f = float(factor)
         if not 0 < f < float("inf"):
             raise SceneError(f"zoom factor must be a positive number, got {factor!r}")
@@ -310,7 +407,21 @@ class Camera:
               margin: float = 1.1, **lens) -> Camera:
         """A camera looking at the centre of ``bounds`` (a Mesh, a Scene or ``(2, 3)``) from
         one of the named views (:class:`View`), framed to fit: front looks down -z, right
-        down -x, top down -y (with -z up on screen), iso from (+x, +y, +z)."""
+        down -x, top down -y (with -z up on screen), iso from (+x, +y, +z).
+
+        Parameters
+        ----------
+        view : View or str
+            The named view (``"front"``, ``"right"``, ``"top"``, ``"iso"`` ...).
+        bounds : Mesh, Scene or array_like
+            What to look at and frame: its bounds ``(2, 3)``.
+        aspect : float
+            The image's width over its height.
+        margin : float
+            How much larger than the bounding sphere the view is.
+        **lens
+            The camera's lens fields (``fov_y``, ``projection`` ...).
+        """
         chosen = View.parse(view)
         b = np.asarray(getattr(bounds, "bounds", bounds), np.float64)
         direction, up = _VIEWS[chosen]
@@ -342,6 +453,13 @@ class View(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> View:
+        """A View, or a view's name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : View or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "view")
 
 
@@ -368,7 +486,17 @@ DEFAULT_VIEW_FROM = (0.55, 0.45, 1.0)
 def default_camera(bounds, aspect: float = 1.0, **kwargs) -> Camera:
     """The auto-framed camera that ``glshade render`` and ``glshade view`` start from:
     looking at the centre of ``bounds`` (a Mesh, a Scene or bounds ``(2, 3)``) from the
-    front-right, above, with everything in view."""
+    front-right, above, with everything in view.
+
+    Parameters
+    ----------
+    bounds : Mesh, Scene or array_like
+        What to frame: its bounds ``(2, 3)``.
+    aspect : float
+        The image's width over its height.
+    **kwargs
+        The camera's other fields (``fov_y``, ``projection`` ...).
+    """
     b = np.asarray(getattr(bounds, "bounds", bounds), dtype=np.float64)
     center = b.mean(axis=0)
     direction = np.asarray(DEFAULT_VIEW_FROM)

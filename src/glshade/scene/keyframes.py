@@ -84,7 +84,19 @@ POSITION_INTERP = tuple(m.value for m in PositionInterp)
 
 @dataclass(frozen=True)
 class Keyframe:
-    """One key: a time (seconds), a camera position and orientation, optionally a fov."""
+    """One key: a time (seconds), a camera position and orientation, optionally a fov.
+
+    Parameters
+    ----------
+    time : float
+        Seconds from the path's start.
+    position : ndarray
+        ``(3,)`` the camera's position (world).
+    orientation : ndarray
+        ``(4,)`` a unit quaternion ``(x, y, z, w)``, camera to world.
+    fov_y : float or None
+        The vertical field of view in degrees (None: the path's).
+    """
 
     time: float
     position: NDArray[np.float64]
@@ -93,6 +105,21 @@ class Keyframe:
 
     @classmethod
     def look_at(cls, time: float, eye, target, up=(0, 1, 0), fov_y=None) -> Keyframe:
+        """A key at ``time`` with the camera at ``eye`` looking at ``target``.
+
+        Parameters
+        ----------
+        time : float
+            Seconds from the path's start.
+        eye : array_like
+            ``(3,)`` the camera's position (world).
+        target : array_like
+            ``(3,)`` the point it looks at.
+        up : array_like
+            ``(3,)`` roughly up.
+        fov_y : float or None
+            The vertical field of view in degrees (None: the path's).
+        """
         cam = Camera.look_at(eye, target, up)
         return cls(float(time), cam.position, cam.orientation, fov_y)
 
@@ -144,7 +171,21 @@ class CameraPath:
         """``camera`` carried ``degrees`` round the axis ``up`` through ``center`` in
         ``duration`` seconds, at constant speed: keys every 5 degrees at most, orientations by
         slerp (exact for a turn about one axis), positions along the chords (within 0.1% of
-        the circle)."""
+        the circle).
+
+        Parameters
+        ----------
+        camera : Camera
+            The camera at the start.
+        center : array_like
+            ``(3,)`` a point on the axis (world).
+        duration : float
+            Seconds the turn takes.
+        degrees : float
+            The angle turned.
+        up : array_like
+            ``(3,)`` the axis' direction.
+        """
         if not duration > 0:
             raise SceneError(f"a turntable needs a duration > 0, got {duration}")
         n = max(1, int(np.ceil(abs(degrees) / 5.0)))
@@ -205,7 +246,13 @@ class CameraPath:
 
     def evaluate(self, t: ArrayLike) -> tuple[NDArray, NDArray, NDArray]:
         """Positions ``(..., 3)``, orientations ``(..., 4)`` and fovs ``(...)`` at times ``t``
-        (clamped to the path), all at once."""
+        (clamped to the path), all at once.
+
+        Parameters
+        ----------
+        t : array_like
+            Times in seconds, any shape.
+        """
         t = np.asarray(t, dtype=np.float64)
         if len(self.times) == 1:
             shape = t.shape
@@ -244,18 +291,36 @@ class CameraPath:
                 + h11 * h * tangent[seg + 1])
 
     def at(self, t: float) -> Camera:
-        """The camera at time ``t`` (clamped to the path's time range)."""
+        """The camera at time ``t`` (clamped to the path's time range).
+
+        Parameters
+        ----------
+        t : float
+            The time in seconds.
+        """
         pos, q, fov = self.evaluate(float(t))
         return self.camera.replace(position=pos, orientation=q, fov_y=float(fov))
 
     def frame_times(self, n: int) -> NDArray[np.float64]:
-        """``n`` evenly spaced times from the first key to the last, both included."""
+        """``n`` evenly spaced times from the first key to the last, both included.
+
+        Parameters
+        ----------
+        n : int
+            The number of frames, >= 1.
+        """
         if n < 1:
             raise SceneError(f"need at least one frame, got {n}")
         return np.linspace(self.start, self.end, n) if n > 1 else np.array([self.start])
 
     def sample(self, n: int) -> list[Camera]:
-        """Cameras of ``n`` evenly spaced frames (interpolation done in one vectorized pass)."""
+        """Cameras of ``n`` evenly spaced frames (interpolation done in one vectorized pass).
+
+        Parameters
+        ----------
+        n : int
+            The number of frames, >= 1.
+        """
         pos, q, fov = self.evaluate(self.frame_times(n))
         return [self.camera.replace(position=p, orientation=o, fov_y=float(f))
                 for p, o, f in zip(pos, q, fov)]
@@ -265,7 +330,17 @@ class CameraPath:
     def from_dict(cls, data: dict, source: str = "<dict>", **kwargs) -> CameraPath:
         """Build from parsed TOML: a scene file's ``{"camera": {"keyframe": [...],
         "interpolation": ..., "fov_y": ...}}`` or ``{"keyframe": [{time, eye, target |
-        position, orientation, fov_y, up}, ...]}``."""
+        position, orientation, fov_y, up}, ...]}``.
+
+        Parameters
+        ----------
+        data : dict
+            The parsed TOML.
+        source : str
+            What the data came from, for messages (a file's path).
+        **kwargs
+            Path settings that the data does not give (``interpolation`` ...).
+        """
         camera = data.get("camera")
         if "keyframe" not in data and isinstance(camera, dict):
             data = camera
@@ -326,7 +401,15 @@ class CameraPath:
 
     @classmethod
     def load(cls, path, **kwargs) -> CameraPath:
-        """Read a TOML key-frame file (see the module docstring)."""
+        """Read a TOML key-frame file (see the module docstring).
+
+        Parameters
+        ----------
+        path : str or Path
+            The TOML file.
+        **kwargs
+            As :meth:`from_dict`.
+        """
         path = Path(path)
         try:
             data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -353,6 +436,12 @@ class CameraPath:
         return "".join(out)
 
     def save(self, path) -> None:
-        """Write the path as TOML (atomically)."""
+        """Write the path as TOML (atomically).
+
+        Parameters
+        ----------
+        path : str or Path
+            Where to write.
+        """
         with atomic_write(path, "w") as f:
             f.write(self.to_toml())

@@ -23,7 +23,21 @@ MAX_LIGHTS = 8
 class PointLight:
     """A light at ``position`` (world). No distance attenuation by default (the notes'
     model); ``attenuation=(c, l, q)`` divides by ``c + l d + q d^2``. ``shadows=False``: the
-    light reaches everything facing it even where a draw casts shadows."""
+    light reaches everything facing it even where a draw casts shadows.
+
+    Parameters
+    ----------
+    position : tuple
+        ``(3,)`` world position.
+    color : tuple
+        Linear RGB, each >= 0.
+    intensity : float
+        A factor on the colour, >= 0.
+    attenuation : tuple
+        ``(c, l, q)``: the light divided by ``c + l d + q d^2`` at distance d.
+    shadows : bool
+        Whether it casts shadows where a draw casts them.
+    """
 
     position: tuple = (5.0, 5.0, 5.0)
     color: tuple = (1.0, 1.0, 1.0)
@@ -45,7 +59,13 @@ class PointLight:
         _check_shadows(self.shadows)
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``[x, y, z, 1]``: the position in view space."""
+        """``[x, y, z, 1]``: the position in view space.
+
+        Parameters
+        ----------
+        view : ndarray
+            ``(4, 4)`` the world-to-view matrix.
+        """
         x, y, z = view[:3, :3] @ self.position + view[:3, 3]
         return np.array([x, y, z, 1.0])
 
@@ -53,7 +73,19 @@ class PointLight:
 @dataclass(frozen=True)
 class DirectionalLight:
     """A light infinitely far away. ``direction`` is the way the light travels, so the
-    vector to the light is ``L = -direction``. ``shadows=False``: it casts none."""
+    vector to the light is ``L = -direction``. ``shadows=False``: it casts none.
+
+    Parameters
+    ----------
+    direction : tuple
+        ``(3,)`` the way the light travels (world), non-zero.
+    color : tuple
+        Linear RGB, each >= 0.
+    intensity : float
+        A factor on the colour, >= 0.
+    shadows : bool
+        Whether it casts shadows where a draw casts them.
+    """
 
     direction: tuple = (-1.0, -1.0, -1.0)
     color: tuple = (1.0, 1.0, 1.0)
@@ -72,7 +104,13 @@ class DirectionalLight:
     attenuation = (1.0, 0.0, 0.0)
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``[x, y, z, 0]``: the unit vector towards the light, in view space."""
+        """``[x, y, z, 0]``: the unit vector towards the light, in view space.
+
+        Parameters
+        ----------
+        view : ndarray
+            ``(4, 4)`` the world-to-view matrix.
+        """
         x, y, z = view[:3, :3] @ self.direction
         return np.array([-x, -y, -z, 0.0])
 

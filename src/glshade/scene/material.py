@@ -67,7 +67,32 @@ class Material:
     diffuse colour as it is). Textures (:class:`~glshade.Texture`), sampled per pixel at the
     mesh's texture coordinates: ``texture`` multiplies the ambient and diffuse colours (it
     is the notes' surface colour C), ``specular_texture`` the specular one,
-    ``opacity_texture`` the opacity."""
+    ``opacity_texture`` the opacity.
+
+    Parameters
+    ----------
+    color : tuple
+        Linear RGB, each in [0, 1]: what ambient and diffuse reflection multiply.
+    ka, kd, ks : float
+        The ambient, diffuse and specular coefficients, each in [0, 1].
+    shininess : float
+        The specular exponent n, >= 0.
+    emission : tuple
+        RGB radiosity E the surface gives off by itself, each >= 0.
+    reflectance : tuple or None
+        RGB rho_d for radiosity, each in [0, 1] (None: ``kd * color``).
+    opacity : float
+        In [0, 1]; below 1 the surface is transparent.
+    ambient, diffuse, specular : tuple or None
+        Per-channel colours of each term (MTL's Ka, Kd, Ks), overriding ``color`` x the
+        coefficient.
+    illum : int
+        0 no lighting, 1 no specular term, 2 the whole formula.
+    texture, specular_texture, opacity_texture : Texture or None
+        Maps of the diffuse colour, the specular colour and the opacity.
+    name : str or None
+        The material's name (an MTL's ``newmtl``).
+    """
 
     color: tuple = (0.8, 0.8, 0.8)
     ka: float = 0.2
@@ -155,6 +180,12 @@ class Material:
     @classmethod
     def from_values(cls, values: dict) -> Material:
         """A Material from whichever of its fields ``values`` gives; the rest keep the
-        dataclass defaults (the one place material defaults live)."""
+        dataclass defaults (the one place material defaults live).
+
+        Parameters
+        ----------
+        values : dict
+            Field names to values.
+        """
         names = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in values.items() if k in names and v is not None})

@@ -108,6 +108,13 @@ class Scene:
 
     A scene with no lights is drawn with a default headlight: a white point light at the
     camera (so what faces the viewer is lit), documented here and in the README.
+
+    Parameters
+    ----------
+    ambient : array_like
+        ``(3,)`` the ambient intensity Ia (linear RGB).
+    background : array_like
+        ``(4,)`` linear RGBA of the empty pixels.
     """
 
     def __init__(self, ambient: ArrayLike = (1.0, 1.0, 1.0),
@@ -157,7 +164,33 @@ class Scene:
         Patches are tessellated here, ``level`` segments a side if given (else to the
         tolerance above); with ``tessellation="gpu"`` they are kept as patches and
         tessellated by the GPU at every draw, ``level`` segments a side (1..64, default 16):
-        a :class:`PatchModel`. The same level gives the same triangles either way."""
+        a :class:`PatchModel`. The same level gives the same triangles either way.
+
+        Parameters
+        ----------
+        mesh : Mesh, Solid or patches
+            What to add.
+        material : Material or None
+            Its material (None: the default Material, or an OBJ's own).
+        transform : array_like or None
+            ``(4, 4)`` model-to-world matrix for column vectors (instead of the next three).
+        rotation : array_like or None
+            ``(4,)`` a unit quaternion ``(x, y, z, w)``.
+        translation : array_like
+            ``(3,)`` scene units.
+        scale : float or array_like
+            Uniform, or ``(3,)`` per axis, > 0.
+        name : str or None
+            The model's name (None: the mesh's).
+        crease : float or None
+            Degrees: edges sharper than this stay sharp under smooth shading.
+        vertex_colors : array_like or None
+            ``(V, 3)`` linear RGB, >= 0, one a vertex.
+        tessellation : Tessellation or str
+            Patches: ``"cpu"`` or ``"gpu"``.
+        level : int or None
+            Patches: segments a side (None: to a thousandth of their size).
+        """
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
@@ -259,7 +292,13 @@ class Scene:
 
     def set_texture_filter(self, filter: str) -> None:
         """Sample every texture of the scene's models with ``filter`` ("nearest",
-        "linear" or "mipmap"; the command line's ``--texture-filter``)."""
+        "linear" or "mipmap"; the command line's ``--texture-filter``).
+
+        Parameters
+        ----------
+        filter : str
+            ``"nearest"``, ``"linear"`` or ``"mipmap"``.
+        """
         from .texture import FILTERS
 
         if filter not in FILTERS:
@@ -272,7 +311,13 @@ class Scene:
                     model.material, **{k: t.replace(filter=filter) for k, t in maps.items()})
 
     def add_light(self, light) -> None:
-        """Add a PointLight or DirectionalLight (at most MAX_LIGHTS)."""
+        """Add a PointLight or DirectionalLight (at most MAX_LIGHTS).
+
+        Parameters
+        ----------
+        light : PointLight or DirectionalLight
+            The light.
+        """
         if not isinstance(light, (PointLight, DirectionalLight)):
             raise SceneError(f"expected a PointLight or DirectionalLight, got {light!r}")
         if len(self.lights) >= MAX_LIGHTS:
@@ -280,7 +325,13 @@ class Scene:
         self.lights.append(light)
 
     def lights_for(self, camera) -> list:
-        """The lights a draw with ``camera`` uses (the headlight when there are none)."""
+        """The lights a draw with ``camera`` uses (the headlight when there are none).
+
+        Parameters
+        ----------
+        camera : Camera
+            The camera of the draw (the headlight sits at its eye).
+        """
         return lights_for(self.lights, camera)
 
     @property

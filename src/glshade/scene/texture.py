@@ -112,7 +112,13 @@ class Texture:
         return int(self.pixels.shape[1]), int(self.pixels.shape[0])
 
     def replace(self, **changes) -> Texture:
-        """The same image with another ``filter`` or ``wrap`` (the pixels are shared)."""
+        """The same image with another ``filter`` or ``wrap`` (the pixels are shared).
+
+        Parameters
+        ----------
+        **changes
+            ``filter`` and/or ``wrap``.
+        """
         t = Texture.__new__(Texture)
         for name in ("source", "filter", "wrap", "scale", "offset", "pixels", "path"):
             object.__setattr__(t, name, changes.get(name, getattr(self, name)))

@@ -1,0 +1,69 @@
+"""The front door's docstrings say what each parameter is: every function, class and
+public method reached from ``glshade``'s own names and ``glshade.pathtrace``'s has a
+numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
+build renders them)."""
+
+import enum
+import inspect
+import re
+import types
+
+import pytest
+
+import glshade
+from glshade import pathtrace
+
+FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
+         if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
+FRONT += [(f"pathtrace.{n}", getattr(pathtrace, n)) for n in pathtrace.__all__]
+
+
+def _callables():
+    for name, obj in FRONT:
+        if inspect.isclass(obj) and issubclass(obj, BaseException):
+            continue  # (an error's one parameter is its message)
+        if inspect.isfunction(obj):
+            yield name, obj
+        elif inspect.isclass(obj):
+            if not issubclass(obj, enum.Enum):
+                yield name, obj
+            for key, value in vars(obj).items():
+                if key.startswith("_"):
+                    continue
+                if isinstance(value, (classmethod, staticmethod)):
+                    value = value.__func__
+                if inspect.isfunction(value):
+                    yield f"{name}.{key}", value
+
+
+def documented(doc: str) -> set:
+    """The names a numpydoc Parameters section lists (``a, b : type`` lines, ``**kw``)."""
+    found = re.search(r"^Parameters\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)", doc,
+                      re.S | re.M)
+    if found is None:
+        return set()
+    names = set()
+    entry = re.compile(r"^(\*{0,2}\w+(?:, \*{0,2}\w+)*)(?: : .*)?$")
+    for line in found.group(1).splitlines():
+        match = entry.match(line)
+        if match:
+            names.update(part.strip().lstrip("*") for part in match.group(1).split(","))
+    return names
+
+
+def test_the_section_reader():
+    doc = ("Say.\n\nParameters\n----------\nx, y : float\n    The point.\n**changes\n"
+           "    More.\n\nReturns\n-------\nfloat\n    Not a parameter.\n")
+    assert documented(doc) == {"x", "y", "changes"}
+
+
+CASES = list(_callables())
+
+
+@pytest.mark.parametrize("name, obj", CASES, ids=[c[0] for c in CASES])
+def test_every_parameter_is_documented(name, obj):
+    signature = inspect.signature(obj)
+    wanted = {p for p in signature.parameters if p not in ("self", "cls")}
+    if not wanted:
+        return
+    assert documented(inspect.getdoc(obj) or "") == wanted

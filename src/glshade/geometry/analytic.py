@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
+from .transforms import MAX_COORDINATE
 
 __all__ = ["AnalyticSurface", "AnalyticSphere", "affine_matrix"]
 
@@ -36,12 +37,13 @@ def affine_matrix(matrix: ArrayLike, what: str = "matrix") -> NDArray[np.float64
         raise GeometryError(f"{what} must be affine (last row 0, 0, 0, 1), got {m[3].tolist()}")
     a = m[:3, :3]
     big = float(np.abs(a).max())
-    if 0 < big < 1e-150:
+    if 0 < big < 1 / MAX_COORDINATE:
         raise GeometryError(f"{what} has entries no larger than {big:g}, too small to work "
-                            "with (its products underflow): keep its scale above 1e-150")
-    if big > 1e150:
+                            f"with (its products underflow): keep its scale above "
+                            f"{1 / MAX_COORDINATE:g}")
+    if big > MAX_COORDINATE:
         raise GeometryError(f"{what} has an entry of {big:g}, too large to work with (its "
-                            "products overflow): keep its scale under 1e150")
+                            f"products overflow): keep its scale under {MAX_COORDINATE:g}")
     with np.errstate(all="ignore"):
         singular = big == 0 or not np.isfinite(np.linalg.cond(a / big)) or \
             np.linalg.cond(a / big) > 1e12

@@ -20,7 +20,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError
 
-__all__ = ["look_at", "perspective", "orthographic", "normal_matrix", "compose_transform",
+#: the largest coordinate, distance or scale glshade works with (and 1 / it the smallest
+#: plane distance or scale): the square and the product of two such numbers stay finite in
+#: float64, so lengths, ratios and matrix products never overflow or underflow
+MAX_COORDINATE = 1e150
+
+__all__ = ["MAX_COORDINATE", "look_at", "perspective", "orthographic", "normal_matrix",
+           "compose_transform",
            "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up"]
 
 Array = NDArray[np.float64]

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SceneError
+from ..errors import SceneError, plain
+from ..geometry.transforms import MAX_COORDINATE
 from .material import color3, nonnegative
 
 __all__ = ["PointLight", "DirectionalLight", "lights_for", "MAX_LIGHTS"]
@@ -49,6 +50,9 @@ class PointLight:
         p = np.asarray(self.position, dtype=np.float64)
         if p.shape != (3,) or not np.isfinite(p).all():
             raise SceneError(f"light position must be 3 numbers, got {self.position!r}")
+        if np.abs(p).max() > MAX_COORDINATE:
+            raise SceneError(f"light position must be 3 numbers within {MAX_COORDINATE:g} of "
+                             f"the origin, got {plain(p)}")
         object.__setattr__(self, "position", tuple(p.tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
@@ -94,8 +98,9 @@ class DirectionalLight:
 
     def __post_init__(self):
         d = np.asarray(self.direction, dtype=np.float64)
-        if d.shape != (3,) or not np.isfinite(d).all() or np.linalg.norm(d) == 0:
+        if d.shape != (3,) or not np.isfinite(d).all() or not np.abs(d).max() > 0:
             raise SceneError(f"direction must be a non-zero 3-vector, got {self.direction!r}")
+        d = d / np.abs(d).max()  # (scaled first: the length of (1e308, 1, 1) overflows)
         object.__setattr__(self, "direction", tuple((d / np.linalg.norm(d)).tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))

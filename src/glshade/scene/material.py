@@ -9,27 +9,40 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, plain
 from .texture import Texture
 
 __all__ = ["Material", "color3", "nonnegative", "check_illum"]
 
 
+#: the largest colour, intensity or coefficient a scene may hold: shading runs in 32-bit
+#: floats (largest 3.4e38), and a light's colour x intensity x a surface's colour stays
+#: finite there
+MAX_SHADING_VALUE = 1e12
+
+
 def color3(value, name) -> tuple[float, float, float]:
-    """An RGB triple of finite numbers in [0, 1], or a SceneError naming ``name``."""
+    """An RGB triple of finite numbers from 0 to MAX_SHADING_VALUE, or a SceneError
+    naming ``name``."""
     c = np.asarray(value, dtype=np.float64)
     if c.shape == ():
         c = np.repeat(c, 3)
     if c.shape != (3,) or not np.isfinite(c).all() or (c < 0).any():
         raise SceneError(f"{name} must be 3 non-negative numbers (r, g, b), got {value!r}")
+    if (c > MAX_SHADING_VALUE).any():
+        raise SceneError(f"{name} must be 3 numbers from 0 to {MAX_SHADING_VALUE:g} (shading "
+                         f"runs in 32-bit floats), got {plain(c)}")
     return float(c[0]), float(c[1]), float(c[2])
 
 
 def nonnegative(value, name) -> float:
-    """A finite number >= 0, or a SceneError naming ``name``."""
+    """A finite number from 0 to MAX_SHADING_VALUE, or a SceneError naming ``name``."""
     v = float(value)
     if not np.isfinite(v) or v < 0:
         raise SceneError(f"{name} must be a non-negative number, got {value!r}")
+    if v > MAX_SHADING_VALUE:
+        raise SceneError(f"{name} must be at most {MAX_SHADING_VALUE:g} (shading runs in "
+                         f"32-bit floats), got {v:g}")
     return v
 
 

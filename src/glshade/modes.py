@@ -109,7 +109,9 @@ class Outputs(enum.Flag):
     DEPTH = enum.auto()      # distance along the view axis
     NORMAL = enum.auto()     # world-space unit normal
     FACE_ID = enum.auto()    # id of the source polygon
-    ALL = COLOR | DEPTH | NORMAL | FACE_ID
+    INSTANCE = enum.auto()   # the model's instance_id (Scene.add), from the polygon ids
+    SEMANTIC = enum.auto()   # the model's label's class id (Scene.labels)
+    ALL = COLOR | DEPTH | NORMAL | FACE_ID | INSTANCE | SEMANTIC
 
     @property
     def auxiliary(self) -> bool:

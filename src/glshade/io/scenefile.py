@@ -106,13 +106,14 @@ _SCHEMA = {
              "emission": "color", "reflectance": "reflectance", "opacity": "unit",
              "ambient": "color", "diffuse": "color", "specular": "color", "illum": "illum",
              "texture": "str", "specular_texture": "str", "opacity_texture": "str",
-             "texture_filter": "texture_filter", "texture_wrap": "texture_wrap"},
+             "texture_filter": "texture_filter", "texture_wrap": "texture_wrap",
+             "label": "str"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
                "orientation": "quat", "fov_y": "fov", "near": "positive", "far": "positive",
                "interpolation": "interp", "position_interpolation": "pinterp",
-               "keyframe": "keyframes"},
+               "keyframe": "keyframes", "K": "mat3", "R": "mat3", "t": "vec3"},
 }
 _TEXTURE_KEYS = ("texture", "specular_texture", "opacity_texture", "texture_filter",
                  "texture_wrap")  # (meshes only: solids and patches have no uv)
@@ -210,14 +211,18 @@ def _scale(value):
                  "a positive number or three positive numbers")(value)
 
 
-def _mat4(value):
-    if not isinstance(value, list) or len(value) != 4 or \
-            not all(isinstance(r, list) and len(r) == 4 for r in value):
-        raise _expected("a 4x4 list of lists", value)
+def _matrix(value, n: int):
+    if not isinstance(value, list) or len(value) != n or \
+            not all(isinstance(r, list) and len(r) == n for r in value):
+        raise _expected(f"a {n}x{n} list of lists", value)
     if not all(isinstance(v, NUMBER) and not isinstance(v, bool) and np.isfinite(v)
                for r in value for v in r):
-        raise _expected("a 4x4 list of lists of finite numbers", value)
+        raise _expected(f"a {n}x{n} list of lists of finite numbers", value)
     return np.array(value, dtype=float)
+
+
+def _mat4(value):
+    return _matrix(value, 4)
 
 
 #: each kind of value a scene file holds, and its check: the file's own forms (lists of
@@ -239,6 +244,7 @@ _KINDS = {
     "quat": _such(_numbers(4), any, "a non-zero quaternion [x, y, z, w]"),
     "scale": _scale,
     "mat4": _mat4,
+    "mat3": lambda value: _matrix(value, 3),
     "light_type": _is(lambda v: v in ("point", "directional"), "'point' or 'directional'"),
     # (the API's own rules)
     "size": _size, "samples": check_samples, "fov": check_fov,
@@ -276,7 +282,8 @@ def _add_solid(scene, m: dict, i: int, loc: _Locator, source: str) -> None:
         model = scene.add(solid, Material.from_values(m), m.get("transform"),
                           rotation=m.get("rotation"), translation=m.get("translation",
                                                                         (0, 0, 0)),
-                          scale=m.get("scale", 1.0), name=m.get("name"))
+                          scale=m.get("scale", 1.0), name=m.get("name"),
+                          label=m.get("label"))
     except GlshadeError as exc:
         raise SceneFormatError(f"{source}:{loc.line('solid', i, None)}: [[solid]] {i + 1}: "
                                f"{exc}") from None
@@ -411,6 +418,7 @@ def _add_mesh(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) ->
         model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
                           translation=m.get("translation", (0, 0, 0)),
                           scale=m.get("scale", 1.0), name=m.get("name"),
+                          label=m.get("label"),
                           crease=m.get("crease"))
     except GlshadeError as exc:
         raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
@@ -475,7 +483,8 @@ def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path)
                           rotation=m.get("rotation"),
                           translation=m.get("translation", (0, 0, 0)),
                           scale=m.get("scale", 1.0), name=m.get("name"),
-                          tessellation=m.get("tessellation", "cpu"), level=m.get("level"))
+                          tessellation=m.get("tessellation", "cpu"), level=m.get("level"),
+                          label=m.get("label"))
     except GlshadeError as exc:
         raise SceneFormatError(f"{where}: {exc}") from None
     model.visible = m.get("visible", True)
@@ -498,12 +507,36 @@ def _load_mesh(spec: str, base: Path, where: str):
         raise SceneFormatError(f"{where}: {exc}") from None
 
 
+def _opencv_camera(cam, settings, loc, source) -> CameraPath:
+    """[camera] given as OpenCV's K, R and t (``x_cam = R @ X + t``) for the [render] size:
+    one view."""
+    line = loc.line("camera", None, None)
+    missing = [k for k in ("K", "R", "t") if k not in cam]
+    clash = [k for k in ("eye", "target", "position", "orientation", "keyframe", "fov_y")
+             if k in cam]
+    if missing or clash:
+        said = f"needs {', '.join(missing)} too" if missing else \
+            f"cannot also give {', '.join(clash)}"
+        raise SceneFormatError(f"{source}:{line}: [camera] with K, R and t (OpenCV's camera) "
+                               f"{said}")
+    try:
+        base = Camera.from_opencv(cam["K"], cam["R"], cam["t"],
+                                  (settings.width, settings.height),
+                                  **{k: cam[k] for k in ("near", "far") if k in cam})
+    except GlshadeError as exc:
+        raise SceneFormatError(f"{source}:{line}: [camera]: {exc}") from None
+    return CameraPath([Keyframe(0.0, base.position, base.orientation, base.fov_y)],
+                      camera=base)
+
+
 def _camera(cam, raw, scene, settings, loc, source) -> CameraPath:
     aspect = settings.width / settings.height
     if not cam:
         base = default_camera(scene.bounds, aspect)
         return CameraPath([Keyframe(0.0, base.position, base.orientation)], camera=base)
     lens = {k: cam[k] for k in ("fov_y", "near", "far") if k in cam}  # (planes: the scene's)
+    if "K" in cam or "R" in cam or "t" in cam:  # (OpenCV's camera: K, and R, t world to it)
+        return _opencv_camera(cam, settings, loc, source)
     try:
         base = Camera(**lens)
     except GlshadeError as exc:

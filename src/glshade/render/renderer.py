@@ -23,6 +23,7 @@ from ..errors import (
     EnvironmentFailure, GlshadeError, InputError, OptionError, RenderWarning, SceneError,
     UsageError,
 )
+from ..geometry.transforms import MAX_COORDINATE
 from ..interrupt import held
 from ..modes import Backend, Outputs, ShadingMode
 from ..options import DrawOptions, RenderConfig
@@ -47,7 +48,7 @@ __all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
 
 #: how far a camera may be from the origin or its scene (beyond, the view and projection
 #: matrices overflow float64 products)
-MAX_CAMERA_REACH = 1e150
+MAX_CAMERA_REACH = MAX_COORDINATE
 
 
 @dataclass(frozen=True)
@@ -98,6 +99,14 @@ class Frame:
         ``(H, W, L)`` float32, a draw with shadows: how much of each of its L lights
         reaches the surface point each pixel centre sees (1 seen, 0 hidden; a shadow map's
         PCF gives fractions; 1 on the background).
+    instance : ndarray or None
+        ``(H, W)`` int32 the ``instance_id`` of the model whose surface the pixel centre
+        sees (0: background) -- exact like the polygon ids, never a blend, the same with
+        any MSAA; a transparent surface does not own the pixel (what lies behind it does).
+    semantic : ndarray or None
+        ``(H, W)`` int32 that model's class id (:attr:`Scene.labels`; 0: background).
+    camera : Camera or None
+        The camera the frame was drawn with (its clip planes fitted to the scene).
     """
 
     color: np.ndarray
@@ -105,10 +114,41 @@ class Frame:
     normal: np.ndarray | None = None
     face_id: np.ndarray | None = None
     visibility: np.ndarray | None = None
+    instance: np.ndarray | None = None
+    semantic: np.ndarray | None = None
+    camera: Camera | None = None
+
+    def points(self, space: str = "world") -> np.ndarray:
+        """``(H, W, 3)`` float32: the surface point each pixel centre sees, NaN where
+        nothing was drawn -- the depth unprojected through the frame's camera (its pixel's
+        ray from :meth:`Camera.rays`, as far along the view axis as the depth says).
+
+        Parameters
+        ----------
+        space : str
+            ``"world"`` (scene units, world axes) or ``"camera"`` (OpenCV's axes: x right,
+            y down, z forward -- z is the pixel's depth).
+        """
+        if space not in ("world", "camera"):
+            raise OptionError(f"space must be 'world' or 'camera', got {space!r}")
+        if self.depth is None or self.camera is None:
+            raise OptionError("points need the frame's depth and camera: draw it with "
+                              "outputs including Outputs.DEPTH")
+        h, w = self.depth.shape
+        origin, ray = self.camera.rays((w, h))
+        depth = np.where(np.isfinite(self.depth), self.depth, np.nan).astype(np.float64)
+        along = depth / (ray @ self.camera.forward)  # (depth is along the view axis)
+        world = origin + ray * along[..., None]
+        if space == "world":
+            return world.astype(np.float32)
+        from ..scene.intrinsics import GL_FROM_CV
+
+        R = GL_FROM_CV @ self.camera.rotation.T  # (world to OpenCV's camera axes)
+        return ((world - self.camera.position) @ R.T).astype(np.float32)
 
     def __repr__(self) -> str:
         h, w = self.color.shape[:2]
-        outputs = [n for n in ("color", "depth", "normal", "face_id")
+        outputs = [n for n in ("color", "depth", "normal", "face_id", "instance", "semantic")
                    if getattr(self, n) is not None]
         drawn = "" if self.face_id is None else \
             f"; {int((self.face_id >= 0).sum()):,} pixels drawn"
@@ -422,6 +462,9 @@ class Renderer:
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         dtype = "f1" if color_dtype == "u1" else "f4"
         want = options.outputs
+        ids = want & (Outputs.INSTANCE | Outputs.SEMANTIC)
+        if ids:  # (instance and class ids are looked up from the polygon ids)
+            options = options.replace(outputs=want | Outputs.FACE_ID)
         with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
             target = self._target(dtype)
             if self.samples and want.auxiliary:  # colour multisampled, the rest exact
@@ -433,11 +476,21 @@ class Renderer:
             else:
                 state = self._counted_draw(target, scene, camera, options, True)
                 color = target.read_color()
+            face_id = target.read_face_id() if want & Outputs.FACE_ID or ids else None
+            instance = semantic = None
+            if ids:
+                assert face_id is not None  # (drawn for them)
+                instances, classes = scene.id_tables()
+                if want & Outputs.INSTANCE:
+                    instance = instances[face_id + 1]
+                if want & Outputs.SEMANTIC:
+                    semantic = classes[face_id + 1]
             return Frame(color,
                          target.read_depth() if want & Outputs.DEPTH else None,
                          target.read_normal() if want & Outputs.NORMAL else None,
-                         target.read_face_id() if want & Outputs.FACE_ID else None,
-                         self.shadows.read() if state.read_visibility else None)
+                         face_id if want & Outputs.FACE_ID else None,
+                         self.shadows.read() if state.read_visibility else None,
+                         instance, semantic, state.camera)
 
     def pick(self, scene: Scene, camera: Camera, x: float, y: float,
              options=None) -> Pick | None:
@@ -482,6 +535,26 @@ class Renderer:
         eye, ray = camera.rays_through((self.width, self.height), px + 0.5, py + 0.5)
         p_world = eye + ray * (depth / float(ray @ camera.forward))
         return Pick(face, p_world, np.asarray(frame.normal[py, px], np.float64), depth)
+
+    def annotate(self, scene: Scene, camera: Camera, options=None) -> list:
+        """Per-object ground truth for one view, by BOP's names
+        (:class:`~glshade.render.annotate.Annotation`: ``instance_id``, ``label``,
+        ``obj_id``, ``cam_R_m2c``, ``cam_t_m2c``, ``mask`` drawn alone, ``mask_visib``, pixel
+        counts, ``visib_fract``, ``bbox_obj``, ``bbox_visib``), one for each object the
+        camera sees any of when drawn alone, in instance order.
+
+        Parameters
+        ----------
+        scene : Scene
+            The objects (labelled by :meth:`Scene.add`'s ``label``).
+        camera : Camera
+            The view.
+        options : DrawOptions, ShadingMode, str or None
+            How the scene is drawn (culling and wireframe change what is seen).
+        """
+        from .annotate import annotate
+
+        return annotate(self, scene, camera, options)
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn.

@@ -18,7 +18,9 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import SceneError
 from ..modes import Projection, parse_enum
 from .. import quaternion as quat
-from ..geometry.transforms import look_at, orthographic, perspective
+from ..geometry.transforms import MAX_COORDINATE, look_at, orthographic, perspective
+from .intrinsics import (GL_FROM_CV, check_intrinsics, check_rotation, intrinsics_of, lens_of,
+                         projection_from_lens)
 
 __all__ = ["Camera", "View", "default_camera"]
 
@@ -65,6 +67,10 @@ class Camera:
         ever clipped away, wherever it moves.
     projection : :class:`~glshade.Projection` (or "perspective", "orthographic").
     height : view height in world units (orthographic).
+    lens : (4,) or None: a pinhole's intrinsics as fractions of the image, ``(fx / W,
+        fy / H, (cx + 0.5) / W, (cy + 0.5) / H)`` -- what :meth:`from_opencv` keeps of K
+        (fx != fy and an off-centre principal point); ``fov_y`` then follows from fy.
+        None: square pixels, the principal point at the centre, ``fov_y``.
     """
 
     position: NDArray[np.float64] = field(default_factory=lambda: np.array([0.0, 0.0, 3.0]))
@@ -74,6 +80,7 @@ class Camera:
     far: float | None = None
     projection: Projection = Projection.PERSPECTIVE
     height: float = 2.0
+    lens: tuple[float, float, float, float] | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "position", _vec3(self.position, "position"))
@@ -85,14 +92,26 @@ class Camera:
         for name in ("position", "orientation"):  # a value: never changed in place
             getattr(self, name).setflags(write=False)
         object.__setattr__(self, "projection", Projection.parse(self.projection))
+        if self.lens is not None:
+            lens = np.asarray(self.lens, dtype=np.float64)
+            if lens.shape != (4,) or not np.isfinite(lens).all() or not (lens[:2] > 0).all():
+                raise SceneError(f"lens must be (fx / W, fy / H, (cx + 0.5) / W, (cy + 0.5) "
+                                 f"/ H), finite, the focal lengths > 0, got {self.lens!r}")
+            if self.projection is not Projection.PERSPECTIVE:
+                raise SceneError("a lens (K) is a pinhole's: the projection must be "
+                                 "perspective")
+            object.__setattr__(self, "lens", tuple(float(v) for v in lens))
+            # (the vertical field of view K's fy gives: what framing and the viewer read)
+            object.__setattr__(self, "fov_y", float(np.degrees(2 * np.arctan(0.5 / lens[1]))))
         object.__setattr__(self, "fov_y", check_fov(self.fov_y))
         for name in ("near", "far"):
             value = getattr(self, name)
             if value is not None:
                 if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) \
-                        or not 0 < float(value) < float("inf"):
-                    raise SceneError(f"{name} must be a positive number (or None: from the "
-                                     f"scene), got {value!r}")
+                        or not 1 / MAX_COORDINATE <= float(value) <= MAX_COORDINATE:
+                    raise SceneError(f"{name} must be a distance from {1 / MAX_COORDINATE:g} "
+                                     f"to {MAX_COORDINATE:g} (or None: from the scene), got "
+                                     f"{value!r}")
                 object.__setattr__(self, name, float(value))
         if self.near is not None and self.far is not None and not self.near < self.far:
             raise SceneError(f"need 0 < near < far, got near={self.near}, far={self.far}")
@@ -120,6 +139,67 @@ class Camera:
         view.setflags(write=False)  # (its view matrix is this one: no conversion back from
         camera.__dict__["_view"] = view  # the quaternion when it is drawn, a frame each)
         return camera
+
+    @classmethod
+    def from_opencv(cls, K: ArrayLike, R: ArrayLike, t: ArrayLike, size,
+                    **kwargs) -> Camera:
+        """The camera OpenCV describes by ``K`` and the pose ``x_cam = R @ X + t`` (camera
+        x right, y down, z forward; integer pixel coordinates at pixel centres): a world
+        point that ``cv2.projectPoints`` sends to (u, v) is drawn in column floor(u + 0.5),
+        row floor(v + 0.5) of a ``size`` image. Refused, naming the fault: skew, focal
+        lengths <= 0, a principal point more than the image away, an R that is not a
+        rotation within 1e-6.
+
+        Parameters
+        ----------
+        K : array_like
+            ``(3, 3)`` intrinsics in pixels: ``[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]``.
+        R : array_like
+            ``(3, 3)`` world-to-camera rotation.
+        t : array_like
+            ``(3,)`` world-to-camera translation (scene units).
+        size : (int, int)
+            The image's width and height in pixels, K's.
+        **kwargs
+            The camera's other fields (``near``, ``far``).
+        """
+        k, r = check_intrinsics(K, size), check_rotation(R)
+        t = _vec3(t, "t")
+        c2w = r.T @ GL_FROM_CV  # (camera axes, OpenGL's, to world)
+        return cls(position=-r.T @ t, orientation=quat.from_matrix(c2w),
+                   lens=lens_of(k, size), **kwargs)
+
+    def intrinsics(self, size) -> NDArray[np.float64]:
+        """K ``(3, 3)`` for a ``size`` image, OpenCV's (pixel centres at integers): the
+        lens's, or for a camera without one square pixels with the principal point at the
+        image's centre, ``fy = H / (2 tan(fov_y / 2))``.
+
+        Parameters
+        ----------
+        size : (int, int)
+            The image's width and height in pixels.
+        """
+        if self.projection is not Projection.PERSPECTIVE:
+            raise SceneError("an orthographic camera has no pinhole intrinsics (K)")
+        if self.lens is not None:
+            return intrinsics_of(self.lens, size)
+        w, h = size
+        f = h / (2 * np.tan(np.radians(self.fov_y) / 2))
+        return intrinsics_of((f / w, f / h, 0.5, 0.5), size)
+
+    def to_opencv(self, size) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                       NDArray[np.float64]]:
+        """``(K, R, t)``: this camera in OpenCV's terms for a ``size`` image
+        (:meth:`from_opencv`'s inverse, exact to rounding).
+
+        Parameters
+        ----------
+        size : (int, int)
+            The image's width and height in pixels.
+        """
+        K = self.intrinsics(size)
+        R = GL_FROM_CV @ self.rotation.T
+        return K, R, -R @ self.position
 
     def replace(self, **changes) -> Camera:
         """A copy of this camera with ``changes``.
@@ -173,6 +253,8 @@ class Camera:
             The image's width over its height.
         """
         near, far = self.planes()
+        if self.lens is not None:
+            return projection_from_lens(self.lens, near, far)
         if self.projection is Projection.PERSPECTIVE:
             return perspective(self.fov_y, aspect, near, far)
         return orthographic(self.height, aspect, near, far)
@@ -224,7 +306,13 @@ class Camera:
         y = 1 - 2 * np.asarray(y, np.float64) / height
         x, y = np.broadcast_arrays(x, y)
         r = self.rotation
-        if self.projection == "perspective":
+        if self.lens is not None:  # (OpenCV's pinhole: (u - cx) / fx, (v - cy) / fy)
+            a, b, px, py = self.lens
+            d = np.stack([((x + 1) / 2 - px) / a, ((y + 1) / 2 - (1 - py)) / b,
+                          -np.ones_like(x)], -1) @ r.T
+            d /= np.linalg.norm(d, axis=-1, keepdims=True)
+            o = np.broadcast_to(self.position, d.shape)
+        elif self.projection == "perspective":
             t = np.tan(np.radians(self.fov_y) / 2)
             d = np.stack([x * t * width / height, y * t, -np.ones_like(x)], -1) @ r.T
             d /= np.linalg.norm(d, axis=-1, keepdims=True)
@@ -399,6 +487,9 @@ class Camera:
             raise SceneError(f"zoom factor must be a positive number, got {factor!r}")
         if self.projection is Projection.ORTHOGRAPHIC:
             return self.replace(height=self.height / f)
+        if self.lens is not None:
+            a, b, px, py = self.lens
+            return self.replace(lens=(a * f, b * f, px, py))
         half = np.arctan(np.tan(np.radians(self.fov_y) / 2) / f)
         return self.replace(fov_y=float(np.degrees(2 * half)))
 

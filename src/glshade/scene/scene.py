@@ -45,6 +45,10 @@ class Model:
     visible: bool = True
     #: (V, 3) linear RGB per mesh vertex, shown by the ``radiosity`` mode (read-only)
     vertex_colors: NDArray[np.float32] | None = None
+    #: what the model is, for ground truth: its class's name, and which object it is (1,
+    #: 2, ... in the order added; the parts of one multi-material mesh share theirs)
+    label: str | None = None
+    instance_id: int = 0
     _constant: tuple | None = field(default=None, repr=False)
 
     @property
@@ -80,6 +84,13 @@ class SolidModel:
     material: Material = field(default_factory=Material)
     name: str | None = None
     visible: bool = True
+    label: str | None = None
+    instance_id: int = 0
+
+    @property
+    def n_polygons(self) -> int:
+        """The polygon ids the solid takes: one a leaf."""
+        return len(self.solid.leaves())
 
 
 @dataclass(eq=False)
@@ -93,6 +104,8 @@ class PatchModel:
     level: int = 16
     name: str | None = None
     visible: bool = True
+    label: str | None = None
+    instance_id: int = 0
 
     @property
     def corners(self) -> NDArray[np.float64]:
@@ -131,6 +144,7 @@ class Scene:
         self.solids: list[SolidModel] = []
         self.patch_models: list[PatchModel] = []
         self.lights: list = []
+        self._next_instance = 0
 
     def __repr__(self) -> str:
         polygons = sum(m.mesh.n_faces for m in self.models)
@@ -152,7 +166,8 @@ class Scene:
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None,
-            tessellation: Tessellation | str = "cpu", level: int | None = None):
+            tessellation: Tessellation | str = "cpu", level: int | None = None,
+            label: str | None = None):
         """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
         :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
         normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
@@ -190,7 +205,58 @@ class Scene:
             Patches: ``"cpu"`` or ``"gpu"``.
         level : int or None
             Patches: segments a side (None: to a thousandth of their size).
+        label : str or None
+            The model's class, for ground truth (:attr:`labels`; None: its name). Every
+            model also gets the next ``instance_id`` (1, 2, ... in the order added).
         """
+        if label is not None and not (isinstance(label, str) and label.strip()):
+            raise SceneError(f"label must be a non-empty string (the object's class), got "
+                             f"{label!r}")
+        before = {id(m) for m in self._every_model()}
+        model = self._add(mesh, material, transform, rotation, translation, scale, name,
+                          crease, vertex_colors, tessellation, level)
+        self._next_instance += 1
+        for added in self._every_model():  # (a multi-material mesh: each of its parts)
+            if id(added) in before:
+                continue
+            added.instance_id = self._next_instance
+            added.label = label if label is not None else (
+                name or getattr(mesh, "name", None) or type(mesh).__name__)
+        return model
+
+    def _every_model(self) -> list:
+        """Every model in the order its polygon ids run: meshes, patches, solids."""
+        return [*self.models, *self.patch_models, *self.solids]
+
+    @property
+    def labels(self) -> dict[str, int]:
+        """Each label to its class id: 1, 2, ... in the order of first appearance (by
+        instance); 0 is the background's."""
+        out: dict[str, int] = {}
+        for model in sorted(self._every_model(), key=lambda m: m.instance_id):
+            if model.label is not None and model.label not in out:
+                out[model.label] = len(out) + 1
+        return out
+
+    def id_tables(self) -> tuple[NDArray[np.int32], NDArray[np.int32]]:
+        """``(instances, classes)``: for each polygon id ``k`` (as :class:`Frame` numbers
+        them: the meshes' polygons in order, then the patches', then a leaf a solid), its
+        model's ``instance_id`` at ``[k + 1]`` and its label's class id likewise; ``[0]`` is
+        the background's 0 -- so ``instances[face_id + 1]`` is a frame's instance mask.
+        """
+        labels = self.labels
+        counts = [m.mesh.n_faces for m in self.models] + \
+            [len(m.patches) for m in self.patch_models] + \
+            [m.n_polygons for m in self.solids]
+        every = self._every_model()
+        instances = np.repeat(np.array([m.instance_id for m in every], np.int32), counts)
+        classes = np.repeat(np.array([labels.get(m.label, 0) if m.label is not None else 0
+                                      for m in every], np.int32), counts)
+        return (np.concatenate([np.zeros(1, np.int32), instances]),
+                np.concatenate([np.zeros(1, np.int32), classes]))
+
+    def _add(self, mesh, material, transform, rotation, translation, scale, name, crease,
+             vertex_colors, tessellation, level):
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
@@ -231,7 +297,7 @@ class Scene:
         if material is not None and material.textures and mesh.uv is None:
             warnings.warn(f"{name or mesh.name or 'the mesh'} has no texture coordinates "
                           f"(uv); its material's {', '.join(material.textures)} is not shown",
-                          UserWarning, stacklevel=2)
+                          UserWarning, stacklevel=3)
         model = Model(mesh, material or Material(), m, name or mesh.name,
                       vertex_colors=colors)
         self.models.append(model)

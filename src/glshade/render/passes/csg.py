@@ -155,7 +155,8 @@ class CsgPass(GLResource, Stage):
         put = self.uniforms.put
         n_polygons = id_base
         for model in state.scene.solids:
-            if not model.visible:
+            if not model.visible:  # (its ids stay its own: the next solid's do not move)
+                n_polygons += model.n_polygons
                 continue
             data, texture = self.data(model.solid)
             slots = data.slots if len(data.slots) <= self.max_slots else ()

@@ -1,0 +1,152 @@
+"""Per-object ground truth for one view, in the BOP data set's terms: each object's pose in
+the camera, its mask drawn alone (amodal) and as seen, pixel counts and boxes.
+
+The masks come from the renderer's polygon ids, so they are exact: a pixel belongs to the
+object whose surface its centre sees, never to a blend of a silhouette's samples, the same
+with any MSAA. Poses are OpenCV's (x right, y down, z forward), model to camera:
+``x_cam = cam_R_m2c @ x_model + cam_t_m2c`` in scene units, the model's frame being its
+mesh's own (a scaled model's scale stays with the mesh: ``cam_R_m2c`` is a rotation).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..modes import Outputs
+from ..scene.intrinsics import GL_FROM_CV
+
+__all__ = ["Annotation", "annotate", "bbox", "model_pose"]
+
+
+@dataclass(frozen=True)
+class Annotation:
+    """One object in one view, by BOP's names.
+
+    Parameters
+    ----------
+    instance_id : int
+        The model's instance (1, 2, ... in the order added to the scene).
+    label : str
+        Its class's name.
+    obj_id : int
+        Its class id (:attr:`Scene.labels`): BOP's object id.
+    cam_R_m2c : ndarray
+        ``(3, 3)`` model-to-camera rotation (OpenCV's axes).
+    cam_t_m2c : ndarray
+        ``(3,)`` model-to-camera translation (scene units).
+    mask : ndarray
+        ``(H, W)`` bool: the object drawn alone (its full, amodal silhouette).
+    mask_visib : ndarray
+        ``(H, W)`` bool: the pixels it owns in the view.
+    px_count_all, px_count_valid, px_count_visib : int
+        The full mask's pixels, those of them with a depth, the visible mask's.
+    visib_fract : float
+        ``px_count_visib / px_count_all`` (0 where the object covers no pixel).
+    bbox_obj, bbox_visib : (int, int, int, int)
+        The masks' boxes ``(x, y, w, h)`` in whole pixels, inclusive; ``(-1, -1, -1, -1)``
+        for an empty mask (BOP's).
+    """
+
+    instance_id: int
+    label: str
+    obj_id: int
+    cam_R_m2c: np.ndarray
+    cam_t_m2c: np.ndarray
+    mask: np.ndarray
+    mask_visib: np.ndarray
+    px_count_all: int
+    px_count_valid: int
+    px_count_visib: int
+    visib_fract: float
+    bbox_obj: tuple[int, int, int, int]
+    bbox_visib: tuple[int, int, int, int]
+
+
+def bbox(mask: np.ndarray) -> tuple[int, int, int, int]:
+    """``(x, y, w, h)`` of a boolean mask's pixels, inclusive (a one-pixel mask is w = h =
+    1); ``(-1, -1, -1, -1)`` where it is empty.
+
+    Parameters
+    ----------
+    mask : ndarray
+        ``(H, W)`` bool.
+    """
+    rows, cols = np.flatnonzero(mask.any(1)), np.flatnonzero(mask.any(0))
+    if not len(rows):
+        return (-1, -1, -1, -1)
+    return (int(cols[0]), int(rows[0]), int(cols[-1] - cols[0] + 1),
+            int(rows[-1] - rows[0] + 1))
+
+
+def model_pose(model, camera) -> tuple[np.ndarray, np.ndarray]:
+    """``(cam_R_m2c, cam_t_m2c)`` of a scene model seen by ``camera``: the model's
+    placement's rotation (its scale, the polar decomposition's other factor, stays with the
+    mesh) and translation, in OpenCV's camera axes.
+
+    Parameters
+    ----------
+    model : Model, PatchModel or SolidModel
+        The model (a solid's placement is part of its tree: its frame is the world's).
+    camera : Camera
+        The view.
+    """
+    m = getattr(model, "transform", None)
+    m = np.eye(4) if m is None else np.asarray(m, np.float64)
+    u, _, vt = np.linalg.svd(m[:3, :3])
+    rotation = u @ vt
+    if np.linalg.det(rotation) < 0:  # (a mirroring placement: the nearest proper rotation)
+        rotation = u @ np.diag([1.0, 1.0, -1.0]) @ vt
+    r_w2c = GL_FROM_CV @ camera.rotation.T
+    t_w2c = -r_w2c @ camera.position
+    return r_w2c @ rotation, r_w2c @ m[:3, 3] + t_w2c
+
+
+def annotate(renderer, scene, camera, options=None) -> list[Annotation]:
+    """One :class:`Annotation` for each object of ``scene`` that ``camera`` sees any of
+    when drawn alone, in instance order: the view's instance mask (one draw) and each
+    object's full mask (a draw of it alone, the others hidden for it and shown again).
+
+    Parameters
+    ----------
+    renderer : Renderer
+        What draws (its size is the masks').
+    scene : Scene
+        The objects.
+    camera : Camera
+        The view.
+    options : DrawOptions, ShadingMode, str or None
+        How the scene is drawn (what matters here: culling, wireframe).
+    """
+    view = renderer.render_frame(scene, camera, options, outputs=Outputs.INSTANCE |
+                                 Outputs.DEPTH)
+    assert view.instance is not None and view.depth is not None
+    labels = scene.labels
+    models: dict[int, list] = {}
+    for model in [*scene.models, *scene.patch_models, *scene.solids]:
+        if model.visible and model.instance_id:
+            models.setdefault(model.instance_id, []).append(model)
+    every = [*scene.models, *scene.patch_models, *scene.solids]
+    shown = [m.visible for m in every]
+    out = []
+    try:
+        for instance, parts in sorted(models.items()):
+            for m in every:
+                m.visible = any(m is p for p in parts)
+            alone = renderer.render_frame(scene, camera, options, outputs=Outputs.INSTANCE)
+            full = alone.instance == instance
+            if not full.any():
+                continue
+            visib = view.instance == instance
+            n_all, n_visib = int(full.sum()), int(visib.sum())
+            rotation, translation = model_pose(parts[0], camera)
+            label = parts[0].label
+            out.append(Annotation(
+                instance, label, labels.get(label, 0), rotation, translation, full, visib,
+                n_all, int((full & np.isfinite(view.depth)).sum()), n_visib,
+                n_visib / n_all, bbox(full), bbox(visib)))
+    finally:
+        for m, was in zip(every, shown):
+            m.visible = was
+    return out

@@ -32,7 +32,7 @@ LAYERS = [
     {"render"},
     {"pathtrace"},
     {"compare", "radiosity"},
-    {"animate", "batch"},
+    {"animate", "batch", "dataset"},
     {"viewer"},
     {"cli", "testing", "notebook", "__init__",
      "__main__"},

@@ -21,7 +21,8 @@ _EXPORTS = {
     # ``glshade.<name>`` is the module (a test imports them all this way, fresh)
     **{name: (name, None) for name in (
         "quaternion", "masspoint", "brep", "solids", "octree", "hidden", "radiosity",
-        "patches", "pathtrace", "scene", "io", "render", "cpu", "batch", "parallel",
+        "patches", "pathtrace", "dataset", "scene", "io", "render", "cpu", "batch",
+        "parallel",
         "viewer", "notebook", "testing", "examples", "modes",
         "options", "errors", "atomic", "interrupt", "cli", "colormaps", "display")},
     "MassPoint": ("masspoint", "MassPoint"), "centroid": ("masspoint", "centroid"),
@@ -65,7 +66,8 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
-    from . import (atomic, batch, brep, cli, colormaps, cpu, display, errors, examples,
+    from . import (atomic, batch, brep, cli, colormaps, cpu, dataset, display, errors,
+                   examples,
                    geometry, hidden,
                    interrupt, io, masspoint, modes, notebook, octree, options,
                    parallel, patches, pathtrace, quaternion, radiosity, render, scene,

@@ -18,7 +18,7 @@ from ..radiosity import Method
 from ..scene.camera import View
 
 __all__ = ["RenderArgs", "InfoArgs", "RenderCommandArgs", "AnimateArgs", "CompareArgs",
-           "BatchArgs", "RadiosityArgs", "HiddenArgs", "ViewArgs", "DoctorArgs",
+           "BatchArgs", "RadiosityArgs", "HiddenArgs", "ViewArgs", "DoctorArgs", "DatasetArgs",
            "from_namespace"]
 
 Vec3 = tuple[float, float, float]
@@ -172,6 +172,21 @@ class ViewArgs(RenderArgs):
     frames: int | None = None
     hidden: bool = False
     pick: bool = False
+
+
+@dataclass(frozen=True, kw_only=True)
+class DatasetArgs:
+    scene: str
+    output: str
+    views: int = 1
+    format: str = "bop"
+    size: tuple[int, int] | None = None
+    samples: int | None = None
+    depth_scale: float = 1.0
+    units: str = "m"
+    backend: Backend = Backend.AUTO
+    device: str | None = None
+    quiet: bool = False
 
 
 @dataclass(frozen=True, kw_only=True)

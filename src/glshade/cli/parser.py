@@ -16,6 +16,7 @@ from ..scene import Camera, Material
 from . import arguments as a
 from . import commands as c
 from . import hidden as hidden_command
+from . import dataset as dataset_command
 from . import pathtrace as pathtrace_command
 from . import radiosity as radiosity_command
 from . import validators as v
@@ -179,7 +180,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
     for add in (add_info, add_render, add_animate, add_compare, add_batch, add_radiosity,
-                add_pathtrace, add_hidden, add_view, add_doctor):
+                add_pathtrace, add_hidden, add_view, add_dataset, add_doctor):
         add(sub)
     return parser
 
@@ -379,6 +380,36 @@ def add_radiosity(sub) -> None:
     add_backend(p.add_argument)
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=radiosity_command.radiosity, arguments=a.RadiosityArgs)
+
+
+def add_dataset(sub) -> None:
+    p = sub.add_parser("dataset", help="render a data set for vision code with exact ground "
+                       "truth: BOP (poses, masks, depth) or COCO (instance masks as RLE)",
+                       **_examples("glshade dataset assets/scenes/spheres.toml -o spheres-bop "
+                                   "--views 50 --format bop --units m",
+                                   "glshade dataset scene.toml -o coco --views 20 --format "
+                                   "coco --size 640x480"))
+    p.add_argument("scene", metavar="SCENE", help="a scene file; [[mesh]] label = \"...\" "
+                   "names each object's class (default: its name)")
+    p.add_argument("-o", "--output", required=True, help="the data set's folder (made if "
+                   "missing; views already written there are kept)")
+    p.add_argument("--views", type=v.count, default=1, metavar="N", help="cameras on a "
+                   "sphere around the scene, or the scene file's key-framed path sampled N "
+                   "times (default 1)")
+    p.add_argument("--format", choices=("bop", "coco"), default="bop",
+                   help="bop (the BOP toolkit's layout: poses in mm, 16-bit depth, full and "
+                   "visible masks) or coco (one instances JSON; needs glshade[vision])")
+    p.add_argument("--size", type=v.size, metavar="WxH", help="image size (default: the "
+                   "scene file's [render] size, else 640x480)")
+    p.add_argument("--samples", type=v.samples, help="MSAA samples of the colour images "
+                   "(default 4; masks and depth are exact either way)")
+    p.add_argument("--depth-scale", type=v.positive_float, default=1.0, metavar="S",
+                   help="BOP: a depth pixel times S is millimetres (default 1)")
+    p.add_argument("--units", choices=("m", "mm"), default="m", help="what a scene unit is "
+                   "(BOP files hold mm; default m)")
+    add_backend(p.add_argument)
+    add_quiet(p, "no progress bar or summary")
+    p.set_defaults(func=dataset_command.dataset, arguments=a.DatasetArgs)
 
 
 def add_pathtrace(sub) -> None:

@@ -10,8 +10,9 @@ import numpy as np
 from ..errors import InputError
 from ..atomic import atomic_write
 
-__all__ = ["save_image", "image_format", "IMAGE_FORMATS", "heatmap", "label", "labelled_row",
-           "colour_bar", "opaque", "font", "label_image", "LABEL_HEIGHT", "BACKGROUND"]
+__all__ = ["save_image", "save_gray", "image_format", "IMAGE_FORMATS", "heatmap", "label",
+           "labelled_row", "colour_bar", "opaque", "font", "label_image", "LABEL_HEIGHT",
+           "BACKGROUND"]
 
 LABEL_HEIGHT = 22
 BACKGROUND = (24, 24, 28)
@@ -66,6 +67,28 @@ def save_image(array, path, format: str | None = None) -> None:
         img = img.convert("RGB")
     with atomic_write(path, "wb") as f:
         img.save(f, format=fmt)
+
+
+def save_gray(array, path) -> None:
+    """Write a one-channel ``(H, W)`` image as PNG, 8-bit (uint8: masks) or 16-bit
+    (uint16: depth), atomically; the same array gives the same bytes.
+
+    Parameters
+    ----------
+    array : ndarray
+        ``(H, W)`` uint8 or uint16.
+    path : str or Path
+        Where (a .png).
+    """
+    a = np.asarray(array)
+    if a.ndim != 2 or a.dtype not in (np.uint8, np.uint16):
+        raise InputError(f"a gray image must be (H, W) uint8 or uint16, got {a.shape} "
+                         f"{a.dtype}")
+    from PIL import Image
+
+    img = Image.fromarray(np.ascontiguousarray(a))  # ("L" for uint8, "I;16" for uint16)
+    with atomic_write(Path(path), "wb") as f:
+        img.save(f, format="PNG")
 
 
 # a perceptually ordered ramp (dark blue -> purple -> orange -> pale yellow)

@@ -1,0 +1,224 @@
+"""BOP and COCO data sets read back by readers that share nothing with the writers: BOP
+through a reader written here from the format's document (JSON, 16-bit PNG depth in mm x
+depth_scale, matrices row by row), COCO through pycocotools itself."""
+
+import hashlib
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tests.conftest import glshade as run_glshade
+from tests.conftest import require
+
+cv2 = require("cv2", "OpenCV projects the poses")
+trimesh = require("trimesh", "closest points on the models")
+
+from glshade import Camera, GlshadeError, Scene, dataset  # noqa: E402
+from glshade.geometry import primitives as P  # noqa: E402
+
+SIZE = (64, 48)
+
+
+def _scene():
+    scene = Scene()
+    scene.add(P.cube(), label="box", translation=(-0.7, 0.0, 0.0), scale=0.6)
+    scene.add(P.icosphere(2), label="ball", translation=(0.6, 0.1, 0.2), scale=0.5)
+    scene.add(P.cube(), label="box", translation=(0.1, 0.2, -0.9), scale=0.6)
+    return scene
+
+
+def _png(path):
+    with Image.open(path) as im:
+        return np.asarray(im)
+
+
+def read_bop(root: Path):
+    """The BOP format's document, read literally: scene_camera/scene_gt/scene_gt_info keyed
+    by image id; cam_K and the R's 9 numbers row by row; t's 3 in mm; depth PNG x
+    depth_scale = mm; masks named {im_id:06d}_{gt_id:06d}.png."""
+    folder = root / "train" / "000000"
+    cams = json.loads((folder / "scene_camera.json").read_text())
+    gts = json.loads((folder / "scene_gt.json").read_text())
+    infos = json.loads((folder / "scene_gt_info.json").read_text())
+    views = []
+    for key in sorted(cams, key=int):
+        im = int(key)
+        c = cams[key]
+        view = {"K": np.array(c["cam_K"]).reshape(3, 3), "R": np.array(c["cam_R_w2c"])
+                .reshape(3, 3), "t": np.array(c["cam_t_w2c"]),
+                "depth": _png(folder / "depth" / f"{im:06d}.png").astype(float)
+                * c["depth_scale"], "objects": []}
+        for g, (gt, info) in enumerate(zip(gts[key], infos[key])):
+            view["objects"].append({
+                "R": np.array(gt["cam_R_m2c"]).reshape(3, 3), "t": np.array(gt["cam_t_m2c"]),
+                "obj_id": gt["obj_id"], **info,
+                "mask": _png(folder / "mask" / f"{im:06d}_{g:06d}.png") > 127,
+                "mask_visib": _png(folder / "mask_visib" / f"{im:06d}_{g:06d}.png") > 127})
+        views.append(view)
+    return views
+
+
+def _tree_hash(root: Path) -> str:
+    h = hashlib.sha256()
+    for p in sorted(root.rglob("*")):
+        if p.is_file():
+            h.update(str(p.relative_to(root)).encode() + p.read_bytes())
+    return h.hexdigest()
+
+
+@pytest.fixture(scope="module")
+def bop(tmp_path_factory, gl_context):
+    root = tmp_path_factory.mktemp("bop")
+    dataset.write_bop(_scene(), root, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, context=gl_context)
+    return root
+
+
+def test_every_pose_recomposed_with_K_lands_the_model_in_its_own_mask(bop):
+    """BOP's check: each model file's vertices (mm), moved by cam_R_m2c and cam_t_m2c and
+    projected by cam_K (OpenCV), land inside the object's own full mask."""
+    models = {int(p.stem[4:]): trimesh.load(p, process=False)
+              for p in sorted((bop / "models").glob("obj_*.ply"))}
+    assert sorted(models) == [1, 2]
+    seen = 0
+    for view in read_bop(bop):
+        for obj in view["objects"]:
+            v = np.asarray(models[obj["obj_id"]].vertices)
+            uv, _ = cv2.projectPoints(v, cv2.Rodrigues(obj["R"])[0], obj["t"], view["K"], None)
+            col, row = np.floor(uv.reshape(-1, 2) + 0.5).astype(int).T
+            pad = np.pad(obj["mask"], 1)
+            grown = np.any([pad[1 + dy:1 + dy + SIZE[1], 1 + dx:1 + dx + SIZE[0]]
+                            for dy in (-1, 0, 1) for dx in (-1, 0, 1)], axis=0)
+            inside = (col >= 0) & (col < SIZE[0]) & (row >= 0) & (row < SIZE[1])
+            assert grown[row[inside], col[inside]].all()
+            seen += inside.sum()
+    assert seen > 100
+
+
+def test_depth_back_projected_lies_on_the_models(bop):
+    """Each visible pixel's depth (mm), back-projected through cam_K and moved into its
+    object's model frame by the pose, lies on that model's surface (within the depth's
+    0.5 mm step and a float's rounding)."""
+    models = {int(p.stem[4:]): trimesh.load(p, process=False)
+              for p in sorted((bop / "models").glob("obj_*.ply"))}
+    checked = 0
+    for view in read_bop(bop):
+        rows, cols = np.mgrid[0:SIZE[1], 0:SIZE[0]]
+        for obj in view["objects"]:
+            m = obj["mask_visib"] & (view["depth"] > 0)
+            if not m.any():
+                continue
+            z = view["depth"][m]
+            pix = np.stack([cols[m], rows[m], np.ones(m.sum())], -1)
+            cam = (pix @ np.linalg.inv(view["K"]).T) * z[:, None]
+            local = (cam - obj["t"]) @ obj["R"]  # (R^T (x - t))
+            _, gap, _ = trimesh.proximity.closest_point(models[obj["obj_id"]], local)
+            assert gap.max() < 0.5, gap.max()
+            checked += m.sum()
+    assert checked > 300
+
+
+def test_the_info_agrees_with_the_masks(bop):
+    for view in read_bop(bop):
+        for obj in view["objects"]:
+            assert (obj["mask_visib"] <= obj["mask"]).all()
+            assert obj["px_count_all"] == obj["mask"].sum()
+            assert obj["px_count_visib"] == obj["mask_visib"].sum()
+            assert obj["visib_fract"] == pytest.approx(obj["px_count_visib"] /
+                                                       obj["px_count_all"])
+            for box, mask in ((obj["bbox_obj"], obj["mask"]),
+                              (obj["bbox_visib"], obj["mask_visib"])):
+                if not mask.any():
+                    assert box == [-1, -1, -1, -1]
+                    continue
+                rows, cols = np.nonzero(mask)
+                assert box == [cols.min(), rows.min(), cols.max() - cols.min() + 1,
+                               rows.max() - rows.min() + 1]
+
+
+def test_a_rerun_writes_the_same_bytes_and_resumes(bop, tmp_path, gl_context):
+    before = _tree_hash(bop)
+    dataset.write_bop(_scene(), bop, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, context=gl_context)
+    assert _tree_hash(bop) == before
+    # a run cut short: view 2's record and files gone -- only it is drawn again
+    folder = bop / "train" / "000000"
+    for p in [folder / ".views" / "000002.json", *folder.glob("*/000002*.png")]:
+        p.unlink()
+    kept = (folder / "rgb" / "000001.png").stat().st_mtime_ns
+    dataset.write_bop(_scene(), bop, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, context=gl_context)
+    assert _tree_hash(bop) == before
+    assert (folder / "rgb" / "000001.png").stat().st_mtime_ns == kept
+    fresh = tmp_path / "again"
+    dataset.write_bop(_scene(), fresh, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, context=gl_context)
+    assert _tree_hash(fresh) == before
+
+
+def test_coco_masks_decode_to_the_visible_masks(tmp_path, make_renderer, gl_context):
+    coco_module = require("pycocotools.coco", "COCO's own reader")
+    scene = _scene()
+    cameras = dataset.sphere_cameras(scene.bounds, 3, SIZE)
+    path = dataset.write_coco(scene, tmp_path, cameras=cameras, size=SIZE, progress=False,
+                              context=gl_context)
+    coco = coco_module.COCO(str(path))
+    assert {c["name"]: c["id"] for c in coco.loadCats(coco.getCatIds())} == {"box": 1,
+                                                                              "ball": 2}
+    renderer = make_renderer(*SIZE)
+    for image_id, camera in zip(sorted(coco.getImgIds()), cameras):
+        truth = {a.instance_id: a for a in renderer.annotate(scene, camera)}
+        anns = coco.loadAnns(coco.getAnnIds(imgIds=[image_id]))
+        assert {a["instance_id"] for a in anns} == {k for k, a in truth.items()
+                                                    if a.px_count_visib}
+        for ann in anns:
+            mask = coco.annToMask(ann).astype(bool)
+            assert np.array_equal(mask, truth[ann["instance_id"]].mask_visib)
+            assert ann["area"] == mask.sum() and ann["iscrowd"] == 0
+            assert ann["category_id"] == truth[ann["instance_id"]].obj_id
+        assert (tmp_path / coco.loadImgs(image_id)[0]["file_name"]).is_file()
+
+
+def test_the_command_writes_a_set_and_refuses_bad_input(tmp_path):
+    scene = tmp_path / "s.toml"
+    scene.write_text('[render]\nsize = [48, 32]\n[[mesh]]\nsource = "primitive:cube"\n'
+                     'label = "box"\n')
+    out = tmp_path / "set"
+    r = run_glshade("dataset", str(scene), "-o", str(out), "--views", "2", "-q")
+    assert r.returncode == 0, r.stderr
+    assert len(read_bop(out)) == 2
+    r = run_glshade("dataset", str(scene), "-o", str(tmp_path / "x"), "--views", "0")
+    assert r.returncode == 2 and "--views" in r.stderr and not (tmp_path / "x").exists()
+    scene.write_text(scene.read_text().replace('label = "box"', "label = 3"))
+    r = run_glshade("dataset", str(scene), "-o", str(tmp_path / "y"))
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1
+    assert "'label' must be a non-empty string, got 3" in r.stderr
+
+
+def test_bad_arguments_are_refused_before_anything_is_written(tmp_path):
+    with pytest.raises(GlshadeError, match="units must be 'mm' or 'm'"):
+        dataset.write_bop(_scene(), tmp_path / "a", views=1, units="cm")
+    with pytest.raises(GlshadeError, match="depth_scale must be a number > 0"):
+        dataset.write_bop(_scene(), tmp_path / "a", views=1, depth_scale=0)
+    with pytest.raises(GlshadeError, match="views must be a whole number >= 1"):
+        dataset.write_bop(_scene(), tmp_path / "a", views=0)
+    scene = _scene()
+    scene.models[2].transform[:3, :3] *= 2  # (a box twice the size of the other)
+    with pytest.raises(GlshadeError, match=r"instances 1 and 3 of 'box' are scaled "
+                                           r"differently \(\(0\.6, 0\.6, 0\.6\) and "
+                                           r"\(1\.2, 1\.2, 1\.2\)"):
+        dataset.write_bop(scene, tmp_path / "a", views=1)
+    assert not (tmp_path / "a").exists()
+
+
+def test_a_camera_list_is_the_views(tmp_path, gl_context):
+    cameras = [Camera.look_at((0, 0, 4), (0, 0, 0)), Camera.look_at((4, 0, 0), (0, 0, 0))]
+    where = dataset.write_bop(_scene(), tmp_path, cameras=cameras, size=SIZE,
+                              progress=False, context=gl_context)
+    cams = json.loads((where / "scene_camera.json").read_text())
+    assert list(cams) == ["0", "1"]
+    R = np.array(cams["1"]["cam_R_w2c"]).reshape(3, 3)
+    assert np.allclose(R @ [1, 0, 0], [0, 0, -1])  # (the camera on +x looks down -x: its z)

@@ -259,7 +259,7 @@ def test_thousand_frames_do_not_grow_memory(make_renderer):
     s = Scene()
     s.add(P.icosphere(2))
     cams = [FRONT.orbit([0, np.sin(a / 2), 0, np.cos(a / 2)]) for a in np.linspace(0, 6, 50)]
-    for _ in r.render_many(s, cams):
+    for _ in r.render_many(s, cams):  # (Frames, colour only)
         pass
     before = rss_mb()
     children = len(r.context._children)

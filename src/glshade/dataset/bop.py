@@ -160,7 +160,8 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
     _models(scene, out / "models", mm)
     job = DataSetJob(scene, cameras, size, samples, options)
 
-    def write_view(k: int, frame, notes) -> dict:
+    def write_view(k: int, frame, annotate) -> tuple[dict, list]:
+        notes = annotate()
         K, R, t = cameras[k].to_opencv(size)
         depth_mm = np.where(np.isfinite(frame.depth), frame.depth * mm, 0.0)
         steps = np.round(depth_mm / depth_scale)
@@ -169,12 +170,13 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
                               f"{steps.max():.0f} steps of depth_scale {depth_scale:g}, past "
                               f"16 bits' 65,535: raise depth_scale to at least "
                               f"{depth_mm.max() / 65535:.3g}")
-        save_image(frame.color, where / "rgb" / f"{k:06d}.png")
-        save_gray(steps.astype(np.uint16), where / "depth" / f"{k:06d}.png")
+        files: list = [(save_image, frame.color, where / "rgb" / f"{k:06d}.png"),
+                       (save_gray, steps.astype(np.uint16), where / "depth" / f"{k:06d}.png")]
         gt, info = [], []
         for g, note in enumerate(notes):
             for name, mask in (("mask", note.mask), ("mask_visib", note.mask_visib)):
-                save_gray(mask.astype(np.uint8) * 255, where / name / f"{k:06d}_{g:06d}.png")
+                files.append((save_gray, mask.astype(np.uint8) * 255,
+                              where / name / f"{k:06d}_{g:06d}.png"))
             gt.append({"cam_R_m2c": note.cam_R_m2c.ravel().tolist(),
                        "cam_t_m2c": (note.cam_t_m2c * mm).tolist(), "obj_id": note.obj_id})
             info.append({"bbox_obj": list(note.bbox_obj), "bbox_visib": list(note.bbox_visib),
@@ -184,7 +186,7 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
                          "visib_fract": note.visib_fract})
         camera = {"cam_K": K.ravel().tolist(), "cam_R_w2c": R.ravel().tolist(),
                   "cam_t_w2c": (t * mm).tolist(), "depth_scale": float(depth_scale)}
-        return {"camera": camera, "gt": gt, "info": info}
+        return {"camera": camera, "gt": gt, "info": info}, files
 
     records = run_views(job, where / ".views", write_view, progress, context)
     write_json(where / "scene_camera.json", {str(k): r["camera"] for k, r in enumerate(records)})

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..errors import EnvironmentFailure
 from ..io.images import save_image
+from ..render.annotate import bbox
 from .views import DataSetJob, load_scene_arg, run_views, write_json
 
 __all__ = ["write_coco"]
@@ -67,21 +68,24 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     (out / "images").mkdir(parents=True, exist_ok=True)
     job = DataSetJob(scene, cameras, size, samples, options)
 
-    def write_view(k: int, frame, notes) -> dict:
+    labels = scene.labels
+    classes = {m.instance_id: labels.get(m.label, 0)
+               for m in [*scene.models, *scene.patch_models, *scene.solids]}
+
+    def write_view(k: int, frame, annotate) -> tuple[dict, list]:
+        # (COCO annotates what is seen: the view's own instance mask, no draw alone)
         name = f"images/{k + 1:06d}.png"
-        save_image(frame.color, out / name)
         objects = []
-        for note in notes:
-            if not note.px_count_visib:
-                continue  # (hidden: COCO annotates what is seen)
-            rle = mask_api.encode(np.asfortranarray(note.mask_visib.astype(np.uint8)))
-            objects.append({"category_id": note.obj_id, "instance_id": note.instance_id,
+        for instance in np.unique(frame.instance[frame.instance > 0]).tolist():
+            seen = frame.instance == instance
+            rle = mask_api.encode(np.asfortranarray(seen.astype(np.uint8)))
+            objects.append({"category_id": classes[instance], "instance_id": instance,
                             "segmentation": {"size": [int(v) for v in rle["size"]],
                                              "counts": rle["counts"].decode("ascii")},
-                            "area": note.px_count_visib,
-                            "bbox": [float(v) for v in note.bbox_visib], "iscrowd": 0})
-        return {"image": {"file_name": name, "width": size[0], "height": size[1]},
-                "objects": objects}
+                            "area": int(seen.sum()),
+                            "bbox": [float(v) for v in bbox(seen)], "iscrowd": 0})
+        return ({"image": {"file_name": name, "width": size[0], "height": size[1]},
+                 "objects": objects}, [(save_image, frame.color, out / name)])
 
     records = run_views(job, out / ".views", write_view, progress, context)
     images: list[dict] = []

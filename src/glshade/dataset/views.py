@@ -100,9 +100,12 @@ def write_json(path: Path, content) -> None:
 
 def run_views(job: DataSetJob, records_dir: Path, write_view, progress=None,
               context=None) -> list[dict]:
-    """Draw and annotate each view not yet recorded in ``records_dir``, hand it to
-    ``write_view(k, frame, annotations) -> dict`` (the view's files written, its record
-    returned), and save the record last; returns every view's record, in order.
+    """Draw each view not yet recorded in ``records_dir`` and hand it to ``write_view(k,
+    frame, notes) -> (record, files)``: ``notes()`` its objects' annotations (drawn only if
+    asked), ``files`` the ``(function, *args)`` that write its files. The files are written
+    on a thread of their own while the next view is drawn (PNG's zlib lets go of the
+    interpreter), then the record, last: a view with a record is whole. Returns every
+    view's record, in order.
 
     Parameters
     ----------
@@ -111,12 +114,14 @@ def run_views(job: DataSetJob, records_dir: Path, write_view, progress=None,
     records_dir : Path
         Where each view's record is kept (``{k:06d}.json``): a view with one is done.
     write_view : callable
-        ``(k, frame, annotations) -> dict``: writes view k's files.
+        ``(k, frame, notes) -> (record, files)``.
     progress : bool, tqdm-like or None
         The progress bar (None: one on a terminal).
     context : RenderContext or None
         The context to draw in (None: the renderer's own).
     """
+    from concurrent.futures import ThreadPoolExecutor
+
     from ..interrupt import check
     from ..parallel.progress import as_progress
     from ..render.renderer import Renderer
@@ -124,22 +129,37 @@ def run_views(job: DataSetJob, records_dir: Path, write_view, progress=None,
     records_dir.mkdir(parents=True, exist_ok=True)
     todo = [k for k in range(len(job.cameras)) if not (records_dir / f"{k:06d}.json").exists()]
     bar, owned = as_progress(progress, len(job.cameras), "views")
+
+    def finish(k: int, record: dict, files: list) -> None:
+        for fn, *args in files:
+            fn(*args)
+        write_json(records_dir / f"{k:06d}.json", record)
+
+    pending: list = []
     try:
         if bar is not None and len(todo) < len(job.cameras):
             bar.update(len(job.cameras) - len(todo), "already written")
         if todo:
-            with Renderer(*job.size, samples=job.samples, context=context) as renderer:
+            with Renderer(*job.size, samples=job.samples, context=context) as renderer, \
+                    ThreadPoolExecutor(max_workers=1) as writer:
                 for k in todo:
                     check()
                     camera = job.cameras[k]
                     frame = renderer.render_frame(
                         job.scene, camera, job.options,
                         outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
-                    notes = renderer.annotate(job.scene, camera, job.options)
-                    record = write_view(k, frame, notes)
-                    write_json(records_dir / f"{k:06d}.json", record)
+
+                    def notes(camera=camera, frame=frame):
+                        return renderer.annotate(job.scene, camera, job.options, view=frame)
+
+                    record, files = write_view(k, frame, notes)
+                    while pending and pending[0].done():  # (a failed write stops the run)
+                        pending.pop(0).result()
+                    pending.append(writer.submit(finish, k, record, files))
                     if bar is not None:
                         bar.update(1)
+                for future in pending:
+                    future.result()
     finally:
         if owned and bar is not None:
             bar.close()

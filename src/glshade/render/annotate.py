@@ -103,10 +103,67 @@ def model_pose(model, camera) -> tuple[np.ndarray, np.ndarray]:
     return r_w2c @ rotation, r_w2c @ m[:3, 3] + t_w2c
 
 
-def annotate(renderer, scene, camera, options=None) -> list[Annotation]:
+def _screen_boxes(models: dict, camera, size) -> dict:
+    """Each instance's screen box ``(x0, y0, x1, y1)`` in pixels from its world box's
+    corners, a pixel wider each way; None (the whole picture) where a corner is behind the
+    eye."""
+    from ..geometry.transforms import box_corners
+
+    w, h = size
+    view_proj = camera.projection_matrix(w / h) @ camera.view_matrix()
+    out: dict[int, tuple | None] = {}
+    for instance, parts in models.items():
+        corners = []
+        for m in parts:
+            if hasattr(m, "corners"):
+                corners.append(m.corners)
+            else:  # (a solid: its tree's world box)
+                corners.append(box_corners(np.asarray(m.solid.bounds, np.float64)))
+        c = np.concatenate(corners)
+        clip = np.c_[c, np.ones(len(c))] @ view_proj.T
+        if (clip[:, 3] <= 1e-12).any():
+            out[instance] = None
+            continue
+        ndc = clip[:, :2] / clip[:, 3:]
+        x = (ndc[:, 0] + 1) / 2 * w
+        y = (1 - ndc[:, 1]) / 2 * h
+        out[instance] = (x.min() - 1, y.min() - 1, x.max() + 1, y.max() + 1)
+    return out
+
+
+def _overlap(a, b) -> bool:
+    if a is None or b is None:
+        return True
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def _batches(boxes: dict) -> tuple[list, list[list]]:
+    """``(alone, batches)``: the instances whose box meets no other's (nothing can hide any
+    of them: their full mask is their visible one), and the rest in batches whose boxes
+    meet none of their batch's (their silhouettes cannot touch: one draw for the batch)."""
+    alone: list[int] = []
+    batches: list[list[int]] = []
+    keys = sorted(boxes)
+    for k in keys:
+        if not any(_overlap(boxes[k], boxes[j]) for j in keys if j != k):
+            alone.append(k)
+            continue
+        for batch in batches:
+            if not any(_overlap(boxes[k], boxes[j]) for j in batch):
+                batch.append(k)
+                break
+        else:
+            batches.append([k])
+    return alone, batches
+
+
+def annotate(renderer, scene, camera, options=None, view=None) -> list[Annotation]:
     """One :class:`Annotation` for each object of ``scene`` that ``camera`` sees any of
-    when drawn alone, in instance order: the view's instance mask (one draw) and each
-    object's full mask (a draw of it alone, the others hidden for it and shown again).
+    when drawn alone, in instance order. The view's instance mask is one draw; an object's
+    full mask is its visible one where no other object's screen box meets its own (nothing
+    can hide it), else drawn with only the objects of its batch shown -- objects whose boxes
+    do not meet, so their silhouettes cannot touch (:func:`_batches`; the others hidden for
+    it and shown again).
 
     Parameters
     ----------
@@ -118,35 +175,46 @@ def annotate(renderer, scene, camera, options=None) -> list[Annotation]:
         The view.
     options : DrawOptions, ShadingMode, str or None
         How the scene is drawn (what matters here: culling, wireframe).
+    view : Frame or None
+        The view's frame with instance ids and depth, if drawn already.
     """
-    view = renderer.render_frame(scene, camera, options, outputs=Outputs.INSTANCE |
-                                 Outputs.DEPTH)
+    if view is None or view.instance is None or view.depth is None:
+        view = renderer.render_frame(scene, camera, options,
+                                     outputs=Outputs.INSTANCE | Outputs.DEPTH)
     assert view.instance is not None and view.depth is not None
     labels = scene.labels
+    every = [*scene.models, *scene.patch_models, *scene.solids]
     models: dict[int, list] = {}
-    for model in [*scene.models, *scene.patch_models, *scene.solids]:
+    for model in every:
         if model.visible and model.instance_id:
             models.setdefault(model.instance_id, []).append(model)
-    every = [*scene.models, *scene.patch_models, *scene.solids]
+    camera = camera.with_planes(scene.bounds)
+    alone, batches = _batches(_screen_boxes(models, camera, (renderer.width,
+                                                              renderer.height)))
+    full: dict[int, np.ndarray] = {k: view.instance == k for k in alone}
     shown = [m.visible for m in every]
-    out = []
+    instances, _ = scene.id_tables()
     try:
-        for instance, parts in sorted(models.items()):
+        for batch in batches:
+            members = {id(m) for k in batch for m in models[k]}
             for m in every:
-                m.visible = any(m is p for p in parts)
-            alone = renderer.render_frame(scene, camera, options, outputs=Outputs.INSTANCE)
-            full = alone.instance == instance
-            if not full.any():
-                continue
-            visib = view.instance == instance
-            n_all, n_visib = int(full.sum()), int(visib.sum())
-            rotation, translation = model_pose(parts[0], camera)
-            label = parts[0].label
-            out.append(Annotation(
-                instance, label, labels.get(label, 0), rotation, translation, full, visib,
-                n_all, int((full & np.isfinite(view.depth)).sum()), n_visib,
-                n_visib / n_all, bbox(full), bbox(visib)))
+                m.visible = id(m) in members
+            drawn = instances[renderer.render_ids(scene, camera, options) + 1]
+            full.update({k: drawn == k for k in batch})
     finally:
         for m, was in zip(every, shown):
             m.visible = was
+    out = []
+    for instance, parts in sorted(models.items()):
+        mask = full[instance]
+        if not mask.any():
+            continue
+        visib = view.instance == instance
+        n_all, n_visib = int(mask.sum()), int(visib.sum())
+        rotation, translation = model_pose(parts[0], camera)
+        label = parts[0].label
+        out.append(Annotation(
+            instance, label, labels.get(label, 0), rotation, translation, mask, visib,
+            n_all, int((mask & np.isfinite(view.depth)).sum()), n_visib, n_visib / n_all,
+            bbox(mask), bbox(visib)))
     return out

@@ -38,6 +38,7 @@ def main() -> None:
     glshade.save_image(sweep_plot(rows, ["flat", "gouraud", "phong"]), DOCS / "sweep.png")
     print(result.table())
     cornell()
+    axes()
     csg()
 
 
@@ -60,6 +61,64 @@ def csg() -> None:
             tiles.append(r.render(s, camera, "flat"))
     glshade.save_image(np.hstack(tiles), DOCS / "csg-octree.png")
     print(DOCS / "csg-octree.png")
+
+
+def axes() -> None:
+    """The vision guide's picture: OpenCV's camera axes beside glshade's (OpenGL's), and
+    OpenCV's pixel convention (integer coordinates at pixel centres)."""
+    from PIL import Image, ImageDraw
+
+    from glshade.io.images import font
+
+    w, h = 720, 260
+    img = Image.new("RGB", (w, h), (30, 30, 34))
+    d = ImageDraw.Draw(img)
+    big, small = font(16), font(13)
+    red, green, blue, grey = (235, 90, 80), (110, 200, 110), (110, 150, 245), (200, 200, 200)
+
+    def arrow(x0, y0, x1, y1, colour, name):
+        d.line([(x0, y0), (x1, y1)], fill=colour, width=4)
+        v = np.array([x1 - x0, y1 - y0], float)
+        v /= np.linalg.norm(v)
+        n = np.array([-v[1], v[0]])
+        tip = np.array([x1, y1], float)
+        d.polygon([tuple(tip + 10 * v), tuple(tip + 7 * n), tuple(tip - 7 * n)], fill=colour)
+        d.text((x1 + 16 * v[0] + 12 * abs(v[1]) - 4, y1 + 12 * v[1] - 8), name, fill=colour,
+               font=big)
+
+    def panel(cx, title, y_down, into):
+        d.text((cx - 110, 14), title, fill=grey, font=big)
+        oy = 118
+        arrow(cx, oy, cx + 90, oy, red, "x")
+        arrow(cx, oy, cx, oy + (66 if y_down else -66), green, "y")
+        d.ellipse([cx - 13, oy - 13, cx + 13, oy + 13], outline=blue, width=3)
+        if into:  # (z into the picture: a cross)
+            d.line([cx - 8, oy - 8, cx + 8, oy + 8], fill=blue, width=3)
+            d.line([cx - 8, oy + 8, cx + 8, oy - 8], fill=blue, width=3)
+        else:  # (z out of the picture, towards you: a dot)
+            d.ellipse([cx - 4, oy - 4, cx + 4, oy + 4], fill=blue)
+        d.text((cx - 110, 222), "z " + ("forward: the camera looks along +z" if into else
+                                        "back: the camera looks down -z"),
+               fill=blue, font=small)
+
+    panel(130, "OpenCV (K, R, t): x_cam = R X + t", True, True)
+    panel(380, "glshade Camera (OpenGL's axes)", False, False)
+    # the pixel convention: a 3x2 grid, centres at integers
+    gx, gy, s = 560, 60, 44
+    for i in range(3):
+        for j in range(2):
+            d.rectangle([gx + i * s, gy + j * s, gx + (i + 1) * s, gy + (j + 1) * s],
+                        outline=grey)
+            c = (gx + i * s + s / 2, gy + j * s + s / 2)
+            d.ellipse([c[0] - 3, c[1] - 3, c[0] + 3, c[1] + 3], fill=red)
+    d.text((gx + s / 2 - 14, gy + s / 2 + 5), "(0, 0)", fill=red, font=small)
+    d.text((gx - 40, gy - 22), "(-0.5, -0.5)", fill=grey, font=small)
+    d.text((gx - 20, gy + 2 * s + 12), "pixel centres at integer (u, v):", fill=grey,
+           font=small)
+    d.text((gx - 20, gy + 2 * s + 30), "column floor(u + 0.5),", fill=grey, font=small)
+    d.text((gx - 20, gy + 2 * s + 48), "row floor(v + 0.5)", fill=grey, font=small)
+    img.save(DOCS / "vision-axes.png")
+    print(DOCS / "vision-axes.png")
 
 
 def cornell() -> None:

@@ -220,6 +220,28 @@ def test_any_draw_order_gives_the_same_bytes(make_renderer):
         assert np.array_equal(r.render(scene_of(tri, col, a, order), CAMERA, "phong"), first)
 
 
+@pytest.mark.parametrize("samples", [0, 4])
+@pytest.mark.parametrize("opacity", [0.1, 0.2, 0.35])
+def test_blending_in_drawing_order_rounds_once(make_renderer, opacity, samples):
+    """Identical layers blended in drawing order ("blend": the order cannot matter here)
+    give 1 - (1 - a)^n within half a level: the colour is blended in float and rounded
+    once (each layer rounded to 8 bits gave 253 for 32 layers of 0.2, not 254.8)."""
+    r = make_renderer(32, 32, samples)
+    for n in (1, 4, 12, 32):
+        s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
+        for k in range(n):
+            s.add(g.geometry.primitives.plane(1.0),
+                  g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=opacity),
+                  translation=(0, 0, -0.01 * k))
+        s.add_light(g.PointLight(position=(0, 0, 5), intensity=0.0))
+        camera = g.Camera.look_at((0, 0, 3), (0, 0, 0))
+        want = 255 * (1 - (1 - opacity) ** n)
+        img = r.render(s, camera, "flat", transparency="blend")
+        assert abs(img[16, 16, 0] - want) <= 0.5 + 1e-9, (n, img[16, 16], want)
+        frame = r.render_frame(s, camera, "flat", transparency="blend")
+        assert np.array_equal(frame.color, img)
+
+
 @pytest.mark.parametrize("opacity", [0.1, 0.35, 0.8])
 def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, opacity):
     """n coplanar-free parallel squares of opacity a, white over black: the centre's value

@@ -25,7 +25,7 @@ from ..errors import (
 )
 from ..geometry.transforms import MAX_COORDINATE
 from ..interrupt import held
-from ..modes import Backend, Outputs, ShadingMode, Shadows
+from ..modes import Backend, Outputs, ShadingMode, Shadows, Transparency
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from ..scene.camera import MAX_PLANE_RATIO
@@ -165,6 +165,20 @@ class Frame:
         if self.face_id is not None:
             facts.append(f"{len(np.unique(self.face_id[self.face_id >= 0])):,} polygons seen")
         return facts_html(repr(self), facts, buffers_image(self))
+
+
+def _blends(options: DrawOptions, scene: Scene) -> bool:
+    """Whether the draw blends transparent surfaces in drawing order (``transparency=
+    "blend"``): then its colour is drawn into a float target and rounded once at the end --
+    each layer rounded to 8 bits would lose up to half a level a layer (32 layers of
+    opacity 0.2 gave 253 where 1 - 0.8^32 is 254.8)."""
+    return options.transparency is Transparency.BLEND and options.mode in TRANSPARENT_MODES \
+        and any(m.visible and m.material.transparent for m in scene.models)
+
+
+def _to_u8(color: np.ndarray) -> np.ndarray:
+    """Float colour as an 8-bit target stores it: clipped to [0, 1], rounded to 1/255."""
+    return (np.clip(color, 0.0, 1.0) * 255 + 0.5).astype(np.uint8)
 
 
 def _id_pass(options: DrawOptions, scene: Scene) -> DrawOptions:
@@ -441,9 +455,10 @@ class Renderer:
         if options.outputs is not Outputs.COLOR:
             options = options.replace(outputs=Outputs.COLOR)
         with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
-            target = self._target("f1")
+            blends = _blends(options, scene)
+            target = self._target("f4" if blends else "f1")
             self._counted_draw(target, scene, camera, options)
-            return target.read_color()
+            return _to_u8(target.read_color()) if blends else target.read_color()
 
     def render_frame(self, scene: Scene, camera: Camera, options=None, *,
                      outputs: Outputs = Outputs.ALL, color_dtype: str = "u1",
@@ -475,7 +490,8 @@ class Renderer:
         if color_dtype not in ("u1", "f4"):
             raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
-        dtype = "f1" if color_dtype == "u1" else "f4"
+        blends = color_dtype == "u1" and _blends(options, scene)
+        dtype = "f1" if color_dtype == "u1" and not blends else "f4"
         want = options.outputs
         ids = want & (Outputs.INSTANCE | Outputs.SEMANTIC)
         if ids:  # (instance and class ids are looked up from the polygon ids)
@@ -492,6 +508,8 @@ class Renderer:
             else:
                 state = self._counted_draw(target, scene, camera, options, True)
                 color = target.read_color()
+            if blends:
+                color = _to_u8(color)
             face_id = target.read_face_id() if want & Outputs.FACE_ID or ids else None
             instance = semantic = None
             if ids:

@@ -43,11 +43,13 @@ QUICK_RENDER :=
 QUICK_TRACE :=
 QUICK_HIDDEN :=
 QUICK_INTERRUPT := --load
+QUICK_DATASET := --frames 50
 else
 QUICK_RENDER := --sizes 512 --meshes 1k,100k --rounds 2
 QUICK_TRACE := --scenes cornell --rounds 1 --reference-spp 1024 --ld-spp 256
 QUICK_HIDDEN := --budget 5
 QUICK_INTERRUPT := --tries 10
+QUICK_DATASET := --frames 10
 endif
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
@@ -65,6 +67,7 @@ bench: setup
 	$(PY) benchmarks/transparency_bench.py
 	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
+	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)
 
 # The documentation site: the README, the chapter notebooks (executed) and the API reference
 # from the docstrings, warnings as errors; open docs/_build/html/index.html

@@ -222,3 +222,16 @@ def test_a_camera_list_is_the_views(tmp_path, gl_context):
     assert list(cams) == ["0", "1"]
     R = np.array(cams["1"]["cam_R_w2c"]).reshape(3, 3)
     assert np.allclose(R @ [1, 0, 0], [0, 0, -1])  # (the camera on +x looks down -x: its z)
+
+
+@pytest.mark.parametrize("where", ["processes", "cluster"])
+def test_workers_write_the_same_bytes(bop, tmp_path, where):
+    """The views shared among two local worker processes, or a Dask LocalCluster's two
+    workers (a real scheduler, stopped after): the same files as one process wrote."""
+    if where == "cluster":
+        require("distributed", "the Dask cluster")
+    out = tmp_path / where
+    dataset.write_bop(_scene(), out, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, jobs=2,
+                      scheduler="local" if where == "cluster" else None)
+    assert _tree_hash(out) == _tree_hash(bop)

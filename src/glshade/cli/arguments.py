@@ -175,7 +175,7 @@ class ViewArgs(RenderArgs):
 
 
 @dataclass(frozen=True, kw_only=True)
-class DatasetArgs:
+class DatasetArgs(ExecutorArgs):
     scene: str
     output: str
     views: int = 1

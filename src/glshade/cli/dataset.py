@@ -22,7 +22,8 @@ def dataset(args: DatasetArgs) -> int:
     common: dict[str, Any] = {
         "views": args.views, "size": args.size,
         "samples": 4 if args.samples is None else args.samples,
-        "progress": False if args.quiet else None, "context": context}
+        "progress": False if args.quiet else None, "context": context,
+        "jobs": args.jobs or 1, "scheduler": args.scheduler}
     try:
         if args.format == "bop":
             where = ds.write_bop(args.scene, args.output, depth_scale=args.depth_scale,

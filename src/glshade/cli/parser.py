@@ -408,6 +408,7 @@ def add_dataset(sub) -> None:
     p.add_argument("--units", choices=("m", "mm"), default="m", help="what a scene unit is "
                    "(BOP files hold mm; default m)")
     add_backend(p.add_argument)
+    add_executor_options(p, "1: this process", "the views")
     add_quiet(p, "no progress bar or summary")
     p.set_defaults(func=dataset_command.dataset, arguments=a.DatasetArgs)
 

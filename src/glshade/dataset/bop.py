@@ -20,6 +20,7 @@ baked in (a pose is a rotation and a translation).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +29,7 @@ from ..errors import OptionError, plain
 from ..io.images import save_gray, save_image
 from .views import DataSetJob, load_scene_arg, run_views, write_json
 
-__all__ = ["write_bop", "UNITS"]
+__all__ = ["write_bop", "BopViews", "UNITS"]
 
 #: millimetres a scene unit is, by the name ``units`` takes
 UNITS = {"mm": 1.0, "m": 1000.0}
@@ -108,9 +109,51 @@ def _models(scene, folder: Path, mm: float) -> None:
                   folder / f"obj_{obj_id:06d}.ply")
 
 
+@dataclass(frozen=True)
+class BopViews:
+    """What a BOP view writes (picklable: it travels to workers): its rgb, 16-bit depth and
+    masks, and its record (camera, poses, info)."""
+
+    where: Path
+    size: tuple[int, int]
+    mm: float
+    depth_scale: float
+    cameras: list
+
+    def __call__(self, k: int, frame, annotate) -> tuple[dict, list]:
+        where, mm, depth_scale, size = self.where, self.mm, self.depth_scale, self.size
+        notes = annotate()
+        K, R, t = self.cameras[k].to_opencv(size)
+        depth_mm = np.where(np.isfinite(frame.depth), frame.depth * mm, 0.0)
+        steps = np.round(depth_mm / depth_scale)
+        if steps.max(initial=0) > 65535:
+            raise OptionError(f"view {k}: a depth of {depth_mm.max():.6g} mm is "
+                              f"{steps.max():.0f} steps of depth_scale {depth_scale:g}, past "
+                              f"16 bits' 65,535: raise depth_scale to at least "
+                              f"{depth_mm.max() / 65535:.3g}")
+        files: list = [(save_image, frame.color, where / "rgb" / f"{k:06d}.png"),
+                       (save_gray, steps.astype(np.uint16), where / "depth" / f"{k:06d}.png")]
+        gt, info = [], []
+        for g, note in enumerate(notes):
+            for name, mask in (("mask", note.mask), ("mask_visib", note.mask_visib)):
+                files.append((save_gray, mask.astype(np.uint8) * 255,
+                              where / name / f"{k:06d}_{g:06d}.png"))
+            gt.append({"cam_R_m2c": note.cam_R_m2c.ravel().tolist(),
+                       "cam_t_m2c": (note.cam_t_m2c * mm).tolist(), "obj_id": note.obj_id})
+            info.append({"bbox_obj": list(note.bbox_obj), "bbox_visib": list(note.bbox_visib),
+                         "px_count_all": note.px_count_all,
+                         "px_count_valid": note.px_count_valid,
+                         "px_count_visib": note.px_count_visib,
+                         "visib_fract": note.visib_fract})
+        camera = {"cam_K": K.ravel().tolist(), "cam_R_w2c": R.ravel().tolist(),
+                  "cam_t_w2c": (t * mm).tolist(), "depth_scale": float(depth_scale)}
+        return {"camera": camera, "gt": gt, "info": info}, files
+
+
 def write_bop(scene, out_dir, *, views: int | None = None, size=None,
               depth_scale: float = 1.0, units: str = "m", cameras=None, samples: int = 4,
-              options=None, progress=None, context=None) -> Path:
+              options=None, progress=None, context=None, jobs: int = 1,
+              scheduler: str | None = None) -> Path:
     """Render ``scene`` into a BOP data set in ``out_dir`` (see the module's layout):
     resumable (a view already written is skipped), atomic (a file is whole or absent), the
     same bytes on a rerun.
@@ -138,7 +181,12 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
     progress : bool, tqdm-like or None
         The progress bar (None: one on a terminal).
     context : RenderContext or None
-        A context to draw in.
+        A context to draw in (this process's).
+    jobs : int
+        Local worker processes sharing the views (1: this process).
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"`` (the ``distributed`` extra): the views
+        shared among its workers, which write into ``out_dir`` (a folder they all see).
 
     Returns
     -------
@@ -160,35 +208,9 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
     _models(scene, out / "models", mm)
     job = DataSetJob(scene, cameras, size, samples, options)
 
-    def write_view(k: int, frame, annotate) -> tuple[dict, list]:
-        notes = annotate()
-        K, R, t = cameras[k].to_opencv(size)
-        depth_mm = np.where(np.isfinite(frame.depth), frame.depth * mm, 0.0)
-        steps = np.round(depth_mm / depth_scale)
-        if steps.max(initial=0) > 65535:
-            raise OptionError(f"view {k}: a depth of {depth_mm.max():.6g} mm is "
-                              f"{steps.max():.0f} steps of depth_scale {depth_scale:g}, past "
-                              f"16 bits' 65,535: raise depth_scale to at least "
-                              f"{depth_mm.max() / 65535:.3g}")
-        files: list = [(save_image, frame.color, where / "rgb" / f"{k:06d}.png"),
-                       (save_gray, steps.astype(np.uint16), where / "depth" / f"{k:06d}.png")]
-        gt, info = [], []
-        for g, note in enumerate(notes):
-            for name, mask in (("mask", note.mask), ("mask_visib", note.mask_visib)):
-                files.append((save_gray, mask.astype(np.uint8) * 255,
-                              where / name / f"{k:06d}_{g:06d}.png"))
-            gt.append({"cam_R_m2c": note.cam_R_m2c.ravel().tolist(),
-                       "cam_t_m2c": (note.cam_t_m2c * mm).tolist(), "obj_id": note.obj_id})
-            info.append({"bbox_obj": list(note.bbox_obj), "bbox_visib": list(note.bbox_visib),
-                         "px_count_all": note.px_count_all,
-                         "px_count_valid": note.px_count_valid,
-                         "px_count_visib": note.px_count_visib,
-                         "visib_fract": note.visib_fract})
-        camera = {"cam_K": K.ravel().tolist(), "cam_R_w2c": R.ravel().tolist(),
-                  "cam_t_w2c": (t * mm).tolist(), "depth_scale": float(depth_scale)}
-        return {"camera": camera, "gt": gt, "info": info}, files
-
-    records = run_views(job, where / ".views", write_view, progress, context)
+    writer = BopViews(where, size, mm, float(depth_scale), cameras)
+    records = run_views(job, where / ".views", writer, progress, context, jobs=jobs,
+                        scheduler=scheduler)
     write_json(where / "scene_camera.json", {str(k): r["camera"] for k, r in enumerate(records)})
     write_json(where / "scene_gt.json", {str(k): r["gt"] for k, r in enumerate(records)})
     write_json(where / "scene_gt_info.json", {str(k): r["info"] for k, r in enumerate(records)})

@@ -9,6 +9,7 @@ with boxes, areas and categories from the scene's labels::
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,7 @@ from ..io.images import save_image
 from ..render.annotate import bbox
 from .views import DataSetJob, load_scene_arg, run_views, write_json
 
-__all__ = ["write_coco"]
+__all__ = ["write_coco", "CocoViews"]
 
 
 def _mask_api():
@@ -30,8 +31,34 @@ def _mask_api():
     return mask
 
 
+@dataclass(frozen=True)
+class CocoViews:
+    """What a COCO view writes (picklable): its image, and its record of the objects seen
+    (the view's own instance mask: COCO annotates what is seen, no draw alone)."""
+
+    out: Path
+    size: tuple[int, int]
+    classes: dict
+
+    def __call__(self, k: int, frame, annotate) -> tuple[dict, list]:
+        mask_api = _mask_api()
+        name = f"images/{k + 1:06d}.png"
+        objects = []
+        for instance in np.unique(frame.instance[frame.instance > 0]).tolist():
+            seen = frame.instance == instance
+            rle = mask_api.encode(np.asfortranarray(seen.astype(np.uint8)))
+            objects.append({"category_id": self.classes[instance], "instance_id": instance,
+                            "segmentation": {"size": [int(v) for v in rle["size"]],
+                                             "counts": rle["counts"].decode("ascii")},
+                            "area": int(seen.sum()),
+                            "bbox": [float(v) for v in bbox(seen)], "iscrowd": 0})
+        return ({"image": {"file_name": name, "width": self.size[0], "height": self.size[1]},
+                 "objects": objects}, [(save_image, frame.color, self.out / name)])
+
+
 def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=None,
-               samples: int = 4, options=None, progress=None, context=None) -> Path:
+               samples: int = 4, options=None, progress=None, context=None, jobs: int = 1,
+               scheduler: str | None = None) -> Path:
     """Render ``scene`` into a COCO instances data set in ``out_dir``: resumable (a view
     already written is skipped), atomic, the same bytes on a rerun. Image ids count from
     1, annotation ids too, in view then instance order.
@@ -55,14 +82,18 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     progress : bool, tqdm-like or None
         The progress bar (None: one on a terminal).
     context : RenderContext or None
-        A context to draw in.
+        A context to draw in (this process's).
+    jobs : int
+        Local worker processes sharing the views (1: this process).
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"`` (the ``distributed`` extra).
 
     Returns
     -------
     Path
         The annotations file.
     """
-    mask_api = _mask_api()
+    _mask_api()  # (a missing pycocotools said before any work)
     scene, cameras, size = load_scene_arg(scene, views, size, cameras)
     out = Path(out_dir)
     (out / "images").mkdir(parents=True, exist_ok=True)
@@ -71,23 +102,9 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     labels = scene.labels
     classes = {m.instance_id: labels.get(m.label, 0)
                for m in [*scene.models, *scene.patch_models, *scene.solids]}
-
-    def write_view(k: int, frame, annotate) -> tuple[dict, list]:
-        # (COCO annotates what is seen: the view's own instance mask, no draw alone)
-        name = f"images/{k + 1:06d}.png"
-        objects = []
-        for instance in np.unique(frame.instance[frame.instance > 0]).tolist():
-            seen = frame.instance == instance
-            rle = mask_api.encode(np.asfortranarray(seen.astype(np.uint8)))
-            objects.append({"category_id": classes[instance], "instance_id": instance,
-                            "segmentation": {"size": [int(v) for v in rle["size"]],
-                                             "counts": rle["counts"].decode("ascii")},
-                            "area": int(seen.sum()),
-                            "bbox": [float(v) for v in bbox(seen)], "iscrowd": 0})
-        return ({"image": {"file_name": name, "width": size[0], "height": size[1]},
-                 "objects": objects}, [(save_image, frame.color, out / name)])
-
-    records = run_views(job, out / ".views", write_view, progress, context)
+    writer = CocoViews(out, size, classes)
+    records = run_views(job, out / ".views", writer, progress, context, jobs=jobs,
+                        scheduler=scheduler)
     images: list[dict] = []
     annotations: list[dict] = []
     for k, record in enumerate(records):

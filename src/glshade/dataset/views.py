@@ -14,7 +14,7 @@ from ..errors import InputError, OptionError
 from ..modes import Outputs
 from ..scene import Scene
 
-__all__ = ["DataSetJob", "run_views", "load_scene_arg", "write_json"]
+__all__ = ["DataSetJob", "ViewWorker", "run_views", "load_scene_arg", "write_json"]
 
 
 @dataclass(frozen=True)
@@ -98,14 +98,70 @@ def write_json(path: Path, content) -> None:
         f.write(text + "\n")
 
 
-def run_views(job: DataSetJob, records_dir: Path, write_view, progress=None,
-              context=None) -> list[dict]:
-    """Draw each view not yet recorded in ``records_dir`` and hand it to ``write_view(k,
+def _finish(records_dir: Path, k: int, record: dict, files: list) -> None:
+    """Write a view's files, then its record (last: a view with a record is whole)."""
+    for fn, *args in files:
+        fn(*args)
+    write_json(records_dir / f"{k:06d}.json", record)
+
+
+class ViewWorker:
+    """Draws views of one job and writes them: a worker of :mod:`glshade.parallel` (in
+    this process, in worker processes or on a Dask cluster), its renderer made on its first
+    view and kept for the rest.
+
+    Parameters
+    ----------
+    job : DataSetJob
+        The scene, cameras, size, samples and options.
+    writer : callable
+        ``(k, frame, notes) -> (record, files)``: what a view writes (picklable).
+    records_dir : Path
+        Where each view's record goes.
+    context : RenderContext or None
+        A context to draw in (this process only).
+    """
+
+    def __init__(self, job: DataSetJob, writer, records_dir: Path, context=None):
+        from ..render.renderer import Renderer
+
+        self.job, self.writer, self.records_dir = job, writer, records_dir
+        self.context = context
+        self._renderer: Renderer | None = None
+
+    def frame(self, k: int):
+        """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked."""
+        from ..render.renderer import Renderer
+
+        if self._renderer is None:
+            self._renderer = Renderer(*self.job.size, samples=self.job.samples,
+                                      context=self.context)
+        renderer, job, camera = self._renderer, self.job, self.job.cameras[k]
+        frame = renderer.render_frame(job.scene, camera, job.options,
+                                      outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
+        return frame, lambda: renderer.annotate(job.scene, camera, job.options, view=frame)
+
+    def __call__(self, k: int) -> int:
+        frame, notes = self.frame(k)
+        record, files = self.writer(k, frame, notes)
+        _finish(self.records_dir, k, record, files)
+        return k
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+
+def run_views(job: DataSetJob, records_dir: Path, writer, progress=None, context=None, *,
+              jobs: int = 1, scheduler: str | None = None) -> list[dict]:
+    """Draw each view not yet recorded in ``records_dir`` and hand it to ``writer(k,
     frame, notes) -> (record, files)``: ``notes()`` its objects' annotations (drawn only if
-    asked), ``files`` the ``(function, *args)`` that write its files. The files are written
-    on a thread of their own while the next view is drawn (PNG's zlib lets go of the
-    interpreter), then the record, last: a view with a record is whole. Returns every
-    view's record, in order.
+    asked), ``files`` the ``(function, *args)`` that write its files; then its record, last
+    (a view with a record is whole). In one process the files are written on a thread of
+    their own while the next view is drawn (PNG's zlib lets go of the interpreter); with
+    ``jobs`` or a ``scheduler`` the views are shared among worker processes or a Dask
+    cluster's workers, each with its renderer. Returns every view's record, in order.
 
     Parameters
     ----------
@@ -113,53 +169,54 @@ def run_views(job: DataSetJob, records_dir: Path, write_view, progress=None,
         The scene, cameras, size, samples and options.
     records_dir : Path
         Where each view's record is kept (``{k:06d}.json``): a view with one is done.
-    write_view : callable
-        ``(k, frame, notes) -> (record, files)``.
+    writer : callable
+        ``(k, frame, notes) -> (record, files)``, picklable for workers.
     progress : bool, tqdm-like or None
         The progress bar (None: one on a terminal).
     context : RenderContext or None
-        The context to draw in (None: the renderer's own).
+        The context to draw in, in this process (None: the renderer's own).
+    jobs : int
+        Local worker processes (1: this one).
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"`` (the ``distributed`` extra).
     """
     from concurrent.futures import ThreadPoolExecutor
 
     from ..interrupt import check
+    from ..parallel import make_executor
     from ..parallel.progress import as_progress
-    from ..render.renderer import Renderer
 
     records_dir.mkdir(parents=True, exist_ok=True)
     todo = [k for k in range(len(job.cameras)) if not (records_dir / f"{k:06d}.json").exists()]
     bar, owned = as_progress(progress, len(job.cameras), "views")
-
-    def finish(k: int, record: dict, files: list) -> None:
-        for fn, *args in files:
-            fn(*args)
-        write_json(records_dir / f"{k:06d}.json", record)
-
-    pending: list = []
     try:
         if bar is not None and len(todo) < len(job.cameras):
             bar.update(len(job.cameras) - len(todo), "already written")
-        if todo:
-            with Renderer(*job.size, samples=job.samples, context=context) as renderer, \
-                    ThreadPoolExecutor(max_workers=1) as writer:
-                for k in todo:
-                    check()
-                    camera = job.cameras[k]
-                    frame = renderer.render_frame(
-                        job.scene, camera, job.options,
-                        outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
-
-                    def notes(camera=camera, frame=frame):
-                        return renderer.annotate(job.scene, camera, job.options, view=frame)
-
-                    record, files = write_view(k, frame, notes)
-                    while pending and pending[0].done():  # (a failed write stops the run)
-                        pending.pop(0).result()
-                    pending.append(writer.submit(finish, k, record, files))
-                    if bar is not None:
-                        bar.update(1)
-                for future in pending:
-                    future.result()
+        if todo and (jobs > 1 or scheduler is not None):
+            executor = make_executor(ViewWorker, (job, writer, records_dir), jobs,
+                                     items=len(todo), scheduler=scheduler)
+            for _ in executor.map(todo):
+                if bar is not None:
+                    bar.update(1)
+        elif todo:
+            worker = ViewWorker(job, writer, records_dir, context)
+            pending: list = []
+            with ThreadPoolExecutor(max_workers=1) as files:
+                try:
+                    for k in todo:
+                        check()
+                        frame, notes = worker.frame(k)
+                        record, to_write = writer(k, frame, notes)
+                        while pending and pending[0].done():  # (a failed write stops it)
+                            pending.pop(0).result()
+                        pending.append(files.submit(_finish, records_dir, k, record,
+                                                    to_write))
+                        if bar is not None:
+                            bar.update(1)
+                    for future in pending:
+                        future.result()
+                finally:
+                    worker.close()
     finally:
         if owned and bar is not None:
             bar.close()

@@ -220,6 +220,18 @@ def test_any_draw_order_gives_the_same_bytes(make_renderer):
         assert np.array_equal(r.render(scene_of(tri, col, a, order), CAMERA, "phong"), first)
 
 
+def _layers(n: int, opacity: float):
+    """n parallel white squares of ``opacity`` 0.01 apart over black, lit by the ambient
+    term alone: the centre's value is 1 - (1 - opacity)^n."""
+    s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
+    for k in range(n):
+        s.add(g.geometry.primitives.plane(1.0),
+              g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=opacity),
+              translation=(0, 0, -0.01 * k))
+    s.add_light(g.PointLight(position=(0, 0, 5), intensity=0.0))
+    return s
+
+
 @pytest.mark.parametrize("samples", [0, 4])
 @pytest.mark.parametrize("opacity", [0.1, 0.2, 0.35])
 def test_blending_in_drawing_order_rounds_once(make_renderer, opacity, samples):
@@ -228,12 +240,7 @@ def test_blending_in_drawing_order_rounds_once(make_renderer, opacity, samples):
     once (each layer rounded to 8 bits gave 253 for 32 layers of 0.2, not 254.8)."""
     r = make_renderer(32, 32, samples)
     for n in (1, 4, 12, 32):
-        s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
-        for k in range(n):
-            s.add(g.geometry.primitives.plane(1.0),
-                  g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=opacity),
-                  translation=(0, 0, -0.01 * k))
-        s.add_light(g.PointLight(position=(0, 0, 5), intensity=0.0))
+        s = _layers(n, opacity)
         camera = g.Camera.look_at((0, 0, 3), (0, 0, 0))
         want = 255 * (1 - (1 - opacity) ** n)
         img = r.render(s, camera, "flat", transparency="blend")
@@ -249,12 +256,7 @@ def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, op
     r = make_renderer(32, 32)
     # (1 to 8 layers: a resolve that sorts only as many slots as the deepest pixel has)
     for n, sorted_slots in ((1, 1), (2, 2), (3, 4), (5, 8), (16, 0), (40, 0)):
-        s = g.Scene(ambient=(1.0, 1.0, 1.0), background=(0, 0, 0))
-        for k in range(n):
-            s.add(g.geometry.primitives.plane(1.0),
-                  g.Material(color=(1, 1, 1), ka=1.0, kd=0.0, ks=0.0, opacity=opacity),
-                  translation=(0, 0, -0.01 * k))
-        s.add_light(g.PointLight(position=(0, 0, 5), intensity=0.0))
+        s = _layers(n, opacity)
         img = r.render(s, g.Camera.look_at((0, 0, 3), (0, 0, 0)), "flat",
                        max_layers=64)
         assert abs(img[16, 16, 0] - 255 * (1 - (1 - opacity) ** n)) <= 1.0, (n, img[16, 16])

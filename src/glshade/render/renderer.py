@@ -23,7 +23,6 @@ from ..errors import (
     EnvironmentFailure, GlshadeError, InputError, OptionError, RenderWarning, SceneError,
     UsageError,
 )
-from ..geometry.transforms import MAX_COORDINATE
 from ..interrupt import held
 from ..modes import Backend, Outputs, ShadingMode, Shadows, Transparency
 from ..options import DrawOptions, RenderConfig
@@ -46,9 +45,10 @@ from .target import OffscreenTarget, check_fits
 __all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
 
 
-#: how far a camera may be from the origin or its scene (beyond, the view and projection
-#: matrices overflow float64 products)
-MAX_CAMERA_REACH = MAX_COORDINATE
+#: how far a camera may be from the origin or its scene: its projection's depth term is
+#: about 100 times its reach, and the matrices go to the GPU as 32-bit floats (largest
+#: 3.4e38) -- a camera at 3.4e36 overflowed them (the numeric sweep found it)
+MAX_CAMERA_REACH = 1e32
 
 
 @dataclass(frozen=True)

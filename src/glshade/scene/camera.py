@@ -67,10 +67,10 @@ class Camera:
         ever clipped away, wherever it moves.
     projection : :class:`~glshade.Projection` (or "perspective", "orthographic").
     height : view height in world units (orthographic).
-    lens : (4,) or None: a pinhole's intrinsics as fractions of the image, ``(fx / W,
-        fy / H, (cx + 0.5) / W, (cy + 0.5) / H)`` -- what :meth:`from_opencv` keeps of K
-        (fx != fy and an off-centre principal point); ``fov_y`` then follows from fy.
-        None: square pixels, the principal point at the centre, ``fov_y``.
+    lens : (4,) or None: a pinhole's intrinsics as fractions of the image --
+        fx / W, fy / H, (cx + 0.5) / W and (cy + 0.5) / H: what :meth:`from_opencv` keeps
+        of K (fx != fy and an off-centre principal point); ``fov_y`` then follows from
+        fy. None: square pixels, the principal point at the centre, ``fov_y``.
     """
 
     position: NDArray[np.float64] = field(default_factory=lambda: np.array([0.0, 0.0, 3.0]))

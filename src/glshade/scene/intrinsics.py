@@ -21,12 +21,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SceneError, plain
 
-__all__ = ["check_intrinsics", "check_rotation", "lens_of", "intrinsics_of", "projection_from_lens",
-           "GL_FROM_CV", "ROTATION_TOLERANCE"]
+__all__ = ["check_intrinsics", "check_rotation", "lens_of", "intrinsics_of",
+           "projection_from_lens", "GL_FROM_CV", "ROTATION_TOLERANCE"]
 
 #: OpenCV's camera axes to OpenGL's (x right, y down, z forward -> x right, y up, z back)
 GL_FROM_CV = np.diag([1.0, -1.0, -1.0])
-#: how far R may be from a rotation: |R^T R - I| and |det R - 1| at most this
+#: how far R may be from a rotation: ``|R^T R - I|`` and ``|det R - 1|`` at most this
 ROTATION_TOLERANCE = 1e-6
 
 

@@ -201,7 +201,7 @@ class Scene:
             Degrees: edges sharper than this stay sharp under smooth shading.
         vertex_colors : array_like or None
             ``(V, 3)`` linear RGB, >= 0, one a vertex.
-        tessellation : Tessellation or str
+        tessellation : glshade.modes.Tessellation or str
             Patches: ``"cpu"`` or ``"gpu"``.
         level : int or None
             Patches: segments a side (None: to a thousandth of their size).

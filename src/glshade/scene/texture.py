@@ -32,6 +32,12 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
+def _one_of(value: object, names: tuple, what: str) -> str:
+    if value not in names:
+        raise SceneError.must(what, f"be one of {', '.join(names)}, got {value!r}")
+    return str(value)
+
+
 def check_texture_filter(value: object, what: str = "texture filter") -> str:
     """The one rule for a texture's filter: one of FILTERS.
 
@@ -42,9 +48,7 @@ def check_texture_filter(value: object, what: str = "texture filter") -> str:
     what
         Its name in the message.
     """
-    if value not in FILTERS:
-        raise SceneError.must(what, f"be one of {', '.join(FILTERS)}, got {value!r}")
-    return str(value)
+    return _one_of(value, FILTERS, what)
 
 
 def check_texture_wrap(value: object, what: str = "texture wrap") -> str:
@@ -57,9 +61,7 @@ def check_texture_wrap(value: object, what: str = "texture wrap") -> str:
     what
         Its name in the message.
     """
-    if value not in WRAPS:
-        raise SceneError.must(what, f"be one of {', '.join(WRAPS)}, got {value!r}")
-    return str(value)
+    return _one_of(value, WRAPS, what)
 
 
 @dataclass(eq=False, frozen=True)

@@ -1,5 +1,6 @@
 """The front door's docstrings say what each parameter is: every function, class and
-public method reached from ``glshade``'s own names and ``glshade.pathtrace``'s has a
+public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s,
+``glshade.quaternion``'s and ``glshade.dataset``'s has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -11,11 +12,14 @@ import types
 import pytest
 
 import glshade
-from glshade import pathtrace
+from glshade import dataset, pathtrace, quaternion
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
 FRONT += [(f"pathtrace.{n}", getattr(pathtrace, n)) for n in pathtrace.__all__]
+#: and the modules documented whole so far: the notes' algebra, the data sets
+FRONT += [(f"{m.__name__}.{n}", getattr(m, n)) for m in (quaternion, dataset)
+          for n in m.__all__]
 
 
 def _callables():

@@ -53,14 +53,26 @@ def _dot3(a, b):
 
 
 def identity(shape: tuple[int, ...] = ()) -> Array:
-    """The identity quaternion ``O`` = [0, 0, 0, 1], broadcast to ``shape + (4,)``."""
+    """The identity quaternion ``O`` = [0, 0, 0, 1], broadcast to ``shape + (4,)``.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The leading shape of the result.
+    """
     q = np.zeros(tuple(shape) + (4,))
     q[..., 3] = 1.0
     return q
 
 
 def multiply(p: ArrayLike, q: ArrayLike) -> Array:
-    """Quaternion product ``p q`` by equation (3.7); not commutative."""
+    """Quaternion product ``p q`` by equation (3.7); not commutative.
+
+    Parameters
+    ----------
+    p, q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, broadcast against each other.
+    """
     p, q = _q(p, "p"), _q(q, "q")
     a, u = p[..., 3], p[..., :3]
     b, v = q[..., 3], q[..., :3]
@@ -72,7 +84,13 @@ def multiply(p: ArrayLike, q: ArrayLike) -> Array:
 
 def compose(*qs: ArrayLike) -> Array:
     """The product ``qs[0] qs[1]`` and so on to ``qs[-1]``: sandwiching with it applies
-    the LAST one first, as with matrix products."""
+    the LAST one first, as with matrix products.
+
+    Parameters
+    ----------
+    *qs : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, applied last to first (as matrices are).
+    """
     if not qs:
         return identity()
     out = _q(qs[0])
@@ -82,24 +100,48 @@ def compose(*qs: ArrayLike) -> Array:
 
 
 def conjugate(q: ArrayLike) -> Array:
-    """``q* = w O - (x i + y j + z k)``."""
+    """``q* = w O - (x i + y j + z k)``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``.
+    """
     q = _q(q)
     return q * np.array([-1.0, -1.0, -1.0, 1.0])
 
 
 def dot(p: ArrayLike, q: ArrayLike) -> Array:
-    """4-D dot product; the cosine of the angle between unit quaternions."""
+    """4-D dot product; the cosine of the angle between unit quaternions.
+
+    Parameters
+    ----------
+    p, q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, broadcast against each other.
+    """
     return np.einsum("...i,...i->...", _q(p, "p"), _q(q, "q"))
 
 
 def norm(q: ArrayLike) -> Array:
-    """``|q|``, shape ``(...)``."""
+    """``|q|``, shape ``(...)``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``.
+    """
     q = _q(q)
     return np.sqrt(np.einsum("...i,...i->...", q, q))
 
 
 def normalize(q: ArrayLike) -> Array:
-    """``q / |q|``; raises for a zero quaternion."""
+    """``q / |q|``; raises for a zero quaternion.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, none zero.
+    """
     if isinstance(q, np.ndarray) and q.shape == (4,) or \
             isinstance(q, (list, tuple)) and len(q) == 4:  # one (a camera's): plain floats
         x, y, z, w = (float(c) for c in q)
@@ -118,7 +160,13 @@ def normalize(q: ArrayLike) -> Array:
 
 
 def inverse(q: ArrayLike) -> Array:
-    """``q^-1 = q* / |q|^2``; raises for a zero quaternion."""
+    """``q^-1 = q* / |q|^2``; raises for a zero quaternion.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, none zero.
+    """
     q = _q(q)
     n2 = np.einsum("...i,...i->...", q, q)
     if np.any(n2 == 0):
@@ -127,13 +175,27 @@ def inverse(q: ArrayLike) -> Array:
 
 
 def canonical(q: ArrayLike) -> Array:
-    """The representative with ``w >= 0`` (``q`` and ``-q`` are the same rotation)."""
+    """The representative with ``w >= 0`` (``q`` and ``-q`` are the same rotation).
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``.
+    """
     q = _q(q)
     return np.where(q[..., 3:4] < 0, -q, q)
 
 
 def from_axis_angle(axis: ArrayLike, angle: ArrayLike) -> Array:
-    """``q(N, a) = cos(a/2) O + sin(a/2) N`` with ``N`` the normalised axis; radians."""
+    """``q(N, a) = cos(a/2) O + sin(a/2) N`` with ``N`` the normalised axis; radians.
+
+    Parameters
+    ----------
+    axis : array_like
+        ``(..., 3)`` rotation axes, non-zero (normalised here).
+    angle : array_like
+        ``(...)`` angles in radians, counter-clockwise looking down the axis.
+    """
     axis = _v(axis, "axis")
     length = np.linalg.norm(axis, axis=-1)
     if np.any(length == 0):
@@ -149,7 +211,13 @@ def from_axis_angle(axis: ArrayLike, angle: ArrayLike) -> Array:
 
 def to_axis_angle(q: ArrayLike) -> tuple[Array, Array]:
     """Unit axis ``(..., 3)`` and angle in ``[0, pi]`` ``(...)`` of the rotation ``q``
-    (normalised first). The identity gives the axis ``[1, 0, 0]`` and angle 0."""
+    (normalised first). The identity gives the axis ``[1, 0, 0]`` and angle 0.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, rotations (normalised first).
+    """
     q = canonical(normalize(q))
     s = np.linalg.norm(q[..., :3], axis=-1)
     angle = 2.0 * np.arctan2(s, q[..., 3])
@@ -160,7 +228,15 @@ def to_axis_angle(q: ArrayLike) -> tuple[Array, Array]:
 
 def conformal(q: ArrayLike, v: ArrayLike) -> Array:
     """The sandwich ``q v q*`` for any quaternion: rotation by ``q``'s direction and uniform
-    scaling by ``|q|^2``. Expanded: ``(w^2 - u.u) v + 2 (u.v) u + 2 w (u x v)``."""
+    scaling by ``|q|^2``. Expanded: ``(w^2 - u.u) v + 2 (u.v) u + 2 w (u x v)``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, any (not only unit).
+    v : array_like
+        ``(..., 3)`` vectors.
+    """
     q, v = _q(q), _v(v)
     w, u = q[..., 3:4], q[..., :3]
     return (w * w - _dot3(u, u)[..., None]) * v + 2.0 * _dot3(u, v)[..., None] * u + \
@@ -168,13 +244,29 @@ def conformal(q: ArrayLike, v: ArrayLike) -> Array:
 
 
 def rotate(q: ArrayLike, v: ArrayLike) -> Array:
-    """Rotate vectors ``v`` by the rotation ``q`` (normalised first): ``q v q*``."""
+    """Rotate vectors ``v`` by the rotation ``q`` (normalised first): ``q v q*``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, rotations.
+    v : array_like
+        ``(..., 3)`` vectors, broadcast against ``q``.
+    """
     return conformal(normalize(q), v)
 
 
 def mirror(normal: ArrayLike, v: ArrayLike) -> Array:
     """``N v N``: the mirror image of ``v`` in the plane through the origin perpendicular to
-    ``normal`` (normalised first). Equals ``v - 2 (v.N) N``."""
+    ``normal`` (normalised first). Equals ``v - 2 (v.N) N``.
+
+    Parameters
+    ----------
+    normal : array_like
+        ``(..., 3)`` the mirror plane's normals, non-zero.
+    v : array_like
+        ``(..., 3)`` vectors.
+    """
     n = _v(normal, "normal")
     length = np.linalg.norm(n, axis=-1, keepdims=True)
     if np.any(length == 0):
@@ -186,7 +278,15 @@ def mirror(normal: ArrayLike, v: ArrayLike) -> Array:
 
 def scale(c: ArrayLike, v: ArrayLike) -> Array:
     """Sandwich with ``sqrt(c) O``: ``c v``. ``c`` must be >= 0 (a quaternion sandwich
-    cannot reverse orientation)."""
+    cannot reverse orientation).
+
+    Parameters
+    ----------
+    c : array_like
+        ``(...)`` factors, >= 0.
+    v : array_like
+        ``(..., 3)`` vectors.
+    """
     c = np.asarray(c, dtype=np.float64)
     if np.any(c < 0):
         raise GeometryError(f"scale factor must be >= 0 for a quaternion sandwich, got {c}")
@@ -197,13 +297,33 @@ def scale(c: ArrayLike, v: ArrayLike) -> Array:
 
 
 def transform_points(q: ArrayLike, points: ArrayLike, center: ArrayLike = (0, 0, 0)) -> Array:
-    """Conformal map of points about a fixed point ``Q``: ``Q + q (P - Q) q*``."""
+    """Conformal map of points about a fixed point ``Q``: ``Q + q (P - Q) q*``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``.
+    points : array_like
+        ``(..., 3)`` positions.
+    center : array_like
+        ``(3,)`` the fixed point ``Q``.
+    """
     center = _v(center, "center")
     return center + conformal(q, _v(points, "points") - center)
 
 
 def mirror_points(normal: ArrayLike, points: ArrayLike, through: ArrayLike = (0, 0, 0)) -> Array:
-    """Mirror points in the plane through ``through`` perpendicular to ``normal``."""
+    """Mirror points in the plane through ``through`` perpendicular to ``normal``.
+
+    Parameters
+    ----------
+    normal : array_like
+        ``(3,)`` the plane's normal, non-zero.
+    points : array_like
+        ``(..., 3)`` positions.
+    through : array_like
+        ``(3,)`` a point of the plane.
+    """
     through = _v(through, "through")
     return through + mirror(normal, _v(points, "points") - through)
 
@@ -214,6 +334,13 @@ def to_matrix(q: ArrayLike, convention: str = "column") -> Array:
     ``convention="column"`` (default) gives ``R`` with ``R @ v == rotate(q, v)``, what GLSL's
     ``mat * vec`` does. ``"row"`` gives the notes' layout for row vectors, ``v' = v R``: the
     transpose.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``.
+    convention : str
+        ``"column"`` (matrices act on column vectors, ``R @ v``) or ``"row"`` (``v @ R``).
     """
     if convention not in ("column", "row"):
         raise GeometryError(f"convention must be 'column' or 'row', got {convention!r}")
@@ -248,6 +375,13 @@ def from_matrix(r: ArrayLike, convention: str = "column") -> Array:
     Shepperd's method: branch on the largest of ``trace, R00, R11, R22``, so the square root
     is never of a small number; exact for every rotation, 180-degree turns included (where
     the notes' ``sqrt(trace + 1)`` formula divides by zero).
+
+    Parameters
+    ----------
+    r : array_like
+        ``(..., 3, 3)`` rotation matrices.
+    convention : str
+        ``"column"`` or ``"row"``, as :func:`to_matrix`.
     """
     if convention not in ("column", "row"):
         raise GeometryError(f"convention must be 'column' or 'row', got {convention!r}")
@@ -317,7 +451,13 @@ def _from_one_matrix(m) -> Array:
 
 def angle_between(p: ArrayLike, q: ArrayLike) -> Array:
     """Rotation angle (radians, in [0, pi]) taking ``p`` to ``q``; sign-blind, accurate for
-    nearby and nearly opposite rotations."""
+    nearby and nearly opposite rotations.
+
+    Parameters
+    ----------
+    p, q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, rotations.
+    """
     p, q = normalize(p), normalize(q)
     q = np.where((dot(p, q) < 0)[..., None], -q, q)
     return 4.0 * np.arctan2(np.linalg.norm(p - q, axis=-1), np.linalg.norm(p + q, axis=-1))
@@ -349,6 +489,13 @@ def slerp(q0: ArrayLike, q1: ArrayLike, t: ArrayLike) -> Array:
 
     ``q0, q1 : (..., 4)`` unit quaternions; ``t`` broadcasts against their leading shape, so
     one key pair can be sampled at many times or many pairs at once.
+
+    Parameters
+    ----------
+    q0, q1 : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, the ends.
+    t : array_like
+        ``(...)`` fractions of the way, 0 at ``q0``, 1 at ``q1``.
     """
     q0, q1 = _q(q0, "q0"), _q(q1, "q1")
     t = np.asarray(t, dtype=np.float64)
@@ -365,7 +512,13 @@ def slerp(q0: ArrayLike, q1: ArrayLike, t: ArrayLike) -> Array:
 
 def exp(v: ArrayLike) -> Array:
     """Quaternion exponential of a pure quaternion (vector) ``v``: ``cos|v| O + sin|v| v/|v|``,
-    a rotation by ``2 |v|`` about ``v``."""
+    a rotation by ``2 |v|`` about ``v``.
+
+    Parameters
+    ----------
+    v : array_like
+        ``(..., 3)`` vectors (pure quaternions).
+    """
     v = _v(v)
     theta = np.linalg.norm(v, axis=-1)
     out = np.empty(v.shape[:-1] + (4,))
@@ -375,7 +528,13 @@ def exp(v: ArrayLike) -> Array:
 
 
 def log(q: ArrayLike) -> Array:
-    """Logarithm of a unit quaternion: the vector ``(phi/2) N`` with ``q = exp(that)``."""
+    """Logarithm of a unit quaternion: the vector ``(phi/2) N`` with ``q = exp(that)``.
+
+    Parameters
+    ----------
+    q : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, unit.
+    """
     q = normalize(q)
     s = np.linalg.norm(q[..., :3], axis=-1)
     half = np.arctan2(s, q[..., 3])
@@ -385,14 +544,30 @@ def log(q: ArrayLike) -> Array:
 
 def squad(q0: ArrayLike, q1: ArrayLike, s0: ArrayLike, s1: ArrayLike, t: ArrayLike) -> Array:
     """Shoemake's spherical quadrangle interpolation between keys ``q0, q1`` with inner
-    control quaternions ``s0, s1``: ``slerp(slerp(q0, q1, t), slerp(s0, s1, t), 2t(1-t))``."""
+    control quaternions ``s0, s1``: ``slerp(slerp(q0, q1, t), slerp(s0, s1, t), 2t(1-t))``.
+
+    Parameters
+    ----------
+    q0, q1 : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, the segment's keys.
+    s0, s1 : array_like
+        ``(..., 4)`` quaternions ``(x, y, z, w)``, their inner control points.
+    t : array_like
+        ``(...)`` fractions of the segment.
+    """
     t = np.asarray(t, dtype=np.float64)
     return slerp(slerp(q0, q1, t), slerp(s0, s1, t), 2.0 * t * (1.0 - t))
 
 
 def same_hemisphere(keys: ArrayLike) -> Array:
     """Key rotations ``(K, 4)`` with signs flipped so that consecutive keys lie in the same
-    hemisphere: every segment between them then takes the shorter arc."""
+    hemisphere: every segment between them then takes the shorter arc.
+
+    Parameters
+    ----------
+    keys : array_like
+        ``(K, 4)`` key rotations in order.
+    """
     keys = _q(keys, "keys")
     flips = np.concatenate([[1.0], np.sign(np.einsum("ij,ij->i", keys[1:], keys[:-1]))])
     flips[flips == 0] = 1.0
@@ -408,6 +583,15 @@ def spline(times: ArrayLike, keys: ArrayLike, t: ArrayLike) -> Array:
     constant velocities (Catmull-Rom for uneven key times), so angular velocity is
     continuous through the keys: no jerk there, unlike piecewise slerp. Times outside the
     keys are clamped. ``keys (K, 4)``, ``t (...)`` -> ``(..., 4)``.
+
+    Parameters
+    ----------
+    times : array_like
+        ``(K,)`` the keys' times, increasing.
+    keys : array_like
+        ``(K, 4)`` the key rotations.
+    t : array_like
+        ``(...)`` the times to evaluate at.
     """
     times = np.asarray(times, dtype=np.float64)
     keys = same_hemisphere(normalize(keys))

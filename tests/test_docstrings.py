@@ -1,6 +1,7 @@
 """The front door's docstrings say what each parameter is: every function, class and
-public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s,
-``glshade.quaternion``'s and ``glshade.dataset``'s has a
+public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and those of
+the top-level modules documented whole (the quaternion algebra, data sets, modes, options,
+errors, atomic writes, mass-points, colour maps, examples) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -12,13 +13,16 @@ import types
 import pytest
 
 import glshade
-from glshade import dataset, pathtrace, quaternion
+from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, modes,
+                     options, pathtrace, quaternion)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
 FRONT += [(f"pathtrace.{n}", getattr(pathtrace, n)) for n in pathtrace.__all__]
 #: and the modules documented whole so far: the notes' algebra, the data sets
-FRONT += [(f"{m.__name__}.{n}", getattr(m, n)) for m in (quaternion, dataset)
+FRONT += [(f"{m.__name__}.{n}", getattr(m, n))
+          for m in (quaternion, dataset, modes, options, errors, atomic, masspoint,
+                    colormaps, examples)
           for n in m.__all__]
 
 
@@ -66,8 +70,10 @@ CASES = list(_callables())
 
 @pytest.mark.parametrize("name, obj", CASES, ids=[c[0] for c in CASES])
 def test_every_parameter_is_documented(name, obj):
-    signature = inspect.signature(obj)
-    wanted = {p for p in signature.parameters if p not in ("self", "cls")}
+    params = list(inspect.signature(obj).parameters)
+    if "." in obj.__qualname__ and params and params[0] in ("self", "cls"):
+        params = params[1:]  # (a method's own object; a function's cls is a parameter)
+    wanted = set(params)
     if not wanted:
         return
     assert documented(inspect.getdoc(obj) or "") == wanted

@@ -38,7 +38,17 @@ def _tag(path: Path) -> str:
 
 def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
     """Make a temporary file (or folder) beside ``path``, named for this process; return
-    its name. Stale ones of the same output are removed first."""
+    its name. Stale ones of the same output are removed first.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output it stands in for.
+    folder : bool
+        Make a folder (else a file).
+    suffix : str
+        The temporary name's ending (an encoder may need the output's extension).
+    """
     path = Path(path)
     parent = path.parent if str(path.parent) else Path(".")
     remove_stale(parent, name=path.name)
@@ -84,7 +94,17 @@ def _remove(path) -> None:
 def part(path, *, folder: bool = False, suffix: str = ""):
     """Yield a new temporary file (or folder) beside ``path``, removed if the block raises
     anything, a Ctrl-C included, at whatever moment it lands; the block publishes it. An
-    OSError creating it is an OutputWriteError naming ``path``."""
+    OSError creating it is an OutputWriteError naming ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output it stands in for.
+    folder : bool
+        A folder (else a file).
+    suffix : str
+        The temporary name's ending.
+    """
     tmp = None
     try:
         with writing(path), held_interrupts():
@@ -108,7 +128,17 @@ def _alive(pid: int) -> bool:
 
 def remove_stale(folder, *, name: str | None = None, recursive: bool = False) -> int:
     """Remove the temporary files and folders in ``folder`` (of output ``name`` only, if
-    given) left by processes of this host that no longer run. Returns how many."""
+    given) left by processes of this host that no longer run. Returns how many.
+
+    Parameters
+    ----------
+    folder : str or Path
+        Where to look.
+    name : str or None
+        Only the temporaries of this output (None: every one).
+    recursive : bool
+        Look in sub-folders too.
+    """
     folder = Path(folder)
     if not folder.is_dir():
         return 0
@@ -127,7 +157,15 @@ def remove_stale(folder, *, name: str | None = None, recursive: bool = False) ->
 
 
 def publish(tmp, path) -> None:
-    """Give a finished temporary file the usual permissions and move it into place."""
+    """Give a finished temporary file the usual permissions and move it into place.
+
+    Parameters
+    ----------
+    tmp : str or Path
+        The finished temporary file.
+    path : str or Path
+        Its place.
+    """
     umask = os.umask(0)
     os.umask(umask)
     os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600
@@ -137,7 +175,13 @@ def publish(tmp, path) -> None:
 @contextlib.contextmanager
 def writing(path):
     """Report a failure to write ``path`` -- an OSError, or a broken encoder's error --
-    as an OutputWriteError naming ``path``, whatever temporary file was being written."""
+    as an OutputWriteError naming ``path``, whatever temporary file was being written.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output a failure is reported for.
+    """
     try:
         yield
     except OutputWriteError as exc:
@@ -153,7 +197,17 @@ def writing(path):
 @contextlib.contextmanager
 def atomic_write(path, mode: str = "wb", **text):
     """Yield a file object; on success it replaces ``path``, on failure it is deleted.
-    ``text``: ``encoding`` and ``errors`` of a text file."""
+    ``text``: ``encoding`` and ``errors`` of a text file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to write.
+    mode : str
+        ``open``'s mode (``"wb"``, ``"w"``).
+    **text
+        ``encoding`` and ``errors`` of a text file.
+    """
     path = Path(path)
     with writing(path), part(path) as tmp:
         with open(tmp, mode, **text) as f:

@@ -14,7 +14,13 @@ BACKGROUND_ID_COLOR = (18, 18, 22)
 
 def id_colors(face_id: np.ndarray) -> np.ndarray:
     """``(H, W, 3) uint8`` of an id buffer ``(H, W)``: each polygon id a colour of its own
-    (golden-ratio hues, so neighbouring ids differ), the background (-1) dark."""
+    (golden-ratio hues, so neighbouring ids differ), the background (-1) dark.
+
+    Parameters
+    ----------
+    face_id : ndarray
+        ``(H, W)`` int polygon ids, -1 for background.
+    """
     ids = np.asarray(face_id).astype(np.int64)
     h = (ids * 0.6180339887) % 1.0
     s = 0.55 + 0.35 * ((ids * 0.37) % 1.0)

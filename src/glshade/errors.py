@@ -41,7 +41,15 @@ class GlshadeError(Exception):
 
     @classmethod
     def must(cls, subject: str, rule: str):
-        """``"{subject} must {rule}"``, with both kept as attributes."""
+        """``"{subject} must {rule}"``, with both kept as attributes.
+
+        Parameters
+        ----------
+        subject : str
+            What the rule is about (an option's or a key's name).
+        rule : str
+            What it must be, after "must" ("be a number > 0, got -1").
+        """
         error = cls(f"{subject} must {rule}")
         error.subject, error.rule = subject, rule
         return error
@@ -123,7 +131,17 @@ class PathFormatError(SceneError):
 
     @classmethod
     def at(cls, source: str, keyframe: int, reason: str) -> PathFormatError:
-        """The fault ``reason`` in key frame ``keyframe`` (1-based) of ``source``."""
+        """The fault ``reason`` in key frame ``keyframe`` (1-based) of ``source``.
+
+        Parameters
+        ----------
+        source : str
+            The file (or ``"<dict>"``).
+        keyframe : int
+            The key frame, counted from 1.
+        reason : str
+            What is wrong with it.
+        """
         return cls(f"{source}: keyframe {keyframe}: {reason}", keyframe, reason)
 
 
@@ -217,7 +235,15 @@ def plain(value, digits: int = 4) -> str:
 
 def warn_user(message: str, category: type[Warning] = UserWarning) -> None:
     """Warn at the first caller outside glshade: the line of the user's code that asked for
-    the work, however deep in a pipeline of passes the finding was made."""
+    the work, however deep in a pipeline of passes the finding was made.
+
+    Parameters
+    ----------
+    message : str
+        The warning's one line.
+    category : type
+        The Warning class (UserWarning, RenderWarning ...).
+    """
     import sys
     import warnings
 
@@ -231,7 +257,13 @@ def warn_user(message: str, category: type[Warning] = UserWarning) -> None:
 
 def exit_status(exc: BaseException) -> int:
     """The command line's exit status for an error: 2 for bad input, 1 for the environment
-    (an ``OSError`` such as an unwritable output included)."""
+    (an ``OSError`` such as an unwritable output included).
+
+    Parameters
+    ----------
+    exc : BaseException
+        The error a command ended with.
+    """
     if isinstance(exc, GlshadeError):
         return exc.exit_status
     return EXIT_ENVIRONMENT

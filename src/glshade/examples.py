@@ -47,7 +47,13 @@ def names() -> list[str]:
 
 
 def path(name: str) -> Path:
-    """The file of the example ``name`` (a scene's stem, or a mesh's file name)."""
+    """The file of the example ``name`` (a scene's stem, or a mesh's file name).
+
+    Parameters
+    ----------
+    name : str
+        The example's name (``glshade.examples.names()`` lists them).
+    """
     from .errors import InputError
 
     table = _table()
@@ -59,7 +65,13 @@ def path(name: str) -> Path:
 
 def resolve(spec: str) -> str:
     """``spec`` itself when it names a file (or ``primitive:``, ``solid:``), else the example
-    of that name when there is one: what the command line does with its inputs."""
+    of that name when there is one: what the command line does with its inputs.
+
+    Parameters
+    ----------
+    spec : str
+        A file, a ``primitive:``/``solid:`` spec or an example's name.
+    """
     if ":" in spec or "/" in spec or "\\" in spec or Path(spec).exists():
         return spec
     table = _table()

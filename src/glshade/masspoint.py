@@ -160,7 +160,15 @@ def centroid(points: ArrayLike, masses: ArrayLike | None = None) -> NDArray[np.f
 def mesh_center_of_mass(triangles, kind: str = "solid"):
     """Centre of mass ``(3,)`` of a Mesh or of triangles ``(T, 3, 3)``: of the solid they
     bound (``"solid"``: tetrahedra from the origin to each triangle, signed volumes as
-    masses) or of the surface (``"surface"``: triangle centroids weighted by area)."""
+    masses) or of the surface (``"surface"``: triangle centroids weighted by area).
+
+    Parameters
+    ----------
+    triangles : Mesh or array_like
+        A Mesh, or ``(T, 3, 3)`` triangles.
+    kind : str
+        ``"solid"`` or ``"surface"``.
+    """
     if hasattr(triangles, "vertices") and hasattr(triangles, "triangles"):  # a Mesh
         triangles = triangles.vertices[triangles.triangles[0]]
     p = np.asarray(triangles, np.float64)

@@ -19,7 +19,17 @@ E = TypeVar("E", bound=enum.Enum)
 
 def parse_enum(cls: type[E], value: object, what: str) -> E:
     """``cls(value)`` for a member or its (case-insensitive) value; a bad one raises
-    :class:`OptionError` listing the choices."""
+    :class:`OptionError` listing the choices.
+
+    Parameters
+    ----------
+    cls : type
+        The enum.
+    value : object
+        A member, or its value in any case.
+    what : str
+        The option's name, as the message says it.
+    """
     if isinstance(value, cls):
         return value
     try:

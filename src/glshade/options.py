@@ -171,14 +171,30 @@ _CHANGED: dict[tuple, DrawOptions] = {}  # (options, changes) -> the changed opt
 
 
 def check_whole(name: str, value: object, minimum: int) -> int:
-    """``value`` as an int when it is a whole number >= ``minimum`` (bools refused)."""
+    """``value`` as an int when it is a whole number >= ``minimum`` (bools refused).
+
+    Parameters
+    ----------
+    name : str
+        The option's name, as the message says it.
+    value : object
+        The value given.
+    minimum : int
+        The least it may be.
+    """
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
         raise OptionError(f"{name} must be a whole number >= {minimum}, got {value!r}")
     return int(value)
 
 
 def check_size(width: object, height: object) -> tuple[int, int]:
-    """The one rule for an image size: whole pixels, 1 to MAX_SIZE a side."""
+    """The one rule for an image size: whole pixels, 1 to MAX_SIZE a side.
+
+    Parameters
+    ----------
+    width, height : object
+        The image's width and height in pixels, as given.
+    """
     ok = all(not isinstance(v, bool) and isinstance(v, (int, np.integer))
              and 1 <= v <= MAX_SIZE for v in (width, height))
     if not ok:
@@ -188,7 +204,13 @@ def check_size(width: object, height: object) -> tuple[int, int]:
 
 
 def check_samples(samples: object) -> int:
-    """The one rule for MSAA samples: 0 (off) or a power of two up to 64."""
+    """The one rule for MSAA samples: 0 (off) or a power of two up to 64.
+
+    Parameters
+    ----------
+    samples : object
+        MSAA samples, as given.
+    """
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
             or samples not in MSAA_COUNTS:
         raise OptionError.must("samples (MSAA)", "be 0 (off) or a power of two up to 64 "

@@ -1,7 +1,7 @@
 """The front door's docstrings say what each parameter is: every function, class and
 public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and those of
-the top-level modules documented whole (the quaternion algebra, data sets, modes, options,
-errors, atomic writes, mass-points, colour maps, examples) has a
+the modules documented whole (the quaternion algebra, data sets, modes, options, errors,
+atomic writes, mass-points, colour maps, examples, and glshade.scene's) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -15,6 +15,10 @@ import pytest
 import glshade
 from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, modes,
                      options, pathtrace, quaternion)
+from glshade.scene import camera, intrinsics, keyframes, lights, material, occluders, texture
+from glshade.scene import scene as scene_module
+
+SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
@@ -22,8 +26,8 @@ FRONT += [(f"pathtrace.{n}", getattr(pathtrace, n)) for n in pathtrace.__all__]
 #: and the modules documented whole so far: the notes' algebra, the data sets
 FRONT += [(f"{m.__name__}.{n}", getattr(m, n))
           for m in (quaternion, dataset, modes, options, errors, atomic, masspoint,
-                    colormaps, examples)
-          for n in m.__all__]
+                    colormaps, examples, *SCENE)
+          for n in m.__all__ if getattr(getattr(m, n), "__module__", m.__name__) == m.__name__]
 
 
 def _callables():
@@ -73,7 +77,7 @@ def test_every_parameter_is_documented(name, obj):
     params = list(inspect.signature(obj).parameters)
     if "." in obj.__qualname__ and params and params[0] in ("self", "cls"):
         params = params[1:]  # (a method's own object; a function's cls is a parameter)
-    wanted = set(params)
+    wanted = {p for p in params if not p.startswith("_")}  # (a dataclass's private field)
     if not wanted:
         return
     assert documented(inspect.getdoc(obj) or "") == wanted

@@ -58,6 +58,13 @@ class OrientationInterp(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> OrientationInterp:
+        """An OrientationInterp or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : OrientationInterp or str
+            A member or its name.
+        """
         if value == "squad":  # (Shoemake's name for the same curve)
             return cls.SPLINE
         try:
@@ -75,6 +82,13 @@ class PositionInterp(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> PositionInterp:
+        """A PositionInterp or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : PositionInterp or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "position interpolation")
 
 

@@ -127,7 +127,15 @@ def _check_shadows(value) -> None:
 
 def lights_for(lights, camera) -> list:
     """The lights a draw uses: ``lights``, or -- when there are none -- the default, a white
-    point light at the camera (a headlight: whatever faces the viewer is lit)."""
+    point light at the camera (a headlight: whatever faces the viewer is lit).
+
+    Parameters
+    ----------
+    lights : list
+        The scene's PointLights and DirectionalLights.
+    camera : Camera
+        The draw's camera (the headlight sits at its eye).
+    """
     lights = list(lights)
     if lights:
         return lights

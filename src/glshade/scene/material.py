@@ -23,7 +23,15 @@ MAX_SHADING_VALUE = 1e12
 
 def color3(value, name) -> tuple[float, float, float]:
     """An RGB triple of finite numbers from 0 to MAX_SHADING_VALUE, or a SceneError
-    naming ``name``."""
+    naming ``name``.
+
+    Parameters
+    ----------
+    value : array_like or float
+        Three numbers (r, g, b), or one for all three.
+    name : str
+        What the colour is, for the message.
+    """
     c = np.asarray(value, dtype=np.float64)
     if c.shape == ():
         c = np.repeat(c, 3)
@@ -36,7 +44,15 @@ def color3(value, name) -> tuple[float, float, float]:
 
 
 def nonnegative(value, name) -> float:
-    """A finite number from 0 to MAX_SHADING_VALUE, or a SceneError naming ``name``."""
+    """A finite number from 0 to MAX_SHADING_VALUE, or a SceneError naming ``name``.
+
+    Parameters
+    ----------
+    value : float
+        The number given.
+    name : str
+        What it is, for the message.
+    """
     v = float(value)
     if not np.isfinite(v) or v < 0:
         raise SceneError(f"{name} must be a non-negative number, got {value!r}")

@@ -13,11 +13,21 @@ __all__ = ["Occluders", "occluders"]
 
 @dataclass(frozen=True)
 class Occluders:
-    """``triangles (T, 3, 3)`` float64 world positions; ``polygon (T,)`` int64: the id of
-    the mesh polygon each comes from, as :class:`~glshade.Frame` numbers them, or -1 (a
-    tessellated patch's triangle: a curved patch may shade itself, so none is skipped);
-    ``normals (P, 3)`` the world unit normal of every mesh polygon by that id (zero for a
-    hidden model's), the surface's own side for a ray's start."""
+    """What casts shadows: the scene's opaque triangles in the world, each with its
+    polygon, and every mesh polygon's normal.
+
+    Parameters
+    ----------
+    triangles : ndarray
+        ``(T, 3, 3)`` float64 world positions.
+    polygon : ndarray
+        ``(T,)`` int64: the id of the mesh polygon each comes from, as
+        :class:`~glshade.Frame` numbers them, or -1 (a tessellated patch's triangle: a
+        curved patch may shade itself, so none is skipped).
+    normals : ndarray
+        ``(P, 3)`` the world unit normal of every mesh polygon by that id (zero for a
+        hidden model's): the surface's own side for a ray's start.
+    """
 
     triangles: np.ndarray
     polygon: np.ndarray
@@ -37,7 +47,13 @@ class Occluders:
 
 def occluders(scene) -> Occluders:
     """The triangles of ``scene``'s visible opaque meshes and patch models (at their level),
-    with zero-area triangles left out (no ray can hit them); transparent meshes cast none."""
+    with zero-area triangles left out (no ray can hit them); transparent meshes cast none.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene whose opaque surfaces cast shadows.
+    """
     tris, ids, normals = [], [], []
     base = 0
     for model in scene.models:

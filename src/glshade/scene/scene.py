@@ -36,7 +36,27 @@ MAX_GPU_LEVEL, MAX_GPU_PATCH_POINTS = 64, 32
 
 @dataclass(eq=False)
 class Model:
-    """One mesh placed in a scene."""
+    """One mesh placed in a scene.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        Its polygons (model coordinates).
+    material : Material
+        How it is shaded.
+    transform : ndarray
+        ``(4, 4)`` model-to-world matrix, column vectors.
+    name : str or None
+        Its name.
+    visible : bool
+        Whether draws show it.
+    vertex_colors : ndarray or None
+        ``(V, 3)`` float32 linear RGB a vertex, shown by the ``radiosity`` mode.
+    label : str or None
+        Its class, for ground truth (:attr:`Scene.labels`).
+    instance_id : int
+        Which object it is (1, 2, ... in the order added; 0: not added by Scene.add).
+    """
 
     mesh: Mesh
     material: Material = field(default_factory=Material)
@@ -64,7 +84,13 @@ class Model:
 
     def display_colors(self, ambient) -> np.ndarray:
         """What the ``radiosity`` mode shows at each vertex: ``vertex_colors``, or without
-        them the surface's own emission plus its ambient term (no light transport)."""
+        them the surface's own emission plus its ambient term (no light transport).
+
+        Parameters
+        ----------
+        ambient : array_like
+            ``(3,)`` the scene's ambient intensity.
+        """
         if self.vertex_colors is not None:
             return self.vertex_colors
         key = (self.mesh.n_vertices, self.material, tuple(ambient))
@@ -78,7 +104,23 @@ class Model:
 
 @dataclass(eq=False)
 class SolidModel:
-    """One CSG solid in a scene (placed: its transform is part of the tree)."""
+    """One CSG solid in a scene (placed: its transform is part of the tree).
+
+    Parameters
+    ----------
+    solid : Solid
+        The CSG tree, placed (its transform is a node of the tree).
+    material : Material
+        How it is shaded.
+    name : str or None
+        Its name.
+    visible : bool
+        Whether draws show it.
+    label : str or None
+        Its class, for ground truth.
+    instance_id : int
+        Which object it is.
+    """
 
     solid: Solid
     material: Material = field(default_factory=Material)
@@ -96,7 +138,27 @@ class SolidModel:
 @dataclass(eq=False)
 class PatchModel:
     """Patches tessellated on the GPU at draw time (GL 4.0 tessellation shaders), ``level``
-    segments a patch side; placed by ``transform`` (4x4)."""
+    segments a patch side; placed by ``transform`` (4x4).
+
+    Parameters
+    ----------
+    patches : PatchSet or PatchSurface
+        The patches (model coordinates).
+    material : Material
+        How they are shaded.
+    transform : ndarray
+        ``(4, 4)`` model-to-world matrix, column vectors.
+    level : int
+        Segments a patch side, 1 to 64.
+    name : str or None
+        Its name.
+    visible : bool
+        Whether draws show it.
+    label : str or None
+        Its class, for ground truth.
+    instance_id : int
+        Which object it is.
+    """
 
     patches: Any
     material: Material = field(default_factory=Material)

@@ -27,7 +27,13 @@ WRAPS = ("repeat", "clamp")
 
 
 def srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    """sRGB-encoded values in [0, 1] to linear light (IEC 61966-2-1), float64."""
+    """sRGB-encoded values in [0, 1] to linear light (IEC 61966-2-1), float64.
+
+    Parameters
+    ----------
+    c : ndarray
+        sRGB-encoded values in [0, 1], any shape.
+    """
     c = np.asarray(c, np.float64)
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 

@@ -1,7 +1,8 @@
 """The front door's docstrings say what each parameter is: every function, class and
 public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and those of
 the modules documented whole (the quaternion algebra, data sets, modes, options, errors,
-atomic writes, mass-points, colour maps, examples, and glshade.scene's) has a
+atomic writes, mass-points, colour maps, examples; glshade.scene's, the mesh kernel's,
+the files' and the renderer's) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -15,10 +16,16 @@ import pytest
 import glshade
 from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, modes,
                      options, pathtrace, quaternion)
+from glshade.geometry import merge, mesh, polygon, primitives
+from glshade.io import images, meshes, scenefile
+from glshade.render import annotate, context, renderer
 from glshade.scene import camera, intrinsics, keyframes, lights, material, occluders, texture
 from glshade.scene import scene as scene_module
 
-SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module)
+#: the chapters' modules documented whole so far
+SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module,
+         merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
+         renderer)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]

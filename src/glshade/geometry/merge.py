@@ -36,6 +36,13 @@ def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
     Two faces sharing an edge stay smooth across it when their normals differ by less than
     ``angle_deg``; corners of a vertex joined by smooth edges share one copy of it. Edges of
     more than two faces are creases.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    angle_deg : float
+        Edges whose faces' normals differ by more than this many degrees stay sharp.
     """
     if not 0 <= angle_deg <= 180:
         raise GeometryError(f"angle_deg must be in [0, 180], got {angle_deg}")
@@ -97,7 +104,13 @@ def split_point_contacts(mesh: Mesh) -> Mesh:
     """Give each piece of surface its own copy of a vertex where pieces only touch at that
     point (a handle's end resting on a body). Pieces are faces joined through shared edges;
     a vertex used by several pieces becomes one vertex per piece, so the surface stops
-    being pinched there."""
+    being pinched there.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    """
     c0, c1 = mesh.edge_groups.pairs()
     piece = component_labels(mesh.n_faces, mesh.corner_face[c0], mesh.corner_face[c1])
     key = mesh.face_indices * max(mesh.n_faces, 1) + piece[mesh.corner_face]
@@ -114,7 +127,13 @@ def oriented(mesh: Mesh) -> Mesh:
     """A copy whose faces are wound consistently: neighbours traverse their shared edge
     in opposite directions. Each connected piece keeps the winding of its lowest-numbered
     face; a closed result is turned to face outward (positive volume). Raises
-    TopologyError for a surface that cannot be oriented (a Moebius strip)."""
+    TopologyError for a surface that cannot be oriented (a Moebius strip).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    """
     flip, orientable = orientation_flips(mesh.half_edges, mesh.corner_face, mesh.n_faces,
                                          mesh.n_vertices)
     if not orientable:
@@ -131,7 +150,16 @@ def oriented(mesh: Mesh) -> Mesh:
 def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
     """Merge vertices closer than ``tolerance`` (default: relative to the bounding box) and
     drop those no face uses; faces that collapse below 3 corners are removed (and from the
-    named groups)."""
+    named groups).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    tolerance : float or None
+        The distance in scene units under which vertices merge (None: relative to the
+        bounding box).
+    """
     if tolerance is None:
         tolerance = tol.merge * max(np.sqrt(mesh._area_scale), 1e-300)
     q = np.round(mesh.vertices / tolerance).astype(np.int64)

@@ -71,6 +71,13 @@ def unit_normals(
     ``scale`` is the squared size of the data (a Newell normal is an area), so that the
     degeneracy test does not depend on the units.
 
+    Parameters
+    ----------
+    normals : ndarray
+        ``(n, 3)`` vectors.
+    scale : float
+        The geometry's size, against which a length counts as zero.
+
     Returns
     -------
     unit : (n, 3) float64
@@ -98,6 +105,13 @@ def convex_mask(points: NDArray[np.float64], normal: NDArray[np.float64]) -> NDA
 
     Collinear corners count as convex, so a fan triangulation stays valid (possibly with
     zero-area triangles) for every polygon marked True.
+
+    Parameters
+    ----------
+    points : ndarray
+        ``(n, K, 3)`` polygons' corners in order.
+    normal : ndarray
+        ``(n, 3)`` their normals.
     """
     edge = np.roll(points, -1, axis=-2) - points
     turn = np.cross(np.roll(edge, 1, axis=-2), edge)
@@ -111,6 +125,13 @@ def ear_clip(points: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArra
 
     This is the slow reference used only for concave polygons; convex ones are fanned in
     bulk. Returns local vertex indices ``(K - 2, 3)``, each triangle wound like the polygon.
+
+    Parameters
+    ----------
+    points : ndarray
+        ``(K, 3)`` one polygon's corners in order.
+    normal : ndarray
+        ``(3,)`` its normal.
     """
     k = len(points)
     n = np.asarray(normal, dtype=np.float64)
@@ -161,7 +182,17 @@ def ear_clip(points: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArra
 
 def triangulate_groups(vertices, size_groups, newell_normals):
     """Triangles ``(T, 3)`` and their source polygons ``(T,)`` for polygons grouped by size
-    (``Mesh.size_groups``): convex ones fanned in bulk, concave ones ear clipped."""
+    (``Mesh.size_groups``): convex ones fanned in bulk, concave ones ear clipped.
+
+    Parameters
+    ----------
+    vertices : ndarray
+        ``(V, 3)`` positions.
+    size_groups : dict
+        ``Mesh.size_groups``: polygon size to (face ids, ``(n, K)`` indices).
+    newell_normals : ndarray
+        ``(F, 3)`` each face's Newell normal.
+    """
     tris, owner = [], []
     for k, (ids, idx) in size_groups.items():
         if k == 3:

@@ -40,7 +40,15 @@ def _check_faces(what: str, count: int) -> None:
 
 
 def box(size=(1.0, 1.0, 1.0), center=(0.0, 0.0, 0.0)) -> Mesh:
-    """An axis-aligned box of six quads."""
+    """An axis-aligned box of six quads.
+
+    Parameters
+    ----------
+    size : float or (float, float, float)
+        Edge lengths along x, y, z (scene units).
+    center : (float, float, float)
+        The box's centre.
+    """
     s = np.asarray(size, float) / 2
     corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
     quads = [
@@ -67,7 +75,17 @@ def cube() -> Mesh:
 
 
 def uv_sphere(stacks: int = 16, slices: int = 32, radius: float = 1.0) -> Mesh:
-    """A latitude/longitude sphere: quads, with triangle fans at the poles (y axis)."""
+    """A latitude/longitude sphere: quads, with triangle fans at the poles (y axis).
+
+    Parameters
+    ----------
+    stacks : int
+        Bands from pole to pole, >= 2.
+    slices : int
+        Segments around the y axis, >= 3.
+    radius : float
+        The sphere's radius.
+    """
     stacks = _check_int("stacks", stacks, 2)
     slices = _check_int("slices", slices, 3)
     _check_faces(f"uv_sphere({stacks}, {slices})", stacks * slices)
@@ -126,6 +144,13 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
     """A sphere of triangles from a subdivided icosahedron; every vertex lies on the sphere.
 
     Level k has ``20 * 4**k`` triangles.
+
+    Parameters
+    ----------
+    subdivisions : int
+        Times each triangle is split in four, >= 0.
+    radius : float
+        The sphere's radius.
     """
     subdivisions = _check_int("subdivisions", subdivisions, 0, 8)  # 8: 1.3M triangles
     v = _ICO_V / np.linalg.norm(_ICO_V, axis=1, keepdims=True)
@@ -150,7 +175,19 @@ def icosphere(subdivisions: int = 3, radius: float = 1.0) -> Mesh:
 
 
 def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
-    """A ring torus of quads around the y axis: ``n`` segments around, ``m`` across."""
+    """A ring torus of quads around the y axis: ``n`` segments around, ``m`` across.
+
+    Parameters
+    ----------
+    R : float
+        Distance from the y axis to the tube's centre.
+    r : float
+        The tube's radius, below ``R`` (a ring torus).
+    n : int
+        Segments around the y axis, >= 3.
+    m : int
+        Segments around the tube, >= 3.
+    """
     n = _check_int("n", n, 3)
     m = _check_int("m", m, 3)
     _check_faces(f"torus with n={n}, m={m}", n * m)
@@ -174,7 +211,17 @@ def torus(R: float = 1.0, r: float = 0.35, n: int = 32, m: int = 16) -> Mesh:
 
 
 def cylinder(n: int = 32, radius: float = 1.0, height: float = 2.0) -> Mesh:
-    """A closed cylinder along y: ``n`` side quads and two n-gon caps."""
+    """A closed cylinder along y: ``n`` side quads and two n-gon caps.
+
+    Parameters
+    ----------
+    n : int
+        Side quads around the axis, >= 3.
+    radius : float
+        The radius.
+    height : float
+        Its length along y, centred at the origin.
+    """
     n = _check_int("n", n, 3)
     a = 2 * np.pi * np.arange(n) / n
     ring = np.stack([radius * np.sin(a), np.zeros(n), radius * np.cos(a)], 1)
@@ -189,7 +236,13 @@ def cylinder(n: int = 32, radius: float = 1.0, height: float = 2.0) -> Mesh:
 
 
 def plane(size: float = 2.0) -> Mesh:
-    """One square quad in the xy plane, centred at the origin, facing +z."""
+    """One square quad in the xy plane, centred at the origin, facing +z.
+
+    Parameters
+    ----------
+    size : float
+        The square's edge length.
+    """
     s = size / 2
     return Mesh([[-s, -s, 0], [s, -s, 0], [s, s, 0], [-s, s, 0]], [[0, 1, 2, 3]], name="plane",
                 uv=_QUAD_UV)
@@ -239,7 +292,13 @@ def _bernstein(t: np.ndarray) -> np.ndarray:
 
 def teapot(tessellation: int = 8) -> Mesh:
     """The Utah teapot from Newell's 32 Bezier patches, ``tessellation`` quads per patch
-    side, welded along patch seams; y up, resting on y = 0."""
+    side, welded along patch seams; y up, resting on y = 0.
+
+    Parameters
+    ----------
+    tessellation : int
+        Quads a patch side, >= 1.
+    """
     from .data.teapot import control_nets
 
     k = _check_int("tessellation", tessellation, 1, 256)
@@ -274,7 +333,15 @@ def voxels(occupancy, size: float = 1.0) -> Mesh:
     """The boundary of a union of unit cubes as quads (outward), for solids of any genus:
     ``occupancy`` is a boolean ``(nx, ny, nz)`` array; cell (i, j, k) spans
     ``[i, i+1] x [j, j+1] x [k, k+1]`` times ``size``. Cubes touching only along an edge
-    give a non-manifold surface."""
+    give a non-manifold surface.
+
+    Parameters
+    ----------
+    occupancy : array_like
+        ``(nx, ny, nz)`` bool: the cells that are solid.
+    size : float
+        A cell's edge length.
+    """
     occ = np.pad(np.asarray(occupancy, dtype=bool), 1)
     shape = np.array(occ.shape) + 1  # lattice points
     quads = []
@@ -314,6 +381,11 @@ def from_spec(spec: str) -> Mesh:
     """Build a primitive from text: ``"icosphere"``, ``"icosphere:3"``, ``"torus:1,0.3"``.
 
     A leading ``primitive:`` is accepted. Arguments are numbers, comma-separated.
+
+    Parameters
+    ----------
+    spec : str
+        ``NAME`` or ``NAME:ARGS`` (numbers, comma-separated), optionally after ``primitive:``.
     """
     text = spec.removeprefix("primitive:")
     name, _, args = text.partition(":")

@@ -26,7 +26,13 @@ IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".bmp": "BMP", 
 def image_format(path) -> str:
     """The format an image written to ``path`` gets: its extension's, PNG for a path with
     none; an extension that is not an image's is refused (a typo, or a file of another
-    kind), naming the path."""
+    kind), naming the path.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to be written.
+    """
     suffix = Path(path).suffix.lower()
     if not suffix:
         return "PNG"
@@ -99,7 +105,15 @@ _RAMP = np.array([[0, 0, 4], [40, 11, 84], [101, 21, 110], [159, 42, 99], [212, 
 
 
 def heatmap(values, vmax: float) -> np.ndarray:
-    """Map ``(H, W)`` values in ``[0, vmax]`` to RGB uint8 through the ramp."""
+    """Map ``(H, W)`` values in ``[0, vmax]`` to RGB uint8 through the ramp.
+
+    Parameters
+    ----------
+    values : array_like
+        ``(H, W)`` values.
+    vmax : float
+        The value shown at the ramp's top (> 0).
+    """
     t = np.clip(np.asarray(values, float) / max(vmax, 1e-12), 0, 1) * (len(_RAMP) - 1)
     i = np.minimum(t.astype(int), len(_RAMP) - 2)
     f = (t - i)[..., None]
@@ -107,7 +121,13 @@ def heatmap(values, vmax: float) -> np.ndarray:
 
 
 def font(size: int = 14):
-    """Pillow's built-in font at ``size`` pixels (a fixed size on Pillow < 10.1)."""
+    """Pillow's built-in font at ``size`` pixels (a fixed size on Pillow < 10.1).
+
+    Parameters
+    ----------
+    size : int
+        Its height in pixels.
+    """
     from PIL import ImageFont
 
     try:
@@ -132,7 +152,17 @@ def fitted(draw, text: str, width: float, size: int = 14):
 
 def label(tile: np.ndarray, text: str, background=BACKGROUND) -> np.ndarray:
     """``tile`` (RGB) under a band of LABEL_HEIGHT pixels with ``text`` centred in it
-    (shrunk or cut to fit the tile: :func:`fitted`)."""
+    (shrunk or cut to fit the tile: :func:`fitted`).
+
+    Parameters
+    ----------
+    tile : ndarray
+        ``(H, W, 3)`` uint8.
+    text : str
+        The label.
+    background : (int, int, int)
+        The band's RGB.
+    """
     from PIL import Image, ImageDraw
 
     h, w = tile.shape[:2]
@@ -145,7 +175,15 @@ def label(tile: np.ndarray, text: str, background=BACKGROUND) -> np.ndarray:
 
 
 def colour_bar(height: int, vmax: float) -> np.ndarray:
-    """A vertical key of :func:`heatmap`'s ramp from ``vmax`` (top) to 0, labelled."""
+    """A vertical key of :func:`heatmap`'s ramp from ``vmax`` (top) to 0, labelled.
+
+    Parameters
+    ----------
+    height : int
+        The key's height in pixels.
+    vmax : float
+        The value at its top.
+    """
     from PIL import Image, ImageDraw
 
     width = 64
@@ -162,17 +200,37 @@ def colour_bar(height: int, vmax: float) -> np.ndarray:
 
 
 def opaque(rgb: np.ndarray) -> np.ndarray:
-    """``(H, W, 3)`` uint8 with an opaque alpha channel added: ``(H, W, 4)``."""
+    """``(H, W, 3)`` uint8 with an opaque alpha channel added: ``(H, W, 4)``.
+
+    Parameters
+    ----------
+    rgb : ndarray
+        ``(H, W, 3)`` uint8.
+    """
     return np.dstack([rgb, np.full(rgb.shape[:2], 255, np.uint8)])
 
 
 def labelled_row(tiles: dict) -> np.ndarray:
-    """Tiles ``{label: (H, W, 3|4) uint8}`` side by side, each under its label: RGBA."""
+    """Tiles ``{label: (H, W, 3|4) uint8}`` side by side, each under its label: RGBA.
+
+    Parameters
+    ----------
+    tiles : dict
+        ``{label: (H, W, 3|4) uint8}``, in order.
+    """
     return opaque(np.hstack([label(t, name) for name, t in tiles.items()]))
 
 
 def label_image(text: str, width: int) -> np.ndarray:
-    """``(LABEL_HEIGHT, width, 4) uint8``: the text centred on a dark band (opaque)."""
+    """``(LABEL_HEIGHT, width, 4) uint8``: the text centred on a dark band (opaque).
+
+    Parameters
+    ----------
+    text : str
+        The label.
+    width : int
+        The band's width in pixels.
+    """
     from PIL import Image, ImageDraw
 
     band = Image.new("RGBA", (width, LABEL_HEIGHT), (*BACKGROUND, 255))

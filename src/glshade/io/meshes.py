@@ -86,7 +86,13 @@ def load_source(spec: str) -> Any:
     """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
     MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`),
     ``patches:NAME`` or a ``.bpt`` file (the classic patch format) a
-    :class:`~glshade.patches.PatchSurface`."""
+    :class:`~glshade.patches.PatchSurface`.
+
+    Parameters
+    ----------
+    spec : str
+        A file path, ``primitive:NAME[:ARGS]``, ``solid:TEXT`` or ``patches:NAME``.
+    """
     if spec.startswith("solid:"):
         from ..solids.text import parse_solid
 

@@ -62,7 +62,23 @@ __all__ = ["SceneFile", "RenderSettings", "load_scene"]
 @dataclass
 class RenderSettings:
     """A scene file's ``[render]`` table: how to draw (the same :class:`DrawOptions` the
-    renderer takes, passed through animation unchanged), and the image and timing."""
+    renderer takes, passed through animation unchanged), and the image and timing.
+
+    Parameters
+    ----------
+    options : DrawOptions
+        How to draw.
+    width, height : int
+        The image's size in pixels.
+    samples : int
+        MSAA samples.
+    fps : float
+        Frames a second of an animation.
+    duration : float or None
+        An animation's length in seconds (None: its path's).
+    origin : dict
+        Where each setting came from, ``{"samples": "scene.toml:3"}``.
+    """
 
     options: DrawOptions = field(default_factory=DrawOptions)
     width: int = DEFAULT_SIZE[0]
@@ -81,7 +97,19 @@ class RenderSettings:
 @dataclass
 class SceneFile:
     """What a scene file holds: the scene, the camera path (one key for a still) and the
-    render settings."""
+    render settings.
+
+    Parameters
+    ----------
+    scene : Scene
+        The models and lights.
+    path : CameraPath
+        The camera's key frames (one for a still).
+    settings : RenderSettings
+        The [render] table.
+    source : Path
+        The file read.
+    """
 
     scene: Scene
     path: CameraPath

@@ -315,7 +315,13 @@ def egl_devices() -> list[dict]:
 def device_index(spec) -> int:
     """An EGL device by index (``"1"``) or by name (a case-blind part of its vendor or
     renderer: ``"nvidia"``, ``"llvmpipe"``); one line naming those present when no device
-    (or more than one, by name) matches."""
+    (or more than one, by name) matches.
+
+    Parameters
+    ----------
+    spec : int or str
+        An index (``1``, ``"1"``) or a case-blind part of a device's vendor or renderer name.
+    """
     text = str(spec).strip()
     if text.isdigit() and int(text) < egl_device_count():
         return int(text)  # (no need to make a context on each device)

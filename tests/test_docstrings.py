@@ -2,7 +2,8 @@
 public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and those of
 the modules documented whole (the quaternion algebra, data sets, modes, options, errors,
 atomic writes, mass-points, colour maps, examples; glshade.scene's, the mesh kernel's,
-the files' and the renderer's) has a
+the files', the renderer's, CSG solids', the winged-edge B-Rep's, Bezier patches' and
+the octree's) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -16,7 +17,11 @@ import pytest
 import glshade
 from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, modes,
                      options, pathtrace, quaternion)
+from glshade import octree
+from glshade.brep import winged_edge
 from glshade.geometry import merge, mesh, polygon, primitives
+from glshade.patches import bezier
+from glshade.solids import leaves, tree
 from glshade.io import images, meshes, scenefile
 from glshade.render import annotate, context, renderer
 from glshade.scene import camera, intrinsics, keyframes, lights, material, occluders, texture
@@ -25,7 +30,7 @@ from glshade.scene import scene as scene_module
 #: the chapters' modules documented whole so far
 SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module,
          merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
-         renderer)
+         renderer, tree, leaves, winged_edge, bezier, octree)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]

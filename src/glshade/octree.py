@@ -39,7 +39,17 @@ class Level:
 
 
 class Octree:
-    """Levels 0..depth; level 0 is the root cube ``origin`` + [0, size]^3."""
+    """Levels 0..depth; level 0 is the root cube ``origin`` + [0, size]^3.
+
+    Parameters
+    ----------
+    origin : array_like
+        ``(3,)`` the root cube's minimum corner.
+    size : float
+        The root cube's edge.
+    levels : list of Level
+        Each level's cells, 0 to depth.
+    """
 
     def __init__(self, origin, size: float, levels: list[Level]):
         self.origin, self.size, self.levels = np.asarray(origin, np.float64), float(size), \
@@ -52,7 +62,17 @@ class Octree:
     # ------------------------------------------------------------------ building
     @classmethod
     def build(cls, classify, bounds, depth: int) -> Octree:
-        """Refine with ``classify(lo, hi) -> states`` over a cube around ``bounds``."""
+        """Refine with ``classify(lo, hi) -> states`` over a cube around ``bounds``.
+
+        Parameters
+        ----------
+        classify : callable
+            ``(lo, hi) -> states``: each box ``(N, 3)`` INSIDE, OUTSIDE or BOUNDARY.
+        bounds : array_like
+            ``(2, 3)`` what to cover.
+        depth : int
+            The deepest level.
+        """
         if int(depth) != depth or not 0 <= depth <= 12:
             raise GeometryError(f"octree depth must be a whole number from 0 to 12, got "
                                 f"{depth!r}")
@@ -75,11 +95,29 @@ class Octree:
 
     @classmethod
     def from_solid(cls, solid, depth: int) -> Octree:
+        """The octree of a CSG solid, its boxes classified conservatively
+        (:meth:`Solid.classify_boxes`: a box is boundary unless surely in or out).
+
+        Parameters
+        ----------
+        solid : Solid
+            The solid (bounded).
+        depth : int
+            The deepest level.
+        """
         return cls.build(solid.classify_boxes, solid.bounds, depth)
 
     @classmethod
     def from_mesh(cls, mesh: Mesh, depth: int) -> Octree:
-        """Of a closed, oriented mesh (an open one has no inside: an error)."""
+        """Of a closed, oriented mesh (an open one has no inside: an error).
+
+        Parameters
+        ----------
+        mesh : Mesh
+            A closed, consistently oriented mesh.
+        depth : int
+            The deepest level.
+        """
         if not mesh.closed_and_oriented:
             raise GeometryError("octree from a mesh needs a closed, consistently oriented "
                                 "mesh (its inside is otherwise undefined)")
@@ -99,6 +137,13 @@ class Octree:
 
     # ------------------------------------------------------------------ queries
     def cell_size(self, level: int) -> float:
+        """A cell's edge length at ``level``.
+
+        Parameters
+        ----------
+        level : int
+            0 (the root) to the depth.
+        """
         return self.size / 2 ** level
 
     def __repr__(self) -> str:
@@ -161,7 +206,13 @@ class Octree:
 
     def classify(self, points) -> np.ndarray:
         """``(N,) int8``: INSIDE, OUTSIDE or BOUNDARY (a deepest-level boundary cell) for
-        each point."""
+        each point.
+
+        Parameters
+        ----------
+        points : array_like
+            ``(N, 3)`` positions.
+        """
         p = np.asarray(points, np.float64)
         if p.ndim != 2 or p.shape[1] != 3:
             raise GeometryError(f"points must have shape (N, 3), got {p.shape}")
@@ -170,7 +221,15 @@ class Octree:
 
     def neighbours(self, level: int, coords) -> np.ndarray:
         """States ``(n, 6)`` of the face neighbours (-x, +x, -y, +y, -z, +z) of cells at
-        ``level`` (an unrefined neighbour answers for its part)."""
+        ``level`` (an unrefined neighbour answers for its part).
+
+        Parameters
+        ----------
+        level : int
+            The cells' level.
+        coords : array_like
+            ``(n, 3)`` integer cell coordinates at that level.
+        """
         c = np.asarray(coords, np.int64).reshape(-1, 3)
         steps = np.array([[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1],
                           [0, 0, 1]])
@@ -179,7 +238,13 @@ class Octree:
 
     def occupancy(self, which: str = "inside") -> np.ndarray:
         """Dense ``(n, n, n) bool`` at the deepest level, n = 2^depth: the cells that are
-        inside (or inside or boundary, ``which="inside+boundary"``)."""
+        inside (or inside or boundary, ``which="inside+boundary"``).
+
+        Parameters
+        ----------
+        which : str
+            ``"inside"`` or ``"inside+boundary"``.
+        """
         if which not in ("inside", "inside+boundary"):
             raise GeometryError(f"which must be 'inside' or 'inside+boundary', got {which!r}")
         if self.depth > 9:
@@ -199,7 +264,13 @@ class Octree:
         return occ
 
     def to_mesh(self, which: str = "inside") -> Mesh:
-        """The cells as one closed surface of quads (for rendering voxels)."""
+        """The cells as one closed surface of quads (for rendering voxels).
+
+        Parameters
+        ----------
+        which : str
+            ``"inside"`` or ``"inside+boundary"``.
+        """
         from .geometry.primitives import voxels
 
         occ = self.occupancy(which)
@@ -213,7 +284,15 @@ class Octree:
 def winding_number(points, triangles) -> np.ndarray:
     """Generalised winding number of each point (N, 3) about triangles (T, 3, 3): the sum
     of their solid angles over 4 pi (Van Oosterom and Strackee), chunked. 1 inside a
-    closed outward mesh, 0 outside, and it degrades gracefully near edges and vertices."""
+    closed outward mesh, 0 outside, and it degrades gracefully near edges and vertices.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(N, 3)`` positions.
+    triangles : array_like
+        ``(T, 3, 3)`` a closed surface's triangles.
+    """
     p = np.asarray(points, np.float64)
     out = np.zeros(len(p))
     step = max(1, 2_000_000 // max(len(triangles), 1))

@@ -46,6 +46,19 @@ class WingedEdge:
     ``edge_vertices (E, 2)`` P and N; ``edge_faces (E, 2)`` left and right; ``edge_wings
     (E, 4)`` P_L, P_R, N_L, N_R; ``vertex_edge (V,)``; ``face_edge (F,)`` (an edge of the
     outer loop); ``loop_face (L,)``, ``face_loops`` (outer loop first).
+
+    Parameters
+    ----------
+    vertices : array_like
+        ``(V, 3)`` positions.
+    loops : sequence of sequence of int or None
+        Each loop's vertices in order (outer loops counter-clockwise, holes clockwise).
+    loop_face : array_like
+        ``(L,)`` the face of each loop.
+    n_faces : int
+        The faces.
+    strict : bool
+        Raise on a non-manifold or inconsistent input (else collect the problems).
     """
 
     def __init__(self, vertices, loops: Sequence[Sequence[int]] | None, loop_face,
@@ -194,7 +207,15 @@ class WingedEdge:
         ``strict=False`` problems are collected in ``.report`` instead of raised; a surface
         whose faces are merely wound inconsistently is then built from
         :meth:`Mesh.oriented` (its topology -- closed, manifold, boundary loops -- is the
-        same) and reported as not oriented."""
+        same) and reported as not oriented.
+
+        Parameters
+        ----------
+        mesh : Mesh
+            The polygons.
+        strict : bool
+            Raise on a problem (else collect them in ``problems``).
+        """
         w = cls(mesh.vertices, None, np.arange(mesh.n_faces), mesh.n_faces, strict=strict,
                 _csr=(mesh.face_indices, mesh.face_offsets))
         if strict or not w.report.misoriented_edges or w.report.non_manifold_edges:
@@ -213,7 +234,17 @@ class WingedEdge:
     def from_faces(cls, vertices: ArrayLike, faces: Sequence, *, strict: bool = True
                    ) -> WingedEdge:
         """Faces with holes: each face is a list of loops, the outer loop first
-        (counter-clockwise seen from outside), then its inner loops (clockwise)."""
+        (counter-clockwise seen from outside), then its inner loops (clockwise).
+
+        Parameters
+        ----------
+        vertices : array_like
+            ``(V, 3)`` positions.
+        faces : sequence
+            Each face a list of loops (vertex lists), the outer loop first.
+        strict : bool
+            Raise on a problem (else collect them).
+        """
         loops, owner = [], []
         for f, face in enumerate(faces):
             if len(face) == 0:
@@ -325,39 +356,82 @@ class WingedEdge:
         return list(range(a, b))
 
     def face_edges(self, f: int) -> list[int]:
-        """Edges around face ``f`` in loop order (outer loop; see :meth:`face_loops`)."""
+        """Edges around face ``f`` in loop order (outer loop; see :meth:`face_loops`).
+
+        Parameters
+        ----------
+        f : int
+            The face's index.
+        """
         f = self._check("face", f, self.n_faces)
         return [int(self._h["edge"][h]) for h in self._loop_halves(int(self.face_outer_loop[f]))]
 
     def face_vertices(self, f: int) -> list[int]:
-        """Vertices of face ``f`` counter-clockwise (outer loop)."""
+        """Vertices of face ``f`` counter-clockwise (outer loop).
+
+        Parameters
+        ----------
+        f : int
+            The face's index.
+        """
         f = self._check("face", f, self.n_faces)
         return [int(self._h["from"][h]) for h in self._loop_halves(int(self.face_outer_loop[f]))]
 
     def face_faces(self, f: int) -> list[int]:
-        """Faces across each edge of face ``f``, in loop order (-1 across a boundary)."""
+        """Faces across each edge of face ``f``, in loop order (-1 across a boundary).
+
+        Parameters
+        ----------
+        f : int
+            The face's index.
+        """
         f = self._check("face", f, self.n_faces)
         t = self._h["twin"]
         return [int(self._h["face"][t[h]]) if t[h] >= 0 else -1
                 for h in self._loop_halves(int(self.face_outer_loop[f]))]
 
     def face_loops(self, f: int) -> list[list[int]]:
-        """Every loop of face ``f`` as vertex lists: outer first, then the holes."""
+        """Every loop of face ``f`` as vertex lists: outer first, then the holes.
+
+        Parameters
+        ----------
+        f : int
+            The face's index.
+        """
         f = self._check("face", f, self.n_faces)
         return [[int(self._h["from"][h]) for h in self._loop_halves(lp)]
                 for lp in np.flatnonzero(self.loop_face == f).tolist()]
 
     def edge_vertices_of(self, e: int) -> tuple[int, int]:
+        """The (P, N) vertices of edge ``e``.
+
+        Parameters
+        ----------
+        e : int
+            The edge's index.
+        """
         e = self._check("edge", e, self.n_edges)
         return int(self.edge_vertices[e, 0]), int(self.edge_vertices[e, 1])
 
     def edge_faces_of(self, e: int) -> tuple[int, int]:
-        """(left, right) faces of edge ``e``; -1 on a boundary."""
+        """(left, right) faces of edge ``e``; -1 on a boundary.
+
+        Parameters
+        ----------
+        e : int
+            The edge's index.
+        """
         e = self._check("edge", e, self.n_edges)
         return int(self.edge_faces[e, 0]), int(self.edge_faces[e, 1])
 
     def edge_edges(self, e: int) -> tuple[int, int, int, int]:
-        """The four wings (P_L, P_R, N_L, N_R) of edge ``e``; -1 where absent."""
+        """The four wings (P_L, P_R, N_L, N_R) of edge ``e``; -1 where absent.
+
+        Parameters
+        ----------
+        e : int
+            The edge's index.
+        """
         e = self._check("edge", e, self.n_edges)
         return tuple(int(x) for x in self.edge_wings[e])  # type: ignore[return-value]
 
@@ -392,7 +466,13 @@ class WingedEdge:
         return fan
 
     def vertex_edges(self, v: int) -> list[int]:
-        """Edges at vertex ``v`` in cyclic order (counter-clockwise seen from outside)."""
+        """Edges at vertex ``v`` in cyclic order (counter-clockwise seen from outside).
+
+        Parameters
+        ----------
+        v : int
+            The vertex's index.
+        """
         v = self._check("vertex", v, self.n_vertices)
         fan = self._vertex_fan(v)
         out = [int(self._h["edge"][h]) for h in fan]
@@ -401,12 +481,24 @@ class WingedEdge:
         return out
 
     def vertex_faces(self, v: int) -> list[int]:
-        """Faces around vertex ``v`` in cyclic order."""
+        """Faces around vertex ``v`` in cyclic order.
+
+        Parameters
+        ----------
+        v : int
+            The vertex's index.
+        """
         v = self._check("vertex", v, self.n_vertices)
         return [int(self._h["face"][h]) for h in self._vertex_fan(v)]
 
     def vertex_vertices(self, v: int) -> list[int]:
-        """Neighbours of vertex ``v`` in cyclic order."""
+        """Neighbours of vertex ``v`` in cyclic order.
+
+        Parameters
+        ----------
+        v : int
+            The vertex's index.
+        """
         v = self._check("vertex", v, self.n_vertices)
         out = []
         for e in self.vertex_edges(v):

@@ -39,7 +39,15 @@ DEGENERATE = 1e-12
 
 
 def bernstein(n: int, t: ArrayLike) -> NDArray[np.float64]:
-    """The Bernstein polynomials of degree ``n`` at ``t``: ``(..., n + 1)``."""
+    """The Bernstein polynomials of degree ``n`` at ``t``: ``(..., n + 1)``.
+
+    Parameters
+    ----------
+    n : int
+        The degree.
+    t : array_like
+        Parameters in [0, 1], any shape.
+    """
     t = np.asarray(t, dtype=np.float64)[..., None]
     i = np.arange(n + 1)
     c = np.array([comb(n, k) for k in range(n + 1)], np.float64)
@@ -49,7 +57,17 @@ def bernstein(n: int, t: ArrayLike) -> NDArray[np.float64]:
 def de_casteljau(control: ArrayLike, t: ArrayLike, axis: int = -2) -> NDArray[np.float64]:
     """De Casteljau's algorithm along ``axis`` of a control net (repeated linear
     interpolation: stable, and what subdivision splits at): the points at ``t``, one per
-    value; ``control (..., n+1, d)`` with ``t (K,)`` gives ``(..., K, d)``."""
+    value; ``control (..., n+1, d)`` with ``t (K,)`` gives ``(..., K, d)``.
+
+    Parameters
+    ----------
+    control : array_like
+        A control net (homogeneous points last).
+    t : array_like
+        The parameter, broadcast against the net's other axes.
+    axis : int
+        The axis the net's degree runs along.
+    """
     c = np.moveaxis(np.asarray(control, dtype=np.float64), axis, 0)  # (n+1, ..., d)
     t = np.asarray(t, dtype=np.float64)
     pts = np.broadcast_to(c[:, None], (c.shape[0], len(t)) + c.shape[1:]).copy()
@@ -61,7 +79,17 @@ def de_casteljau(control: ArrayLike, t: ArrayLike, axis: int = -2) -> NDArray[np
 
 def curve_point(control: ArrayLike, t: ArrayLike, weights: ArrayLike | None = None):
     """Points of a (rational) Bezier curve ``control (n+1, 3)`` at ``t (K,)``: ``(K, 3)``, by
-    de Casteljau on the mass-points ``(w P, w)``."""
+    de Casteljau on the mass-points ``(w P, w)``.
+
+    Parameters
+    ----------
+    control : array_like
+        ``(n+1, 3)`` control points.
+    t : array_like
+        ``(K,)`` parameters in [0, 1].
+    weights : array_like or None
+        ``(n+1,)`` positive weights (None: a polynomial curve).
+    """
     p = np.asarray(control, dtype=np.float64)
     w = np.ones(len(p)) if weights is None else np.asarray(weights, dtype=np.float64)
     h = de_casteljau(np.concatenate([p * w[:, None], w[:, None]], 1), t, axis=0)
@@ -86,7 +114,15 @@ def _split(h: np.ndarray, t: float, axis: int) -> tuple[np.ndarray, np.ndarray]:
 
 def elevate(h: np.ndarray, axis: int) -> np.ndarray:
     """Degree elevation by one along ``axis`` of homogeneous nets (the same surface with one
-    more control row): ``Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i``."""
+    more control row): ``Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i``.
+
+    Parameters
+    ----------
+    h : ndarray
+        Homogeneous control nets (weighted points and weights last).
+    axis : int
+        The axis to raise the degree along.
+    """
     c = np.moveaxis(h, axis, 0)
     n = c.shape[0] - 1
     out = np.empty((n + 2,) + c.shape[1:])
@@ -129,7 +165,15 @@ class PatchSet:
     and ``weights (P, m+1, n+1)`` (positive; ones for polynomial patches; kept scaled so
     each patch's largest is 1). Refused, naming the patch: no patches, a degree over
     MAX_DEGREE, weights not one per point, not positive or spanning more than
-    MAX_WEIGHT_RATIO, coordinates over MAX_COORDINATE, numbers that are not finite."""
+    MAX_WEIGHT_RATIO, coordinates over MAX_COORDINATE, numbers that are not finite.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(P, m+1, n+1, 3)`` control points.
+    weights : array_like or None
+        ``(P, m+1, n+1)`` positive weights (None: polynomial patches).
+    """
 
     points: np.ndarray
     weights: np.ndarray
@@ -166,7 +210,13 @@ class PatchSet:
     @classmethod
     def from_masspoints(cls, masspoints) -> PatchSet:
         """From a net of :class:`~glshade.masspoint.MassPoint` ``(P, m+1, n+1)``: control
-        points ``weighted / mass``, weights ``mass``."""
+        points ``weighted / mass``, weights ``mass``.
+
+        Parameters
+        ----------
+        masspoints : MassPoint
+            ``(P, m+1, n+1)`` mass-points.
+        """
         return cls(masspoints.weighted / masspoints.mass[..., None], masspoints.mass)
 
     @classmethod
@@ -234,14 +284,26 @@ class PatchSet:
         return scale * np.einsum("pki,pkj,pijc->pkc", bu, bv, h)
 
     def evaluate(self, u: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
-        """Surface points ``(P, K, 3)`` by the Bernstein form."""
+        """Surface points ``(P, K, 3)`` by the Bernstein form.
+
+        Parameters
+        ----------
+        u, v : array_like
+            ``(K,)`` parameters in [0, 1], pairs.
+        """
         u, v = self._params(u, v)
         h = self._h_deriv(u, v, 0, 0)
         return h[..., :3] / h[..., 3:]
 
     def evaluate_de_casteljau(self, u: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
         """Surface points ``(P, K, 3)`` by de Casteljau on the mass-points, rows then the
-        column (the same surface as :meth:`evaluate`, by another algorithm)."""
+        column (the same surface as :meth:`evaluate`, by another algorithm).
+
+        Parameters
+        ----------
+        u, v : array_like
+            ``(K,)`` parameters in [0, 1], pairs.
+        """
         uu, vv = self._params(u, v)
         h = self.homogeneous  # (P, m+1, n+1, 4)
         pts = np.broadcast_to(h[:, None], uu.shape + h.shape[1:])  # (P, K, m+1, n+1, 4)
@@ -258,7 +320,15 @@ class PatchSet:
     def derivatives(self, u: ArrayLike, v: ArrayLike, order: int = 1) -> dict:
         """The surface and its partial derivatives at (u, v): ``{"S", "Su", "Sv"}`` and with
         ``order=2`` also ``"Suu", "Suv", "Svv"``, each ``(P, K, 3)`` (quotient rule on the
-        homogeneous derivatives)."""
+        homogeneous derivatives).
+
+        Parameters
+        ----------
+        u, v : array_like
+            ``(K,)`` parameters in [0, 1], pairs.
+        order : int
+            1 or 2.
+        """
         u, v = self._params(u, v)
         H = {(a, b): self._h_deriv(u, v, a, b) for a in range(order + 1)
              for b in range(order + 1 - a)}
@@ -279,7 +349,13 @@ class PatchSet:
         """Exact unit normals ``(P, K, 3)``, along ``Su x Sv``. Where that vanishes (an edge
         collapsed to a point: the teapot's lid and bottom, a sphere's poles) the normal is
         its limit there, ``Su x Suv`` (from ``Sv ~ u Suv`` near a collapsed u = 0 edge;
-        negated at u = 1) or ``Suv x Sv`` (a collapsed v edge), then ``Suu x Svv``."""
+        negated at u = 1) or ``Suv x Sv`` (a collapsed v edge), then ``Suu x Svv``.
+
+        Parameters
+        ----------
+        u, v : array_like
+            ``(K,)`` parameters in [0, 1], pairs.
+        """
         d = self.derivatives(u, v, order=2)
         size = np.ptp(self.points, axis=(1, 2)).max(-1)[:, None, None]  # (P, 1, 1)
         small = (DEGENERATE * size ** 2) ** 2  # (|n|^2 below it: degenerate)
@@ -302,13 +378,27 @@ class PatchSet:
     # ------------------------------------------------------------------ subdivision
     def subdivide(self, t: float = 0.5, direction: str = "u") -> tuple[PatchSet, PatchSet]:
         """Split every patch at ``t`` in u or v (de Casteljau): two sets whose union is the
-        same surface, ``[0, t]`` and ``[t, 1]`` rescaled to [0, 1]."""
+        same surface, ``[0, t]`` and ``[t, 1]`` rescaled to [0, 1].
+
+        Parameters
+        ----------
+        t : float
+            Where to split, in (0, 1).
+        direction : str
+            ``"u"`` or ``"v"``.
+        """
         axis = {"u": 1, "v": 2}[direction]
         a, b = _split(self.homogeneous, float(t), axis)
         return PatchSet._from_homogeneous(a), PatchSet._from_homogeneous(b)
 
     def elevated(self, m: int, n: int) -> PatchSet:
-        """The same patches at degree (m, n) >= their own (degree elevation)."""
+        """The same patches at degree (m, n) >= their own (degree elevation).
+
+        Parameters
+        ----------
+        m, n : int
+            The new degrees, at least the patches' own.
+        """
         h = self.homogeneous
         mm, nn = self.degree
         if m < mm or n < nn:
@@ -321,7 +411,13 @@ class PatchSet:
 
     @staticmethod
     def concatenate(sets) -> PatchSet:
-        """One set of several, each raised to the largest degree."""
+        """One set of several, each raised to the largest degree.
+
+        Parameters
+        ----------
+        sets : iterable of PatchSet
+            The sets, in order.
+        """
         sets = list(sets)
         m = max(s.degree[0] for s in sets)
         n = max(s.degree[1] for s in sets)

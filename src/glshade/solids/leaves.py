@@ -25,7 +25,13 @@ class _Leaf(Solid):
 
 
 class Sphere(_Leaf):
-    """A ball of ``radius`` about the origin."""
+    """A ball of ``radius`` about the origin.
+
+    Parameters
+    ----------
+    radius : float
+        > 0.
+    """
 
     def __init__(self, radius: float = 1.0):
         self.radius = _positive(radius, "sphere radius")
@@ -37,6 +43,14 @@ class Sphere(_Leaf):
         return np.array([[-self.radius] * 3, [self.radius] * 3])
 
     def distance(self, p):
+        """The signed distance from points to the leaf's surface (negative inside): exact,
+        or a bound never above the true distance.
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         return np.linalg.norm(p, axis=1) - self.radius
 
     def _leaf_events(self, o, d, leaf):
@@ -49,7 +63,13 @@ class Sphere(_Leaf):
 
 class Box(_Leaf):
     """An axis-aligned box centred at the origin: ``size`` one edge length or three (x, y,
-    z)."""
+    z).
+
+    Parameters
+    ----------
+    size : float or (float, float, float)
+        Edge lengths, > 0.
+    """
 
     def __init__(self, size=1.0):
         s = np.broadcast_to(np.asarray(size, np.float64), (3,))
@@ -64,6 +84,14 @@ class Box(_Leaf):
         return np.array([-self.half, self.half])
 
     def distance(self, p):
+        """The signed distance from points to the leaf's surface (negative inside): exact,
+        or a bound never above the true distance.
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         q = np.abs(p) - self.half
         return np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(1), 0)
 
@@ -87,7 +115,15 @@ class Box(_Leaf):
 
 
 class Cylinder(_Leaf):
-    """Radius ``radius`` around the y axis, from y = -height/2 to height/2."""
+    """Radius ``radius`` around the y axis, from y = -height/2 to height/2.
+
+    Parameters
+    ----------
+    radius : float
+        > 0.
+    height : float
+        > 0, along y, centred at the origin.
+    """
 
     def __init__(self, radius: float = 1.0, height: float = 2.0):
         self.radius = _positive(radius, "cylinder radius")
@@ -101,6 +137,14 @@ class Cylinder(_Leaf):
         return np.array([[-r, -h, -r], [r, h, r]])
 
     def distance(self, p):
+        """The signed distance from points to the leaf's surface (negative inside): exact,
+        or a bound never above the true distance.
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         q = np.c_[np.hypot(p[:, 0], p[:, 2]) - self.radius, np.abs(p[:, 1]) - self.h]
         return np.minimum(q.max(1), 0) + np.linalg.norm(np.maximum(q, 0), axis=1)
 
@@ -122,7 +166,15 @@ class Cylinder(_Leaf):
 
 
 class Cone(_Leaf):
-    """Apex at y = height/2 above a base of ``radius`` at y = -height/2."""
+    """Apex at y = height/2 above a base of ``radius`` at y = -height/2.
+
+    Parameters
+    ----------
+    radius : float
+        The base's radius, > 0.
+    height : float
+        > 0, along y, centred at the origin.
+    """
 
     def __init__(self, radius: float = 1.0, height: float = 2.0):
         self.radius = _positive(radius, "cone radius")
@@ -141,7 +193,13 @@ class Cone(_Leaf):
 
     def distance(self, p):
         """A bound: the larger of the distances to the side's line (extended) and to the
-        slab -- never more than the true distance (an intersection's rule)."""
+        slab -- never more than the true distance (an intersection's rule).
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         y = p[:, 1]
         side = (np.hypot(p[:, 0], p[:, 2]) - self.k * (self.apex - y)) / np.hypot(1, self.k)
         return np.maximum(side, np.abs(y) - self.apex)
@@ -170,7 +228,15 @@ class Cone(_Leaf):
 
 
 class Torus(_Leaf):
-    """Tube of radius ``r`` around a circle of radius ``R`` in the xz plane."""
+    """Tube of radius ``r`` around a circle of radius ``R`` in the xz plane.
+
+    Parameters
+    ----------
+    R : float
+        The circle's radius, > r.
+    r : float
+        The tube's radius, > 0.
+    """
 
     def __init__(self, R: float = 1.0, r: float = 0.25):
         self.R, self.r = _positive(R, "torus R"), _positive(r, "torus r")
@@ -186,6 +252,14 @@ class Torus(_Leaf):
         return np.array([[-a, -r, -a], [a, r, a]])
 
     def distance(self, p):
+        """The signed distance from points to the leaf's surface (negative inside): exact,
+        or a bound never above the true distance.
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         return np.hypot(np.hypot(p[:, 0], p[:, 2]) - self.R, p[:, 1]) - self.r
 
     def _gradient(self, p):
@@ -244,7 +318,15 @@ class Torus(_Leaf):
 
 
 class HalfSpace(_Leaf):
-    """Everything on the side of the plane ``dot(normal, p) = offset`` away from ``normal``."""
+    """Everything on the side of the plane ``dot(normal, p) = offset`` away from ``normal``.
+
+    Parameters
+    ----------
+    normal : array_like
+        ``(3,)`` the plane's normal, non-zero: the solid lies away from it.
+    offset : float
+        The plane's distance along the unit normal from the origin.
+    """
 
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0):
         n = _vec(normal, "half-space normal")
@@ -260,6 +342,14 @@ class HalfSpace(_Leaf):
         return None
 
     def distance(self, p):
+        """The signed distance from points to the leaf's surface (negative inside): exact,
+        or a bound never above the true distance.
+
+        Parameters
+        ----------
+        p : ndarray
+            ``(N, 3)`` points in the leaf's own frame.
+        """
         return p @ self.normal - self.offset
 
     def _leaf_events(self, o, d, leaf):

@@ -52,7 +52,15 @@ TIE = 2.0 ** -16
 
 def tie_length(bounds, origin) -> float:
     """The tie rule's length (world units) for a solid with ``bounds (2, 3)`` cast from
-    ``origin (3,)``: TIE times its reach plus the origin's distance from its centre."""
+    ``origin (3,)``: TIE times its reach plus the origin's distance from its centre.
+
+    Parameters
+    ----------
+    bounds : array_like
+        ``(2, 3)`` the solid's box.
+    origin : array_like
+        ``(3,)`` where the rays start.
+    """
     lo, hi = np.asarray(bounds, np.float64)
     centre = (lo + hi) / 2
     reach = np.linalg.norm(hi - lo) / 2
@@ -62,13 +70,34 @@ def tie_length(bounds, origin) -> float:
 class Events:
     """Boundary events along each of N rays, ``(N, K)``: ``t`` (sorted; +inf pads),
     ``kind`` (+1 enter, -1 leave, 0 pad), ``normal (N, K, 3)`` outward from the solid,
-    ``leaf`` (the leaf's index in the tree)."""
+    ``leaf`` (the leaf's index in the tree).
+
+    Parameters
+    ----------
+    t : ndarray
+        ``(N, K)`` event distances along each ray, sorted; +inf pads.
+    kind : ndarray
+        ``(N, K)`` +1 enter, -1 leave, 0 pad.
+    normal : ndarray
+        ``(N, K, 3)`` outward unit normals at the events.
+    leaf : ndarray
+        ``(N, K)`` the leaf of each event.
+    """
 
     def __init__(self, t, kind, normal, leaf):
         self.t, self.kind, self.normal, self.leaf = t, kind, normal, leaf
 
     @classmethod
     def empty(cls, n: int, k: int) -> Events:
+        """No events: N rays of K padding slots.
+
+        Parameters
+        ----------
+        n : int
+            Rays.
+        k : int
+            Slots a ray.
+        """
         return cls(np.full((n, k), np.inf), np.zeros((n, k), np.int8), np.zeros((n, k, 3)),
                    np.full((n, k), -1, np.int64))
 
@@ -95,18 +124,46 @@ class Solid:
         return Difference(self, _solid(other))
 
     def transformed(self, matrix: ArrayLike) -> Solid:
+        """This solid moved by an affine map.
+
+        Parameters
+        ----------
+        matrix : array_like
+            ``(4, 4)`` affine (or ``(3, 3)`` linear) matrix for column vectors, nonsingular.
+        """
         return Transformed(self, affine_matrix(matrix, "CSG transform"))
 
     def translated(self, offset: ArrayLike) -> Solid:
+        """This solid moved by ``offset``.
+
+        Parameters
+        ----------
+        offset : array_like
+            ``(3,)`` scene units.
+        """
         m = np.eye(4)
         m[:3, 3] = _vec(offset, "translation")
         return self.transformed(m)
 
     def scaled(self, factor) -> Solid:
+        """This solid scaled about the origin.
+
+        Parameters
+        ----------
+        factor : float or array_like
+            One factor, or ``(3,)`` per axis, none zero.
+        """
         f = np.broadcast_to(np.asarray(factor, np.float64), (3,))
         return self.transformed(np.diag([*f, 1.0]))
 
     def rotated(self, q: ArrayLike) -> Solid:
+        """This solid turned about the origin.
+
+        Parameters
+        ----------
+        q : array_like
+            ``(4,)`` a unit quaternion ``(x, y, z, w)``.
+        """
         from ..quaternion import to_matrix
 
         m = np.eye(4)
@@ -128,7 +185,13 @@ class Solid:
         return out
 
     def contains(self, points: ArrayLike) -> np.ndarray:
-        """``(N,) bool``: which points lie in the solid (its boundary included)."""
+        """``(N,) bool``: which points lie in the solid (its boundary included).
+
+        Parameters
+        ----------
+        points : array_like
+            ``(N, 3)`` world positions.
+        """
         return self._contains(_points(points))
 
     @property
@@ -139,7 +202,15 @@ class Solid:
     def events(self, origins, directions) -> Events:
         """Roth's boundary events along the rays ``origins + t directions``, every t, with
         the tie rule (:data:`TIE`): ``kind`` 0 marks a boundary the solid's surface is not
-        on (kept for the rule; t = inf marks padding)."""
+        on (kept for the rule; t = inf marks padding).
+
+        Parameters
+        ----------
+        origins : array_like
+            ``(N, 3)`` the rays' starts.
+        directions : array_like
+            ``(N, 3)`` their directions (not necessarily unit: t is in their units).
+        """
         o, d = np.asarray(origins, np.float64), np.asarray(directions, np.float64)
         bounds = self.bounds
         if bounds is None:
@@ -157,7 +228,17 @@ class Solid:
     def intersect(self, origins: ArrayLike, directions: ArrayLike, t_min: float = 0.0):
         """First surface along each ray beyond ``t_min``: ``(t (N,), normal (N, 3), leaf
         (N,))``; t = inf and leaf = -1 where the ray misses. Normals are unit, outward
-        from the solid (so flipped on surfaces a difference subtracted)."""
+        from the solid (so flipped on surfaces a difference subtracted).
+
+        Parameters
+        ----------
+        origins : array_like
+            ``(N, 3)`` the rays' starts.
+        directions : array_like
+            ``(N, 3)`` their directions.
+        t_min : float
+            Hits at or before this t are not counted.
+        """
         o, d = _points(origins), _points(directions)
         if o.shape != d.shape:
             raise GeometryError(f"origins {o.shape} and directions {d.shape} differ")
@@ -174,11 +255,25 @@ class Solid:
     def classify_boxes(self, lo: ArrayLike, hi: ArrayLike) -> np.ndarray:
         """For axis-aligned boxes ``lo``, ``hi`` (N, 3): 1 if wholly inside the solid, 0 if
         wholly outside, 2 if the boundary may cross it -- conservative (never 0 or 1 by
-        mistake), from each leaf's distance bound and the booleans' three-valued logic."""
+        mistake), from each leaf's distance bound and the booleans' three-valued logic.
+
+        Parameters
+        ----------
+        lo, hi : array_like
+            ``(N, 3)`` the boxes' min and max corners.
+        """
         return self._classify(np.asarray(lo, np.float64), np.asarray(hi, np.float64))
 
     def volume(self, samples: int = 200_000, seed: int = 0) -> tuple[float, float]:
-        """Monte Carlo volume over the bounds: (estimate, standard error)."""
+        """Monte Carlo volume over the bounds: (estimate, standard error).
+
+        Parameters
+        ----------
+        samples : int
+            Random points in the bounds.
+        seed : int
+            Their generator's seed.
+        """
         b = self.bounds
         if b is None:
             raise GeometryError("an unbounded solid (a half-space not cut by anything) has "
@@ -456,7 +551,13 @@ OUT, IN, MAYBE = 0, 1, 2
 
 
 class Union(_Boolean):
-    """``a | b``: inside either."""
+    """``a | b``: inside either.
+
+    Parameters
+    ----------
+    a, b : Solid
+        The operands.
+    """
 
     op = staticmethod(np.logical_or)
 
@@ -473,7 +574,13 @@ class Union(_Boolean):
 
 
 class Intersection(_Boolean):
-    """``a & b``: inside both."""
+    """``a & b``: inside both.
+
+    Parameters
+    ----------
+    a, b : Solid
+        The operands.
+    """
 
     op = staticmethod(np.logical_and)
 
@@ -491,10 +598,23 @@ class Intersection(_Boolean):
 
 
 class Difference(_Boolean):
-    """``a - b``: inside a and not b (b's surfaces face the other way)."""
+    """``a - b``: inside a and not b (b's surfaces face the other way).
+
+    Parameters
+    ----------
+    a, b : Solid
+        What is kept, and what is cut away.
+    """
 
     @staticmethod
     def op(a, b):
+        """The difference of inside-flags: ``a and not b``.
+
+        Parameters
+        ----------
+        a, b : ndarray
+            Bool inside-flags of the operands.
+        """
         return a & ~b
 
     def _classify(self, lo, hi):
@@ -507,7 +627,15 @@ class Difference(_Boolean):
 
 
 class Transformed(Solid):
-    """A solid moved by a nonsingular affine matrix (column vectors)."""
+    """A solid moved by a nonsingular affine matrix (column vectors).
+
+    Parameters
+    ----------
+    child : Solid
+        The solid moved.
+    matrix : array_like
+        ``(4, 4)`` nonsingular affine matrix, column vectors.
+    """
 
     child: Solid
     matrix: np.ndarray

@@ -14,10 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..modes import Outputs
 from ..scene.intrinsics import GL_FROM_CV
 
-__all__ = ["Annotation", "annotate", "bbox", "model_pose"]
+__all__ = ["Annotation", "objects", "plan", "records", "bbox", "model_pose"]
 
 
 @dataclass(frozen=True)
@@ -157,64 +156,71 @@ def _batches(boxes: dict) -> tuple[list, list[list]]:
     return alone, batches
 
 
-def annotate(renderer, scene, camera, options=None, view=None) -> list[Annotation]:
-    """One :class:`Annotation` for each object of ``scene`` that ``camera`` sees any of
-    when drawn alone, in instance order. The view's instance mask is one draw; an object's
-    full mask is its visible one where no other object's screen box meets its own (nothing
-    can hide it), else drawn with only the objects of its batch shown -- objects whose boxes
-    do not meet, so their silhouettes cannot touch (:func:`_batches`; the others hidden for
-    it and shown again).
+def objects(scene) -> dict[int, list]:
+    """Each visible instance's models (a multi-material mesh has several), by instance id.
 
     Parameters
     ----------
-    renderer : Renderer
-        What draws (its size is the masks').
     scene : Scene
         The objects.
+    """
+    out: dict[int, list] = {}
+    for model in [*scene.models, *scene.patch_models, *scene.solids]:
+        if model.visible and model.instance_id:
+            out.setdefault(model.instance_id, []).append(model)
+    return out
+
+
+def plan(models: dict, camera, size) -> tuple[list, list[list]]:
+    """Which full masks need draws of their own: ``(alone, batches)`` -- the instances no
+    other's screen box meets (their full mask is their visible one: nothing can hide any of
+    them), and the rest in batches whose boxes meet none of their batch's (their
+    silhouettes cannot touch: one draw a batch, the others hidden).
+
+    Parameters
+    ----------
+    models : dict
+        :func:`objects`' instances.
+    camera : Camera
+        The view, its planes fitted to the scene.
+    size : (int, int)
+        The image's width and height in pixels.
+    """
+    return _batches(_screen_boxes(models, camera, size))
+
+
+def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray,
+            full: dict) -> list[Annotation]:
+    """The annotations of a view, in instance order, from its instance mask and each
+    object's full mask (objects with an empty full mask are out of view: none).
+
+    Parameters
+    ----------
+    scene : Scene
+        The objects (their labels).
     camera : Camera
         The view.
-    options : DrawOptions, ShadingMode, str or None
-        How the scene is drawn (what matters here: culling, wireframe).
-    view : Frame or None
-        The view's frame with instance ids and depth, if drawn already.
+    models : dict
+        :func:`objects`' instances.
+    instance : ndarray
+        ``(H, W)`` int32 the view's instance mask.
+    depth : ndarray
+        ``(H, W)`` float32 the view's depth (``inf``: nothing drawn).
+    full : dict
+        Each instance's full (amodal) mask, ``(H, W)`` bool.
     """
-    if view is None or view.instance is None or view.depth is None:
-        view = renderer.render_frame(scene, camera, options,
-                                     outputs=Outputs.INSTANCE | Outputs.DEPTH)
-    assert view.instance is not None and view.depth is not None
     labels = scene.labels
-    every = [*scene.models, *scene.patch_models, *scene.solids]
-    models: dict[int, list] = {}
-    for model in every:
-        if model.visible and model.instance_id:
-            models.setdefault(model.instance_id, []).append(model)
-    camera = camera.with_planes(scene.bounds)
-    alone, batches = _batches(_screen_boxes(models, camera, (renderer.width,
-                                                              renderer.height)))
-    full: dict[int, np.ndarray] = {k: view.instance == k for k in alone}
-    shown = [m.visible for m in every]
-    instances, _ = scene.id_tables()
-    try:
-        for batch in batches:
-            members = {id(m) for k in batch for m in models[k]}
-            for m in every:
-                m.visible = id(m) in members
-            drawn = instances[renderer.render_ids(scene, camera, options) + 1]
-            full.update({k: drawn == k for k in batch})
-    finally:
-        for m, was in zip(every, shown):
-            m.visible = was
     out = []
-    for instance, parts in sorted(models.items()):
-        mask = full[instance]
+    for key, parts in sorted(models.items()):
+        mask = full[key]
         if not mask.any():
             continue
-        visib = view.instance == instance
+        visib = instance == key
         n_all, n_visib = int(mask.sum()), int(visib.sum())
         rotation, translation = model_pose(parts[0], camera)
         label = parts[0].label
         out.append(Annotation(
-            instance, label, labels.get(label, 0), rotation, translation, mask, visib,
-            n_all, int((mask & np.isfinite(view.depth)).sum()), n_visib, n_visib / n_all,
+            key, label, labels.get(label, 0), rotation, translation, mask, visib,
+            n_all, int((mask & np.isfinite(depth)).sum()), n_visib, n_visib / n_all,
             bbox(mask), bbox(visib)))
     return out

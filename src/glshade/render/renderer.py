@@ -596,7 +596,10 @@ class Renderer:
         (:class:`~glshade.render.annotate.Annotation`: ``instance_id``, ``label``,
         ``obj_id``, ``cam_R_m2c``, ``cam_t_m2c``, ``mask`` drawn alone, ``mask_visib``, pixel
         counts, ``visib_fract``, ``bbox_obj``, ``bbox_visib``), one for each object the
-        camera sees any of when drawn alone, in instance order.
+        camera sees any of when drawn alone, in instance order. The view's instance mask is
+        one draw; an object's full mask is its visible one where no other object's screen
+        box meets its own, else drawn with only the objects of its batch shown (objects
+        whose boxes do not meet: :func:`glshade.render.annotate.plan`).
 
         Parameters
         ----------
@@ -609,9 +612,30 @@ class Renderer:
         view : Frame or None
             This view's frame with its instance ids, if drawn already (None: drawn here).
         """
-        from .annotate import annotate
+        from . import annotate
 
-        return annotate(self, scene, camera, options, view)
+        if view is None or view.instance is None or view.depth is None:
+            view = self.render_frame(scene, camera, options,
+                                     outputs=Outputs.INSTANCE | Outputs.DEPTH)
+        assert view.instance is not None and view.depth is not None
+        camera = camera.with_planes(scene.bounds)
+        models = annotate.objects(scene)
+        alone, batches = annotate.plan(models, camera, (self.width, self.height))
+        full = {k: view.instance == k for k in alone}
+        every: list[Any] = [*scene.models, *scene.patch_models, *scene.solids]
+        shown = [m.visible for m in every]
+        instances, _ = scene.id_tables()
+        try:  # (each batch drawn with only its objects shown; all shown again after)
+            for batch in batches:
+                members = {id(m) for k in batch for m in models[k]}
+                for m in every:
+                    m.visible = id(m) in members
+                drawn = instances[self.render_ids(scene, camera, options) + 1]
+                full.update({k: drawn == k for k in batch})
+        finally:
+            for m, was in zip(every, shown):
+                m.visible = was
+        return annotate.records(scene, camera, models, view.instance, view.depth, full)
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn.

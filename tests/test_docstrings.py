@@ -3,7 +3,7 @@ public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and 
 the modules documented whole (the quaternion algebra, data sets, modes, options, errors,
 atomic writes, mass-points, colour maps, examples; glshade.scene's, the mesh kernel's,
 the files', the renderer's, CSG solids', the winged-edge B-Rep's, Bezier patches' and
-the octree's) has a
+the octree's, and the comparisons' and radiosity's) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
@@ -19,6 +19,8 @@ from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, mo
                      options, pathtrace, quaternion)
 from glshade import octree
 from glshade.brep import winged_edge
+from glshade.compare import methods, metrics
+from glshade.radiosity import formfactors, patches, problem, solvers
 from glshade.geometry import merge, mesh, polygon, primitives
 from glshade.patches import bezier
 from glshade.solids import leaves, tree
@@ -30,7 +32,8 @@ from glshade.scene import scene as scene_module
 #: the chapters' modules documented whole so far
 SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module,
          merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
-         renderer, tree, leaves, winged_edge, bezier, octree)
+         renderer, tree, leaves, winged_edge, bezier, octree, metrics, methods, solvers,
+         formfactors, patches, problem)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]

@@ -21,7 +21,23 @@ class MethodComparison:
     """``methods`` of ``option`` in order (the first is the reference); per method its
     ``colors`` ``(H, W, 4) uint8``, ``visibility`` ``(H, W, L)`` (shadows; None for off)
     and ``seconds`` a frame; ``drawn`` ``(H, W)`` the pixels measured (those a surface
-    covers for shadows; the whole picture for transparency)."""
+    covers for shadows; the whole picture for transparency).
+
+    Parameters
+    ----------
+    methods : tuple of str
+        The values compared, in order; the first is the reference.
+    option : str
+        The drawing option compared (``"shadows"``, ``"transparency"``).
+    colors : dict
+        Each method's picture, ``(H, W, 4)`` uint8.
+    visibility : dict
+        Each method's ``(H, W, L)`` light visibility (shadows; None for off).
+    seconds : dict
+        Each method's time a frame.
+    drawn : ndarray or None
+        ``(H, W)`` bool: the pixels measured.
+    """
 
     methods: tuple[str, ...]
     option: str = "shadows"
@@ -37,7 +53,13 @@ class MethodComparison:
     def disagreement(self, method: str) -> float:
         """The fraction of drawn pixels whose colour differs from the reference's by more
         than one 8-bit level (where a light's visibility differs but its term is zero --
-        the side turned away from it -- nothing shows, and nothing is counted)."""
+        the side turned away from it -- nothing shows, and nothing is counted).
+
+        Parameters
+        ----------
+        method : str
+            One of the methods.
+        """
         diff = np.abs(self.colors[method][..., :3].astype(int) -
                       self.colors[self.reference][..., :3].astype(int)).max(-1)
         drawn = self.drawn if self.drawn is not None else np.ones(diff.shape, bool)
@@ -45,7 +67,13 @@ class MethodComparison:
 
     def mean_difference(self, method: str) -> float:
         """The mean absolute colour difference from the reference over the drawn pixels, in
-        8-bit units."""
+        8-bit units.
+
+        Parameters
+        ----------
+        method : str
+            One of the methods.
+        """
         diff = np.abs(self.colors[method][..., :3].astype(int) -
                       self.colors[self.reference][..., :3].astype(int)).max(-1)
         return float(diff[self.drawn].mean()) if self.drawn is not None and \
@@ -84,7 +112,25 @@ def compare_methods(scene, camera, option: str, methods, options=None,
                     config: RenderConfig | None = None, renderer=None) -> MethodComparison:
     """Draw ``scene`` once per value of the draw option ``option`` ("shadows" or
     "transparency"; the first value is the reference) with the same ``options`` otherwise;
-    each timed on a third draw (the first two build the BVH, the maps and the programs)."""
+    each timed on a third draw (the first two build the BVH, the maps and the programs).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    camera : Camera
+        From where.
+    option : str
+        The drawing option compared (``"shadows"``, ``"transparency"``).
+    methods : sequence of str
+        The values compared, the first the reference.
+    options : DrawOptions, ShadingMode, str or None
+        The rest of how it is drawn.
+    config : RenderConfig or None
+        Size, MSAA samples, backend (None: the defaults).
+    renderer : Renderer or None
+        A renderer to draw with (None: one made here).
+    """
     from ..render.renderer import Renderer
 
     parse = {"shadows": Shadows.parse, "transparency": Transparency.parse}[option]
@@ -117,14 +163,46 @@ def compare_methods(scene, camera, option: str, methods, options=None,
 
 def compare_shadows(scene, camera, methods=("exact", "map"), options=None,
                     config: RenderConfig | None = None, renderer=None) -> MethodComparison:
-    """:func:`compare_methods` of the shadow methods (the first is the reference)."""
+    """:func:`compare_methods` of the shadow methods (the first is the reference).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    camera : Camera
+        From where.
+    methods : sequence of str
+        The values compared, the first the reference.
+    options : DrawOptions, ShadingMode, str or None
+        The rest of how it is drawn.
+    config : RenderConfig or None
+        Size, MSAA samples, backend (None: the defaults).
+    renderer : Renderer or None
+        A renderer to draw with (None: one made here).
+    """
     return compare_methods(scene, camera, "shadows", methods, options, config, renderer)
 
 
 def compare_transparency(scene, camera, methods=("exact", "weighted", "blend"), options=None,
                          config: RenderConfig | None = None,
                          renderer=None) -> MethodComparison:
-    """:func:`compare_methods` of the transparency methods (the first is the reference)."""
+    """:func:`compare_methods` of the transparency methods (the first is the reference).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    camera : Camera
+        From where.
+    methods : sequence of str
+        The values compared, the first the reference.
+    options : DrawOptions, ShadingMode, str or None
+        The rest of how it is drawn.
+    config : RenderConfig or None
+        Size, MSAA samples, backend (None: the defaults).
+    renderer : Renderer or None
+        A renderer to draw with (None: one made here).
+    """
     return compare_methods(scene, camera, "transparency", methods, options, config,
                            renderer)
 

@@ -31,7 +31,13 @@ def _pair(a, b, mask=None):
 
 
 def luminance(img) -> NDArray[np.float64]:
-    """Rec. 709 luma of the RGB channels ``(H, W)``; a 2-D image is returned as is."""
+    """Rec. 709 luma of the RGB channels ``(H, W)``; a 2-D image is returned as is.
+
+    Parameters
+    ----------
+    img : array_like
+        ``(H, W, 3|4)`` RGB(A), or ``(H, W)`` already one channel.
+    """
     a = np.asarray(img, dtype=np.float64)
     if a.ndim == 2:
         return a
@@ -39,7 +45,13 @@ def luminance(img) -> NDArray[np.float64]:
 
 
 def abs_error(a, b) -> NDArray[np.float64]:
-    """Per-pixel absolute error ``(H, W)``: the largest over the RGB channels."""
+    """Per-pixel absolute error ``(H, W)``: the largest over the RGB channels.
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    """
     a, b, _ = _pair(a, b)
     return np.abs(a[..., :3] - b[..., :3]).max(axis=-1)
 
@@ -49,28 +61,62 @@ def _select(err, mask):
 
 
 def mae(a, b, mask=None) -> float:
-    """Mean absolute error over pixels (and RGB channels)."""
+    """Mean absolute error over pixels (and RGB channels).
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    mask : ndarray or None
+        ``(H, W)`` bool: the pixels counted (None: every one).
+    """
     a, b, mask = _pair(a, b, mask)
     e = _select(np.abs(a[..., :3] - b[..., :3]), mask)
     return float(e.mean()) if e.size else 0.0
 
 
 def max_error(a, b, mask=None) -> float:
-    """Largest absolute difference (8-bit units) over ``mask`` (every pixel when None)."""
+    """Largest absolute difference (8-bit units) over ``mask`` (every pixel when None).
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    mask : ndarray or None
+        ``(H, W)`` bool: the pixels counted (None: every one).
+    """
     a, b, mask = _pair(a, b, mask)
     e = _select(np.abs(a[..., :3] - b[..., :3]), mask)
     return float(e.max()) if e.size else 0.0
 
 
 def rmse(a, b, mask=None) -> float:
-    """Root-mean-square difference (8-bit units) over ``mask`` (every pixel when None)."""
+    """Root-mean-square difference (8-bit units) over ``mask`` (every pixel when None).
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    mask : ndarray or None
+        ``(H, W)`` bool: the pixels counted (None: every one).
+    """
     a, b, mask = _pair(a, b, mask)
     e = _select((a[..., :3] - b[..., :3]) ** 2, mask)
     return float(np.sqrt(e.mean())) if e.size else 0.0
 
 
 def psnr(a, b, mask=None, peak: float = 255.0) -> float:
-    """Peak signal-to-noise ratio in dB; ``inf`` for identical images."""
+    """Peak signal-to-noise ratio in dB; ``inf`` for identical images.
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    mask : ndarray or None
+        ``(H, W)`` bool: the pixels counted (None: every one).
+    peak : float
+        The largest value a pixel can have.
+    """
     r = rmse(a, b, mask)
     return float("inf") if r == 0 else float(20 * np.log10(peak / r))
 
@@ -87,7 +133,17 @@ def _gaussian_blur(x: NDArray[np.float64], sigma: float = 1.5, radius: int = 5):
 def ssim(a, b, mask=None, peak: float = 255.0) -> float:
     """Structural similarity (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5,
     K1 = 0.01, K2 = 0.03) of the luminance, averaged over the mask; 1 for identical
-    images."""
+    images.
+
+    Parameters
+    ----------
+    a, b : array_like
+        ``(H, W, 3|4)`` images, 8-bit units (uint8 or float in [0, 255]).
+    mask : ndarray or None
+        ``(H, W)`` bool: the pixels counted (None: every one).
+    peak : float
+        The largest value a pixel can have.
+    """
     a, b, mask = _pair(a, b, mask)
     x, y = luminance(a), luminance(b)
     c1, c2 = (0.01 * peak) ** 2, (0.03 * peak) ** 2
@@ -105,7 +161,17 @@ def mach_band_strength(img, face_id, reference=None) -> float:
     absolute luminance difference between neighbouring pixels that belong to different
     polygons (from a ``face_id`` buffer). With a ``reference`` image, the reference's own
     difference across the same pixel pairs (the true shading's gradient) is subtracted, so
-    a shading without Mach bands scores near zero."""
+    a shading without Mach bands scores near zero.
+
+    Parameters
+    ----------
+    img : array_like
+        ``(H, W, 3|4)`` the image.
+    face_id : ndarray
+        ``(H, W)`` its polygon ids (-1: background).
+    reference : array_like or None
+        The same view's reference image: its own jumps are subtracted (None: none).
+    """
     lum = luminance(img)
     ids = np.asarray(face_id)
     ref = luminance(reference) if reference is not None else None
@@ -127,7 +193,15 @@ def mach_band_strength(img, face_id, reference=None) -> float:
 
 def edge_mask(face_id: np.ndarray, width: int = 1) -> np.ndarray:
     """``(H, W) bool``: pixels within ``width`` pixels (8-neighbourhood) of a place where the
-    polygon id changes -- a polygon's edge, or the silhouette against the background."""
+    polygon id changes -- a polygon's edge, or the silhouette against the background.
+
+    Parameters
+    ----------
+    face_id : ndarray
+        ``(H, W)`` polygon ids.
+    width : int
+        Pixels either side of an id change.
+    """
     ids = np.asarray(face_id)
     if ids.ndim != 2:
         raise ValueError(f"face_id must be (H, W), got {ids.shape}")

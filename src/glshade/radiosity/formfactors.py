@@ -49,7 +49,13 @@ FACTOR = 1.5
 def delta_form_factors(n: int) -> np.ndarray:
     """The atlas of delta form factors ``(N, 3N)``, row 0 at the bottom (GL's order): the
     top face in columns ``0..N``, the side faces as ``N x N/2`` halves stacked two by two in
-    columns ``N..2N`` and ``2N..3N``. They sum to 1 as N grows."""
+    columns ``N..2N`` and ``2N..3N``. They sum to 1 as N grows.
+
+    Parameters
+    ----------
+    n : int
+        The hemicube's top face, pixels a side.
+    """
     d = 2.0 / n
     c = -1 + (np.arange(n) + 0.5) * d
     x, y = np.meshgrid(c, c)  # (row, column)
@@ -96,7 +102,15 @@ def near_pairs(problem: PatchScene, counts: np.ndarray
     """The receivers too near each shooter for its ``counts`` (P,) quadrature points (see
     the module's docstring): (first (P+1,), receiver (N,), points a side (N,)), the
     receivers of shooter i at ``receiver[first[i]:first[i+1]]``. Receivers wholly behind
-    or in the shooter's plane get nothing and are not listed."""
+    or in the shooter's plane get nothing and are not listed.
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches.
+    counts : ndarray
+        ``(P,)`` quadrature points a side of each shooter.
+    """
     p = problem.patches
     c, n = p.centers, p.normals
     extent, radius = _extents(p)
@@ -134,7 +148,15 @@ def near_pairs(problem: PatchScene, counts: np.ndarray
 def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
     """Quadrature points a side for each shooter: ``ceil(factor D / d)`` in [1,
     MAX_QUADRATURE], D the patch's diameter, d the distance to the nearest patch centre not
-    in its plane (a long thin patch needs points along its length, whatever its area)."""
+    in its plane (a long thin patch needs points along its length, whatever its area).
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches.
+    factor : float
+        Points a side per (patch size / distance to the nearest receiver).
+    """
     p = problem.patches
     c, n = p.centers, p.normals
     nearest = np.full(p.n_patches, np.inf)
@@ -156,7 +178,25 @@ class FormFactors:
     (the top face's pixels a side). ``quadrature``: Gauss points per shooter triangle
     side, "auto" (:func:`quadrature_counts`) or a whole number for every patch (not MSAA
     ``samples``: hemicubes are never multisampled). Rows are cached (up to
-    ``cache_mb``); ``close()`` releases the GL objects (and the context, if made here)."""
+    ``cache_mb``); ``close()`` releases the GL objects (and the context, if made here).
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches.
+    resolution : int
+        The hemicube's top face, pixels a side.
+    quadrature : int or str
+        Gauss points a shooter triangle's side, or ``"auto"`` (:func:`quadrature_counts`).
+    seed : int
+        The hemicubes' random turns.
+    context : RenderContext or None
+        A context to draw in (None: one made here).
+    backend : Backend or str
+        The backend of a context made here.
+    cache_mb : float
+        The rows kept in memory, in MiB.
+    """
 
     def __init__(self, problem: PatchScene, resolution: int = HEMICUBE_RESOLUTION,
                  quadrature: int | str = "auto",
@@ -207,7 +247,13 @@ class FormFactors:
         return np.cos(angle) * t + np.sin(angle) * b
 
     def row(self, i: int) -> np.ndarray:
-        """``F[i, :]`` (P,): from patch i to every patch (``F[i, i] = 0``)."""
+        """``F[i, :]`` (P,): from patch i to every patch (``F[i, i] = 0``).
+
+        Parameters
+        ----------
+        i : int
+            The shooting patch.
+        """
         found = self._cache.get(i)
         if found is not None:
             self._cache.move_to_end(i)
@@ -258,7 +304,13 @@ class FormFactors:
         self.near_corrected += int(ok.sum())
 
     def matrix(self, progress=None) -> np.ndarray:
-        """The whole ``(P, P)`` matrix (small scenes: P^2 numbers)."""
+        """The whole ``(P, P)`` matrix (small scenes: P^2 numbers).
+
+        Parameters
+        ----------
+        progress : bool, tqdm-like or None
+            The progress bar.
+        """
         n = self.problem.n_patches
         if n > 20_000:
             raise InputError(f"a full form-factor matrix of {n:,} patches needs "

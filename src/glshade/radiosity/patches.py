@@ -35,6 +35,25 @@ class Patches:
     vertices (V, 3) welded; triangles (T, 3) into vertices; triangle_patch (T,) the patch
     each triangle belongs to; source (P,) the source polygon of each patch; centers,
     normals (P, 3); areas (P,); split (int) non-planar quads that were split in two.
+
+    Parameters
+    ----------
+    vertices : ndarray
+        ``(V, 3)`` welded positions.
+    triangles : ndarray
+        ``(T, 3)`` indices into ``vertices``.
+    triangle_patch : ndarray
+        ``(T,)`` the patch each triangle belongs to.
+    source : ndarray
+        ``(P,)`` the source polygon of each patch.
+    centers, normals : ndarray
+        ``(P, 3)`` each patch's centroid and unit normal.
+    areas : ndarray
+        ``(P,)`` each patch's area.
+    corners : ndarray
+        Each patch's corners (its quadrature's domain).
+    split : int
+        Non-planar quads that were split in two.
     """
 
     vertices: np.ndarray
@@ -55,7 +74,13 @@ class Patches:
         """The display mesh: one polygon per triangle, its vertices shared only across
         edges where the surface bends by less than ``crease`` degrees (the rule of
         ``--crease``), so a box's faces keep their own vertices and their own radiosity at
-        its edges."""
+        its edges.
+
+        Parameters
+        ----------
+        crease : float
+            Degrees past which an edge stays sharp.
+        """
         cache = self.__dict__.setdefault("_display", {})
         found = cache.get(crease)
         if found is None:
@@ -65,7 +90,15 @@ class Patches:
     def vertex_values(self, values: np.ndarray, crease: float = DISPLAY_CREASE) -> np.ndarray:
         """Per-vertex values ``(V, C)`` of :meth:`mesh` from per-patch ``values (P, C)``:
         the area-weighted mean over the patches of one smooth surface touching each vertex
-        (the Gouraud display of a radiosity solution: never averaged across a crease)."""
+        (the Gouraud display of a radiosity solution: never averaged across a crease).
+
+        Parameters
+        ----------
+        values : ndarray
+            ``(P, C)`` a value a patch.
+        crease : float
+            Degrees past which an edge stays sharp.
+        """
         values = np.asarray(values, np.float64).reshape(self.n_patches, -1)
         display = self.mesh(crease)
         tri_area = self.areas[self.triangle_patch] / np.bincount(
@@ -86,7 +119,15 @@ class Patches:
         3-point (degree 2) rule on each of ``k^2`` pieces, ``k = ceil(s / sqrt(3))``; the
         centre for 1. Returns (points (S, 3), patch (S,), weight (S,)), each patch's
         weights summing to 1: ``sum w f(x)`` is the mean of ``f`` over the patch. ``only``:
-        the patches to sample (``counts`` then one per listed patch)."""
+        the patches to sample (``counts`` then one per listed patch).
+
+        Parameters
+        ----------
+        counts : ndarray
+            ``(P,)`` points a side of each patch's triangles.
+        only : ndarray or None
+            The patches to sample (None: every one).
+        """
         counts = np.asarray(counts, np.int64)
         index = np.arange(self.n_patches) if only is None else np.asarray(only, np.int64)
         quad = self.corners[index, 3] >= 0
@@ -170,7 +211,15 @@ def _counts(length: np.ndarray, size: float) -> np.ndarray:
 
 
 def subdivide(mesh: Mesh, size: float) -> Patches:
-    """Cut ``mesh``'s polygons into patches whose edges are at most about ``size`` long."""
+    """Cut ``mesh``'s polygons into patches whose edges are at most about ``size`` long.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The polygons.
+    size : float
+        The longest a patch's edge should be (scene units).
+    """
     size = float(size)
     if not np.isfinite(size) or size <= 0:
         raise GeometryError(f"patch size must be a positive number, got {size!r}")

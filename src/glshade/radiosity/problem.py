@@ -15,7 +15,13 @@ __all__ = ["PatchScene", "concatenate_patches", "without_zero_area"]
 
 
 def concatenate_patches(parts: list[Patches]) -> Patches:
-    """One Patches of several (vertex and patch indices shifted)."""
+    """One Patches of several (vertex and patch indices shifted).
+
+    Parameters
+    ----------
+    parts : list of Patches
+        In order.
+    """
     v_off = np.cumsum([0] + [len(p.vertices) for p in parts])
     p_off = np.cumsum([0] + [p.n_patches for p in parts])
     return Patches(
@@ -66,7 +72,17 @@ def estimated_patches(mesh, patch_size: float) -> float:
 def without_zero_area(mesh, name: str, diagonal: float):
     """``mesh`` without the polygons of (relatively) zero area, which can neither give nor
     receive light (an emitter of zero area would count as one; a receiver's radiosity is
-    divided by its area); dropped with a warning."""
+    divided by its area); dropped with a warning.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The model's mesh.
+    name : str
+        Its name, for the message.
+    diagonal : float
+        The scene's diagonal, the scale of "zero".
+    """
     area = mesh.face_areas
     zero = area <= ZERO_AREA * diagonal ** 2
     if not zero.any():
@@ -86,7 +102,25 @@ def without_zero_area(mesh, name: str, diagonal: float):
 @dataclass
 class PatchScene:
     """Patches in world space with ``emission`` and ``rho`` (P, 3), the ``model`` (P,) each
-    came from and the models' ``names``."""
+    came from and the models' ``names``.
+
+    Parameters
+    ----------
+    patches : Patches
+        Every model's patches in world space.
+    emission : ndarray
+        ``(P, 3)`` radiosity each patch gives off by itself.
+    rho : ndarray
+        ``(P, 3)`` diffuse reflectance.
+    model : ndarray
+        ``(P,)`` the model each came from.
+    names : list of str
+        The models' names.
+    patch_size : float
+        The patch size used.
+    meshes : list
+        The models' world meshes.
+    """
 
     patches: Patches
     emission: np.ndarray
@@ -123,7 +157,15 @@ class PatchScene:
     def from_scene(cls, scene: Scene, patch_size: float | None = None) -> PatchScene:
         """Cut every visible model of ``scene`` into patches of about ``patch_size``
         (default: a 24th of the scene's diagonal). A scene with nothing emitting, or a
-        reflectance above 1, is refused with the model named."""
+        reflectance above 1, is refused with the model named.
+
+        Parameters
+        ----------
+        scene : Scene
+            The models (emission and reflectance from their materials).
+        patch_size : float or None
+            About how long a patch's edge is (None: a 24th of the scene's diagonal).
+        """
         models = [(i, m) for i, m in enumerate(scene.models) if m.visible]
         if not models:
             raise InputError("radiosity needs a scene with at least one visible mesh")

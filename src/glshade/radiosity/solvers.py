@@ -35,7 +35,27 @@ def _energy(values: np.ndarray, areas: np.ndarray) -> float:
 class Solution:
     """Radiosity ``B`` (P, 3) per patch; ``unshot`` (P, 3) what progressive refinement did
     not yet shoot (zeros for gathering); ``history`` rows of (seconds, step, unshot
-    fraction) -- a step is a shot or a sweep."""
+    fraction) -- a step is a shot or a sweep.
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches solved.
+    radiosity : ndarray
+        ``(P, 3)`` radiosity B of each patch.
+    unshot : ndarray
+        ``(P, 3)`` what progressive refinement did not yet shoot (zeros for gathering).
+    method : str
+        How it was solved.
+    history : list
+        Rows of (seconds, step, unshot fraction); a step is a shot or a sweep.
+    hemicubes : int
+        Hemicubes drawn.
+    se : ndarray or None
+        ``(P, 3)`` each patch's standard error (Monte Carlo), or None.
+    converged : bool
+        Whether it reached its stop rule (else it stopped at its cap).
+    """
 
     problem: PatchScene
     radiosity: np.ndarray
@@ -84,14 +104,30 @@ class Solution:
         return (self.unshot * a[:, None]).sum(0) / a.sum() / np.maximum(1 - rho_avg, 1e-9)
 
     def displayed(self, ambient: bool = True) -> np.ndarray:
-        """Per-patch radiosity to show: plus ``rho * ambient`` where energy is unshot."""
+        """Per-patch radiosity to show: plus ``rho * ambient`` where energy is unshot.
+
+        Parameters
+        ----------
+        ambient : bool
+            Add ``rho x`` the unshot energy's ambient estimate.
+        """
         if not ambient:
             return self.radiosity
         return self.radiosity + self.problem.rho * self.ambient
 
     def vertex_colors(self, exposure: float = 1.0, ambient: bool = True,
                       crease: float = DISPLAY_CREASE) -> np.ndarray:
-        """(V, 3) radiosities at the display mesh's vertices, times ``exposure``."""
+        """(V, 3) radiosities at the display mesh's vertices, times ``exposure``.
+
+        Parameters
+        ----------
+        exposure : float
+            The factor on the radiosity.
+        ambient : bool
+            Add the ambient estimate of the unshot energy.
+        crease : float
+            Degrees past which the display mesh keeps an edge sharp.
+        """
         return self.problem.patches.vertex_values(self.displayed(ambient), crease) * exposure
 
     def scene(self, exposure: float | None = None, ambient: bool = True, background=(0, 0, 0),
@@ -99,7 +135,19 @@ class Solution:
         """A Scene showing the solution in the ``radiosity`` mode: one mesh of patches with
         its vertex radiosities, averaged only across bends gentler than ``crease`` degrees
         (so a box stays a box). ``exposure`` scales them for display (default: the
-        brightest non-emitting patch maps to 1)."""
+        brightest non-emitting patch maps to 1).
+
+        Parameters
+        ----------
+        exposure : float or None
+            The factor on the radiosity (None: :meth:`auto_exposure`).
+        ambient : bool
+            Add the ambient estimate of the unshot energy.
+        background : tuple
+            The scene's background colour.
+        crease : float
+            Degrees past which the display mesh keeps an edge sharp.
+        """
         from ..scene import Scene
 
         if exposure is None:
@@ -122,6 +170,13 @@ class Solution:
         return tuple(p.names), means / np.maximum(area, 1e-300)[:, None]
 
     def auto_exposure(self, ambient: bool = True) -> float:
+        """The exposure that shows the brightest lit (non-emitting) patch as white.
+
+        Parameters
+        ----------
+        ambient : bool
+            Count the ambient estimate of the unshot energy.
+        """
         b = self.displayed(ambient)
         lit = self.problem.emission.sum(1) == 0
         peak = float(b[lit].max()) if lit.any() else float(b.max())
@@ -131,7 +186,22 @@ class Solution:
 def progressive(ff: FormFactors, until: float = 0.01, max_shots: int | None = None,
                 progress=None, on_shot=None) -> Solution:
     """Shoot until the unshot fraction of the emitted energy is below ``until`` (or
-    ``max_shots``). ``on_shot(solution, shot)`` is called after each shot (animation)."""
+    ``max_shots``). ``on_shot(solution, shot)`` is called after each shot (animation).
+
+    Parameters
+    ----------
+    ff : FormFactors
+        The form factors (rows drawn as shooters need them).
+    until : float
+        Stop when the unshot fraction of the emitted energy is below this.
+    max_shots : int or None
+        The most shots (None: as many as ``until`` takes).
+    progress : bool, tqdm-like or None
+        The progress bar.
+    on_shot : callable or None
+        ``on_shot(solution, shots)`` after each shot: the solution so far (an animation's
+        frames).
+    """
     if not 0 <= until < 1:
         raise InputError(f"until must be an unshot fraction in [0, 1), got {until!r}")
     p = ff.problem
@@ -167,7 +237,19 @@ def gauss_seidel(ff: FormFactors, iterations: int | None = None, tol: float = 1e
                  progress=None) -> Solution:
     """Gather with the full matrix: sweep ``B_i = E_i + rho_i sum_j F_ij B_j`` in place
     (each row uses the values already updated) until no radiosity changes by more than
-    ``tol`` of the largest, or for ``iterations`` sweeps."""
+    ``tol`` of the largest, or for ``iterations`` sweeps.
+
+    Parameters
+    ----------
+    ff : FormFactors
+        The form factors (the whole matrix is drawn).
+    iterations : int or None
+        Sweeps (None: until the change is below ``tol``).
+    tol : float
+        The relative change a sweep must fall below to stop.
+    progress : bool, tqdm-like or None
+        The progress bar.
+    """
     p = ff.problem
     start = time.perf_counter()
     areas = p.patches.areas

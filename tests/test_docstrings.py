@@ -20,6 +20,11 @@ from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, mo
 from glshade import octree
 from glshade.brep import winged_edge
 from glshade.compare import methods, metrics
+from glshade.cpu import lighting, raycast
+from glshade.geometry import transforms
+from glshade.hidden import raster
+from glshade.io import text
+from glshade.patches import quadrics
 from glshade.radiosity import formfactors, patches, problem, solvers
 from glshade.geometry import merge, mesh, polygon, primitives
 from glshade.patches import bezier
@@ -33,7 +38,8 @@ from glshade.scene import scene as scene_module
 SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module,
          merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
          renderer, tree, leaves, winged_edge, bezier, octree, metrics, methods, solvers,
-         formfactors, patches, problem)
+         formfactors, patches, problem, lighting, raycast, transforms, raster, text,
+         quadrics)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]

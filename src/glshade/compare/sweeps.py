@@ -83,14 +83,26 @@ class SweepLevel:
 
 
 def icosphere_level(k: int):
-    """The icosphere of subdivision level ``k`` (a picklable ``make_mesh``)."""
+    """The icosphere of subdivision level ``k`` (a picklable ``make_mesh``).
+
+    Parameters
+    ----------
+    k : int
+        The subdivision level.
+    """
     from ..geometry import primitives
 
     return primitives.icosphere(k)
 
 
 def uv_sphere_level(k: int):
-    """A UV sphere with ``4 * 2**k`` stacks and ``8 * 2**k`` slices."""
+    """A UV sphere with ``4 * 2**k`` stacks and ``8 * 2**k`` slices.
+
+    Parameters
+    ----------
+    k : int
+        The level: ``4 * 2**k`` stacks.
+    """
     from ..geometry import primitives
 
     return primitives.uv_sphere(4 * 2**k, 8 * 2**k)

@@ -28,7 +28,15 @@ def _dot(a, b) -> F:
 
 def view_dir(p: F, camera) -> F:
     """Unit vector from each point towards the eye ``(..., 3)``: the view axis reversed for
-    an orthographic camera (lighting.glsl's ``view_dir``)."""
+    an orthographic camera (lighting.glsl's ``view_dir``).
+
+    Parameters
+    ----------
+    p : ndarray
+        ``(..., 3)`` view-space points.
+    camera : Camera
+        The view (perspective or orthographic).
+    """
     p = np.asarray(p, np.float64)
     if camera.projection == "orthographic":
         return np.broadcast_to(-camera.forward, p.shape)
@@ -38,14 +46,38 @@ def view_dir(p: F, camera) -> F:
 
 def face_viewer(n: F, facing_away) -> F:
     """Two-sided lighting: the normal negated where the surface faces away from the viewer
-    (surface.glsl's ``face_viewer``; the GPU knows this from ``gl_FrontFacing``)."""
+    (surface.glsl's ``face_viewer``; the GPU knows this from ``gl_FrontFacing``).
+
+    Parameters
+    ----------
+    n : ndarray
+        ``(..., 3)`` normals.
+    facing_away : ndarray
+        ``(...)`` bool: where the surface faces away from the viewer.
+    """
     return np.where(np.asarray(facing_away)[..., None], -n, n)
 
 
 def light_intensity(p: F, n: F, v: F, material, lights, ambient) -> F:
     """Colour ``(..., 3)``, unclamped, at points ``p`` with unit normals ``n`` and unit view
     vectors ``v``, for a Material, a list of lights (use ``Scene.lights_for(camera)``, so an
-    empty scene gets the default headlight) and the ambient intensity ``Ia``."""
+    empty scene gets the default headlight) and the ambient intensity ``Ia``.
+
+    Parameters
+    ----------
+    p : ndarray
+        ``(..., 3)`` view-space points.
+    n : ndarray
+        ``(..., 3)`` unit normals.
+    v : ndarray
+        ``(..., 3)`` unit vectors towards the eye.
+    material : Material
+        The surface.
+    lights : list
+        The lights, their vectors in view space.
+    ambient : array_like
+        ``(3,)`` the ambient intensity.
+    """
     p = np.asarray(p, np.float64)
     n = np.asarray(n, np.float64)
     kd = np.asarray(material.diffuse_rgb, np.float64)
@@ -78,12 +110,26 @@ def light_intensity(p: F, n: F, v: F, material, lights, ambient) -> F:
 
 
 def encode_srgb(c: F) -> F:
-    """Linear [0, 1] to sRGB (outputs.glsl's ``encode_srgb``)."""
+    """Linear [0, 1] to sRGB (outputs.glsl's ``encode_srgb``).
+
+    Parameters
+    ----------
+    c : ndarray
+        Linear values in [0, 1].
+    """
     c = np.clip(c, 0.0, 1.0)
     return np.where(c > 0.0031308, 1.055 * c ** (1 / 2.4) - 0.055, 12.92 * c)
 
 
 def final_color(color: F, srgb: bool = False) -> F:
-    """What a program writes: clamped to [0, 1], sRGB-encoded when asked."""
+    """What a program writes: clamped to [0, 1], sRGB-encoded when asked.
+
+    Parameters
+    ----------
+    color : ndarray
+        ``(..., 3)`` linear colour.
+    srgb : bool
+        Encode as sRGB.
+    """
     color = np.clip(color, 0.0, 1.0)
     return encode_srgb(color) if srgb else color

@@ -16,12 +16,26 @@ __all__ = ["pixel_rays", "raycast_scene", "has_analytic_surfaces"]
 
 def pixel_rays(camera: Camera, width: int, height: int):
     """World-space ray origins and unit directions through pixel centres ``(H, W, 3)``,
-    row 0 at the top: :meth:`Camera.rays`, kept under the name the CPU twins use."""
+    row 0 at the top: :meth:`Camera.rays`, kept under the name the CPU twins use.
+
+    Parameters
+    ----------
+    camera : Camera
+        The view.
+    width, height : int
+        The image's size in pixels.
+    """
     return camera.rays((width, height))
 
 
 def has_analytic_surfaces(scene: Scene) -> bool:
-    """Whether every visible model knows the exact surface it approximates."""
+    """Whether every visible model knows the exact surface it approximates.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    """
     visible = [m for m in scene.models if m.visible]
     return bool(visible) and all(m.mesh.analytic is not None for m in visible)
 
@@ -29,7 +43,17 @@ def has_analytic_surfaces(scene: Scene) -> bool:
 def raycast_scene(scene: Scene, camera: Camera, width: int, height: int
                   ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Colour ``(H, W, 3)`` in [0, 1] (linear) and coverage ``(H, W)`` of the exact
-    surfaces of a scene whose models all carry one (``Mesh.analytic``)."""
+    surfaces of a scene whose models all carry one (``Mesh.analytic``).
+
+    Parameters
+    ----------
+    scene : Scene
+        Models that know their exact surfaces (``Mesh.analytic``).
+    camera : Camera
+        The view.
+    width, height : int
+        The image's size in pixels.
+    """
     if not has_analytic_surfaces(scene):
         raise ComparisonError("the analytic reference needs meshes that know their exact "
                               "surface (primitive:icosphere, primitive:uv_sphere); use "

@@ -21,7 +21,15 @@ __all__ = ["AnalyticSurface", "AnalyticSphere", "affine_matrix"]
 
 def affine_matrix(matrix: ArrayLike, what: str = "matrix") -> NDArray[np.float64]:
     """A finite, nonsingular affine ``(4, 4)`` (a ``(3, 3)`` is widened); else a clear
-    error."""
+    error.
+
+    Parameters
+    ----------
+    matrix : array_like
+        ``(4, 4)`` affine or ``(3, 3)`` linear.
+    what : str
+        What the matrix is, for the message.
+    """
     try:
         m = np.asarray(matrix, dtype=np.float64)
     except (TypeError, ValueError):  # ragged, or not numbers

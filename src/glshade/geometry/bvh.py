@@ -88,7 +88,17 @@ def _sah_splits(c: np.ndarray, box_lo: np.ndarray, box_hi: np.ndarray, seg: np.n
 
 def build(triangles: np.ndarray, leaf_size: int = 4, sah: bool = True) -> BVH:
     """The hierarchy of ``triangles`` ``(T, 3, 3)``: nodes split by the binned surface-area
-    heuristic (``sah``) or at the median along their longest axis."""
+    heuristic (``sah``) or at the median along their longest axis.
+
+    Parameters
+    ----------
+    triangles : ndarray
+        ``(T, 3, 3)`` positions.
+    leaf_size : int
+        The most triangles a leaf holds (the GPU's packing allows 15).
+    sah : bool
+        Split by the binned surface-area heuristic (else at the median).
+    """
     tri = np.asarray(triangles, np.float64)
     n = len(tri)
     if n == 0:
@@ -181,7 +191,15 @@ NO_CHILDREN = PackedChildren(np.zeros((1, 8), np.uint32), np.zeros(3, np.float32
 
 def packed_children(bvh: BVH, first_triangle: int = 0) -> PackedChildren:
     """``bvh``'s children packed for the GPU (``first_triangle``: added to leaves' triangle
-    indices, for triangles stored after others)."""
+    indices, for triangles stored after others).
+
+    Parameters
+    ----------
+    bvh : BVH
+        The hierarchy.
+    first_triangle : int
+        Added to the leaves' triangle indices (the triangles' place in a larger table).
+    """
     if int(bvh.count.max(initial=0)) > MAX_PACKED_COUNT:
         raise ValueError(f"a leaf holds more than {MAX_PACKED_COUNT} triangles")
     lo32, hi32 = bvh.lo[0].astype(np.float32), bvh.hi[0].astype(np.float32)

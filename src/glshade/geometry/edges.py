@@ -47,7 +47,15 @@ class EdgeGroups:
 
 
 def edge_groups(a: Int, b: Int, n_vertices: int) -> EdgeGroups:
-    """Group the edges ``(a[i], b[i])`` by their undirected key (vectorized)."""
+    """Group the edges ``(a[i], b[i])`` by their undirected key (vectorized).
+
+    Parameters
+    ----------
+    a, b : ndarray
+        ``(H,)`` int: each half-edge's start and end vertex.
+    n_vertices : int
+        The vertices (the keys' range).
+    """
     a = np.asarray(a, np.int64)
     b = np.asarray(b, np.int64)
     lo, hi = np.minimum(a, b), np.maximum(a, b)
@@ -65,7 +73,15 @@ def edge_groups(a: Int, b: Int, n_vertices: int) -> EdgeGroups:
 
 def is_closed_and_oriented(half_edges: Int, n_vertices: int) -> bool:
     """Every edge shared by exactly two faces that traverse it in opposite directions: the
-    surface is closed and consistently oriented, so back faces are never visible."""
+    surface is closed and consistently oriented, so back faces are never visible.
+
+    Parameters
+    ----------
+    half_edges : ndarray
+        ``(H, 2)`` int: each face's edges as (start, end), in its winding.
+    n_vertices : int
+        The vertices.
+    """
     he = np.asarray(half_edges, np.int64)
     if len(he) == 0:
         return False
@@ -87,6 +103,15 @@ def orientation_flips(half_edges: Int, corner_face: Int, n_faces: int,
     face f as it is, node ``F + f`` face f reversed; two faces whose shared edge runs the
     same way join each one's reversed node to the other's own, faces that already agree
     join own to own and reversed to reversed.
+
+    Parameters
+    ----------
+    half_edges : ndarray
+        ``(H, 2)`` int: each face's edges as (start, end).
+    corner_face : ndarray
+        ``(H,)`` the face of each half-edge.
+    n_faces, n_vertices : int
+        The faces and vertices.
     """
     from .graph import component_labels
 

@@ -33,7 +33,17 @@ Array = NDArray[np.float64]
 
 
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Array:
-    """World-to-view matrix ``(4, 4)`` of a camera at ``eye`` looking at ``target``."""
+    """World-to-view matrix ``(4, 4)`` of a camera at ``eye`` looking at ``target``.
+
+    Parameters
+    ----------
+    eye : array_like
+        ``(3,)`` the camera's position.
+    target : array_like
+        ``(3,)`` the point it looks at.
+    up : array_like
+        ``(3,)`` roughly up.
+    """
     # (three 3-vectors: plain floats, since a camera may be made every frame)
     try:
         (ex, ey, ez), (tx, ty, tz), (ux, uy, uz) = (
@@ -67,7 +77,17 @@ def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0, 1, 0)) -> Arr
 
 
 def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> Array:
-    """OpenGL perspective projection for column vectors (pyrr's, transposed)."""
+    """OpenGL perspective projection for column vectors (pyrr's, transposed).
+
+    Parameters
+    ----------
+    fov_y_deg : float
+        The vertical field of view in degrees.
+    aspect : float
+        Width over height.
+    near, far : float
+        The clip distances, 0 < near < far.
+    """
     if not (0 < fov_y_deg < 180):
         raise GeometryError(f"fov_y must be in (0, 180) degrees, got {fov_y_deg}")
     if not (0 < near < far):
@@ -80,7 +100,17 @@ def perspective(fov_y_deg: float, aspect: float, near: float, far: float) -> Arr
 
 def orthographic(height: float, aspect: float, near: float, far: float) -> Array:
     """OpenGL orthographic projection of a view ``height`` world units tall (pyrr's,
-    transposed)."""
+    transposed).
+
+    Parameters
+    ----------
+    height : float
+        The view's height in world units.
+    aspect : float
+        Width over height.
+    near, far : float
+        The clip distances.
+    """
     if height <= 0 or aspect <= 0:
         raise GeometryError(f"height and aspect must be positive, got {height}, {aspect}")
     if not near < far:
@@ -92,7 +122,13 @@ def orthographic(height: float, aspect: float, near: float, far: float) -> Array
 
 def normal_matrix(model_view: ArrayLike) -> Array:
     """Inverse transpose of the upper 3x3: maps normals so they stay perpendicular to
-    surfaces under non-uniform scaling."""
+    surfaces under non-uniform scaling.
+
+    Parameters
+    ----------
+    model_view : array_like
+        ``(4, 4)`` (or ``(3, 3)``) the matrix that moves the points.
+    """
     m = np.asarray(model_view, dtype=np.float64)[:3, :3]
     return np.linalg.inv(m).T
 
@@ -100,7 +136,17 @@ def normal_matrix(model_view: ArrayLike) -> Array:
 def compose_transform(rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
                       scale: ArrayLike = 1.0) -> Array:
     """``T @ R @ S`` as a 4x4 matrix from a quaternion, a translation and a (per-axis)
-    scale."""
+    scale.
+
+    Parameters
+    ----------
+    rotation : array_like or None
+        ``(4,)`` a unit quaternion ``(x, y, z, w)`` (None: none).
+    translation : array_like
+        ``(3,)`` scene units.
+    scale : float or array_like
+        Uniform, or ``(3,)`` per axis.
+    """
     from ..quaternion import to_matrix
 
     m = np.eye(4)
@@ -111,7 +157,13 @@ def compose_transform(rotation: ArrayLike | None = None, translation: ArrayLike 
 
 
 def gl_bytes(matrix: ArrayLike) -> bytes:
-    """A matrix as GLSL wants it: float32, column-major (the transpose of numpy's rows)."""
+    """A matrix as GLSL wants it: float32, column-major (the transpose of numpy's rows).
+
+    Parameters
+    ----------
+    matrix : array_like
+        ``(4, 4)`` or ``(3, 3)``, numpy's row-major layout.
+    """
     return np.ascontiguousarray(np.asarray(matrix, dtype=np.float32).T).tobytes()
 
 
@@ -150,7 +202,13 @@ def pixel_rays(proj: ArrayLike, view: ArrayLike, viewport) -> dict[str, tuple]:
 
 
 def box_corners(bounds) -> NDArray[np.float64]:
-    """The 8 corners ``(..., 8, 3)`` of boxes given as ``(..., 2, 3)`` minimum and maximum."""
+    """The 8 corners ``(..., 8, 3)`` of boxes given as ``(..., 2, 3)`` minimum and maximum.
+
+    Parameters
+    ----------
+    bounds : array_like
+        ``(..., 2, 3)`` boxes' minimum and maximum corners.
+    """
     b = np.asarray(bounds, np.float64)
     index = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)])
     return b[..., index, [0, 1, 2]]
@@ -158,10 +216,22 @@ def box_corners(bounds) -> NDArray[np.float64]:
 
 def z_up_to_y_up(points: np.ndarray) -> np.ndarray:
     """Points ``(..., 3)`` of a z-up data set (Newell's teapot) in glshade's y-up world,
-    keeping handedness: ``(x, y, z) -> (x, z, -y)`` (exact: a permutation and a sign)."""
+    keeping handedness: ``(x, y, z) -> (x, z, -y)`` (exact: a permutation and a sign).
+
+    Parameters
+    ----------
+    points : ndarray
+        ``(..., 3)`` positions.
+    """
     return np.asarray(points, dtype=np.float64)[..., [0, 2, 1]] * [1.0, 1.0, -1.0]
 
 
 def y_up_to_z_up(points: np.ndarray) -> np.ndarray:
-    """The inverse of :func:`z_up_to_y_up`: ``(x, y, z) -> (x, -z, y)``."""
+    """The inverse of :func:`z_up_to_y_up`: ``(x, y, z) -> (x, -z, y)``.
+
+    Parameters
+    ----------
+    points : ndarray
+        ``(..., 3)`` positions.
+    """
     return np.asarray(points, dtype=np.float64)[..., [0, 2, 1]] * [1.0, -1.0, 1.0]

@@ -35,7 +35,19 @@ class Agreement:
 
 def agreement(result: HiddenResult, reference_ids, reference_depth, edges) -> Agreement:
     """How far a result's ids and depth agree with the reference's: the pixels that differ
-    off and on the ``edges`` pixels, and the depth error where the ids agree."""
+    off and on the ``edges`` pixels, and the depth error where the ids agree.
+
+    Parameters
+    ----------
+    result : HiddenResult
+        An algorithm's ids and depth.
+    reference_ids : ndarray
+        ``(H, W)`` the reference's polygon ids.
+    reference_depth : ndarray
+        ``(H, W)`` the reference's depth.
+    edges : ndarray
+        ``(H, W)`` bool: the pixels near an edge (differences there are tolerated).
+    """
     diff = result.face_id != reference_ids
     same = ~diff & (reference_ids >= 0)
     rel = np.abs(result.depth[same].astype(np.float64) - reference_depth[same]) / \
@@ -46,7 +58,17 @@ def agreement(result: HiddenResult, reference_ids, reference_depth, edges) -> Ag
 
 def disagreement_map(face_id, reference, edges) -> np.ndarray:
     """Grey where they agree on a polygon, red where they differ, yellow where they differ
-    within the edge tolerance."""
+    within the edge tolerance.
+
+    Parameters
+    ----------
+    face_id : ndarray
+        ``(H, W)`` an algorithm's polygon ids.
+    reference : ndarray
+        ``(H, W)`` the reference's.
+    edges : ndarray
+        ``(H, W)`` bool: the pixels near an edge.
+    """
     out = np.full((*face_id.shape, 3), 18, np.uint8)
     out[reference >= 0] = (70, 70, 78)
     diff = face_id != reference
@@ -58,7 +80,19 @@ def disagreement_map(face_id, reference, edges) -> np.ndarray:
 def step_frames(name: str, p: Prepared, result: HiddenResult, count: int = 24) -> list:
     """``count`` id images of the algorithm at work: the z-buffer after each share of the
     polygons (draw order), the painters after each share of their painting order, the scan
-    line and ray casting as their sweep moves down the image."""
+    line and ray casting as their sweep moves down the image.
+
+    Parameters
+    ----------
+    name : str
+        The algorithm's name.
+    p : Prepared
+        The view.
+    result : HiddenResult
+        The algorithm's result.
+    count : int
+        Frames.
+    """
     height = p.size[1]
     frames = []
     if name in ("scanline", "raycast"):

@@ -31,7 +31,23 @@ def fragments(p: Prepared, tris_screen: np.ndarray, tris_view: np.ndarray, count
     ``piece_screen`` (unsnapped) with ``cut`` flags the piece; a pixel is the piece's when
     its source covers it (exactly as the GPU covers the source) and it lies on the inner
     side of the piece's cut edges -- so the pieces of a triangle share its pixels out
-    with no crack or overlap."""
+    with no crack or overlap.
+
+    Parameters
+    ----------
+    p : Prepared
+        The view.
+    tris_screen : ndarray
+        ``(n, 3, 2)`` the triangles in pixel coordinates.
+    tris_view : ndarray
+        ``(n, 3, 3)`` the same in view space (their depth).
+    counters : dict or None
+        Counts to add to (``"inside tests"``, ``"inside"``: pairs tested, pairs inside).
+    piece_screen : ndarray or None
+        Pieces of triangles to rasterize instead (split by an algorithm).
+    cut : ndarray or None
+        Which triangles are cut.
+    """
     width, height = p.size
     n = len(tris_screen)
     if n == 0:
@@ -100,7 +116,17 @@ def fragments(p: Prepared, tris_screen: np.ndarray, tris_view: np.ndarray, count
 
 def resolve_nearest(p: Prepared, result: HiddenResult, pix, tri, depth, order) -> int:
     """Keep, per pixel, the nearest fragment (ties: lowest ``order``) against what the
-    result holds. Returns how many pixels changed."""
+    result holds. Returns how many pixels changed.
+
+    Parameters
+    ----------
+    p : Prepared
+        The view.
+    result : HiddenResult
+        Where the ids and depth go.
+    pix, tri, depth, order : ndarray
+        The fragments: pixel, triangle, depth, and submission order (ties).
+    """
     if not len(pix):
         return 0
     key = np.lexsort((order, depth, pix))
@@ -122,7 +148,17 @@ def resolve_nearest(p: Prepared, result: HiddenResult, pix, tri, depth, order) -
 
 
 def resolve_last(p: Prepared, result: HiddenResult, pix, tri, depth, rank) -> None:
-    """Painter's resolution: per pixel, the fragment painted last (highest ``rank``)."""
+    """Painter's resolution: per pixel, the fragment painted last (highest ``rank``).
+
+    Parameters
+    ----------
+    p : Prepared
+        The view.
+    result : HiddenResult
+        Where the ids go.
+    pix, tri, depth, rank : ndarray
+        The fragments: pixel, triangle, depth, and painting rank.
+    """
     if not len(pix):
         return
     key = np.lexsort((rank, pix))
@@ -141,7 +177,15 @@ def resolve_last(p: Prepared, result: HiddenResult, pix, tri, depth, rank) -> No
 
 def edge_pixels(p: Prepared, tolerance: float = 1e-3) -> np.ndarray:
     """``(H, W) bool``: pixels whose centre lies within ``tolerance`` pixels of an edge of
-    any triangle of the view (where two correct rasterisers may differ)."""
+    any triangle of the view (where two correct rasterisers may differ).
+
+    Parameters
+    ----------
+    p : Prepared
+        The view.
+    tolerance : float
+        Pixels from an edge.
+    """
     width, height = p.size
     mask = np.zeros(width * height, bool)
     s = p.screen

@@ -112,7 +112,21 @@ def split_by_plane(tris: np.ndarray, normal: np.ndarray, offset: np.ndarray, eps
     on each side (re-triangulated), the index of the triangle each came from, and for each
     piece's edges (k to k+1) whether it is a cut (a split line or a diagonal) rather than
     part of an edge of the original (``cut``: the input's flags). Vertices within ``eps``
-    of the plane count as on it; a triangle wholly on the plane goes to neither side."""
+    of the plane count as on it; a triangle wholly on the plane goes to neither side.
+
+    Parameters
+    ----------
+    tris : ndarray
+        ``(n, 3, 3)`` triangles.
+    normal : ndarray
+        ``(n, 3)`` (or ``(3,)``) the planes' normals.
+    offset : ndarray
+        ``(n,)`` (or a number) the planes' offsets: ``dot(normal, x) = offset``.
+    eps : float
+        How far from a plane a corner still counts as on it.
+    cut : ndarray or None
+        ``(n,)`` bool: which triangles to split (None: every one).
+    """
     n = len(tris)
     normal = np.broadcast_to(normal, (n, 3))
     offset = np.broadcast_to(offset, (n,))
@@ -166,7 +180,17 @@ def split_by_plane(tris: np.ndarray, normal: np.ndarray, offset: np.ndarray, eps
 
 
 def prepare(scene_or_mesh, camera, size=(256, 256)) -> Prepared:
-    """The view of ``scene_or_mesh`` (a Scene or a Mesh) from ``camera`` at ``size``."""
+    """The view of ``scene_or_mesh`` (a Scene or a Mesh) from ``camera`` at ``size``.
+
+    Parameters
+    ----------
+    scene_or_mesh : Scene or Mesh
+        What to view.
+    camera : Camera
+        From where.
+    size : (int, int)
+        The image's width and height in pixels.
+    """
     width, height = (int(size[0]), int(size[1]))
     if width < 1 or height < 1:
         raise GeometryError(f"image size must be at least 1x1, got {size!r}")
@@ -199,7 +223,13 @@ def prepare(scene_or_mesh, camera, size=(256, 256)) -> Prepared:
 
 
 def takes_scene(algorithm):
-    """Let an algorithm of a Prepared view also take ``(scene or mesh, camera, size)``."""
+    """Let an algorithm of a Prepared view also take ``(scene or mesh, camera, size)``.
+
+    Parameters
+    ----------
+    algorithm : callable
+        ``algorithm(prepared) -> HiddenResult``.
+    """
     import functools
 
     @functools.wraps(algorithm)
@@ -215,7 +245,17 @@ def takes_scene(algorithm):
 
 
 def timed(name: str, p: Prepared, run) -> HiddenResult:
-    """Run ``run(result)`` on an empty result and time it."""
+    """Run ``run(result)`` on an empty result and time it.
+
+    Parameters
+    ----------
+    name : str
+        The algorithm's name.
+    p : Prepared
+        The view.
+    run : callable
+        ``run(result)``: fills the result in.
+    """
     result = p.empty_result(name)
     start = time.perf_counter()
     run(result)

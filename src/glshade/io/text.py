@@ -21,7 +21,15 @@ __all__ = ["parse_numbers", "parse_decimals", "normalize_whitespace", "token_cou
 
 
 def parse_numbers(blob: bytes, dtype=np.float64) -> np.ndarray | None:
-    """All whitespace-separated numbers in ``blob``, or None if any token is not one."""
+    """All whitespace-separated numbers in ``blob``, or None if any token is not one.
+
+    Parameters
+    ----------
+    blob : bytes
+        Text.
+    dtype : type
+        The numbers' type.
+    """
     if not blob or blob.isspace():
         return np.zeros(0, dtype)
     with warnings.catch_warnings():
@@ -41,6 +49,11 @@ def parse_decimals(blob: bytes) -> np.ndarray | None:
     equals strtod's for up to 15 significant digits, at about three times the speed.
 
     Returns None when the text is not of that form; the caller then uses parse_numbers.
+
+    Parameters
+    ----------
+    blob : bytes
+        Text of plain decimals.
     """
     if any(c in blob for c in _NOT_PLAIN_DECIMAL):
         return None
@@ -61,7 +74,13 @@ def parse_decimals(blob: bytes) -> np.ndarray | None:
 
 
 def normalize_whitespace(blob: bytes) -> bytes:
-    """Single spaces between tokens, none at line ends; lines kept (so counts line up)."""
+    """Single spaces between tokens, none at line ends; lines kept (so counts line up).
+
+    Parameters
+    ----------
+    blob : bytes
+        Text.
+    """
     if not any(s in blob for s in (b"  ", b"\t", b"\r", b" \n", b"\n ")):
         if blob[:1] == b" " or blob[-1:] == b" ":
             return blob.strip(b" ")
@@ -70,7 +89,15 @@ def normalize_whitespace(blob: bytes) -> bytes:
 
 
 def token_counts(blob: bytes, n_lines: int) -> np.ndarray:
-    """Tokens on each of the ``n_lines`` lines of a normalized blob (``\\n``-separated)."""
+    """Tokens on each of the ``n_lines`` lines of a normalized blob (``\\n``-separated).
+
+    Parameters
+    ----------
+    blob : bytes
+        A normalized blob (:func:`normalize_whitespace`).
+    n_lines : int
+        Its lines.
+    """
     arr = np.frombuffer(blob, np.uint8)
     newline = np.flatnonzero(arr == 10)
     space = np.flatnonzero(arr == 32)
@@ -83,14 +110,28 @@ def token_counts(blob: bytes, n_lines: int) -> np.ndarray:
 
 
 def ragged_take(values: np.ndarray, starts: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-    """Concatenate ``values[s:s + n]`` for every (s, n), without a Python loop."""
+    """Concatenate ``values[s:s + n]`` for every (s, n), without a Python loop.
+
+    Parameters
+    ----------
+    values : ndarray
+        ``(N,)`` the source.
+    starts, lengths : ndarray
+        ``(K,)`` each run's start and length.
+    """
     total = int(lengths.sum())
     offsets = np.repeat(starts - np.concatenate([[0], np.cumsum(lengths)[:-1]]), lengths)
     return values[np.arange(total) + offsets]
 
 
 def line_starts(data: bytes) -> tuple[np.ndarray, np.ndarray]:
-    """Byte offsets where each line starts and ends (end excludes the newline)."""
+    """Byte offsets where each line starts and ends (end excludes the newline).
+
+    Parameters
+    ----------
+    data : bytes
+        Text.
+    """
     arr = np.frombuffer(data, np.uint8)
     newline = np.flatnonzero(arr == 10)
     starts = np.concatenate([[0], newline + 1])

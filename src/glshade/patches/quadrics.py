@@ -35,7 +35,15 @@ def revolve(profile, weights=None) -> PatchSet:
     """The surface swept by profile curves about the y axis: ``profile (S, m+1, 2)`` Bezier
     control points ``(r, y)`` (r >= 0) with ``weights (S, m+1)``; 4 S patches of degree
     (m, 2), u along the profile, v around the axis (from +x towards +z). The normal
-    ``Su x Sv`` points away from the axis where the profile rises."""
+    ``Su x Sv`` points away from the axis where the profile rises.
+
+    Parameters
+    ----------
+    profile : array_like
+        ``(S, m+1, 2)`` Bezier control points ``(r, y)`` of the profile's pieces, r >= 0.
+    weights : array_like or None
+        ``(S, m+1)`` their weights (None: all 1).
+    """
     prof = np.asarray(profile, dtype=np.float64)
     if prof.ndim == 2:
         prof = prof[None]
@@ -64,7 +72,13 @@ def _arcs(centre, radius, start_quarter: int, quarters: int):
 
 
 def sphere(radius: float = 1.0) -> PatchSet:
-    """8 biquadratic rational patches; the poles are collapsed edges."""
+    """8 biquadratic rational patches; the poles are collapsed edges.
+
+    Parameters
+    ----------
+    radius : float
+        > 0.
+    """
     r = _positive("radius", radius)
     arcs, w = _arcs((0.0, 0.0), r, 3, 2)  # from the south pole up to the north pole
     return revolve(arcs, w)
@@ -77,7 +91,17 @@ def _segments(points):
 
 def cylinder(radius: float = 1.0, height: float = 2.0, caps: bool = True) -> PatchSet:
     """The side (4 patches) and, with ``caps``, the two discs (4 each, collapsed at their
-    centres), closed; degree (1, 2); centred on the origin along y."""
+    centres), closed; degree (1, 2); centred on the origin along y.
+
+    Parameters
+    ----------
+    radius : float
+        > 0.
+    height : float
+        > 0, along y, centred at the origin.
+    caps : bool
+        Close the ends with discs.
+    """
     r, h = _positive("radius", radius), _positive("height", height) / 2
     chain = [(r, -h), (r, h)] if not caps else [(0, -h), (r, -h), (r, h), (0, h)]
     return revolve(_segments(chain))
@@ -85,7 +109,17 @@ def cylinder(radius: float = 1.0, height: float = 2.0, caps: bool = True) -> Pat
 
 def cone(radius: float = 1.0, height: float = 2.0, cap: bool = True) -> PatchSet:
     """A cone with its apex at y = height/2 over a base of ``radius`` at y = -height/2 (the
-    same placement as :class:`glshade.solids.Cone`); degree (1, 2)."""
+    same placement as :class:`glshade.solids.Cone`); degree (1, 2).
+
+    Parameters
+    ----------
+    radius : float
+        The base's radius, > 0.
+    height : float
+        > 0, along y, centred at the origin.
+    cap : bool
+        Close the base with a disc.
+    """
     r, h = _positive("radius", radius), _positive("height", height) / 2
     chain = [(r, -h), (0, h)] if not cap else [(0, -h), (r, -h), (0, h)]
     return revolve(_segments(chain))
@@ -93,7 +127,15 @@ def cone(radius: float = 1.0, height: float = 2.0, cap: bool = True) -> PatchSet
 
 def torus(R: float = 1.0, r: float = 0.25) -> PatchSet:
     """16 biquadratic rational patches: a tube of radius ``r`` about a circle of radius
-    ``R`` in the xz plane."""
+    ``R`` in the xz plane.
+
+    Parameters
+    ----------
+    R : float
+        The circle's radius, > r.
+    r : float
+        The tube's radius, > 0.
+    """
     R, r = _positive("R", R), _positive("r", r)
     if r >= R:
         raise GeometryError(f"a ring torus needs r < R, got R={R}, r={r}")

@@ -274,13 +274,12 @@ class Scene:
         if label is not None and not (isinstance(label, str) and label.strip()):
             raise SceneError(f"label must be a non-empty string (the object's class), got "
                              f"{label!r}")
-        before = {id(m) for m in self._every_model()}
+        kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids)
+        before = [len(k) for k in kinds]  # (what this add appends: a mesh's parts too)
         model = self._add(mesh, material, transform, rotation, translation, scale, name,
                           crease, vertex_colors, tessellation, level)
         self._next_instance += 1
-        for added in self._every_model():  # (a multi-material mesh: each of its parts)
-            if id(added) in before:
-                continue
+        for added in (m for k, n in zip(kinds, before) for m in k[n:]):
             added.instance_id = self._next_instance
             added.label = label if label is not None else (
                 name or getattr(mesh, "name", None) or type(mesh).__name__)

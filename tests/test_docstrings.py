@@ -30,7 +30,11 @@ from glshade.geometry import merge, mesh, polygon, primitives
 from glshade.patches import bezier
 from glshade.solids import leaves, tree
 from glshade.io import images, meshes, scenefile
-from glshade.render import annotate, context, renderer
+from glshade.render import (annotate, context, gpu_mesh, passes, programs, renderer, shaders,
+                            state, target)
+from glshade.render.passes import gbuffer
+from glshade.render.passes import mesh as mesh_pass
+from glshade.render.passes import patches as patch_pass
 from glshade.scene import camera, intrinsics, keyframes, lights, material, occluders, texture
 from glshade.scene import scene as scene_module
 
@@ -39,7 +43,8 @@ SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, sc
          merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
          renderer, tree, leaves, winged_edge, bezier, octree, metrics, methods, solvers,
          formfactors, patches, problem, lighting, raycast, transforms, raster, text,
-         quadrics)
+         quadrics, target, programs, gpu_mesh, state, shaders, passes, gbuffer, mesh_pass,
+         patch_pass)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
@@ -71,8 +76,8 @@ def _callables():
 
 def documented(doc: str) -> set:
     """The names a numpydoc Parameters section lists (``a, b : type`` lines, ``**kw``)."""
-    found = re.search(r"^Parameters\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)", doc,
-                      re.S | re.M)
+    found = re.search(r"^(?:Parameters|Attributes)\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)",
+                      doc, re.S | re.M)  # (a dataclass may list its fields as Attributes)
     if found is None:
         return set()
     names = set()

@@ -20,7 +20,13 @@ __all__ = ["GpuMesh", "drawable_normals"]
 def drawable_normals(mesh: Mesh) -> np.ndarray:
     """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
     pixels): file normals where usable, computed ones elsewhere, +z for a vertex that only
-    degenerate faces use (their triangles cover no pixel)."""
+    degenerate faces use (their triangles cover no pixel).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    """
     n = mesh.vertex_normals
     if mesh.normals_from_file is not None:
         f = mesh.normals_from_file
@@ -31,7 +37,15 @@ def drawable_normals(mesh: Mesh) -> np.ndarray:
 
 
 class GpuMesh(GLResource):
-    """Buffers for one Mesh in one RenderContext; ``release()`` frees them all."""
+    """Buffers for one Mesh in one RenderContext; ``release()`` frees them all.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    mesh : Mesh
+        The mesh uploaded.
+    """
 
     def __init__(self, context, mesh: Mesh):
         super().__init__(context)
@@ -81,7 +95,15 @@ class GpuMesh(GLResource):
     def beyond(self, model_view: np.ndarray, near: float) -> bool:
         """Whether the mesh lies wholly beyond a camera's near plane (``model_view``: model
         to view space), so that the camera sees a closed mesh from outside -- where culling
-        its back faces cannot change the picture."""
+        its back faces cannot change the picture.
+
+        Parameters
+        ----------
+        model_view : ndarray
+            ``(4, 4)`` model to view space.
+        near : float
+            The near plane's distance.
+        """
         return bool((model_view[2] @ self._corners < -near).all())
 
     def _flat_buffer(self):
@@ -119,7 +141,15 @@ class GpuMesh(GLResource):
 
     def color_array(self, program, colors: np.ndarray):
         """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the
-        mesh as given (never split), cached for the same colour array."""
+        mesh as given (never split), cached for the same colour array.
+
+        Parameters
+        ----------
+        program : moderngl.Program
+            The radiosity mode's program.
+        colors : ndarray
+            ``(V, 3)`` float32 a vertex.
+        """
         self._check()
         if self._colors is None or self._colors[0] is not colors:
             self._drop_colors()
@@ -161,7 +191,13 @@ class GpuMesh(GLResource):
 
     def edge_array(self, program):
         """The VAO of the mesh's polygon edges (each polygon's boundary, never its
-        triangulation's diagonals) as lines, for ``edges.vert``; made on first use."""
+        triangulation's diagonals) as lines, for ``edges.vert``; made on first use.
+
+        Parameters
+        ----------
+        program : moderngl.Program
+            The edges' program.
+        """
         self._check()
         key = ("edges", id(program))
         vao = self._vaos.get(key)
@@ -177,7 +213,15 @@ class GpuMesh(GLResource):
         return vao
 
     def vertex_array(self, program, mode: ShadingMode):
-        """The VAO binding this mesh's buffers to ``program`` (cached)."""
+        """The VAO binding this mesh's buffers to ``program`` (cached).
+
+        Parameters
+        ----------
+        program : moderngl.Program
+            The program.
+        mode : ShadingMode
+            Its shading mode (flat draws use the polygon's corners as their own vertices).
+        """
         self._check()
         key = id(program)
         vao = self._vaos.get(key)

@@ -45,7 +45,13 @@ class Role(enum.Enum):
 
 def light_kind(light) -> str:
     """The GLSL kind of a light: DIRECTIONAL, POINT, or ATTENUATED (a point light whose
-    intensity falls off with distance)."""
+    intensity falls off with distance).
+
+    Parameters
+    ----------
+    light : PointLight or DirectionalLight
+        The light.
+    """
     if isinstance(light, DirectionalLight):
         return "DIRECTIONAL"
     return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
@@ -55,7 +61,17 @@ def material_uniforms(material, lights, ambient) -> list:
     """The lighting formula's per-draw products for one material: Ia ka C, and per light
     Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms) -- with the
     RGB coefficients where the material has them. ``illum`` 1 drops the specular
-    products; 0 makes the diffuse colour the whole (ambient) term, unlit."""
+    products; 0 makes the diffuse colour the whole (ambient) term, unlit.
+
+    Parameters
+    ----------
+    material : Material
+        The surface.
+    lights : sequence
+        The draw's lights.
+    ambient : array_like
+        ``(3,)`` the ambient intensity.
+    """
     ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
     kd = np.asarray(material.diffuse_rgb, np.float64)
     diffuse = (ip * kd).astype("f4")
@@ -72,7 +88,13 @@ def material_uniforms(material, lights, ambient) -> list:
 
 class MaterialUniforms:
     """:func:`material_uniforms`, cached per (material, lights, ambient): shared by the
-    passes of one Renderer, so a material lit the same way is computed once."""
+    passes of one Renderer, so a material lit the same way is computed once.
+
+    Parameters
+    ----------
+    limit : int
+        The most entries kept.
+    """
 
     def __init__(self, limit: int = 1024):
         self._cache: dict[tuple, list] = {}
@@ -101,7 +123,21 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
                        textured: bool = False) -> bool:
     """Whether a Phong program's lighting constants fit the driver's varyings alongside its
     own (position, normal and, with aux outputs, the world normal): one vector for ambient
-    and n, then per light its position, diffuse and specular (and attenuation)."""
+    and n, then per light its position, diffuse and specular (and attenuation).
+
+    Parameters
+    ----------
+    mode : ShadingMode
+        The shading mode (only Phong's fit).
+    aux : bool
+        The program writes the auxiliary outputs.
+    lights : tuple of str
+        The lights' kinds.
+    max_vectors : int
+        The driver's varying vectors.
+    textured : bool
+        The program reads texture coordinates.
+    """
     if mode is not ShadingMode.PHONG:
         return False
     per_light = 3 + ("ATTENUATED" in lights)
@@ -116,7 +152,25 @@ OIT_SLOTS = 8
 
 
 class Variant(NamedTuple):
-    """What every program of one draw shares (the rest of a ProgramKey is per model)."""
+    """What every program of one draw shares (the rest of a ProgramKey is per model).
+
+    Parameters
+    ----------
+    mode : ShadingMode
+        The shading mode.
+    aux : bool
+        Whether the draw writes the auxiliary outputs (normals, ids, depth).
+    lights : tuple of str
+        Each light's GLSL kind (:func:`light_kind`).
+    srgb : bool
+        Encode the output as sRGB.
+    orthographic : bool
+        An orthographic camera (the view direction is constant).
+    shadows : bool
+        The draw casts shadows.
+    forward : Forward
+        Where shadows are found (array, maps, rays).
+    """
 
     mode: ShadingMode
     aux: bool
@@ -131,7 +185,33 @@ class Variant(NamedTuple):
 
 @dataclass(frozen=True)
 class ProgramKey:
-    """Everything that selects a compiled program variant."""
+    """Everything that selects a compiled program variant.
+
+    Parameters
+    ----------
+    mode : ShadingMode
+        The shading mode.
+    aux : bool
+        Whether the draw writes the auxiliary outputs (normals, ids, depth).
+    lights : tuple of str
+        Each light's GLSL kind (:func:`light_kind`).
+    srgb : bool
+        Encode the output as sRGB.
+    orthographic : bool
+        An orthographic camera (the view direction is constant).
+    two_sided : bool
+        Light back faces as seen (else cull them).
+    flat_constants : bool
+        Phong's lighting constants as flat varyings.
+    shadows : bool
+        The draw casts shadows.
+    oit : Role
+        The transparency pass's role of the program (or opaque).
+    textured : bool
+        The material has texture maps.
+    forward : Forward
+        Where shadows are found (array, maps, rays).
+    """
 
     mode: ShadingMode
     aux: bool = False
@@ -153,7 +233,21 @@ class ProgramKey:
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: Role = Role.OPAQUE,
            textured: bool = False) -> ProgramKey:
-        """The key of a draw's variant for one model."""
+        """The key of a draw's variant for one model.
+
+        Parameters
+        ----------
+        variant : Variant
+            What the draw's programs share.
+        two_sided : bool
+            Light back faces as seen.
+        flat_constants : bool
+            Phong's lighting constants as flat varyings.
+        oit : Role
+            The transparency pass's role.
+        textured : bool
+            The material has texture maps.
+        """
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         opaque = oit is Role.OPAQUE
         return cls(variant.mode, variant.aux and opaque, variant.lights, variant.srgb,
@@ -194,6 +288,18 @@ class UniformWriter:
         self._members: dict[tuple[int, str], tuple] = {}
 
     def put(self, prog, name: str, value) -> None:
+        """Write ``value`` to ``prog``'s uniform ``name`` unless it holds it already (a name the
+
+        Parameters
+        ----------
+        compiler dropped is skipped; an array is fitted to the member's size).
+        prog : moderngl.Program
+            The program.
+        name : str
+            The uniform.
+        value : object
+            A number, a tuple, bytes or an ndarray.
+        """
         key = (id(prog), name)
         found = self._members.get(key)
         if found is None:  # (moderngl's `in` walks every member: look each up once)

@@ -65,7 +65,17 @@ def assemble(name: str, root: Path | None = None,
     """Source of ``name`` with includes expanded and ``defines`` injected after
     ``#version``; and the file of each ``#line`` source number (index = source string
     number used in ``#line L N``). The define ``GLSL_430`` raises the file's ``#version``
-    to 430 core (storage buffers and image atomics in a program written for 330)."""
+    to 430 core (storage buffers and image atomics in a program written for 330).
+
+    Parameters
+    ----------
+    name : str
+        The shader file, under ``shaders/`` (or ``root``).
+    root : Path or None
+        Another folder of shaders (None: the packaged ones).
+    defines : tuple of str
+        ``#define`` lines to inject after ``#version``.
+    """
     root = root or shader_dir()
     files: list[str] = []
 
@@ -138,7 +148,13 @@ def explain_compile_error(driver_text: str, sources: dict[str, tuple[str, list[s
 
 class ShaderLibrary(GLResource):
     """Compiled programs of one RenderContext, one per shading mode and output set, built on
-    first use and released with the context."""
+    first use and released with the context.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    """
 
     def __init__(self, context):
         super().__init__(context)
@@ -152,7 +168,15 @@ class ShaderLibrary(GLResource):
     def program(self, mode, aux: bool = True):
         """The program of a :class:`ProgramKey`, compiled on first use; or, given a mode, its
         general variant (one point light, two-sided; ``aux=False``: colour only, no normal,
-        polygon id or depth outputs, so no id lookup per pixel)."""
+        polygon id or depth outputs, so no id lookup per pixel).
+
+        Parameters
+        ----------
+        mode : ProgramKey or ShadingMode
+            The variant, or a mode (its general variant).
+        aux : bool
+            With a mode: whether it writes the auxiliary outputs.
+        """
         self._check()
         key = mode if isinstance(mode, ProgramKey) else \
             ProgramKey(ShadingMode.parse(mode), aux=bool(aux))
@@ -166,7 +190,21 @@ class ShaderLibrary(GLResource):
                 defines: tuple[str, ...] = (), geom: str | None = None,
                 tess: tuple[str, str] | None = None):
         """Compile and link one program (``tess``: the tessellation control and evaluation
-        shaders' files); a failure raises ShaderError naming file and line."""
+        shaders' files); a failure raises ShaderError naming file and line.
+
+        Parameters
+        ----------
+        vert, frag : str
+            The vertex and fragment shaders' files.
+        root : Path or None
+            Another folder of shaders (None: the packaged ones).
+        defines : tuple of str
+            ``#define`` lines injected into every stage.
+        geom : str or None
+            A geometry shader's file.
+        tess : (str, str) or None
+            Tessellation control and evaluation shaders' files.
+        """
         stages = {"vertex_shader": assemble(vert, root, defines),
                   "fragment_shader": assemble(frag, root, defines)}
         if geom:

@@ -135,17 +135,35 @@ class DrawState:
         return self.proj @ self.view
 
     def with_uniforms(self, values: dict) -> DrawState:
-        """This state with more uniforms every program of the draw takes (a pass's)."""
+        """This state with more uniforms every program of the draw takes (a pass's).
+
+        Parameters
+        ----------
+        values : dict
+            Uniforms by name.
+        """
         return dataclasses.replace(self, frame_uniforms=self.frame_uniforms +
                                    tuple(values.items()))
 
     def transparent(self, model) -> bool:
         """Whether ``model`` is drawn by the transparency pass (after every opaque
-        surface), not with the opaque ones."""
+        surface), not with the opaque ones.
+
+        Parameters
+        ----------
+        model : Model
+            A scene model.
+        """
         return model.material.transparent and self.options.mode in TRANSPARENT_MODES
 
     def drawn(self, model) -> bool:
-        """Whether ``model``'s mesh is drawn at all: shown, with triangles."""
+        """Whether ``model``'s mesh is drawn at all: shown, with triangles.
+
+        Parameters
+        ----------
+        model : Model
+            A scene model.
+        """
         return model.visible and len(model.mesh.triangles[0]) > 0
 
 

@@ -27,7 +27,19 @@ def check_fits(context, width: int, height: int, samples: int = 0,
                bytes_per_pixel: int = 0) -> None:
     """Refuse, up front and by name, what this GL cannot make: MSAA sample counts it lacks,
     images wider than its framebuffers, and (on a software renderer, which draws in main
-    memory) images larger than the machine's memory."""
+    memory) images larger than the machine's memory.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    width, height : int
+        The image's size in pixels.
+    samples : int
+        MSAA samples.
+    bytes_per_pixel : int
+        The memory a pixel takes (0: the renderer's targets').
+    """
     import os
 
     info = context.ctx.info
@@ -59,7 +71,19 @@ def check_fits(context, width: int, height: int, samples: int = 0,
 
 
 class OffscreenTarget(GLResource):
-    """One set of framebuffers of a given size; ``release()`` frees them."""
+    """One set of framebuffers of a given size; ``release()`` frees them.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    width, height : int
+        The image's size in pixels.
+    samples : int
+        MSAA samples (0: none).
+    color_dtype : str
+        ``"f1"`` (8-bit) or ``"f4"`` (float) colour.
+    """
 
     #: drawn with y flipped, so that GL's first row in memory is the image's top row and a
     #: read needs no flip (and no second copy of the pixels)
@@ -107,7 +131,15 @@ class OffscreenTarget(GLResource):
     def begin(self, background, outputs: Outputs) -> None:
         """Bind for drawing and clear: colour to the background, the rest to zero (each
         through a framebuffer of its own: a clear reaches every colour attachment, and the
-        background colour in an id or depth buffer would read as a polygon at a distance)."""
+        background colour in an id or depth buffer would read as a polygon at a distance).
+
+        Parameters
+        ----------
+        background : tuple
+            The clear colour, RGBA.
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         self._check()
         if outputs.auxiliary:
             self.fbo_clear_aux.use()
@@ -118,7 +150,13 @@ class OffscreenTarget(GLResource):
             self.fbo_draw_all.use()
 
     def bind(self, outputs: Outputs) -> None:
-        """Bind for drawing without clearing."""
+        """Bind for drawing without clearing.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         (self.fbo_draw_all if outputs.auxiliary else self.fbo_draw_color).use()
 
     def depth_source(self):
@@ -126,7 +164,13 @@ class OffscreenTarget(GLResource):
         return self.fbo_draw_color
 
     def resolve(self, outputs: Outputs) -> None:
-        """Copy the multisampled drawing into the single-sampled buffers that are read."""
+        """Copy the multisampled drawing into the single-sampled buffers that are read.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         if self.samples:
             ctx = self.context.ctx
             if outputs.auxiliary:
@@ -176,7 +220,15 @@ class OffscreenTarget(GLResource):
 
 class WindowTarget:
     """A window's default framebuffer, in the shape the Renderer draws into: colour only
-    (the window has no id or normal buffers)."""
+    (the window has no id or normal buffers).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    width, height : int
+        The window's framebuffer size in pixels.
+    """
 
     rows_top_down = False  # a window shows GL's first row at the bottom
 
@@ -185,6 +237,13 @@ class WindowTarget:
         self.width, self.height = int(width), int(height)
 
     def resize(self, width: int, height: int) -> None:
+        """The window's new framebuffer size.
+
+        Parameters
+        ----------
+        width, height : int
+            In pixels.
+        """
         self.width, self.height = max(1, int(width)), max(1, int(height))
 
     def _fbo(self):
@@ -192,18 +251,41 @@ class WindowTarget:
         return ctx.screen if ctx.screen is not None else ctx.detect_framebuffer(0)
 
     def begin(self, background, outputs: Outputs) -> None:
+        """Bind the window's framebuffer and clear it to the background.
+
+        Parameters
+        ----------
+        background : tuple
+            The clear colour, RGBA.
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         fbo = self._fbo()
         fbo.use()
         self.context.ctx.viewport = (0, 0, self.width, self.height)
         fbo.clear(*background, depth=1.0)
 
     def bind(self, outputs: Outputs) -> None:
+        """Bind the window's framebuffer without clearing.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         self._fbo().use()
 
     def depth_source(self):
         return self._fbo()
 
     def resolve(self, outputs: Outputs) -> None:
+        """Nothing: the window is single-sampled and shown as drawn.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         pass
 
     def read_color(self) -> np.ndarray:
@@ -213,7 +295,15 @@ class WindowTarget:
         return np.frombuffer(data, np.uint8).reshape(self.height, self.width, 4)[::-1].copy()
 
     def read_depth_at(self, x: int, y_from_top: int) -> float:
-        """Window depth in [0, 1] at one pixel (1 = nothing drawn)."""
+        """Window depth in [0, 1] at one pixel (1 = nothing drawn).
+
+        Parameters
+        ----------
+        x : int
+            The column.
+        y_from_top : int
+            The row, 0 at the top.
+        """
         y = self.height - 1 - int(y_from_top)
         data = self._fbo().read(viewport=(int(x), y, 1, 1), components=1, attachment=-1,
                                 dtype="f4")

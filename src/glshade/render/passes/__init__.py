@@ -48,19 +48,45 @@ class Stage:
     takes part in)."""
 
     def wanted(self, state: DrawState) -> bool:
-        """Whether this stage has work in ``state``'s draw."""
+        """Whether this stage has work in ``state``'s draw.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
         return True
 
     def prepare(self, state: DrawState) -> DrawState:
-        """Work before the target is bound; the state the later stages see."""
+        """Work before the target is bound; the state the later stages see.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
         return state
 
     def draw(self, state: DrawState, id_base: int) -> int:
-        """Draw into the bound target; the first polygon id still free after this stage."""
+        """Draw into the bound target; the first polygon id still free after this stage.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
         return id_base
 
     def finish(self, state: DrawState) -> None:
-        """After every stage drew."""
+        """After every stage drew.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
 
     def release(self) -> None:
         """Free the GL objects the stage made (a GLResource's, listed first in a stage's

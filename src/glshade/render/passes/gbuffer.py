@@ -16,7 +16,19 @@ __all__ = ["GBuffer", "bind_gbuffer"]
 class GBuffer:
     """The draw's surface points: world normal (as (n + 1) / 2), polygon id + 1 (0
     background) and the view depth's bits, in textures the compute pass reads (drawn into
-    like any target)."""
+    like any target).
+
+    Parameters
+    ----------
+    ctx : moderngl.Context
+        The context.
+    width, height : int
+        The draw's size in pixels.
+    rows_top_down : bool
+        Whether the draw stores row 0 at the top.
+    keep : callable
+        Registers each GL object with its owner (released with it).
+    """
 
     def __init__(self, ctx, width: int, height: int, rows_top_down: bool, keep):
         self.width, self.height, self.rows_top_down = width, height, rows_top_down
@@ -35,16 +47,39 @@ class GBuffer:
         self.fbo_color = keep(ctx.framebuffer([self.normal], self.zbuf))
 
     def begin(self, background, outputs) -> None:
+        """Bind and clear (everything to zero: background).
+
+        Parameters
+        ----------
+        background : tuple
+            Unused: the G-buffer has no colour.
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         self.fbo.use()
         self.fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
 
     def bind(self, outputs) -> None:
+        """Bind without clearing.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         self.fbo.use()
 
     def depth_source(self):
         return self.fbo_color
 
     def resolve(self, outputs) -> None:
+        """Nothing: the G-buffer is single-sampled.
+
+        Parameters
+        ----------
+        outputs : Outputs
+            What the draw writes besides colour.
+        """
         pass
 
 

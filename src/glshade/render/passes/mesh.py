@@ -68,7 +68,13 @@ class MeshPass(GLResource, Stage):
 
     # ------------------------------------------------------------------ caches
     def gpu_mesh(self, mesh) -> GpuMesh:
-        """The GPU copy of ``mesh`` (uploaded on first use, kept while the mesh lives)."""
+        """The GPU copy of ``mesh`` (uploaded on first use, kept while the mesh lives).
+
+        Parameters
+        ----------
+        mesh : Mesh
+            The mesh.
+        """
         entry = self._meshes.get(id(mesh))
         if entry is not None and entry[0]() is mesh:
             return entry[1]
@@ -112,7 +118,21 @@ class MeshPass(GLResource, Stage):
                 role: Role = Role.OPAQUE, textured: bool = False):
         """The compiled program of a variant, with flat lighting constants if asked for and
         they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
-        material's maps sampled."""
+        material's maps sampled.
+
+        Parameters
+        ----------
+        variant : Variant
+            What the draw's programs share.
+        two_sided : bool
+            Light back faces as seen.
+        flat : bool
+            Phong's lighting constants as flat varyings.
+        role : Role
+            The transparency pass's role (or opaque).
+        textured : bool
+            The material has texture maps.
+        """
         found = (variant, two_sided, flat, role, textured)
         program = self._programs.get(found)
         if program is None:
@@ -129,7 +149,15 @@ class MeshPass(GLResource, Stage):
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the scene's visible opaque meshes; the polygon id after theirs (transparent
         ones keep their ids: the transparency pass draws them later; a wireframe draw
-        leaves the surfaces to the edge pass)."""
+        leaves the surfaces to the edge pass).
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for the meshes.
+        """
         prepared: set[int] = set()
         wireframe = state.options.wireframe
         for model in state.scene.models:
@@ -145,7 +173,19 @@ class MeshPass(GLResource, Stage):
     def draw_models(self, state: DrawState, models, role: Role,
                     extra: dict | None = None) -> None:
         """Draw ``models`` as ``role`` (the transparency pass's capture, fetch or blend),
-        with the ``extra`` uniforms its programs take."""
+        with the ``extra`` uniforms its programs take.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        models : iterable of Model
+            What to draw.
+        role : Role
+            The transparency pass's role.
+        extra : dict or None
+            Uniforms the role's programs take.
+        """
         prepared: set[int] = set()
         for model in models:
             self._draw_model(state, model, self.gpu_mesh(model.mesh), 0, prepared, role,

@@ -50,7 +50,15 @@ class PatchPass(GLResource, Stage):
         self._buffers: dict[int, Any] = {}
 
     def program(self, key: ProgramKey, degree: tuple[int, int]):
-        """The program of a variant for patches of ``degree`` (m, n)."""
+        """The program of a variant for patches of ``degree`` (m, n).
+
+        Parameters
+        ----------
+        key : ProgramKey
+            The variant.
+        degree : (int, int)
+            The patches' degree (m, n).
+        """
         from ..shaders import PROGRAMS
 
         found = self._programs.get((key, degree))
@@ -66,7 +74,15 @@ class PatchPass(GLResource, Stage):
         return found
 
     def vertex_array(self, model, program):
-        """The VAO of a model's control points with ``program`` (made once per pair)."""
+        """The VAO of a model's control points with ``program`` (made once per pair).
+
+        Parameters
+        ----------
+        model : PatchModel
+            The model.
+        program : moderngl.Program
+            Its program.
+        """
         ctx = self.context.ctx
         found = self._buffers.get(id(model))
         if found is None or found[0] is not model.patches:
@@ -83,11 +99,26 @@ class PatchPass(GLResource, Stage):
         return vao
 
     def wanted(self, state) -> bool:
+        """Whether the draw has patch models to draw.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
         return bool(state.scene.patch_models) and not state.options.wireframe
 
     def draw(self, state, id_base: int) -> int:
         """Draw the scene's visible patch models (their ids, one per patch, follow from
-        ``id_base``); return the id base after them."""
+        ``id_base``); return the id base after them.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for the patches.
+        """
         import moderngl
 
         from ...geometry.transforms import gl_bytes

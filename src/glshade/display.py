@@ -52,7 +52,13 @@ def picture(drawable, mode: str = "phong", choose: bool = False, polygons=None):
 
 
 def png_bytes(image: np.ndarray) -> bytes:
-    """PNG of an ``(H, W)``, ``(H, W, 3)`` or ``(H, W, 4)`` uint8 image."""
+    """PNG of an ``(H, W)``, ``(H, W, 3)`` or ``(H, W, 4)`` uint8 image.
+
+    Parameters
+    ----------
+    image : ndarray
+        ``(H, W)``, ``(H, W, 3)`` or ``(H, W, 4)`` uint8.
+    """
     from PIL import Image
 
     buf = io.BytesIO()
@@ -62,7 +68,13 @@ def png_bytes(image: np.ndarray) -> bytes:
 
 def buffers_image(frame) -> np.ndarray:
     """A frame's buffers as one ``(H, k W, 3)`` uint8 image: colour, then depth (near
-    white, far dark), world normals (0.5 n + 0.5) and polygon ids, those the frame has."""
+    white, far dark), world normals (0.5 n + 0.5) and polygon ids, those the frame has.
+
+    Parameters
+    ----------
+    frame : Frame
+        A frame with any of its buffers.
+    """
     color = np.asarray(frame.color)
     if color.dtype != np.uint8:
         color = (np.clip(color, 0, 1) * 255 + 0.5).astype(np.uint8)
@@ -88,7 +100,17 @@ def buffers_image(frame) -> np.ndarray:
 
 
 def facts_html(title: str, facts: list[str], image: np.ndarray | None = None) -> str:
-    """HTML of a picture (inline PNG) beside a title and a list of facts."""
+    """HTML of a picture (inline PNG) beside a title and a list of facts.
+
+    Parameters
+    ----------
+    title : str
+        The heading.
+    facts : list of str
+        The facts listed.
+    image : ndarray or None
+        A picture shown beside them.
+    """
     rows = "".join(f"<li>{html.escape(f)}</li>" for f in facts)
     picture = ""
     if image is not None:

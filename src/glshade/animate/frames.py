@@ -26,7 +26,25 @@ class FrameMaker:
     """A worker that renders frame ``i`` of a path to RGBA bytes (in the main process or in
     a worker process). ``options`` are drawn unchanged, once per mode in ``modes``. With a
     ``spool`` folder (a cluster's workers) it writes the frame there as a PNG and returns
-    the file's path instead: pixels do not travel through the scheduler."""
+    the file's path instead: pixels do not travel through the scheduler.
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    path : CameraPath
+        The camera's key frames.
+    times : ndarray
+        Each frame's time.
+    options : DrawOptions
+        How.
+    modes : sequence of str or None
+        Several modes side by side.
+    config : RenderConfig
+        What the worker's renderer is built with.
+    spool : str or Path or None
+        Where frames go as PNG files (a cluster's workers), or None (returned as bytes).
+    """
 
     def __init__(self, scene, path, times, options, modes, config: RenderConfig,
                  spool=None):
@@ -73,6 +91,37 @@ def render_frames(scene: Scene, path: CameraPath, frames: int, options=None, *, 
     a temporary folder beside ``spool`` (a path every worker can reach; default: this
     machine's temporary folder). ``config`` (or ``size``, ``samples``, ``backend``): what
     each worker's Renderer is built with (default 512x512, 4 samples).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    path : CameraPath
+        The camera's key frames.
+    frames : int
+        How many, evenly spaced.
+    options : DrawOptions, ShadingMode, str or None
+        How.
+    modes : sequence of str or None
+        Several modes side by side.
+    config : RenderConfig or None
+        What each renderer is built with (or the next keywords).
+    size : (int, int) or None
+        Width and height in pixels.
+    samples : int or None
+        MSAA samples.
+    jobs : int
+        Worker processes.
+    backend : str or None
+        The headless backend.
+    progress : Progress or None
+        The bar to update.
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"``.
+    spool : str or Path or None
+        Where workers on a cluster leave their frames (a folder every worker reaches).
+    **changes
+        Single draw options replaced, by name.
     """
     config = RenderConfig.of(config, size=size, samples=samples, backend=backend)
     options = DrawOptions.of(options, **changes)
@@ -146,7 +195,41 @@ def animate(scene, path: CameraPath | None = None, frames: int | None = None, op
 
     ``scene`` may be a loaded scene file (:func:`glshade.load_scene`): then its camera path,
     its ``[render]`` size, samples, fps, duration and draw options are used wherever the
-    call does not give its own (``frames`` defaults to duration x fps, else the path's)."""
+    call does not give its own (``frames`` defaults to duration x fps, else the path's).
+
+    Parameters
+    ----------
+    scene : Scene or SceneFile
+        What to draw (a loaded scene file brings its path and settings).
+    path : CameraPath or None
+        The camera's key frames (None: the scene file's).
+    frames : int or None
+        How many (None: duration x fps, else the path's keys).
+    options : DrawOptions, ShadingMode, str or None
+        How (None: the defaults or the file's).
+    modes : sequence of str or None
+        Several modes side by side, labelled.
+    output : str or Path or None
+        A GIF, PNG/APNG, MP4 or folder to write (None: return an iterator of images).
+    fps : float or None
+        Frames a second of the file.
+    config : RenderConfig or None
+        What each renderer is built with (or the next keywords).
+    size : (int, int) or None
+        Width and height in pixels.
+    samples : int or None
+        MSAA samples.
+    jobs : int or None
+        Worker processes (None: every core).
+    backend : str or None
+        The headless backend.
+    progress : bool, tqdm-like or None
+        The progress bar (None: where output goes decides; False: none).
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"``.
+    **changes
+        Single draw options replaced, by name.
+    """
     if isinstance(scene, SceneFile):
         st = scene.settings
         path = scene.path if path is None else path

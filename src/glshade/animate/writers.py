@@ -23,7 +23,15 @@ MIN_FPS, MAX_FPS = 0.01, 1000.0
 
 
 def check_fps(fps: float, name: str = "fps") -> float:
-    """``fps`` as a float in [MIN_FPS, MAX_FPS], or an OptionError naming ``name``."""
+    """``fps`` as a float in [MIN_FPS, MAX_FPS], or an OptionError naming ``name``.
+
+    Parameters
+    ----------
+    fps : float
+        The value given.
+    name : str
+        Its name, for the message.
+    """
     from ..errors import OptionError
 
     try:
@@ -38,7 +46,13 @@ def check_fps(fps: float, name: str = "fps") -> float:
 
 def output_format(output) -> str:
     """The writer an output path asks for: "gif", "png" (APNG), "apng", "mp4", or "dir" (a
-    folder of PNG frames); an OutputError for any other suffix."""
+    folder of PNG frames); an OutputError for any other suffix.
+
+    Parameters
+    ----------
+    output : str or Path
+        The file or folder to write.
+    """
     p = Path(output)
     if str(output).endswith(("/", os.sep)) or p.is_dir() or not p.suffix:
         return "dir"
@@ -51,7 +65,17 @@ def output_format(output) -> str:
 
 def write_animation(frames, output, fps: float = 30.0) -> int:
     """Write frames (an iterable of ``(H, W, 4) uint8``) to ``output``; return the count.
-    The file (or folder) appears only when every frame is written."""
+    The file (or folder) appears only when every frame is written.
+
+    Parameters
+    ----------
+    frames : iterable of ndarray
+        ``(H, W, 4)`` uint8 images.
+    output : str or Path
+        The file or folder.
+    fps : float
+        Frames a second.
+    """
     fmt = output_format(output)
     out = Path(output)
     if fmt == "dir":

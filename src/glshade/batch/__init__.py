@@ -27,13 +27,30 @@ MANIFEST = "manifest.csv"
 
 @dataclasses.dataclass
 class BatchResult:
-    """The rows of the manifest, in input order, and what the run did."""
+    """The rows of the manifest, in input order, and what the run did.
+
+    Parameters
+    ----------
+    rows : list of Row
+        The manifest's rows, in input order.
+    manifest : Path
+        The manifest written.
+    seconds : float
+        The run's time.
+    """
 
     rows: list[Row]
     manifest: Path
     seconds: float
 
     def count(self, status: str) -> int:
+        """How many rows have ``status``.
+
+        Parameters
+        ----------
+        status : str
+            ``"ok"``, ``"exists"``, ``"error"`` or ``"not run"``.
+        """
         return sum(r.status == status for r in self.rows)
 
     def summary(self) -> str:
@@ -54,6 +71,23 @@ def batch(inputs, outdir, spec: BatchSpec | None = None, *, jobs: int = 1,
     the manifest of what was done written and no partial file left. ``progress`` (default
     None): tqdm's bar in a notebook (its widget) or on a terminal, a line now and then in
     a log, False nothing.
+
+    Parameters
+    ----------
+    inputs : str, Path or sequence
+        Mesh files, folders or globs.
+    outdir : str or Path
+        Where the pictures and the manifest go.
+    spec : BatchSpec or None
+        How every mesh is drawn (None: the defaults).
+    jobs : int
+        Local worker processes.
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"``.
+    overwrite : bool
+        Render a mesh again though its outputs exist.
+    progress : bool or None
+        The progress bar (None: where output goes decides).
     """
     start = time.perf_counter()
     spec = spec or BatchSpec()

@@ -17,7 +17,15 @@ COLUMNS = ("input", "status", "polygons", "seconds", "outputs", "message")
 
 
 def write_manifest(rows: list[Row], path) -> None:
-    """Outputs are written relative to the manifest's folder, so the folder can move."""
+    """Outputs are written relative to the manifest's folder, so the folder can move.
+
+    Parameters
+    ----------
+    rows : list of Row
+        The rows.
+    path : str or Path
+        The manifest file.
+    """
     import os
 
     base = Path(path).resolve().parent
@@ -35,7 +43,13 @@ def write_manifest(rows: list[Row], path) -> None:
 
 
 def read_manifest(path) -> dict[str, Row]:
-    """The rows of an earlier manifest by input (empty if there is none, or it is not ours)."""
+    """The rows of an earlier manifest by input (empty if there is none, or it is not ours).
+
+    Parameters
+    ----------
+    path : str or Path
+        The manifest file.
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8", errors="surrogateescape")

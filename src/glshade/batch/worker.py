@@ -25,7 +25,35 @@ __all__ = ["BatchSpec", "BatchWorker", "Row", "view_directions", "write_npz"]
 
 @dataclasses.dataclass(frozen=True)
 class BatchSpec:
-    """How every mesh of a batch is drawn (the same for all of them)."""
+    """How every mesh of a batch is drawn (the same for all of them).
+
+    Parameters
+    ----------
+    modes : tuple of str
+        The shading modes drawn.
+    outputs : Outputs
+        What is written besides colour.
+    size : (int, int)
+        The images' size.
+    samples : int
+        MSAA samples.
+    views : int
+        Views a mesh, turned about the up axis.
+    options : DrawOptions
+        How each is drawn.
+    material : Material or None
+        The meshes' material (None: the default).
+    background : tuple or None
+        The background colour.
+    lights : tuple
+        Lights (none: the headlight).
+    crease : float or None
+        Degrees past which edges stay sharp.
+    fov : float or None
+        The camera's vertical field of view.
+    backend : Backend or str
+        The headless backend.
+    """
 
     modes: tuple[str, ...] = ("phong",)
     outputs: Outputs = Outputs.COLOR
@@ -48,7 +76,23 @@ class BatchSpec:
 
 @dataclasses.dataclass
 class Row:
-    """One line of ``manifest.csv``."""
+    """One line of ``manifest.csv``.
+
+    Parameters
+    ----------
+    input : str
+        The mesh's path or spec.
+    status : str
+        ``"ok"``, ``"exists"``, ``"error"`` or ``"not run"``.
+    polygons : int or None
+        Its polygons.
+    seconds : float or None
+        Its render's time.
+    outputs : tuple of str
+        The files written.
+    message : str
+        An error's line.
+    """
 
     input: str
     status: str  # ok, error, exists (kept from an earlier run), not run (interrupted)
@@ -60,7 +104,13 @@ class Row:
 
 def view_directions(views: int) -> np.ndarray:
     """``(views, 3)`` directions from the target to the eye: the default view turned about
-    the up axis in equal steps (view 0 is the default camera's)."""
+    the up axis in equal steps (view 0 is the default camera's).
+
+    Parameters
+    ----------
+    views : int
+        How many.
+    """
     from ..scene.camera import DEFAULT_VIEW_FROM
 
     x, y, z = DEFAULT_VIEW_FROM
@@ -71,7 +121,15 @@ def view_directions(views: int) -> np.ndarray:
 
 def write_npz(path, arrays: dict) -> None:
     """``np.savez_compressed``, but byte-for-byte reproducible (numpy stamps each member
-    with the current time) and atomic."""
+    with the current time) and atomic.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    arrays : dict
+        Arrays by name.
+    """
     with atomic_write(path, "wb") as f, zipfile.ZipFile(f, "w", zipfile.ZIP_DEFLATED) as z:
         for name, a in arrays.items():
             buf = io.BytesIO()
@@ -82,7 +140,13 @@ def write_npz(path, arrays: dict) -> None:
 
 
 class BatchWorker:
-    """``worker(task) -> Row``; one renderer (one GL context) for every task it is given."""
+    """``worker(task) -> Row``; one renderer (one GL context) for every task it is given.
+
+    Parameters
+    ----------
+    spec : BatchSpec
+        How every mesh is drawn.
+    """
 
     def __init__(self, spec: BatchSpec):
         from ..render.renderer import Renderer

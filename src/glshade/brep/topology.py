@@ -16,7 +16,23 @@ def _first(items, k: int = 5) -> str:
 
 @dataclass
 class TopologyReport:
-    """Problems found while building; empty lists mean a valid 2-manifold structure."""
+    """Problems found while building; empty lists mean a valid 2-manifold structure.
+
+    Parameters
+    ----------
+    non_manifold_edges : list
+        Edges with more than two faces.
+    misoriented_edges : list
+        Edges two faces traverse the same way.
+    isolated_vertices : list
+        Vertices no face uses.
+    duplicate_faces : list
+        Faces repeated.
+    non_manifold_vertices : list
+        Vertices whose faces do not form one fan.
+    fixable_orientation : bool
+        Whether reversing faces would orient it.
+    """
 
     non_manifold_edges: list = field(default_factory=list)   # (a, b, [faces])
     misoriented_edges: list = field(default_factory=list)    # (a, b, [faces])
@@ -58,7 +74,25 @@ class TopologyReport:
 
 @dataclass
 class EulerReport:
-    """The counts of Euler's formula and what they say."""
+    """The counts of Euler's formula and what they say.
+
+    Parameters
+    ----------
+    V, E, F : int
+        Vertices, edges, faces.
+    H : int
+        Holes (inner loops of faces).
+    C : int
+        Connected components.
+    G : int or None
+        The genus (None: not closed).
+    B : int
+        Boundary loops.
+    is_closed, is_manifold, is_oriented : bool
+        What the structure is.
+    genus_per_component : list
+        Each component's genus.
+    """
 
     V: int
     E: int

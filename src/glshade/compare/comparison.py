@@ -49,7 +49,27 @@ SILHOUETTE_COLOR = (200, 60, 200)
 
 @dataclass
 class ModeMetrics:
-    """How far one mode is from the reference, in 8-bit units (PSNR in dB)."""
+    """How far one mode is from the reference, in 8-bit units (PSNR in dB).
+
+    Parameters
+    ----------
+    mode : str
+        The shading mode measured.
+    mean_abs, max_abs, rmse : float
+        The mean, largest and root-mean-square absolute difference from the reference.
+    psnr : float
+        Peak signal-to-noise ratio in dB.
+    ssim : float
+        Structural similarity.
+    mach_band : float
+        Mach-band strength across polygon edges.
+    peak, reference_peak : float
+        The brightest level of the mode's picture and of the reference's.
+    pixels : int
+        The pixels measured.
+    silhouette : int
+        The pixels left out at the silhouette (where coverage differs).
+    """
 
     mode: str
     mean_abs: float
@@ -288,6 +308,36 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     ``scenes``: a scene per mode to draw instead of ``scene`` (the ``radiosity`` mode's is
     a solution's, :meth:`~glshade.radiosity.Solution.scene`: at exposure 1 its pixels are
     radiosities, the path-traced reference's units).
+
+    Parameters
+    ----------
+    scene : Scene
+        What to draw.
+    camera : Camera
+        From where.
+    modes : sequence of str
+        The shading modes measured.
+    reference : str or ndarray
+        ``"auto"``, ``"analytic"``, ``"phong-fine"``, ``"pathtrace"``, an image path or an
+        ``(H, W, 3)`` array.
+    size : (int, int) or None
+        Width and height (default 256x256).
+    diff : bool
+        Add each mode's heat map of its difference.
+    renderer : Renderer or None
+        A renderer to draw with (None: one made here).
+    backend : str or None
+        The headless backend of one made here.
+    options : DrawOptions or None
+        The draw options every mode shares.
+    config : RenderConfig or None
+        What a renderer made here is built with.
+    scale : float or None
+        The heat maps' top in 8-bit units (None: a percentile).
+    spp : int
+        The path-traced reference's samples a pixel.
+    scenes : dict or None
+        A scene a mode draws instead (a radiosity solution's).
     """
     from ..render.renderer import Renderer
 

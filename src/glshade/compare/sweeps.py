@@ -28,7 +28,37 @@ def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "goura
     picklable: a module-level function or a ``functools.partial`` of one). ``config`` (or
     ``size``, ``backend``): what each worker's Renderer is built with (192x192, no MSAA).
     ``progress``: a bar (a notebook's widget, a terminal's line), None to decide by where
-    output goes, False for none, or an object with ``update()``."""
+    output goes, False for none, or an object with ``update()``.
+
+    Parameters
+    ----------
+    make_mesh : callable
+        ``make_mesh(level) -> Mesh`` (picklable for workers).
+    levels : iterable of int
+        The tessellation levels.
+    camera : Camera or None
+        From where (None: the default framing).
+    modes : sequence of str
+        The shading modes measured.
+    material : Material or None
+        The meshes' material.
+    lights : list or None
+        The lights (None: the default).
+    size : (int, int) or None
+        Width and height (default 192x192).
+    backend : str or None
+        The headless backend.
+    config : RenderConfig or None
+        What each worker's renderer is built with.
+    renderer : Renderer or None
+        A renderer to draw with, in this process.
+    jobs : int
+        Worker processes.
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"``.
+    progress : bool, tqdm-like or None
+        The progress bar (None: where output goes decides; False: none).
+    """
     config = RenderConfig.of(config, size=size, backend=backend, base=SWEEP_CONFIG)
     args = (make_mesh, camera, tuple(modes), material, lights, config)
     if renderer is not None:
@@ -52,7 +82,25 @@ def sweep(make_mesh, levels, camera: Camera | None = None, modes=("flat", "goura
 
 
 class SweepLevel:
-    """A worker: the row of one tessellation level (its own renderer unless given one)."""
+    """A worker: the row of one tessellation level (its own renderer unless given one).
+
+    Parameters
+    ----------
+    make_mesh : callable
+        ``make_mesh(level) -> Mesh``.
+    camera : Camera or None
+        From where.
+    modes : sequence of str
+        The shading modes.
+    material : Material or None
+        The meshes' material.
+    lights : list or None
+        The lights.
+    config : RenderConfig
+        What its renderer is built with.
+    renderer : Renderer or None
+        A renderer to draw with (None: its own).
+    """
 
     def __init__(self, make_mesh, camera, modes, material, lights, config: RenderConfig,
                  renderer=None):
@@ -118,7 +166,21 @@ PALETTE = [(40, 150, 60), (230, 120, 60), (60, 110, 220), (190, 70, 170), (120, 
 def sweep_plot(rows: list[dict], modes, metric: str = "mean_abs", size=(640, 420),
                title: str = "error vs the analytic sphere") -> np.ndarray:
     """A log-scale line plot of ``metric`` of each series (``modes``: the rows' keys)
-    against level, drawn with Pillow."""
+    against level, drawn with Pillow.
+
+    Parameters
+    ----------
+    rows : list of dict
+        :func:`sweep`'s rows.
+    modes : sequence of str
+        The series drawn (the rows' keys).
+    metric : str
+        The ModeMetrics field plotted.
+    size : (int, int)
+        The plot's width and height in pixels.
+    title : str
+        Its title.
+    """
     from PIL import Image, ImageDraw
 
     colors = {m: SERIES_COLORS.get(m, PALETTE[i % len(PALETTE)]) for i, m in enumerate(modes)}
@@ -171,7 +233,31 @@ def patch_sweep(surface, camera: Camera | None = None, levels=PATCH_SWEEP_LEVELS
     (Phong on a ``reference_level`` tessellation with exact normals), per level: each of
     ``modes`` with the patches' exact normals and with normals averaged over the welded mesh
     (the notes' formula). Rows ``{"level", "faces", "<mode> exact": ModeMetrics,
-    "<mode> averaged": ModeMetrics}``, in 8-bit units."""
+    "<mode> averaged": ModeMetrics}``, in 8-bit units.
+
+    Parameters
+    ----------
+    surface : PatchSurface or PatchSet
+        The patches.
+    camera : Camera or None
+        From where (None: the default framing).
+    levels : sequence of int
+        The tessellation levels measured.
+    modes : sequence of str
+        The shading modes.
+    reference_level : int
+        The reference's tessellation level.
+    size : (int, int)
+        Width and height.
+    material : Material or None
+        The surface's material.
+    renderer : Renderer or None
+        A renderer to draw with.
+    backend : str or None
+        The headless backend of one made here.
+    progress : bool, tqdm-like or None
+        The progress bar (None: where output goes decides; False: none).
+    """
     from ..geometry.mesh import Mesh
     from ..parallel import as_progress
     from ..patches import PatchSurface, tessellate

@@ -14,7 +14,17 @@ __all__ = ["render_solids"]
 
 def render_solids(scene: Scene, camera, size=(256, 256)):
     """``(depth (H, W), normal (H, W, 3), face_id (H, W))`` of the scene's solids alone
-    (its meshes only count for the ids): inf, zero and -1 where no solid is hit."""
+    (its meshes only count for the ids): inf, zero and -1 where no solid is hit.
+
+    Parameters
+    ----------
+    scene : Scene
+        Its solids are cast (its meshes count for the ids).
+    camera : Camera
+        From where.
+    size : (int, int)
+        Width and height.
+    """
     from ..hidden.view import prepare
 
     width, height = size

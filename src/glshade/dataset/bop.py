@@ -112,7 +112,21 @@ def _models(scene, folder: Path, mm: float) -> None:
 @dataclass(frozen=True)
 class BopViews:
     """What a BOP view writes (picklable: it travels to workers): its rgb, 16-bit depth and
-    masks, and its record (camera, poses, info)."""
+    masks, and its record (camera, poses, info).
+
+    Parameters
+    ----------
+    where : Path
+        The views' folder.
+    size : (int, int)
+        The images' size.
+    mm : float
+        Millimetres a scene unit is.
+    depth_scale : float
+        BOP's: a depth pixel times this is millimetres.
+    cameras : list of Camera
+        The views' cameras.
+    """
 
     where: Path
     size: tuple[int, int]

@@ -34,7 +34,17 @@ def _mask_api():
 @dataclass(frozen=True)
 class CocoViews:
     """What a COCO view writes (picklable): its image, and its record of the objects seen
-    (the view's own instance mask: COCO annotates what is seen, no draw alone)."""
+    (the view's own instance mask: COCO annotates what is seen, no draw alone).
+
+    Parameters
+    ----------
+    out : Path
+        The data set's folder.
+    size : (int, int)
+        The images' size.
+    classes : dict
+        Each instance id's class id.
+    """
 
     out: Path
     size: tuple[int, int]

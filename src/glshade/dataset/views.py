@@ -88,7 +88,15 @@ def load_scene_arg(scene, views: int | None, size, cameras=None):
 
 def write_json(path: Path, content) -> None:
     """``content`` as JSON, keys sorted, one top-level entry a line (BOP's own layout),
-    atomically: the same content, the same bytes."""
+    atomically: the same content, the same bytes.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    content : dict or list
+        What to write.
+    """
     if isinstance(content, dict):
         items = [f'  "{k}": {json.dumps(v, sort_keys=True)}' for k, v in content.items()]
         text = "{\n" + ",\n".join(items) + "\n}"
@@ -130,7 +138,13 @@ class ViewWorker:
         self._renderer: Renderer | None = None
 
     def frame(self, k: int):
-        """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked."""
+        """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked.
+
+        Parameters
+        ----------
+        k : int
+            The view.
+        """
         from ..render.renderer import Renderer
 
         if self._renderer is None:

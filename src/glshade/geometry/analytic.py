@@ -65,6 +65,13 @@ class AnalyticSurface:
     """What every exact surface offers: follow a transform or a flip, and meet rays."""
 
     def transformed(self, matrix: ArrayLike) -> AnalyticSurface:
+        """This surface mapped by an affine matrix.
+
+        Parameters
+        ----------
+        matrix : array_like
+            ``(4, 4)`` affine, column vectors.
+        """
         raise NotImplementedError
 
     def flipped(self) -> AnalyticSurface:
@@ -72,14 +79,30 @@ class AnalyticSurface:
 
     def intersect(self, origins, directions) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Nearest hit ``t (...,)`` (``inf`` on a miss) along ``origins + t directions`` with
-        ``t > 0``, and the unit outward (or, when flipped, inward) normal there ``(..., 3)``."""
+        ``t > 0``, and the unit outward (or, when flipped, inward) normal there ``(..., 3)``.
+
+        Parameters
+        ----------
+        origins, directions : array_like
+            ``(..., 3)`` the rays.
+        """
         raise NotImplementedError
 
 
 @dataclass(frozen=True, eq=False)
 class AnalyticSphere(AnalyticSurface):
     """The sphere of ``radius`` about the origin, mapped by the affine ``matrix`` (column
-    vectors): an ellipsoid in general. ``inward`` normals after an odd number of flips."""
+    vectors): an ellipsoid in general. ``inward`` normals after an odd number of flips.
+
+    Parameters
+    ----------
+    radius : float
+        The sphere's radius before the map.
+    matrix : ndarray
+        ``(4, 4)`` affine, column vectors.
+    inward : bool
+        Normals point inwards (a mirrored map).
+    """
 
     radius: float = 1.0
     matrix: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
@@ -95,6 +118,13 @@ class AnalyticSphere(AnalyticSurface):
         object.__setattr__(self, "matrix", m)
 
     def transformed(self, matrix: ArrayLike) -> AnalyticSphere:
+        """This sphere mapped by an affine matrix.
+
+        Parameters
+        ----------
+        matrix : array_like
+            ``(4, 4)`` affine, column vectors.
+        """
         m = affine_matrix(matrix)
         # a mirroring transform reverses the mesh's faces, which keeps the normals' sense
         return replace(self, matrix=m @ self.matrix)
@@ -103,6 +133,14 @@ class AnalyticSphere(AnalyticSurface):
         return replace(self, inward=not self.inward)
 
     def intersect(self, origins, directions):
+        """Nearest hit ``t`` (``inf`` on a miss) along ``origins + t directions``, ``t >
+        0``, and the unit normal there.
+
+        Parameters
+        ----------
+        origins, directions : array_like
+            ``(..., 3)`` the rays.
+        """
         o = np.asarray(origins, dtype=np.float64)
         d = np.asarray(directions, dtype=np.float64)
         inv = np.linalg.inv(self.matrix)

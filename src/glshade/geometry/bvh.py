@@ -25,7 +25,21 @@ class BVH:
     """``lo``, ``hi`` (N, 3) node boxes; ``first`` (N,) the left child of an inner node or
     the first triangle of a leaf; ``count`` (N,) 0 for an inner node, else the leaf's
     triangles; ``order`` (T,) the triangles' sorted order (leaf ranges index into it);
-    ``depth`` the number of levels."""
+    ``depth`` the number of levels.
+
+    Parameters
+    ----------
+    lo, hi : ndarray
+        ``(N, 3)`` node boxes.
+    first : ndarray
+        ``(N,)`` an inner node's left child, or a leaf's first triangle.
+    count : ndarray
+        ``(N,)`` 0 for an inner node, else the leaf's triangles.
+    order : ndarray
+        ``(T,)`` the triangles' sorted order (leaf ranges index into it).
+    depth : int
+        The levels.
+    """
 
     lo: np.ndarray
     hi: np.ndarray
@@ -168,7 +182,18 @@ class PackedChildren:
     its box's corners as 16-bit steps of the root box (``base + q * step`` in float32 lies
     at or outside the true corner: rounded outward with a margin for float32's own
     rounding), then ``index << 4 | count`` (count 0: an inner node, its row; else a
-    leaf's triangles from index). A step loads 32 bytes instead of three 32-byte nodes."""
+    leaf's triangles from index). A step loads 32 bytes instead of three 32-byte nodes.
+
+    Parameters
+    ----------
+    entries : ndarray
+        ``(I, 8)`` uint32, a row an inner node: its two children, four words each (the box
+        as 16-bit steps of the root's, then ``index << 4 | count``).
+    base, step : ndarray
+        ``(3,)`` float32: a corner q (in steps) lies at ``base + q * step``.
+    root : ndarray
+        ``(4,)`` uint32 the root, packed as a child.
+    """
 
     entries: np.ndarray
     base: np.ndarray

@@ -14,7 +14,13 @@ __all__ = ["faces_to_csr"]
 
 
 def faces_to_csr(faces) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Accept an (F, k) array or a sequence of index sequences; return (indices, offsets)."""
+    """Accept an (F, k) array or a sequence of index sequences; return (indices, offsets).
+
+    Parameters
+    ----------
+    faces : array_like or sequence
+        ``(F, k)`` indices, or a sequence of index sequences.
+    """
     if isinstance(faces, np.ndarray) or (
         isinstance(faces, Sequence) and faces and not isinstance(faces[0], (Sequence, np.ndarray))
     ):

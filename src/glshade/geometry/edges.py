@@ -26,6 +26,19 @@ class EdgeGroups:
     a group); ``start (E,)``: position in ``order`` of each edge's first half-edge;
     ``count (E,)``: half-edges of each edge (2 for an interior manifold edge); ``group
     (H,)``: edge of each half-edge; ``lo, hi (E,)``: the edge's end points, lo < hi.
+
+    Parameters
+    ----------
+    order : ndarray
+        ``(H,)`` half-edge indices sorted by undirected key.
+    start : ndarray
+        ``(E,)`` each edge's first position in ``order``.
+    count : ndarray
+        ``(E,)`` each edge's half-edges.
+    group : ndarray
+        ``(H,)`` each half-edge's edge.
+    lo, hi : ndarray
+        ``(E,)`` each edge's end points, lo < hi.
     """
 
     order: Int

@@ -13,7 +13,15 @@ Int = NDArray[np.int64]
 def component_labels(n: int, a: Int, b: Int) -> Int:
     """Connected-component label (the smallest member) of n nodes joined by pairs (a, b):
     min-label propagation with pointer jumping, as many rounds as the widest component
-    needs (no Python loop over nodes)."""
+    needs (no Python loop over nodes).
+
+    Parameters
+    ----------
+    n : int
+        The nodes.
+    a, b : ndarray
+        ``(E,)`` the pairs joined.
+    """
     labels = np.arange(n)
     if len(a) == 0:
         return labels
@@ -30,7 +38,13 @@ def component_labels(n: int, a: Int, b: Int) -> Int:
 
 def cycle_labels(nxt: Int) -> Int:
     """Label of each element of a permutation's cycles: the smallest index in its cycle
-    (pointer doubling, log2(n) rounds)."""
+    (pointer doubling, log2(n) rounds).
+
+    Parameters
+    ----------
+    nxt : ndarray
+        ``(n,)`` a permutation: each element's successor.
+    """
     label = np.arange(len(nxt))
     jump = nxt.copy()
     for _ in range(max(1, int(np.ceil(np.log2(max(len(nxt), 2)))) + 1)):

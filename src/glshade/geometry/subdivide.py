@@ -16,7 +16,17 @@ __all__ = ["phong_tessellate"]
 def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
     """A finer, curved version of ``mesh``: every triangle of its triangulation becomes
     ``level^2`` triangles (vertices are not shared between source triangles). The result
-    carries interpolated vertex normals (``normals_from_file``) and texture coordinates."""
+    carries interpolated vertex normals (``normals_from_file``) and texture coordinates.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    level : int
+        Segments a triangle's side.
+    alpha : float
+        How far towards the curved surface (0: flat, 1: fully curved).
+    """
     if int(level) != level or level < 1:
         raise GeometryError(f"level must be an integer >= 1, got {level!r}")
     k = int(level)

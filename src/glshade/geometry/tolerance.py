@@ -9,7 +9,17 @@ __all__ = ["Tolerance", "tol"]
 
 @dataclass
 class Tolerance:
-    """Relative tolerances (scaled by the size of the data they are applied to)."""
+    """Relative tolerances (scaled by the size of the data they are applied to).
+
+    Parameters
+    ----------
+    zero_length : float
+        A length below this times the data's size is zero.
+    convexity : float
+        A cross product below this (relative) is a straight corner.
+    merge : float
+        Vertices closer than this (relative) are one.
+    """
 
     #: a vector shorter than this times its largest coordinate counts as zero
     zero_length: float = 1e-12

@@ -37,7 +37,15 @@ def from_trimesh(tm, name: str | None = None) -> Mesh:
     """A glshade Mesh from a ``trimesh.Trimesh`` (triangles), or from a ``trimesh.Scene``
     with every node's transform applied (all its meshes joined, in the order of
     :func:`trimesh_parts`; or such a list itself), with their texture coordinates. (Their
-    materials are the reader's: ``glshade.io.meshes``.)"""
+    materials are the reader's: ``glshade.io.meshes``.)
+
+    Parameters
+    ----------
+    tm : trimesh.Trimesh or trimesh.Scene
+        The mesh or scene.
+    name : str or None
+        The mesh's name.
+    """
     trimesh = trimesh_module()
     meshes = tm if isinstance(tm, list) else trimesh_parts(tm, name)
     if not all(isinstance(m, trimesh.Trimesh) for m in meshes):
@@ -62,7 +70,15 @@ def from_trimesh(tm, name: str | None = None) -> Mesh:
 
 
 def trimesh_parts(tm, name: str | None = None) -> list:
-    """The triangle meshes a trimesh object holds, placed: itself, or a scene's dumped."""
+    """The triangle meshes a trimesh object holds, placed: itself, or a scene's dumped.
+
+    Parameters
+    ----------
+    tm : trimesh.Trimesh or trimesh.Scene
+        The mesh or scene.
+    name : str or None
+        The name its parts take.
+    """
     trimesh = trimesh_module()
     if not isinstance(tm, trimesh.Scene):
         return [tm]
@@ -74,7 +90,13 @@ def trimesh_parts(tm, name: str | None = None) -> list:
 
 def to_trimesh(mesh: Mesh):
     """A ``trimesh.Trimesh`` of the mesh's triangulation (polygons are split; trimesh only
-    knows triangles), vertices kept as they are."""
+    knows triangles), vertices kept as they are.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    """
     trimesh = trimesh_module()
     return trimesh.Trimesh(vertices=mesh.vertices.copy(), faces=mesh.triangles[0].copy(),
                            process=False, metadata={"name": mesh.name})

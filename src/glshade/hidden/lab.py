@@ -21,7 +21,19 @@ __all__ = ["Agreement", "agreement", "id_colors", "disagreement_map", "step_fram
 class Agreement:
     """How ``face_id`` images compare: pixels that differ away from edges, pixels that
     differ within ``tolerance`` px of an edge (two correct rasterisers may), the covered
-    pixels, and the largest relative depth difference where the ids agree."""
+    pixels, and the largest relative depth difference where the ids agree.
+
+    Parameters
+    ----------
+    differ : int
+        Pixels whose ids differ away from edges.
+    near_edges : int
+        Pixels that differ within the tolerance of an edge.
+    covered : int
+        The covered pixels.
+    depth_error : float
+        The largest relative depth difference where the ids agree.
+    """
 
     differ: int
     near_edges: int

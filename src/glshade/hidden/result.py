@@ -16,7 +16,25 @@ __all__ = ["HiddenResult"]
 @dataclass
 class HiddenResult:
     """What one algorithm produced: ``face_id (H, W) int32`` (-1 background), ``depth
-    (H, W) float32`` (inf background), its ``counters`` and the ``seconds`` it took."""
+    (H, W) float32`` (inf background), its ``counters`` and the ``seconds`` it took.
+
+    Parameters
+    ----------
+    name : str
+        The algorithm.
+    face_id : ndarray
+        ``(H, W)`` int32 polygon ids, -1 background.
+    depth : ndarray
+        ``(H, W)`` float32 view depth, inf background.
+    counters : dict
+        What the algorithm counted (tests, splits, fragments ...).
+    seconds : float
+        The time it took.
+    steps : list
+        Snapshots of its work, for animations.
+    painted : object
+        The painter's order, where it has one.
+    """
 
     name: str
     face_id: np.ndarray

@@ -49,7 +49,15 @@ _MAP_OPTIONS = {"-clamp": 1, "-o": None, "-s": None, "-t": None, "-blendu": 1, "
 @dataclass
 class MaterialLibrary:
     """Materials by name, in file order, and what the files said that glshade does not
-    use (``unused``: ``"file:line: statement"``)."""
+    use (``unused``: ``"file:line: statement"``).
+
+    Parameters
+    ----------
+    materials : dict
+        Materials by name, in file order.
+    unused : list of str
+        Statements glshade does not use, ``"file:line: statement"``.
+    """
 
     materials: dict[str, Material] = field(default_factory=dict)
     unused: list[str] = field(default_factory=list)
@@ -58,7 +66,17 @@ class MaterialLibrary:
 def read_mtl(path, filter: str | None = None, library: MaterialLibrary | None = None
              ) -> MaterialLibrary:
     """The materials of an MTL file (added to ``library`` if given). ``filter``: the
-    textures' filter (``"nearest"``, ``"linear"``, ``"mipmap"``; default linear)."""
+    textures' filter (``"nearest"``, ``"linear"``, ``"mipmap"``; default linear).
+
+    Parameters
+    ----------
+    path : str or Path
+        The MTL file.
+    filter : str or None
+        The textures' filter (None: the default).
+    library : MaterialLibrary or None
+        A library to add to (None: a new one).
+    """
     path = Path(path)
     library = library if library is not None else MaterialLibrary()
     try:
@@ -194,7 +212,17 @@ def _colour(name: str, value) -> str:
 def write_mtl(materials: dict[str, Material], f, base: Path | None = None) -> None:
     """``materials`` as MTL text into the open text file ``f`` (maps by their file paths,
     relative to ``base``, the library's folder, where they can be; a map made from an
-    array has none and is left out)."""
+    array has none and is left out).
+
+    Parameters
+    ----------
+    materials : dict
+        Materials by name.
+    f : file
+        An open text file.
+    base : Path or None
+        The library's folder, against which map paths are made relative.
+    """
     import os
 
     for name, m in materials.items():

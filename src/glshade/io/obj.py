@@ -77,7 +77,15 @@ def _obj_diagnose(path, data: bytes) -> None:
 
 
 def read(path, data: bytes) -> Mesh:
-    """The Mesh in OBJ bytes ``data`` (``path`` names it in errors: file and line)."""
+    """The Mesh in OBJ bytes ``data`` (``path`` names it in errors: file and line).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
     data = _clean(path, data)
     starts, ends = line_starts(data)
     arr = np.frombuffer(data, np.uint8)
@@ -297,7 +305,19 @@ def _faces(path, data: bytes, starts, ends, f_lines, v_lines, n_vertices: int):
 def write(mesh: Mesh, f, binary: bool, mtllib: str | None = None) -> None:
     """Write ``mesh`` as OBJ to the open file ``f`` (text; ``binary`` is ignored): its
     texture coordinates as ``vt`` (``f v/vt``), its material parts as ``usemtl`` runs, in
-    face order, after ``mtllib`` (the library's file name) when given."""
+    face order, after ``mtllib`` (the library's file name) when given.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        What to write.
+    f : file
+        An open binary file.
+    binary : bool
+        Ignored: OBJ is text.
+    mtllib : str or None
+        The material library's file name to reference (None: none).
+    """
     f.write(f"# glshade: {mesh.n_vertices} vertices, {mesh.n_faces} faces\n".encode())
     if mtllib is not None and mesh.material_groups:
         f.write(f"mtllib {mtllib}\n".encode())

@@ -18,7 +18,15 @@ from .text import line_starts, normalize_whitespace, parse_numbers, ragged_take,
 __all__ = ["read", "write"]
 
 def read(path, data: bytes) -> Mesh:
-    """The Mesh in OFF bytes ``data`` (``path`` names it in errors: file and line)."""
+    """The Mesh in OFF bytes ``data`` (``path`` names it in errors: file and line).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
     if b"#" in data:
         data = COMMENT.sub(b"", data)
     text = normalize_whitespace(data)
@@ -124,7 +132,17 @@ def _header(path, first: list[bytes]):
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
-    """Write ``mesh`` as OFF to the open file ``f`` (text; ``binary`` is ignored)."""
+    """Write ``mesh`` as OFF to the open file ``f`` (text; ``binary`` is ignored).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        What to write.
+    f : file
+        An open binary file.
+    binary : bool
+        Ignored: OFF is text here.
+    """
     f.write(f"OFF\n{mesh.n_vertices} {mesh.n_faces} {mesh.n_edges}\n".encode())
     write_vertices(f, mesh.vertices, "")
     write_faces(f, mesh, "", 0, with_count=True)

@@ -120,7 +120,15 @@ def _face_layout(path, props):
 
 
 def read(path, data: bytes) -> Mesh:
-    """The Mesh in PLY bytes ``data``, ASCII or binary (``path`` names it in errors)."""
+    """The Mesh in PLY bytes ``data``, ASCII or binary (``path`` names it in errors).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
     fmt, elements, pos, first_body_line = _ply_header(path, data)
     if fmt == "ascii":
         return _read_ply_ascii(path, data[pos:], elements, first_body_line)
@@ -269,7 +277,17 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
-    """Write ``mesh`` as PLY to the open file ``f``, binary little-endian or ASCII."""
+    """Write ``mesh`` as PLY to the open file ``f``, binary little-endian or ASCII.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        What to write.
+    f : file
+        An open binary file.
+    binary : bool
+        Binary little-endian (else ASCII).
+    """
     fmt = "binary_little_endian" if binary else "ascii"
     f.write((f"ply\nformat {fmt} 1.0\ncomment glshade\nelement vertex {mesh.n_vertices}\n"
              "property double x\nproperty double y\nproperty double z\n"

@@ -29,7 +29,15 @@ def _weld_exact(path, triangles: np.ndarray) -> Mesh:
 
 
 def read(path, data: bytes) -> Mesh:
-    """The Mesh in STL bytes ``data``, ASCII or binary (``path`` names it in errors)."""
+    """The Mesh in STL bytes ``data``, ASCII or binary (``path`` names it in errors).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
     if len(data) >= 84:
         n = int(np.frombuffer(data, "<u4", count=1, offset=80)[0])
         binary_size = 84 + 50 * n
@@ -86,7 +94,17 @@ def _read_stl_ascii(path, data: bytes) -> Mesh:
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
-    """Write ``mesh`` as STL to the open file ``f``, binary or ASCII (polygons triangulated)."""
+    """Write ``mesh`` as STL to the open file ``f``, binary or ASCII (polygons triangulated).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        What to write.
+    f : file
+        An open binary file.
+    binary : bool
+        Binary (else ASCII).
+    """
     tri, owner = mesh.triangles
     p = mesh.vertices[tri]
     n = mesh.face_normals[owner]

@@ -43,7 +43,19 @@ MAX_TRIANGLES = 20_000_000
 @dataclass(frozen=True)
 class Tessellation:
     """The mesh (triangles, two a grid cell, one where a side collapses; ``normals`` the
-    exact ones), each vertex's ``uv (V, 2)`` and ``patch (V,)``, and the ``levels (P, 2)`` used."""
+    exact ones), each vertex's ``uv (V, 2)`` and ``patch (V,)``, and the ``levels (P, 2)`` used.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The triangles, their ``normals`` the surface's exact ones.
+    uv : ndarray
+        ``(V, 2)`` each vertex's parameters.
+    patch : ndarray
+        ``(V,)`` each vertex's patch.
+    levels : ndarray
+        ``(P, 2)`` the segments a side used for each patch.
+    """
 
     mesh: Mesh
     uv: np.ndarray

@@ -18,7 +18,21 @@ __all__ = ["SurfaceRadiosity", "surface_radiosity"]
 class SurfaceRadiosity:
     """``names`` of the models; ``mean`` (M, 3) area-mean radiosity of each; ``se`` (M, 3)
     its standard error (of the points' spread and the paths' noise together); ``points``
-    a model and ``spp`` paths a point."""
+    a model and ``spp`` paths a point.
+
+    Parameters
+    ----------
+    names : tuple
+        The models.
+    mean : ndarray
+        ``(M, 3)`` each model's area-mean radiosity.
+    se : ndarray
+        ``(M, 3)`` its standard error.
+    points : int
+        Points a model.
+    spp : int
+        Paths a point.
+    """
 
     names: tuple
     mean: np.ndarray

@@ -33,7 +33,23 @@ class MonteCarlo:
     """What :func:`light_trace` estimates: radiosity ``B (P, 3)``, its standard error
     ``se (P, 3)``, and per model the area-weighted mean radiosity and its error; ``cut``:
     the particles still going after MAX_BOUNCES surfaces (their later light left out:
-    ``converged`` is False)."""
+    ``converged`` is False).
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches.
+    b : ndarray
+        ``(P, 3)`` radiosity.
+    se : ndarray
+        ``(P, 3)`` its standard error.
+    model_b, model_se : ndarray
+        ``(M, 3)`` each model's area-weighted mean radiosity and its error.
+    particles : int
+        The particles traced.
+    cut : int
+        Particles still going after MAX_BOUNCES surfaces (their later light left out).
+    """
 
     def __init__(self, problem, b, se, model_b, model_se, particles: int, cut: int = 0):
         self.problem, self.radiosity, self.se = problem, b, se

@@ -58,7 +58,27 @@ def as_rgba(image: Any) -> np.ndarray:
 
 @dataclass
 class Verdict:
-    """The outcome of comparing a render with its golden image."""
+    """The outcome of comparing a render with its golden image.
+
+    Parameters
+    ----------
+    ok : bool
+        Whether the render passes.
+    reason : str
+        Why not, in one line (empty when it passes).
+    same_fingerprint : bool
+        Whether the golden was made on the same driver and settings.
+    mean, worst : float
+        The mean and largest absolute difference (8-bit units).
+    differing : int
+        Pixels that differ at all.
+    edge_differing : int
+        Of them, those at polygon edges.
+    interior_over : int
+        Interior pixels over the per-pixel limit.
+    diff : ndarray
+        ``(H, W)`` the per-pixel difference.
+    """
 
     ok: bool
     reason: str

@@ -45,7 +45,23 @@ class TransparencyReport:
     """What the last transparent draw kept and left out: ``fragments`` in the lists,
     ``pixels_over`` pixels with more than ``max_layers`` surfaces and the
     ``fragments_over`` left out there, ``cut_short`` pixels whose list walk hit the
-    shader's step bound."""
+    shader's step bound.
+
+    Parameters
+    ----------
+    method : str
+        The transparency method.
+    fragments : int
+        Fragments in the lists.
+    max_layers : int
+        The surfaces a pixel keeps.
+    pixels_over : int
+        Pixels with more surfaces than that.
+    fragments_over : int
+        The fragments left out there.
+    cut_short : int
+        Pixels whose list walk hit the shader's step bound.
+    """
 
     method: str
     fragments: int = 0

@@ -33,6 +33,13 @@ class Algorithm(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Algorithm:
+        """An Algorithm or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : Algorithm or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "hidden-surface algorithm")
 
 
@@ -43,5 +50,17 @@ ALGORITHMS = {Algorithm.ZBUFFER.value: zbuffer, Algorithm.SCANLINE.value: scanli
 
 
 def run(algorithm: Algorithm | str, scene_or_mesh, camera, size=(256, 256)) -> HiddenResult:
-    """Run ``algorithm`` on a Scene or Mesh seen by ``camera``."""
+    """Run ``algorithm`` on a Scene or Mesh seen by ``camera``.
+
+    Parameters
+    ----------
+    algorithm : Algorithm or str
+        The hidden-surface algorithm.
+    scene_or_mesh : Scene or Mesh
+        What to view.
+    camera : Camera
+        From where.
+    size : (int, int)
+        Width and height in pixels.
+    """
     return ALGORITHMS[Algorithm.parse(algorithm).value](prepare(scene_or_mesh, camera, size))

@@ -62,7 +62,15 @@ def depth_sort(p: Prepared, split: bool = True) -> HiddenResult:
     """Newell, Newell and Sancha's depth sort (the painter's algorithm made right): polygons
     sorted far to near, overlapping pairs tested and reordered, cycles broken by splitting
     (``split``) -- then painted back to front. Same inputs and result as :func:`zbuffer`,
-    with the paint order kept for its steps."""
+    with the paint order kept for its steps.
+
+    Parameters
+    ----------
+    p : Prepared
+        The view.
+    split : bool
+        Split polygons whose order is cyclic (else they are drawn in some order).
+    """
     counters = {"polygons": p.n_polygons, "triangles": len(p.tris), "comparisons": 0,
                 "tests": 0, "moves": 0, "splits": 0, "pieces painted": 0}
     extent = float(np.abs(p.tris).max()) if len(p.tris) else 1.0

@@ -30,7 +30,35 @@ class Prepared:
     """Triangles ``tris (T, 3, 3)`` in view space (near-clipped), their screen positions
     ``screen (T, 3, 2)`` in pixels (x right, y down), ``ids (T,)`` source polygons and
     ``order (T,)`` the draw order of the triangle each came from; the image ``size``; the
-    pixel rays (``ray_origin``, ``ray_dir`` (H*W, 3), view space); ``near``/``far``."""
+    pixel rays (``ray_origin``, ``ray_dir`` (H*W, 3), view space); ``near``/``far``.
+
+    Parameters
+    ----------
+    tris : ndarray
+        ``(T, 3, 3)`` triangles in view space, near-clipped.
+    screen : ndarray
+        ``(T, 3, 2)`` their pixel positions (x right, y down).
+    ids : ndarray
+        ``(T,)`` their source polygons.
+    order : ndarray
+        ``(T,)`` the draw order of the triangle each came from.
+    size : (int, int)
+        The image's width and height.
+    proj : ndarray
+        ``(4, 4)`` the projection.
+    ray_origin, ray_dir : ndarray
+        ``(H*W, 3)`` the pixel rays, view space.
+    near, far : float
+        The clip distances.
+    n_polygons : int
+        The source polygons.
+    eye : tuple
+        The eye in view space (the origin; an orthographic camera's is at infinity).
+    src : ndarray or None
+        Each triangle's source triangle (pieces split by an algorithm).
+    cut : ndarray or None
+        Which triangles were cut.
+    """
 
     tris: np.ndarray
     screen: np.ndarray
@@ -53,7 +81,15 @@ class Prepared:
 
     def eye_side(self, normal: np.ndarray, offset) -> np.ndarray:
         """``n.e - d w`` for planes ``n.x = d`` (rows of ``normal``, ``offset``): positive
-        where the eye is in front of the plane, zero where it sees it edge-on."""
+        where the eye is in front of the plane, zero where it sees it edge-on.
+
+        Parameters
+        ----------
+        normal : ndarray
+            ``(n, 3)`` the planes' normals.
+        offset : ndarray
+            ``(n,)`` their offsets: ``n.x = d``.
+        """
         e = self.eye
         return np.asarray(normal) @ np.asarray(e[:3]) - np.asarray(offset) * e[3]
 
@@ -62,7 +98,13 @@ class Prepared:
         return self.size[0] * self.size[1]
 
     def to_screen(self, points: np.ndarray) -> np.ndarray:
-        """View-space points (..., 3) to pixel coordinates (..., 2)."""
+        """View-space points (..., 3) to pixel coordinates (..., 2).
+
+        Parameters
+        ----------
+        points : ndarray
+            ``(..., 3)`` view-space points.
+        """
         p = points @ self.proj[:3, :3].T + self.proj[:3, 3]
         w = points @ self.proj[3, :3] + self.proj[3, 3]
         ndc = p[..., :2] / w[..., None]
@@ -70,12 +112,29 @@ class Prepared:
         return np.stack([(ndc[..., 0] + 1) * 0.5 * width, (1 - ndc[..., 1]) * 0.5 * height], -1)
 
     def subset(self, tris, ids, order) -> Prepared:
-        """The same view with other triangles (pieces split by an algorithm)."""
+        """The same view with other triangles (pieces split by an algorithm).
+
+        Parameters
+        ----------
+        tris : ndarray
+            ``(n, 3, 3)`` the new triangles.
+        ids : ndarray
+            ``(n,)`` their source polygons.
+        order : ndarray
+            ``(n,)`` their draw order.
+        """
         return Prepared(tris, self.to_screen(tris), ids, order, self.size, self.proj,
                         self.ray_origin, self.ray_dir, self.near, self.far, self.n_polygons,
                         self.eye)
 
     def empty_result(self, name: str) -> HiddenResult:
+        """A result of this view with nothing drawn yet (ids -1, depth inf).
+
+        Parameters
+        ----------
+        name : str
+            The algorithm's name.
+        """
         w, h = self.size
         return HiddenResult(name, np.full((h, w), -1, np.int32), np.full((h, w), np.inf,
                                                                           np.float32))

@@ -29,7 +29,23 @@ def thumbnail(scene, camera=None, size: tuple[int, int] = THUMBNAIL, mode: str =
     """A ``(H, W, 4)`` uint8 render of ``scene`` (a Scene, or a Mesh or solid put in one;
     framed from the iso view unless a camera is given, or, ``choose``, from the view that
     shows most: see :func:`telling_view`), or None where no GL context can be made or there
-    is nothing to draw; ``polygons``: :func:`telling_view`'s."""
+    is nothing to draw; ``polygons``: :func:`telling_view`'s.
+
+    Parameters
+    ----------
+    scene : Scene, Mesh or Solid
+        What to show.
+    camera : Camera or None
+        From where (None: framed from the iso view).
+    size : (int, int)
+        Width and height.
+    mode : str
+        The shading mode.
+    choose : bool
+        Choose the most telling of several views.
+    polygons : ndarray or None
+        Each display polygon's role, for judging views (a radiosity solution's).
+    """
     import warnings
 
     from ..errors import EnvironmentFailure

@@ -29,7 +29,13 @@ NotebookViewer: Any
 
 
 def view_of(camera: Camera) -> dict:
-    """A camera as plain numbers (what the widget syncs to the browser as ``view``)."""
+    """A camera as plain numbers (what the widget syncs to the browser as ``view``).
+
+    Parameters
+    ----------
+    camera : Camera
+        The camera.
+    """
     return {"position": [float(x) for x in camera.position],
             "orientation": [float(x) for x in camera.orientation],
             "fov_y": float(camera.fov_y), "projection": camera.projection.value,
@@ -37,7 +43,13 @@ def view_of(camera: Camera) -> dict:
 
 
 def camera_from_view(view: dict) -> Camera:
-    """The camera of a widget's ``view`` (the inverse of :func:`view_of`)."""
+    """The camera of a widget's ``view`` (the inverse of :func:`view_of`).
+
+    Parameters
+    ----------
+    view : dict
+        The widget's ``view`` trait.
+    """
     return Camera(position=view["position"], orientation=view["orientation"],
                   fov_y=view["fov_y"], projection=view["projection"], height=view["height"],
                   near=view.get("near"), far=view.get("far"))
@@ -193,10 +205,29 @@ def _widget_class():
                          "'glshade[notebook]'") from exc
 
     class NotebookViewer(_Behaviour, anywidget.AnyWidget):
-        """The widget; see the module docstring. ``size`` ``(w, h)`` pixels; ``samples``
-        MSAA samples (4, as ``glshade render``); ``backend`` the renderer's (auto, egl,
-        osmesa); ``mode`` the shading mode; ``compare`` a
-        second mode shown right of the middle (the ``split`` trait), or "" for none."""
+        """The widget; see the module docstring.
+
+        Parameters
+        ----------
+        scene : Scene
+            What to show.
+        camera : Camera or None
+            The first view (None: framed).
+        size : (int, int)
+            Width and height in pixels.
+        mode : str
+            The shading mode.
+        compare : str
+            A second mode shown right of the middle (the ``split`` trait), or "" for none.
+        samples : int
+            MSAA samples (4, as ``glshade render``).
+        pick : bool
+            Report the polygon under a click.
+        backend : str or None
+            The renderer's backend (auto, egl, osmesa).
+        **kwargs
+            The widget's traits.
+        """
 
         _esm = _STATIC / "viewer.js"
         _css = _STATIC / "viewer.css"
@@ -245,7 +276,17 @@ def __getattr__(name: str):
 
 def view(scene_or_mesh, camera: Camera | None = None, **kwargs):
     """An interactive viewer widget of a scene or mesh (``NotebookViewer``'s keywords:
-    size, mode, compare, samples, pick); display it by leaving it last in a cell."""
+    size, mode, compare, samples, pick); display it by leaving it last in a cell.
+
+    Parameters
+    ----------
+    scene_or_mesh : Scene or Mesh
+        What to show.
+    camera : Camera or None
+        The first view.
+    **kwargs
+        NotebookViewer's keywords.
+    """
     scene = scene_or_mesh
     if not isinstance(scene, Scene):
         scene = Scene()

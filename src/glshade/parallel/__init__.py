@@ -29,7 +29,21 @@ def make_executor(factory, args: tuple, jobs: int = 1, items: int | None = None,
                   scheduler: str | None = None) -> Executor:
     """Where the work runs: on a Dask cluster if ``scheduler`` is given (an address, or
     ``"local"`` for a LocalCluster of ``jobs`` workers), else in this process for one job
-    (or one item), else in ``jobs`` local worker processes."""
+    (or one item), else in ``jobs`` local worker processes.
+
+    Parameters
+    ----------
+    factory : callable
+        ``factory(*args)`` makes a worker: ``worker(item)``, ``worker.close()``.
+    args : tuple
+        Its arguments (picklable for other processes).
+    jobs : int
+        Local processes (1: this one).
+    items : int or None
+        How many items (no more processes than items).
+    scheduler : str or None
+        A Dask scheduler's address, or ``"local"``.
+    """
     if int(jobs) != jobs or jobs < 1:
         raise InputError(f"jobs must be a whole number >= 1, got {jobs!r}")
     if scheduler is not None:

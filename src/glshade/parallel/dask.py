@@ -47,7 +47,15 @@ def _import_distributed():
 @contextlib.contextmanager
 def connect(scheduler: str, workers: int | None = None):
     """Yield a Client of the scheduler at ``scheduler`` (``tcp://HOST:PORT``), or of a new
-    LocalCluster of ``workers`` single-threaded worker processes for ``"local"``."""
+    LocalCluster of ``workers`` single-threaded worker processes for ``"local"``.
+
+    Parameters
+    ----------
+    scheduler : str
+        ``tcp://HOST:PORT`` or ``"local"``.
+    workers : int or None
+        A local cluster's worker processes.
+    """
     distributed = _import_distributed()
     cluster = None
     try:
@@ -148,7 +156,13 @@ def _drain(client, futures) -> None:
 
 def host_of(address: str) -> str:
     """The host of a worker's address (``tcp://10.0.0.5:4000`` -> ``10.0.0.5``): workers
-    on one host share its cores."""
+    on one host share its cores.
+
+    Parameters
+    ----------
+    address : str
+        A worker's address.
+    """
     return address.split("://")[-1].rsplit(":", 1)[0]
 
 
@@ -191,7 +205,19 @@ def _run(item, spec, job):
 
 class DaskExecutor(Executor):
     """The items as Dask tasks on ``scheduler`` (``tcp://HOST:PORT`` or ``"local"``, with
-    ``workers`` processes); the first error or Ctrl-C cancels the rest."""
+    ``workers`` processes); the first error or Ctrl-C cancels the rest.
+
+    Parameters
+    ----------
+    factory : callable
+        ``factory(*args)`` makes a worker: ``worker(item)``, ``worker.close()``.
+    args : tuple
+        Its arguments (picklable for other processes).
+    scheduler : str
+        ``tcp://HOST:PORT`` or ``"local"``.
+    workers : int or None
+        A local cluster's worker processes.
+    """
 
     def __init__(self, factory, args: tuple, scheduler: str, workers: int | None = None):
         super().__init__(factory, args)
@@ -199,6 +225,13 @@ class DaskExecutor(Executor):
         _import_distributed()  # a missing extra fails before any work
 
     def map(self, items):
+        """``worker(item)`` for each item, in order, as tasks on the cluster.
+
+        Parameters
+        ----------
+        items : iterable
+            The work, in order.
+        """
         items = list(items)
         with connect(self.scheduler, self.workers) as client:
             info = client.scheduler_info()["workers"]

@@ -23,19 +23,49 @@ __all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "terminate"]
 
 
 class Executor:
-    """``map(items)`` yields ``worker(item)`` for each item, in order."""
+    """``map(items)`` yields ``worker(item)`` for each item, in order.
+
+    Parameters
+    ----------
+    factory : callable
+        ``factory(*args)`` makes a worker: ``worker(item)``, ``worker.close()``.
+    args : tuple
+        Its arguments (picklable for other processes).
+    """
 
     def __init__(self, factory, args: tuple):
         self.factory, self.args = factory, args
 
     def map(self, items: Iterable) -> Generator:
+        """``worker(item)`` for each item, in order.
+
+        Parameters
+        ----------
+        items : iterable
+            The work, in order.
+        """
         raise NotImplementedError
 
 
 class SerialExecutor(Executor):
-    """One worker in this process."""
+    """One worker in this process.
+
+    Parameters
+    ----------
+    factory : callable
+        ``factory(*args)`` makes a worker: ``worker(item)``, ``worker.close()``.
+    args : tuple
+        Its arguments (picklable for other processes).
+    """
 
     def map(self, items):
+        """``worker(item)`` for each item, in order, in this process.
+
+        Parameters
+        ----------
+        items : iterable
+            The work, in order.
+        """
         worker = self.factory(*self.args)
         try:
             for item in items:
@@ -118,7 +148,15 @@ def terminate(pool, timeout: float = 10.0) -> bool:
     """``pool.terminate()``, bounded: whether it finished. (CPython's result handler can
     wait forever on a message a worker was killed in the middle of writing -- seen about
     once in a hundred Ctrl-Cs -- and terminate waits for that thread.) On a timeout the
-    workers are killed outright."""
+    workers are killed outright.
+
+    Parameters
+    ----------
+    pool : multiprocessing.pool.Pool
+        The pool.
+    timeout : float
+        Seconds to wait.
+    """
     t = threading.Thread(target=pool.terminate, daemon=True, name="glshade-pool-stop")
     t.start()
     t.join(timeout)
@@ -136,13 +174,30 @@ class _WorkerContext(mp.context.SpawnContext):
 
 class ProcessExecutor(Executor):
     """``jobs`` spawned worker processes sharing the cores; stopped at once on an error,
-    Ctrl-C or a closed generator."""
+    Ctrl-C or a closed generator.
+
+    Parameters
+    ----------
+    factory : callable
+        ``factory(*args)`` makes a worker: ``worker(item)``, ``worker.close()``.
+    args : tuple
+        Its arguments (picklable for other processes).
+    jobs : int
+        Worker processes.
+    """
 
     def __init__(self, factory, args: tuple, jobs: int):
         super().__init__(factory, args)
         self.jobs = int(jobs)
 
     def map(self, items):
+        """``worker(item)`` for each item, in order, from the worker processes.
+
+        Parameters
+        ----------
+        items : iterable
+            The work, in order.
+        """
         items = list(items)
         threads = max(1, (os.cpu_count() or 1) // self.jobs)
         pool = None

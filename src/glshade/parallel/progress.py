@@ -35,7 +35,19 @@ class Progress:
 
     ``enabled``: None decides by where the output goes -- a notebook or a terminal gets
     tqdm's bar (``tqdm.auto``), a log (a file or pipe) a plain line each tenth of the work
-    or every 30 s once it has run 5 s; True always a bar, False nothing."""
+    or every 30 s once it has run 5 s; True always a bar, False nothing.
+
+    Parameters
+    ----------
+    total : int or None
+        Items in all (None: unknown).
+    enabled : bool or None
+        Show it (None: where output goes decides).
+    stream : file or None
+        Where it writes (None: standard error).
+    unit : str
+        What the items are.
+    """
 
     def __init__(self, total: int | None, enabled: bool | None = None, stream=None,
                  unit: str = "frames"):
@@ -60,7 +72,15 @@ class Progress:
 
     def update(self, n: int = 1, note: str | None = None) -> None:
         """``n`` more items done; ``note`` (a residual, an error) shown beside. A Ctrl-C that
-        Python dropped on the way (``glshade.interrupt``) is raised here."""
+        Python dropped on the way (``glshade.interrupt``) is raised here.
+
+        Parameters
+        ----------
+        n : int
+            Items done.
+        note : str or None
+            Shown beside.
+        """
         check()
         self.done += n
         if self._bar is not None:
@@ -104,7 +124,17 @@ class Progress:
 def as_progress(progress, total: int | None, unit: str):
     """``(bar, owned)`` from a ``progress`` argument: an object with ``update`` (the caller's:
     not closed here), True (a bar), None (decided by where output goes: :class:`Progress`)
-    or False (none: ``(None, False)``)."""
+    or False (none: ``(None, False)``).
+
+    Parameters
+    ----------
+    progress : bool, object or None
+        An object with ``update``, True, None or False.
+    total : int or None
+        Items in all.
+    unit : str
+        What the items are.
+    """
     if progress is False:
         return None, False
     if progress is None or progress is True:

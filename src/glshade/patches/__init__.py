@@ -19,7 +19,13 @@ __all__ = ["PatchSet", "bernstein", "curve_point", "de_casteljau", "PatchSurface
 
 
 def named(name: str) -> PatchSurface:
-    """A named patch model: "teapot", "sphere", "cylinder", "cone" or "torus"."""
+    """A named patch model: "teapot", "sphere", "cylinder", "cone" or "torus".
+
+    Parameters
+    ----------
+    name : str
+        ``"teapot"``, ``"sphere"``, ``"cylinder"``, ``"cone"`` or ``"torus"``.
+    """
     from ..errors import InputError
 
     makers = {"teapot": teapot, "sphere": sphere, "cylinder": cylinder, "cone": cone,

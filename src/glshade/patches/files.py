@@ -28,7 +28,17 @@ def _numbers(line: str, kind, path, number: int, count: int | None = None) -> li
 
 
 def parse_patches(text: str, path: str = "<patches>", up: str = "z") -> PatchSet:
-    """The bicubic patches of a file's text (``up``: the file's up axis; glshade's is y)."""
+    """The bicubic patches of a file's text (``up``: the file's up axis; glshade's is y).
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    path : str
+        Its name, for errors.
+    up : str
+        Its up axis.
+    """
     lines = [(i + 1, s) for i, s in enumerate(text.splitlines()) if s.strip()]
     if not lines:
         raise InputError(f"{path}: empty")
@@ -81,7 +91,15 @@ EXTENSION = ".bpt"
 
 def read_patches(path, up: str = "z") -> PatchSet:
     """The patches of a file in the classic format (errors name the file and line; a path
-    that is not a regular file is refused before reading)."""
+    that is not a regular file is refused before reading).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    up : str
+        Its up axis, ``"z"`` or ``"y"``.
+    """
     from .._paths import file_fault
 
     p = Path(path)
@@ -96,7 +114,13 @@ def read_patches(path, up: str = "z") -> PatchSet:
 
 
 def write_patches(patches: PatchSet) -> str:
-    """Bicubic polynomial patches in the classic format (y up as z up, as the files are)."""
+    """Bicubic polynomial patches in the classic format (y up as z up, as the files are).
+
+    Parameters
+    ----------
+    patches : PatchSet
+        Bicubic polynomial patches.
+    """
     if patches.degree != (3, 3) or patches.rational:
         raise InputError("the classic patch format holds bicubic polynomial patches only")
     pts = y_up_to_z_up(patches.points)

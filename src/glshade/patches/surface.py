@@ -47,7 +47,15 @@ def side_net(h: np.ndarray, side: int) -> np.ndarray:
 
 class PatchSurface:
     """A model made of patches (a :class:`PatchSet`): the B-Rep of faces, edges and vertices
-    found from them, and its Euler characteristic. ``name`` for messages."""
+    found from them, and its Euler characteristic. ``name`` for messages.
+
+    Parameters
+    ----------
+    patches : PatchSet
+        The patches.
+    name : str
+        Its name, for messages.
+    """
 
     def __init__(self, patches: PatchSet, name: str = "patches"):
         self.patches = patches

@@ -69,7 +69,15 @@ class Tessellation:
 
 def flatness_levels(patches: PatchSet, tolerance) -> np.ndarray:
     """``(P, 2)`` the fewest samples per side that keep each patch within ``tolerance``
-    (world units: a number, or one per patch) of its piecewise-linear interpolant."""
+    (world units: a number, or one per patch) of its piecewise-linear interpolant.
+
+    Parameters
+    ----------
+    patches : PatchSet
+        The patches.
+    tolerance : float or array_like
+        World units, one number or one a patch.
+    """
     try:
         given = np.asarray(tolerance, dtype=np.float64)
     except (TypeError, ValueError):
@@ -138,7 +146,23 @@ def tessellate(model, level: int | None = None, *, tolerance: float | None = Non
                pixels: float | None = None, camera=None, height: int = 512) -> Tessellation:
     """A mesh of a :class:`PatchSurface` (or :class:`PatchSet`): ``level`` samples a side
     for every patch, or the fewest for ``tolerance`` (world units), or for ``pixels`` in an
-    image ``height`` pixels tall seen by ``camera``. Crack-free, with exact normals."""
+    image ``height`` pixels tall seen by ``camera``. Crack-free, with exact normals.
+
+    Parameters
+    ----------
+    model : PatchSurface or PatchSet
+        The patches.
+    level : int or None
+        Samples a side for every patch.
+    tolerance : float or None
+        World units the mesh may stray from the surface.
+    pixels : float or None
+        Pixels it may stray in an image ``height`` tall seen by ``camera``.
+    camera : Camera or None
+        The view, for ``pixels``.
+    height : int
+        The image's height, for ``pixels``.
+    """
     surface = model if isinstance(model, PatchSurface) else PatchSurface(model)
     patches = surface.patches
     P = len(patches)

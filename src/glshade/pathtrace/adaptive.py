@@ -31,13 +31,27 @@ __all__ = ["allocate", "block_sigma", "pilot_samples"]
 def pilot_samples(mean: int) -> int:
     """Samples a pixel the pilot draws for a picture of ``mean`` a pixel: a sixteenth,
     from 4 to 16 (measured: 16 measure the spread well enough at 1,024; more cost more than
-    they save)."""
+    they save).
+
+    Parameters
+    ----------
+    mean : int
+        The picture's mean samples a pixel.
+    """
     return int(min(max(mean // 16, 4), 16))
 
 
 def block_sigma(sigma: np.ndarray, tile: tuple[int, int] = (1, 1)) -> np.ndarray:
     """``(H, W)`` per-sample standard deviations as ``(ceil(H / th), ceil(W / tw))``, each
-    block's root-mean-square (``tile``: (tw, th), the pixels that share random numbers)."""
+    block's root-mean-square (``tile``: (tw, th), the pixels that share random numbers).
+
+    Parameters
+    ----------
+    sigma : ndarray
+        ``(H, W)`` per-sample standard deviations.
+    tile : (int, int)
+        The blocks' (width, height).
+    """
     tw, th = tile
     h, w = sigma.shape
     pad = np.zeros((-(-h // th) * th, -(-w // tw) * tw))
@@ -70,7 +84,23 @@ def allocate(sigma: np.ndarray, mean: float, *, tile: tuple[int, int] = (1, 1),
     still have some) nor over ``most`` (default 3 times the mean: one pixel's samples run
     one after another, so a long one holds the last passes up -- measured, Cornell box at
     a mean of 1,024: capped at 8x, 129 passes where uniform counts take 18, at 3x 49, the
-    error the same). Where no pixel spread, ``mean`` everywhere."""
+    error the same). Where no pixel spread, ``mean`` everywhere.
+
+    Parameters
+    ----------
+    sigma : ndarray
+        ``(H, W)`` the pilot's per-sample standard deviations.
+    mean : float
+        The mean samples a pixel.
+    tile : (int, int)
+        Blocks of pixels that draw one count.
+    floor : int or None
+        The fewest a pixel draws (None: an eighth of the mean, at least 1).
+    most : int or None
+        The most (None: 3 times the mean).
+    clip : float or None
+        The percentile the deviations are clipped at (None: none).
+    """
     sigma = np.asarray(sigma, np.float64)
     if sigma.ndim != 2 or not np.isfinite(sigma).all() or (sigma < 0).any():
         raise OptionError(f"sigma must be (H, W) finite deviations >= 0, got shape "

@@ -33,7 +33,15 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     compiles them into its program -- then the rest in BVH order), materials, emitters;
     the layout's ``hierarchy`` holds the BVH of the rest as packed children
     (:func:`glshade.geometry.bvh.packed_children`), RGBA32UI texels in rows of DATA_WIDTH,
-    its root and quantum as uniforms; ``compiled`` the count of those first."""
+    its root and quantum as uniforms; ``compiled`` the count of those first.
+
+    Parameters
+    ----------
+    scene : TraceScene
+        The scene.
+    compiled : ndarray or None
+        ``(T,)`` bool: triangles kept out of the hierarchy.
+    """
     apart = np.flatnonzero(compiled) if compiled is not None else np.zeros(0, np.int64)
     rest = np.setdiff1d(np.arange(len(scene.triangles)), apart)
     if len(rest):

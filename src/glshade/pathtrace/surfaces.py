@@ -73,7 +73,27 @@ def surface_radiosity(scene, points: int = 2048, spp: int = 64, *, seed: int = 0
                       context=None) -> SurfaceRadiosity:
     """Each model's area-mean radiosity (front side) by path tracing ``spp`` paths from
     each of ``points`` points. ``lights=False``: emitting surfaces only, as radiosity
-    sees the scene."""
+    sees the scene.
+
+    Parameters
+    ----------
+    scene : Scene or TraceScene
+        The scene.
+    points : int
+        Points a model.
+    spp : int
+        Paths a point.
+    seed : int
+        The random streams' seed.
+    lights : bool
+        Trace the scene's lights too (else emitters only).
+    max_depth : int or None
+        Vertices a path may have.
+    backend : str
+        The backend of a context made here.
+    context : RenderContext or None
+        A context to trace in.
+    """
     from ..render.context import create_context
     from ..render.passes.pathtrace import GpuPathTracer
 

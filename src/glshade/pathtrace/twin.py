@@ -119,7 +119,25 @@ def radiance(ts: TraceScene, o, d, rng, max_depth: int = 64, hits=None):
 def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
           max_depth: int = 64, lights: bool = True) -> PathTraced:
     """Path-trace a small scene in numpy (seconds for a few hundred triangles at 32 x 32);
-    the picture and its per-pixel standard errors, as the GPU tracer returns them."""
+    the picture and its per-pixel standard errors, as the GPU tracer returns them.
+
+    Parameters
+    ----------
+    scene : Scene or TraceScene
+        A small scene.
+    camera : Camera or None
+        From where (None: framed).
+    size : (int, int)
+        Width and height.
+    spp : int
+        Samples a pixel.
+    seed : int
+        The random numbers' seed.
+    max_depth : int
+        Vertices a path may have.
+    lights : bool
+        Trace the scene's lights.
+    """
     import time
 
     from ..scene.camera import default_camera

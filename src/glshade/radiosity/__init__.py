@@ -35,6 +35,13 @@ class Method(str, enum.Enum):
 
     @classmethod
     def parse(cls, value: object) -> Method:
+        """A Method or its name; a bad name lists the choices.
+
+        Parameters
+        ----------
+        value : Method or str
+            A member or its name.
+        """
         return parse_enum(cls, value, "radiosity method")
 
 
@@ -50,7 +57,37 @@ def solve(scene, patch_size: float | None = None, *, method: Method | str = Meth
     (default 200,000) instead, sharing no form-factor code with the others; its
     ``Solution.se`` is each patch's standard error. ``progress``: a bar (a notebook's
     widget, a terminal's line), None to decide by where output goes, False for none, or an
-    object with ``update(n, note)``."""
+    object with ``update(n, note)``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The models (emission and reflectance from their materials).
+    patch_size : float or None
+        About how long a patch's edge is.
+    method : Method or str
+        ``"progressive"``, ``"gauss-seidel"`` or ``"monte-carlo"``.
+    until : float
+        Progressive: stop below this unshot fraction.
+    max_shots : int or None
+        Progressive: the most shots (iterations for Gauss-Seidel).
+    hemicube : int
+        The hemicube's top face, pixels a side.
+    quadrature : int or str
+        Gauss points a shooter's side, or ``"auto"``.
+    seed : int
+        The hemicubes' turns (and Monte Carlo's particles).
+    context : RenderContext or None
+        A context to draw in.
+    backend : Backend or str
+        The backend of a context made here.
+    progress : bool, tqdm-like or None
+        The progress bar.
+    on_shot : callable or None
+        ``on_shot(solution, shots)`` after each shot.
+    particles : int or None
+        Monte Carlo's light particles (default 200,000).
+    """
     from ..parallel.progress import as_progress
 
     from .solvers import check_converges

@@ -26,7 +26,17 @@ def clip_to_plane(polygons: np.ndarray, origin: np.ndarray, normal: np.ndarray,
     """The part of each polygon (N, K, 3) in front of its plane ``(origin (N, 3), normal
     (N, 3))``: (N, K+1, 3), short results padded by repeating their last corner, all-behind
     polygons collapsed to one point (factor 0). Sutherland-Hodgman against one plane, for
-    all polygons at once."""
+    all polygons at once.
+
+    Parameters
+    ----------
+    polygons : ndarray
+        ``(N, K, 3)``.
+    origin : ndarray
+        ``(N, 3)`` a point of each plane.
+    normal : ndarray
+        ``(N, 3)`` each plane's normal.
+    """
     n, k = polygons.shape[:2]
     side = np.einsum("nkd,nd->nk", polygons - origin[:, None], normal)
     nxt = np.roll(np.arange(k), -1)
@@ -55,7 +65,19 @@ def point_polygon_factors(points: np.ndarray, normal: np.ndarray, polygons: np.n
                           polygon_normals: np.ndarray) -> np.ndarray:
     """Factors (J, S) from points (S, 3) of unit ``normal`` (3,) to each of ``polygons``
     (J, K, 3), whose fronts face ``polygon_normals`` (J, 3), already clipped to the
-    points' plane."""
+    points' plane.
+
+    Parameters
+    ----------
+    points : ndarray
+        ``(S, 3)`` on one patch.
+    normal : ndarray
+        ``(3,)`` its unit normal.
+    polygons : ndarray
+        ``(J, K, 3)`` the receivers.
+    polygon_normals : ndarray
+        ``(J, 3)`` their unit normals.
+    """
     a = polygons[:, None, :, :] - points[None, :, None, :]      # (J, S, K, 3)
     b = np.roll(a, -1, axis=2)
     c = cross(a, b)

@@ -32,7 +32,19 @@ def radiosity_control(scene, patch_size: float | None = None, *, context=None,
     solution, less that of the emitters' first shots alone -- from under: a progressive
     solver's first shots carry some light that has bounced, so in a furnace of albedo 0.5
     the value is 67% of the closed form, at 0.8 85%); 0 for models radiosity does
-    not see (patch models) and where ``rho`` is 0."""
+    not see (patch models) and where ``rho`` is 0.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    patch_size : float or None
+        About how long a patch's edge is.
+    context : RenderContext or None
+        A context to draw in.
+    backend : str
+        The backend of a context made here.
+    """
     from . import solve
 
     if patch_size is None:  # (a model's mean wants few patches: an eighth of the scene)

@@ -114,7 +114,23 @@ def _cosine(normals, rng):
 def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int = 0,
                 chunk: int = 4096, progress=None) -> MonteCarlo:
     """Estimate the radiosity of ``problem`` (a :class:`~glshade.radiosity.PatchScene`)
-    from ``particles`` light particles in ``batches`` (see the module)."""
+    from ``particles`` light particles in ``batches`` (see the module).
+
+    Parameters
+    ----------
+    problem : PatchScene
+        The patches.
+    particles : int
+        Light particles in all.
+    batches : int
+        Independent batches (the standard error's samples).
+    seed : int
+        The random numbers' seed.
+    chunk : int
+        Particles traced at once.
+    progress : bool, tqdm-like or None
+        The progress bar.
+    """
     if int(particles) != particles or particles < batches or batches < 2:
         raise InputError(f"particles must be a whole number >= batches >= 2, got {particles!r}")
     if not problem.meshes:

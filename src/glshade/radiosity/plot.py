@@ -11,7 +11,19 @@ __all__ = ["convergence_plot"]
 
 
 def convergence_plot(history, title: str = "", size=(520, 360), target: float | None = None):
-    """``history``: rows of (seconds, step, fraction); returns an (H, W, 3) uint8 image."""
+    """``history``: rows of (seconds, step, fraction); returns an (H, W, 3) uint8 image.
+
+    Parameters
+    ----------
+    history : list
+        Rows of (seconds, step, fraction).
+    title : str
+        The plot's title.
+    size : (int, int)
+        Width and height in pixels.
+    target : float or None
+        The fraction aimed at, drawn as a line.
+    """
     from PIL import Image, ImageDraw
 
     w, h = size

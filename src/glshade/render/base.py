@@ -18,7 +18,13 @@ R = TypeVar("R", bound="GLResource")
 
 
 class GLResource:
-    """Base class of objects that own GL objects of one RenderContext."""
+    """Base class of objects that own GL objects of one RenderContext.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    """
 
     def __init__(self, context):
         self.context = context

@@ -12,7 +12,17 @@ __all__ = ["why_blank"]
 
 def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str:
     """Why a render of ``scene`` covers no pixel, as far as the data can tell (``cull``: the
-    draw's back-face culling)."""
+    draw's back-face culling).
+
+    Parameters
+    ----------
+    scene : Scene
+        What was drawn.
+    camera : Camera
+        From where.
+    cull : Culling
+        The draw's back-face culling.
+    """
     drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
     solids = [s for s in scene.solids if s.visible]
     empty = [s for s in solids if (b := s.solid.bounds) is not None and np.prod(b[1] - b[0]) == 0]

@@ -1,59 +1,40 @@
-"""The front door's docstrings say what each parameter is: every function, class and
-public method reached from ``glshade``'s own names, ``glshade.pathtrace``'s and those of
-the modules documented whole (the quaternion algebra, data sets, modes, options, errors,
-atomic writes, mass-points, colour maps, examples; glshade.scene's, the mesh kernel's,
-the files', the renderer's, CSG solids', the winged-edge B-Rep's, Bezier patches' and
-the octree's, and the comparisons' and radiosity's) has a
+"""The public API's docstrings say what each parameter is: every function, class and
+public method that any public module of glshade defines (the command line's aside: its
+interface is the command, docs/guide/cli.md) has a
 numpydoc ``Parameters`` section naming each of its parameters, and no other (the docs
 build renders them)."""
 
 import enum
+import importlib
 import inspect
+import pkgutil
 import re
 import types
 
 import pytest
 
 import glshade
-from glshade import (atomic, colormaps, dataset, errors, examples, masspoint, modes,
-                     options, pathtrace, quaternion)
-from glshade import octree
-from glshade.brep import winged_edge
-from glshade.compare import methods, metrics
-from glshade.cpu import lighting, raycast
-from glshade.geometry import transforms
-from glshade.hidden import raster
-from glshade.io import text
-from glshade.patches import quadrics
-from glshade.radiosity import formfactors, patches, problem, solvers
-from glshade.geometry import merge, mesh, polygon, primitives
-from glshade.patches import bezier
-from glshade.solids import leaves, tree
-from glshade.io import images, meshes, scenefile
-from glshade.render import (annotate, context, gpu_mesh, passes, programs, renderer, shaders,
-                            state, target)
-from glshade.render.passes import gbuffer
-from glshade.render.passes import mesh as mesh_pass
-from glshade.render.passes import patches as patch_pass
-from glshade.scene import camera, intrinsics, keyframes, lights, material, occluders, texture
-from glshade.scene import scene as scene_module
+from glshade import pathtrace
 
-#: the chapters' modules documented whole so far
-SCENE = (camera, intrinsics, keyframes, lights, material, occluders, texture, scene_module,
-         merge, mesh, polygon, primitives, images, meshes, scenefile, annotate, context,
-         renderer, tree, leaves, winged_edge, bezier, octree, metrics, methods, solvers,
-         formfactors, patches, problem, lighting, raycast, transforms, raster, text,
-         quadrics, target, programs, gpu_mesh, state, shaders, passes, gbuffer, mesh_pass,
-         patch_pass)
 
 FRONT = [(n, getattr(glshade, n)) for n in glshade.__all__
          if not n.startswith("__") and not isinstance(getattr(glshade, n), types.ModuleType)]
 FRONT += [(f"pathtrace.{n}", getattr(pathtrace, n)) for n in pathtrace.__all__]
-#: and the modules documented whole so far: the notes' algebra, the data sets
-FRONT += [(f"{m.__name__}.{n}", getattr(m, n))
-          for m in (quaternion, dataset, modes, options, errors, atomic, masspoint,
-                    colormaps, examples, *SCENE)
-          for n in m.__all__ if getattr(getattr(m, n), "__module__", m.__name__) == m.__name__]
+
+
+def _public_modules() -> list:
+    """Every public module of glshade but the command line's (``glshade.cli`` is the
+    command line, documented in docs/guide/cli.md, not a Python API)."""
+    names = [m.name for m in pkgutil.walk_packages(glshade.__path__, "glshade.")
+             if not any(part.startswith("_") for part in m.name.split(".")[1:])
+             and not m.name.startswith("glshade.cli")]
+    return [importlib.import_module(n) for n in names]
+
+
+#: every public module's own names (those it defines, not those it re-exports)
+FRONT += [(f"{m.__name__}.{n}", getattr(m, n)) for m in _public_modules()
+          for n in getattr(m, "__all__", ())
+          if getattr(getattr(m, n), "__module__", m.__name__) == m.__name__]
 
 
 def _callables():

@@ -35,7 +35,13 @@ def opacity_channel(pixels: np.ndarray) -> np.ndarray:
 
 
 class TextureCache(GLResource):
-    """The GL textures of one context, by Texture and use (colour or opacity)."""
+    """The GL textures of one context, by Texture and use (colour or opacity).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    """
 
     def __init__(self, context):
         super().__init__(context)
@@ -45,7 +51,15 @@ class TextureCache(GLResource):
         self.max_size = int(ctx.info.get("GL_MAX_TEXTURE_SIZE", 4096))
 
     def get(self, texture, opacity: bool = False):
-        """The moderngl texture of ``texture`` (made now if need be)."""
+        """The moderngl texture of ``texture`` (made now if need be).
+
+        Parameters
+        ----------
+        texture : Texture
+            The image.
+        opacity : bool
+            Its use as an opacity map (one channel).
+        """
         self._check()
         key = (id(texture), opacity)
         found = self._found.get(key)
@@ -78,7 +92,17 @@ class TextureCache(GLResource):
 
     def bind(self, material, put, prog) -> None:
         """Bind ``material``'s maps (white where it has none) and point ``prog``'s samplers
-        at them."""
+        at them.
+
+        Parameters
+        ----------
+        material : Material
+            The surface.
+        put : callable
+            The uniform writer's ``put``.
+        prog : moderngl.Program
+            The program.
+        """
         st = []
         for name, unit in MAP_UNITS.items():
             texture = getattr(material, name)

@@ -73,6 +73,13 @@ class LeafKind(IntEnum):
 
     @classmethod
     def of(cls, leaf) -> LeafKind:
+        """The kind of a leaf.
+
+        Parameters
+        ----------
+        leaf : Solid
+            A leaf (Sphere, Box ...).
+        """
         return _KINDS[type(leaf)]
 
 
@@ -98,20 +105,44 @@ def glsl_defines() -> tuple[str, ...]:
 
 @dataclass(frozen=True)
 class TreeData:
-    """A solid as the program reads it: ``texels (T, 4) float32``; the counts of leaves,
-    hierarchy ``nodes`` and program ``ops``; the first texel of each part (``bvh``,
-    ``program``, ``records``, ``by_kind``, ``table``). ``leaves`` in ``solid.leaves()`` order;
-    ``stack`` the bits the program needs; ``kinds`` a bit per :class:`LeafKind` present
-    (the program is built with only those kinds' code); ``table`` the first texel of the
-    truth table (-1: none, the tree is over TABLE_LEAVES); ``by_kind`` the first texel of
-    the leaves listed kind by kind, ``kind_start`` (7,) where each kind's list starts;
-    ``boxes (L, 2, 3)`` the leaves' world boxes (float64); ``hull (N, 3)`` world points
-    whose convex hull holds the solid (solids/proxy.py), or None. A tree with a truth table
-    is cast in one step by a program with ``slots``, the leaf kinds in kind order (4, 8 or
-    16; -1 an empty slot), whose uniforms these are: ``slot_leaf (S,)`` each slot's leaf
-    (-1 empty), ``slot_rows (S, 4, 4)`` its world -> leaf rows and sizes, ``slot_sign (S,)``
-    +1 where it counts positively in the tree, ``slot_words`` the truth table in slot
-    order, 32 bits a uint32 word; else () and None."""
+    """A solid as the program reads it (a tree with a truth table is cast in one step by a
+    program with ``slots``, the leaf kinds in kind order; else the ``slot_*`` are () and
+    None).
+
+    Parameters
+    ----------
+    texels : ndarray
+        ``(T, 4)`` float32: everything the program reads.
+    leaves, nodes, ops : int
+        The counts of leaves (in ``solid.leaves()`` order), hierarchy nodes and program
+        operations.
+    bvh, program, records : int
+        The first texel of the hierarchy, the post-order program and its skip records.
+    stack : int
+        The bits the program needs.
+    kinds : int
+        A bit per :class:`LeafKind` present (the program has only those kinds' code).
+    by_kind : int
+        The first texel of the leaves listed kind by kind.
+    kind_start : tuple
+        ``(7,)`` where each kind's list starts.
+    boxes : ndarray
+        ``(L, 2, 3)`` the leaves' world boxes (float64).
+    table : int
+        The first texel of the truth table (-1: none, the tree is over TABLE_LEAVES).
+    hull : ndarray or None
+        ``(N, 3)`` world points whose convex hull holds the solid (solids/proxy.py).
+    slots : tuple
+        The one-step cast's leaf kinds by slot (4, 8 or 16; -1 an empty slot).
+    slot_leaf : ndarray or None
+        ``(S,)`` each slot's leaf (-1 empty).
+    slot_rows : ndarray or None
+        ``(S, 4, 4)`` each slot's world -> leaf rows and sizes.
+    slot_sign : ndarray or None
+        ``(S,)`` +1 where the slot counts positively in the tree.
+    slot_words : ndarray or None
+        The truth table in slot order, 32 bits a uint32 word.
+    """
 
     texels: np.ndarray
     leaves: int
@@ -143,7 +174,13 @@ class TreeData:
 def flatten(solid: Solid) -> tuple[list, list, tuple]:
     """Leaves (with their world matrices and normal signs) and booleans, iteratively (no
     recursion limit): ``leaves`` [(leaf, matrix (4, 4), sign +-1)], ``booleans``
-    [[type, a, b]], ``root``; a node is ("L", leaf number) or ("B", boolean number)."""
+    [[type, a, b]], ``root``; a node is ("L", leaf number) or ("B", boolean number).
+
+    Parameters
+    ----------
+    solid : Solid
+        The solid.
+    """
     leaves: list = []
     booleans: list = []
     root: list = []
@@ -190,7 +227,15 @@ def postorder(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
     and last leaf, next record; stack depth)``. A boolean's subtree starts at a leaf's
     position; the records of the subtrees starting at one position, largest first, let the
     program skip a subtree none of whose leaves the ray is inside (its value is then 0:
-    booleans of empty sets are empty)."""
+    booleans of empty sets are empty).
+
+    Parameters
+    ----------
+    booleans : list
+        The tree's booleans (:func:`flatten`).
+    root : tuple
+        The root's slot.
+    """
     need = _stack_needs(booleans, root)
     depth = lambda x: need[x] if x[0] == "B" else 1  # noqa: E731
     codes: list[int] = []
@@ -233,7 +278,15 @@ def postorder(booleans: list, root) -> tuple[np.ndarray, np.ndarray, int]:
 def truth_table(program: np.ndarray, leaves: int) -> np.ndarray:
     """The tree's value (2^leaves,) bool for every pattern of leaf inside-bits (bit k of
     the index: inside leaf k), by running the post-order ``program`` on all of them at
-    once -- the shader's tree_inside, as a table."""
+    once -- the shader's tree_inside, as a table.
+
+    Parameters
+    ----------
+    program : ndarray
+        ``(M, 2)`` the post-order program.
+    leaves : int
+        The leaves.
+    """
     index = np.arange(2 ** leaves, dtype=np.int64)
     stack: list = []
     for code in program[:, 0].astype(int):
@@ -278,12 +331,24 @@ def _slot_uniforms(values: np.ndarray, order: np.ndarray, codes: list, signs: np
 
 
 def size_class(leaves: int) -> tuple[int, int, int]:
-    """(leaves at most, words of leaf bits, uniform-block vec4s or 0) of a tree's program."""
+    """(leaves at most, words of leaf bits, uniform-block vec4s or 0) of a tree's program.
+
+    Parameters
+    ----------
+    leaves : int
+        The tree's leaves.
+    """
     return next(c for c in _CLASSES if c[0] >= leaves)
 
 
 def leaf_words(leaves: int) -> int:
-    """The words of leaf bits (``CSG_WORDS``) the program keeps for a tree of ``leaves``."""
+    """The words of leaf bits (``CSG_WORDS``) the program keeps for a tree of ``leaves``.
+
+    Parameters
+    ----------
+    leaves : int
+        The tree's leaves.
+    """
     return size_class(leaves)[1]
 
 
@@ -359,7 +424,13 @@ def _leaf_rows(leaves: list) -> np.ndarray:
 
 def tree_data(solid: Solid) -> TreeData:
     """The texture data of ``solid`` (see the module docstring); a SceneError past
-    MAX_LEAVES."""
+    MAX_LEAVES.
+
+    Parameters
+    ----------
+    solid : Solid
+        The solid.
+    """
     leaves, booleans, root = flatten(solid)
     if len(leaves) > MAX_LEAVES:
         raise SceneError(f"a solid of {len(leaves):,} leaves is more than the {MAX_LEAVES:,} "
@@ -397,7 +468,15 @@ def tree_data(solid: Solid) -> TreeData:
 def may_start_inside(data: TreeData, inverse_view_proj: np.ndarray) -> bool:
     """Whether any leaf's world box meets the box of the near plane's rectangle (clip to
     world: ``inverse_view_proj`` (4, 4)), where the pixels' rays start: where none does, no
-    ray starts inside a leaf, and the program skips finding which leaves each starts in."""
+    ray starts inside a leaf, and the program skips finding which leaves each starts in.
+
+    Parameters
+    ----------
+    data : TreeData
+        The tree.
+    inverse_view_proj : ndarray
+        ``(4, 4)`` clip to world.
+    """
     corners = np.array([[x, y, -1.0, 1.0] for x in (-1, 1) for y in (-1, 1)])
     world = corners @ inverse_view_proj.T
     near = world[:, :3] / world[:, 3:]

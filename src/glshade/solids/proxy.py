@@ -77,7 +77,13 @@ def leaf_points(leaf) -> np.ndarray | None:
 def hull_points(leaves: list) -> np.ndarray | None:
     """(N, 3) world points whose convex hull holds a solid, from its leaves ``[(leaf,
     leaf -> world matrix (4, 4), sign)]`` (sign > 0: counted positively); None where a
-    positive leaf is unbounded or the points would be too many to project each frame."""
+    positive leaf is unbounded or the points would be too many to project each frame.
+
+    Parameters
+    ----------
+    leaves : list
+        ``[(leaf, leaf -> world matrix (4, 4), sign)]``.
+    """
     parts = []
     for leaf, matrix, sign in leaves:
         if sign <= 0:
@@ -160,7 +166,19 @@ def screen_polygon(view_proj: np.ndarray, box: np.ndarray, points: np.ndarray | 
     of its hull points (where all are in front of it); (0, 2) where the solid is off
     screen. ``view_proj (4, 4)`` world -> clip, ``box (2, 3)`` the solid's bounds,
     ``points (N, 3)`` from :func:`hull_points` or None, ``viewport`` (width, height) in
-    pixels: the polygon is grown by two pixels against rounding."""
+    pixels: the polygon is grown by two pixels against rounding.
+
+    Parameters
+    ----------
+    view_proj : ndarray
+        ``(4, 4)`` world to clip.
+    box : ndarray
+        ``(2, 3)`` the solid's world box.
+    points : ndarray or None
+        ``(N, 3)`` hull points (None: the box's corners).
+    viewport : (int, int)
+        The viewport's width and height.
+    """
     angles = np.arange(DIRECTIONS) * (2 * np.pi / DIRECTIONS)
     d = np.c_[np.cos(angles), np.sin(angles)]  # (K, 2)
     corners = box_corners(box)  # (index bits: x 4, y 2, z 1: _BOX_EDGES)

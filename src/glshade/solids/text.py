@@ -54,7 +54,15 @@ _OPS = {ast.BitOr: "__or__", ast.BitAnd: "__and__", ast.Sub: "__sub__"}
 
 def parse_solid(text: str, where: str = "solid"):
     """The Solid a text describes; a mistake is an InputError naming ``where`` and the
-    offending piece."""
+    offending piece.
+
+    Parameters
+    ----------
+    text : str
+        The solid's text (``box(2) - cylinder(0.5, 3)``).
+    where : str
+        Where it came from, for errors.
+    """
     try:
         # (in parentheses: a tree may run over several lines)
         tree = ast.parse(f"(\n{text.strip()}\n)", mode="eval")

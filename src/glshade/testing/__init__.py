@@ -22,13 +22,25 @@ __all__ = ["assert_images_close", "failure_dir", "node_folder", "safe_name", "le
 
 def safe_name(text: str) -> str:
     """``text`` as a file name: runs of anything but letters, digits, ``_.-[]`` become
-    ``_``."""
+    ``_``.
+
+    Parameters
+    ----------
+    text : str
+        Any text.
+    """
     return re.sub(r"[^A-Za-z0-9_.\-\[\]]+", "_", text)
 
 
 def node_folder(nodeid: str) -> str:
     """A test's own results folder name, from its whole node id (its file's path
-    included: tests of one name in two folders do not share one)."""
+    included: tests of one name in two folders do not share one).
+
+    Parameters
+    ----------
+    nodeid : str
+        A pytest node id.
+    """
     return safe_name(nodeid.replace("::", "."))
 
 
@@ -51,7 +63,15 @@ def levels(image, name: str = "image") -> np.ndarray:
     comparison makes: grey ``(H, W)`` or ``(H, W, 1)``, RGB (alpha 255) or RGBA; integers
     (any integer type) are 8-bit levels 0..255 as they are, floats are [0, 1] (times 255).
     Anything else -- levels out of range, floats beyond [0, 1] or not finite -- is refused
-    (a ValueError naming ``name``), never rescaled by a guess."""
+    (a ValueError naming ``name``), never rescaled by a guess.
+
+    Parameters
+    ----------
+    image : array_like
+        Grey, RGB or RGBA; integers are levels, floats [0, 1].
+    name : str
+        What it is, for errors.
+    """
     a = np.asarray(image)
     if a.ndim == 2:
         a = a[..., None]
@@ -96,6 +116,17 @@ def assert_images_close(actual, expected, max_mean: float = 0.5, max_pixel: floa
     On failure the actual and expected images and a heat map of the difference are saved
     (``save_to`` or :func:`failure_dir`) and the message gives both numbers, how many
     pixels are over, their bounding box and the worst pixel.
+
+    Parameters
+    ----------
+    actual, expected : array_like
+        The images (levels as :func:`levels` reads them).
+    max_mean : float
+        The largest mean absolute difference allowed (8-bit units).
+    max_pixel : float
+        The largest single difference allowed.
+    save_to : str or Path or None
+        Where to save the images and their difference on failure.
     """
     a, e = _as_float(actual, "actual"), _as_float(expected, "expected")
     if a.shape != e.shape:

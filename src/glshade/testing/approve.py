@@ -15,7 +15,15 @@ __all__ = ["approve", "main"]
 
 def approve(results, keys=None) -> list[str]:
     """Write the actual renders of ``keys`` (all when None) recorded in ``results``'s
-    ``approve.json`` as their goldens; the golden paths written."""
+    ``approve.json`` as their goldens; the golden paths written.
+
+    Parameters
+    ----------
+    results : str or Path
+        The results folder (holding ``approve.json``).
+    keys : list of str or None
+        The renders to approve (None: all).
+    """
     from PIL import Image
 
     from ..errors import InputError
@@ -43,7 +51,13 @@ def approve(results, keys=None) -> list[str]:
 
 
 def main(argv=None) -> int:
-    """The command: approve the named renders (or ``--all``); 0, or 2 with one line."""
+    """The command: approve the named renders (or ``--all``); 0, or 2 with one line.
+
+    Parameters
+    ----------
+    argv : list of str or None
+        The arguments (None: sys.argv's).
+    """
     from ..errors import GlshadeError
 
     ap = argparse.ArgumentParser(prog="python -m glshade.testing.approve",

@@ -39,7 +39,13 @@ FINGERPRINT_KEYS = ("vendor", "renderer", "version", "backend", "samples", "glsh
 
 def fingerprint(renderer: Any) -> dict[str, Any]:
     """The facts that decide a render's bytes: the GL driver's vendor, renderer and version,
-    the backend, the renderer's MSAA samples and glshade's version."""
+    the backend, the renderer's MSAA samples and glshade's version.
+
+    Parameters
+    ----------
+    renderer : Renderer
+        The renderer that drew.
+    """
     from .._version import __version__
 
     info = renderer.context.info
@@ -50,7 +56,13 @@ def fingerprint(renderer: Any) -> dict[str, Any]:
 
 def as_rgba(image: Any) -> np.ndarray:
     """``(H, W, 4) uint8`` of an image, read as :func:`glshade.testing.levels` reads it
-    (integers are levels, floats [0, 1]), rounded."""
+    (integers are levels, floats [0, 1]), rounded.
+
+    Parameters
+    ----------
+    image : array_like
+        Any image :func:`glshade.testing.levels` reads.
+    """
     from . import levels
 
     return np.round(levels(image)).astype(np.uint8)
@@ -99,7 +111,23 @@ class Verdict:
 def judge(actual: Any, expected: Any, *, same_fingerprint: bool,
           face_id: np.ndarray | None = None, max_mean: float = 0.5,
           max_pixel: float = 4.0, edge_width: int = 1) -> Verdict:
-    """Compare a render with its golden image (see the module's rules)."""
+    """Compare a render with its golden image (see the module's rules).
+
+    Parameters
+    ----------
+    actual, expected : array_like
+        The images (levels as :func:`levels` reads them).
+    same_fingerprint : bool
+        Whether the golden was made on the same driver and settings.
+    face_id : ndarray or None
+        The render's polygon ids (differences at edges tolerated).
+    max_mean : float
+        The largest mean difference allowed.
+    max_pixel : float
+        The largest interior difference allowed.
+    edge_width : int
+        Pixels either side of an id change counted as edge.
+    """
     a, e = as_rgba(actual), as_rgba(expected)
     if a.shape != e.shape:
         return Verdict(False, f"sizes differ: the render is {a.shape[1]}x{a.shape[0]}, the "
@@ -134,7 +162,13 @@ def judge(actual: Any, expected: Any, *, same_fingerprint: bool,
 
 
 def read_golden(path: Path) -> tuple[np.ndarray, dict[str, Any] | None]:
-    """A golden image and its fingerprint (None when it has none: an older golden)."""
+    """A golden image and its fingerprint (None when it has none: an older golden).
+
+    Parameters
+    ----------
+    path : Path
+        The golden image.
+    """
     from PIL import Image
 
     with Image.open(path) as im:
@@ -145,7 +179,17 @@ def read_golden(path: Path) -> tuple[np.ndarray, dict[str, Any] | None]:
 
 
 def write_golden(path: Path, image: Any, facts: dict[str, Any]) -> None:
-    """Write a golden image and its fingerprint beside it (each atomically)."""
+    """Write a golden image and its fingerprint beside it (each atomically).
+
+    Parameters
+    ----------
+    path : Path
+        The golden image.
+    image : array_like
+        The render.
+    facts : dict
+        Its fingerprint.
+    """
     from ..atomic import atomic_write
     from ..io.images import save_image
 

@@ -109,7 +109,13 @@ def glshade_renderer(request):
 
 
 def golden_name(nodeid: str) -> str:
-    """``tests/test_a.py::TestB::test_c[x]`` -> ``test_a.TestB.test_c[x]``: a file name."""
+    """``tests/test_a.py::TestB::test_c[x]`` -> ``test_a.TestB.test_c[x]``: a file name.
+
+    Parameters
+    ----------
+    nodeid : str
+        A pytest node id.
+    """
     file, _, rest = nodeid.partition("::")
     parts = [Path(file).stem, *rest.split("::")] if rest else [Path(file).stem]
     return safe_name(".".join(p for p in parts if p))

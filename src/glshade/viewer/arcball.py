@@ -18,7 +18,15 @@ __all__ = ["sphere_point", "drag_rotation", "Arcball"]
 
 def sphere_point(x: float, y: float, width: float, height: float) -> NDArray[np.float64]:
     """The point on the arcball under window position (x, y) (pixels, y down), in view
-    space: x right, y up, z towards the viewer."""
+    space: x right, y up, z towards the viewer.
+
+    Parameters
+    ----------
+    x, y : float
+        The position in pixels, y down.
+    width, height : float
+        The window's size.
+    """
     r = min(width, height) / 2.0
     px = (x - width / 2.0) / r
     py = (height / 2.0 - y) / r
@@ -31,7 +39,13 @@ def sphere_point(x: float, y: float, width: float, height: float) -> NDArray[np.
 
 def drag_rotation(p0: NDArray[np.float64], p1: NDArray[np.float64]) -> NDArray[np.float64]:
     """Unit quaternion rotating unit vector ``p0`` onto ``p1`` (the shorter way):
-    ``normalize([p0 x p1, 1 + p0.p1])``, the half-way quaternion."""
+    ``normalize([p0 x p1, 1 + p0.p1])``, the half-way quaternion.
+
+    Parameters
+    ----------
+    p0, p1 : ndarray
+        ``(3,)`` unit vectors: where the drag started and where it is.
+    """
     c = 1.0 + float(np.dot(p0, p1))
     if c < 1e-12:  # opposite points: any perpendicular axis
         axis = np.cross(p0, [1.0, 0.0, 0.0])
@@ -43,16 +57,36 @@ def drag_rotation(p0: NDArray[np.float64], p1: NDArray[np.float64]) -> NDArray[n
 
 class Arcball:
     """Accumulates a drag: ``begin`` at the press, ``drag`` at each move returns the
-    rotation since the press (view space, unit)."""
+    rotation since the press (view space, unit).
+
+    Parameters
+    ----------
+    width, height : float
+        The window's size in pixels.
+    """
 
     def __init__(self, width: float, height: float):
         self.resize(width, height)
         self._start: np.ndarray | None = None
 
     def resize(self, width: float, height: float) -> None:
+        """The window's new size.
+
+        Parameters
+        ----------
+        width, height : float
+            In pixels.
+        """
         self.width, self.height = float(width), float(height)
 
     def begin(self, x: float, y: float) -> None:
+        """A drag starts at (x, y).
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        """
         self._start = sphere_point(x, y, self.width, self.height)
 
     @property
@@ -60,6 +94,13 @@ class Arcball:
         return self._start is not None
 
     def drag(self, x: float, y: float) -> NDArray[np.float64]:
+        """The rotation since the press (view space, a unit quaternion).
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        """
         if self._start is None:
             return quat.identity()
         return drag_rotation(self._start, sphere_point(x, y, self.width, self.height))

@@ -29,7 +29,23 @@ class Controls:
     """The state a viewer shows -- ``camera``, ``options``, ``compare``, the orbit
     ``center`` -- and the gestures that change it. ``size`` ``(w, h)``: the control's extent
     in its own coordinates; ``aspect``: the drawn view's width over height (default w / h;
-    a third of it in compare mode). Subclasses supply :meth:`pick` and :meth:`recentre`."""
+    a third of it in compare mode). Subclasses supply :meth:`pick` and :meth:`recentre`.
+
+    Parameters
+    ----------
+    scene : Scene
+        What is shown.
+    camera : Camera or None
+        The first view (None: framed).
+    size : (float, float)
+        The control's extent in its own coordinates.
+    options : DrawOptions, ShadingMode, str or None
+        How it is drawn.
+    compare : bool
+        Show the shading modes side by side.
+    pick : bool
+        Report what a click lands on.
+    """
 
     def __init__(self, scene: Scene, camera: Camera | None, size, options=None,
                  compare: bool = False, pick: bool = False):
@@ -56,14 +72,34 @@ class Controls:
         self.messages.append(text)
 
     def pick(self, x: float, y: float):  # pragma: no cover - each viewer has its own
+        """What is under (x, y) (each viewer finds it its own way).
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        """
         raise NotImplementedError
 
     def recentre(self, x: float, y: float) -> bool:  # pragma: no cover
+        """Re-centre the view on the surface point under (x, y); whether there was one.
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        """
         raise NotImplementedError
 
     # ------------------------------------------------------------------ keys
     def key(self, char: str) -> bool:
-        """Act on a key that changes the view or the options; False for any other key."""
+        """Act on a key that changes the view or the options; False for any other key.
+
+        Parameters
+        ----------
+        char : str
+            The key as typed.
+        """
         o = self.options
         if char in MODE_KEYS:
             self.options = o.replace(mode=MODE_KEYS[char])
@@ -115,7 +151,17 @@ class Controls:
     def mouse_down(self, x: float, y: float, button: str = "left",
                    shift: bool = False) -> None:
         """A button pressed at (x, y): left drags turn the view, right or shift drags pan;
-        a left double-click re-centres on the surface."""
+        a left double-click re-centres on the surface.
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        button : str
+            ``"left"`` or ``"right"``.
+        shift : bool
+            Shift held (a pan).
+        """
         now = time.perf_counter()
         if button == "left" and now - self._last_click < DOUBLE_CLICK_S:
             self.recentre(x, y)
@@ -126,7 +172,13 @@ class Controls:
             self.arcball.begin(x, y)
 
     def mouse_move(self, x: float, y: float) -> None:
-        """The pointer moved to (x, y): drags turn (arcball) or pan the view."""
+        """The pointer moved to (x, y): drags turn (arcball) or pan the view.
+
+        Parameters
+        ----------
+        x, y : float
+            The position in pixels, y down.
+        """
         if self._drag is None:
             return
         kind, start, x0, y0, center0 = self._drag
@@ -155,7 +207,13 @@ class Controls:
         self.arcball.end()
 
     def scroll(self, dy: float) -> None:
-        """Dolly towards (dy > 0) or away from the centre."""
+        """Dolly towards (dy > 0) or away from the centre.
+
+        Parameters
+        ----------
+        dy : float
+            The wheel's steps (positive: towards).
+        """
         to_center = self.center - self.camera.position
         self.camera = self.camera.replace(position=self.camera.position +
                                           to_center * (1 - 0.9 ** dy))

@@ -57,6 +57,10 @@ class Viewer(Controls):
         Flat, Gouraud and Phong side by side with one camera.
     visible
         False for a hidden window (tests).
+    title : str
+        The window's title.
+    screenshot_dir : str or Path
+        Where the viewer saves files (the ``s`` key's screenshots, a recorded camera path).
     pick
         Print what a click lands on (:meth:`pick`).
     """
@@ -185,7 +189,13 @@ class Viewer(Controls):
         return self._label_overlay
 
     def screenshot(self, path=None) -> np.ndarray:
-        """The window's pixels now ``(H, W, 4) uint8``; saved as PNG when ``path`` is given."""
+        """The window's pixels now ``(H, W, 4) uint8``; saved as PNG when ``path`` is given.
+
+        Parameters
+        ----------
+        path : str or Path or None
+            Where to save a PNG (None: only returned).
+        """
         self.draw()
         img = self.target.read_color()
         if path is not None:
@@ -205,7 +215,13 @@ class Viewer(Controls):
         return img
 
     def step(self, dt: float | None = None) -> None:
-        """Handle events, advance playback, draw and show one frame."""
+        """Handle events, advance playback, draw and show one frame.
+
+        Parameters
+        ----------
+        dt : float or None
+            Seconds to advance playback (None: a sixtieth).
+        """
         glfw = self._glfw
         glfw.poll_events()
         if glfw.window_should_close(self.window):
@@ -237,7 +253,13 @@ class Viewer(Controls):
                 f"{extra}")
 
     def run(self, frames: int | None = None) -> None:
-        """Show frames until the window closes (or ``frames`` have been drawn)."""
+        """Show frames until the window closes (or ``frames`` have been drawn).
+
+        Parameters
+        ----------
+        frames : int or None
+            The most frames (None: until the window closes).
+        """
         n = 0
         last = time.perf_counter()
         while not self.closed and (frames is None or n < frames):
@@ -266,7 +288,13 @@ class Viewer(Controls):
     # ------------------------------------------------------------------ actions
     def key(self, char: str) -> bool:
         """Act on a key as typed (what the key callback calls; tests call it directly):
-        the view's and options' keys (:meth:`Controls.key`), then the window's own."""
+        the view's and options' keys (:meth:`Controls.key`), then the window's own.
+
+        Parameters
+        ----------
+        char : str
+            The key as typed.
+        """
         if char == "r":
             self.playing = False
         if char == "t":
@@ -317,13 +345,25 @@ class Viewer(Controls):
         print(text, file=sys.stderr)
 
     def mouse_move(self, x: float, y: float) -> None:
-        """The cursor moved to window coordinates: drags turn or pan the view."""
+        """The cursor moved to window coordinates: drags turn or pan the view.
+
+        Parameters
+        ----------
+        x, y : float
+            Window coordinates.
+        """
         self._cursor = (x, y)
         super().mouse_move(x, y)
 
     def pick(self, x: float, y: float):
         """What is under window point (x, y): polygon id, world point, normal and depth
-        (:meth:`Renderer.pick`), printed and kept in ``picks``; None over the background."""
+        (:meth:`Renderer.pick`), printed and kept in ``picks``; None over the background.
+
+        Parameters
+        ----------
+        x, y : float
+            Window coordinates.
+        """
         if self.compare:
             self._say("picking works in the single view (press 1, 2 or 3)")
             return None
@@ -334,7 +374,13 @@ class Viewer(Controls):
         return found
 
     def recentre(self, x: float, y: float) -> bool:
-        """Re-centre the view on the surface point under (x, y), from the depth buffer."""
+        """Re-centre the view on the surface point under (x, y), from the depth buffer.
+
+        Parameters
+        ----------
+        x, y : float
+            Window coordinates.
+        """
         self.draw()
         s = self._scale()
         px, py = int(x * s), int(y * s)

@@ -45,7 +45,17 @@ __all__ = ["CsgPass", "csg_defines"]
 def csg_defines(data: TreeData, slots: tuple = (), blocks: bool = True) -> tuple[str, ...]:
     """The ``#define``s of a program that casts a tree like ``data``: the shared constants,
     its size class and kinds, the one-step cast's slot kinds where ``slots``, and whether
-    its data is a uniform block (``blocks`` and a small tree) or a texture."""
+    its data is a uniform block (``blocks`` and a small tree) or a texture.
+
+    Parameters
+    ----------
+    data : TreeData
+        The tree.
+    slots : tuple
+        The one-step cast's leaf kinds by slot.
+    blocks : bool
+        Read the tree from a uniform block (else a texture).
+    """
     _, words, block = size_class(data.leaves)
     defines = (*glsl_defines(), f"CSG_WORDS {words}", f"CSG_KINDS {data.kinds}")
     if block and blocks:
@@ -62,7 +72,19 @@ class CsgPass(GLResource, Stage):
     """The programs (per shading variant and tree class, :meth:`program`), each solid's data
     texture, the screen polygon's buffer and the drawing of solids, for one Renderer: a GL
     owner of the renderer's context, released with it. Shares the renderer's uniform writer
-    and material cache (public collaborators, handed in)."""
+    and material cache (public collaborators, handed in).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    shaders : ShaderLibrary
+        Where its programs are compiled.
+    uniforms : UniformWriter
+        The one uniform writer.
+    materials : MaterialUniforms
+        The materials' products, shared.
+    """
 
     #: the texture unit the tree data is bound to
     UNIT = Unit.CSG_TREE
@@ -83,7 +105,13 @@ class CsgPass(GLResource, Stage):
         self.max_slots = max((n for n in (16, 8, 4) if 6 * n + 6 <= limit), default=0)
 
     def data(self, solid: Solid) -> tuple[TreeData, Any]:
-        """(tree data, its texture or uniform buffer) of a solid, made once while it lives."""
+        """(tree data, its texture or uniform buffer) of a solid, made once while it lives.
+
+        Parameters
+        ----------
+        solid : Solid
+            The solid.
+        """
         self._check()
         for key in [k for k, v in self._data.items() if v[0]() is None]:
             self._data.pop(key)[2].release()
@@ -105,7 +133,17 @@ class CsgPass(GLResource, Stage):
         """The program of a variant for a tree like ``data``: one per size class (32, 64,
         256 or 1,024 leaves: the words of leaf bits it keeps) and set of kinds -- and for a
         tree cast in one step, per ``slots`` (its leaves' kinds in kind order), never per
-        tree."""
+        tree.
+
+        Parameters
+        ----------
+        key : ProgramKey
+            The variant.
+        data : TreeData
+            A tree of the size class and kinds wanted.
+        slots : tuple
+            The one-step cast's leaf kinds by slot (empty: the walk).
+        """
         self._check()
         words = size_class(data.leaves)[1]
         found = self._programs.get((key, words, data.kinds, slots))
@@ -129,7 +167,15 @@ class CsgPass(GLResource, Stage):
 
     def fan(self, program, corners: np.ndarray):
         """The vertex array of a screen polygon (M, 2) NDC (M <= DIRECTIONS + 4), drawn as
-        a fan."""
+        a fan.
+
+        Parameters
+        ----------
+        program : moderngl.Program
+            The solid's program.
+        corners : ndarray
+            ``(M, 2)`` the polygon in NDC.
+        """
         ctx = self.context.ctx
         if self._fan is None:
             self._fan = (self._keep(ctx.buffer(reserve=12 * (DIRECTIONS + 8), dynamic=True)),
@@ -146,7 +192,15 @@ class CsgPass(GLResource, Stage):
 
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the scene's visible solids (their ids, a leaf each, follow from
-        ``id_base``); the id base after them."""
+        ``id_base``); the id base after them.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
         import moderngl
 
         self._check()

@@ -36,7 +36,13 @@ EDGE_COLOR = (0.06, 0.06, 0.07)
 
 def edge_width(width: int, height: int) -> float:
     """Line width in pixels for a ``width`` x ``height`` image: 1 pixel up to 400 pixels a
-    side, then half a pixel more per 200 (1.5 at 512, 2.5 at 1024, 4.5 at 2048)."""
+    side, then half a pixel more per 200 (1.5 at 512, 2.5 at 1024, 4.5 at 2048).
+
+    Parameters
+    ----------
+    width, height : int
+        The image's size in pixels.
+    """
     side = min(int(width), int(height))
     return max(1.0, round(side / 400 * 2) / 2)
 
@@ -74,7 +80,15 @@ class EdgePass(GLResource, Stage):
     def draw(self, state: DrawState, id_base: int) -> int:
         """Draw the edges of the scene's visible meshes into the target's colour, in
         ``EDGE_COLOR`` (or, wireframe, each in its material's colour); the id base as it
-        was (edges take no ids)."""
+        was (edges take no ids).
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
         options = state.options
         models = [m for m in state.scene.models if state.drawn(m)]
         if not models:

@@ -52,7 +52,17 @@ def _frustum(left, right, bottom, top, near, far) -> np.ndarray:
 class Hemicube(GLResource):
     """Hemicubes of resolution ``N`` (the top face is ``N x N``) over uploaded patches;
     ``delta(N)`` gives each pixel's delta form factor, an ``(N, 3N)`` atlas (the chapter's
-    numpy: :func:`glshade.radiosity.formfactors.delta_form_factors`)."""
+    numpy: :func:`glshade.radiosity.formfactors.delta_form_factors`).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    resolution : int
+        The top face, pixels a side.
+    delta : callable
+        ``delta(N)``: the ``(N, 3N)`` atlas of delta form factors.
+    """
 
     def __init__(self, context, resolution: int, delta):
         n = int(resolution)
@@ -84,7 +94,19 @@ class Hemicube(GLResource):
 
     def upload(self, vertices: np.ndarray, triangles: np.ndarray, patch: np.ndarray,
                n_patches: int) -> None:
-        """The scene: triangles (T, 3) into vertices, each of patch ``patch[t]``."""
+        """The scene: triangles (T, 3) into vertices, each of patch ``patch[t]``.
+
+        Parameters
+        ----------
+        vertices : ndarray
+            ``(V, 3)`` positions.
+        triangles : ndarray
+            ``(T, 3)`` indices.
+        patch : ndarray
+            ``(T,)`` each triangle's patch.
+        n_patches : int
+            The patches.
+        """
         self._check()
         self.context.make_current()
         for obj in (self._vao, self._vbo):
@@ -110,7 +132,17 @@ class Hemicube(GLResource):
         self.extent = float(np.linalg.norm(hi - lo)) or 1.0
 
     def faces(self, origin, normal, tangent) -> list[tuple[tuple, np.ndarray]]:
-        """(viewport, view-projection) of the five faces at ``origin``."""
+        """(viewport, view-projection) of the five faces at ``origin``.
+
+        Parameters
+        ----------
+        origin : array_like
+            ``(3,)`` the point (on a patch).
+        normal : array_like
+            ``(3,)`` the patch's unit normal.
+        tangent : array_like
+            ``(3,)`` a unit tangent turning the cube about the normal.
+        """
         n = self.resolution
         # (the near plane: nearer, and the 24-bit depth cannot tell a light 0.5 mm below a
         # ceiling from the ceiling at 500 mm; farther, and a corner's neighbours are clipped)
@@ -129,14 +161,36 @@ class Hemicube(GLResource):
 
     def row(self, origin, normal, tangent) -> np.ndarray:
         """Form factors ``(P,)`` from the point ``origin`` (on a patch facing ``normal``;
-        ``tangent`` turns the cube about it) to every patch."""
+        ``tangent`` turns the cube about it) to every patch.
+
+        Parameters
+        ----------
+        origin : array_like
+            ``(3,)`` the point (on a patch).
+        normal : array_like
+            ``(3,)`` the patch's unit normal.
+        tangent : array_like
+            ``(3,)`` a unit tangent turning the cube about the normal.
+        """
         return self.rows([origin], normal, [tangent])[0]
 
     def rows(self, origins, normal, tangents, back: np.ndarray | None = None) -> np.ndarray:
         """Form factors ``(K, P)`` from each of the points ``origins`` on one patch, the
         cube at point k turned by ``tangents[k]``: drawn ``batch`` at a time, one read each.
         ``back`` (K,), when given, receives the share of each point's hemicube that meets
-        patches from behind (1 for a point inside a closed solid, under a block)."""
+        patches from behind (1 for a point inside a closed solid, under a block).
+
+        Parameters
+        ----------
+        origins : ndarray
+            ``(K, 3)`` points on one patch.
+        normal : array_like
+            ``(3,)`` the patch's unit normal.
+        tangents : ndarray
+            ``(K, 3)`` each cube's turn.
+        back : ndarray or None
+            ``(K,)`` receives each point's share of hemicube meeting patches from behind.
+        """
         import moderngl
 
         self._check()

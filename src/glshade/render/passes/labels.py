@@ -18,7 +18,15 @@ __all__ = ["LabelOverlay"]
 
 class LabelOverlay(GLResource):
     """Draws text bands at the top of viewports; textures are made once per text and
-    width, and freed with the overlay."""
+    width, and freed with the overlay.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    shaders : ShaderLibrary
+        Where its programs are compiled.
+    """
 
     def __init__(self, context, shaders):
         super().__init__(context)
@@ -40,7 +48,15 @@ class LabelOverlay(GLResource):
         return self._textures[key]
 
     def draw(self, text: str, viewport: tuple[int, int, int, int]) -> None:
-        """The label band across the top of ``viewport`` (x, y, w, h; GL's origin)."""
+        """The label band across the top of ``viewport`` (x, y, w, h; GL's origin).
+
+        Parameters
+        ----------
+        text : str
+            The label.
+        viewport : (int, int, int, int)
+            ``(x, y, w, h)``, GL's origin.
+        """
         self._check()
         x, y, w, h = viewport
         ctx = self.context.ctx

@@ -62,6 +62,8 @@ class GpuPathTracer(GLResource):
         (:func:`glshade.radiosity.control.radiosity_control`), used at Russian roulette.
     budget : int
         Loop iterations under which one invocation starts another bounce (``BUDGET``).
+    **changes
+        TraceOptions' fields, by name, laid over ``options``.
     """
 
     #: loop iterations under which an invocation starts another bounce (its own tuning, not
@@ -252,7 +254,19 @@ class GpuPathTracer(GLResource):
             counts: np.ndarray | None = None) -> int:
         """Make every pixel finish ``samples`` more paths seen from ``camera`` (None for
         given rays) -- or, ``counts`` ``(H, W)`` whole numbers, each pixel that many in all
-        (none fewer than it has: adaptive sampling); the passes that took."""
+        (none fewer than it has: adaptive sampling); the passes that took.
+
+        Parameters
+        ----------
+        camera : Camera or None
+            From where (None: the given rays).
+        samples : int
+            Paths a pixel to add.
+        seed : int
+            The random streams' seed.
+        counts : ndarray or None
+            ``(H, W)`` each pixel's samples in all, instead.
+        """
         import moderngl
 
         self._check()
@@ -321,7 +335,17 @@ class GpuPathTracer(GLResource):
 
     def show(self, fbo, exposure: float, srgb: bool = False) -> None:
         """Draw the picture so far (mean times ``exposure``, clipped) into ``fbo``, a
-        framebuffer of this size (a window's): what the viewer's progressive mode shows."""
+        framebuffer of this size (a window's): what the viewer's progressive mode shows.
+
+        Parameters
+        ----------
+        fbo : moderngl.Framebuffer
+            A framebuffer of this size.
+        exposure : float
+            The factor on the mean.
+        srgb : bool
+            Encode as sRGB.
+        """
         import moderngl
 
         self._check()

@@ -68,7 +68,13 @@ def light_frames(light_row: np.ndarray, bounds: np.ndarray):
 def shadow_lights(lights) -> np.ndarray:
     """``(L, 4)`` float32 rows the compute programs read: a point light's world position
     with w = 1, a directional light's unit vector towards it with w = 0; w = 2 for a light
-    that casts no shadows."""
+    that casts no shadows.
+
+    Parameters
+    ----------
+    lights : sequence
+        The draw's lights.
+    """
     rows = np.zeros((max(len(lights), 1), 4), np.float32)
     for i, light in enumerate(lights):
         if hasattr(light, "position"):
@@ -81,7 +87,15 @@ def shadow_lights(lights) -> np.ndarray:
 
 
 class ShadowMaps(GLResource):
-    """The depth maps of a Renderer's lights and the program that draws them."""
+    """The depth maps of a Renderer's lights and the program that draws them.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    shaders : ShaderLibrary
+        Where its programs are compiled.
+    """
 
     def __init__(self, context, shaders):
         super().__init__(context)
@@ -173,7 +187,15 @@ class ShadowMaps(GLResource):
     @staticmethod
     def lookup_uniforms(maps: list[tuple], units: list[int]) -> dict:
         """shadow_lookup.glsl's arrays for ``maps`` (from :meth:`draw_maps`), their
-        textures on ``units``."""
+        textures on ``units``.
+
+        Parameters
+        ----------
+        maps : list of tuple
+            The maps (:meth:`draw_maps`).
+        units : list of int
+            Their texture units.
+        """
         views = []
         for _, _, v, _ in maps:
             views += [gl_bytes(m) for m in v] + [gl_bytes(np.eye(4))] * (6 - len(v))
@@ -188,7 +210,17 @@ class ShadowMaps(GLResource):
 
     def forward(self, state, occluders: tuple[tuple, np.ndarray], first_unit: int) -> dict:
         """For a draw that looks its maps up as it shades (SHADOW_MAPS_FORWARD): the maps
-        bound from ``first_unit`` on, and the uniforms every program of the draw takes."""
+        bound from ``first_unit`` on, and the uniforms every program of the draw takes.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        occluders : (tuple, ndarray)
+            ``(key, (T, 3, 3) world triangles)``: what casts shadows.
+        first_unit : int
+            The first texture unit for the maps.
+        """
         maps = self.draw_maps(state, occluders)
         units = [first_unit + i for i in range(len(maps))]
         for (tex, *_), unit in zip(maps, units):
@@ -200,7 +232,21 @@ class ShadowMaps(GLResource):
     def fill(self, state, occluders: tuple[tuple, np.ndarray], gbuf, vis, put) -> None:
         """Each light's map (:meth:`draw_maps`), then its layer of ``vis`` by PCF lookups
         at the G-buffer ``gbuf``'s points (the visibility a frame reads back); ``put``
-        writes the lookup program's uniforms."""
+        writes the lookup program's uniforms.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        occluders : (tuple, ndarray)
+            ``(key, (T, 3, 3) world triangles)``: what casts shadows.
+        gbuf : GBuffer
+            The draw's surface points.
+        vis : moderngl.Texture
+            The visibility array.
+        put : callable
+            Writes the lookup program's uniforms.
+        """
         from ...scene.camera import Projection
         from .gbuffer import bind_gbuffer
 

@@ -144,7 +144,15 @@ class ShadowPass(GLResource, Stage):
         return self._gbuffer[1]
 
     def visibility(self, width: int, height: int, layers: int):
-        """The ``(W, H, layers)`` R8 array the shading programs read (made once a size)."""
+        """The ``(W, H, layers)`` R8 array the shading programs read (made once a size).
+
+        Parameters
+        ----------
+        width, height : int
+            The draw's size in pixels.
+        layers : int
+            Its lights.
+        """
         key = (width, height, layers)
         if self._visibility is None or self._visibility[0] != key:
             if self._visibility is not None:
@@ -157,7 +165,13 @@ class ShadowPass(GLResource, Stage):
     def occluder_triangles(self, scene) -> tuple[tuple, np.ndarray]:
         """``(key, (T, 3, 3) world triangles)`` of the scene's occluders: what the maps draw
         -- the exact method's BVH's when it has one for this geometry, else gathered (and
-        kept) without building a hierarchy the maps do not use."""
+        kept) without building a hierarchy the maps do not use.
+
+        Parameters
+        ----------
+        scene : Scene
+            The scene.
+        """
         from ...scene.occluders import occluders
 
         key = _geometry_key(scene)
@@ -169,7 +183,13 @@ class ShadowPass(GLResource, Stage):
 
     def occluding(self, scene) -> _Occluding:
         """The scene's occluders on the GPU (a BVH in storage buffers), built again only
-        when the geometry changed (meshes, patches, transforms, visibility, opacity)."""
+        when the geometry changed (meshes, patches, transforms, visibility, opacity).
+
+        Parameters
+        ----------
+        scene : Scene
+            The scene.
+        """
         from ...geometry.bvh import NO_CHILDREN, build, packed_children
         from ...scene.occluders import occluders
 
@@ -229,7 +249,13 @@ class ShadowPass(GLResource, Stage):
         """Find each light's visibility for ``state``'s draw: for a draw whose programs find
         it themselves as they shade (``variant.forward`` MAPS or RAYS), bind what they read
         and add the uniforms they take; else draw the G-buffer with the opaque stages,
-        fill the visibility array at its points and add its unit."""
+        fill the visibility array at its points and add its unit.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
         self._check()
         self.drawn = True
         # (compute shaders, storage buffers, sampler arrays)
@@ -266,13 +292,27 @@ class ShadowPass(GLResource, Stage):
         return state.with_uniforms({"u_visibility": UNIT})
 
     def draw(self, state, id_base: int) -> int:
-        """Bind the visibility array (a draw through a G-buffer) for the shading programs."""
+        """Bind the visibility array (a draw through a G-buffer) for the shading programs.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
         if self._array is not None:
             self._array.use(UNIT)
         return id_base
 
     def finish(self, state) -> None:
-        """After a draw whose fragments traced their own rays: count those that ran out."""
+        """After a draw whose fragments traced their own rays: count those that ran out.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        """
         if state.variant.forward is Forward.RAYS:
             self.forward_done()
 
@@ -384,7 +424,19 @@ class ShadowPass(GLResource, Stage):
 
     def dispatch(self, prog, state, vis, keep_count: bool = False) -> None:
         """Run ``prog`` over the viewport's pixels x the lights; count the rays that ran out
-        of their budget (a warning, never silent)."""
+        of their budget (a warning, never silent).
+
+        Parameters
+        ----------
+        prog : moderngl.ComputeShader
+            The compute program.
+        state : DrawState
+            The draw.
+        vis : moderngl.Texture
+            The visibility array.
+        keep_count : bool
+            Add to the count of rays out of budget (else start it anew).
+        """
         ctx = self.context.ctx
         if not keep_count:
             self._counts.write(np.zeros(1, np.uint32).tobytes())

@@ -244,7 +244,15 @@ class TransparencyPass(GLResource, Stage):
 
     def draw(self, state, id_base: int) -> int:
         """Draw the transparent models of ``state``'s draw over its opaque picture (their
-        ids were counted by the mesh pass); the target bound again after."""
+        ids were counted by the mesh pass); the target bound again after.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
         self.drawn = True
         self._composite(state, self._models(state))
         state.target.bind(state.options.outputs)

@@ -25,6 +25,7 @@ def render(args: a.RenderCommandArgs) -> int:
     """``glshade render``: one image of a mesh, scene or solid."""
     from ..io.images import save_image
     from ..render.renderer import Renderer
+    from ..render.state import sees_through
 
     v.check_outputs({"the image": args.output})  # (before any work)
     job = load_job(args, args.mesh)
@@ -32,8 +33,7 @@ def render(args: a.RenderCommandArgs) -> int:
     with job.explained(), Renderer(config=job.config(args.backend)) as renderer:
         image = renderer.render(job.scene, job.camera, options)
         shadows = _shadow_summary(renderer, options)
-        if any(m.visible and m.material.transparent for m in job.scene.models) and \
-                renderer.transparency is not None:
+        if sees_through(options, job.scene) and renderer.transparency is not None:
             shadows += f"; {renderer.transparency}"
     save_image(image, args.output)
     if not args.quiet:

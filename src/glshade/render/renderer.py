@@ -39,7 +39,7 @@ from .passes.shadows import ShadowPass
 from .passes.transparency import TransparencyPass
 from .programs import MaterialUniforms, UniformWriter
 from .shaders import ShaderLibrary
-from .state import SHADOWED_MODES, TRANSPARENT_MODES, DrawState
+from .state import SHADOWED_MODES, DrawState, sees_through
 from .target import OffscreenTarget, check_fits
 
 __all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
@@ -172,8 +172,7 @@ def _blends(options: DrawOptions, scene: Scene) -> bool:
     "blend"``): then its colour is drawn into a float target and rounded once at the end --
     each layer rounded to 8 bits would lose up to half a level a layer (32 layers of
     opacity 0.2 gave 253 where 1 - 0.8^32 is 254.8)."""
-    return options.transparency is Transparency.BLEND and options.mode in TRANSPARENT_MODES \
-        and any(m.visible and m.material.transparent for m in scene.models)
+    return options.transparency is Transparency.BLEND and sees_through(options, scene)
 
 
 def _to_u8(color: np.ndarray) -> np.ndarray:
@@ -188,11 +187,9 @@ def _id_pass(options: DrawOptions, scene: Scene) -> DrawOptions:
     mode's, whose fragments only write what they are (the colour is thrown away): the same
     ids and depth for less shading (the pass alone 1.25x as fast as Phong's, a frame 1.09x
     at MSAA 4: benchmarks/dataset_bench.py)."""
-    see_through = options.mode in TRANSPARENT_MODES and (
-        any(m.visible and m.material.transparent for m in scene.models) or
-        any(m.visible and m.material.transparent for m in scene.solids))
     cheap = (not options.outputs & Outputs.NORMAL and options.shadows is Shadows.OFF
-             and not options.wireframe and not scene.patch_models and not see_through)
+             and not options.wireframe and not scene.patch_models
+             and not sees_through(options, scene))
     return options.replace(mode=ShadingMode.DEPTH, edges=False) if cheap else options
 
 

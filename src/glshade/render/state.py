@@ -22,7 +22,7 @@ from ..options import DrawOptions
 from ..scene import Camera, Scene
 from .programs import Forward, Variant, light_kind
 
-__all__ = ["DrawState", "SHADOWED_MODES", "TRANSPARENT_MODES"]
+__all__ = ["DrawState", "SHADOWED_MODES", "TRANSPARENT_MODES", "sees_through"]
 
 #: the modes whose lights a shadow hides (the others show no light: normals, depth,
 #: radiosity's solved values)
@@ -32,6 +32,22 @@ SHADOWED_MODES = (ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG)
 TRANSPARENT_MODES = SHADOWED_MODES + (ShadingMode.RADIOSITY,)
 
 _FLIP_Y = np.diag([1.0, -1.0, 1.0, 1.0])
+
+
+def sees_through(options, scene) -> bool:
+    """Whether a draw with ``options`` has transparent surfaces to composite: a shown mesh
+    model whose material is transparent, in a mode that sees through it (the rule
+    :meth:`DrawState.transparent` applies model by model).
+
+    Parameters
+    ----------
+    options : DrawOptions
+        The draw's options (its mode).
+    scene : Scene
+        What is drawn.
+    """
+    return options.mode in TRANSPARENT_MODES and any(
+        m.visible and m.material.transparent for m in scene.models)
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,45 +1,80 @@
 #version 330 core
-// An edge's colour, unlit, where its point on the centre line is seen. Seen: no surface
-// drawn before the edges is nearer there than the edge itself, judged in view depth against
-// the 3x3 pixels around that point (the window depth the surfaces left, copied to
-// u_scene_depth): the edge may be as far as the farthest of them, plus their spread (the
-// surfaces' slope across a pixel: a concave edge lies behind the pixels beside it) and
-// four steps of the depth buffer -- so the judgement holds at any near plane. A pixel of
-// the 3x3 with nothing drawn makes the point seen (a silhouette).
+// An edge's colour, unlit, where its point on the centre line is seen. The pixel holding
+// that point decides, from the window depth the surfaces left there (copied to
+// u_scene_depth):
+// - nothing drawn there: seen (a silhouette against the background);
+// - one of the edge's own faces drawn there (the depth lies on that face's plane, somewhere
+//   within the pixel's square -- the depth buffer may hold any of its samples -- and within
+//   OWN_REACH pixel footprints of the edge's depth: a face seen nearly edge-on spans so
+//   many depths in one pixel that its plane would claim surfaces far in front of it): seen,
+//   be the edge convex or concave;
+// - another surface: seen where it is no nearer than the edge (a silhouette in front of a
+//   farther surface), hidden where it is nearer.
+// No constant bias, no look at the neighbouring pixels (a neighbour across a silhouette says
+// nothing about this point): the judgement holds at any near plane, inside a scene or out.
 uniform vec3 u_edge_color;
 uniform sampler2D u_scene_depth;   // window depth in [0, 1] (1: nothing drawn)
 uniform mat4 u_inverse_proj;       // clip -> view
+uniform vec2 u_viewport_origin;    // pixels
+uniform vec2 u_viewport_size;      // pixels
 uniform int u_hide;                // 1: hide what is behind the surfaces (depth test on)
 
 noperspective in vec2 g_centre;
 noperspective in float g_ndc_z;
+flat in vec4 g_plane_a;
+flat in vec4 g_plane_b;
 
 layout(location = 0) out vec4 frag_color;
+
+// how far from the edge's depth, in the pixel's footprint at that depth, its own face may
+// be found: faces up to atan(4) = 76 degrees from the line of sight
+const float OWN_REACH = 4.0;
+
+vec3 unproject(vec2 window, float ndc_z) {
+    vec2 ndc = (window - u_viewport_origin) / u_viewport_size * 2.0 - 1.0;
+    vec4 q = u_inverse_proj * vec4(ndc, ndc_z, 1.0);
+    return q.xyz / q.w;
+}
 
 float view_depth(float ndc_z) {
     vec4 q = u_inverse_proj * vec4(0.0, 0.0, ndc_z, 1.0);
     return -q.z / q.w;
 }
 
+// The view depths a plane takes over the pixel square around ``centre`` (its four
+// corners' rays; the plane is flat, so they bound it): (min, max), or an empty range for a
+// degenerate face or a plane seen edge-on.
+vec2 plane_depths(vec4 plane, vec2 centre) {
+    vec2 range = vec2(1e38, -1e38);
+    if (dot(plane.xyz, plane.xyz) < 0.25) return range;
+    for (int i = 0; i < 4; ++i) {
+        vec2 corner = centre + 0.5 * vec2((i & 1) == 0 ? -1.0 : 1.0, i < 2 ? -1.0 : 1.0);
+        vec3 p0 = unproject(corner, -1.0), p1 = unproject(corner, 1.0);
+        float along = dot(plane.xyz, p1 - p0);
+        if (abs(along) < 1e-30) return vec2(1e38, -1e38);
+        vec3 hit = p0 + (plane.w - dot(plane.xyz, p0)) / along * (p1 - p0);
+        range = vec2(min(range.x, -hit.z), max(range.y, -hit.z));
+    }
+    return range;
+}
+
 void main() {
     if (u_hide != 0) {
         ivec2 size = textureSize(u_scene_depth, 0);
-        ivec2 c = ivec2(floor(g_centre));
-        float far_w = 0.0, near_d = 1e30, far_d = -1e30;
-        bool open = false;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                ivec2 p = clamp(c + ivec2(dx, dy), ivec2(0), size - 1);
-                float w = texelFetch(u_scene_depth, p, 0).r;
-                if (w >= 1.0) { open = true; continue; }
-                float d = view_depth(2.0 * w - 1.0);
-                far_w = max(far_w, w);
-                near_d = min(near_d, d);
-                far_d = max(far_d, d);
-            }
-        if (!open) {
-            float step4 = view_depth(2.0 * min(far_w + 4.0 / 16777216.0, 1.0) - 1.0) - far_d;
-            if (view_depth(g_ndc_z) > far_d + (far_d - near_d) + step4) discard;
+        ivec2 c = clamp(ivec2(floor(g_centre)), ivec2(0), size - 1);
+        float w = texelFetch(u_scene_depth, c, 0).r;
+        if (w < 1.0) {
+            float d = view_depth(2.0 * w - 1.0);
+            // four steps of the 24-bit depth buffer there: its own rounding
+            float step4 = view_depth(2.0 * min(w + 4.0 / 16777216.0, 1.0) - 1.0) - d;
+            vec2 centre = vec2(c) + 0.5;
+            float edge_d = view_depth(g_ndc_z);
+            float footprint = length(unproject(centre + vec2(1.0, 0.0), g_ndc_z)
+                                     - unproject(centre, g_ndc_z));
+            vec2 a = plane_depths(g_plane_a, centre), b = plane_depths(g_plane_b, centre);
+            bool own = abs(d - edge_d) <= OWN_REACH * footprint + step4 && (
+                (d >= a.x - step4 && d <= a.y + step4) || (d >= b.x - step4 && d <= b.y + step4));
+            if (!own && d + step4 < edge_d) discard;
         }
     }
     frag_color = vec4(u_edge_color, 1.0);

@@ -1,8 +1,9 @@
 #version 330 core
 // Each edge becomes a screen-aligned quad ``u_edge_width`` pixels wide. Every fragment
-// carries the point of the edge's centre line it belongs to (window pixels) and the edge's
-// depth there (NDC z, which is linear along the line on screen): edges.frag decides, per
-// pixel, whether that point of the edge is seen.
+// carries the point of the edge's centre line it belongs to (window pixels), the edge's
+// depth there (NDC z, which is linear along the line on screen) and the planes of the
+// edge's two faces (view space): edges.frag decides, per pixel, whether that point of the
+// edge is seen.
 layout(lines) in;
 layout(triangle_strip, max_vertices = 4) out;
 
@@ -10,12 +11,20 @@ uniform vec2 u_viewport_origin; // pixels
 uniform vec2 u_viewport_size;   // pixels
 uniform float u_edge_width;     // pixels
 
+in vec3 v_position[];
+in vec3 v_normal_a[];
+in vec3 v_normal_b[];
+
 noperspective out vec2 g_centre;   // the centre line's point, window pixels
 noperspective out float g_ndc_z;   // the edge's depth there
+flat out vec4 g_plane_a;           // (n, n . p) of the edge's faces, view space
+flat out vec4 g_plane_b;
 
-void emit(vec2 ndc, vec2 centre_ndc, float z) {
+void emit(vec2 ndc, vec2 centre_ndc, float z, vec4 plane_a, vec4 plane_b) {
     g_centre = (centre_ndc * 0.5 + 0.5) * u_viewport_size + u_viewport_origin;
     g_ndc_z = z;
+    g_plane_a = plane_a;
+    g_plane_b = plane_b;
     gl_Position = vec4(ndc, 0.0, 1.0);
     EmitVertex();
 }
@@ -33,9 +42,12 @@ void main() {
     vec2 n = len > 0.0 ? vec2(-dir.y, dir.x) / len : vec2(1.0, 0.0);
     vec2 off = n * 0.5 * u_edge_width / (0.5 * u_viewport_size);
     float za = a.z / a.w, zb = b.z / b.w;
-    emit(na + off, na, za);
-    emit(na - off, na, za);
-    emit(nb + off, nb, zb);
-    emit(nb - off, nb, zb);
+    vec3 p = v_position[0];
+    vec4 pa = vec4(v_normal_a[0], dot(v_normal_a[0], p));
+    vec4 pb = vec4(v_normal_b[0], dot(v_normal_b[0], p));
+    emit(na + off, na, za, pa, pb);
+    emit(na - off, na, za, pa, pb);
+    emit(nb + off, nb, zb, pa, pb);
+    emit(nb - off, nb, zb, pa, pb);
     EndPrimitive();
 }

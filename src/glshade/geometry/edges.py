@@ -53,6 +53,13 @@ class EdgeGroups:
         """``(E,)`` the first half-edge (in input order) of each edge."""
         return self.order[self.start]
 
+    @property
+    def sides(self) -> Int:
+        """``(E, 2)`` each edge's first two half-edges, in input order; an edge with one
+        (a boundary) names it twice."""
+        second = self.start + (self.count > 1)
+        return np.stack([self.order[self.start], self.order[second]], axis=1)
+
     def pairs(self) -> tuple[Int, Int]:
         """The two half-edges ``(h0, h1)`` of every edge that has exactly two."""
         s = self.start[self.count == 2]

@@ -255,6 +255,13 @@ class Mesh:
         return _readonly(np.stack([self.edge_groups.lo, self.edge_groups.hi], axis=1))
 
     @cached_property
+    def edge_faces(self) -> NDArray[np.int64]:
+        """``(E, 2)`` the faces on either side of each edge of :attr:`edges` (a boundary
+        edge's one face twice; an edge of more than two faces, its first two), so that an
+        edge can be drawn where either of its faces is seen."""
+        return _readonly(self.corner_face[self.edge_groups.sides])
+
+    @cached_property
     def edge_groups(self) -> EdgeGroups:
         """The half-edges grouped by undirected edge (see :mod:`glshade.geometry.edges`)."""
         he = self.half_edges

@@ -191,7 +191,9 @@ class GpuMesh(GLResource):
 
     def edge_array(self, program):
         """The VAO of the mesh's polygon edges (each polygon's boundary, never its
-        triangulation's diagonals) as lines, for ``edges.vert``; made on first use.
+        triangulation's diagonals) as lines, for ``edges.vert``; made on first use. Each
+        end carries the unit normals of the edge's two faces (``Mesh.edge_faces``): the
+        planes through the edge that ``edges.frag`` recognises in the depth buffer.
 
         Parameters
         ----------
@@ -206,10 +208,15 @@ class GpuMesh(GLResource):
             if m is None:
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
             ctx = self.context.ctx
-            vbo = self._keep(ctx.buffer(m.vertices.astype("f4").tobytes()))
-            ibo = self._keep(ctx.buffer(m.edges.astype("u4").tobytes()))
-            vao = self._vaos[key] = ctx.vertex_array(program, [(vbo, "3f", "in_position")],
-                                                     ibo, 4)
+            ends = m.vertices[m.edges]                                  # (E, 2, 3)
+            planes = m.face_normals[m.edge_faces].reshape(-1, 1, 6)     # (E, 1, 6)
+            data = np.concatenate([ends, np.broadcast_to(planes, (len(ends), 2, 6))], -1)
+            vbo = self._keep(ctx.buffer(data.astype("f4").tobytes()))
+            names = [n for n in ("in_position", "in_normal_a", "in_normal_b") if n in program]
+            fmt = " ".join(f if n in names else "12x" for n, f in
+                           (("in_position", "3f"), ("in_normal_a", "3f"),
+                            ("in_normal_b", "3f")))
+            vao = self._vaos[key] = ctx.vertex_array(program, [(vbo, fmt, *names)])
         return vao
 
     def vertex_array(self, program, mode: ShadingMode):

@@ -5,13 +5,13 @@ triangulation) drawn as lines a few pixels wide, on top of the filled picture or
 Lines are widened into screen-aligned quads by a geometry shader (``edges.geom``): GL core
 profiles promise no line width above 1, and a 1-pixel line vanishes on a large image, so the
 width grows with the image (:func:`edge_width`). Whether an edge is seen is decided per
-pixel, in view depth (``edges.frag``): the surfaces' depth buffer is copied to a texture,
-and each fragment compares the edge's own depth at its point of the centre line with the
-3x3 pixels around that point, allowing their spread (a surface's slope: a concave edge lies
-behind the pixels beside it) and four steps of the depth buffer -- no constant bias, so it
-holds at any near plane, with the camera inside the scene or out; a silhouette (nothing
-drawn beside it) is seen along its length. They go to the colour only: the auxiliary
-outputs (ids, depth, normals) stay the surfaces'.
+pixel (``edges.frag``): the surfaces' depth buffer is copied to a texture, and the pixel
+holding the point of the edge's centre line decides -- nothing drawn there, or one of the
+edge's own two faces (the depth lies on that face's plane within the pixel's square), or a
+surface no nearer than the edge: seen; a nearer surface: hidden. No constant bias and no
+neighbouring pixels (which, across a silhouette, see something else): it holds at any near
+plane, with the camera inside the scene or out, convex edges and concave. They go to the
+colour only: the auxiliary outputs (ids, depth, normals) stay the surfaces'.
 """
 
 from __future__ import annotations
@@ -113,7 +113,9 @@ class EdgePass(GLResource, Stage):
         ctx.disable(moderngl.CULL_FACE)
         ctx.disable(moderngl.DEPTH_TEST)  # (seen or not is edges.frag's judgement)
         for i, (gpu, model) in enumerate(gpu_meshes):
+            normal_world, _ = self.meshes.normal_matrix(model, model.tobytes())
             put(prog, "u_model_view", gl_bytes(state.view @ model))
+            put(prog, "u_normal_view", gl_bytes(state.view[:3, :3] @ normal_world))
             put(prog, "u_edge_color", tuple(float(c) for c in
                                             (colors[i] if colors is not None else EDGE_COLOR)))
             gpu.edge_array(prog).render(moderngl.LINES)

@@ -32,10 +32,6 @@ from . import Stage
 __all__ = ["MeshPass"]
 
 
-def _mat3(m: np.ndarray) -> bytes:
-    return np.ascontiguousarray(np.asarray(m, dtype=np.float32).T).tobytes()
-
-
 class MeshPass(GLResource, Stage):
     """A Renderer's meshes on the GPU and the drawing of them.
 
@@ -216,11 +212,11 @@ class MeshPass(GLResource, Stage):
         transform = m.tobytes()
         normal_world, mirrored = self.normal_matrix(m, transform)
         # (the view is rigid: its inverse transpose is itself)
-        put(prog, "u_normal_view", _mat3(view[:3, :3] @ normal_world))
+        put(prog, "u_normal_view", gl_bytes(view[:3, :3] @ normal_world))
         put(prog, "u_model_view", gl_bytes(model_view))
         held = (transform, id_base, model.material, lights, scene.ambient)
         if self._model_state.get(id(prog)) != held:  # else all of it is in place
-            put(prog, "u_normal_world", _mat3(normal_world))
+            put(prog, "u_normal_world", gl_bytes(normal_world))
             put(prog, "u_face_id_base", id_base)
             put(prog, "u_opacity", float(model.material.opacity))
             for name, value in self.materials(model.material, lights, scene.ambient):

@@ -30,4 +30,27 @@ vec3 gbuffer_point(ivec2 at, float depth, out vec3 to_eye) {
     return p;
 #endif
 }
+
+// The plane of the polygon drawn at viewport pixel ``at`` (world point p, polygon id
+// ``face_id``): its unit normal from the points of the pixels beside it on the same polygon
+// (a polygon is flat; the stored shading normal is not its plane on a smooth mesh), or
+// ``fallback`` where no such pixel lies beside it in x or in y. The sign is arbitrary.
+vec3 gbuffer_plane_normal(ivec2 at, vec3 p, int face_id, vec3 fallback) {
+    ivec2 origin = ivec2(u_viewport.xy), size = ivec2(u_viewport.zw);
+    vec3 steps[2];
+    bool found[2] = bool[2](false, false);
+    for (int axis = 0; axis < 2; ++axis) {
+        for (int side = 1; side >= -1 && !found[axis]; side -= 2) {
+            ivec2 q = at + (axis == 0 ? ivec2(side, 0) : ivec2(0, side));
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+            if (texelFetch(u_face_ids, origin + q, 0).r != face_id) continue;
+            vec3 unused;
+            float d = uintBitsToFloat(texelFetch(u_depth_bits, origin + q, 0).r);
+            steps[axis] = (gbuffer_point(q, d, unused) - p) * float(side);
+            found[axis] = true;
+        }
+    }
+    vec3 c = found[0] && found[1] ? cross(steps[0], steps[1]) : vec3(0.0);
+    return dot(c, c) > 0.0 ? normalize(c) : fallback;
+}
 #endif

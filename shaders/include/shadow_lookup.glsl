@@ -7,10 +7,12 @@
 //
 // A directional light has one orthographic map (faces 1); a point light six square
 // perspective faces of 90 degrees (a cube map, laid out as tiles of one depth texture, 3
-// across and 2 down), chosen by the major axis of the point's direction from the light.
+// across and 2 down), chosen by the major axis of the direction from the light.
 // The bias is the texel's footprint on the surface: one texel's width (at the point's
 // distance) times (1 + PCF_RADIUS) times the slope tan(theta) of the surface against the
 // light, capped, plus one texel: enough that a lit plane never shades itself, and no more.
+// A cube map's PCF texels that fall off the point's face are read from the face that holds
+// them (cube_visibility).
 #ifndef SHADOW_LOOKUP_GLSL
 #define SHADOW_LOOKUP_GLSL
 #ifndef SHADOW_LIGHTS
@@ -39,39 +41,68 @@ float occluder_distance(int i, int f, ivec2 t) {
     return u_ortho[i].z + z * (u_ortho[i].w - u_ortho[i].z);
 }
 
+// the face of a point light's cube map that holds direction d (its major axis)
+int cube_face(vec3 d) {
+    vec3 m = abs(d);
+    return m.x >= m.y && m.x >= m.z ? (d.x > 0.0 ? 0 : 1) :
+           m.y >= m.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
+}
+
+// A point light's PCF: the texels around the point's own on its face, each looked up along
+// its own ray from the light -- which may leave the face: then on the face that holds it
+// (clamping to the face's border read the wrong texels along every seam), against the
+// point's own distance along that face's axis.
+float cube_visibility(int i, vec3 p, float tan_t) {
+    vec3 light = u_map_light[i].xyz;
+    int size = u_map_shape[i].y;
+    vec3 a = p - light;
+    int f = cube_face(a);
+    vec3 q = mat3(u_face_view[6 * i + f]) * a;
+    float dist = -q.z;                           // along the face's view axis
+    vec2 at = (q.xy / dist * 0.5 + 0.5) * float(size) - 0.5;
+    ivec2 base = ivec2(floor(at + 0.5));
+    float texel = 2.0 * dist / float(size);      // a texel's width at the point, world
+    float bias = texel * (1.0 + float(PCF_RADIUS)) * min(tan_t, 8.0) + texel;
+    mat3 from_face = transpose(mat3(u_face_view[6 * i + f]));
+    float lit = 0.0;
+    for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
+        for (int k = -PCF_RADIUS; k <= PCF_RADIUS; ++k) {
+            ivec2 t = base + ivec2(k, j);
+            int g = f;
+            float along = dist;
+            if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(size)))) {
+                vec2 tc = (vec2(t) + 0.5) / float(size) * 2.0 - 1.0;
+                vec3 d = from_face * vec3(tc, -1.0);          // the texel's ray, world
+                g = cube_face(d);
+                vec3 qg = mat3(u_face_view[6 * i + g]) * d;
+                t = ivec2(floor((qg.xy / -qg.z * 0.5 + 0.5) * float(size)));
+                along = -(mat3(u_face_view[6 * i + g]) * a).z;
+            }
+            lit += occluder_distance(i, g, t) + bias >= along ? 1.0 : 0.0;
+        }
+    }
+    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+}
+
 float map_visibility(int i, vec3 p, vec3 n) {
     vec4 light = u_map_light[i];
     if (light.w > 1.5) return 1.0;  // (a light that casts no shadows)
     vec3 to_light = light.w > 0.5 ? normalize(light.xyz - p) : light.xyz;
     float cos_t = clamp(abs(dot(n, to_light)), 0.05, 1.0);
     float tan_t = sqrt(1.0 - cos_t * cos_t) / cos_t;
-    // the face that holds the point (a cube's by the major axis of light -> point)
-    bool cube = u_map_shape[i].x == 6;
+    if (u_map_shape[i].x == 6) return cube_visibility(i, p, tan_t);
     int size = u_map_shape[i].y;
-    int f = 0;
-    if (cube) {
-        vec3 a = p - light.xyz, m = abs(a);
-        f = m.x >= m.y && m.x >= m.z ? (a.x > 0.0 ? 0 : 1) :
-            m.y >= m.z ? (a.y > 0.0 ? 2 : 3) : (a.z > 0.0 ? 4 : 5);
-    }
-    vec4 q = u_face_view[6 * i + f] * vec4(p, 1.0);
-    float dist = -q.z;                          // along the face's view axis
-    vec2 uv;
-    float texel;                                // a texel's width on the surface, world
-    if (cube) {
-        uv = q.xy / dist * 0.5 + 0.5;           // (90 degrees: tan 45 = 1)
-        texel = 2.0 * dist / float(size);
-    } else {
-        uv = q.xy / u_ortho[i].xy * 0.5 + 0.5;
-        texel = 2.0 * u_ortho[i].x / float(size);
-    }
+    vec4 q = u_face_view[6 * i] * vec4(p, 1.0);
+    float dist = -q.z;                          // along the light's view axis
+    vec2 uv = q.xy / u_ortho[i].xy * 0.5 + 0.5;
+    float texel = 2.0 * u_ortho[i].x / float(size);  // a texel's width, world
     float bias = texel * (1.0 + float(PCF_RADIUS)) * min(tan_t, 8.0) + texel;
     vec2 at = uv * float(size) - 0.5;
     ivec2 base = ivec2(floor(at + 0.5));
     float lit = 0.0;
     for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
         for (int k = -PCF_RADIUS; k <= PCF_RADIUS; ++k) {
-            lit += occluder_distance(i, f, base + ivec2(k, j)) + bias >= dist ? 1.0 : 0.0;
+            lit += occluder_distance(i, 0, base + ivec2(k, j)) + bias >= dist ? 1.0 : 0.0;
         }
     }
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));

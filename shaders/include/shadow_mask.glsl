@@ -16,7 +16,10 @@ float g_visible[LIGHT_COUNT];
 
 void shadow_prepare(vec3 p_view, vec3 n_world) {
     vec3 p = (u_camera_to_world * vec4(p_view, 1.0)).xyz;
-    vec3 n = normalize(n_world);
+    // (the bias wants the surface's slope against the light: the triangle's own plane,
+    // not the shading normal of a smooth mesh)
+    vec3 plane = cross(dFdx(p), dFdy(p));
+    vec3 n = dot(plane, plane) > 0.0 ? normalize(plane) : normalize(n_world);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         g_visible[i] = map_visibility(i, p, n);
     }

@@ -44,12 +44,14 @@ QUICK_TRACE :=
 QUICK_HIDDEN :=
 QUICK_INTERRUPT := --load
 QUICK_DATASET := --frames 50
+QUICK_INSTANCES := --counts 1000,10000 --frames 5
 else
 QUICK_RENDER := --sizes 512 --meshes 1k,100k --rounds 2
 QUICK_TRACE := --scenes cornell --rounds 1 --reference-spp 1024 --ld-spp 256
 QUICK_HIDDEN := --budget 5
 QUICK_INTERRUPT := --tries 10
 QUICK_DATASET := --frames 10
+QUICK_INSTANCES := --counts 1000,10000 --frames 2
 endif
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
@@ -68,6 +70,7 @@ bench: setup
 	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
 	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)
+	$(PY) benchmarks/instances_bench.py $(QUICK_INSTANCES)
 
 # The documentation site: the README, the chapter notebooks (executed) and the API reference
 # from the docstrings, warnings as errors; open docs/_build/html/index.html

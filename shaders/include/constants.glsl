@@ -40,16 +40,22 @@ flat in vec3 k_light_attenuation[LIGHT_COUNT];
 #define LIGHT_SPECULAR(i) k_light_specular[i]
 
 #else
-uniform vec3 u_ambient_term;                   // Ia ka C
-uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C
 uniform vec3 u_light_specular[MAX_LIGHTS];     // Ip ks
 uniform float u_shininess;                     // n
 uniform vec4 u_light_pos_view[MAX_LIGHTS];     // point: position; directional: unit vector TO it
 uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
+#ifdef INSTANCED  // (an instance's colour is its own: its row, instances.glsl)
+#include "instances.glsl"
+#define AMBIENT_TERM instance_ambient()
+#define LIGHT_DIFFUSE(i) instance_diffuse(i)
+#else
+uniform vec3 u_ambient_term;                   // Ia ka C
+uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C
 #define AMBIENT_TERM u_ambient_term
+#define LIGHT_DIFFUSE(i) u_light_diffuse[i]
+#endif
 #define SHININESS u_shininess
 #define LIGHT_POS_VIEW(i) u_light_pos_view[i]
-#define LIGHT_DIFFUSE(i) u_light_diffuse[i]
 #define LIGHT_SPECULAR(i) u_light_specular[i]
 #define LIGHT_ATTENUATION(i) u_light_attenuation[i]
 
@@ -63,10 +69,10 @@ flat out vec3 k_light_attenuation[LIGHT_COUNT];
 #endif
 
 void forward_constants() {
-    k_ambient_shininess = vec4(u_ambient_term, u_shininess);
+    k_ambient_shininess = vec4(AMBIENT_TERM, u_shininess);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         k_light_pos_view[i] = u_light_pos_view[i];
-        k_light_diffuse[i] = u_light_diffuse[i];
+        k_light_diffuse[i] = LIGHT_DIFFUSE(i);
         k_light_specular[i] = u_light_specular[i];
 #ifdef ANY_ATTENUATED
         k_light_attenuation[i] = u_light_attenuation[i];

@@ -16,7 +16,12 @@ layout(location = 1) out vec4 frag_normal;     // world-space unit normal, w = 1
 layout(location = 2) out int frag_face_id;     // polygon id + 1 (0 = background)
 layout(location = 3) out uint frag_depth_bits; // floatBitsToUint(distance along view axis)
 #ifndef POLYGON_ID_IN  // (else shadow_mask.glsl declared them)
+#ifdef INSTANCED
+#include "instances.glsl"
+#define u_face_id_base instance_face_base()
+#else
 uniform int u_face_id_base;
+#endif
 #ifndef PATCH_IDS
 flat in int v_polygon;                         // this mesh's polygon (polygon_id.glsl)
 #endif

@@ -41,7 +41,12 @@ uniform mat4 u_camera_to_world;
 #else
 #ifndef POLYGON_ID_IN
 #define POLYGON_ID_IN
+#ifdef INSTANCED
+#include "instances.glsl"
+#define u_face_id_base instance_face_base()
+#else
 uniform int u_face_id_base;
+#endif
 flat in int v_polygon;  // this mesh's polygon (polygon_id.glsl)
 #endif
 #define SHADOW_OWN_POLYGON (u_face_id_base + v_polygon)

@@ -27,7 +27,7 @@ MAX_COORDINATE = 1e150
 
 __all__ = ["MAX_COORDINATE", "look_at", "perspective", "orthographic", "normal_matrix",
            "compose_transform",
-           "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up"]
+           "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up", "model_matrices"]
 
 Array = NDArray[np.float64]
 
@@ -235,3 +235,25 @@ def y_up_to_z_up(points: np.ndarray) -> np.ndarray:
         ``(..., 3)`` positions.
     """
     return np.asarray(points, dtype=np.float64)[..., [0, 2, 1]] * [1.0, -1.0, 1.0]
+
+
+def model_matrices(view: ArrayLike, models: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+    """What a model's draw needs of its placements, for K of them at once: the model-view
+    matrices ``(K, 4, 4)``, the normal matrices in view and world space ``(K, 3, 3)``
+    (inverse transposes) and whether each mirrors ``(K,)`` (its faces then wind the other
+    way). One batched computation for a model drawn alone (K = 1) and for K instances, so
+    both draws get the same float32 values.
+
+    Parameters
+    ----------
+    view : array_like
+        ``(4, 4)`` world-to-view matrix (rigid).
+    models : array_like
+        ``(K, 4, 4)`` model-to-world matrices.
+    """
+    view = np.asarray(view, np.float64)
+    models = np.asarray(models, np.float64)
+    normal_world = np.swapaxes(np.linalg.inv(models[:, :3, :3]), 1, 2)
+    # (the view is rigid: its own inverse transpose)
+    return (view @ models, view[:3, :3] @ normal_world, normal_world,
+            np.linalg.det(models[:, :3, :3]) < 0)

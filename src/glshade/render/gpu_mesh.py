@@ -92,6 +92,11 @@ class GpuMesh(GLResource):
         self._indexed = (interleaved, tri, owner)
         self._per_corner: Any = None
 
+    @property
+    def corners(self) -> np.ndarray:
+        """``(4, 8)`` the mesh's bounding-box corners, homogeneous columns (model space)."""
+        return self._corners
+
     def beyond(self, model_view: np.ndarray, near: float) -> bool:
         """Whether the mesh lies wholly beyond a camera's near plane (``model_view``: model
         to view space), so that the camera sees a closed mesh from outside -- where culling

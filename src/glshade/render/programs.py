@@ -211,6 +211,9 @@ class ProgramKey:
         The material has texture maps.
     forward : Forward
         Where shadows are found (array, maps, rays).
+    instanced : bool
+        One draw of many instances, each its own row of transforms and colour
+        (instances.glsl).
     """
 
     mode: ShadingMode
@@ -228,11 +231,13 @@ class ProgramKey:
     textured: bool = False
     #: where the fragment stage finds its lights' visibility (:class:`Forward`)
     forward: Forward = Forward.ARRAY
+    #: an instanced draw: each instance's matrices, first id and colour from its row
+    instanced: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: Role = Role.OPAQUE,
-           textured: bool = False) -> ProgramKey:
+           textured: bool = False, instanced: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model.
 
         Parameters
@@ -247,13 +252,16 @@ class ProgramKey:
             The transparency pass's role.
         textured : bool
             The material has texture maps.
+        instanced : bool
+            One draw of many instances.
         """
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         opaque = oit is Role.OPAQUE
         return cls(variant.mode, variant.aux and opaque, variant.lights, variant.srgb,
                    variant.orthographic, two_sided, flat_constants,
                    variant.shadows and opaque, oit, textured and variant.mode in TEXTURED_MODES,
-                   variant.forward if variant.shadows and opaque else Forward.ARRAY)
+                   variant.forward if variant.shadows and opaque else Forward.ARRAY,
+                   instanced)
 
     def defines(self) -> tuple[str, ...]:
         forward = self.forward is not Forward.ARRAY
@@ -267,7 +275,8 @@ class ProgramKey:
                  ("OIT_FETCH", self.oit is Role.FETCH), ("GLSL_430", capture or forward),
                  ("OIT_BLEND", self.oit is Role.BLEND), ("TEXTURED", self.textured),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
-                 ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS))
+                 ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),
+                 ("INSTANCED", self.instanced))
         out = [name for name, on in flags if on]
         if capture:
             out.append(f"OIT_SLOTS {OIT_SLOTS}")

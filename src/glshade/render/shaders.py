@@ -199,13 +199,14 @@ class ShaderLibrary(GLResource):
         root : Path or None
             Another folder of shaders (None: the packaged ones).
         defines : tuple of str
-            ``#define`` lines injected into every stage.
+            ``#define`` lines injected into every stage (the vertex stage also gets
+            ``GLSHADE_VERTEX_STAGE``: an include serving both stages tells them apart).
         geom : str or None
             A geometry shader's file.
         tess : (str, str) or None
             Tessellation control and evaluation shaders' files.
         """
-        stages = {"vertex_shader": assemble(vert, root, defines),
+        stages = {"vertex_shader": assemble(vert, root, (*defines, "GLSHADE_VERTEX_STAGE")),
                   "fragment_shader": assemble(frag, root, defines)}
         if geom:
             stages["geometry_shader"] = assemble(geom, root, defines)

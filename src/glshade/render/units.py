@@ -27,6 +27,8 @@ class Unit:
     CSG_TREE = 7
     #: the surfaces' depth, copied for the edge overlay (edges.frag)
     EDGE_DEPTH = 8
+    #: an instanced draw's rows of matrices and colours (shaders/include/instances.glsl)
+    INSTANCES = 9
     #: a material's diffuse, specular and opacity maps (shaders/include/textures.glsl)
     MAP_DIFFUSE, MAP_SPECULAR, MAP_OPACITY = 10, 11, 12
     #: a forward map-shadowed draw's light maps, one a light from here (up to 8)

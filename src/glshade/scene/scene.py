@@ -24,7 +24,8 @@ from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "SolidModel", "PatchModel", "Scene", "MAX_DRAWABLE_COORDINATE",
+__all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "Scene",
+           "MAX_DRAWABLE_COORDINATE",
            "MAX_GPU_LEVEL", "MAX_GPU_PATCH_POINTS"]
 
 #: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
@@ -56,6 +57,8 @@ class Model:
         Its class, for ground truth (:attr:`Scene.labels`).
     instance_id : int
         Which object it is (1, 2, ... in the order added; 0: not added by Scene.add).
+    group : InstanceGroup or None
+        The instances it is one of (``Scene.add(..., instances=)``), drawn together.
     """
 
     mesh: Mesh
@@ -69,6 +72,7 @@ class Model:
     #: 2, ... in the order added; the parts of one multi-material mesh share theirs)
     label: str | None = None
     instance_id: int = 0
+    group: InstanceGroup | None = field(default=None, repr=False)
     _constant: tuple | None = field(default=None, repr=False)
 
     @property
@@ -100,6 +104,33 @@ class Model:
             self._constant = (key, np.broadcast_to(np.asarray(c, np.float32),
                                                    (self.mesh.n_vertices, 3)))
         return self._constant[1]
+
+
+@dataclass(eq=False)
+class InstanceGroup:
+    """Copies of one mesh, each its own model in ``Scene.models`` -- its own transform,
+    colour and ``instance_id``, so that every reader of a scene (the tracer, radiosity, the
+    ground truth) sees K objects -- that the renderer draws with one instanced call (the
+    same picture, to the byte, as K models added one by one).
+
+    Parameters
+    ----------
+    models : tuple of Model
+        The instances' models, in order (consecutive in ``Scene.models``).
+    colors : ndarray or None
+        ``(K, 3)`` each instance's linear RGB colour (None: the material's).
+    """
+
+    models: tuple
+    colors: NDArray[np.float64] | None = None
+
+    def __len__(self) -> int:
+        return len(self.models)
+
+    @property
+    def transforms(self) -> NDArray[np.float64]:
+        """``(K, 4, 4)`` each instance's model-to-world matrix, as its model holds it now."""
+        return np.stack([m.transform for m in self.models])
 
 
 @dataclass(eq=False)
@@ -229,7 +260,8 @@ class Scene:
             scale: ArrayLike = 1.0, name: str | None = None,
             crease: float | None = None, vertex_colors: ArrayLike | None = None,
             tessellation: Tessellation | str = "cpu", level: int | None = None,
-            label: str | None = None):
+            label: str | None = None, instances: ArrayLike | None = None,
+            colors: ArrayLike | None = None):
         """Add a mesh (or a CSG solid, :mod:`glshade.solids`, ray cast on the GPU; or patches,
         :mod:`glshade.patches`, tessellated to a thousandth of their size with their exact
         normals -- :func:`~glshade.patches.tessellate` for another tolerance). Place
@@ -270,20 +302,67 @@ class Scene:
         label : str or None
             The model's class, for ground truth (:attr:`labels`; None: its name). Every
             model also gets the next ``instance_id`` (1, 2, ... in the order added).
+        instances : array_like or None
+            ``(K, 4, 4)`` model-to-world matrices: K copies of one mesh of one material,
+            the k-th placed at ``instances[k] @ placement`` (the placement from
+            ``transform`` or ``rotation``/``translation``/``scale``). Each copy is a model
+            of its own (its own ``instance_id``); the renderer draws them with one call.
+            Returns their :class:`InstanceGroup`.
+        colors : array_like or None
+            ``(K, 3)`` linear RGB, each instance's colour (its material's ``color``);
+            only with ``instances``.
         """
         if label is not None and not (isinstance(label, str) and label.strip()):
             raise SceneError(f"label must be a non-empty string (the object's class), got "
                              f"{label!r}")
+        if colors is not None and instances is None:
+            raise SceneError("colors are the instances' colours: give instances= too")
+        copies = None if instances is None else _instance_matrices(instances)
         kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids)
         before = [len(k) for k in kinds]  # (what this add appends: a mesh's parts too)
         model = self._add(mesh, material, transform, rotation, translation, scale, name,
                           crease, vertex_colors, tessellation, level)
-        self._next_instance += 1
-        for added in (m for k, n in zip(kinds, before) for m in k[n:]):
-            added.instance_id = self._next_instance
-            added.label = label if label is not None else (
+        added = [m for k, n in zip(kinds, before) for m in k[n:]]
+        if copies is not None:
+            if added != [model] or not isinstance(model, Model):
+                del self.models[before[0]:], self.patch_models[before[1]:]
+                del self.solids[before[2]:]
+                raise SceneError("instances= copies one mesh of one material; this add "
+                                 f"made {len(added)} models (a solid, GPU patches or a mesh "
+                                 "whose faces name materials): add those one by one")
+            model = self._instances(model, copies, colors)
+            added = list(model.models)
+        for each in added:
+            if copies is not None or each is added[0]:
+                self._next_instance += 1
+            each.instance_id = self._next_instance
+            each.label = label if label is not None else (
                 name or getattr(mesh, "name", None) or type(mesh).__name__)
         return model
+
+    def _instances(self, model: Model, copies: np.ndarray, colors) -> InstanceGroup:
+        """``model`` (the last of ``models``) as the first of ``len(copies)`` instances."""
+        k = len(copies)
+        transforms = copies @ model.transform
+        reach = np.abs(transforms[:, :3, 3]).max() + np.abs(transforms[:, :3, :3]).sum(2).max() \
+            * np.abs(box_corners(model.mesh.bounds)).max()
+        if reach > MAX_DRAWABLE_COORDINATE:
+            del self.models[-1]
+            raise SceneError(f"the instances reach a coordinate of about {reach:g}; the GPU "
+                             f"draws up to {MAX_DRAWABLE_COORDINATE:g}: scale them down")
+        table = None
+        materials = [model.material] * k
+        if colors is not None:
+            table = _instance_colors(colors, k)
+            materials = [dataclasses.replace(model.material, color=tuple(map(float, c)))
+                         for c in table]
+        models = tuple(Model(model.mesh, materials[i], transforms[i], model.name,
+                             vertex_colors=model.vertex_colors) for i in range(k))
+        group = InstanceGroup(models, table)
+        for each in models:
+            each.group = group
+        self.models[-1:] = models
+        return group
 
     def _every_model(self) -> list:
         """Every model in the order its polygon ids run: meshes, patches, solids."""
@@ -486,6 +565,50 @@ def _placement(transform, rotation, translation, scale) -> NDArray[np.float64]:
     if transform is not None:
         return affine_matrix(transform, "transform")
     return affine_matrix(compose_transform(rotation, translation, scale), "transform")
+
+
+def _instance_matrices(values) -> NDArray[np.float64]:
+    """``(K, 4, 4)`` finite, invertible placements, or a SceneError in plain numbers."""
+    try:
+        t = np.array(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise SceneError(f"instances must be a (K, 4, 4) array of numbers, got "
+                         f"{type(values).__name__}") from None
+    if t.ndim != 3 or t.shape[1:] != (4, 4) or len(t) == 0:
+        raise SceneError(f"instances must be a (K, 4, 4) array of model-to-world matrices "
+                         f"with K >= 1, got shape {t.shape}")
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(t).all((1, 2))
+        if not bad.any():
+            bad = ~(np.abs(np.linalg.det(t[:, :3, :3])) > 1e-300)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise SceneError(f"instances[{i}] is not a finite, invertible matrix: "
+                         f"{plain(t[i].tolist())} ({int(bad.sum())} of {len(t)} such)")
+    if not np.allclose(t[:, 3], [0, 0, 0, 1], rtol=0, atol=0):
+        i = int(np.flatnonzero((t[:, 3] != [0, 0, 0, 1]).any(1))[0])
+        raise SceneError(f"instances[{i}]'s last row must be (0, 0, 0, 1) (an affine "
+                         f"placement), got {plain(t[i, 3].tolist())}")
+    return t
+
+
+def _instance_colors(values, k: int) -> NDArray[np.float64]:
+    """``(K, 3)`` colours from 0 to MAX_SHADING_VALUE, or a SceneError in plain numbers."""
+    from .material import MAX_SHADING_VALUE
+
+    rule = f"colors must be ({k:,}, 3) numbers from 0 to {MAX_SHADING_VALUE:g}, one an instance"
+    try:
+        c = np.array(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise SceneError(f"{rule}; got {type(values).__name__}") from None
+    if c.shape != (k, 3):
+        raise SceneError(f"{rule}; got shape {c.shape}")
+    bad = ~(np.isfinite(c) & (c >= 0) & (c <= MAX_SHADING_VALUE)).all(1)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise SceneError(f"{rule}; colors[{i}] is {plain(c[i].tolist())}")
+    c.flags.writeable = False
+    return c
 
 
 def _tessellated(patches, level: int | None = None) -> Mesh:

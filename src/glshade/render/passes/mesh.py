@@ -17,7 +17,7 @@ from typing import Any
 import moderngl
 import numpy as np
 
-from ...geometry.transforms import gl_bytes
+from ...geometry.transforms import gl_bytes, model_matrices
 from ...modes import Culling, ShadingMode
 from ..base import GLResource
 from ..gpu_mesh import GpuMesh
@@ -27,9 +27,67 @@ from ..programs import (
 )
 from ..state import DrawState
 from ..textures import TextureCache
+from ..units import Unit
 from . import Stage
 
-__all__ = ["MeshPass"]
+__all__ = ["MeshPass", "INSTANCE_ROW_WIDTH", "instance_rows"]
+
+#: texels a row of the instances' texture (instances.glsl's INSTANCE_ROW_WIDTH)
+INSTANCE_ROW_WIDTH = 4096
+
+
+def instance_rows(model_view, normal_view, normal_world, first_ids, ambient, diffuse):
+    """The instances' texture rows (instances.glsl): per instance the model-view matrix's
+    columns, the two normal matrices' columns, (first polygon id as bits, Ia ka C), then
+    Ip kd C per light -- float32, as the uniforms of a separate draw would hold them.
+
+    Parameters
+    ----------
+    model_view : ndarray
+        ``(K, 4, 4)`` float64.
+    normal_view, normal_world : ndarray
+        ``(K, 3, 3)`` float64.
+    first_ids : ndarray
+        ``(K,)`` int: each instance's first polygon id.
+    ambient : ndarray
+        ``(K, 3)`` Ia ka C.
+    diffuse : ndarray
+        ``(K, L, 3)`` float32 Ip kd C per light.
+    """
+    k, lights = len(model_view), diffuse.shape[1]
+    rows = np.zeros((k, 11 + lights, 4), np.float32)
+    rows[:, 0:4] = np.swapaxes(model_view, 1, 2)           # (columns)
+    rows[:, 4:7, :3] = np.swapaxes(normal_view, 1, 2)
+    rows[:, 7:10, :3] = np.swapaxes(normal_world, 1, 2)
+    rows[:, 10, 0] = np.asarray(first_ids, np.int32).view(np.float32)
+    rows[:, 10, 1:] = ambient
+    rows[:, 11:, :3] = diffuse
+    return rows
+
+
+def _instance_lighting(group, material, lights, ambient):
+    """``(ambient (K, 3), diffuse (K, L, 3) float32)``: what :func:`material_uniforms`
+    gives each instance's material, for all K at once (the same products, so the same
+    bits)."""
+    from ..programs import material_uniforms
+
+    k = len(group)
+    if group.colors is None:
+        found = dict(material_uniforms(material, lights, ambient))
+        diffuse = np.frombuffer(found["u_light_diffuse"], np.float32).reshape(1, -1, 3)
+        return (np.broadcast_to(np.asarray(found["u_ambient_term"]), (k, 3)),
+                np.broadcast_to(diffuse, (k,) + diffuse.shape[1:]))
+    c = group.colors
+    kd = np.broadcast_to(np.asarray(material.diffuse, np.float64), (k, 3)) \
+        if material.diffuse is not None else material.kd * c
+    ka = np.broadcast_to(np.asarray(material.ambient, np.float64), (k, 3)) \
+        if material.ambient is not None else material.ka * c
+    ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
+    diffuse = (ip[None] * kd[:, None]).astype("f4")
+    ambient_term = np.asarray(ambient, np.float64) * ka
+    if material.illum == 0:
+        ambient_term, diffuse = kd, np.zeros_like(diffuse)
+    return ambient_term, diffuse
 
 
 class MeshPass(GLResource, Stage):
@@ -59,6 +117,7 @@ class MeshPass(GLResource, Stage):
         self._programs: dict[tuple, Any] = {}
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         self._textures: TextureCache | None = None  # (made for the first textured draw)
+        self._instances: Any = None  # (the instances' rows: made for the first group)
         #: the vectors of varyings this GL interpolates (flat constants must fit in them)
         self.max_varyings = int(context.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
 
@@ -111,7 +170,7 @@ class MeshPass(GLResource, Stage):
         return found
 
     def program(self, variant: Variant, two_sided: bool, flat: bool = False,
-                role: Role = Role.OPAQUE, textured: bool = False):
+                role: Role = Role.OPAQUE, textured: bool = False, instanced: bool = False):
         """The compiled program of a variant, with flat lighting constants if asked for and
         they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
         material's maps sampled.
@@ -128,8 +187,10 @@ class MeshPass(GLResource, Stage):
             The transparency pass's role (or opaque).
         textured : bool
             The material has texture maps.
+        instanced : bool
+            One draw of a group's instances (instances.glsl).
         """
-        found = (variant, two_sided, flat, role, textured)
+        found = (variant, two_sided, flat, role, textured, instanced)
         program = self._programs.get(found)
         if program is None:
             forwarded = variant.shadows and variant.forward is not Forward.ARRAY
@@ -137,7 +198,7 @@ class MeshPass(GLResource, Stage):
             flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
                                                self.max_varyings, textured)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
-                                textured=textured)
+                                textured=textured, instanced=instanced)
             program = self._programs[found] = self.shaders.program(key)
         return program
 
@@ -156,15 +217,108 @@ class MeshPass(GLResource, Stage):
         """
         prepared: set[int] = set()
         wireframe = state.options.wireframe
-        for model in state.scene.models:
+        models = state.scene.models
+        skip_to = 0
+        for index, model in enumerate(models):
+            if index < skip_to:  # (drawn with its group)
+                continue
             if not state.drawn(model):
                 id_base += model.mesh.n_faces
                 continue
             gpu = self.gpu_mesh(model.mesh)
+            group = model.group
+            if (group is not None and not wireframe and group.models[0] is model
+                    and self._instanced(state, group, models, index)):
+                self._draw_group(state, group, gpu, id_base, prepared)
+                skip_to = index + len(group)
+                id_base += gpu.n_polygons * len(group)
+                continue
             if not wireframe and not state.transparent(model):
                 self._draw_model(state, model, gpu, id_base, prepared)
             id_base += gpu.n_polygons
         return id_base
+
+    @staticmethod
+    def _instanced(state: DrawState, group, models, index: int) -> bool:
+        """Whether ``group`` (starting at ``models[index]``) is drawn by one instanced call:
+        more than one, all shown and opaque, untextured, where it was added, and not in
+        the ``radiosity`` mode (its colours are per model); else model by model."""
+        first = group.models[0]
+        if (len(group) < 2 or state.options.mode is ShadingMode.RADIOSITY
+                or state.transparent(first) or first.material.textures):
+            return False
+        run = models[index:index + len(group)]
+        return len(run) == len(group) and all(
+            a is b and a.visible and a.mesh is first.mesh and not state.transparent(a)
+            for a, b in zip(run, group.models))
+
+    def _draw_group(self, state: DrawState, group, gpu, id_base: int, prepared: set) -> None:
+        """A group's instances in one instanced call for each way they are drawn (culled
+        or two-sided, mirrored or not): each instance's matrices, first polygon id and
+        colour in its row of a texture (instances.glsl)."""
+        ctx, put, options = self.context.ctx, self.uniforms.put, state.options
+        near = state.camera.planes()[0]
+        first = group.models[0]
+        k = len(group)
+        model_view, normal_view, normal_world, mirrored = model_matrices(
+            state.view, group.transforms)
+        ids = id_base + gpu.n_polygons * np.arange(k)
+        ambient, diffuse = _instance_lighting(group, first.material, state.lights,
+                                              state.scene.ambient)
+        if options.cull is Culling.ON:
+            culled = np.ones(k, bool)
+        elif options.cull is Culling.AUTO and gpu.closed:
+            corners = gpu.corners  # (the mesh's box, model space: beyond the near plane?)
+            culled = ((model_view[:, 2] @ corners) < -near).all(1)
+        else:
+            culled = np.zeros(k, bool)
+        pixels = state.viewport[2] * state.viewport[3]
+        flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
+        for cull in (False, True):
+            for mirror in (False, True):
+                chosen = np.flatnonzero((culled == cull) & (mirrored == mirror))
+                if not len(chosen):
+                    continue
+                prog = self.program(state.variant, not cull, flat, instanced=True)
+                if id(prog) not in prepared:
+                    for name, value in state.frame_uniforms:
+                        put(prog, name, value)
+                    prepared.add(id(prog))
+                for name, value in self.materials(first.material, state.lights,
+                                                  state.scene.ambient):
+                    if name not in ("u_ambient_term", "u_light_diffuse"):
+                        put(prog, name, value)
+                rows = instance_rows(model_view[chosen], normal_view[chosen],
+                                     normal_world[chosen], ids[chosen], ambient[chosen],
+                                     diffuse[chosen])
+                put(prog, "u_instance_stride", rows.shape[1])
+                put(prog, "u_instances", Unit.INSTANCES)
+                self._instance_texture(rows).use(location=Unit.INSTANCES)
+                ctx.front_face = "cw" if mirror != state.flip_rows else "ccw"
+                if cull:
+                    ctx.enable(moderngl.CULL_FACE)
+                    ctx.cull_face = "back"
+                else:
+                    ctx.disable(moderngl.CULL_FACE)
+                gpu.vertex_array(prog, options.mode).render(moderngl.TRIANGLES,
+                                                            instances=len(chosen))
+
+    def _instance_texture(self, rows: np.ndarray):
+        """A float texture holding ``rows`` (``(K, S, 4)``), INSTANCE_ROW_WIDTH texels a
+        row; kept and grown as needed (rewritten every instanced draw)."""
+        texels = rows.reshape(-1, 4)
+        height = -(-len(texels) // INSTANCE_ROW_WIDTH)
+        data = np.zeros((height * INSTANCE_ROW_WIDTH, 4), np.float32)
+        data[:len(texels)] = texels
+        found = self._instances
+        if found is None or found.size[1] < height:
+            if found is not None:
+                found.release()
+            found = self._instances = self.context.ctx.texture(
+                (INSTANCE_ROW_WIDTH, max(height, 1)), 4, dtype="f4")
+            found.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        found.write(data.tobytes(), viewport=(0, 0, INSTANCE_ROW_WIDTH, height))
+        return found
 
     def draw_models(self, state: DrawState, models, role: Role,
                     extra: dict | None = None) -> None:
@@ -245,5 +399,8 @@ class MeshPass(GLResource, Stage):
         if self._textures is not None:
             self._textures.release()
             self._textures = None
+        if self._instances is not None:
+            self._instances.release()
+            self._instances = None
         self._programs.clear()  # (the shader library owns and frees them)
         self._model_state.clear()

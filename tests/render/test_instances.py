@@ -176,3 +176,29 @@ def test_instances_of_a_solid_are_refused():
     with pytest.raises(SceneError, match="copies one mesh of one material"):
         s.add(Sphere(1.0), instances=np.tile(np.eye(4), (2, 1, 1)))
     assert not s.models and not s.solids
+
+
+def test_scene_files_take_instances(tmp_path, make_renderer):
+    """``instances = "transforms.npy"`` and a table of matrices, with ``instance_colors``:
+    the scene the API makes; a missing file and a wrong shape named in one line."""
+    t, colors = placements(6, 7)
+    np.save(tmp_path / "t.npy", t)
+    np.save(tmp_path / "c.npy", colors)
+    table = "[" + ", ".join(str(m.tolist()) for m in t) + "]"
+    for key, value in (("instances", '"t.npy"'), ("instances", table)):
+        path = tmp_path / "s.toml"
+        path.write_text(f'[[mesh]]\nsource = "primitive:torus"\nshininess = 24\n'
+                        f'{key} = {value}\ninstance_colors = "c.npy"\n')
+        scene = g.load_scene(path).scene
+        api = g.Scene()
+        api.add(P.torus(), g.Material(shininess=24), instances=t, colors=colors)
+        assert len(scene.models) == 6
+        r = make_renderer(W, H)
+        assert np.array_equal(r.render(scene, CAMERA, "phong"), r.render(api, CAMERA, "phong"))
+    path.write_text('[[mesh]]\nsource = "primitive:torus"\ninstances = "none.npy"\n')
+    with pytest.raises(g.errors.SceneFormatError, match=r"s.toml:3: .*instances: no such file"):
+        g.load_scene(path)
+    np.save(tmp_path / "bad.npy", np.eye(4))
+    path.write_text('[[mesh]]\nsource = "primitive:torus"\ninstances = "bad.npy"\n')
+    with pytest.raises(g.errors.SceneFormatError, match=r"got shape \(4, 4\)"):
+        g.load_scene(path)

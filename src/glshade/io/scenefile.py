@@ -28,6 +28,9 @@ Example (``assets/scenes/teapot-orbit.toml``)::
 ``[[solid]]`` tables hold CSG trees (``tree = "box(2) - sphere(1.2)"``), ``[[patches]]``
 tables Bezier patches (``source = "patches:teapot"`` or a ``.bpt`` file, ``level`` segments
 a side, ``tessellation = "cpu"`` or ``"gpu"``), with the mesh's material and placement keys.
+A ``[[mesh]]`` with ``instances = "transforms.npy"`` (a ``(K, 4, 4)`` array beside the file,
+or a table of K matrices) is K copies (``Scene.add``'s ``instances``), each coloured by
+``instance_colors`` (``(K, 3)``, the same two forms) where given.
 """
 
 from __future__ import annotations
@@ -135,7 +138,7 @@ _SCHEMA = {
              "ambient": "color", "diffuse": "color", "specular": "color", "illum": "illum",
              "texture": "str", "specular_texture": "str", "opacity_texture": "str",
              "texture_filter": "texture_filter", "texture_wrap": "texture_wrap",
-             "label": "str"},
+             "label": "str", "instances": "array", "instance_colors": "array"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
@@ -274,6 +277,8 @@ _KINDS = {
     "mat4": _mat4,
     "mat3": lambda value: _matrix(value, 3),
     "light_type": _is(lambda v: v in ("point", "directional"), "'point' or 'directional'"),
+    "array": _is(lambda v: (isinstance(v, str) and bool(v)) or isinstance(v, list),
+                 "a .npy file (its path) or a table of numbers"),
     # (the API's own rules)
     "size": _size, "samples": check_samples, "fov": check_fov,
     "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
@@ -442,16 +447,35 @@ def _add_mesh(scene, m: dict, i: int, loc: _Locator, source: str, base: Path) ->
     mesh = _load_mesh(m["source"], base, f"{source}:{loc.line('mesh', i, 'source')}")
     material = _material(m, mesh, base, lambda key: f"{source}:{loc.line('mesh', i, key)}: "
                                                     f"[[mesh]] {i + 1}")
+    arrays = {key: _array(m[key], base, f"{source}:{loc.line('mesh', i, key)}: [[mesh]] "
+                                        f"{i + 1}'s {key}")
+              for key in ("instances", "instance_colors") if key in m}
     try:
         model = scene.add(mesh, material, m.get("transform"), rotation=m.get("rotation"),
                           translation=m.get("translation", (0, 0, 0)),
                           scale=m.get("scale", 1.0), name=m.get("name"),
                           label=m.get("label"),
-                          crease=m.get("crease"))
+                          crease=m.get("crease"), instances=arrays.get("instances"),
+                          colors=arrays.get("instance_colors"))
     except GlshadeError as exc:
         raise SceneFormatError(f"{source}:{loc.line('mesh', i, None)}: [[mesh]] {i + 1}: "
                                f"{exc}") from None
-    model.visible = m.get("visible", True)
+    for each in getattr(model, "models", (model,)):
+        each.visible = m.get("visible", True)
+
+
+def _array(value, base: Path, where: str):
+    """A [[mesh]]'s ``instances`` or ``instance_colors``: the table as given, or the array
+    of a ``.npy`` file (relative to the scene file); Scene.add checks its shape."""
+    if isinstance(value, list):
+        return value
+    path = base / value
+    try:
+        return np.load(path, allow_pickle=False)
+    except FileNotFoundError:
+        raise SceneFormatError(f"{where}: no such file: {path}") from None
+    except (OSError, ValueError) as exc:
+        raise SceneFormatError(f"{where}: {path} is not a .npy array ({exc})") from None
 
 
 #: a [[mesh]]'s keys that make its material (without any, an OBJ's own materials are kept)

@@ -64,6 +64,9 @@ class DrawOptions:
         (McGuire-Bavoil's estimate) or "blend" (in drawing order).
     max_layers : the transparent surfaces "exact" keeps a pixel (the nearest; more are
         counted, reported and left out), default 32.
+    frustum_cull : skip the opaque meshes and instances whose bounding box lies wholly
+        outside the camera's view (one side of the frustum): the same picture, ids and
+        depth, less work in scenes larger than the view. False draws everything.
     """
 
     mode: ShadingMode = ShadingMode.PHONG
@@ -76,13 +79,14 @@ class DrawOptions:
     shadows: Shadows = Shadows.OFF
     transparency: Transparency = Transparency.EXACT
     max_layers: int = 32
+    frustum_cull: bool = True
 
     def __init__(self, mode: ShadingMode | str = ShadingMode.PHONG, depth_test: bool = True,
                  cull: Culling | bool | str = Culling.AUTO, srgb: bool = False,
                  wireframe: bool = False, outputs: Outputs = Outputs.COLOR,
                  edges: bool = False, shadows: Shadows | str | bool = Shadows.OFF,
                  transparency: Transparency | str = Transparency.EXACT,
-                 max_layers: int = 32) -> None:
+                 max_layers: int = 32, frustum_cull: bool = True) -> None:
         # (written out so that names are accepted where members are stored: a mode's name,
         # cull=True; the stored fields are the enums, and type checkers see both)
         put = object.__setattr__
@@ -96,10 +100,11 @@ class DrawOptions:
         put(self, "shadows", Shadows.parse(shadows))
         put(self, "transparency", Transparency.parse(transparency))
         put(self, "max_layers", max_layers)
+        put(self, "frustum_cull", frustum_cull)
         self._check()
 
     def _check(self) -> None:
-        for name in ("depth_test", "srgb", "wireframe", "edges"):
+        for name in ("depth_test", "srgb", "wireframe", "edges", "frustum_cull"):
             value = getattr(self, name)
             if not isinstance(value, bool):
                 raise OptionError(f"{name} must be True or False, got {value!r}")

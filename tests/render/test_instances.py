@@ -8,6 +8,7 @@ culling on, off and auto, mirrored instances, and over random placements; and it
 draw call."""
 
 import dataclasses
+import warnings
 
 import moderngl
 import numpy as np
@@ -138,8 +139,9 @@ def test_a_group_is_one_draw_call(make_renderer, monkeypatch):
     instanced = list(calls)
     calls.clear()
     r.render(b, CAMERA, "phong")
-    assert sorted(instanced) == [1, 200]  # (the floor, then every instance)
-    assert len(calls) == 201
+    culled = r.meshes.culled  # (instances wholly outside the view are not drawn)
+    assert sorted(instanced) == [1, 200 - culled]  # (the floor, then every instance)
+    assert len(calls) == 201 - culled
 
 
 def test_instances_are_objects_of_their_own():
@@ -202,3 +204,62 @@ def test_scene_files_take_instances(tmp_path, make_renderer):
     path.write_text('[[mesh]]\nsource = "primitive:torus"\ninstances = "bad.npy"\n')
     with pytest.raises(g.errors.SceneFormatError, match=r"got shape \(4, 4\)"):
         g.load_scene(path)
+
+
+@settings(max_examples=15, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(azimuth=st.floats(0, 360), elevation=st.floats(-30, 80), distance=st.floats(0.5, 12),
+       fov=st.floats(15, 100), instanced=st.booleans())
+def test_frustum_culling_never_drops_a_visible_pixel(azimuth, elevation, distance, fov,
+                                                      instanced, make_renderer):
+    """Culled and unculled frames are the same to the byte (colour, ids, depth) from any
+    camera, in or out of a field of 60 parts; what is skipped is counted, and every part
+    skipped has no vertex inside the view (numpy's own projection of its vertices)."""
+    t, colors = placements(60, 8, mirror=False)
+    t[:, :3, 3] *= 2.5
+    mesh = P.torus(0.6, 0.22, 12, 6)
+    s = g.Scene()
+    if instanced:
+        s.add(mesh, g.Material(), instances=t, colors=colors)
+    else:
+        for k in range(len(t)):
+            s.add(mesh, g.Material(color=tuple(colors[k])), transform=t[k])
+    e, a = np.radians(elevation), np.radians(azimuth)
+    eye = distance * np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
+    camera = g.Camera.look_at(eye, eye * 0.2, fov_y=fov, near=0.05, far=40.0)
+    r = make_renderer(W, H)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", g.errors.RenderWarning)
+        culled = r.render_frame(s, camera, "phong", outputs=g.Outputs.ALL)
+        skipped = r.meshes.culled
+        whole = r.render_frame(s, camera, "phong", outputs=g.Outputs.ALL, frustum_cull=False)
+        assert r.meshes.culled == 0
+    for name in ("color", "face_id", "instance", "depth"):
+        assert np.array_equal(getattr(culled, name), getattr(whole, name)), name
+    view_proj = camera.projection_matrix(W / H) @ camera.view_matrix()
+    v = np.c_[mesh.vertices, np.ones(mesh.n_vertices)]
+    clip = np.einsum("ij,kjl,vl->kvi", view_proj, t, v)  # (K, V, 4)
+    w = clip[..., 3:]
+    seen = ((np.abs(clip[..., :3]) <= w) & (w > 0)).all(-1).any(1)
+    assert skipped <= int((~seen).sum())
+
+
+@pytest.mark.parametrize("instanced", [True, False])
+def test_culling_skips_what_lies_behind(instanced, make_renderer):
+    """From inside the field, looking one way through a narrow view, most parts are skipped
+    (counted) and the picture is the unculled one."""
+    t, colors = placements(60, 9, mirror=False)
+    t[:, :3, 3] *= 2.5
+    s = g.Scene()
+    if instanced:
+        s.add(P.icosphere(1, 0.4), g.Material(), instances=t, colors=colors)
+    else:
+        for k in range(len(t)):
+            s.add(P.icosphere(1, 0.4), g.Material(color=tuple(colors[k])), transform=t[k])
+    camera = g.Camera.look_at((0, 0, 0), (1, 0, 0), fov_y=30, near=0.05, far=40.0)
+    r = make_renderer(W, H)
+    culled = r.render_frame(s, camera, "flat", outputs=g.Outputs.ALL)
+    assert r.meshes.culled > 40
+    whole = r.render_frame(s, camera, "flat", outputs=g.Outputs.ALL, frustum_cull=False)
+    assert np.array_equal(culled.color, whole.color)
+    assert np.array_equal(culled.face_id, whole.face_id)

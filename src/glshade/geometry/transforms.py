@@ -27,7 +27,8 @@ MAX_COORDINATE = 1e150
 
 __all__ = ["MAX_COORDINATE", "look_at", "perspective", "orthographic", "normal_matrix",
            "compose_transform",
-           "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up", "model_matrices"]
+           "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up", "model_matrices",
+           "outside_frustum"]
 
 Array = NDArray[np.float64]
 
@@ -257,3 +258,24 @@ def model_matrices(view: ArrayLike, models: ArrayLike) -> tuple[NDArray[np.float
     # (the view is rigid: its own inverse transpose)
     return (view @ models, view[:3, :3] @ normal_world, normal_world,
             np.linalg.det(models[:, :3, :3]) < 0)
+
+
+def outside_frustum(view_proj: ArrayLike, corners: ArrayLike) -> NDArray[np.bool_]:
+    """Which boxes lie wholly outside a view: all eight corners beyond one of the frustum's
+    six planes (in clip space, with a margin of 1e-5 of w against rounding), so that
+    nothing of what each box holds can reach a pixel. Conservative: a box beside a corner
+    of the frustum, outside it but on no one plane's far side, counts as inside.
+
+    Parameters
+    ----------
+    view_proj : array_like
+        ``(4, 4)`` world-to-clip matrix.
+    corners : array_like
+        ``(K, 8, 3)`` each box's corners, world.
+    """
+    c = np.asarray(corners, np.float64)
+    h = c @ np.asarray(view_proj, np.float64)[:3, :3].T + np.asarray(view_proj)[:3, 3]
+    w = c @ np.asarray(view_proj, np.float64)[3, :3] + np.asarray(view_proj)[3, 3]
+    margin = w + 1e-5 * np.abs(w)
+    beyond = [(h[..., i] > margin).all(1) | (h[..., i] < -margin).all(1) for i in range(3)]
+    return beyond[0] | beyond[1] | beyond[2]

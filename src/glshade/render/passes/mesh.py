@@ -17,7 +17,7 @@ from typing import Any
 import moderngl
 import numpy as np
 
-from ...geometry.transforms import gl_bytes, model_matrices
+from ...geometry.transforms import gl_bytes, model_matrices, outside_frustum
 from ...modes import Culling, ShadingMode
 from ..base import GLResource
 from ..gpu_mesh import GpuMesh
@@ -118,6 +118,9 @@ class MeshPass(GLResource, Stage):
         self._model_state: dict[int, tuple] = {}  # per program: the model uniforms it holds
         self._textures: TextureCache | None = None  # (made for the first textured draw)
         self._instances: Any = None  # (the instances' rows: made for the first group)
+        #: the opaque models and instances the last draw skipped, their boxes wholly
+        #: outside the view (``DrawOptions.frustum_cull``)
+        self.culled = 0
         #: the vectors of varyings this GL interpolates (flat constants must fit in them)
         self.max_varyings = int(context.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
 
@@ -218,6 +221,9 @@ class MeshPass(GLResource, Stage):
         prepared: set[int] = set()
         wireframe = state.options.wireframe
         models = state.scene.models
+        self.culled = 0
+        outside = outside_frustum(state.view_proj, np.stack([m.corners for m in models])) \
+            if state.options.frustum_cull and models else np.zeros(len(models), bool)
         skip_to = 0
         for index, model in enumerate(models):
             if index < skip_to:  # (drawn with its group)
@@ -229,12 +235,16 @@ class MeshPass(GLResource, Stage):
             group = model.group
             if (group is not None and not wireframe and group.models[0] is model
                     and self._instanced(state, group, models, index)):
-                self._draw_group(state, group, gpu, id_base, prepared)
+                self._draw_group(state, group, gpu, id_base, prepared,
+                                 ~outside[index:index + len(group)])
                 skip_to = index + len(group)
                 id_base += gpu.n_polygons * len(group)
                 continue
             if not wireframe and not state.transparent(model):
-                self._draw_model(state, model, gpu, id_base, prepared)
+                if outside[index]:
+                    self.culled += 1
+                else:
+                    self._draw_model(state, model, gpu, id_base, prepared)
             id_base += gpu.n_polygons
         return id_base
 
@@ -252,10 +262,11 @@ class MeshPass(GLResource, Stage):
             a is b and a.visible and a.mesh is first.mesh and not state.transparent(a)
             for a, b in zip(run, group.models))
 
-    def _draw_group(self, state: DrawState, group, gpu, id_base: int, prepared: set) -> None:
-        """A group's instances in one instanced call for each way they are drawn (culled
-        or two-sided, mirrored or not): each instance's matrices, first polygon id and
-        colour in its row of a texture (instances.glsl)."""
+    def _draw_group(self, state: DrawState, group, gpu, id_base: int, prepared: set,
+                    inside: np.ndarray) -> None:
+        """A group's instances (those ``inside`` the view) in one instanced call for each
+        way they are drawn (culled or two-sided, mirrored or not): each instance's
+        matrices, first polygon id and colour in its row of a texture (instances.glsl)."""
         ctx, put, options = self.context.ctx, self.uniforms.put, state.options
         near = state.camera.planes()[0]
         first = group.models[0]
@@ -272,11 +283,12 @@ class MeshPass(GLResource, Stage):
             culled = ((model_view[:, 2] @ corners) < -near).all(1)
         else:
             culled = np.zeros(k, bool)
+        self.culled += int(k - inside.sum())
         pixels = state.viewport[2] * state.viewport[3]
         flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
         for cull in (False, True):
             for mirror in (False, True):
-                chosen = np.flatnonzero((culled == cull) & (mirrored == mirror))
+                chosen = np.flatnonzero((culled == cull) & (mirrored == mirror) & inside)
                 if not len(chosen):
                     continue
                 prog = self.program(state.variant, not cull, flat, instanced=True)

@@ -222,8 +222,9 @@ class MeshPass(GLResource, Stage):
         wireframe = state.options.wireframe
         models = state.scene.models
         self.culled = 0
+        # (one model gains nothing worth its test: out of view, its frame is blank anyway)
         outside = outside_frustum(state.view_proj, np.stack([m.corners for m in models])) \
-            if state.options.frustum_cull and models else np.zeros(len(models), bool)
+            if state.options.frustum_cull and len(models) > 1 else np.zeros(len(models), bool)
         skip_to = 0
         for index, model in enumerate(models):
             if index < skip_to:  # (drawn with its group)

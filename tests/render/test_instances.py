@@ -98,6 +98,21 @@ def test_instances_cull_as_models(cull, make_renderer):
     same(make_renderer(W, H), a, b, ortho, "gouraud", cull=cull)
 
 
+def test_an_instance_given_another_material_or_hidden_is_drawn_as_such(make_renderer):
+    """A model of a group changed after the add (another material, hidden, moved): the
+    picture is still the one of the models one by one."""
+    t, colors = placements(8, 10)
+    a, b = pair(P.icosphere(1, 0.6), t, colors)
+    for s in (a, b):
+        s.models[3].material = g.Material(color=(0.9, 0.9, 0.1), ks=0.8, shininess=5)
+        s.models[5].visible = False
+        s.models[6].transform = s.models[6].transform @ np.diag([1.0, 2.0, 1.0, 1.0])
+    same(make_renderer(W, H), a, b, CAMERA, "phong")
+    a.models[3].material, b.models[3].material = a.models[2].material, b.models[2].material
+    a.models[5].visible = b.models[5].visible = True
+    same(make_renderer(W, H), a, b, CAMERA, "gouraud")  # (moved: still one draw)
+
+
 def test_instances_without_colours_and_transparent_ones(make_renderer):
     """No colours: the material's for all. A transparent material: drawn model by model by
     the transparency pass (still the same picture)."""

@@ -42,6 +42,18 @@ def csg_scene():
     return s
 
 
+def instances_scene():
+    """The teapot on a ring of 24 coloured instances of a torus (one instanced draw)."""
+    s = teapot_scene()
+    angles = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    t = np.tile(np.eye(4), (24, 1, 1))
+    t[:, 0, 3], t[:, 2, 3] = 2.6 * np.cos(angles), 2.6 * np.sin(angles)
+    t[:, :3, :3] *= 0.3
+    colors = np.c_[0.5 + 0.5 * np.cos(angles), 0.5 + 0.5 * np.sin(angles), np.full(24, 0.4)]
+    s.add(P.torus(), Material(), instances=t, colors=colors)
+    return s
+
+
 CAM = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
 
 HEADLESS = """
@@ -91,6 +103,14 @@ def test_window_draws_csg_solids_like_headless(viewer_factory, tmp_path):
     ref = headless(tmp_path, "phong", scene="csg_scene")[0][0].astype(int)
     blue = (shot[..., 2] > shot[..., 0] + 30).mean()
     assert blue > 0.05  # the solid is there
+    assert np.abs(shot - ref).max() <= 1
+
+
+def test_window_draws_instances_like_headless(viewer_factory, tmp_path):
+    v = viewer_factory(instances_scene(), CAM)
+    shot = v.screenshot().astype(int)
+    ref = headless(tmp_path, "phong", scene="instances_scene")[0][0].astype(int)
+    assert len(np.unique(shot[..., :3].reshape(-1, 3), axis=0)) > 200  # (the ring is there)
     assert np.abs(shot - ref).max() <= 1
 
 

@@ -119,10 +119,14 @@ class InstanceGroup:
         The instances' models, in order (consecutive in ``Scene.models``).
     colors : ndarray or None
         ``(K, 3)`` each instance's linear RGB colour (None: the material's).
+    materials : tuple of Material
+        Each instance's material as added: a model given another one since is drawn on
+        its own (the group's draw knows only these).
     """
 
     models: tuple
     colors: NDArray[np.float64] | None = None
+    materials: tuple = ()
 
     def __len__(self) -> int:
         return len(self.models)
@@ -358,7 +362,7 @@ class Scene:
                          for c in table]
         models = tuple(Model(model.mesh, materials[i], transforms[i], model.name,
                              vertex_colors=model.vertex_colors) for i in range(k))
-        group = InstanceGroup(models, table)
+        group = InstanceGroup(models, table, tuple(materials))
         for each in models:
             each.group = group
         self.models[-1:] = models

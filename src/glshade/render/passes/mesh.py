@@ -65,6 +65,17 @@ def instance_rows(model_view, normal_view, normal_world, first_ids, ambient, dif
     return rows
 
 
+def _faces(ctx, cull: bool, clockwise: bool) -> None:
+    """The winding that faces the camera (clockwise for a mirroring transform, or a target
+    drawn upside down, but not both) and whether back faces are culled."""
+    ctx.front_face = "cw" if clockwise else "ccw"
+    if cull:
+        ctx.enable(moderngl.CULL_FACE)
+        ctx.cull_face = "back"
+    else:
+        ctx.disable(moderngl.CULL_FACE)
+
+
 def _instance_lighting(group, material, lights, ambient):
     """``(ambient (K, 3), diffuse (K, L, 3) float32)``: what :func:`material_uniforms`
     gives each instance's material, for all K at once (the same products, so the same
@@ -252,16 +263,17 @@ class MeshPass(GLResource, Stage):
     @staticmethod
     def _instanced(state: DrawState, group, models, index: int) -> bool:
         """Whether ``group`` (starting at ``models[index]``) is drawn by one instanced call:
-        more than one, all shown and opaque, untextured, where it was added, and not in
-        the ``radiosity`` mode (its colours are per model); else model by model."""
+        more than one, all shown and opaque, untextured, where it was added with the mesh
+        and materials it was added with, and not in the ``radiosity`` mode (its colours are
+        per model); else model by model."""
         first = group.models[0]
         if (len(group) < 2 or state.options.mode is ShadingMode.RADIOSITY
                 or state.transparent(first) or first.material.textures):
             return False
         run = models[index:index + len(group)]
         return len(run) == len(group) and all(
-            a is b and a.visible and a.mesh is first.mesh and not state.transparent(a)
-            for a, b in zip(run, group.models))
+            a is b and a.visible and a.mesh is first.mesh and a.material is material
+            for a, b, material in zip(run, group.models, group.materials))
 
     def _draw_group(self, state: DrawState, group, gpu, id_base: int, prepared: set,
                     inside: np.ndarray) -> None:
@@ -307,12 +319,7 @@ class MeshPass(GLResource, Stage):
                 put(prog, "u_instance_stride", rows.shape[1])
                 put(prog, "u_instances", Unit.INSTANCES)
                 self._instance_texture(rows).use(location=Unit.INSTANCES)
-                ctx.front_face = "cw" if mirror != state.flip_rows else "ccw"
-                if cull:
-                    ctx.enable(moderngl.CULL_FACE)
-                    ctx.cull_face = "back"
-                else:
-                    ctx.disable(moderngl.CULL_FACE)
+                _faces(ctx, cull, mirror != state.flip_rows)
                 gpu.vertex_array(prog, options.mode).render(moderngl.TRIANGLES,
                                                             instances=len(chosen))
 
@@ -389,12 +396,7 @@ class MeshPass(GLResource, Stage):
             for name, value in self.materials(model.material, lights, scene.ambient):
                 put(prog, name, value)
             self._model_state[id(prog)] = held
-        ctx.front_face = "cw" if mirrored != state.flip_rows else "ccw"
-        if cull:
-            ctx.enable(moderngl.CULL_FACE)
-            ctx.cull_face = "back"
-        else:
-            ctx.disable(moderngl.CULL_FACE)
+        _faces(ctx, cull, mirrored != state.flip_rows)
         if textured:
             if self._textures is None:
                 self._textures = TextureCache(self.context)

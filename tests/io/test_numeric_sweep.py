@@ -12,7 +12,7 @@ from tests.conftest import require
 
 require("hypothesis", "property-based sweeps are part of the test extra")
 
-from hypothesis import given, settings, strategies as st  # noqa: E402
+from hypothesis import example, given, settings, strategies as st  # noqa: E402
 
 from glshade import GlshadeError, load_scene  # noqa: E402
 
@@ -110,6 +110,7 @@ def test_each_field_at_the_edges(tmp_path, make_renderer, field, value):
 
 @settings(max_examples=150)
 @given(field=st.sampled_from(sorted(FIELDS)), value=VALUES)
+@example(field="light.position", value=4.253529459746671e38)  # (past float32: overflowed)
 def test_any_number_in_any_field(tmp_path_factory, gl_context, field, value):
     from glshade import Renderer
 

@@ -24,9 +24,12 @@ from ..errors import GeometryError
 #: plane distance or scale): the square and the product of two such numbers stay finite in
 #: float64, so lengths, ratios and matrix products never overflow or underflow
 MAX_COORDINATE = 1e150
+#: the largest world coordinate the GPU can draw or light from: its 32-bit arithmetic
+#: squares lengths (3.4e38 is float32's largest)
+MAX_DRAWABLE_COORDINATE = 1e18
 
-__all__ = ["MAX_COORDINATE", "look_at", "perspective", "orthographic", "normal_matrix",
-           "compose_transform",
+__all__ = ["MAX_COORDINATE", "MAX_DRAWABLE_COORDINATE", "look_at", "perspective",
+           "orthographic", "normal_matrix", "compose_transform",
            "gl_bytes", "box_corners", "z_up_to_y_up", "y_up_to_z_up", "model_matrices",
            "outside_frustum"]
 

@@ -57,6 +57,36 @@ def light_kind(light) -> str:
     return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
 
 
+def lighting_products(material, lights, ambient, colors=None):
+    """The lighting formula's per-draw products: ``(Ia ka C (K, 3), Ip kd C (K, L, 3)
+    float32, Ip ks (L, 3) float32)`` for the material (K = 1) or for each of ``colors`` in
+    place of its colour (an instanced draw's rows: the same products, so the same bits).
+    ``illum`` 1 drops the specular products; 0 makes the diffuse colour the whole
+    (ambient) term, unlit.
+
+    Parameters
+    ----------
+    material : Material
+        The surface.
+    lights : sequence
+        The draw's lights.
+    ambient : array_like
+        ``(3,)`` the scene's ambient intensity.
+    colors : array_like or None
+        ``(K, 3)`` colours in place of the material's (None: its own).
+    """
+    ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
+    ka, kd = material.coefficients(colors)
+    diffuse = (ip[None] * kd[:, None]).astype("f4")
+    specular = (ip * np.asarray(material.specular_rgb, np.float64)).astype("f4")
+    ambient_term = np.asarray(ambient, np.float64) * ka
+    if material.illum < 2:
+        specular[:] = 0
+    if material.illum == 0:
+        ambient_term, diffuse[:] = kd, 0
+    return ambient_term, diffuse, specular
+
+
 def material_uniforms(material, lights, ambient) -> list:
     """The lighting formula's per-draw products for one material: Ia ka C, and per light
     Ip kd C and Ip ks (lighting.glsl multiplies them by the per-pixel terms) -- with the
@@ -72,17 +102,9 @@ def material_uniforms(material, lights, ambient) -> list:
     ambient : array_like
         ``(3,)`` the ambient intensity.
     """
-    ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
-    kd = np.asarray(material.diffuse_rgb, np.float64)
-    diffuse = (ip * kd).astype("f4")
-    specular = (ip * np.asarray(material.specular_rgb, np.float64)).astype("f4")
-    ambient_term = np.asarray(ambient, np.float64) * np.asarray(material.ambient_rgb)
-    if material.illum < 2:
-        specular[:] = 0
-    if material.illum == 0:
-        ambient_term, diffuse[:] = kd, 0
-    return [("u_ambient_term", tuple(float(x) for x in ambient_term)),
-            ("u_light_diffuse", diffuse.tobytes()), ("u_light_specular", specular.tobytes()),
+    ambient_term, diffuse, specular = lighting_products(material, lights, ambient)
+    return [("u_ambient_term", tuple(float(x) for x in ambient_term[0])),
+            ("u_light_diffuse", diffuse[0].tobytes()), ("u_light_specular", specular.tobytes()),
             ("u_shininess", float(material.shininess))]
 
 

@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import SceneError, plain
-from ..geometry.transforms import MAX_COORDINATE
+from ..geometry.transforms import MAX_DRAWABLE_COORDINATE
 from .material import color3, nonnegative
 
 __all__ = ["PointLight", "DirectionalLight", "lights_for", "MAX_LIGHTS"]
@@ -50,9 +50,11 @@ class PointLight:
         p = np.asarray(self.position, dtype=np.float64)
         if p.shape != (3,) or not np.isfinite(p).all():
             raise SceneError(f"light position must be 3 numbers, got {self.position!r}")
-        if np.abs(p).max() > MAX_COORDINATE:
-            raise SceneError(f"light position must be 3 numbers within {MAX_COORDINATE:g} of "
-                             f"the origin, got {plain(p)}")
+        if np.abs(p).max() > MAX_DRAWABLE_COORDINATE:
+            # (the GPU's float32 squares the light's distance: beyond, it overflowed)
+            raise SceneError(f"light position must be 3 numbers within "
+                             f"{MAX_DRAWABLE_COORDINATE:g} of the origin (a light farther "
+                             f"away is a DirectionalLight), got {plain(p)}")
         object.__setattr__(self, "position", tuple(p.tolist()))
         object.__setattr__(self, "color", color3(self.color, "light color"))
         object.__setattr__(self, "intensity", nonnegative(self.intensity, "light intensity"))
@@ -127,7 +129,9 @@ def _check_shadows(value) -> None:
 
 def lights_for(lights, camera) -> list:
     """The lights a draw uses: ``lights``, or -- when there are none -- the default, a white
-    point light at the camera (a headlight: whatever faces the viewer is lit).
+    point light at the camera (a headlight: whatever faces the viewer is lit); from a camera
+    beyond the coordinates a light may have, a light along its view, the point light's
+    limit.
 
     Parameters
     ----------
@@ -139,4 +143,7 @@ def lights_for(lights, camera) -> list:
     lights = list(lights)
     if lights:
         return lights
-    return [PointLight(tuple(float(x) for x in camera.position))]
+    eye = np.asarray(camera.position, np.float64)
+    if np.abs(eye).max() > MAX_DRAWABLE_COORDINATE:  # (too far to light from: its limit)
+        return [DirectionalLight(tuple(float(x) for x in camera.forward))]
+    return [PointLight(tuple(float(x) for x in eye))]

@@ -168,19 +168,38 @@ class Material:
                                     f"reflects at most what it receives), got {rho}")
             object.__setattr__(self, "reflectance", rho)
 
+    def coefficients(self, colors=None) -> tuple[np.ndarray, np.ndarray]:
+        """The ambient and diffuse coefficients as colours ``(K, 3)`` each: ``ambient``
+        and ``diffuse`` where given, else ``ka`` and ``kd`` times the colour -- this
+        material's (K = 1), or each of ``colors`` in its place (instances).
+
+        Parameters
+        ----------
+        colors : array_like or None
+            ``(K, 3)`` linear RGB in place of ``color`` (None: ``color``).
+        """
+        c = np.asarray(self.color if colors is None else colors, np.float64).reshape(-1, 3)
+        ambient = np.broadcast_to(np.asarray(self.ambient, np.float64), c.shape) \
+            if self.ambient is not None else self.ka * c
+        diffuse = np.broadcast_to(np.asarray(self.diffuse, np.float64), c.shape) \
+            if self.diffuse is not None else self.kd * c
+        return ambient, diffuse
+
     @property
     def ambient_rgb(self) -> tuple[float, float, float]:
         """The ambient coefficient as a colour: ``ambient``, else ``ka * color``."""
         if self.ambient is not None:
             return self.ambient
-        return tuple(self.ka * c for c in self.color)
+        r, g, b = self.coefficients()[0][0].tolist()
+        return r, g, b
 
     @property
     def diffuse_rgb(self) -> tuple[float, float, float]:
         """The diffuse coefficient as a colour: ``diffuse``, else ``kd * color``."""
         if self.diffuse is not None:
             return self.diffuse
-        return tuple(self.kd * c for c in self.color)
+        r, g, b = self.coefficients()[1][0].tolist()
+        return r, g, b
 
     @property
     def specular_rgb(self) -> tuple[float, float, float]:

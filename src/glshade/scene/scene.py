@@ -19,7 +19,7 @@ from ..errors import GeometryError, SceneError, plain
 from ..modes import Tessellation, choose
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
-from ..geometry.transforms import box_corners, compose_transform
+from ..geometry.transforms import MAX_DRAWABLE_COORDINATE, box_corners, compose_transform
 from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
@@ -28,8 +28,6 @@ __all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "Scene",
            "MAX_DRAWABLE_COORDINATE",
            "MAX_GPU_LEVEL", "MAX_GPU_PATCH_POINTS"]
 
-#: the largest world coordinate the GPU can draw: its 32-bit arithmetic squares lengths
-MAX_DRAWABLE_COORDINATE = 1e18
 #: GPU tessellation: the largest level (GL 4.0's guaranteed GL_MAX_TESS_GEN_LEVEL) and
 #: control points a patch (GL_MAX_PATCH_VERTICES' guaranteed 32)
 MAX_GPU_LEVEL, MAX_GPU_PATCH_POINTS = 64, 32
@@ -348,12 +346,11 @@ class Scene:
         """``model`` (the last of ``models``) as the first of ``len(copies)`` instances."""
         k = len(copies)
         transforms = copies @ model.transform
-        reach = np.abs(transforms[:, :3, 3]).max() + np.abs(transforms[:, :3, :3]).sum(2).max() \
-            * np.abs(box_corners(model.mesh.bounds)).max()
-        if reach > MAX_DRAWABLE_COORDINATE:
+        try:
+            _check_reach(model.mesh, transforms, "the instances reach")
+        except SceneError:
             del self.models[-1]
-            raise SceneError(f"the instances reach a coordinate of about {reach:g}; the GPU "
-                             f"draws up to {MAX_DRAWABLE_COORDINATE:g}: scale them down")
+            raise
         table = None
         materials = [model.material] * k
         if colors is not None:
@@ -424,11 +421,7 @@ class Scene:
         if crease is not None:
             mesh = mesh.split_creases(crease)
         m = _placement(transform, rotation, translation, scale)
-        corners = box_corners(mesh.bounds) @ m[:3, :3].T + m[:3, 3]
-        if mesh.n_vertices and np.abs(corners).max() > MAX_DRAWABLE_COORDINATE:
-            raise SceneError(f"the mesh reaches a coordinate of {np.abs(corners).max():g}; "
-                                f"the GPU draws up to {MAX_DRAWABLE_COORDINATE:g} (its 32-bit "
-                                "arithmetic squares lengths): scale the mesh down")
+        _check_reach(mesh, m[None], "the mesh reaches")
         colors = None
         if vertex_colors is not None:
             if crease is not None:
@@ -569,6 +562,20 @@ def _placement(transform, rotation, translation, scale) -> NDArray[np.float64]:
     if transform is not None:
         return affine_matrix(transform, "transform")
     return affine_matrix(compose_transform(rotation, translation, scale), "transform")
+
+
+def _check_reach(mesh: Mesh, placements: np.ndarray, what: str) -> None:
+    """Refuse placements ``(K, 4, 4)`` that take the mesh's box beyond the coordinates the
+    GPU draws."""
+    if not mesh.n_vertices:
+        return
+    corners = box_corners(mesh.bounds)
+    reach = float(np.abs(corners @ np.swapaxes(placements[:, :3, :3], 1, 2)
+                         + placements[:, None, :3, 3]).max())
+    if reach > MAX_DRAWABLE_COORDINATE:
+        raise SceneError(f"{what} a coordinate of {reach:g}; the GPU draws up to "
+                         f"{MAX_DRAWABLE_COORDINATE:g} (its 32-bit arithmetic squares "
+                         "lengths): scale down")
 
 
 def _instance_matrices(values) -> NDArray[np.float64]:

@@ -23,7 +23,7 @@ from ..base import GLResource
 from ..gpu_mesh import GpuMesh
 from ..programs import (
     FLAT_CONSTANTS_PIXELS, TEXTURED_MODES, Forward, MaterialUniforms, ProgramKey, Role,
-    UniformWriter, Variant, flat_constants_fit,
+    UniformWriter, Variant, flat_constants_fit, lighting_products,
 )
 from ..state import DrawState
 from ..textures import TextureCache
@@ -74,31 +74,6 @@ def _faces(ctx, cull: bool, clockwise: bool) -> None:
         ctx.cull_face = "back"
     else:
         ctx.disable(moderngl.CULL_FACE)
-
-
-def _instance_lighting(group, material, lights, ambient):
-    """``(ambient (K, 3), diffuse (K, L, 3) float32)``: what :func:`material_uniforms`
-    gives each instance's material, for all K at once (the same products, so the same
-    bits)."""
-    from ..programs import material_uniforms
-
-    k = len(group)
-    if group.colors is None:
-        found = dict(material_uniforms(material, lights, ambient))
-        diffuse = np.frombuffer(found["u_light_diffuse"], np.float32).reshape(1, -1, 3)
-        return (np.broadcast_to(np.asarray(found["u_ambient_term"]), (k, 3)),
-                np.broadcast_to(diffuse, (k,) + diffuse.shape[1:]))
-    c = group.colors
-    kd = np.broadcast_to(np.asarray(material.diffuse, np.float64), (k, 3)) \
-        if material.diffuse is not None else material.kd * c
-    ka = np.broadcast_to(np.asarray(material.ambient, np.float64), (k, 3)) \
-        if material.ambient is not None else material.ka * c
-    ip = np.array([np.asarray(x.color) * x.intensity for x in lights], np.float64)
-    diffuse = (ip[None] * kd[:, None]).astype("f4")
-    ambient_term = np.asarray(ambient, np.float64) * ka
-    if material.illum == 0:
-        ambient_term, diffuse = kd, np.zeros_like(diffuse)
-    return ambient_term, diffuse
 
 
 class MeshPass(GLResource, Stage):
@@ -287,8 +262,11 @@ class MeshPass(GLResource, Stage):
         model_view, normal_view, normal_world, mirrored = model_matrices(
             state.view, group.transforms)
         ids = id_base + gpu.n_polygons * np.arange(k)
-        ambient, diffuse = _instance_lighting(group, first.material, state.lights,
-                                              state.scene.ambient)
+        ambient, diffuse, _ = lighting_products(first.material, state.lights,
+                                                state.scene.ambient, group.colors)
+        if group.colors is None:  # (one colour for all)
+            ambient = np.broadcast_to(ambient, (k, 3))
+            diffuse = np.broadcast_to(diffuse, (k,) + diffuse.shape[1:])
         if options.cull is Culling.ON:
             culled = np.ones(k, bool)
         elif options.cull is Culling.AUTO and gpu.closed:

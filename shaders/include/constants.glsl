@@ -48,6 +48,13 @@ uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
 #include "instances.glsl"
 #define AMBIENT_TERM instance_ambient()
 #define LIGHT_DIFFUSE(i) instance_diffuse(i)
+#elif defined(POINT_COLORS)  // (a cloud's colour is each point's own: points.frag)
+uniform vec3 u_ambient_term;                   // Ia ka (C = 1 where C is the point's)
+uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd (likewise)
+uniform vec2 u_color_weight;                   // 1: the product takes the point's colour
+flat in vec3 f_color;
+#define AMBIENT_TERM (u_ambient_term * mix(vec3(1.0), f_color, u_color_weight.x))
+#define LIGHT_DIFFUSE(i) (u_light_diffuse[i] * mix(vec3(1.0), f_color, u_color_weight.y))
 #else
 uniform vec3 u_ambient_term;                   // Ia ka C
 uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C

@@ -36,7 +36,9 @@ layout(early_fragment_tests) in;
 #include "shadow_trace.glsl"
 uniform mat4 u_camera_to_world;
 #define HAS_CAMERA_TO_WORLD
-#ifdef PATCH_IDS
+#ifdef SHADOW_OWN_POLYGON
+// (the includer says which of the scene's polygons its surface is: a point is none)
+#elif defined(PATCH_IDS)
 #define SHADOW_OWN_POLYGON -2  // (a patch's triangles are no mesh polygon's)
 #else
 #ifndef POLYGON_ID_IN

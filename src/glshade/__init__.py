@@ -29,6 +29,7 @@ _EXPORTS = {
     # the mesh kernel
     "geometry": ("geometry", None),
     "Mesh": ("geometry.mesh", "Mesh"), "concatenate": ("geometry.merge", "concatenate"),
+    "PointCloud": ("geometry.points", "PointCloud"),
     "newell_normal": ("geometry.polygon", "newell_normal"),
     "polygon_area": ("geometry.polygon", "polygon_area"),
     # scene
@@ -45,6 +46,7 @@ _EXPORTS = {
     # files
     "load_mesh": ("io.meshes", "load_mesh"), "save_mesh": ("io.meshes", "save_mesh"),
     "load_scene": ("io.scenefile", "load_scene"), "save_image": ("io.images", "save_image"),
+    "load_points": ("io.points", "load_points"),
     # rendering (GL)
     "Renderer": ("render.renderer", "Renderer"), "Frame": ("render.renderer", "Frame"),
     "Pick": ("render.renderer", "Pick"), "View": ("scene.camera", "View"),
@@ -81,9 +83,11 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
                          ShaderError, TopologyError)
     from .geometry.merge import concatenate
     from .geometry.mesh import Mesh
+    from .geometry.points import PointCloud
     from .geometry.polygon import newell_normal, polygon_area
     from .io.images import save_image
     from .io.meshes import load_mesh, save_mesh
+    from .io.points import load_points
     from .io.scenefile import load_scene
     from .masspoint import MassPoint, centroid
     from .modes import Culling, Outputs, Projection, ShadingMode, Shadows, Transparency

@@ -10,7 +10,8 @@ from typing import TypeVar
 from .errors import OptionError
 
 __all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Transparency", "Projection",
-           "Backend", "Sampler", "Accel", "Tessellation",
+           "Backend", "Sampler", "Accel", "Tessellation", "PointStyle", "LineUnits", "LineCaps",
+           "LineJoins",
            "HEADLESS_BACKENDS", "parse_enum", "choose"]
 
 
@@ -256,6 +257,35 @@ class Accel(str, enum.Enum):
     BVH = "bvh"        # the hierarchy's walk
     FLAT = "flat"      # every triangle in turn, compiled into the program
     HYBRID = "hybrid"  # the small models compiled in, the hierarchy for the rest
+
+
+class PointStyle(str, enum.Enum):
+    """How a point cloud's points are drawn (equal to its value as a string)."""
+
+    SPHERE = "sphere"  # impostors ray cast per pixel: exact depth and normals
+    DISC = "disc"      # splats oriented by the points' normals, ray cast per pixel
+    SQUARE = "square"  # screen-aligned squares at the point's depth: the cheap mode
+
+
+class LineUnits(str, enum.Enum):
+    """What a polyline's width is measured in."""
+
+    PIXELS = "pixels"  # the same width on screen at any depth
+    WORLD = "world"    # scene units: narrower far away
+
+
+class LineCaps(str, enum.Enum):
+    """How a polyline's two ends are drawn."""
+
+    BUTT = "butt"    # cut square at the end point
+    ROUND = "round"  # a half disc of the line's width beyond it
+
+
+class LineJoins(str, enum.Enum):
+    """How two segments of a polyline meet."""
+
+    MITER = "miter"  # the outer edges extended until they meet (bevelled when too long)
+    ROUND = "round"  # a disc of the line's width at the joint
 
 
 class Tessellation(str, enum.Enum):

@@ -17,7 +17,8 @@ from glshade.render.passes import Stage, run
 pytestmark = pytest.mark.gl
 
 PASSES = Path(glshade.__file__).parent / "render" / "passes"
-ORDER = ["ShadowPass", "MeshPass", "PatchPass", "CsgPass", "TransparencyPass", "EdgePass"]
+ORDER = ["ShadowPass", "MeshPass", "PatchPass", "CsgPass", "PointPass", "TransparencyPass",
+         "EdgePass"]
 PROTOCOL = {"wanted": ["state"], "prepare": ["state"], "draw": ["state", "id_base"],
             "finish": ["state"]}
 
@@ -61,13 +62,15 @@ def test_no_pass_receives_or_imports_the_renderer():
 
 def everything() -> Scene:
     """A scene every stage but the patches' has work in: shadow-casting meshes, a
-    transparent one and a CSG solid."""
+    transparent one, a CSG solid and a point cloud."""
+    from glshade import PointCloud
     from glshade.solids import Sphere
 
     scene = shadow_scene()
     scene.add(primitives.plane(1.0), Material(color=(0.2, 0.4, 0.9), opacity=0.5),
               translation=(1.8, 0.0, 0.5))
     scene.add(Sphere(0.5).translated((-1.8, 0.0, 0.6)))
+    scene.add(PointCloud([[0.0, -1.8, 0.5], [0.3, -1.8, 0.5]], radius=0.2))
     return scene
 
 
@@ -100,18 +103,20 @@ def test_the_stages_run_in_order_and_pass_the_ids_on(make_renderer, monkeypatch)
     wanted = [n.split(".")[0] for n, _, out in top if n.endswith("wanted") and out]
     assert wanted == [n for n in ORDER if n != "PatchPass"]  # (no patch model: not wanted)
     phases = [n.split(".")[1] for n, _, _ in top if not n.endswith("wanted")]
-    assert phases == ["prepare"] * 5 + ["draw"] * 5 + ["finish"] * 5
+    assert phases == ["prepare"] * 6 + ["draw"] * 6 + ["finish"] * 6
     assert [n for n in inner if not n.endswith("wanted")] == [
-        "MeshPass.prepare", "CsgPass.prepare", "MeshPass.draw", "CsgPass.draw",
-        "MeshPass.finish", "CsgPass.finish"]
+        "MeshPass.prepare", "CsgPass.prepare", "PointPass.prepare", "MeshPass.draw",
+        "CsgPass.draw", "PointPass.draw", "MeshPass.finish", "CsgPass.finish",
+        "PointPass.finish"]
     draws = [(n, args, out) for n, args, out in top if n.endswith(".draw")]
     assert draws[0][1] == (0,)
     for (_, _, before), (_, args, _) in zip(draws, draws[1:]):
         assert args == (before,)  # (each stage's first id is the last one's return)
     # the meshes' ids: the floor's quad, the sphere's triangles, the transparent quad;
-    # then the solid's leaf
+    # then the solid's leaf, then the cloud's two points
     n_mesh = sum(m.mesh.n_faces for m in scene.models)
-    assert [out for *_, out in draws] == [0, n_mesh, n_mesh + 1, n_mesh + 1, n_mesh + 1]
+    assert [out for *_, out in draws] == [0, n_mesh, n_mesh + 1, n_mesh + 3, n_mesh + 3,
+                                          n_mesh + 3]
 
 
 def shadow_scene() -> Scene:

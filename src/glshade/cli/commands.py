@@ -55,7 +55,8 @@ def _shadow_summary(renderer, options) -> str:
 
 
 def _contents(scene) -> str:
-    """What a scene holds, in words: "1,200 polygons", "1 solid, 7 leaves", or both."""
+    """What a scene holds, in words: "1,200 polygons", "1 solid, 7 leaves", "2,000
+    points", or several."""
     parts = []
     polygons = sum(m.mesh.n_faces for m in scene.models)
     if scene.models:
@@ -64,6 +65,9 @@ def _contents(scene) -> str:
         n, leaves = len(scene.solids), sum(s.solid.n_leaves for s in scene.solids)
         parts.append(f"{n} solid{'s' if n != 1 else ''}, {leaves:,} "
                      f"lea{'ves' if leaves != 1 else 'f'}")
+    points = sum(c.cloud.n_points for c in scene.clouds)
+    if scene.clouds:
+        parts.append(f"{points:,} point{'s' if points != 1 else ''}")
     return ", ".join(parts) or "nothing"
 
 

@@ -254,6 +254,32 @@ def _patch_info(args: InfoArgs, surface) -> int:
     return EXIT_OK
 
 
+def _points_info(args: InfoArgs, cloud) -> int:
+    """A point set's counts, bounds, arrays and GPU bytes."""
+    if args.tolerance is not None:
+        raise UsageError(f"--tolerance is for patches:NAME, not {args.mesh}")
+    lo, hi = cloud.points.min(0), cloud.points.max(0)
+    info = {"source": args.mesh, "points": cloud.n_points,
+            "bounds": {"min": lo.tolist(), "max": hi.tolist()},
+            "normals": cloud.normals is not None, "colors": cloud.colors is not None,
+            "radius": cloud.radius, "gpu_bytes": cloud.gpu_bytes}
+    if args.json:
+        print(json.dumps(info, indent=2))
+        return EXIT_OK
+    rows = [("source", args.mesh), ("points", f"{cloud.n_points:,}"),
+            ("bounding box", f"[{', '.join(f'{x:.4g}' for x in lo)}] .. "
+                             f"[{', '.join(f'{x:.4g}' for x in hi)}]"),
+            ("normals", "yes" if info["normals"] else "no"),
+            ("colours", "yes" if info["colors"] else "no"),
+            ("radius", f"{cloud.radius:.4g} (1/200 of the box's diagonal)"),
+            ("GPU bytes", f"{cloud.gpu_bytes:,} ({cloud.gpu_bytes // cloud.n_points} a "
+                          "point)")]
+    width = max(len(k) for k, _ in rows)
+    for k, v in rows:
+        print(f"{k:<{width}}  {v}")
+    return EXIT_OK
+
+
 def info(args: InfoArgs) -> int:
     """``glshade info``: counts, sizes, bounds, area and topology of a mesh, scene or solid."""
     from dataclasses import replace
@@ -272,6 +298,10 @@ def info(args: InfoArgs) -> int:
 
     if isinstance(mesh, PatchSurface):
         return _patch_info(args, mesh)
+    from ..geometry.points import PointCloud
+
+    if isinstance(mesh, PointCloud):
+        return _points_info(args, mesh)
     if args.tolerance is not None:
         raise UsageError(f"--tolerance is for patches:NAME, not {args.mesh}")
     info = mesh_summary(mesh)

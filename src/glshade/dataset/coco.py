@@ -111,7 +111,7 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
 
     labels = scene.labels
     classes = {m.instance_id: labels.get(m.label, 0)
-               for m in [*scene.models, *scene.patch_models, *scene.solids]}
+               for m in scene.every_model}
     writer = CocoViews(out, size, classes)
     records = run_views(job, out / ".views", writer, progress, context, jobs=jobs,
                         scheduler=scheduler)

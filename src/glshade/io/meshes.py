@@ -86,7 +86,8 @@ def load_source(spec: str) -> Any:
     """A mesh from a ``primitive:NAME[:ARGS]`` spec or a file path (the command line's
     MESH argument); ``solid:TEXT`` gives a CSG solid (:mod:`glshade.solids.text`),
     ``patches:NAME`` or a ``.bpt`` file (the classic patch format) a
-    :class:`~glshade.patches.PatchSurface`.
+    :class:`~glshade.patches.PatchSurface`, a PLY or OBJ file of vertices alone a
+    :class:`~glshade.geometry.points.PointCloud` (:func:`~glshade.io.points.load_points`).
 
     Parameters
     ----------
@@ -105,6 +106,10 @@ def load_source(spec: str) -> Any:
         from .. import patches
 
         return patches.named(spec[len("patches:"):])
+    from .points import is_point_set, load_points
+
+    if is_point_set(spec):  # (a PLY or OBJ of vertices alone: a point cloud)
+        return load_points(spec)
     if Path(spec).suffix.lower() == ".bpt":
         from ..patches import PatchSurface
         from ..patches.files import read_patches

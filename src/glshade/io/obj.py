@@ -17,7 +17,7 @@ from .text import (
     line_starts, normalize_whitespace, parse_decimals, parse_numbers, ragged_take, token_counts,
 )
 
-__all__ = ["read", "write"]
+__all__ = ["read", "read_points", "write"]
 
 _OBJ_KEYWORDS = {
     b"v", b"vt", b"vn", b"vp", b"f", b"l", b"p", b"o", b"g", b"s", b"mg", b"usemtl",
@@ -250,6 +250,37 @@ def _clean(path, data: bytes) -> bytes:
         if (arr[inline - 1] != 10).any():  # a comment after data: cut it off
             data = normalize_whitespace(COMMENT.sub(b"", data))
     return data
+
+
+def read_points(path, data: bytes) -> dict:
+    """The ``v`` lines of OBJ bytes ``data`` as a point set: ``points`` ``(N, 3)`` and
+    ``colors`` (the common ``v x y z r g b`` extension, as written; None unless every
+    vertex has one); faces and other lines are ignored.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
+    data = _clean(path, data)
+    starts, ends = line_starts(data)
+    arr = np.frombuffer(data, np.uint8)
+    b0 = arr[starts]
+    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    v_lines = np.flatnonzero((b0 == ord("v")) & ((ends - starts == 1) | (b1 == 32)))
+    if not len(v_lines):
+        raise MeshFormatError(path, "no 'v' lines: a point set needs vertices")
+    points = _vertices(path, data, starts, ends, v_lines)
+    colors = None
+    vblob = join_lines(data, starts, ends, v_lines)
+    counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
+    if (counts == 6).all():
+        values = parse_numbers(_blank_keyword(vblob, b"v"))
+        if values is not None:
+            colors = values.reshape(-1, 6)[:, 3:]
+    return {"points": points, "normals": None, "colors": colors, "integer_colors": False}
 
 
 def _vertices(path, data: bytes, starts, ends, v_lines) -> np.ndarray:

@@ -14,7 +14,7 @@ from ._common import (
 )
 from .text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
 
-__all__ = ["read", "write"]
+__all__ = ["read", "read_points", "write"]
 
 _PLY_TYPES = {
     "char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
@@ -23,7 +23,7 @@ _PLY_TYPES = {
 }
 
 
-def _ply_header(path, data: bytes):
+def _ply_header(path, data: bytes, points: bool = False):
     end = data.find(b"end_header")
     if not data.startswith(b"ply") or end < 0:
         raise MeshFormatError(path, "not a PLY file: it must start with 'ply' and have an "
@@ -63,9 +63,13 @@ def _ply_header(path, data: bytes):
     if fmt is None:
         raise MeshFormatError(path, "the header has no 'format' line")
     names = [e[0] for e in elements]
+    if points:
+        if "vertex" not in names:
+            raise MeshFormatError(path, f"a point set needs a 'vertex' element, found {names}")
+        return fmt, elements, body_start, len(lines) + 2
     if names == ["vertex"]:
-        raise MeshFormatError(path, "a point set (only a 'vertex' element, no faces): "
-                              "glshade draws surfaces")
+        raise MeshFormatError(path, "a point set (only a 'vertex' element, no faces): load "
+                              "it with glshade.load_points")
     if "vertex" not in names or "face" not in names:
         raise MeshFormatError(path, f"a mesh needs 'vertex' and 'face' elements, found {names}")
     return fmt, elements, body_start, len(lines) + 2
@@ -274,6 +278,83 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
             idx = ragged_take(vals, off + li + 1, sizes)
             break
     return _finish(path, vertices, idx, sizes, normals, uv)
+
+
+#: the names PLY writers give a vertex's colour
+_COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffuse_green",
+                                                            "diffuse_blue"))
+
+
+def read_points(path, data: bytes) -> dict:
+    """The vertices of PLY bytes ``data`` as a point set: ``points`` ``(N, 3)``, and
+    ``normals`` and ``colors`` (as stored: 0-255 for integer types, else as written; None
+    where absent) -- any faces are ignored.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, named in errors.
+    data : bytes
+        Its contents.
+    """
+    fmt, elements, pos, first_line = _ply_header(path, data, points=True)
+    table = None
+    for name, count, props in elements:
+        if name == "vertex":
+            _vertex_columns(path, props)
+            if fmt == "ascii":
+                table = _ascii_vertex_table(path, data[pos:], elements, count, props,
+                                            first_line)
+            else:
+                order = "<" if fmt == "binary_little_endian" else ">"
+                dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
+                if pos + count * dt.itemsize > len(data):
+                    raise MeshFormatError(path, f"truncated: {count} vertices need "
+                                          f"{count * dt.itemsize} bytes, {len(data) - pos} "
+                                          "remain", byte=len(data))
+                rec = np.frombuffer(data, dt, count=count, offset=pos)
+                table = np.stack([rec[f"p{i}"].astype(np.float64)
+                                  for i in range(len(props))], 1)
+            names = [p[0] for p in props]
+            cols, ncols, _ = _vertex_columns(path, props)
+            ccols = next(([names.index(c) for c in trio] for trio in _COLOR_NAMES
+                          if all(c in names for c in trio)), None)
+            integer = ccols is not None and np.dtype(props[ccols[0]][2]).kind in "iu"
+            return {"points": table[:, cols], "normals": table[:, ncols] if ncols else None,
+                    "colors": table[:, ccols] if ccols else None, "integer_colors": integer}
+        if fmt != "ascii":  # (an element before the vertices: skipped)
+            if any(p[1] == "list" for p in props):
+                raise MeshFormatError(path, f"element {name!r} with list properties before "
+                                      "the vertices is not supported")
+            pos += count * sum(np.dtype(p[2]).itemsize for p in props)
+    raise MeshFormatError(path, "no 'vertex' element")  # (the header has one: unreachable)
+
+
+def _ascii_vertex_table(path, body: bytes, elements, count: int, props, first_line: int):
+    """The vertex element's rows of an ASCII PLY body (the elements before it skipped)."""
+    text = normalize_whitespace(body)
+    starts, ends = line_starts(text)
+    keep = np.flatnonzero(ends > starts)
+    before = 0
+    for name, n, _ in elements:
+        if name == "vertex":
+            break
+        before += n
+    lines = keep[before:before + count]
+    if len(lines) < count:
+        raise MeshFormatError(path, f"truncated: the header promises {count} vertex lines, "
+                              f"the file has {len(lines)}")
+    blob = join_lines(text, starts, ends, lines)
+    vals = parse_numbers(blob)
+    counts = token_counts(blob, count)
+    if vals is None or len(vals) != counts.sum():
+        numeric_diagnose(path, text, starts, ends, lines, "vertex", first_line)
+    bad = counts != len(props)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise MeshFormatError(path, f"vertex {i} has {int(counts[i])} values, the header "
+                              f"declares {len(props)}", line=int(lines[i]) + first_line)
+    return vals.reshape(count, len(props))
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:

@@ -165,7 +165,7 @@ def objects(scene) -> dict[int, list]:
         The objects.
     """
     out: dict[int, list] = {}
-    for model in [*scene.models, *scene.patch_models, *scene.solids]:
+    for model in scene.every_model:
         if model.visible and model.instance_id:
             out.setdefault(model.instance_id, []).append(model)
     return out

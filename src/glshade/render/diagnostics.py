@@ -25,6 +25,10 @@ def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str
     """
     drawn = [m for m in scene.models if m.visible and len(m.mesh.triangles[0])]
     solids = [s for s in scene.solids if s.visible]
+    clouds = [c for c in scene.clouds if c.visible]
+    if clouds and not drawn and not solids:
+        return ("the render is blank: no point of the clouds lies in the camera's view "
+                "(between its near and far planes, inside its field of view)")
     empty = [s for s in solids if (b := s.solid.bounds) is not None and np.prod(b[1] - b[0]) == 0]
     if solids and len(empty) == len(solids) and not drawn:
         names = ", ".join(str(s.name) for s in empty)
@@ -35,7 +39,7 @@ def why_blank(scene: Scene, camera: Camera, cull: Culling = Culling.AUTO) -> str
     if not drawn:
         return ("the render is blank: no solid surface lies in the camera's view (or the "
                 "solids are empty: parts of an intersection that do not meet)")
-    if all(len(m.mesh.degenerate_faces) == m.mesh.n_faces for m in drawn):
+    if not clouds and all(len(m.mesh.degenerate_faces) == m.mesh.n_faces for m in drawn):
         return ("the render is blank: every face has zero area (identical or collinear "
                 "vertices)")
     b = scene.bounds

@@ -35,6 +35,7 @@ from .passes.csg import CsgPass
 from .passes.edges import EdgePass
 from .passes.mesh import MeshPass
 from .passes.patches import PatchPass
+from .passes.points import PointPass
 from .passes.shadows import ShadowPass
 from .passes.transparency import TransparencyPass
 from .programs import MaterialUniforms, UniformWriter
@@ -244,8 +245,9 @@ class Renderer:
                                flat_constants=self.context.software)
         self.csg = CsgPass(self.context, self.shaders, uniforms, materials)
         self.patches = PatchPass(self.context, self.shaders, self.meshes)
+        self.points = PointPass(self.context, self.shaders, uniforms)
         #: the stages that draw opaque surfaces (a shadow pass's G-buffer is drawn with them)
-        opaque = (self.meshes, self.patches, self.csg)
+        opaque = (self.meshes, self.patches, self.csg, self.points)
         self.shadows = ShadowPass(self.context, self.shaders, opaque)
         self.transparent = TransparencyPass(self.context, self.shaders, self.meshes)
         self.edges = EdgePass(self.context, self.shaders, self.meshes)
@@ -363,7 +365,8 @@ class Renderer:
         self.meshes.sync()
         state = DrawState.of(target, scene, camera, options, viewport,
                              read_visibility=read_visibility, clear=clear)
-        # the pipeline: shadows -> meshes -> patches -> CSG solids -> transparency -> edges
+        # the pipeline: shadows -> meshes -> patches -> CSG solids -> point clouds ->
+        # transparency -> edges
         return run(self.ctx, self.stages, state)
 
     @property
@@ -619,7 +622,7 @@ class Renderer:
         models = annotate.objects(scene)
         alone, batches = annotate.plan(models, camera, (self.width, self.height))
         full = {k: view.instance == k for k in alone}
-        every: list[Any] = [*scene.models, *scene.patch_models, *scene.solids]
+        every: list[Any] = scene.every_model
         shown = [m.visible for m in every]
         instances, _ = scene.id_tables()
         try:  # (each batch drawn with only its objects shown; all shown again after)

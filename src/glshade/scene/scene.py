@@ -19,12 +19,13 @@ from ..errors import GeometryError, SceneError, plain
 from ..modes import Tessellation, choose
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
+from ..geometry.points import PointCloud
 from ..geometry.transforms import MAX_DRAWABLE_COORDINATE, box_corners, compose_transform
 from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "Scene",
+__all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "CloudModel", "Scene",
            "MAX_DRAWABLE_COORDINATE",
            "MAX_GPU_LEVEL", "MAX_GPU_PATCH_POINTS"]
 
@@ -211,6 +212,56 @@ class PatchModel:
         return box_corners(box) @ self.transform[:3, :3].T + self.transform[:3, 3]
 
 
+@dataclass(eq=False)
+class CloudModel:
+    """A point cloud placed in a scene (:class:`~glshade.geometry.points.PointCloud`): its
+    points are ids of ``Frame.face_id`` after every polygon and solid leaf.
+
+    Parameters
+    ----------
+    cloud : PointCloud
+        The points (model coordinates).
+    material : Material
+        How they are shaded (the cloud's ``colors`` replace its colour).
+    transform : ndarray
+        ``(4, 4)`` model-to-world matrix, column vectors: a similarity (a sphere stays a
+        sphere), its scale multiplying the radii.
+    name : str or None
+        Its name.
+    visible : bool
+        Whether draws show it.
+    label : str or None
+        Its class, for ground truth.
+    instance_id : int
+        Which object it is.
+    """
+
+    cloud: PointCloud
+    material: Material = field(default_factory=Material)
+    transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
+    name: str | None = None
+    visible: bool = True
+    label: str | None = None
+    instance_id: int = 0
+
+    @property
+    def n_polygons(self) -> int:
+        """The ids the cloud takes: one a point."""
+        return self.cloud.n_points
+
+    @property
+    def scale(self) -> float:
+        """The placement's uniform scale (a radius in the world is this times the
+        cloud's)."""
+        return float(np.cbrt(abs(np.linalg.det(self.transform[:3, :3]))))
+
+    @property
+    def corners(self) -> NDArray[np.float64]:
+        """The cloud's box corners ``(8, 3)`` placed in the world."""
+        return box_corners(self.cloud.bounds) @ self.transform[:3, :3].T + \
+            self.transform[:3, 3]
+
+
 class Scene:
     """Meshes, lights, ambient intensity ``Ia`` and background colour.
 
@@ -238,6 +289,7 @@ class Scene:
         self.models: list[Model] = []
         self.solids: list[SolidModel] = []
         self.patch_models: list[PatchModel] = []
+        self.clouds: list[CloudModel] = []
         self.lights: list = []
         self._next_instance = 0
 
@@ -246,6 +298,9 @@ class Scene:
         leaves = sum(s.solid.n_leaves for s in self.solids)
         gpu = (f", {len(self.patch_models)} patch models (GPU tessellation)"
                if self.patch_models else "")
+        if self.clouds:
+            gpu += (f", {len(self.clouds)} point clouds "
+                    f"({sum(c.cloud.n_points for c in self.clouds):,} points)")
         return (f"<Scene: {len(self.models)} models ({polygons:,} polygons), "
                 f"{len(self.solids)} solids ({leaves:,} leaves){gpu}, "
                 f"{len(self.lights)} lights>")
@@ -279,8 +334,9 @@ class Scene:
 
         Parameters
         ----------
-        mesh : Mesh, Solid or patches
-            What to add.
+        mesh : Mesh, Solid, patches or PointCloud
+            What to add (a :class:`~glshade.geometry.points.PointCloud` becomes a
+            :class:`CloudModel`, placed by a similarity).
         material : Material or None
             Its material (None: the default Material, or an OBJ's own).
         transform : array_like or None
@@ -320,7 +376,7 @@ class Scene:
         if colors is not None and instances is None:
             raise SceneError("colors are the instances' colours: give instances= too")
         copies = None if instances is None else _instance_matrices(instances)
-        kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids)
+        kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids, self.clouds)
         before = [len(k) for k in kinds]  # (what this add appends: a mesh's parts too)
         model = self._add(mesh, material, transform, rotation, translation, scale, name,
                           crease, vertex_colors, tessellation, level)
@@ -328,10 +384,11 @@ class Scene:
         if copies is not None:
             if added != [model] or not isinstance(model, Model):
                 del self.models[before[0]:], self.patch_models[before[1]:]
-                del self.solids[before[2]:]
+                del self.solids[before[2]:], self.clouds[before[3]:]
                 raise SceneError("instances= copies one mesh of one material; this add "
-                                 f"made {len(added)} models (a solid, GPU patches or a mesh "
-                                 "whose faces name materials): add those one by one")
+                                 f"made {len(added)} models (a solid, GPU patches, a point "
+                                 "cloud or a mesh whose faces name materials): add those "
+                                 "one by one")
             model = self._instances(model, copies, colors)
             added = list(model.models)
         for each in added:
@@ -365,31 +422,33 @@ class Scene:
         self.models[-1:] = models
         return group
 
-    def _every_model(self) -> list:
-        """Every model in the order its polygon ids run: meshes, patches, solids."""
-        return [*self.models, *self.patch_models, *self.solids]
+    @property
+    def every_model(self) -> list:
+        """Every model in the order its polygon ids run: meshes, patches, solids, clouds."""
+        return [*self.models, *self.patch_models, *self.solids, *self.clouds]
 
     @property
     def labels(self) -> dict[str, int]:
         """Each label to its class id: 1, 2, ... in the order of first appearance (by
         instance); 0 is the background's."""
         out: dict[str, int] = {}
-        for model in sorted(self._every_model(), key=lambda m: m.instance_id):
+        for model in sorted(self.every_model, key=lambda m: m.instance_id):
             if model.label is not None and model.label not in out:
                 out[model.label] = len(out) + 1
         return out
 
     def id_tables(self) -> tuple[NDArray[np.int32], NDArray[np.int32]]:
         """``(instances, classes)``: for each polygon id ``k`` (as :class:`Frame` numbers
-        them: the meshes' polygons in order, then the patches', then a leaf a solid), its
+        them: the meshes' polygons in order, then the patches', then a leaf a solid, then a
+        point a cloud), its
         model's ``instance_id`` at ``[k + 1]`` and its label's class id likewise; ``[0]`` is
         the background's 0 -- so ``instances[face_id + 1]`` is a frame's instance mask.
         """
         labels = self.labels
         counts = [m.mesh.n_faces for m in self.models] + \
             [len(m.patches) for m in self.patch_models] + \
-            [m.n_polygons for m in self.solids]
-        every = self._every_model()
+            [m.n_polygons for m in self.solids] + [m.n_polygons for m in self.clouds]
+        every = self.every_model
         instances = np.repeat(np.array([m.instance_id for m in every], np.int32), counts)
         classes = np.repeat(np.array([labels.get(m.label, 0) if m.label is not None else 0
                                       for m in every], np.int32), counts)
@@ -398,6 +457,9 @@ class Scene:
 
     def _add(self, mesh, material, transform, rotation, translation, scale, name, crease,
              vertex_colors, tessellation, level):
+        if isinstance(mesh, PointCloud):
+            return self._add_cloud(mesh, material, transform, rotation, translation, scale,
+                                   name, crease, vertex_colors, tessellation, level)
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
                                    name)
@@ -416,7 +478,7 @@ class Scene:
             raise SceneError(f"level is for patches (glshade.patches), not a "
                              f"{type(mesh).__name__}")
         if not isinstance(mesh, Mesh):
-            raise SceneError(f"scene.add needs a Mesh, a Solid or patches, got "
+            raise SceneError(f"scene.add needs a Mesh, a Solid, patches or a PointCloud, got "
                                 f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
@@ -479,6 +541,35 @@ class Scene:
         model = PatchModel(patches, material or Material(), t, int(level),
                            name or "patches")
         self.patch_models.append(model)
+        return model
+
+    def _add_cloud(self, cloud, material, transform, rotation, translation, scale, name,
+                   crease, vertex_colors, tessellation, level):
+        """A point cloud (see :class:`CloudModel`); a similarity places it."""
+        given = [k for k, v in (("crease", crease), ("vertex_colors", vertex_colors),
+                                ("level", level)) if v is not None]
+        if tessellation not in ("cpu", Tessellation.CPU):
+            given.append("tessellation")
+        if given:
+            raise SceneError(f"{', '.join(given)} {'is' if len(given) == 1 else 'are'} for "
+                             "meshes and patches, not a point cloud")
+        if material is not None and material.opacity < 1:
+            raise SceneError(f"point clouds are drawn opaque; this material's opacity is "
+                             f"{plain(material.opacity)}")
+        m = _placement(transform, rotation, translation, scale)
+        a = m[:3, :3]
+        s = np.cbrt(abs(np.linalg.det(a)))
+        if not np.allclose(a.T @ a, s * s * np.eye(3), rtol=0, atol=1e-9 * s * s):
+            raise SceneError("a point cloud is placed by a rotation, a translation and one "
+                             "scale (its spheres stay spheres): this transform shears or "
+                             "scales its axes unequally")
+        corners = box_corners(cloud.bounds) @ a.T + m[:3, 3]
+        reach = float(np.abs(corners).max())
+        if reach > MAX_DRAWABLE_COORDINATE:
+            raise SceneError(f"the point cloud reaches a coordinate of {reach:g}; the GPU "
+                             f"draws up to {MAX_DRAWABLE_COORDINATE:g}: scale down")
+        model = CloudModel(cloud, material or Material(), m, name or cloud.name or "points")
+        self.clouds.append(model)
         return model
 
     def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
@@ -547,6 +638,7 @@ class Scene:
             pts.append(m.corners)
         pts += [box_corners(s.solid.bounds) for s in self.solids if s.visible]
         pts += [p.corners for p in self.patch_models if p.visible]
+        pts += [c.corners for c in self.clouds if c.visible]
         if not pts:
             return np.zeros((2, 3))
         p = np.vstack(pts)

@@ -1,0 +1,229 @@
+"""Point clouds on the GPU (:class:`~glshade.geometry.points.PointCloud`): the stage that
+draws them after the opaque surfaces' other stages, into the same z-buffer.
+
+One draw call a cloud, ``GL_POINTS``: the geometry stage (``points.geom``) turns each point
+into the quad that holds it on screen -- a sphere's exact screen box (in perspective the
+projected sphere is an ellipse off the projected centre, so a square about the centre would
+cut it), a square's own corners -- and the fragment stage (``points.frag``) casts the
+pixel's ray against the sphere or disc, writing the hit's depth: an impostor, exact to
+float32 at every pixel centre, that meets meshes where the surfaces really cross. Squares
+write no depth of their own (early depth test: the cheap style for millions).
+
+A cloud's arrays are uploaded once while it lives (float32 positions, radii, colours and
+normals where it has them: 12 to 40 bytes a point) and dropped with it.
+"""
+
+from __future__ import annotations
+
+import weakref
+from typing import Any
+
+import numpy as np
+
+from ...geometry.points import PointCloud
+from ...geometry.transforms import gl_bytes, outside_frustum
+from ...modes import ShadingMode
+from ..base import GLResource
+from ..programs import ProgramKey, UniformWriter, lighting_products
+from ..state import DrawState
+from . import Stage
+
+__all__ = ["PointPass", "point_defines"]
+
+#: the defines of each shading mode's point program (the lit modes light per pixel)
+_MODE_DEFINES = {ShadingMode.NORMALS: ("SHOW_NORMALS",), ShadingMode.DEPTH: ("SHOW_DEPTH",),
+                 ShadingMode.RADIOSITY: ("SHOW_DISPLAY",), ShadingMode.FLAT: ("FLAT_FACES",)}
+
+
+def point_defines(cloud: PointCloud) -> tuple[str, ...]:
+    """The ``#define``s of the program that draws clouds like ``cloud``: its style and the
+    arrays it has.
+
+    Parameters
+    ----------
+    cloud : PointCloud
+        The cloud.
+    """
+    flags = ((f"STYLE_{cloud.style.name}", True), ("POINT_RADII", cloud.radii is not None),
+             ("POINT_COLORS", cloud.colors is not None),
+             ("POINT_NORMALS", cloud.normals is not None),
+             ("PIXEL_SIZE", cloud.pixel_size is not None))
+    return tuple(name for name, on in flags if on)
+
+
+class _GpuCloud:
+    """A cloud's buffers and its vertex arrays (one a program)."""
+
+    def __init__(self, ctx, cloud: PointCloud):
+        self.n = cloud.n_points
+        self.buffers = [(name, f"{a.shape[1] if a.ndim > 1 else 1}f", ctx.buffer(a))
+                        for name, a in cloud.arrays()]
+        self.nbytes = sum(b.size for _, _, b in self.buffers)
+        self.vaos: dict[int, Any] = {}
+
+    def vertex_array(self, ctx, prog):
+        vao = self.vaos.get(id(prog))
+        if vao is None:
+            names = set(prog)  # (a style may not read every array: a sphere's normals)
+            vao = self.vaos[id(prog)] = ctx.vertex_array(
+                prog, [(buf, fmt, name) for name, fmt, buf in self.buffers if name in names])
+        return vao
+
+    def release(self) -> None:
+        for vao in self.vaos.values():
+            vao.release()
+        for _, _, buf in self.buffers:
+            buf.release()
+        self.vaos.clear()
+        self.buffers = []
+
+
+class PointPass(GLResource, Stage):
+    """The point clouds' programs (per shading variant, style and arrays), their buffers
+    and their draws, for one Renderer.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context its GL objects live in.
+    shaders : ShaderLibrary
+        Where its programs are compiled.
+    uniforms : UniformWriter
+        The one uniform writer.
+    """
+
+    def __init__(self, context, shaders, uniforms: UniformWriter):
+        super().__init__(context)
+        self.shaders, self.uniforms = shaders, uniforms
+        self._programs: dict = {}
+        self._clouds: dict[int, tuple] = {}  # id(cloud) -> (weakref, _GpuCloud)
+        #: clouds skipped by the last draw's frustum test
+        self.culled = 0
+
+    def gpu_cloud(self, cloud: PointCloud) -> _GpuCloud:
+        """A cloud's GPU copy, uploaded once while it lives.
+
+        Parameters
+        ----------
+        cloud : PointCloud
+            The cloud.
+        """
+        self._check()
+        for key in [k for k, v in self._clouds.items() if v[0]() is None]:
+            self._clouds.pop(key)[1].release()
+        found = self._clouds.get(id(cloud))
+        if found is None or found[0]() is not cloud:
+            if found is not None:
+                found[1].release()
+            found = self._clouds[id(cloud)] = (weakref.ref(cloud),
+                                               _GpuCloud(self.context.ctx, cloud))
+        return found[1]
+
+    def gpu_bytes(self, cloud: PointCloud) -> int:
+        """The bytes a cloud's buffers take on the GPU.
+
+        Parameters
+        ----------
+        cloud : PointCloud
+            The cloud.
+        """
+        return self.gpu_cloud(cloud).nbytes
+
+    def program(self, key: ProgramKey, cloud: PointCloud):
+        """The program of a variant for clouds like ``cloud`` (style, arrays).
+
+        Parameters
+        ----------
+        key : ProgramKey
+            The variant.
+        cloud : PointCloud
+            A cloud of the style and arrays wanted.
+        """
+        self._check()
+        wanted = point_defines(cloud)
+        found = self._programs.get((key, wanted))
+        if found is None:
+            defines = (*key.defines(), *wanted, *_MODE_DEFINES.get(key.mode, ()))
+            found = self._programs[(key, wanted)] = self.shaders.compile(
+                "points.vert", "points.frag", defines=defines, geom="points.geom")
+        return found
+
+    def wanted(self, state: DrawState) -> bool:
+        return bool(state.scene.clouds)
+
+    def draw(self, state: DrawState, id_base: int) -> int:
+        """Draw the scene's visible clouds (their ids, a point each, follow from
+        ``id_base``); the id base after them.
+
+        Parameters
+        ----------
+        state : DrawState
+            The draw.
+        id_base : int
+            The first polygon id free for this stage.
+        """
+        import moderngl
+
+        self._check()
+        ctx, put = self.context.ctx, self.uniforms.put
+        clouds = state.scene.clouds
+        self.culled = 0
+        outside = outside_frustum(state.view_proj, np.stack([c.corners for c in clouds])) \
+            if state.options.frustum_cull and len(clouds) > 1 else np.zeros(len(clouds), bool)
+        view, viewport = state.view, state.viewport
+        near = float(state.camera.planes()[0])
+        common = {"u_inverse_proj": gl_bytes(np.linalg.inv(state.proj)),
+                  "u_camera_to_world": gl_bytes(np.linalg.inv(view)),
+                  "u_viewport_origin": (float(viewport[0]), float(viewport[1])),
+                  "u_viewport_size": (float(viewport[2]), float(viewport[3])),
+                  "u_near": near}
+        ctx.disable(moderngl.CULL_FACE)
+        for index, model in enumerate(clouds):
+            if not model.visible or outside[index]:
+                self.culled += bool(model.visible)
+                id_base += model.n_polygons
+                continue
+            cloud = model.cloud
+            prog = self.program(ProgramKey.of(state.variant, two_sided=False), cloud)
+            for name, value in state.frame_uniforms:
+                put(prog, name, value)
+            for name, value in common.items():
+                put(prog, name, value)
+            m = model.transform
+            scale = model.scale
+            values = {"u_model_view": gl_bytes(view @ m),
+                      "u_normal_view": gl_bytes(view[:3, :3] @ m[:3, :3] / scale),
+                      "u_radius": float(cloud.radius), "u_scale": scale,
+                      "u_face_id_base": id_base,
+                      "u_pixel_size": float(cloud.pixel_size or 0.0)}
+            values.update(_material(model.material, state, cloud.colors is not None))
+            for name, value in values.items():
+                put(prog, name, value)
+            gpu = self.gpu_cloud(cloud)
+            gpu.vertex_array(ctx, prog).render(moderngl.POINTS, vertices=gpu.n)
+            id_base += model.n_polygons
+        return id_base
+
+    def _release_extra(self) -> None:
+        for _, gpu in self._clouds.values():
+            gpu.release()
+        self._clouds.clear()
+        self._programs.clear()  # (the shader library owns and frees them)
+
+
+def _material(material, state: DrawState, per_point: bool) -> dict:
+    """A cloud material's products: its own (as a mesh's), or with per-point colours each
+    colour-borne product for a colour of 1, weighed by the point's colour in the shader
+    (``u_color_weight``: 1 where the product is the colour's, 0 where the material gives
+    it outright)."""
+    colors = np.ones((1, 3)) if per_point else None
+    ambient_term, diffuse, specular = lighting_products(material, state.lights,
+                                                        state.scene.ambient, colors)
+    ambient_from_color = material.ambient is None
+    if material.illum == 0:  # (the diffuse colour is the whole term)
+        ambient_from_color = material.diffuse is None
+    return {"u_ambient_term": tuple(float(x) for x in ambient_term[0]),
+            "u_light_diffuse": diffuse[0].tobytes(), "u_light_specular": specular.tobytes(),
+            "u_shininess": float(material.shininess),
+            "u_color_weight": (float(ambient_from_color), float(material.diffuse is None)),
+            "u_emission": tuple(float(x) for x in np.asarray(material.emission, np.float64))}

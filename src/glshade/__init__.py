@@ -29,7 +29,7 @@ _EXPORTS = {
     # the mesh kernel
     "geometry": ("geometry", None),
     "Mesh": ("geometry.mesh", "Mesh"), "concatenate": ("geometry.merge", "concatenate"),
-    "PointCloud": ("geometry.points", "PointCloud"),
+    "PointCloud": ("geometry.points", "PointCloud"), "Polyline": ("geometry.lines", "Polyline"),
     "newell_normal": ("geometry.polygon", "newell_normal"),
     "polygon_area": ("geometry.polygon", "polygon_area"),
     # scene
@@ -83,6 +83,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
                          ShaderError, TopologyError)
     from .geometry.merge import concatenate
     from .geometry.mesh import Mesh
+    from .geometry.lines import Polyline
     from .geometry.points import PointCloud
     from .geometry.polygon import newell_normal, polygon_area
     from .io.images import save_image

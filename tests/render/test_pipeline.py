@@ -17,8 +17,8 @@ from glshade.render.passes import Stage, run
 pytestmark = pytest.mark.gl
 
 PASSES = Path(glshade.__file__).parent / "render" / "passes"
-ORDER = ["ShadowPass", "MeshPass", "PatchPass", "CsgPass", "PointPass", "TransparencyPass",
-         "EdgePass"]
+ORDER = ["ShadowPass", "MeshPass", "PatchPass", "CsgPass", "PointPass", "LinePass",
+         "TransparencyPass", "EdgePass"]
 PROTOCOL = {"wanted": ["state"], "prepare": ["state"], "draw": ["state", "id_base"],
             "finish": ["state"]}
 
@@ -62,8 +62,8 @@ def test_no_pass_receives_or_imports_the_renderer():
 
 def everything() -> Scene:
     """A scene every stage but the patches' has work in: shadow-casting meshes, a
-    transparent one, a CSG solid and a point cloud."""
-    from glshade import PointCloud
+    transparent one, a CSG solid, a point cloud and a polyline."""
+    from glshade import PointCloud, Polyline
     from glshade.solids import Sphere
 
     scene = shadow_scene()
@@ -71,6 +71,7 @@ def everything() -> Scene:
               translation=(1.8, 0.0, 0.5))
     scene.add(Sphere(0.5).translated((-1.8, 0.0, 0.6)))
     scene.add(PointCloud([[0.0, -1.8, 0.5], [0.3, -1.8, 0.5]], radius=0.2))
+    scene.add(Polyline([[-1.0, 1.8, 0.3], [0.0, 1.8, 0.5], [1.0, 1.8, 0.3]], width=3))
     return scene
 
 
@@ -103,20 +104,19 @@ def test_the_stages_run_in_order_and_pass_the_ids_on(make_renderer, monkeypatch)
     wanted = [n.split(".")[0] for n, _, out in top if n.endswith("wanted") and out]
     assert wanted == [n for n in ORDER if n != "PatchPass"]  # (no patch model: not wanted)
     phases = [n.split(".")[1] for n, _, _ in top if not n.endswith("wanted")]
-    assert phases == ["prepare"] * 6 + ["draw"] * 6 + ["finish"] * 6
+    assert phases == ["prepare"] * 7 + ["draw"] * 7 + ["finish"] * 7
+    opaque = ["MeshPass", "CsgPass", "PointPass", "LinePass"]
     assert [n for n in inner if not n.endswith("wanted")] == [
-        "MeshPass.prepare", "CsgPass.prepare", "PointPass.prepare", "MeshPass.draw",
-        "CsgPass.draw", "PointPass.draw", "MeshPass.finish", "CsgPass.finish",
-        "PointPass.finish"]
+        f"{stage}.{phase}" for phase in ("prepare", "draw", "finish") for stage in opaque]
     draws = [(n, args, out) for n, args, out in top if n.endswith(".draw")]
     assert draws[0][1] == (0,)
     for (_, _, before), (_, args, _) in zip(draws, draws[1:]):
         assert args == (before,)  # (each stage's first id is the last one's return)
     # the meshes' ids: the floor's quad, the sphere's triangles, the transparent quad;
-    # then the solid's leaf, then the cloud's two points
+    # then the solid's leaf, the cloud's two points, the polyline's two segments
     n_mesh = sum(m.mesh.n_faces for m in scene.models)
-    assert [out for *_, out in draws] == [0, n_mesh, n_mesh + 1, n_mesh + 3, n_mesh + 3,
-                                          n_mesh + 3]
+    assert [out for *_, out in draws] == [0, n_mesh, n_mesh + 1, n_mesh + 3, n_mesh + 5,
+                                          n_mesh + 5, n_mesh + 5]
 
 
 def shadow_scene() -> Scene:

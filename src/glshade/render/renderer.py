@@ -35,6 +35,7 @@ from .passes.csg import CsgPass
 from .passes.edges import EdgePass
 from .passes.mesh import MeshPass
 from .passes.patches import PatchPass
+from .passes.lines import LinePass
 from .passes.points import PointPass
 from .passes.shadows import ShadowPass
 from .passes.transparency import TransparencyPass
@@ -246,8 +247,9 @@ class Renderer:
         self.csg = CsgPass(self.context, self.shaders, uniforms, materials)
         self.patches = PatchPass(self.context, self.shaders, self.meshes)
         self.points = PointPass(self.context, self.shaders, uniforms)
+        self.lines = LinePass(self.context, self.shaders, uniforms)
         #: the stages that draw opaque surfaces (a shadow pass's G-buffer is drawn with them)
-        opaque = (self.meshes, self.patches, self.csg, self.points)
+        opaque = (self.meshes, self.patches, self.csg, self.points, self.lines)
         self.shadows = ShadowPass(self.context, self.shaders, opaque)
         self.transparent = TransparencyPass(self.context, self.shaders, self.meshes)
         self.edges = EdgePass(self.context, self.shaders, self.meshes)
@@ -366,7 +368,7 @@ class Renderer:
         state = DrawState.of(target, scene, camera, options, viewport,
                              read_visibility=read_visibility, clear=clear)
         # the pipeline: shadows -> meshes -> patches -> CSG solids -> point clouds ->
-        # transparency -> edges
+        # polylines -> transparency -> edges
         return run(self.ctx, self.stages, state)
 
     @property

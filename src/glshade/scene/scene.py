@@ -19,13 +19,15 @@ from ..errors import GeometryError, SceneError, plain
 from ..modes import Tessellation, choose
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
+from ..geometry.lines import Polyline
 from ..geometry.points import PointCloud
 from ..geometry.transforms import MAX_DRAWABLE_COORDINATE, box_corners, compose_transform
 from ..solids.tree import Solid
 from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
 from .material import Material, color3
 
-__all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "CloudModel", "Scene",
+__all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "CloudModel", "LineModel",
+           "Scene",
            "MAX_DRAWABLE_COORDINATE",
            "MAX_GPU_LEVEL", "MAX_GPU_PATCH_POINTS"]
 
@@ -262,6 +264,55 @@ class CloudModel:
             self.transform[:3, 3]
 
 
+@dataclass(eq=False)
+class LineModel:
+    """Polylines placed in a scene (:class:`~glshade.geometry.lines.Polyline`): their
+    segments are ids of ``Frame.face_id`` after every polygon, solid leaf and point.
+
+    Parameters
+    ----------
+    lines : Polyline
+        The polylines (model coordinates).
+    material : Material
+        Their colour (``color``, unless the polyline has its own colours).
+    transform : ndarray
+        ``(4, 4)`` model-to-world matrix, column vectors: a similarity, its scale
+        multiplying a width in world units.
+    name : str or None
+        Its name.
+    visible : bool
+        Whether draws show it.
+    label : str or None
+        Its class, for ground truth.
+    instance_id : int
+        Which object it is.
+    """
+
+    lines: Polyline
+    material: Material = field(default_factory=Material)
+    transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
+    name: str | None = None
+    visible: bool = True
+    label: str | None = None
+    instance_id: int = 0
+
+    @property
+    def n_polygons(self) -> int:
+        """The ids the lines take: one a segment."""
+        return self.lines.n_segments
+
+    @property
+    def scale(self) -> float:
+        """The placement's uniform scale."""
+        return float(np.cbrt(abs(np.linalg.det(self.transform[:3, :3]))))
+
+    @property
+    def corners(self) -> NDArray[np.float64]:
+        """The lines' box corners ``(8, 3)`` placed in the world."""
+        return box_corners(self.lines.bounds) @ self.transform[:3, :3].T + \
+            self.transform[:3, 3]
+
+
 class Scene:
     """Meshes, lights, ambient intensity ``Ia`` and background colour.
 
@@ -290,6 +341,7 @@ class Scene:
         self.solids: list[SolidModel] = []
         self.patch_models: list[PatchModel] = []
         self.clouds: list[CloudModel] = []
+        self.lines: list[LineModel] = []
         self.lights: list = []
         self._next_instance = 0
 
@@ -301,6 +353,9 @@ class Scene:
         if self.clouds:
             gpu += (f", {len(self.clouds)} point clouds "
                     f"({sum(c.cloud.n_points for c in self.clouds):,} points)")
+        if self.lines:
+            gpu += (f", {len(self.lines)} polylines "
+                    f"({sum(m.lines.n_segments for m in self.lines):,} segments)")
         return (f"<Scene: {len(self.models)} models ({polygons:,} polygons), "
                 f"{len(self.solids)} solids ({leaves:,} leaves){gpu}, "
                 f"{len(self.lights)} lights>")
@@ -334,9 +389,10 @@ class Scene:
 
         Parameters
         ----------
-        mesh : Mesh, Solid, patches or PointCloud
+        mesh : Mesh, Solid, patches, PointCloud or Polyline
             What to add (a :class:`~glshade.geometry.points.PointCloud` becomes a
-            :class:`CloudModel`, placed by a similarity).
+            :class:`CloudModel`, a :class:`~glshade.geometry.lines.Polyline` a
+            :class:`LineModel`, placed by a similarity).
         material : Material or None
             Its material (None: the default Material, or an OBJ's own).
         transform : array_like or None
@@ -376,7 +432,8 @@ class Scene:
         if colors is not None and instances is None:
             raise SceneError("colors are the instances' colours: give instances= too")
         copies = None if instances is None else _instance_matrices(instances)
-        kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids, self.clouds)
+        kinds: tuple[list, ...] = (self.models, self.patch_models, self.solids, self.clouds,
+                                   self.lines)
         before = [len(k) for k in kinds]  # (what this add appends: a mesh's parts too)
         model = self._add(mesh, material, transform, rotation, translation, scale, name,
                           crease, vertex_colors, tessellation, level)
@@ -384,7 +441,7 @@ class Scene:
         if copies is not None:
             if added != [model] or not isinstance(model, Model):
                 del self.models[before[0]:], self.patch_models[before[1]:]
-                del self.solids[before[2]:], self.clouds[before[3]:]
+                del self.solids[before[2]:], self.clouds[before[3]:], self.lines[before[4]:]
                 raise SceneError("instances= copies one mesh of one material; this add "
                                  f"made {len(added)} models (a solid, GPU patches, a point "
                                  "cloud or a mesh whose faces name materials): add those "
@@ -424,8 +481,9 @@ class Scene:
 
     @property
     def every_model(self) -> list:
-        """Every model in the order its polygon ids run: meshes, patches, solids, clouds."""
-        return [*self.models, *self.patch_models, *self.solids, *self.clouds]
+        """Every model in the order its polygon ids run: meshes, patches, solids, clouds,
+        lines."""
+        return [*self.models, *self.patch_models, *self.solids, *self.clouds, *self.lines]
 
     @property
     def labels(self) -> dict[str, int]:
@@ -440,14 +498,15 @@ class Scene:
     def id_tables(self) -> tuple[NDArray[np.int32], NDArray[np.int32]]:
         """``(instances, classes)``: for each polygon id ``k`` (as :class:`Frame` numbers
         them: the meshes' polygons in order, then the patches', then a leaf a solid, then a
-        point a cloud), its
+        point a cloud, then a segment a polyline), its
         model's ``instance_id`` at ``[k + 1]`` and its label's class id likewise; ``[0]`` is
         the background's 0 -- so ``instances[face_id + 1]`` is a frame's instance mask.
         """
         labels = self.labels
         counts = [m.mesh.n_faces for m in self.models] + \
             [len(m.patches) for m in self.patch_models] + \
-            [m.n_polygons for m in self.solids] + [m.n_polygons for m in self.clouds]
+            [m.n_polygons for m in self.solids] + [m.n_polygons for m in self.clouds] + \
+            [m.n_polygons for m in self.lines]
         every = self.every_model
         instances = np.repeat(np.array([m.instance_id for m in every], np.int32), counts)
         classes = np.repeat(np.array([labels.get(m.label, 0) if m.label is not None else 0
@@ -457,7 +516,7 @@ class Scene:
 
     def _add(self, mesh, material, transform, rotation, translation, scale, name, crease,
              vertex_colors, tessellation, level):
-        if isinstance(mesh, PointCloud):
+        if isinstance(mesh, (PointCloud, Polyline)):
             return self._add_cloud(mesh, material, transform, rotation, translation, scale,
                                    name, crease, vertex_colors, tessellation, level)
         if isinstance(mesh, Solid):
@@ -478,7 +537,8 @@ class Scene:
             raise SceneError(f"level is for patches (glshade.patches), not a "
                              f"{type(mesh).__name__}")
         if not isinstance(mesh, Mesh):
-            raise SceneError(f"scene.add needs a Mesh, a Solid, patches or a PointCloud, got "
+            raise SceneError(f"scene.add needs a Mesh, a Solid, patches, a PointCloud or a "
+                             f"Polyline, got "
                                 f"{type(mesh).__name__}")
         if crease is not None:
             mesh = mesh.split_creases(crease)
@@ -545,31 +605,39 @@ class Scene:
 
     def _add_cloud(self, cloud, material, transform, rotation, translation, scale, name,
                    crease, vertex_colors, tessellation, level):
-        """A point cloud (see :class:`CloudModel`); a similarity places it."""
+        """A point cloud or polylines (:class:`CloudModel`, :class:`LineModel`); a
+        similarity places them."""
+        what, kinds = (("a point cloud", "point clouds") if isinstance(cloud, PointCloud)
+                       else ("polylines", "polylines"))
         given = [k for k, v in (("crease", crease), ("vertex_colors", vertex_colors),
                                 ("level", level)) if v is not None]
         if tessellation not in ("cpu", Tessellation.CPU):
             given.append("tessellation")
         if given:
             raise SceneError(f"{', '.join(given)} {'is' if len(given) == 1 else 'are'} for "
-                             "meshes and patches, not a point cloud")
+                             f"meshes and patches, not {what}")
         if material is not None and material.opacity < 1:
-            raise SceneError(f"point clouds are drawn opaque; this material's opacity is "
+            raise SceneError(f"{kinds} are drawn opaque; this material's opacity is "
                              f"{plain(material.opacity)}")
         m = _placement(transform, rotation, translation, scale)
         a = m[:3, :3]
         s = np.cbrt(abs(np.linalg.det(a)))
         if not np.allclose(a.T @ a, s * s * np.eye(3), rtol=0, atol=1e-9 * s * s):
-            raise SceneError("a point cloud is placed by a rotation, a translation and one "
-                             "scale (its spheres stay spheres): this transform shears or "
-                             "scales its axes unequally")
+            raise SceneError(f"{kinds} are placed by a rotation, a translation and one scale "
+                             "(a sphere stays a sphere, a width a width): this transform "
+                             "shears or scales its axes unequally")
         corners = box_corners(cloud.bounds) @ a.T + m[:3, 3]
         reach = float(np.abs(corners).max())
         if reach > MAX_DRAWABLE_COORDINATE:
-            raise SceneError(f"the point cloud reaches a coordinate of {reach:g}; the GPU "
+            raise SceneError(f"{what} placed so: a coordinate of {reach:g}, where the GPU "
                              f"draws up to {MAX_DRAWABLE_COORDINATE:g}: scale down")
-        model = CloudModel(cloud, material or Material(), m, name or cloud.name or "points")
-        self.clouds.append(model)
+        if isinstance(cloud, PointCloud):
+            model: Any = CloudModel(cloud, material or Material(), m,
+                                    name or cloud.name or "points")
+            self.clouds.append(model)
+        else:
+            model = LineModel(cloud, material or Material(), m, name or cloud.name or "lines")
+            self.lines.append(model)
         return model
 
     def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
@@ -639,6 +707,7 @@ class Scene:
         pts += [box_corners(s.solid.bounds) for s in self.solids if s.visible]
         pts += [p.corners for p in self.patch_models if p.visible]
         pts += [c.corners for c in self.clouds if c.visible]
+        pts += [m.corners for m in self.lines if m.visible]
         if not pts:
             return np.zeros((2, 3))
         p = np.vstack(pts)

@@ -20,7 +20,7 @@ import numpy as np
 from .errors import GeometryError
 from .geometry.mesh import Mesh
 
-__all__ = ["Octree", "winding_number", "OUTSIDE", "INSIDE", "BOUNDARY"]
+__all__ = ["Octree", "winding_number", "point_chunks", "OUTSIDE", "INSIDE", "BOUNDARY"]
 
 OUTSIDE, INSIDE, BOUNDARY = 0, 1, 2
 _CHILDREN = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], np.int64)
@@ -279,6 +279,64 @@ class Octree:
         m = voxels(occ, self.cell_size(self.depth))
         return m.transformed(np.block([[np.eye(3), self.origin[:, None]],
                                        [np.zeros((1, 3)), np.ones((1, 1))]]))
+
+
+def point_chunks(points, max_count: int, depth: int = 10
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Points grouped by the octree's spatial enumeration: the cube around them cut into
+    eight, and each cell holding more than ``max_count`` points cut again, down to
+    ``depth`` -- so each group is one octree cell, as compact in space as its count allows
+    (what a draw culls by: a cell's box outside the view skips all its triangles).
+
+    Vectorised level by level: the points are sorted by the Morton code of their cell at
+    ``depth`` (a cell's points are then contiguous, its children's in order within it), and
+    at each level the runs of one cell's code that are small enough are closed.
+
+    Parameters
+    ----------
+    points : array_like
+        ``(N, 3)`` the points (a mesh's triangle centroids).
+    max_count : int
+        The most points a group holds (past ``depth``, a cell keeps all it has).
+    depth : int
+        The deepest level, 1 to 20.
+
+    Returns
+    -------
+    order : ndarray
+        ``(N,)`` int64: the points in group order (each group's in Morton order).
+    starts : ndarray
+        ``(G + 1,)`` int64: group g is ``order[starts[g]:starts[g + 1]]``.
+    """
+    p = np.asarray(points, np.float64)
+    if p.ndim != 2 or p.shape[1] != 3 or not len(p):
+        raise GeometryError(f"point_chunks needs (N, 3) points with N >= 1, got {p.shape}")
+    if int(max_count) < 1 or not 1 <= int(depth) <= 20:
+        raise GeometryError(f"point_chunks needs max_count >= 1 and depth 1 to 20, got "
+                            f"{max_count!r} and {depth!r}")
+    lo = p.min(0)
+    size = float((p.max(0) - lo).max()) or 1.0
+    cells = np.clip(((p - lo) / size * 2 ** depth).astype(np.int64), 0, 2 ** depth - 1)
+    code = np.zeros(len(p), np.int64)
+    for bit in range(depth):  # (interleave: x, y, z bits of each level, coarsest first)
+        for axis in range(3):
+            code |= ((cells[:, axis] >> bit) & 1) << (3 * bit + 2 - axis)
+    order = np.argsort(code, kind="stable")
+    code = code[order]
+    active = np.ones(len(p), bool)
+    starts = []
+    for level in range(depth + 1):
+        idx = np.flatnonzero(active)
+        if not len(idx):
+            break
+        key = code[idx] >> (3 * (depth - level))
+        new = np.r_[True, (key[1:] != key[:-1]) | (idx[1:] != idx[:-1] + 1)]
+        first = np.flatnonzero(new)
+        length = np.diff(np.r_[first, len(idx)])
+        close = (length <= max_count) | (level == depth)
+        starts.append(idx[first[close]])
+        active[idx[np.repeat(close, length)]] = False
+    return order, np.r_[np.sort(np.concatenate(starts)), len(p)].astype(np.int64)
 
 
 def winding_number(points, triangles) -> np.ndarray:

@@ -3,7 +3,7 @@ vertex array per program. Uploaded once; drawing with another camera touches non
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import weakref
 
@@ -15,7 +15,18 @@ from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
 from .base import GLResource
 
-__all__ = ["GpuMesh", "drawable_normals"]
+__all__ = ["GpuMesh", "drawable_normals", "gpu_bytes", "Chunks", "CHUNK_TRIANGLES",
+           "CHUNKED_FROM", "UPLOAD_BYTES"]
+
+#: a mesh of at least CHUNKED_FROM triangles is drawn in spatial chunks of at most
+#: CHUNK_TRIANGLES (cells of the notes' octree over its triangles' centroids), each chunk's
+#: box tested against the view at every draw: a camera that sees a tenth of a big mesh
+#: draws about a tenth of its triangles
+CHUNK_TRIANGLES = 65_536
+CHUNKED_FROM = 4 * CHUNK_TRIANGLES
+#: the most host memory an upload converts at once (float32 rows made slice by slice and
+#: written into a reserved buffer): a 10M-triangle mesh needs no whole float32 copy
+UPLOAD_BYTES = 64 << 20
 
 def drawable_normals(mesh: Mesh) -> np.ndarray:
     """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
@@ -34,6 +45,70 @@ def drawable_normals(mesh: Mesh) -> np.ndarray:
         n = np.where(usable[:, None], f, n)
     zero = np.abs(n).sum(axis=1) == 0
     return np.where(zero[:, None], np.array([0.0, 0.0, 1.0]), n)
+
+
+class Chunks(NamedTuple):
+    """A big mesh's spatial chunks: chunk k is triangles ``starts[k]:starts[k + 1]`` of
+    the uploaded order; ``corners`` ``(C, 8, 3)`` each chunk's box, model space.
+
+    Parameters
+    ----------
+    starts : ndarray
+        ``(C + 1,)`` the chunks' first triangles, and the count.
+    corners : ndarray
+        ``(C, 8, 3)`` each chunk's box corners.
+    """
+
+    starts: np.ndarray
+    corners: np.ndarray
+
+    def ranges(self, visible: np.ndarray) -> list[tuple[int, int]]:
+        """``(first triangle, count)`` of each run of consecutive ``visible`` chunks (one
+        draw call a run).
+
+        Parameters
+        ----------
+        visible : ndarray
+            ``(C,)`` bool.
+        """
+        edges = np.diff(np.r_[0, visible.astype(np.int8), 0])
+        first, stop = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+        return [(int(self.starts[a]), int(self.starts[b] - self.starts[a]))
+                for a, b in zip(first, stop)]
+
+
+def _layout(mesh: Mesh):
+    """What a GpuMesh uploads, without GL: ``(mesh, source, uv, tri, owner)`` -- the mesh
+    as drawn (a two-sided wall's sides split), the mesh vertex each GPU vertex copies
+    (None: one to one; a texture seam splits vertices by their (vertex, uv) pairs) and its
+    uv, the triangles over GPU vertices and each triangle's polygon."""
+    if len(mesh.folded_vertices) and mesh.normals_from_file is None:
+        # a two-sided wall: give each side its own vertices, so each has its own normal
+        mesh = mesh.split_creases(179.0)
+    tri, owner = mesh.triangles
+    source = uv = None
+    if mesh.uv is not None:
+        pairs = np.column_stack([mesh.face_indices, mesh.uv])
+        unique, corner_vertex = np.unique(pairs, axis=0, return_inverse=True)
+        source, uv = unique[:, 0].astype(np.int64), unique[:, 1:]
+        tri = corner_vertex.ravel()[mesh.corner_triangles]
+    return mesh, source, uv, tri, owner
+
+
+def gpu_bytes(mesh: Mesh) -> int:
+    """The bytes a mesh's GPU copy takes for the smooth modes' colour draws (what Phong
+    reads): float32 position and normal (and uv) a GPU vertex, three uint32 indices a
+    triangle. Flat draws and draws with polygon ids add per-corner copies (36 to 44 bytes
+    a corner, made on their first use).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh.
+    """
+    drawn, source, _, tri, _ = _layout(mesh)
+    n = drawn.n_vertices if source is None else len(source)
+    return n * (32 if drawn.uv is not None else 24) + 12 * len(tri)
 
 
 class GpuMesh(GLResource):
@@ -61,11 +136,7 @@ class GpuMesh(GLResource):
 
     def _upload(self, mesh: Mesh) -> None:
         self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
-        ctx = self.context.ctx
-        if len(mesh.folded_vertices) and mesh.normals_from_file is None:
-            # a two-sided wall: give each side its own vertices, so each has its own normal
-            mesh = mesh.split_creases(179.0)
-        tri, owner = mesh.triangles
+        mesh, source, uv, tri, owner = _layout(mesh)
         if len(tri) == 0:
             raise GlshadeError("a GpuMesh needs at least one triangle (the renderer skips "
                                "empty meshes)")
@@ -73,24 +144,49 @@ class GpuMesh(GLResource):
         self.n_polygons = mesh.n_faces
         self.closed = mesh.closed_and_oriented
         self._corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])  # (homogeneous)
-        normals = drawable_normals(mesh)
         #: whether the vertices carry texture coordinates (``in_uv``)
         self.textured = mesh.uv is not None
-        if mesh.uv is not None:
-            # a vertex per distinct (vertex, uv) pair: a texture seam splits its vertices
-            pairs = np.column_stack([mesh.face_indices, mesh.uv])
-            unique, corner_vertex = np.unique(pairs, axis=0, return_inverse=True)
-            source = unique[:, 0].astype(np.int64)
-            interleaved = np.hstack([mesh.vertices[source], normals[source],
-                                     unique[:, 1:]]).astype("f4")
-            tri = corner_vertex.ravel()[mesh.corner_triangles]
-        else:
-            interleaved = np.hstack([mesh.vertices, normals]).astype("f4")
-        self.vbo = self._keep(ctx.buffer(interleaved.tobytes()))
-        self.ibo = self._keep(ctx.buffer(tri.astype("u4").tobytes()))
+        columns = [mesh.vertices, drawable_normals(mesh)]
+        if source is not None:
+            columns = [c[source] for c in columns] + [uv]
+        #: a big mesh's spatial chunks (None: drawn whole), in the order uploaded
+        self.chunks: Chunks | None = None
+        self._order: np.ndarray | None = None
+        if len(tri) >= CHUNKED_FROM:
+            self._order, self.chunks = _chunked(columns[0], tri)
+            tri, owner = tri[self._order], owner[self._order]
+        self._columns = columns
+        ctx = self.context.ctx
+        self.vbo = self._keep(_upload_rows(ctx, len(columns[0]), self._vertex_rows))
+        self.ibo = self._keep(_upload_rows(ctx, len(tri),
+                                           lambda rows: tri[rows].astype("u4")))
         # (kept for the draws with polygon ids, made on their first use)
-        self._indexed = (interleaved, tri, owner)
+        self._indexed = (tri, owner)
         self._per_corner: Any = None
+
+    def _vertex_rows(self, rows) -> np.ndarray:
+        """float32 position, normal (and uv) of GPU vertices ``rows`` (a slice or indices)."""
+        return np.hstack([c[rows] for c in self._columns]).astype("f4")
+
+    @property
+    def nbytes(self) -> int:
+        """The bytes its buffers take on the GPU now (per-corner copies included once
+        made)."""
+        return sum(o.size for o in self._objects if hasattr(o, "size") and
+                   not hasattr(o, "render"))
+
+    def triangles_in_order(self, mesh: Mesh) -> tuple[np.ndarray, np.ndarray]:
+        """``mesh.triangles`` in the order uploaded (a big mesh's by chunk).
+
+        Parameters
+        ----------
+        mesh : Mesh
+            The mesh this GpuMesh copies.
+        """
+        tri, owner = mesh.triangles
+        if self._order is not None:
+            return tri[self._order], owner[self._order]
+        return tri, owner
 
     @property
     def corners(self) -> np.ndarray:
@@ -118,31 +214,42 @@ class GpuMesh(GLResource):
             m = self._mesh()
             if m is None:
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
-            tri, owner = m.triangles
-            corners = tri.ravel()
-            face = np.repeat(owner, 3)
-            parts = [m.vertices[corners], m.face_normals[face], m.face_centroids[face]]
-            if self.textured:
-                parts.append(m.uv[m.corner_triangles.ravel()])
-            data = np.hstack(parts).astype("f4")
+            tri, owner = self.triangles_in_order(m)
+            corner_uv = m.corner_triangles if self.textured else None
+            if corner_uv is not None and self._order is not None:
+                corner_uv = corner_uv[self._order]
+
+            def rows(sl):
+                corners, face = tri[sl].ravel(), np.repeat(owner[sl], 3)
+                parts = [m.vertices[corners], m.face_normals[face], m.face_centroids[face]]
+                if corner_uv is not None:
+                    parts.append(m.uv[corner_uv[sl].ravel()])
+                return np.hstack(parts).astype("f4")
+
             ctx = self.context.ctx
-            self._flat_vbo = (self._keep(ctx.buffer(data.tobytes())),
-                              self._keep(ctx.buffer(face.astype("i4").tobytes())))
+            self._flat_vbo = (self._keep(_upload_rows(ctx, len(tri), rows)),
+                              self._keep(_upload_rows(ctx, len(tri),
+                                                      lambda sl: np.repeat(owner[sl], 3)
+                                                      .astype("i4"))))
         return self._flat_vbo
 
     def _corner_buffers(self):
         """The smooth modes' vertices copied per triangle corner, and each corner's polygon
         id: what a draw with polygon ids reads (polygon_id.glsl), no vertex shared."""
         if self._per_corner is None:
-            self._per_corner = tuple(self._keep(b) for b in self._corner_copies(*self._indexed))
+            tri, owner = self._indexed
+            self._per_corner = tuple(self._keep(b) for b in self._corner_copies(
+                self._vertex_rows, tri, owner))
         return self._per_corner
 
-    def _corner_copies(self, vertices: np.ndarray, tri: np.ndarray, polygon: np.ndarray):
-        """Buffers of ``vertices`` (V, k) float32 copied to every corner of ``tri`` (T, 3),
-        and each corner's polygon id from ``polygon`` (T,); the caller owns them."""
+    def _corner_copies(self, vertex_rows, tri: np.ndarray, polygon: np.ndarray):
+        """Buffers of the vertices (``vertex_rows(indices)``: float32 rows) copied to every
+        corner of ``tri`` (T, 3), and each corner's polygon id from ``polygon`` (T,); the
+        caller owns them."""
         ctx = self.context.ctx
-        return (ctx.buffer(vertices[tri.ravel()].tobytes()),
-                ctx.buffer(np.repeat(polygon, 3).astype("i4").tobytes()))
+        return (_upload_rows(ctx, len(tri), lambda sl: vertex_rows(tri[sl].ravel())),
+                _upload_rows(ctx, len(tri), lambda sl: np.repeat(polygon[sl], 3)
+                             .astype("i4")))
 
     def color_array(self, program, colors: np.ndarray):
         """The VAO of the ``radiosity`` mode: positions, normals and ``colors`` (V, 3) of the
@@ -162,7 +269,7 @@ class GpuMesh(GLResource):
             if m is None:
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
             data = np.hstack([m.vertices, drawable_normals(m), colors]).astype("f4")
-            tri, owner = m.triangles
+            tri, owner = self.triangles_in_order(m)
             ctx = self.context.ctx
             # (indexed; per corner with polygon ids made for the first draw that writes them)
             self._colors = (colors, [ctx.buffer(data.tobytes()),
@@ -177,7 +284,7 @@ class GpuMesh(GLResource):
             ctx = self.context.ctx
             if "in_polygon" in program:
                 if len(buffers) == 2:
-                    buffers += self._corner_copies(data, tri, owner)
+                    buffers += self._corner_copies(lambda rows: data[rows], tri, owner)
                 vao = ctx.vertex_array(program, [(buffers[2], fmt, *names),
                                                  (buffers[3], "i", "in_polygon")])
             else:
@@ -263,6 +370,38 @@ class GpuMesh(GLResource):
 
     def _release_extra(self) -> None:
         self._drop_colors()
+        self._columns = []
         for vao in self._vaos.values():
             vao.release()
         self._vaos.clear()
+
+
+def _chunked(positions: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, Chunks]:
+    """The triangles' order by octree chunk (their centroids' cells,
+    :func:`glshade.octree.point_chunks`) and the chunks' boxes (their triangles' corners'
+    extent, model space)."""
+    from ..octree import point_chunks
+
+    centroids = (positions[tri[:, 0]] + positions[tri[:, 1]] + positions[tri[:, 2]]) / 3
+    order, starts = point_chunks(centroids, CHUNK_TRIANGLES)
+    tri = tri[order]
+    lo = np.minimum(np.minimum(positions[tri[:, 0]], positions[tri[:, 1]]),
+                    positions[tri[:, 2]])
+    hi = np.maximum(np.maximum(positions[tri[:, 0]], positions[tri[:, 1]]),
+                    positions[tri[:, 2]])
+    boxes = np.stack([np.minimum.reduceat(lo, starts[:-1]),
+                      np.maximum.reduceat(hi, starts[:-1])], 1)        # (C, 2, 3)
+    return order, Chunks(starts, np.stack([box_corners(b) for b in boxes]))
+
+
+def _upload_rows(ctx, n: int, rows):
+    """A buffer of ``n`` rows, each slice's bytes made by ``rows(slice)`` (an array) and
+    written in turn: at most about UPLOAD_BYTES of them converted at once."""
+    first = np.ascontiguousarray(rows(slice(0, min(n, 1))))
+    row_bytes = first.nbytes // max(min(n, 1), 1)
+    buffer = ctx.buffer(reserve=max(n * row_bytes, 1))
+    step = max(1, UPLOAD_BYTES // max(row_bytes, 1))
+    for start in range(0, n, step):
+        buffer.write(np.ascontiguousarray(rows(slice(start, min(n, start + step)))).tobytes(),
+                     offset=start * row_bytes)
+    return buffer

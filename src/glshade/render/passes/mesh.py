@@ -107,6 +107,8 @@ class MeshPass(GLResource, Stage):
         #: the opaque models and instances the last draw skipped, their boxes wholly
         #: outside the view (``DrawOptions.frustum_cull``)
         self.culled = 0
+        #: the spatial chunks of big meshes (GpuMesh.chunks) the last draw skipped
+        self.culled_chunks = 0
         #: the vectors of varyings this GL interpolates (flat constants must fit in them)
         self.max_varyings = int(context.ctx.info.get("GL_MAX_VARYING_VECTORS") or 15)
 
@@ -207,7 +209,7 @@ class MeshPass(GLResource, Stage):
         prepared: set[int] = set()
         wireframe = state.options.wireframe
         models = state.scene.models
-        self.culled = 0
+        self.culled = self.culled_chunks = 0
         # (one model gains nothing worth its test: out of view, its frame is blank anyway)
         outside = outside_frustum(state.view_proj, np.stack([m.corners for m in models])) \
             if state.options.frustum_cull and len(models) > 1 else np.zeros(len(models), bool)
@@ -383,7 +385,14 @@ class MeshPass(GLResource, Stage):
             vao = gpu.color_array(prog, model.display_colors(scene.ambient))
         else:
             vao = gpu.vertex_array(prog, options.mode)
-        vao.render(moderngl.TRIANGLES)
+        chunks = gpu.chunks
+        if chunks is not None and options.frustum_cull:  # (a big mesh: what the view holds)
+            hidden = outside_frustum(state.view_proj @ m, chunks.corners)
+            self.culled_chunks += int(hidden.sum())
+            for first, count in chunks.ranges(~hidden):
+                vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
+        else:
+            vao.render(moderngl.TRIANGLES)
 
     def _release_extra(self) -> None:
         for _, gpu in self._meshes.values():

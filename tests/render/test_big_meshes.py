@@ -1,0 +1,120 @@
+"""Big meshes: drawn in spatial chunks (the octree's cells over the triangles), each culled
+against the view at every draw. Culling never changes a pixel (hypothesis over cameras,
+near and far, inside the mesh's box and out: culled and unculled frames the same to the
+byte), skips only chunks with no vertex in view by numpy's own projection, and a
+2M-triangle mesh draws the same picture as its two halves added as two models."""
+
+import numpy as np
+import pytest
+
+from tests.conftest import require
+
+require("hypothesis", "property-based sweeps are part of the test extra")
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+import glshade  # noqa: E402
+from glshade.modes import Outputs  # noqa: E402
+from glshade.octree import point_chunks  # noqa: E402
+from glshade.render.gpu_mesh import CHUNKED_FROM, gpu_bytes  # noqa: E402
+
+pytestmark = [pytest.mark.gl, pytest.mark.filterwarnings("ignore::glshade.RenderWarning")]
+
+
+def terrain(n: int) -> glshade.Mesh:
+    """An ``n`` x ``n`` height field of 2 n^2 triangles over [-1, 1]^2."""
+    x, y = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1))
+    z = 0.15 * np.sin(5 * x) * np.cos(4 * y)
+    corner = (np.arange(n)[None, :] + np.arange(n)[:, None] * (n + 1)).ravel()
+    tris = np.concatenate([np.c_[corner, corner + 1, corner + n + 2],
+                           np.c_[corner, corner + n + 2, corner + n + 1]])
+    return glshade.Mesh(np.c_[x.ravel(), y.ravel(), z.ravel()], tris)
+
+
+@pytest.fixture(scope="module")
+def big():
+    mesh = terrain(400)   # 320,000 triangles: chunked
+    assert mesh.n_faces >= CHUNKED_FROM
+    scene = glshade.Scene()
+    scene.add(mesh)
+    return mesh, scene
+
+
+def _in_view(cam, size, points):
+    """Which points a camera's frustum holds, by the camera's own axes and field of view."""
+    w, h = size
+    rel = (points - cam.position) @ cam.rotation
+    depth = -rel[:, 2]
+    t = np.tan(np.radians(cam.fov_y) / 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x, y = rel[:, 0] / depth / (t * w / h), rel[:, 1] / depth / t
+    near, far = cam.planes()
+    return (depth >= near) & (depth <= far) & (np.abs(x) <= 1) & (np.abs(y) <= 1)
+
+
+@settings(max_examples=8, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(eye=st.tuples(st.floats(-1.5, 1.5), st.floats(-1.5, 1.5), st.floats(0.05, 2.5)),
+       look=st.tuples(st.floats(-1, 1), st.floats(-1, 1), st.floats(-0.2, 0.2)),
+       fov=st.floats(15, 90), mode=st.sampled_from(["phong", "flat"]))
+def test_culled_chunks_never_change_a_pixel(make_renderer, big, eye, look, fov, mode):
+    mesh, scene = big
+    look = np.asarray(look, float)
+    if np.linalg.norm(look - eye) < 0.05:
+        look = look + [0.3, 0.0, -0.3]
+    cam = glshade.Camera.look_at(eye, look, up=(0, 0, 1) if abs(look[2] - eye[2]) < 0.95 *
+                                 np.linalg.norm(look - eye) else (0, 1, 0), fov_y=fov)
+    cam = cam.with_planes(scene.bounds)
+    renderer = make_renderer(96, 72)
+    culled = renderer.render_frame(scene, cam, mode, outputs=Outputs.ALL, frustum_cull=True)
+    skipped = renderer.meshes.culled_chunks
+    whole = renderer.render_frame(scene, cam, mode, outputs=Outputs.ALL, frustum_cull=False)
+    assert renderer.meshes.culled_chunks == 0
+    for a, b in zip((culled.color, culled.face_id, culled.depth),
+                    (whole.color, whole.face_id, whole.depth)):
+        np.testing.assert_array_equal(a, b)
+    # never more skipped than the chunks with no triangle corner in view (the chunks
+    # rebuilt here from the octree's grouping of the centroids)
+    tri, _ = mesh.triangles
+    centroids = mesh.vertices[tri].mean(1)
+    order, starts = point_chunks(centroids, 65_536)
+    seen = _in_view(cam, (96, 72), mesh.vertices)[tri].any(1)[order]
+    empty = [not seen[a:b].any() for a, b in zip(starts[:-1], starts[1:])]
+    assert skipped <= sum(empty)
+
+
+def test_a_close_view_skips_most_chunks(make_renderer, big):
+    _, scene = big
+    renderer = make_renderer(96, 72)
+    cam = glshade.Camera.look_at((0.7, 0.7, 0.25), (0.9, 0.9, 0.0)).with_planes(scene.bounds)
+    renderer.render_frame(scene, cam, "phong")
+    n_chunks = len(renderer.meshes.gpu_mesh(scene.models[0].mesh).chunks.starts) - 1
+    assert n_chunks >= 4
+    assert renderer.meshes.culled_chunks >= n_chunks // 2
+
+
+def test_the_gpu_copy_takes_what_info_reports(make_renderer, big):
+    """An indexed mesh's colour draws: 24 bytes a vertex and 12 a triangle, no more."""
+    mesh, scene = big
+    renderer = make_renderer(32, 32)
+    renderer.render(scene, glshade.Camera.look_at((0, 0, 3), (0, 0, 0)))
+    gpu = renderer.meshes.gpu_mesh(mesh)
+    assert gpu.nbytes == gpu_bytes(mesh) == 24 * mesh.n_vertices + 12 * mesh.n_faces
+
+
+@pytest.mark.once
+def test_two_million_triangles_draw_as_their_halves_do(make_renderer):
+    mesh = terrain(1000)
+    assert mesh.n_faces == 2_000_000
+    whole, halves = glshade.Scene(), glshade.Scene()
+    whole.add(mesh)
+    half = mesh.n_faces // 2
+    halves.add(mesh.subset(np.arange(half)))
+    halves.add(mesh.subset(np.arange(half, mesh.n_faces)))
+    cam = glshade.Camera.look_at((0.4, -1.6, 1.3), (0, 0, 0)).with_planes(whole.bounds)
+    renderer = make_renderer(160, 120)
+    a = renderer.render_frame(whole, cam, "flat", outputs=Outputs.ALL)
+    b = renderer.render_frame(halves, cam, "flat", outputs=Outputs.ALL)
+    assert (a.face_id >= 0).mean() > 0.5
+    np.testing.assert_array_equal(a.color, b.color)
+    np.testing.assert_array_equal(a.face_id, b.face_id)
+    np.testing.assert_array_equal(a.depth, b.depth)

@@ -45,6 +45,7 @@ QUICK_HIDDEN :=
 QUICK_INTERRUPT := --load
 QUICK_DATASET := --frames 50
 QUICK_INSTANCES := --counts 1000,10000 --frames 5
+QUICK_SCALE :=
 else
 QUICK_RENDER := --sizes 512 --meshes 1k,100k --rounds 2
 QUICK_TRACE := --scenes cornell --rounds 1 --reference-spp 1024 --ld-spp 256
@@ -52,6 +53,7 @@ QUICK_HIDDEN := --budget 5
 QUICK_INTERRUPT := --tries 10
 QUICK_DATASET := --frames 10
 QUICK_INSTANCES := --counts 1000,10000 --frames 2
+QUICK_SCALE := --points 1M --instances 2000 --triangles 2M --rounds 1
 endif
 bench: setup
 	$(PY) benchmarks/geometry_bench.py
@@ -71,6 +73,8 @@ bench: setup
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
 	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)
 	$(PY) benchmarks/instances_bench.py $(QUICK_INSTANCES)
+	$(PY) -m pip install -q -e ".[peers]"  # (polyscope, the peer measured beside glshade)
+	$(PY) benchmarks/geometry_scale_bench.py $(QUICK_SCALE)
 
 # The documentation site: the README, the chapter notebooks (executed) and the API reference
 # from the docstrings, warnings as errors; open docs/_build/html/index.html

@@ -270,3 +270,20 @@ def test_point_cloud_arguments_are_checked():
         glshade.Scene().add(PointCloud(np.zeros((1, 3))), scale=(1, 2, 1))
     with pytest.raises(glshade.SceneError, match="drawn opaque"):
         glshade.Scene().add(PointCloud(np.zeros((1, 3))), glshade.Material(opacity=0.5))
+
+
+def test_compare_measures_the_modes_of_sphere_impostors(gl_context):
+    """``compare`` on a cloud: its analytic reference casts the spheres in numpy (with the
+    points' colours); Phong impostors are that picture to the rounding, flat is not."""
+    rng = np.random.default_rng(0)
+    scene = glshade.Scene()
+    scene.add(PointCloud(rng.uniform(-1, 1, (30, 3)), radius=0.25,
+                         colors=rng.uniform(0.2, 1, (30, 3))), glshade.Material(ks=0.5))
+    scene.add_light(glshade.PointLight((3.0, 4.0, 5.0)))
+    cam = glshade.Camera.look_at((0, 0.5, 4), (0, 0, 0))
+    with glshade.Renderer(160, 120, samples=0, context=gl_context) as renderer:
+        result = glshade.compare(scene, cam, renderer=renderer, size=(160, 120))
+    metrics = {m.mode: m for m in result.metrics}
+    assert "analytic" in repr(result)
+    assert metrics["phong"].max_abs <= 1.0 and metrics["phong"].pixels > 1000
+    assert metrics["flat"].mean_abs > 10 * max(metrics["phong"].mean_abs, 0.1)

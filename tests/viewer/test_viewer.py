@@ -54,6 +54,20 @@ def instances_scene():
     return s
 
 
+def clouds_scene():
+    """The teapot in a ring of sphere impostors and a wide polyline round it."""
+    from glshade import PointCloud, Polyline
+
+    s = teapot_scene()
+    angles = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    ring = np.c_[2.4 * np.cos(angles), 0.8 + 0.3 * np.sin(3 * angles), 2.4 * np.sin(angles)]
+    s.add(PointCloud(ring, radius=0.15, colors=np.c_[0.5 + 0.5 * np.cos(angles),
+                                                     np.full(40, 0.5), np.full(40, 0.8)]))
+    s.add(Polyline(np.r_[ring, ring[:1]] * [1.2, 1.0, 1.2], width=4, joins="round"),
+          Material(color=(0.9, 0.8, 0.2)))
+    return s
+
+
 CAM = Camera.look_at([3.5, 3.0, 6.0], [0, 1.2, 0], fov_y=40)
 
 HEADLESS = """
@@ -111,6 +125,15 @@ def test_window_draws_instances_like_headless(viewer_factory, tmp_path):
     shot = v.screenshot().astype(int)
     ref = headless(tmp_path, "phong", scene="instances_scene")[0][0].astype(int)
     assert len(np.unique(shot[..., :3].reshape(-1, 3), axis=0)) > 200  # (the ring is there)
+    assert np.abs(shot - ref).max() <= 1
+
+
+def test_window_draws_clouds_and_lines_like_headless(viewer_factory, tmp_path):
+    v = viewer_factory(clouds_scene(), CAM)
+    shot = v.screenshot().astype(int)
+    ref = headless(tmp_path, "phong", scene="clouds_scene")[0][0].astype(int)
+    yellow = (shot[..., 0] > 150) & (shot[..., 1] > 130) & (shot[..., 2] < 110)
+    assert yellow.mean() > 0.005  # (the polyline is there)
     assert np.abs(shot - ref).max() <= 1
 
 

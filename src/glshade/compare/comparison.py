@@ -257,6 +257,7 @@ def reference_image(scene, camera, kind, renderer, size, options, spp=64):
                 creases.append(crease)
                 fine.add(phong_tessellate(mesh, 6), m.material, m.transform)
         fine.lights = list(scene.lights)
+        fine.clouds, fine.lines = list(scene.clouds), list(scene.lines)  # (no facets)
         frame = renderer.render_frame(fine, camera, options.replace(mode=ShadingMode.PHONG),
                                       outputs=Outputs.FACE_ID, color_dtype="f4")
         found = [c for c in creases if c is not None]

@@ -20,9 +20,16 @@ import numpy as np
 from .errors import GeometryError
 from .geometry.mesh import Mesh
 
-__all__ = ["Octree", "winding_number", "point_chunks", "OUTSIDE", "INSIDE", "BOUNDARY"]
+__all__ = ["Octree", "winding_number", "point_chunks", "OUTSIDE", "INSIDE", "BOUNDARY",
+           "CHUNK_SIZE", "CHUNKED_FROM"]
 
 OUTSIDE, INSIDE, BOUNDARY = 0, 1, 2
+#: a mesh of at least CHUNKED_FROM triangles (a cloud of as many points) is drawn in spatial
+#: chunks of at most CHUNK_SIZE -- cells of the octree over its triangles' centroids or its
+#: points (:func:`point_chunks`) -- each chunk's box tested against the view at every draw:
+#: a camera that sees a tenth of a big mesh draws about a tenth of its triangles
+CHUNK_SIZE = 65_536
+CHUNKED_FROM = 4 * CHUNK_SIZE
 _CHILDREN = np.array([[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], np.int64)
 
 

@@ -15,7 +15,8 @@ from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E
 import glshade  # noqa: E402
 from glshade.modes import Outputs  # noqa: E402
 from glshade.octree import point_chunks  # noqa: E402
-from glshade.render.gpu_mesh import CHUNKED_FROM, gpu_bytes  # noqa: E402
+from glshade.octree import CHUNKED_FROM  # noqa: E402
+from glshade.render.gpu_mesh import gpu_bytes  # noqa: E402
 
 pytestmark = [pytest.mark.gl, pytest.mark.filterwarnings("ignore::glshade.RenderWarning")]
 
@@ -118,3 +119,31 @@ def test_two_million_triangles_draw_as_their_halves_do(make_renderer):
     np.testing.assert_array_equal(a.color, b.color)
     np.testing.assert_array_equal(a.face_id, b.face_id)
     np.testing.assert_array_equal(a.depth, b.depth)
+
+
+def test_a_big_cloud_is_culled_by_chunks_and_keeps_its_point_numbers(make_renderer):
+    """A cloud of CHUNKED_FROM points or more is drawn chunk by chunk: a close view skips
+    chunks, the frame equal to the byte to the unculled one, and each pixel's id is the
+    point numpy's own ray cast finds nearest along its ray among the points it could be."""
+    rng = np.random.default_rng(2)
+    points = rng.uniform(-1, 1, (CHUNKED_FROM, 3))
+    scene = glshade.Scene()
+    scene.add(glshade.PointCloud(points, radius=0.004))
+    cam = glshade.Camera.look_at((0.6, 0.6, 1.4), (0.8, 0.8, 0.6), fov_y=40).with_planes(
+        scene.bounds)
+    renderer = make_renderer(64, 48)
+    culled = renderer.render_frame(scene, cam, "phong", outputs=Outputs.ALL)
+    assert renderer.points.culled_chunks > 0
+    whole = renderer.render_frame(scene, cam, "phong", outputs=Outputs.ALL,
+                                  frustum_cull=False)
+    np.testing.assert_array_equal(culled.face_id, whole.face_id)
+    np.testing.assert_array_equal(culled.color, whole.color)
+    # the id at a pixel is a point whose sphere its centre's ray meets
+    drawn = np.argwhere(culled.face_id >= 0)
+    assert len(drawn) > 50
+    o, d = cam.rays((64, 48))
+    for row, col in drawn[:: max(1, len(drawn) // 40)]:
+        c = points[culled.face_id[row, col]]
+        off = c - o[row, col]
+        miss = np.linalg.norm(off - (off @ d[row, col]) * d[row, col])
+        assert miss <= 0.004 * (1 + 1e-4), (row, col, miss)

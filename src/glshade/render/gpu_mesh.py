@@ -13,17 +13,11 @@ from ..errors import GlshadeError
 from ..geometry.transforms import box_corners
 from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
+from ..octree import CHUNK_SIZE, CHUNKED_FROM
 from .base import GLResource
 
-__all__ = ["GpuMesh", "drawable_normals", "gpu_bytes", "Chunks", "CHUNK_TRIANGLES",
-           "CHUNKED_FROM", "UPLOAD_BYTES"]
+__all__ = ["GpuMesh", "drawable_normals", "gpu_bytes", "Chunks", "UPLOAD_BYTES"]
 
-#: a mesh of at least CHUNKED_FROM triangles is drawn in spatial chunks of at most
-#: CHUNK_TRIANGLES (cells of the notes' octree over its triangles' centroids), each chunk's
-#: box tested against the view at every draw: a camera that sees a tenth of a big mesh
-#: draws about a tenth of its triangles
-CHUNK_TRIANGLES = 65_536
-CHUNKED_FROM = 4 * CHUNK_TRIANGLES
 #: the most host memory an upload converts at once (float32 rows made slice by slice and
 #: written into a reserved buffer): a 10M-triangle mesh needs no whole float32 copy
 UPLOAD_BYTES = 64 << 20
@@ -383,7 +377,7 @@ def _chunked(positions: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, Chunks
     from ..octree import point_chunks
 
     centroids = (positions[tri[:, 0]] + positions[tri[:, 1]] + positions[tri[:, 2]]) / 3
-    order, starts = point_chunks(centroids, CHUNK_TRIANGLES)
+    order, starts = point_chunks(centroids, CHUNK_SIZE)
     tri = tri[order]
     lo = np.minimum(np.minimum(positions[tri[:, 0]], positions[tri[:, 1]]),
                     positions[tri[:, 2]])

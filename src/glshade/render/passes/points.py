@@ -21,7 +21,9 @@ from typing import Any
 import numpy as np
 
 from ...geometry.points import PointCloud
-from ...geometry.transforms import gl_bytes, outside_frustum
+from ...geometry.transforms import box_corners, gl_bytes, outside_frustum
+from ...octree import CHUNK_SIZE, CHUNKED_FROM, point_chunks
+from ..gpu_mesh import Chunks
 from ...modes import ShadingMode
 from ..base import GLResource
 from ..programs import ProgramKey, UniformWriter, lighting_products
@@ -52,13 +54,27 @@ def point_defines(cloud: PointCloud) -> tuple[str, ...]:
 
 
 class _GpuCloud:
-    """A cloud's buffers and its vertex arrays (one a program)."""
+    """A cloud's buffers and its vertex arrays (one a program). A big cloud (CHUNKED_FROM
+    points or more, sized in the world) is drawn by octree chunks like a big mesh: an
+    index buffer lists its points chunk by chunk, so a draw skips the chunks out of view
+    while each point keeps its number (an indexed draw's gl_VertexID is the index)."""
 
     def __init__(self, ctx, cloud: PointCloud):
         self.n = cloud.n_points
         self.buffers = [(name, f"{a.shape[1] if a.ndim > 1 else 1}f", ctx.buffer(a))
                         for name, a in cloud.arrays()]
-        self.nbytes = sum(b.size for _, _, b in self.buffers)
+        self.chunks: Chunks | None = None
+        self.index: Any = None
+        if self.n >= CHUNKED_FROM and cloud.pixel_size is None:
+            order, starts = point_chunks(cloud.points, CHUNK_SIZE)
+            grow = cloud.world_radii()[order]
+            p = cloud.points[order]
+            boxes = np.stack([np.minimum.reduceat(p - grow[:, None], starts[:-1]),
+                              np.maximum.reduceat(p + grow[:, None], starts[:-1])], 1)
+            self.chunks = Chunks(starts, np.stack([box_corners(b) for b in boxes]))
+            self.index = ctx.buffer(order.astype("u4"))
+        self.nbytes = sum(b.size for _, _, b in self.buffers) + (
+            self.index.size if self.index is not None else 0)
         self.vaos: dict[int, Any] = {}
 
     def vertex_array(self, ctx, prog):
@@ -66,7 +82,8 @@ class _GpuCloud:
         if vao is None:
             names = set(prog)  # (a style may not read every array: a sphere's normals)
             vao = self.vaos[id(prog)] = ctx.vertex_array(
-                prog, [(buf, fmt, name) for name, fmt, buf in self.buffers if name in names])
+                prog, [(buf, fmt, name) for name, fmt, buf in self.buffers if name in names],
+                index_buffer=self.index, index_element_size=4)
         return vao
 
     def release(self) -> None:
@@ -74,6 +91,8 @@ class _GpuCloud:
             vao.release()
         for _, _, buf in self.buffers:
             buf.release()
+        if self.index is not None:
+            self.index.release()
         self.vaos.clear()
         self.buffers = []
 
@@ -99,6 +118,8 @@ class PointPass(GLResource, Stage):
         self._clouds: dict[int, tuple] = {}  # id(cloud) -> (weakref, _GpuCloud)
         #: clouds skipped by the last draw's frustum test
         self.culled = 0
+        #: a big cloud's octree chunks skipped by the last draw (as a big mesh's)
+        self.culled_chunks = 0
 
     def gpu_cloud(self, cloud: PointCloud) -> _GpuCloud:
         """A cloud's GPU copy, uploaded once while it lives.
@@ -167,7 +188,7 @@ class PointPass(GLResource, Stage):
         self._check()
         ctx, put = self.context.ctx, self.uniforms.put
         clouds = state.scene.clouds
-        self.culled = 0
+        self.culled = self.culled_chunks = 0
         outside = outside_frustum(state.view_proj, np.stack([c.corners for c in clouds])) \
             if state.options.frustum_cull and len(clouds) > 1 else np.zeros(len(clouds), bool)
         view, viewport = state.view, state.viewport
@@ -200,7 +221,14 @@ class PointPass(GLResource, Stage):
             for name, value in values.items():
                 put(prog, name, value)
             gpu = self.gpu_cloud(cloud)
-            gpu.vertex_array(ctx, prog).render(moderngl.POINTS, vertices=gpu.n)
+            vao = gpu.vertex_array(ctx, prog)
+            if gpu.chunks is not None and state.options.frustum_cull:
+                hidden = outside_frustum(state.view_proj @ m, gpu.chunks.corners)
+                self.culled_chunks += int(hidden.sum())
+                for first, count in gpu.chunks.ranges(~hidden):
+                    vao.render(moderngl.POINTS, vertices=count, first=first)
+            else:
+                vao.render(moderngl.POINTS, vertices=gpu.n)
             id_base += model.n_polygons
         return id_base
 

@@ -22,7 +22,10 @@ layout(location = 3) out uint frag_depth_bits; // floatBitsToUint(distance along
 #else
 uniform int u_face_id_base;
 #endif
-#ifndef PATCH_IDS
+#ifdef POLYGON_FETCH
+#include "polygon_fetch.glsl"
+#define v_polygon polygon_of(gl_PrimitiveID)
+#elif !defined(PATCH_IDS)
 flat in int v_polygon;                         // this mesh's polygon (polygon_id.glsl)
 #endif
 #endif

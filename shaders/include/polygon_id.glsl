@@ -10,7 +10,9 @@
 #else
 #define PASS_INSTANCE()
 #endif
-#if defined(GLSHADE_AUX_OUTPUTS) || defined(SHADOW_RAYS_FORWARD)
+#if (defined(GLSHADE_AUX_OUTPUTS) || defined(SHADOW_RAYS_FORWARD)) && \
+    !defined(POLYGON_FETCH) && !defined(FLAT_FETCH)
+// (a big mesh's draw finds its polygons per triangle instead: polygon_fetch.glsl)
 in int in_polygon;
 flat out int v_polygon;
 #define PASS_POLYGON_ID() v_polygon = in_polygon; PASS_INSTANCE()

@@ -49,7 +49,12 @@ uniform mat4 u_camera_to_world;
 #else
 uniform int u_face_id_base;
 #endif
+#ifdef POLYGON_FETCH
+#include "polygon_fetch.glsl"
+#define v_polygon polygon_of(gl_PrimitiveID)
+#else
 flat in int v_polygon;  // this mesh's polygon (polygon_id.glsl)
+#endif
 #endif
 #define SHADOW_OWN_POLYGON (u_face_id_base + v_polygon)
 #endif

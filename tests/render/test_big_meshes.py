@@ -17,23 +17,26 @@ from glshade.modes import Outputs  # noqa: E402
 from glshade.octree import point_chunks  # noqa: E402
 from glshade.octree import CHUNKED_FROM  # noqa: E402
 from glshade.render.gpu_mesh import gpu_bytes  # noqa: E402
+from glshade.render.passes.points import cloud_gpu_bytes  # noqa: E402
 
 pytestmark = [pytest.mark.gl, pytest.mark.filterwarnings("ignore::glshade.RenderWarning")]
 
 
-def terrain(n: int) -> glshade.Mesh:
-    """An ``n`` x ``n`` height field of 2 n^2 triangles over [-1, 1]^2."""
+def terrain(n: int, normals: bool = False) -> glshade.Mesh:
+    """An ``n`` x ``n`` height field of 2 n^2 triangles over [-1, 1]^2 (with ``normals``
+    its vertex normals given as a file's, so that any part of it keeps them)."""
     x, y = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1))
     z = 0.15 * np.sin(5 * x) * np.cos(4 * y)
     corner = (np.arange(n)[None, :] + np.arange(n)[:, None] * (n + 1)).ravel()
     tris = np.concatenate([np.c_[corner, corner + 1, corner + n + 2],
                            np.c_[corner, corner + n + 2, corner + n + 1]])
-    return glshade.Mesh(np.c_[x.ravel(), y.ravel(), z.ravel()], tris)
+    mesh = glshade.Mesh(np.c_[x.ravel(), y.ravel(), z.ravel()], tris)
+    return glshade.Mesh(mesh.vertices, tris, normals=mesh.vertex_normals) if normals else mesh
 
 
 @pytest.fixture(scope="module")
 def big():
-    mesh = terrain(400)   # 320,000 triangles: chunked
+    mesh = terrain(400, normals=True)   # 320,000 triangles: chunked
     assert mesh.n_faces >= CHUNKED_FROM
     scene = glshade.Scene()
     scene.add(mesh)
@@ -138,6 +141,8 @@ def test_a_big_cloud_is_culled_by_chunks_and_keeps_its_point_numbers(make_render
                                   frustum_cull=False)
     np.testing.assert_array_equal(culled.face_id, whole.face_id)
     np.testing.assert_array_equal(culled.color, whole.color)
+    cloud = scene.clouds[0].cloud   # (12 bytes a position, 4 its place in the chunk order)
+    assert renderer.points.gpu_cloud(cloud).nbytes == cloud_gpu_bytes(cloud) == 16 * len(cloud)
     # the id at a pixel is a point whose sphere its centre's ray meets
     drawn = np.argwhere(culled.face_id >= 0)
     assert len(drawn) > 50
@@ -147,3 +152,30 @@ def test_a_big_cloud_is_culled_by_chunks_and_keeps_its_point_numbers(make_render
         off = c - o[row, col]
         miss = np.linalg.norm(off - (off @ d[row, col]) * d[row, col])
         assert miss <= 0.004 * (1 + 1e-4), (row, col, miss)
+
+
+@pytest.mark.parametrize("mode", ["flat", "phong", "gouraud"])
+def test_shared_vertices_draw_what_corner_copies_draw(make_renderer, big, mode):
+    """A big mesh's draws over its shared vertices (each triangle's polygon from a table;
+    flat lit once a triangle in a geometry stage) give the picture, ids and depth of the
+    same triangles drawn as two smaller meshes, whose draws copy the vertices to every
+    corner -- and take 4 bytes a triangle and 32 a polygon besides the indexed mesh. (The
+    view depth interpolated after a geometry stage may differ in its last bit.)"""
+    mesh, scene = big
+    half = mesh.n_faces // 2
+    assert half < CHUNKED_FROM
+    halves = glshade.Scene()
+    halves.add(mesh.subset(np.arange(half)))
+    halves.add(mesh.subset(np.arange(half, mesh.n_faces)))
+    cam = glshade.Camera.look_at((0.3, -1.7, 1.2), (0, 0, 0)).with_planes(scene.bounds)
+    renderer = make_renderer(120, 90)
+    a = renderer.render_frame(scene, cam, mode, outputs=Outputs.ALL)
+    b = renderer.render_frame(halves, cam, mode, outputs=Outputs.ALL)
+    assert (a.face_id >= 0).mean() > 0.5
+    for x, y in ((a.color, b.color), (a.face_id, b.face_id), (a.normal, b.normal)):
+        np.testing.assert_array_equal(x, y)
+    np.testing.assert_allclose(a.depth, b.depth, rtol=2e-6, atol=0)
+    gpu = renderer.meshes.gpu_mesh(mesh)
+    tables = 4 * mesh.n_faces + (32 * mesh.n_faces if mode == "flat" else 0)
+    extra = gpu.nbytes - gpu_bytes(mesh)   # (no corner copies: the tables, rows padded)
+    assert tables <= extra < tables + 2 * 4096 * 16

@@ -261,11 +261,14 @@ def _points_info(args: InfoArgs, cloud) -> int:
     """A point set's counts, bounds, arrays and GPU bytes."""
     if args.tolerance is not None:
         raise UsageError(f"--tolerance is for patches:NAME, not {args.mesh}")
+    from ..render.passes.points import cloud_gpu_bytes
+
     lo, hi = cloud.points.min(0), cloud.points.max(0)
+    gpu = cloud_gpu_bytes(cloud)
     info = {"source": args.mesh, "points": cloud.n_points,
             "bounds": {"min": lo.tolist(), "max": hi.tolist()},
             "normals": cloud.normals is not None, "colors": cloud.colors is not None,
-            "radius": cloud.radius, "gpu_bytes": cloud.gpu_bytes}
+            "radius": cloud.radius, "gpu_bytes": gpu}
     if args.json:
         print(json.dumps(info, indent=2))
         return EXIT_OK
@@ -275,8 +278,7 @@ def _points_info(args: InfoArgs, cloud) -> int:
             ("normals", "yes" if info["normals"] else "no"),
             ("colours", "yes" if info["colors"] else "no"),
             ("radius", f"{cloud.radius:.4g} (1/200 of the box's diagonal)"),
-            ("GPU bytes", f"{cloud.gpu_bytes:,} ({cloud.gpu_bytes // cloud.n_points} a "
-                          "point)")]
+            ("GPU bytes", f"{gpu:,} ({gpu // cloud.n_points} a point)")]
     width = max(len(k) for k, _ in rows)
     for k, v in rows:
         print(f"{k:<{width}}  {v}")

@@ -164,18 +164,6 @@ class PointCloud:
         return [(name, np.ascontiguousarray(a, np.float32)) for name, a in named
                 if a is not None]
 
-    @property
-    def gpu_bytes(self) -> int:
-        """The bytes its GPU copy takes: 12 a point for positions, plus 4 for radii, 12
-        for colours and 12 for normals where it has them, and 4 for the chunk order of a
-        big cloud sized in the world (``glshade.octree.CHUNKED_FROM`` points or more)."""
-        from ..octree import CHUNKED_FROM
-
-        chunked = len(self) >= CHUNKED_FROM and self.pixel_size is None
-        per_point = 12 + 4 * (self.radii is not None) + 12 * (self.colors is not None) + \
-            12 * (self.normals is not None) + 4 * chunked
-        return per_point * len(self)
-
     def world_radii(self) -> NDArray[np.float64]:
         """``(N,)`` each point's radius in model units (``radius`` repeated where no radii;
         zeros with ``pixel_size``)."""

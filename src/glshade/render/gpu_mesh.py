@@ -16,11 +16,14 @@ from ..modes import ShadingMode
 from ..octree import CHUNK_SIZE, CHUNKED_FROM
 from .base import GLResource
 
-__all__ = ["GpuMesh", "drawable_normals", "gpu_bytes", "Chunks", "UPLOAD_BYTES"]
+__all__ = ["GpuMesh", "drawable_normals", "gpu_bytes", "Chunks", "UPLOAD_BYTES",
+           "POLYGON_ROW_WIDTH"]
 
 #: the most host memory an upload converts at once (float32 rows made slice by slice and
 #: written into a reserved buffer): a 10M-triangle mesh needs no whole float32 copy
 UPLOAD_BYTES = 64 << 20
+#: texels a row of a big mesh's polygon tables (shaders/include/polygon_fetch.glsl)
+POLYGON_ROW_WIDTH = 4096
 
 def drawable_normals(mesh: Mesh) -> np.ndarray:
     """Vertex normals for the GPU, never zero or NaN (normalize(0) is NaN in GLSL: black
@@ -157,6 +160,7 @@ class GpuMesh(GLResource):
         # (kept for the draws with polygon ids, made on their first use)
         self._indexed = (tri, owner)
         self._per_corner: Any = None
+        self._tables: list[Any] = [None, None]  # (a big mesh's: polygon_tables)
 
     def _vertex_rows(self, rows) -> np.ndarray:
         """float32 position, normal (and uv) of GPU vertices ``rows`` (a slice or indices)."""
@@ -164,10 +168,13 @@ class GpuMesh(GLResource):
 
     @property
     def nbytes(self) -> int:
-        """The bytes its buffers take on the GPU now (per-corner copies included once
-        made)."""
-        return sum(o.size for o in self._objects if hasattr(o, "size") and
-                   not hasattr(o, "render"))
+        """The bytes its buffers and tables take on the GPU now (per-corner copies and a
+        big mesh's polygon tables included once made)."""
+        import moderngl
+
+        return sum(o.size if isinstance(o, moderngl.Buffer) else
+                   o.width * o.height * o.components * 4 for o in self._objects
+                   if isinstance(o, (moderngl.Buffer, moderngl.Texture)))
 
     def triangles_in_order(self, mesh: Mesh) -> tuple[np.ndarray, np.ndarray]:
         """``mesh.triangles`` in the order uploaded (a big mesh's by chunk).
@@ -341,7 +348,7 @@ class GpuMesh(GLResource):
         if vao is None:
             ctx = self.context.ctx
             ids = None
-            if mode.per_polygon:
+            if "in_face_normal" in program:  # (flat: a corner copy a polygon's corner)
                 layout = [("in_position", "3f"), ("in_face_normal", "3f"),
                           ("in_face_centroid", "3f")]
                 (buffer, ids), ibo = self._flat_buffer(), None
@@ -361,6 +368,32 @@ class GpuMesh(GLResource):
             vao = ctx.vertex_array(program, content, ibo, 4)
             self._vaos[key] = vao
         return vao
+
+    def polygon_tables(self, planes: bool):
+        """A big mesh's tables for draws over its shared vertices (polygon_fetch.glsl):
+        each triangle's polygon (int32, in the order uploaded), and with ``planes`` each
+        polygon's Newell normal and centroid (two float32 texels) -- POLYGON_ROW_WIDTH
+        texels a row; made on first use (4 bytes a triangle, 32 a polygon).
+
+        Parameters
+        ----------
+        planes : bool
+            Also the polygons' normals and centroids (a flat draw's).
+        """
+        self._check()
+        ctx = self.context.ctx
+        if self._tables[0] is None:
+            self._tables[0] = self._keep(_table(ctx, self._indexed[1].astype(np.int32), 1,
+                                                "i4"))
+        if planes and self._tables[1] is None:
+            m = self._mesh()
+            if m is None:
+                raise GlshadeError("the mesh of this GpuMesh no longer exists")
+            rows = np.zeros((m.n_faces, 2, 4), np.float32)
+            rows[:, 0, :3], rows[:, 1, :3], rows[:, 1, 3] = m.face_normals, \
+                m.face_centroids, 1.0
+            self._tables[1] = self._keep(_table(ctx, rows.reshape(-1, 4), 4, "f4"))
+        return self._tables[0], self._tables[1]
 
     def _release_extra(self) -> None:
         self._drop_colors()
@@ -399,3 +432,17 @@ def _upload_rows(ctx, n: int, rows):
         buffer.write(np.ascontiguousarray(rows(slice(start, min(n, start + step)))).tobytes(),
                      offset=start * row_bytes)
     return buffer
+
+
+def _table(ctx, values: np.ndarray, components: int, dtype: str):
+    """A texture holding ``values`` (``(N,)`` or ``(N, components)``) POLYGON_ROW_WIDTH texels
+    a row, read by texelFetch (nearest, never filtered)."""
+    import moderngl
+
+    flat = values.reshape(len(values), -1)
+    height = max(1, -(-len(flat) // POLYGON_ROW_WIDTH))
+    data = np.zeros((height * POLYGON_ROW_WIDTH, components), flat.dtype)
+    data[:len(flat)] = flat
+    texture = ctx.texture((POLYGON_ROW_WIDTH, height), components, data.tobytes(), dtype=dtype)
+    texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    return texture

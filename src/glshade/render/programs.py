@@ -236,6 +236,9 @@ class ProgramKey:
     instanced : bool
         One draw of many instances, each its own row of transforms and colour
         (instances.glsl).
+    fetch : bool
+        A big mesh's draw over shared vertices: its polygon ids found per triangle in a
+        table (polygon_fetch.glsl), flat's polygon lit once a triangle by flat.geom.
     """
 
     mode: ShadingMode
@@ -255,11 +258,14 @@ class ProgramKey:
     forward: Forward = Forward.ARRAY
     #: an instanced draw: each instance's matrices, first id and colour from its row
     instanced: bool = False
+    #: a big mesh's draw: polygons per triangle from a table, no per-corner copies
+    fetch: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: Role = Role.OPAQUE,
-           textured: bool = False, instanced: bool = False) -> ProgramKey:
+           textured: bool = False, instanced: bool = False,
+           fetch: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model.
 
         Parameters
@@ -276,6 +282,8 @@ class ProgramKey:
             The material has texture maps.
         instanced : bool
             One draw of many instances.
+        fetch : bool
+            A big mesh's draw: polygons found per triangle (opaque draws only).
         """
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         opaque = oit is Role.OPAQUE
@@ -283,7 +291,7 @@ class ProgramKey:
                    variant.orthographic, two_sided, flat_constants,
                    variant.shadows and opaque, oit, textured and variant.mode in TEXTURED_MODES,
                    variant.forward if variant.shadows and opaque else Forward.ARRAY,
-                   instanced)
+                   instanced, fetch and opaque)
 
     def defines(self) -> tuple[str, ...]:
         forward = self.forward is not Forward.ARRAY
@@ -298,10 +306,16 @@ class ProgramKey:
                  ("OIT_BLEND", self.oit is Role.BLEND), ("TEXTURED", self.textured),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
                  ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),
-                 ("INSTANCED", self.instanced))
+                 ("INSTANCED", self.instanced),
+                 ("POLYGON_FETCH", self.fetch and self.mode is not ShadingMode.FLAT),
+                 ("FLAT_FETCH", self.fetch and self.mode is ShadingMode.FLAT))
         out = [name for name, on in flags if on]
         if capture:
             out.append(f"OIT_SLOTS {OIT_SLOTS}")
+        if self.fetch:
+            from .gpu_mesh import POLYGON_ROW_WIDTH
+
+            out.append(f"POLYGON_ROW_WIDTH {POLYGON_ROW_WIDTH}")
         out.append(f"LIGHT_COUNT {len(self.lights)}")
         out.append(f"LIGHT_KINDS {', '.join(self.lights)}")
         return tuple(out)

@@ -183,7 +183,10 @@ class ShaderLibrary(GLResource):
         program = self._programs.get(key)
         if program is None:
             vert, frag = PROGRAMS[key.mode]
-            program = self._programs[key] = self.compile(vert, frag, defines=key.defines())
+            # (a big mesh's flat draw lights each triangle's polygon in a geometry stage)
+            geom = "flat.geom" if key.fetch and key.mode is ShadingMode.FLAT else None
+            program = self._programs[key] = self.compile(vert, frag, defines=key.defines(),
+                                                         geom=geom)
         return program
 
     def compile(self, vert: str, frag: str, root: Path | None = None,

@@ -31,6 +31,9 @@ class Unit:
     INSTANCES = 9
     #: a material's diffuse, specular and opacity maps (shaders/include/textures.glsl)
     MAP_DIFFUSE, MAP_SPECULAR, MAP_OPACITY = 10, 11, 12
+    #: a big mesh's tables: each triangle's polygon, each polygon's normal and centroid
+    #: (shaders/include/polygon_fetch.glsl)
+    POLYGONS, POLYGON_PLANES = 13, 14
     #: a forward map-shadowed draw's light maps, one a light from here (up to 8)
     LIGHT_MAPS = 16
 

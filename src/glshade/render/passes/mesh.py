@@ -161,7 +161,8 @@ class MeshPass(GLResource, Stage):
         return found
 
     def program(self, variant: Variant, two_sided: bool, flat: bool = False,
-                role: Role = Role.OPAQUE, textured: bool = False, instanced: bool = False):
+                role: Role = Role.OPAQUE, textured: bool = False, instanced: bool = False,
+                fetch: bool = False):
         """The compiled program of a variant, with flat lighting constants if asked for and
         they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
         material's maps sampled.
@@ -180,8 +181,10 @@ class MeshPass(GLResource, Stage):
             The material has texture maps.
         instanced : bool
             One draw of a group's instances (instances.glsl).
+        fetch : bool
+            A big mesh's draw over its shared vertices (polygon_fetch.glsl).
         """
-        found = (variant, two_sided, flat, role, textured, instanced)
+        found = (variant, two_sided, flat, role, textured, instanced, fetch)
         program = self._programs.get(found)
         if program is None:
             forwarded = variant.shadows and variant.forward is not Forward.ARRAY
@@ -189,7 +192,7 @@ class MeshPass(GLResource, Stage):
             flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
                                                self.max_varyings, textured)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
-                                textured=textured, instanced=instanced)
+                                textured=textured, instanced=instanced, fetch=fetch)
             program = self._programs[found] = self.shaders.program(key)
         return program
 
@@ -356,7 +359,13 @@ class MeshPass(GLResource, Stage):
         flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
         textured = (gpu.textured and bool(model.material.textures)
                     and options.mode in TEXTURED_MODES)
-        prog = self.program(state.variant, not cull, flat, role, textured)
+        # a big mesh draws its shared vertices in every mode that can (flat lit per
+        # triangle, ids per triangle from a table): no copy of them at every corner
+        variant = state.variant
+        fetch = gpu.chunks is not None and role is Role.OPAQUE and (
+            options.mode is ShadingMode.FLAT or (options.mode is not ShadingMode.RADIOSITY and (
+                variant.aux or (variant.shadows and variant.forward is Forward.RAYS))))
+        prog = self.program(variant, not cull, flat, role, textured, fetch=fetch)
         if id(prog) not in prepared:  # the frame's uniforms, once per program used
             for name, value in state.frame_uniforms:
                 put(prog, name, value)
@@ -385,14 +394,23 @@ class MeshPass(GLResource, Stage):
             vao = gpu.color_array(prog, model.display_colors(scene.ambient))
         else:
             vao = gpu.vertex_array(prog, options.mode)
+        if fetch:
+            polygons, planes = gpu.polygon_tables(options.mode is ShadingMode.FLAT)
+            polygons.use(location=Unit.POLYGONS)
+            put(prog, "u_polygons", Unit.POLYGONS)
+            if planes is not None:
+                planes.use(location=Unit.POLYGON_PLANES)
+                put(prog, "u_polygon_planes", Unit.POLYGON_PLANES)
         chunks = gpu.chunks
         if chunks is not None and options.frustum_cull:  # (a big mesh: what the view holds)
             hidden = outside_frustum(state.view_proj @ m, chunks.corners)
             self.culled_chunks += int(hidden.sum())
-            for first, count in chunks.ranges(~hidden):
-                vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
+            ranges = chunks.ranges(~hidden)
         else:
-            vao.render(moderngl.TRIANGLES)
+            ranges = [(0, gpu.n_triangles)]
+        for first, count in ranges:
+            put(prog, "u_triangle_base", first)  # (the draw's triangles count from 0)
+            vao.render(moderngl.TRIANGLES, vertices=3 * count, first=3 * first)
 
     def _release_extra(self) -> None:
         for _, gpu in self._meshes.values():

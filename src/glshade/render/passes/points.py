@@ -30,7 +30,7 @@ from ..programs import ProgramKey, UniformWriter, lighting_products
 from ..state import DrawState
 from . import Stage
 
-__all__ = ["PointPass", "point_defines"]
+__all__ = ["PointPass", "point_defines", "cloud_gpu_bytes"]
 
 #: the defines of each shading mode's point program (the lit modes light per pixel)
 _MODE_DEFINES = {ShadingMode.NORMALS: ("SHOW_NORMALS",), ShadingMode.DEPTH: ("SHOW_DEPTH",),
@@ -53,6 +53,24 @@ def point_defines(cloud: PointCloud) -> tuple[str, ...]:
     return tuple(name for name, on in flags if on)
 
 
+def cloud_gpu_bytes(cloud: PointCloud) -> int:
+    """The bytes a cloud's GPU copy takes: 12 a point for positions, plus 4 for radii, 12
+    for colours and 12 for normals where it has them, and 4 for the chunk order of a big
+    cloud sized in the world (``glshade.octree.CHUNKED_FROM`` points or more).
+
+    Parameters
+    ----------
+    cloud : PointCloud
+        The cloud.
+    """
+    return sum(a.nbytes for _, a in cloud.arrays()) + 4 * len(cloud) * _chunked(cloud)
+
+
+def _chunked(cloud: PointCloud) -> bool:
+    """Whether a cloud is drawn by octree chunks (big, and sized in the world)."""
+    return len(cloud) >= CHUNKED_FROM and cloud.pixel_size is None
+
+
 class _GpuCloud:
     """A cloud's buffers and its vertex arrays (one a program). A big cloud (CHUNKED_FROM
     points or more, sized in the world) is drawn by octree chunks like a big mesh: an
@@ -65,7 +83,7 @@ class _GpuCloud:
                         for name, a in cloud.arrays()]
         self.chunks: Chunks | None = None
         self.index: Any = None
-        if self.n >= CHUNKED_FROM and cloud.pixel_size is None:
+        if _chunked(cloud):
             order, starts = point_chunks(cloud.points, CHUNK_SIZE)
             grow = cloud.world_radii()[order]
             p = cloud.points[order]

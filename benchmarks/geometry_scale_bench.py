@@ -4,8 +4,10 @@ peer and the textbook floor.
 1. Clouds of N points (uniform in a cube, radius 1/1000 of it) at 1024x768 as squares and
    as sphere impostors: frames a second, glshade against polyscope (headless EGL, its
    'quad' and 'sphere' modes) where it installs (the ``peers`` extra).
-2. K instances of a 512-triangle part at 640x480 Phong: one instanced draw against the
-   same K models added one by one, and polyscope drawing K meshes.
+2. K instances of a 512-triangle part at 640x480 Phong, no MSAA: one instanced draw against the
+   same K models added one by one, against all K copies merged into one mesh (one plain
+   draw of the same triangles: what no batching of draw calls can beat), and polyscope
+   drawing K meshes.
 3. A terrain of T triangles at 640x480 Phong: binary PLY load seconds, first-draw upload
    seconds, GPU bytes a triangle against an indexed mesh's minimum (a float32 position and
    normal a vertex, three uint32 indices a triangle), frames a second against the textbook
@@ -20,6 +22,7 @@ process's. Nothing here is asserted; the tests check the pictures.
 
     .venv/bin/python benchmarks/geometry_scale_bench.py [--points 1M,10M]
         [--instances 10000] [--triangles 10M] [--rounds 3] [--no-peers]
+        [--only clouds,instances,mesh]
 """
 
 from __future__ import annotations
@@ -168,18 +171,24 @@ def instances(k: int, rounds: int, peer) -> str:
     side = np.sqrt(k)
     eye, target = (0.0, 0.9 * side, 0.9 * side), (0.0, 0.0, 0.0)
     camera = Camera.look_at(eye, target, fov_y=50)
-    grouped, single = Scene(), Scene()
+    grouped, single, merged = Scene(), Scene(), Scene()
     grouped.add(part, Material(), instances=t, colors=colors)
     for placement, colour in zip(t, colors):
         single.add(part, Material(color=tuple(colour)), transform=placement)
-    renderer = glshade.Renderer(640, 480)
-    for scene in (grouped, single):
-        renderer.render(scene, camera)
     tri, _ = part.triangles
-    series: dict[str, list] = {"instanced": [], "one by one": [], "polyscope": []}
+    n = part.n_vertices
+    copies = np.einsum("kij,vj->kvi", t[:, :3, :3], part.vertices) + t[:, None, :3, 3]
+    merged.add(glshade.Mesh(copies.reshape(-1, 3),
+                            (tri[None] + n * np.arange(k)[:, None, None]).reshape(-1, 3)))
+    renderer = glshade.Renderer(640, 480, samples=0)  # (as polyscope: no MSAA)
+    for scene in (grouped, single, merged):
+        renderer.render(scene, camera)
+    series: dict[str, list] = {"instanced": [], "one by one": [], "merged": [],
+                               "polyscope": []}
     for _ in range(rounds):
         series["instanced"].append(fps_of(lambda: renderer.render(grouped, camera), 2))
         series["one by one"].append(fps_of(lambda: renderer.render(single, camera), 2))
+        series["merged"].append(fps_of(lambda: renderer.render(merged, camera), 2))
         if peer is not None:
             series["polyscope"].append(peer.fps(
                 kind="parts", n=k, vertices=part.vertices.tolist(), faces=tri.tolist(),
@@ -190,10 +199,10 @@ def instances(k: int, rounds: int, peer) -> str:
     peer_fps = med.get("polyscope")
     row = (f"{k:,} x {len(tri)} tris", f"{med['instanced']:.2f}",
            f"{med['one by one']:.2f}", f"{med['instanced'] / med['one by one']:.2f}x",
-           f"{peer_fps:.2f}" if peer_fps else "not installed",
+           f"{med['merged']:.2f}", f"{peer_fps:.2f}" if peer_fps else "not installed",
            f"{med['instanced'] / peer_fps:.2f}x" if peer_fps else "-")
     return table([row], ("scene", "instanced fps", "1-by-1 fps", "speed-up",
-                         "polyscope fps", "glshade/peer"))
+                         "one merged mesh fps", "polyscope fps", "glshade/peer"))
 
 
 def terrain(n_triangles: int) -> glshade.Mesh:
@@ -301,19 +310,24 @@ def main() -> None:
     parser.add_argument("--triangles", default="10M")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--no-peers", action="store_true")
+    parser.add_argument("--only", default="clouds,instances,mesh")
     args = parser.parse_args()
+    only = set(args.only.split(","))
     peer = start_peer(not args.no_peers)
     with glshade.Renderer(16, 16) as r:
         print(f"# {r.context.detail}; polyscope: "
               f"{'a worker process' if peer else 'not installed'}")
-    print("## point clouds, 1024x768")
-    print(clouds([count(x) for x in args.points.split(",")], args.rounds, peer))
-    print("\n## instances, 640x480 Phong")
-    print(instances(args.instances, args.rounds, peer))
+    if "clouds" in only:
+        print("## point clouds, 1024x768")
+        print(clouds([count(x) for x in args.points.split(",")], args.rounds, peer))
+    if "instances" in only:
+        print("\n## instances, 640x480 Phong")
+        print(instances(args.instances, args.rounds, peer))
     if peer is not None:
         peer.close()
-    print("\n## a big mesh, 640x480 Phong")
-    print(big_mesh(count(args.triangles), args.rounds))
+    if "mesh" in only:
+        print("\n## a big mesh, 640x480 Phong")
+        print(big_mesh(count(args.triangles), args.rounds))
 
 
 if __name__ == "__main__":

@@ -60,7 +60,8 @@ _EXPORTS = {
     "show": ("notebook.display", "show"),
     # errors
     **{name: ("errors", name) for name in (
-        "GlshadeError", "InputError", "EnvironmentFailure", "GeometryError", "OptionError",
+        "GlshadeError", "InputError", "EnvironmentFailure", "NoGpuError", "GeometryError",
+        "OptionError",
         "SceneError", "MeshFormatError", "SceneFormatError", "TopologyError", "ContextError",
         "DisplayError", "ShaderError", "ComparisonError", "RenderWarning")},
 }
@@ -78,6 +79,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .animate.frames import animate
     from .notebook.display import show
     from .errors import (ComparisonError, ContextError, DisplayError, EnvironmentFailure,
+                         NoGpuError,
                          GeometryError, GlshadeError, InputError, MeshFormatError,
                          OptionError, RenderWarning, SceneError, SceneFormatError,
                          ShaderError, TopologyError)

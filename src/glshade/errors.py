@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Any
 
 __all__ = [
-    "GlshadeError", "InputError", "EnvironmentFailure",
+    "GlshadeError", "InputError", "EnvironmentFailure", "NoGpuError",
     "GeometryError", "OptionError", "SceneError", "TopologyError", "MeshFormatError",
     "SceneFormatError", "PathFormatError",
     "OutputError", "UsageError", "SettingError", "ComparisonError", "DisplayError",
@@ -173,6 +173,15 @@ class ComparisonError(InputError):
 
 class ContextError(EnvironmentFailure):
     """No OpenGL context could be made: says which backends were tried and why each failed."""
+
+
+class NoGpuError(ContextError):
+    """A GPU was required (``require_gpu=True``, ``--require-gpu``,
+    ``GLSHADE_REQUIRE_GPU=1``) and the GL found is a software rasterizer: the message names
+    it and the usual cause. Exit status 2, as a refused request: run as it is, the same
+    command fails the same way until the machine changes."""
+
+    exit_status = EXIT_USAGE
 
 
 class DisplayError(EnvironmentFailure):

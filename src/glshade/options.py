@@ -235,6 +235,7 @@ class RenderConfig:
         Whether this GL offers the count is checked when the Renderer is made.
     backend : where the GL context comes from (:class:`Backend` or its name).
     device : which GPU, for EGL on a machine with several (None: the default).
+    require_gpu : refuse a software rasterizer (None: ``GLSHADE_REQUIRE_GPU``).
     """
 
     width: int = 512
@@ -242,9 +243,11 @@ class RenderConfig:
     samples: int = 4
     backend: Backend = Backend.AUTO
     device: int | None = None
+    require_gpu: bool | None = None
 
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
-                 backend: Backend | str = Backend.AUTO, device: int | None = None) -> None:
+                 backend: Backend | str = Backend.AUTO, device: int | None = None,
+                 require_gpu: bool | None = None) -> None:
         put = object.__setattr__
         width, height = check_size(width, height)
         put(self, "width", width)
@@ -252,6 +255,7 @@ class RenderConfig:
         put(self, "samples", check_samples(samples))
         put(self, "backend", Backend.parse(backend))
         put(self, "device", None if device is None else check_whole("device", device, 0))
+        put(self, "require_gpu", None if require_gpu is None else bool(require_gpu))
 
     @property
     def size(self) -> tuple[int, int]:

@@ -70,6 +70,10 @@ def _main(argv: list[str] | None) -> int:
     warnings.formatwarning = lambda message, *_, **__: f"glshade: warning: {message}\n"
     args = build_parser().parse_args(argv)
     try:  # the Namespace becomes the subcommand's typed arguments here, and only here
+        if getattr(args, "require_gpu", False):  # (before any context: workers inherit it)
+            import os
+
+            os.environ["GLSHADE_REQUIRE_GPU"] = "1"
         if getattr(args, "device", None) is not None:
             _choose_device(args.device)
         import numpy as np

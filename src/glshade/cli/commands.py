@@ -347,7 +347,10 @@ def view(args: a.ViewArgs) -> int:
 
 def doctor(args: a.DoctorArgs) -> int:
     """``glshade doctor``: which GL backends work here, and what they are."""
-    from ..render.context import create_context, egl_devices, probe_backends
+    import os
+
+    from ..errors import OptionError
+    from ..render.context import chosen_device, create_context, egl_devices, probe_backends
 
     ok = True
     try:
@@ -363,9 +366,25 @@ def doctor(args: a.DoctorArgs) -> int:
     for name, status in probe_backends().items():
         print(f"  {name:<8} {status}")
     devices = egl_devices()
-    print(f"EGL devices ({len(devices)}; choose with --device or GLSHADE_EGL_DEVICE, by index "
-          "or name):")
+    try:
+        chosen, why = chosen_device()
+    except OptionError as exc:  # (GLSHADE_EGL_DEVICE names no device: say so, list them)
+        chosen, why = None, f"GLSHADE_EGL_DEVICE: {exc}"
+    print(f"EGL devices ({len(devices)}, listed without a context on any; choose with "
+          "--device or GLSHADE_EGL_DEVICE: an index, cuda:N or a part of a name):")
     for d in devices:
-        what = d.get("error") or f"{d['vendor']} | {d['renderer']}"
-        print(f"  {d['index']:<3} {what}")
+        kinds = ["software rasterizer" if d["software"] else "GPU"]
+        if d["cuda"] is not None:
+            kinds.append(f"cuda:{d['cuda']}")
+        if d["node"]:
+            kinds.append(d["node"])
+        mark = "*" if d["index"] == chosen else " "
+        print(f" {mark}{d['index']:<3} {d['name']} ({', '.join(kinds)})")
+    if chosen is not None and chosen >= len(devices):
+        why += f"; there is no device {chosen}: a render fails"
+    print(f"a render takes: {chosen if chosen is not None else 'none'} ({why})")
+    other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
+    if other and chosen is not None and other != str(chosen):
+        print(f"note: GLCONTEXT_DEVICE_INDEX={other} disagrees: glcontext would take it over "
+              "a program's own choice; glshade sets it to its choice when it makes a context")
     return EXIT_OK if ok else EXIT_ENVIRONMENT

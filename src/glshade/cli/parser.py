@@ -36,13 +36,17 @@ def _examples(*lines: str) -> dict:
 
 
 def add_backend(add) -> None:
-    """The --backend and --device options, through ``add`` (a parser's ``add_argument``)."""
+    """The --backend, --device and --require-gpu options, through ``add`` (a parser's
+    ``add_argument``)."""
     add("--backend", choices=HEADLESS_BACKENDS, default="auto",
         help="where the GL context comes from: auto (EGL, else OSMesa), egl or "
         "osmesa (default auto; GLSHADE_BACKEND overrides auto)")
     add("--device", metavar="INDEX|NAME", default=None,
         help="the EGL device, by index or a part of its name (glshade doctor "
         "lists them; as GLSHADE_EGL_DEVICE)")
+    add("--require-gpu", action="store_true",
+        help="refuse a software rasterizer (llvmpipe): exit 2 naming what was found "
+        "(as GLSHADE_REQUIRE_GPU=1, for this run and its workers)")
 
 
 def add_quiet(p: argparse.ArgumentParser, what: str = "no summary line") -> None:

@@ -21,7 +21,7 @@ import ctypes.util
 import os
 import re
 
-from ..errors import ContextError, EnvironmentFailure, OptionError
+from ..errors import ContextError, EnvironmentFailure, NoGpuError, OptionError
 from ..interrupt import held
 from ..modes import Backend
 
@@ -205,7 +205,7 @@ class RenderContext:
     @property
     def software(self) -> bool:
         """Whether this GL rasterizes on the CPU (Mesa's llvmpipe, softpipe, swrast)."""
-        return any(w in self.detail.lower() for w in ("llvmpipe", "softpipe", "swrast"))
+        return any(w in self.detail.lower() for w in SOFTWARE_RENDERERS)
 
     @property
     def info(self) -> dict:
@@ -268,76 +268,237 @@ class RenderContext:
         return f"<RenderContext {self.backend.value}: {state}>"
 
 
+#: what a software rasterizer's GL_RENDERER string holds (Mesa's)
+SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast")
+#: device files whose presence says a GPU is on the machine (NVIDIA's, and DRM render
+#: nodes): a software rasterizer chosen beside them is worth a warning
+GPU_DEVICE_FILES = ("/dev/nvidia[0-9]*", "/dev/dri/renderD*")
+#: why a software rasterizer answers where a GPU was wanted, most often
+NO_GPU_CAUSE = ("usually a container started without the GPU (docker run --gpus all) or "
+                "without NVIDIA's EGL vendor file (/usr/share/glvnd/egl_vendor.d/"
+                "10_nvidia.json); glshade doctor lists the devices EGL sees")
+
+
+def require_gpu_wanted(require_gpu: bool | None) -> bool:
+    """``require_gpu`` as given, else the environment's ``GLSHADE_REQUIRE_GPU`` (1, true,
+    yes: what ``--require-gpu`` sets for a run and its workers).
+
+    Parameters
+    ----------
+    require_gpu : bool or None
+        The caller's choice (None: the environment's).
+    """
+    if require_gpu is not None:
+        return bool(require_gpu)
+    return os.environ.get("GLSHADE_REQUIRE_GPU", "").strip().lower() in ("1", "true", "yes")
+
+
+def check_gpu(context: RenderContext, require_gpu: bool | None = None,
+              release: bool = True) -> None:
+    """Refuse a software rasterizer where a GPU is required (the context released, one
+    line naming what was found and the usual cause: :class:`NoGpuError`); else warn when
+    one is chosen while the machine has GPU device files (a fallback nobody would notice).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context just made.
+    require_gpu : bool or None
+        Whether a GPU is required (None: ``GLSHADE_REQUIRE_GPU``).
+    release : bool
+        Release the context when refusing it (not one the caller owns).
+    """
+    import glob
+    import warnings
+
+    if not context.software:
+        return
+    if require_gpu_wanted(require_gpu):
+        found = f"{context.backend.value}: {context.detail}"
+        if release:
+            context.release()
+        raise NoGpuError(f"a GPU was required, and this GL is a software rasterizer "
+                         f"({found}): {NO_GPU_CAUSE}")
+    present = sorted(p for pattern in GPU_DEVICE_FILES for p in glob.glob(pattern))
+    if present:
+        from ..errors import RenderWarning
+
+        warnings.warn(f"rendering on a software rasterizer ({context.detail}) although this "
+                      f"machine has GPU device files ({', '.join(present[:3])}): "
+                      f"{NO_GPU_CAUSE}", RenderWarning, stacklevel=3)
+
+
+#: eglQueryDeviceStringEXT's and eglQueryDeviceAttribEXT's names (EGL_EXT_device_query,
+#: EGL_EXT_device_drm, EGL_EXT_device_drm_render_node, EGL_EXT_device_query_name,
+#: EGL_NV_device_cuda)
+_EGL_EXTENSIONS, _EGL_VENDOR, _EGL_RENDERER = 0x3055, 0x3053, 0x335F
+_EGL_DRM_DEVICE_FILE, _EGL_DRM_RENDER_NODE_FILE, _EGL_CUDA_DEVICE_NV = 0x3233, 0x3377, 0x323A
+
+
+class _EglDevices:
+    """The driver's EGL devices, through EGL_EXT_device_enumeration and _query: their
+    handles and what each says of itself -- no context made on any (on a node where a
+    scheduler granted one GPU of eight, a context on each would be slow at best)."""
+
+    def __init__(self):
+        self.handles: list = []
+        self.egl: Any = None
+        try:
+            self.egl = ctypes.CDLL(ctypes.util.find_library("EGL") or "libEGL.so.1")
+        except OSError:
+            return
+        self.egl.eglGetProcAddress.restype = ctypes.c_void_p
+        self.egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+        query = self._function("eglQueryDevicesEXT", ctypes.c_uint, ctypes.c_int,
+                               ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_int))
+        count = ctypes.c_int(0)
+        if query is None or not query(0, None, ctypes.byref(count)) or count.value <= 0:
+            return
+        found = (ctypes.c_void_p * count.value)()
+        if query(count.value, found, ctypes.byref(count)):
+            self.handles = list(found)[:count.value]
+
+    def _function(self, name: str, restype, *argtypes):
+        address = self.egl.eglGetProcAddress(name.encode())
+        return ctypes.CFUNCTYPE(restype, *argtypes)(address) if address else None
+
+    def string(self, handle, name: int) -> str | None:
+        query = self._function("eglQueryDeviceStringEXT", ctypes.c_char_p, ctypes.c_void_p,
+                               ctypes.c_int)
+        if query is None:
+            return None
+        value = query(handle, name)
+        return value.decode("utf-8", "replace") if value else None
+
+    def attribute(self, handle, name: int) -> int | None:
+        query = self._function("eglQueryDeviceAttribEXT", ctypes.c_uint, ctypes.c_void_p,
+                               ctypes.c_int, ctypes.POINTER(ctypes.c_ssize_t))
+        value = ctypes.c_ssize_t(0)
+        if query is None or not query(handle, name, ctypes.byref(value)):
+            return None
+        return int(value.value)
+
+    def describe(self, index: int) -> dict:
+        """One device: ``index``, ``name`` (its vendor and renderer where the driver names
+        them, else its kind), ``software``, ``cuda`` (its CUDA ordinal, where the driver
+        has EGL_NV_device_cuda), ``node`` (its DRM render node or device file) and
+        ``extensions``."""
+        handle = self.handles[index]
+        extensions = (self.string(handle, _EGL_EXTENSIONS) or "").split()
+        software = "EGL_MESA_device_software" in extensions
+        vendor = self.string(handle, _EGL_VENDOR) if \
+            "EGL_EXT_device_query_name" in extensions else None
+        renderer = self.string(handle, _EGL_RENDERER) if vendor is not None else None
+        cuda = self.attribute(handle, _EGL_CUDA_DEVICE_NV) if \
+            "EGL_NV_device_cuda" in extensions else None
+        node = (self.string(handle, _EGL_DRM_RENDER_NODE_FILE) if
+                "EGL_EXT_device_drm_render_node" in extensions else None) or \
+            (self.string(handle, _EGL_DRM_DEVICE_FILE) if "EGL_EXT_device_drm" in extensions
+             else None)
+        if vendor or renderer:
+            name = " ".join(x for x in (vendor, renderer) if x)
+        elif software:  # (Mesa's software device: llvmpipe unless GALLIUM_DRIVER says)
+            name = f"Mesa software ({os.environ.get('GALLIUM_DRIVER', 'llvmpipe')})"
+        elif cuda is not None:
+            name = f"NVIDIA (CUDA {cuda})"
+        else:
+            name = f"GPU ({node})" if node else "unnamed device"
+        return {"index": index, "name": name, "software": software, "cuda": cuda,
+                "node": node, "extensions": extensions}
+
+
 def egl_device_count() -> int:
     """How many EGL devices the driver lists (EGL_EXT_device_enumeration), 0 when it
     lists none or cannot say."""
-    import ctypes
-    import ctypes.util
-
-    try:
-        egl = ctypes.CDLL(ctypes.util.find_library("EGL") or "libEGL.so.1")
-    except OSError:
-        return 0
-    egl.eglGetProcAddress.restype = ctypes.c_void_p
-    egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
-    address = egl.eglGetProcAddress(b"eglQueryDevicesEXT")
-    if not address:
-        return 0
-    query = ctypes.CFUNCTYPE(ctypes.c_uint, ctypes.c_int, ctypes.POINTER(ctypes.c_void_p),
-                             ctypes.POINTER(ctypes.c_int))(address)
-    count = ctypes.c_int(0)
-    if not query(0, None, ctypes.byref(count)):
-        return 0
-    return max(int(count.value), 0)
+    return len(_EglDevices().handles)
 
 
 def egl_devices() -> list[dict]:
-    """Every EGL device: ``{"index", "vendor", "renderer"}`` from a context made on it
-    (or ``"error"``: why none could be) -- what ``glshade doctor`` lists and ``--device``
-    / ``GLSHADE_EGL_DEVICE`` choose from, by index or by name."""
-    import moderngl
+    """Every EGL device, described by the driver without a context made on any (see
+    :meth:`_EglDevices.describe`: ``index``, ``name``, ``software``, ``cuda``, ``node``,
+    ``extensions``) -- what ``glshade doctor`` lists and ``--device`` /
+    ``GLSHADE_EGL_DEVICE`` choose from, by index, CUDA ordinal or name."""
+    found = _EglDevices()
+    return [found.describe(i) for i in range(len(found.handles))]
 
-    out = []
-    for i in range(egl_device_count()):
-        try:
-            settings: dict[str, Any] = {"backend": "egl", "device_index": i}
-            ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
-        except Exception as exc:  # (glcontext raises bare Exceptions)
-            out.append({"index": i, "vendor": "", "renderer": "",
-                        "error": _explain_egl(exc)})
-            continue
-        out.append({"index": i, "vendor": ctx.info.get("GL_VENDOR", ""),
-                    "renderer": ctx.info.get("GL_RENDERER", "")})
-        ctx.release()
-    return out
+
+def _cuda_visible(ordinal: int) -> int:
+    """A CUDA ordinal as a program sees it (``cuda:N``) to the device's own, through
+    ``CUDA_VISIBLE_DEVICES`` as CUDA reads it (a list of ordinals; UUIDs cannot be mapped
+    without NVIDIA's management library: refused in one line)."""
+    visible = os.environ.get("CUDA_VISIBLE_DEVICES")
+    if visible is None or not visible.strip():
+        return ordinal
+    listed = [x.strip() for x in visible.split(",") if x.strip()]
+    if not all(x.lstrip("-").isdigit() for x in listed):
+        raise OptionError(f"cuda:{ordinal}: CUDA_VISIBLE_DEVICES={visible!r} names devices "
+                          "by UUID, which EGL cannot match: give ordinals there, or an EGL "
+                          "index (glshade doctor lists them)")
+    shown = [int(x) for x in listed]
+    if -1 in shown:  # (CUDA stops at the first invalid entry)
+        shown = shown[:shown.index(-1)]
+    if ordinal >= len(shown):
+        raise OptionError(f"cuda:{ordinal} does not exist: CUDA_VISIBLE_DEVICES={visible!r} "
+                          f"shows {len(shown)} device{'s' if len(shown) != 1 else ''}")
+    return shown[ordinal]
 
 
 def device_index(spec) -> int:
-    """An EGL device by index (``"1"``) or by name (a case-blind part of its vendor or
-    renderer: ``"nvidia"``, ``"llvmpipe"``); one line naming those present when no device
-    (or more than one, by name) matches.
+    """An EGL device by index (``"1"``), by CUDA ordinal (``"cuda:1"``: the CUDA device a
+    program sees as 1, through ``CUDA_VISIBLE_DEVICES``, matched to its EGL device by
+    EGL_NV_device_cuda) or by name (a case-blind part of it: ``"nvidia"``, ``"llvmpipe"``);
+    one line naming those present when no device (or more than one, by name) matches.
 
     Parameters
     ----------
     spec : int or str
-        An index (``1``, ``"1"``) or a case-blind part of a device's vendor or renderer name.
+        An index (``1``, ``"1"``), ``"cuda:N"``, or a case-blind part of a device's name.
     """
     text = str(spec).strip()
-    if text.isdigit() and int(text) < egl_device_count():
-        return int(text)  # (no need to make a context on each device)
     devices = egl_devices()
-    present = "; ".join(f"{d['index']}: {d['vendor']} {d['renderer']}".strip()
+    present = "; ".join(f"{d['index']}: {d['name']}" +
+                        (f" (cuda:{d['cuda']})" if d["cuda"] is not None else "")
                         for d in devices) or "none"
     if text.isdigit():
         if int(text) < len(devices):
             return int(text)
         raise OptionError(f"EGL device {text} does not exist; present: {present}")
-    hits = [d["index"] for d in devices
-            if text.lower() in f"{d['vendor']} {d['renderer']}".lower()]
+    if text.lower().startswith("cuda:"):
+        number = text[5:].strip()
+        if not number.isdigit():
+            raise OptionError(f"{text!r}: a CUDA device is cuda:N, N a whole number")
+        ordinal = _cuda_visible(int(number))
+        hits = [d["index"] for d in devices if d["cuda"] == ordinal]
+        if hits:
+            return hits[0]
+        raise OptionError(f"{text} (CUDA device {ordinal}) is no EGL device here: no device "
+                          f"says it is (EGL_NV_device_cuda); present: {present}")
+    hits = [d["index"] for d in devices if text.lower() in d["name"].lower()]
     if len(hits) == 1:
         return hits[0]
     raise OptionError(f"EGL device {text!r} " + ("matches several" if hits else
                       "matches none") + f"; present: {present}")
+
+
+def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:
+    """Which EGL device a context would be made on, and why: ``device`` if given, else
+    ``GLSHADE_EGL_DEVICE``, else the driver's first (glcontext's default, or its own
+    ``GLCONTEXT_DEVICE_INDEX``, which it reads from the environment).
+
+    Parameters
+    ----------
+    device : int, str or None
+        The caller's choice.
+    """
+    if device not in (None, ""):
+        return device_index(device), "asked for (--device / device=)"
+    env = os.environ.get("GLSHADE_EGL_DEVICE", "").strip()
+    if env:
+        return device_index(env), "GLSHADE_EGL_DEVICE"
+    other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
+    if other.isdigit():
+        return int(other), "GLCONTEXT_DEVICE_INDEX (glcontext's own)"
+    return (0, "the driver's first") if egl_device_count() else (None, "no EGL device")
 
 
 def _make_egl(device: int | str | None) -> RenderContext:
@@ -351,11 +512,29 @@ def _make_egl(device: int | str | None) -> RenderContext:
         except OptionError as exc:
             source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
             raise OptionError(f"{source}{exc}") from None
+        other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
+        if other and other != str(settings["device_index"]):
+            import warnings
+
+            from ..errors import RenderWarning
+
+            warnings.warn(f"GLCONTEXT_DEVICE_INDEX={other} is set and disagrees with the EGL "
+                          f"device asked for ({settings['device_index']}): glcontext lets it "
+                          "override a program's choice, so glshade sets it to its own for "
+                          "the context it makes; unset it to avoid doubt",
+                          RenderWarning, stacklevel=4)
+    saved = os.environ.get("GLCONTEXT_DEVICE_INDEX")
     try:
         with held():  # (a Ctrl-C waits for the driver to finish making the context)
+            if "device_index" in settings and saved is not None:
+                # (glcontext reads this over the index it is given: the choice made here wins)
+                os.environ["GLCONTEXT_DEVICE_INDEX"] = str(settings["device_index"])
             ctx = moderngl.create_context(standalone=True, require=REQUIRE, **settings)
     except Exception as exc:  # moderngl/glcontext raise bare Exceptions with EGL text
         raise ContextError(_explain_egl(exc)) from None
+    finally:
+        if saved is not None:
+            os.environ["GLCONTEXT_DEVICE_INDEX"] = saved
     return RenderContext(ctx, Backend.EGL, ctx.info.get("GL_RENDERER", ""))
 
 
@@ -387,9 +566,12 @@ _MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT), Backend.OSMESA: (lambda d: _make
                                                                  _OSMESA_HINT)}
 
 
-def create_context(backend="auto", device: int | str | None = None) -> RenderContext:
+def create_context(backend="auto", device: int | str | None = None, *,
+                   require_gpu: bool | None = None) -> RenderContext:
     """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for;
     ``device`` (or ``GLSHADE_EGL_DEVICE``): an EGL device's index or name (:func:`egl_devices`).
+    A software rasterizer is refused where ``require_gpu`` (or ``GLSHADE_REQUIRE_GPU=1``)
+    asks for a GPU, and warned about where the machine has one (:func:`check_gpu`).
 
     Parameters
     ----------
@@ -397,6 +579,8 @@ def create_context(backend="auto", device: int | str | None = None) -> RenderCon
         ``"auto"``, ``"egl"`` or ``"osmesa"``.
     device : int, str or None
         An EGL device's index or name (None: ``GLSHADE_EGL_DEVICE``, else the first).
+    require_gpu : bool or None
+        Refuse a software rasterizer (None: ``GLSHADE_REQUIRE_GPU``).
 
     Raises
     ------
@@ -421,12 +605,15 @@ def create_context(backend="auto", device: int | str | None = None) -> RenderCon
     for b in ladder:
         make, hint = _MAKERS[b]
         try:
-            return make(device)
+            made = make(device)
         except ContextError as exc:
             failures.append(f"  {b.value}: {exc}\n    fix: {hint}")
         except ImportError as exc:
             failures.append(f"  {b.value}: cannot import moderngl ({exc})\n"
                             "    fix: pip install moderngl")
+        else:
+            check_gpu(made, require_gpu)
+            return made
     tried = ", ".join(b.value for b in ladder)
     raise ContextError(f"no OpenGL {REQUIRE // 100}.{REQUIRE % 100 // 10} context could be "
                        f"made (tried {tried}):\n" + "\n".join(failures))

@@ -28,7 +28,7 @@ from ..modes import Backend, Outputs, ShadingMode, Shadows, Transparency
 from ..options import DrawOptions, RenderConfig
 from ..scene import MAX_LIGHTS, Camera, Scene
 from ..scene.camera import MAX_PLANE_RATIO
-from .context import RenderContext, create_context
+from .context import RenderContext, check_gpu, create_context
 from .diagnostics import why_blank
 from .passes import Stage, run
 from .passes.csg import CsgPass
@@ -217,19 +217,30 @@ class Renderer:
     config : RenderConfig or None
         All of the above but the context as one value (``Renderer(config=c)``; then the
         other arguments are not given).
+    require_gpu : bool or None
+        Refuse a software rasterizer (llvmpipe and the like) with one line naming it and
+        the usual cause, :class:`~glshade.errors.NoGpuError` (None:
+        ``GLSHADE_REQUIRE_GPU``, which ``--require-gpu`` sets).
     """
 
     def __init__(self, width: int = 512, height: int = 512, samples: int = 4,
                  backend: Backend | str = "auto", device: int | None = None,
-                 context: RenderContext | None = None, *, config: RenderConfig | None = None):
+                 context: RenderContext | None = None, *, config: RenderConfig | None = None,
+                 require_gpu: bool | None = None):
         if config is None:
-            config = RenderConfig(width, height, samples, Backend.parse(backend), device)
+            config = RenderConfig(width, height, samples, Backend.parse(backend), device,
+                                  require_gpu)
         elif (width, height, samples, backend, device) != (512, 512, 4, "auto", None):
             raise UsageError("give a Renderer either a config or width, height, samples, "
                              "backend and device, not both")
+        elif require_gpu is not None:
+            config = config.replace(require_gpu=require_gpu)
         self.config = config
         self._owns_context = context is None
-        self.context = context or create_context(config.backend, config.device)
+        self.context = context or create_context(config.backend, config.device,
+                                                 require_gpu=config.require_gpu)
+        if context is not None:  # (a context of the caller's: refused, never released)
+            check_gpu(context, config.require_gpu, release=False)
         self.ctx = self.context.ctx
         try:
             check_fits(self.context, config.width, config.height, config.samples)

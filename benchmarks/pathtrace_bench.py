@@ -1,7 +1,8 @@
 """Path tracing against Mitsuba 3: paths a second and time to 1% RMS error on the Cornell
 box and on the box holding a large mesh, at 128² (and 256² with ``--sizes 128,256``), for
 each of glshade's ways of finding triangles (the hierarchy, the flat loop, the default) and
-samplers (independent PCG numbers, Owen-scrambled Sobol points; each pixel its own or,
+samplers (independent PCG numbers, Owen-scrambled Sobol points; a fragment program a pass
+or the compute kernel, the same numbers; each pixel its own or,
 ``coherent``, blocks of 4x2 sharing them; with the radiosity control variate, whose values
 for the large scene come from the box with a 320-triangle sphere; ``adaptive``, a pilot's
 time counted) and Mitsuba's
@@ -140,20 +141,29 @@ def run(name, scene, proxy, camera, size, args, ctx, folder, stack) -> list:
     t = time.perf_counter()
     control = radiosity_control(proxy, context=ctx)
     print(f"{name}: radiosity control values in {time.perf_counter() - t:.1f} s")
-    for accel, sampler, coherent, ctl, adaptive in (
-            ("bvh", "pcg", False, False, False), ("flat", "pcg", False, False, False),
-            ("auto", "pcg", False, False, False), ("auto", "sobol", False, False, False),
-            ("auto", "pcg", True, False, False), ("auto", "sobol", True, False, False),
-            ("auto", "sobol", False, True, False), ("auto", "sobol", True, True, False),
-            ("auto", "sobol", False, False, True), ("auto", "sobol", False, True, True),
-            ("auto", "sobol", True, True, True)):
+    for accel, sampler, coherent, ctl, adaptive, kernel in (
+            ("bvh", "pcg", False, False, False, "fragment"),
+            ("flat", "pcg", False, False, False, "fragment"),
+            ("auto", "pcg", False, False, False, "fragment"),
+            ("auto", "pcg", False, False, False, "compute"),
+            ("auto", "sobol", False, False, False, "fragment"),
+            ("auto", "sobol", False, False, False, "compute"),
+            ("auto", "pcg", True, False, False, "fragment"),
+            ("auto", "sobol", True, False, False, "fragment"),
+            ("auto", "sobol", False, True, False, "fragment"),
+            ("auto", "sobol", True, True, False, "fragment"),
+            ("auto", "sobol", False, False, True, "fragment"),
+            ("auto", "sobol", False, True, True, "fragment"),
+            ("auto", "sobol", True, True, True, "fragment")):
         if accel == "flat" and len(ts.triangles) > GpuPathTracer.FLAT_MAX:
             continue  # (too many to compile in)
         tracer = stack.enter_context(PathTracer(ts, (size, size), context=ctx, accel=accel,
                                                 sampler=sampler, coherent=coherent,
-                                                control=control if ctl else None))
+                                                control=control if ctl else None,
+                                                kernel=kernel))
         key = f"glshade {accel} {sampler}" + (" control" if ctl else "") + (
-            " adaptive" if adaptive else "") + (" coherent" if coherent else "")
+            " adaptive" if adaptive else "") + (" compute" if kernel == "compute" else "") + (
+            " coherent" if coherent else "")
         series[key] = lambda t=tracer, a=adaptive: _glshade(t, camera, args.spp, a)
         if sampler == "sobol":
             # (a function of the count giving the render: glshade's tracer is warm already)

@@ -10,8 +10,8 @@ from typing import TypeVar
 from .errors import OptionError
 
 __all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Transparency", "Projection",
-           "Backend", "Sampler", "Accel", "Tessellation", "PointStyle", "LineUnits", "LineCaps",
-           "LineJoins",
+           "Backend", "Sampler", "Accel", "Kernel", "Tessellation", "PointStyle", "LineUnits",
+           "LineCaps", "LineJoins",
            "HEADLESS_BACKENDS", "parse_enum", "choose"]
 
 
@@ -248,6 +248,15 @@ class Sampler(str, enum.Enum):
 
     PCG = "pcg"      # independent: a PCG stream per pixel and sample
     SOBOL = "sobol"  # Owen-scrambled Sobol points at the first three vertices
+
+
+class Kernel(str, enum.Enum):
+    """Which program a path tracer's passes run (equal to its value as a string): the same
+    pass either way (shaders/include/trace_integrator.glsl), the same numbers."""
+
+    AUTO = "auto"          # the faster here, by a short measurement on first use per GL
+    FRAGMENT = "fragment"  # a fragment program over a full-screen triangle
+    COMPUTE = "compute"    # a compute kernel, 8x8 invocations a group (GL 4.3)
 
 
 class Accel(str, enum.Enum):

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .errors import OptionError
-from .modes import (Accel, Backend, Culling, Outputs, Sampler, ShadingMode, Shadows,
+from .modes import (Accel, Backend, Culling, Kernel, Outputs, Sampler, ShadingMode, Shadows,
                     Transparency, choose)
 
 __all__ = ["DrawOptions", "RenderConfig", "TraceOptions", "MAX_PATH_DEPTH", "COHERENT_TILE",
@@ -382,6 +382,11 @@ class TraceOptions:
         Whether the hierarchy's walk reads storage buffers (GL 4.3) rather than texel
         fetches (GL 3.3's way) -- the same picture to the byte (None: where the GL has
         them).
+    kernel : Kernel or str
+        ``"fragment"`` (a fragment program a pass), ``"compute"`` (a compute kernel, GL
+        4.3: what a GPU with few graphics units wants) or ``"auto"`` (the faster on this
+        GL, measured on first use and kept per renderer and driver) -- the same passes,
+        the same numbers.
 
     Examples
     --------
@@ -397,6 +402,7 @@ class TraceOptions:
     mis: bool = True
     coherent: tuple[int, int] = (1, 1)
     storage: bool | None = None
+    kernel: Kernel = Kernel.AUTO
 
     def __post_init__(self) -> None:
         put = object.__setattr__  # (frozen: each field replaced by its checked form)
@@ -404,6 +410,7 @@ class TraceOptions:
             put(self, "max_depth", _path_depth(self.max_depth))
         put(self, "accel", choose(Accel, self.accel, "accel"))
         put(self, "sampler", choose(Sampler, self.sampler, "sampler"))
+        put(self, "kernel", choose(Kernel, self.kernel, "kernel"))
         if not isinstance(self.mis, bool):
             raise OptionError(f"mis must be True or False, got {self.mis!r}")
         if not isinstance(self.storage, bool) and self.storage is not None:

@@ -149,6 +149,7 @@ class PathtraceArgs(RenderArgs):
     exposure: float | None = None
     no_lights: bool = False
     sampler: str = "pcg"
+    kernel: str = "auto"
     coherent: bool = False
     control: bool = False
     adaptive: bool = False

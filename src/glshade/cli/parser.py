@@ -445,6 +445,10 @@ def add_pathtrace(sub) -> None:
                    help="the paths' random numbers: pcg (independent, default) or sobol "
                    "(Owen-scrambled Sobol points at the first three vertices: less error for "
                    "the same samples; its --until estimate errs on the safe side)")
+    p.add_argument("--kernel", choices=("auto", "fragment", "compute"), default="auto",
+                   help="the program a pass runs: a fragment program or a compute kernel "
+                   "(GL 4.3; the same numbers); auto (default) measures both on first use "
+                   "and keeps the faster for this GL")
     p.add_argument("--coherent", action="store_true", help="blocks of 4x2 pixels draw the "
                    "same random numbers, so their rays run together (faster on a large mesh; "
                    "each pixel as noisy, the noise in blocks)")

@@ -25,7 +25,8 @@ def pathtrace(args: PathtraceArgs) -> int:
     check_outputs({"the image": args.output})  # (before any work)
     # (how paths are traced: one value, checked before the scene is read, passed whole)
     options = pt.TraceOptions.of(max_depth=args.max_depth, sampler=args.sampler,
-                                 mis=not args.no_mis, coherent=args.coherent)
+                                 mis=not args.no_mis, coherent=args.coherent,
+                                 kernel=args.kernel)
 
     job = load_job(replace(args, mode=None), args.scene)
     w, h = job.size

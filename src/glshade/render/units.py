@@ -70,6 +70,9 @@ class Binding:
     OIT_HEADS, OIT_NODES, OIT_COUNT, OIT_REPORT = 4, 5, 6, 7
     #: the visibility array as an image (shadow_rays.comp, shadow_maps.comp)
     VISIBILITY_IMAGE = 0
+    #: the path tracer's compute kernel: its seven targets written as images, from here
+    #: (pathtrace.comp)
+    TRACE_IMAGES = 0
 
 
 def glsl_defines() -> tuple[str, ...]:

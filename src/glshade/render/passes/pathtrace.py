@@ -1,13 +1,16 @@
 """The GPU half of the path tracer: the scene's tables (:mod:`glshade.pathtrace.pack`) in one
-float texture, the program (``shaders/pathtrace.frag``) and the accumulation targets it adds
-to pass after pass."""
+float texture, the program -- a fragment program (``shaders/pathtrace.frag``) or a compute
+kernel (``shaders/pathtrace.comp``), one pass (``include/trace_integrator.glsl``) either way
+-- and the accumulation targets it adds to pass after pass."""
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 
 from ...errors import OptionError
-from ...modes import Accel, Sampler
+from ...modes import Accel, Kernel, Sampler
 from ...options import TraceOptions
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
@@ -16,7 +19,7 @@ from ..base import GLResource
 from ..data import NEAREST, data_texture
 from ..film import LAYOUT_BLOCKS, film_layout, film_places
 from ..programs import UniformWriter
-from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary
+from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary, assemble
 from ..units import Binding, Unit
 from .csg import csg_defines
 
@@ -27,6 +30,33 @@ __all__ = ["GpuPathTracer", "program_defines"]
 _DATA, _RAYS, _CSG, _TARGETS = Unit.TRACE_DATA, Unit.TRACE_RAYS, Unit.TRACE_CSG, \
     Unit.TRACE_TARGETS
 _BVH, _EXTRA = Unit.TRACE_BVH, Unit.TRACE_EXTRA
+#: the kernel each GL ran faster ("auto"), by (renderer string, GL version): measured once
+#: a process per device and driver
+_KERNELS: dict[tuple[str, str], Kernel] = {}
+
+
+def _driver(context) -> tuple[str, str]:
+    """What a kernel choice is kept by: the GL's renderer and version strings."""
+    info = context.ctx.info
+    return str(info.get("GL_RENDERER", "")), str(info.get("GL_VERSION", ""))
+
+
+#: the compute kernel's seven images (pathtrace.comp), in the targets' order
+_IMAGE_NAMES = ("out_state0", "out_state1", "out_state2", "out_state3", "out_sum",
+                "out_square", "out_hit")
+def _kernel(context, asked: Kernel) -> Kernel:
+    """The kernel a new tracer runs: the one asked for (compute needs GL 4.3), or for
+    "auto" the one measured faster on this GL before, the fragment program where compute
+    shaders are missing, else AUTO (measured at the first run)."""
+    if asked is Kernel.COMPUTE:
+        context.require(430, "kernel='compute' needs", "use kernel='fragment'")
+    if asked is not Kernel.AUTO:
+        return asked
+    if context.ctx.version_code < 430:
+        return Kernel.FRAGMENT
+    return _KERNELS.get(_driver(context), Kernel.AUTO)
+
+
 _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
 
 
@@ -113,27 +143,20 @@ class GpuPathTracer(GLResource):
         compiled = self._choose(options.accel, scene)
         data, self.layout = scene.tables(compiled if self.accel is Accel.HYBRID else None)
         defines = self._defines(context, data, options, control)
-        self._csg = None
-        if scene.solids:
-            solid, material = scene.solids[0]
-            tree = tree_data(solid)
-            defines += ("CSG_SOLID", *csg_defines(tree, blocks=False))
-            self._csg = self._keep(data_texture(ctx, tree.texels, ROW))
-            self._csg_values = {
-                "u_csg": _CSG, "u_csg_material": material, **tree.offsets(),
-                "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
-                # the tie rule's length (solids/tree.py): a path's rays start in the scene
-                "u_csg_tie": TIE * scene.size,
-                "u_csg_kind_start": np.array(tree.kind_start, "i4")}
+        defines += self._solid(scene)
         self._rays = None
         if rays is not None:  # (H, W, 2, 3): each pixel's ray origin and unit direction
             texels = np.zeros((self.height, 2, self.width, 4), np.float32)
             texels[:, :, :, :3] = np.asarray(rays, np.float32).transpose(0, 2, 1, 3)
             self._rays = self._keep(data_texture(ctx, texels, self.width))
             defines += ("PROBES",)
-        self.program = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace.frag",
-                                                        defines=defines))
-        self._write(self._static_uniforms())  # (the program is this tracer's: they stay)
+        #: the program a pass runs: "fragment" or "compute" (TraceOptions.kernel; "auto"
+        #: chosen when the first run measures both, kept per renderer and driver)
+        self.kernel = _kernel(context, options.kernel)
+        self._defines_used = defines
+        self._programs: dict[Kernel, Any] = {}
+        self.program = self._program(Kernel.COMPUTE if self.kernel is Kernel.COMPUTE
+                                     else Kernel.FRAGMENT)
         width = self.layout["width"]
         self.texture = self._keep(data_texture(ctx, data, width))
         tree = self.layout["hierarchy"]
@@ -158,7 +181,6 @@ class GpuPathTracer(GLResource):
         self._extra = self._keep(ctx.texture(size, 1, np.zeros(size[::-1], "f4").tobytes(),
                                              dtype="f4"))
         self._current = 0
-        self.vao = self._keep(ctx.vertex_array(self.program, []))
         self._left = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace_left.frag"))
         self._left_vao = self._keep(ctx.vertex_array(self._left, []))
         self._left_fbo = self._keep(ctx.simple_framebuffer(size, components=1))
@@ -166,6 +188,85 @@ class GpuPathTracer(GLResource):
         self.passes = 0
         self.samples = 0
         self.reset()
+
+    def _solid(self, scene) -> tuple[str, ...]:
+        """The scene's CSG solid (one at most): its tree's texture and uniforms kept, its
+        defines returned (none without one)."""
+        self._csg = None
+        if not scene.solids:
+            return ()
+        solid, material = scene.solids[0]
+        tree = tree_data(solid)
+        self._csg = self._keep(data_texture(self.context.ctx, tree.texels, ROW))
+        self._csg_values = {
+            "u_csg": _CSG, "u_csg_material": material, **tree.offsets(),
+            "u_csg_start": tree.nodes,  # (a path's rays start anywhere: always look)
+            # the tie rule's length (solids/tree.py): a path's rays start in the scene
+            "u_csg_tie": TIE * scene.size,
+            "u_csg_kind_start": np.array(tree.kind_start, "i4")}
+        return ("CSG_SOLID", *csg_defines(tree, blocks=False))
+
+    def _check(self) -> None:
+        """Not released, and this tracer's context current: with several contexts in one
+        process (two tracers, a tracer beside a Renderer) GL calls go to the current one."""
+        super()._check()
+        self.context.make_current()
+
+    def _program(self, kernel: Kernel):
+        """The program of ``kernel`` (compiled once, its static uniforms written)."""
+        found = self._programs.get(kernel)
+        if found is None:
+            if kernel is Kernel.COMPUTE:
+                source, _ = assemble("pathtrace.comp", defines=self._defines_used)
+                program = self._keep(self.context.ctx.compute_shader(source))
+                vao = None
+            else:
+                program = self._keep(self._shaders.compile(
+                    "pathtrace.vert", "pathtrace.frag", defines=self._defines_used))
+                vao = self._keep(self.context.ctx.vertex_array(program, []))
+            found = self._programs[kernel] = (program, vao)
+            self._write(self._static_uniforms(), program)  # (this tracer's: they stay)
+        return found[0]
+
+    def _pass(self, kernel: Kernel) -> None:
+        """One pass of ``kernel``: the read targets bound (the caller did), the others
+        written -- as a framebuffer by the fragment program, as images by the kernel."""
+        import moderngl
+
+        program, vao = self._programs[kernel]
+        if kernel is Kernel.COMPUTE:
+            for i, tex in enumerate(self._targets[1 - self._current]):
+                tex.bind_to_image(Binding.TRACE_IMAGES + i, read=False, write=True)
+            w, h = self.target_size
+            program.run(-(-w // 8), -(-h // 8), 1)
+            self.context.ctx.memory_barrier()
+        else:
+            self._fbos[1 - self._current].use()
+            vao.render(moderngl.TRIANGLES, vertices=3)
+
+    def _measure(self) -> Kernel:
+        """Time a pass of each kernel here (after one each to warm up) and keep the faster
+        for this renderer and driver (:data:`_KERNELS`); the targets are cleared after."""
+        import time
+
+        took = {}
+        for kernel in (Kernel.FRAGMENT, Kernel.COMPUTE):
+            self._program(kernel)
+            for timed in (False, True):
+                self.reset()
+                self._write({"u_target": 1.0, "u_cap": 1.0}, self._programs[kernel][0])
+                for i, tex in enumerate(self._targets[self._current]):
+                    tex.use(location=_TARGETS + i)
+                self.context.ctx.finish()
+                start = time.perf_counter()
+                self._pass(kernel)
+                self.context.ctx.finish()
+                if timed:
+                    took[kernel] = time.perf_counter() - start
+        self.reset()
+        chosen = min(took, key=lambda k: took[k])
+        _KERNELS[_driver(self.context)] = chosen
+        return chosen
 
     def _defines(self, context, data: np.ndarray, options: TraceOptions,
                  control) -> tuple[str, ...]:
@@ -211,6 +312,9 @@ class GpuPathTracer(GLResource):
     def _static_uniforms(self) -> dict:
         """The uniforms that stay for this tracer's life: sizes, tables, lights, the solid."""
         values: dict = {"u_size": (float(self.width), float(self.height)),
+                        "u_target_size": tuple(int(x) for x in self.target_size),
+                        **{name: Binding.TRACE_IMAGES + i for i, name in enumerate(
+                            _IMAGE_NAMES)},
                         "u_blocks": self._blocks,
                         "u_max_depth": int(self.max_depth or 0),
                         "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
@@ -284,6 +388,9 @@ class GpuPathTracer(GLResource):
             aspect = self.width / self.height
             values.update(ray_uniforms(camera.projection_matrix(aspect),
                                        camera.view_matrix()))
+        if self.kernel is Kernel.AUTO:  # (first use on this GL: measure, then keep)
+            self.kernel = self._measure()
+            self.program = self._program(self.kernel)
         self._write(values)
         self._write({"u_acc0": _TARGETS, "u_extra": _EXTRA, "u_target": float(target)},
                     self._left)
@@ -310,11 +417,9 @@ class GpuPathTracer(GLResource):
             for program in (self.program, self._left):
                 self._put(program, "u_cap", float(min(cap, top)))
             while True:
-                read, write = self._targets[self._current], self._fbos[1 - self._current]
-                for i, tex in enumerate(read):
+                for i, tex in enumerate(self._targets[self._current]):
                     tex.use(location=_TARGETS + i)
-                write.use()
-                self.vao.render(moderngl.TRIANGLES, vertices=3)
+                self._pass(self.kernel)
                 self._current = 1 - self._current
                 passes += 1
                 if not self._unfinished():

@@ -86,9 +86,12 @@ def gl_error_check(request):
     if "gl_context" not in request.fixturenames:
         yield
         return
-    ctx = request.getfixturevalue("gl_context").ctx
+    context = request.getfixturevalue("gl_context")
+    context.make_current()  # (a test that made contexts of its own may have left another)
+    ctx = context.ctx
     assert ctx.error == "GL_NO_ERROR", "GL error left by an earlier test"
     yield
+    context.make_current()
     assert ctx.error == "GL_NO_ERROR"
 
 

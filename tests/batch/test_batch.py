@@ -138,13 +138,19 @@ def test_npz_is_reproducible_byte_for_byte(tmp_path):
 def test_manifest_round_trip_with_commas_and_quotes(tmp_path):
     out = tmp_path / "o"
     out.mkdir()
-    rows = [Row("/x/a,b.obj", "ok", 12, 0.5, (str(out / "a.png"),), ""),
+    rows = [Row("/x/a,b.obj", "ok", 12, 0.5, (str(out / "a.png"),), "", "llvmpipe (LLVM 15)"),
             Row('/x/"q".obj', "error", message='line 3: bad "f", really')]
     write_manifest(rows, out / "manifest.csv")
     back = read_manifest(out / "manifest.csv")
-    assert back["/x/a,b.obj"] == Row("/x/a,b.obj", "ok", 12, 0.5, (str(out / "a.png"),), "")
+    assert back["/x/a,b.obj"] == Row("/x/a,b.obj", "ok", 12, 0.5, (str(out / "a.png"),), "",
+                                     "llvmpipe (LLVM 15)")
     assert back['/x/"q".obj'].message == 'line 3: bad "f", really'
-    assert (out / "manifest.csv").read_text().splitlines()[1].endswith(",a.png,")
+    assert (out / "manifest.csv").read_text().splitlines()[1].endswith(
+        ",a.png,,llvmpipe (LLVM 15)")
+    # (a manifest from before the renderer column still lends its rows)
+    old = "input,status,polygons,seconds,outputs,message\n/x/b.obj,ok,3,0.1,b.png,\n"
+    (out / "manifest.csv").write_text(old)
+    assert read_manifest(out / "manifest.csv")["/x/b.obj"].polygons == 3
 
 
 def test_cli_lists_the_malformed_file_and_goes_on(tmp_path):
@@ -160,6 +166,8 @@ def test_cli_lists_the_malformed_file_and_goes_on(tmp_path):
     assert {rows[n]["status"] for n in ("ball.obj", "cube.ply", "cube.off", "torus.stl")} == \
         {"ok"}
     assert rows["cube.ply"]["polygons"] == "6"
+    assert "llvmpipe" in rows["cube.ply"]["renderer"]   # (what drew it: this machine's GL)
+    assert rows["broken.obj"]["renderer"] == ""
     for n in ("ball.obj", "cube.ply"):
         for o in rows[n]["outputs"].split(";"):
             assert (tmp_path / "out" / o).is_file()

@@ -122,6 +122,8 @@ def test_depth_back_projected_lies_on_the_models(bop):
 
 
 def test_the_info_agrees_with_the_masks(bop):
+    info = json.loads((bop / "glshade_info.json").read_text())
+    assert "llvmpipe" in info["renderer"] and info["glshade"]   # (what drew the views)
     for view in read_bop(bop):
         for obj in view["objects"]:
             assert (obj["mask_visib"] <= obj["mask"]).all()
@@ -180,6 +182,7 @@ def test_coco_masks_decode_to_the_visible_masks(tmp_path, make_renderer, gl_cont
             assert ann["area"] == mask.sum() and ann["iscrowd"] == 0
             assert ann["category_id"] == truth[ann["instance_id"]].obj_id
         assert (tmp_path / coco.loadImgs(image_id)[0]["file_name"]).is_file()
+    assert "llvmpipe" in coco.dataset["info"]["renderer"]   # (what drew the views)
 
 
 def test_the_command_writes_a_set_and_refuses_bad_input(tmp_path):

@@ -92,3 +92,20 @@ def test_two_tracers_used_in_turn_keep_their_own_contexts():
     finally:
         a.close()
         b.close()
+
+
+def test_a_tracer_on_a_given_context_draws_there_whatever_was_current(gl_context):
+    """A tracer made on the shared context just after another context was made (and so
+    became current) makes its targets and programs in its own, and finishes: its picture is
+    the one traced before."""
+    from glshade.render.context import create_context
+
+    scene, camera = _scene("cornell")
+    before = trace(scene, camera, (16, 16), spp=4, context=gl_context, progress=False).image
+    other = create_context("egl")
+    try:
+        after = trace(scene, camera, (16, 16), spp=4, context=gl_context,
+                      progress=False).image
+    finally:
+        other.release()
+    np.testing.assert_array_equal(after, before)

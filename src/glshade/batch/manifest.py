@@ -13,7 +13,7 @@ from .worker import Row
 
 __all__ = ["write_manifest", "read_manifest", "COLUMNS"]
 
-COLUMNS = ("input", "status", "polygons", "seconds", "outputs", "message")
+COLUMNS = ("input", "status", "polygons", "seconds", "outputs", "message", "renderer")
 
 
 def write_manifest(rows: list[Row], path) -> None:
@@ -36,7 +36,7 @@ def write_manifest(rows: list[Row], path) -> None:
         w.writerow([r.input, r.status, "" if r.polygons is None else r.polygons,
                     "" if r.seconds is None else f"{r.seconds:.4f}",
                     ";".join(os.path.relpath(o, base) for o in r.outputs),
-                    r.message])
+                    r.message, r.renderer])
     # (file names are bytes: one that is not UTF-8 is written back as the bytes it was)
     with atomic_write(path, "w", encoding="utf-8", errors="surrogateescape") as f:
         f.write(buf.getvalue())
@@ -57,7 +57,7 @@ def read_manifest(path) -> dict[str, Row]:
         return {}
     rows = {}
     reader = csv.DictReader(io.StringIO(text))
-    if tuple(reader.fieldnames or ()) != COLUMNS:
+    if tuple(reader.fieldnames or ()) not in (COLUMNS, COLUMNS[:-1]):  # (older: no renderer)
         return {}
     for d in reader:
         try:
@@ -66,7 +66,7 @@ def read_manifest(path) -> dict[str, Row]:
                                    float(d["seconds"]) if d["seconds"] else None,
                                    tuple(str(path.parent.resolve() / x)
                                          for x in d["outputs"].split(";") if x),
-                                   d["message"])
+                                   d["message"], d.get("renderer") or "")
         except (ValueError, TypeError):
             continue
     return rows
@@ -78,5 +78,6 @@ def kept(task, earlier: dict[str, Row]) -> Row:
     row = Row(task.input, "exists", outputs=task.outputs,
               message="outputs exist; kept (--overwrite to render again)")
     if old is not None and old.status in ("ok", "exists"):
-        row = dataclasses.replace(row, polygons=old.polygons, seconds=old.seconds)
+        row = dataclasses.replace(row, polygons=old.polygons, seconds=old.seconds,
+                                  renderer=old.renderer)
     return row

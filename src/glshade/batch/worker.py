@@ -92,6 +92,8 @@ class Row:
         The files written.
     message : str
         An error's line.
+    renderer : str
+        The GL renderer that drew it (a GPU's name, or llvmpipe where a GPU was lost).
     """
 
     input: str
@@ -100,6 +102,7 @@ class Row:
     seconds: float | None = None
     outputs: tuple[str, ...] = ()
     message: str = ""
+    renderer: str = ""
 
 
 def view_directions(views: int) -> np.ndarray:
@@ -168,7 +171,7 @@ class BatchWorker:
                 return Row(task.input, "error", message=f"{type(exc).__name__}: {exc}")
         notes = "; ".join(dict.fromkeys(str(w.message) for w in caught))
         return Row(task.input, "ok", polygons, round(time.perf_counter() - start, 4),
-                   task.outputs, notes)
+                   task.outputs, notes, self.renderer.context.detail)
 
     def _render(self, task: Task) -> int:
         from ..io.images import save_image

@@ -25,9 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .._version import __version__
 from ..errors import OptionError, plain
 from ..io.images import save_gray, save_image
-from .views import DataSetJob, load_scene_arg, run_views, write_json
+from .views import DataSetJob, load_scene_arg, renderers, run_views, write_json
 
 __all__ = ["write_bop", "BopViews", "UNITS"]
 
@@ -232,4 +233,7 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
     write_json(out / "camera.json", {"cx": K[0, 2], "cy": K[1, 2], "depth_scale":
                                      float(depth_scale), "fx": K[0, 0], "fy": K[1, 1],
                                      "height": size[1], "width": size[0]})
+    # (beside BOP's own files: what drew the views, and which glshade)
+    write_json(out / "glshade_info.json", {"renderer": renderers(records),
+                                           "glshade": __version__})
     return where

@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import EnvironmentFailure
 from ..io.images import save_image
 from ..render.annotate import bbox
-from .views import DataSetJob, load_scene_arg, run_views, write_json
+from .views import DataSetJob, load_scene_arg, renderers, run_views, write_json
 
 __all__ = ["write_coco", "CocoViews"]
 
@@ -126,5 +126,6 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     path = out / "annotations.json"
     write_json(path, {"images": images, "annotations": annotations,
                       "categories": categories,
-                      "info": {"description": "rendered by glshade", "version": "1.0"}})
+                      "info": {"description": "rendered by glshade", "version": "1.0",
+                               "renderer": renderers(records)}})
     return path

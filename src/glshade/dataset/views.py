@@ -106,6 +106,11 @@ def write_json(path: Path, content) -> None:
         f.write(text + "\n")
 
 
+def renderers(records: list) -> str:
+    """The GL renderers that drew a data set's views (each view's record says), joined."""
+    return "; ".join(sorted({str(r.get("renderer", "unknown")) for r in records}))
+
+
 def _finish(records_dir: Path, k: int, record: dict, files: list) -> None:
     """Write a view's files, then its record (last: a view with a record is whole)."""
     for fn, *args in files:
@@ -158,6 +163,9 @@ class ViewWorker:
     def __call__(self, k: int) -> int:
         frame, notes = self.frame(k)
         record, files = self.writer(k, frame, notes)
+        assert self._renderer is not None  # (made by frame)
+        # (what drew it, so a data set says: a GPU's, or llvmpipe where one was lost)
+        record = {**record, "renderer": self._renderer.context.detail}
         _finish(self.records_dir, k, record, files)
         return k
 

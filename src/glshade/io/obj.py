@@ -87,10 +87,7 @@ def read(path, data: bytes) -> Mesh:
         Its contents.
     """
     data = _clean(path, data)
-    starts, ends = line_starts(data)
-    arr = np.frombuffer(data, np.uint8)
-    b0 = arr[starts]
-    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    starts, ends, b0, b1 = _line_heads(data)
     one = (ends - starts == 1) | (b1 == 32)
     is_v = (b0 == ord("v")) & one
     is_f = (b0 == ord("f")) & one
@@ -252,6 +249,16 @@ def _clean(path, data: bytes) -> bytes:
     return data
 
 
+def _line_heads(data: bytes):
+    """Each line's start and end, and its first two bytes (a newline for none): what
+    tells a ``v`` line from a ``vt``, an ``f`` from an ``fo``."""
+    starts, ends = line_starts(data)
+    arr = np.frombuffer(data, np.uint8)
+    b0 = arr[starts]
+    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    return starts, ends, b0, b1
+
+
 def read_points(path, data: bytes) -> dict:
     """The ``v`` lines of OBJ bytes ``data`` as a point set: ``points`` ``(N, 3)`` and
     ``colors`` (the common ``v x y z r g b`` extension, as written; None unless every
@@ -265,10 +272,7 @@ def read_points(path, data: bytes) -> dict:
         Its contents.
     """
     data = _clean(path, data)
-    starts, ends = line_starts(data)
-    arr = np.frombuffer(data, np.uint8)
-    b0 = arr[starts]
-    b1 = np.where(ends - starts > 1, arr[np.minimum(starts + 1, len(arr) - 1)], 10)
+    starts, ends, b0, b1 = _line_heads(data)
     v_lines = np.flatnonzero((b0 == ord("v")) & ((ends - starts == 1) | (b1 == 32)))
     if not len(v_lines):
         raise MeshFormatError(path, "no 'v' lines: a point set needs vertices")

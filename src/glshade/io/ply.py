@@ -114,6 +114,20 @@ def _finish(path, vertices, idx, sizes, normals, uv) -> Mesh:
                          uv=None if uv is None else uv[mesh.face_indices])
 
 
+def _binary_vertices(path, data: bytes, pos: int, count: int, props, order: str):
+    """The vertex element's ``count`` records at ``pos`` as float64 columns ``(count,
+    len(props))``, and the position after them; a file too short for them refused."""
+    dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
+    if pos + count * dt.itemsize > len(data):
+        raise MeshFormatError(path, f"truncated: {count} vertices need "
+                              f"{count * dt.itemsize} bytes, {len(data) - pos} remain",
+                              byte=len(data))
+    rec = np.frombuffer(data, dt, count=count, offset=pos)
+    table = np.stack([rec[f"p{i}"].astype(np.float64) for i in range(len(props))], 1) \
+        if len(props) else np.zeros((count, 0))
+    return table, pos + count * dt.itemsize
+
+
 def _face_layout(path, props):
     lists = [i for i, p in enumerate(props) if p[1] == "list"]
     if len(lists) < 1 or props[lists[0]][0] not in ("vertex_indices", "vertex_index"):
@@ -141,18 +155,12 @@ def read(path, data: bytes) -> Mesh:
     for name, count, props in elements:
         if name == "vertex":
             cols, ncols, uvcols = _vertex_columns(path, props)
-            dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
-            if pos + count * dt.itemsize > len(data):
-                raise MeshFormatError(path, f"truncated: {count} vertices need "
-                                      f"{count * dt.itemsize} bytes, {len(data) - pos} remain",
-                                      byte=len(data))
-            rec = np.frombuffer(data, dt, count=count, offset=pos)
-            vertices = np.stack([rec[f"p{c}"] for c in cols], 1).astype(np.float64)
+            table, pos = _binary_vertices(path, data, pos, count, props, order)
+            vertices = table[:, cols]
             if ncols:
-                normals = np.stack([rec[f"p{c}"] for c in ncols], 1).astype(np.float64)
+                normals = table[:, ncols]
             if uvcols:
-                uv = np.stack([rec[f"p{c}"] for c in uvcols], 1).astype(np.float64)
-            pos += count * dt.itemsize
+                uv = table[:, uvcols]
         elif name == "face":
             li = _face_layout(path, props)
             idx, sizes, pos = _ply_binary_faces(path, data, pos, count, props, li, order)
@@ -307,14 +315,7 @@ def read_points(path, data: bytes) -> dict:
                                             first_line)
             else:
                 order = "<" if fmt == "binary_little_endian" else ">"
-                dt = np.dtype([(f"p{i}", order + p[2]) for i, p in enumerate(props)])
-                if pos + count * dt.itemsize > len(data):
-                    raise MeshFormatError(path, f"truncated: {count} vertices need "
-                                          f"{count * dt.itemsize} bytes, {len(data) - pos} "
-                                          "remain", byte=len(data))
-                rec = np.frombuffer(data, dt, count=count, offset=pos)
-                table = np.stack([rec[f"p{i}"].astype(np.float64)
-                                  for i in range(len(props))], 1)
+                table, _ = _binary_vertices(path, data, pos, count, props, order)
             names = [p[0] for p in props]
             cols, ncols, _ = _vertex_columns(path, props)
             ccols = next(([names.index(c) for c in trio] for trio in _COLOR_NAMES

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..geometry.transforms import box_corners, gl_bytes
+from ..geometry.transforms import box_corners, gl_bytes, outside_frustum
 from ..modes import Projection, ShadingMode, Shadows
 from ..options import DrawOptions
 from ..scene import Camera, Scene
@@ -149,6 +149,29 @@ class DrawState:
     def view_proj(self) -> np.ndarray:
         """(4, 4) world-to-clip matrix."""
         return self.proj @ self.view
+
+    def outside(self, models) -> np.ndarray:
+        """``(K,)`` bool: which of ``models`` (each with ``corners``, its world box) lie
+        wholly outside the view (:func:`~glshade.geometry.transforms.outside_frustum`),
+        with frustum culling on; none for a single model (out of view, its frame is blank
+        anyway: the test would cost more than it saves).
+
+        Parameters
+        ----------
+        models : sequence
+            The models, each with ``corners`` ``(8, 3)``.
+        """
+        if not self.options.frustum_cull or len(models) < 2:
+            return np.zeros(len(models), bool)
+        return outside_frustum(self.view_proj, np.stack([m.corners for m in models]))
+
+    def screen_uniforms(self) -> dict:
+        """What a program that casts each pixel's ray (or works in window pixels) reads:
+        the inverse projection, the camera's placement and the viewport."""
+        x, y, w, h = (float(v) for v in self.viewport)
+        return {"u_inverse_proj": gl_bytes(np.linalg.inv(self.proj)),
+                "u_camera_to_world": gl_bytes(np.linalg.inv(self.view)),
+                "u_viewport_origin": (x, y), "u_viewport_size": (w, h)}
 
     def with_uniforms(self, values: dict) -> DrawState:
         """This state with more uniforms every program of the draw takes (a pass's).

@@ -214,8 +214,31 @@ class PatchModel:
         return box_corners(box) @ self.transform[:3, :3].T + self.transform[:3, 3]
 
 
+class _Placed:
+    """What a cloud's and a polyline's model share: a similarity placement
+    (``transform``) of a ``shape`` with ``bounds``."""
+
+    transform: NDArray[np.float64]
+
+    @property
+    def shape(self) -> Any:
+        raise NotImplementedError
+
+    @property
+    def scale(self) -> float:
+        """The placement's uniform scale (a radius or a world width in the world is this
+        times the shape's own)."""
+        return float(np.cbrt(abs(np.linalg.det(self.transform[:3, :3]))))
+
+    @property
+    def corners(self) -> NDArray[np.float64]:
+        """The shape's box corners ``(8, 3)`` placed in the world."""
+        return box_corners(self.shape.bounds) @ self.transform[:3, :3].T + \
+            self.transform[:3, 3]
+
+
 @dataclass(eq=False)
-class CloudModel:
+class CloudModel(_Placed):
     """A point cloud placed in a scene (:class:`~glshade.geometry.points.PointCloud`): its
     points are ids of ``Frame.face_id`` after every polygon and solid leaf.
 
@@ -247,25 +270,18 @@ class CloudModel:
     instance_id: int = 0
 
     @property
+    def shape(self) -> PointCloud:
+        """What is placed: the cloud."""
+        return self.cloud
+
+    @property
     def n_polygons(self) -> int:
         """The ids the cloud takes: one a point."""
         return self.cloud.n_points
 
-    @property
-    def scale(self) -> float:
-        """The placement's uniform scale (a radius in the world is this times the
-        cloud's)."""
-        return float(np.cbrt(abs(np.linalg.det(self.transform[:3, :3]))))
-
-    @property
-    def corners(self) -> NDArray[np.float64]:
-        """The cloud's box corners ``(8, 3)`` placed in the world."""
-        return box_corners(self.cloud.bounds) @ self.transform[:3, :3].T + \
-            self.transform[:3, 3]
-
 
 @dataclass(eq=False)
-class LineModel:
+class LineModel(_Placed):
     """Polylines placed in a scene (:class:`~glshade.geometry.lines.Polyline`): their
     segments are ids of ``Frame.face_id`` after every polygon, solid leaf and point.
 
@@ -297,20 +313,14 @@ class LineModel:
     instance_id: int = 0
 
     @property
+    def shape(self) -> Polyline:
+        """What is placed: the polylines."""
+        return self.lines
+
+    @property
     def n_polygons(self) -> int:
         """The ids the lines take: one a segment."""
         return self.lines.n_segments
-
-    @property
-    def scale(self) -> float:
-        """The placement's uniform scale."""
-        return float(np.cbrt(abs(np.linalg.det(self.transform[:3, :3]))))
-
-    @property
-    def corners(self) -> NDArray[np.float64]:
-        """The lines' box corners ``(8, 3)`` placed in the world."""
-        return box_corners(self.lines.bounds) @ self.transform[:3, :3].T + \
-            self.transform[:3, 3]
 
 
 class Scene:

@@ -6,19 +6,16 @@ segment's (before, start, end, after) vertices, so the geometry stage (``lines.g
 the neighbours its joins are cut by and builds the segment's quad (``wide_lines.glsl``, the
 edge overlay's construction too); the fragment stage (``lines.frag``) keeps the pixel
 centres inside the exact shape. A model's buffers are uploaded once while its polyline
-lives: 12 bytes a vertex (24 with colours) and 16 a segment.
+lives (render/arrays.py): 12 bytes a vertex (24 with colours) and 16 a segment.
 """
 
 from __future__ import annotations
 
-import weakref
-from typing import Any
-
-import numpy as np
 
 from ...geometry.lines import MITER_LIMIT, Polyline
-from ...geometry.transforms import gl_bytes, outside_frustum
+from ...geometry.transforms import gl_bytes
 from ...modes import LineCaps, LineJoins, LineUnits, ShadingMode
+from ..arrays import GpuArrays, PerObject
 from ..base import GLResource
 from ..programs import ProgramKey, UniformWriter
 from ..state import DrawState
@@ -42,35 +39,12 @@ def line_defines(lines: Polyline) -> tuple[str, ...]:
     return (*(name for name, on in flags if on), f"MITER_LIMIT {MITER_LIMIT:.1f}")
 
 
-class _GpuLines:
-    """A polyline's vertex, colour and segment buffers and its vertex arrays."""
-
-    def __init__(self, ctx, lines: Polyline):
-        self.buffers = [("in_position", "3f", ctx.buffer(lines.vertices.astype("f4")))]
-        if lines.colors is not None:
-            self.buffers.append(("in_color", "3f", ctx.buffer(lines.colors.astype("f4"))))
-        self.index = ctx.buffer(lines.segments)
-        self.n = lines.n_segments
-        self.nbytes = sum(b.size for _, _, b in self.buffers) + self.index.size
-        self.vaos: dict[int, Any] = {}
-
-    def vertex_array(self, ctx, prog):
-        vao = self.vaos.get(id(prog))
-        if vao is None:
-            names = set(prog)
-            vao = self.vaos[id(prog)] = ctx.vertex_array(
-                prog, [(buf, fmt, name) for name, fmt, buf in self.buffers if name in names],
-                index_buffer=self.index, index_element_size=4)
-        return vao
-
-    def release(self) -> None:
-        for vao in self.vaos.values():
-            vao.release()
-        for _, _, buf in self.buffers:
-            buf.release()
-        self.index.release()
-        self.vaos.clear()
-        self.buffers = []
+def _gpu_lines(ctx, lines: Polyline) -> GpuArrays:
+    """A polyline's GPU copy: its vertices (and colours) and each segment's four indices."""
+    arrays = [("in_position", lines.vertices)]
+    if lines.colors is not None:
+        arrays.append(("in_color", lines.colors))
+    return GpuArrays(ctx, arrays, lines.segments)
 
 
 class LinePass(GLResource, Stage):
@@ -90,11 +64,11 @@ class LinePass(GLResource, Stage):
         super().__init__(context)
         self.shaders, self.uniforms = shaders, uniforms
         self._programs: dict = {}
-        self._lines: dict[int, tuple] = {}
+        self._lines = PerObject(lambda lines: _gpu_lines(context.ctx, lines))
         #: polyline models skipped by the last draw's frustum test
         self.culled = 0
 
-    def gpu_lines(self, lines: Polyline) -> _GpuLines:
+    def gpu_lines(self, lines: Polyline) -> GpuArrays:
         """A polyline's GPU copy, uploaded once while it lives.
 
         Parameters
@@ -103,15 +77,7 @@ class LinePass(GLResource, Stage):
             The polylines.
         """
         self._check()
-        for key in [k for k, v in self._lines.items() if v[0]() is None]:
-            self._lines.pop(key)[1].release()
-        found = self._lines.get(id(lines))
-        if found is None or found[0]() is not lines:
-            if found is not None:
-                found[1].release()
-            found = self._lines[id(lines)] = (weakref.ref(lines),
-                                              _GpuLines(self.context.ctx, lines))
-        return found[1]
+        return self._lines(lines)
 
     def program(self, key: ProgramKey, lines: Polyline):
         """The program of a variant for polylines like ``lines``.
@@ -154,13 +120,8 @@ class LinePass(GLResource, Stage):
         ctx, put = self.context.ctx, self.uniforms.put
         models = state.scene.lines
         self.culled = 0
-        outside = outside_frustum(state.view_proj, np.stack([m.corners for m in models])) \
-            if state.options.frustum_cull and len(models) > 1 else np.zeros(len(models), bool)
-        view, viewport = state.view, state.viewport
-        common = {"u_inverse_proj": gl_bytes(np.linalg.inv(state.proj)),
-                  "u_camera_to_world": gl_bytes(np.linalg.inv(view)),
-                  "u_viewport_origin": (float(viewport[0]), float(viewport[1])),
-                  "u_viewport_size": (float(viewport[2]), float(viewport[3]))}
+        outside = state.outside(models)
+        view, common = state.view, state.screen_uniforms()
         ctx.disable(moderngl.CULL_FACE)
         for index, model in enumerate(models):
             if not model.visible or outside[index]:
@@ -178,13 +139,11 @@ class LinePass(GLResource, Stage):
                       "u_face_id_base": id_base}
             for name, value in values.items():
                 put(prog, name, value)
-            gpu = self.gpu_lines(lines)
-            gpu.vertex_array(ctx, prog).render(moderngl.LINES_ADJACENCY, vertices=4 * gpu.n)
+            self.gpu_lines(lines).vertex_array(ctx, prog).render(
+                moderngl.LINES_ADJACENCY, vertices=4 * lines.n_segments)
             id_base += model.n_polygons
         return id_base
 
     def _release_extra(self) -> None:
-        for _, gpu in self._lines.values():
-            gpu.release()
-        self._lines.clear()
+        self._lines.release()
         self._programs.clear()  # (the shader library owns and frees them)

@@ -213,9 +213,7 @@ class MeshPass(GLResource, Stage):
         wireframe = state.options.wireframe
         models = state.scene.models
         self.culled = self.culled_chunks = 0
-        # (one model gains nothing worth its test: out of view, its frame is blank anyway)
-        outside = outside_frustum(state.view_proj, np.stack([m.corners for m in models])) \
-            if state.options.frustum_cull and len(models) > 1 else np.zeros(len(models), bool)
+        outside = state.outside(models)
         skip_to = 0
         for index, model in enumerate(models):
             if index < skip_to:  # (drawn with its group)

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import OptionError
+from ...errors import EnvironmentFailure, OptionError
 from ...modes import Accel, Kernel, Sampler
 from ...options import TraceOptions
 from ...geometry.transforms import ray_uniforms
@@ -116,6 +116,10 @@ class GpuPathTracer(GLResource):
     SYNC = 16
     #: the targets hold the image in 8x8 blocks, this many a row (glshade.render.film)
     LAYOUT_BLOCKS = LAYOUT_BLOCKS
+    #: passes without one more pixel finished before a run gives up (a pass moves every
+    #: path on by at least one bounce; Russian roulette caps a path's odds of going on at
+    #: 0.99, so thousands of passes without a pixel finishing mean nothing was drawn)
+    STALL_PASSES = 10_000
 
     def __init__(self, context, scene, width: int, height: int,
                  options: TraceOptions | None = None, *, shaders: ShaderLibrary | None = None,
@@ -130,6 +134,7 @@ class GpuPathTracer(GLResource):
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
         check_fits(context, *self.target_size, bytes_per_pixel=2 * 7 * 16 + 4)
         super().__init__(context)
+        context.make_current()  # (its objects are made in its own context, whatever was last)
         ctx = context.ctx
         self.scene = scene
         #: how paths are traced (a TraceOptions)
@@ -416,14 +421,25 @@ class GpuPathTracer(GLResource):
         for cap in range(self.samples + step, top + step, step):
             for program in (self.program, self._left):
                 self._put(program, "u_cap", float(min(cap, top)))
+            fewest, stalled = None, 0
             while True:
                 for i, tex in enumerate(self._targets[self._current]):
                     tex.use(location=_TARGETS + i)
                 self._pass(self.kernel)
                 self._current = 1 - self._current
                 passes += 1
-                if not self._unfinished():
+                left = self._unfinished()
+                if not left:
                     break
+                # (a pass always moves every path on: pixels that never finish mean the
+                # GL drew nothing -- say so rather than loop for ever)
+                stalled = stalled + 1 if fewest is not None and left >= fewest else 0
+                fewest = left if fewest is None else min(fewest, left)
+                if stalled > self.STALL_PASSES:
+                    raise EnvironmentFailure(
+                        f"the path tracer made no progress in {self.STALL_PASSES:,} passes "
+                        f"({left:,} pixels unfinished): this GL ({self.context.detail}) "
+                        "drew nothing into its targets")
         self.passes += passes
         self.samples = target
         return passes

@@ -15,9 +15,6 @@ normals where it has them: 12 to 40 bytes a point) and dropped with it.
 
 from __future__ import annotations
 
-import weakref
-from typing import Any
-
 import numpy as np
 
 from ...geometry.points import PointCloud
@@ -25,6 +22,7 @@ from ...geometry.transforms import box_corners, gl_bytes, outside_frustum
 from ...octree import CHUNK_SIZE, CHUNKED_FROM, point_chunks
 from ..gpu_mesh import Chunks
 from ...modes import ShadingMode
+from ..arrays import GpuArrays, PerObject
 from ..base import GLResource
 from ..programs import ProgramKey, UniformWriter, lighting_products
 from ..state import DrawState
@@ -71,48 +69,20 @@ def _chunked(cloud: PointCloud) -> bool:
     return len(cloud) >= CHUNKED_FROM and cloud.pixel_size is None
 
 
-class _GpuCloud:
-    """A cloud's buffers and its vertex arrays (one a program). A big cloud (CHUNKED_FROM
-    points or more, sized in the world) is drawn by octree chunks like a big mesh: an
-    index buffer lists its points chunk by chunk, so a draw skips the chunks out of view
-    while each point keeps its number (an indexed draw's gl_VertexID is the index)."""
-
-    def __init__(self, ctx, cloud: PointCloud):
-        self.n = cloud.n_points
-        self.buffers = [(name, f"{a.shape[1] if a.ndim > 1 else 1}f", ctx.buffer(a))
-                        for name, a in cloud.arrays()]
-        self.chunks: Chunks | None = None
-        self.index: Any = None
-        if _chunked(cloud):
-            order, starts = point_chunks(cloud.points, CHUNK_SIZE)
-            grow = cloud.world_radii()[order]
-            p = cloud.points[order]
-            boxes = np.stack([np.minimum.reduceat(p - grow[:, None], starts[:-1]),
-                              np.maximum.reduceat(p + grow[:, None], starts[:-1])], 1)
-            self.chunks = Chunks(starts, np.stack([box_corners(b) for b in boxes]))
-            self.index = ctx.buffer(order.astype("u4"))
-        self.nbytes = sum(b.size for _, _, b in self.buffers) + (
-            self.index.size if self.index is not None else 0)
-        self.vaos: dict[int, Any] = {}
-
-    def vertex_array(self, ctx, prog):
-        vao = self.vaos.get(id(prog))
-        if vao is None:
-            names = set(prog)  # (a style may not read every array: a sphere's normals)
-            vao = self.vaos[id(prog)] = ctx.vertex_array(
-                prog, [(buf, fmt, name) for name, fmt, buf in self.buffers if name in names],
-                index_buffer=self.index, index_element_size=4)
-        return vao
-
-    def release(self) -> None:
-        for vao in self.vaos.values():
-            vao.release()
-        for _, _, buf in self.buffers:
-            buf.release()
-        if self.index is not None:
-            self.index.release()
-        self.vaos.clear()
-        self.buffers = []
+def _gpu_cloud(ctx, cloud: PointCloud) -> GpuArrays:
+    """A cloud's GPU copy. A big cloud (CHUNKED_FROM points or more, sized in the world) is
+    drawn by octree chunks like a big mesh: an index buffer lists its points chunk by chunk,
+    so a draw skips the chunks out of view while each point keeps its number (an indexed
+    draw's gl_VertexID is the index)."""
+    chunks = order = None
+    if _chunked(cloud):
+        order, starts = point_chunks(cloud.points, CHUNK_SIZE)
+        grow = cloud.world_radii()[order]
+        p = cloud.points[order]
+        boxes = np.stack([np.minimum.reduceat(p - grow[:, None], starts[:-1]),
+                          np.maximum.reduceat(p + grow[:, None], starts[:-1])], 1)
+        chunks = Chunks(starts, np.stack([box_corners(b) for b in boxes]))
+    return GpuArrays(ctx, cloud.arrays(), order, chunks)
 
 
 class PointPass(GLResource, Stage):
@@ -133,14 +103,15 @@ class PointPass(GLResource, Stage):
         super().__init__(context)
         self.shaders, self.uniforms = shaders, uniforms
         self._programs: dict = {}
-        self._clouds: dict[int, tuple] = {}  # id(cloud) -> (weakref, _GpuCloud)
+        self._clouds = PerObject(lambda cloud: _gpu_cloud(context.ctx, cloud))
         #: clouds skipped by the last draw's frustum test
         self.culled = 0
         #: a big cloud's octree chunks skipped by the last draw (as a big mesh's)
         self.culled_chunks = 0
 
-    def gpu_cloud(self, cloud: PointCloud) -> _GpuCloud:
-        """A cloud's GPU copy, uploaded once while it lives.
+    def gpu_cloud(self, cloud: PointCloud) -> GpuArrays:
+        """A cloud's GPU copy (its arrays, and a big one's chunk order and ``chunks``),
+        uploaded once while it lives.
 
         Parameters
         ----------
@@ -148,25 +119,7 @@ class PointPass(GLResource, Stage):
             The cloud.
         """
         self._check()
-        for key in [k for k, v in self._clouds.items() if v[0]() is None]:
-            self._clouds.pop(key)[1].release()
-        found = self._clouds.get(id(cloud))
-        if found is None or found[0]() is not cloud:
-            if found is not None:
-                found[1].release()
-            found = self._clouds[id(cloud)] = (weakref.ref(cloud),
-                                               _GpuCloud(self.context.ctx, cloud))
-        return found[1]
-
-    def gpu_bytes(self, cloud: PointCloud) -> int:
-        """The bytes a cloud's buffers take on the GPU.
-
-        Parameters
-        ----------
-        cloud : PointCloud
-            The cloud.
-        """
-        return self.gpu_cloud(cloud).nbytes
+        return self._clouds(cloud)
 
     def program(self, key: ProgramKey, cloud: PointCloud):
         """The program of a variant for clouds like ``cloud`` (style, arrays).
@@ -207,15 +160,9 @@ class PointPass(GLResource, Stage):
         ctx, put = self.context.ctx, self.uniforms.put
         clouds = state.scene.clouds
         self.culled = self.culled_chunks = 0
-        outside = outside_frustum(state.view_proj, np.stack([c.corners for c in clouds])) \
-            if state.options.frustum_cull and len(clouds) > 1 else np.zeros(len(clouds), bool)
-        view, viewport = state.view, state.viewport
-        near = float(state.camera.planes()[0])
-        common = {"u_inverse_proj": gl_bytes(np.linalg.inv(state.proj)),
-                  "u_camera_to_world": gl_bytes(np.linalg.inv(view)),
-                  "u_viewport_origin": (float(viewport[0]), float(viewport[1])),
-                  "u_viewport_size": (float(viewport[2]), float(viewport[3])),
-                  "u_near": near}
+        outside = state.outside(clouds)
+        view = state.view
+        common = {**state.screen_uniforms(), "u_near": float(state.camera.planes()[0])}
         ctx.disable(moderngl.CULL_FACE)
         for index, model in enumerate(clouds):
             if not model.visible or outside[index]:
@@ -240,20 +187,19 @@ class PointPass(GLResource, Stage):
                 put(prog, name, value)
             gpu = self.gpu_cloud(cloud)
             vao = gpu.vertex_array(ctx, prog)
-            if gpu.chunks is not None and state.options.frustum_cull:
-                hidden = outside_frustum(state.view_proj @ m, gpu.chunks.corners)
+            chunks = gpu.chunks
+            if chunks is not None and state.options.frustum_cull:
+                hidden = outside_frustum(state.view_proj @ m, chunks.corners)
                 self.culled_chunks += int(hidden.sum())
-                for first, count in gpu.chunks.ranges(~hidden):
+                for first, count in chunks.ranges(~hidden):
                     vao.render(moderngl.POINTS, vertices=count, first=first)
             else:
-                vao.render(moderngl.POINTS, vertices=gpu.n)
+                vao.render(moderngl.POINTS, vertices=cloud.n_points)
             id_base += model.n_polygons
         return id_base
 
     def _release_extra(self) -> None:
-        for _, gpu in self._clouds.values():
-            gpu.release()
-        self._clouds.clear()
+        self._clouds.release()
         self._programs.clear()  # (the shader library owns and frees them)
 
 

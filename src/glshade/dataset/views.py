@@ -160,12 +160,26 @@ class ViewWorker:
                                       outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
         return frame, lambda: renderer.annotate(job.scene, camera, job.options, view=frame)
 
-    def __call__(self, k: int) -> int:
-        frame, notes = self.frame(k)
+    def written(self, k: int, frame, notes) -> tuple[dict, list]:
+        """The writer's ``(record, files)`` for view k, the record saying what drew it (a
+        GPU's name, or llvmpipe where one was lost).
+
+        Parameters
+        ----------
+        k : int
+            The view.
+        frame : Frame
+            Its frame.
+        notes : callable
+            Its annotations, drawn if asked.
+        """
         record, files = self.writer(k, frame, notes)
         assert self._renderer is not None  # (made by frame)
-        # (what drew it, so a data set says: a GPU's, or llvmpipe where one was lost)
-        record = {**record, "renderer": self._renderer.context.detail}
+        return {**record, "renderer": self._renderer.context.detail}, files
+
+    def __call__(self, k: int) -> int:
+        frame, notes = self.frame(k)
+        record, files = self.written(k, frame, notes)
         _finish(self.records_dir, k, record, files)
         return k
 
@@ -228,7 +242,7 @@ def run_views(job: DataSetJob, records_dir: Path, writer, progress=None, context
                     for k in todo:
                         check()
                         frame, notes = worker.frame(k)
-                        record, to_write = writer(k, frame, notes)
+                        record, to_write = worker.written(k, frame, notes)
                         while pending and pending[0].done():  # (a failed write stops it)
                             pending.pop(0).result()
                         pending.append(files.submit(_finish, records_dir, k, record,

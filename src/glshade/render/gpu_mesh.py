@@ -10,7 +10,7 @@ import weakref
 import numpy as np
 
 from ..errors import GlshadeError
-from ..geometry.transforms import box_corners
+from ..geometry.transforms import box_corners, outside_frustum
 from ..geometry.mesh import Mesh
 from ..modes import ShadingMode
 from ..octree import CHUNK_SIZE, CHUNKED_FROM
@@ -58,6 +58,34 @@ class Chunks(NamedTuple):
 
     starts: np.ndarray
     corners: np.ndarray
+
+    @classmethod
+    def of(cls, starts: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> Chunks:
+        """The chunks of elements in chunk order whose own extents are ``lo`` and ``hi``
+        ``(N, 3)``: each chunk's box the extent of its elements'.
+
+        Parameters
+        ----------
+        starts : ndarray
+            ``(C + 1,)`` the chunks' first elements, and the count.
+        lo, hi : ndarray
+            ``(N, 3)`` each element's smallest and largest coordinates, in chunk order.
+        """
+        boxes = np.stack([np.minimum.reduceat(lo, starts[:-1]),
+                          np.maximum.reduceat(hi, starts[:-1])], 1)        # (C, 2, 3)
+        return cls(starts, box_corners(boxes))
+
+    def in_view(self, view_proj: np.ndarray) -> tuple[list[tuple[int, int]], int]:
+        """The draw calls a view needs, ``(first, count)`` each, and how many chunks it
+        skips: those whose box lies wholly outside the view (``view_proj``: model to clip).
+
+        Parameters
+        ----------
+        view_proj : ndarray
+            ``(4, 4)`` model space to clip space.
+        """
+        hidden = outside_frustum(view_proj, self.corners)
+        return self.ranges(~hidden), int(hidden.sum())
 
     def ranges(self, visible: np.ndarray) -> list[tuple[int, int]]:
         """``(first triangle, count)`` of each run of consecutive ``visible`` chunks (one
@@ -411,14 +439,9 @@ def _chunked(positions: np.ndarray, tri: np.ndarray) -> tuple[np.ndarray, Chunks
 
     centroids = (positions[tri[:, 0]] + positions[tri[:, 1]] + positions[tri[:, 2]]) / 3
     order, starts = point_chunks(centroids, CHUNK_SIZE)
-    tri = tri[order]
-    lo = np.minimum(np.minimum(positions[tri[:, 0]], positions[tri[:, 1]]),
-                    positions[tri[:, 2]])
-    hi = np.maximum(np.maximum(positions[tri[:, 0]], positions[tri[:, 1]]),
-                    positions[tri[:, 2]])
-    boxes = np.stack([np.minimum.reduceat(lo, starts[:-1]),
-                      np.maximum.reduceat(hi, starts[:-1])], 1)        # (C, 2, 3)
-    return order, Chunks(starts, np.stack([box_corners(b) for b in boxes]))
+    a, b, c = (positions[tri[order, k]] for k in range(3))
+    return order, Chunks.of(starts, np.minimum(np.minimum(a, b), c),
+                            np.maximum(np.maximum(a, b), c))
 
 
 def _upload_rows(ctx, n: int, rows):

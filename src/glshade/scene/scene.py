@@ -527,7 +527,7 @@ class Scene:
     def _add(self, mesh, material, transform, rotation, translation, scale, name, crease,
              vertex_colors, tessellation, level):
         if isinstance(mesh, (PointCloud, Polyline)):
-            return self._add_cloud(mesh, material, transform, rotation, translation, scale,
+            return self._add_placed(mesh, material, transform, rotation, translation, scale,
                                    name, crease, vertex_colors, tessellation, level)
         if isinstance(mesh, Solid):
             return self._add_solid(mesh, material, transform, rotation, translation, scale,
@@ -613,7 +613,7 @@ class Scene:
         self.patch_models.append(model)
         return model
 
-    def _add_cloud(self, cloud, material, transform, rotation, translation, scale, name,
+    def _add_placed(self, cloud, material, transform, rotation, translation, scale, name,
                    crease, vertex_colors, tessellation, level):
         """A point cloud or polylines (:class:`CloudModel`, :class:`LineModel`); a
         similarity places them."""

@@ -17,7 +17,7 @@ from typing import Any
 import moderngl
 import numpy as np
 
-from ...geometry.transforms import gl_bytes, model_matrices, outside_frustum
+from ...geometry.transforms import gl_bytes, model_matrices
 from ...modes import Culling, ShadingMode
 from ..base import GLResource
 from ..gpu_mesh import GpuMesh
@@ -401,9 +401,8 @@ class MeshPass(GLResource, Stage):
                 put(prog, "u_polygon_planes", Unit.POLYGON_PLANES)
         chunks = gpu.chunks
         if chunks is not None and options.frustum_cull:  # (a big mesh: what the view holds)
-            hidden = outside_frustum(state.view_proj @ m, chunks.corners)
-            self.culled_chunks += int(hidden.sum())
-            ranges = chunks.ranges(~hidden)
+            ranges, skipped = chunks.in_view(state.view_proj @ m)
+            self.culled_chunks += skipped
         else:
             ranges = [(0, gpu.n_triangles)]
         for first, count in ranges:

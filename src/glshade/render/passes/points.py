@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...geometry.points import PointCloud
-from ...geometry.transforms import box_corners, gl_bytes, outside_frustum
+from ...geometry.transforms import gl_bytes
 from ...octree import CHUNK_SIZE, CHUNKED_FROM, point_chunks
 from ..gpu_mesh import Chunks
 from ...modes import ShadingMode
@@ -77,11 +77,9 @@ def _gpu_cloud(ctx, cloud: PointCloud) -> GpuArrays:
     chunks = order = None
     if _chunked(cloud):
         order, starts = point_chunks(cloud.points, CHUNK_SIZE)
-        grow = cloud.world_radii()[order]
+        grow = cloud.world_radii()[order, None]
         p = cloud.points[order]
-        boxes = np.stack([np.minimum.reduceat(p - grow[:, None], starts[:-1]),
-                          np.maximum.reduceat(p + grow[:, None], starts[:-1])], 1)
-        chunks = Chunks(starts, np.stack([box_corners(b) for b in boxes]))
+        chunks = Chunks.of(starts, p - grow, p + grow)
     return GpuArrays(ctx, cloud.arrays(), order, chunks)
 
 
@@ -189,9 +187,9 @@ class PointPass(GLResource, Stage):
             vao = gpu.vertex_array(ctx, prog)
             chunks = gpu.chunks
             if chunks is not None and state.options.frustum_cull:
-                hidden = outside_frustum(state.view_proj @ m, chunks.corners)
-                self.culled_chunks += int(hidden.sum())
-                for first, count in chunks.ranges(~hidden):
+                ranges, skipped = chunks.in_view(state.view_proj @ m)
+                self.culled_chunks += skipped
+                for first, count in ranges:
                     vao.render(moderngl.POINTS, vertices=count, first=first)
             else:
                 vao.render(moderngl.POINTS, vertices=cloud.n_points)

@@ -88,3 +88,29 @@ def test_held_delivers_to_the_handler_that_was_there():
                           timeout=60)
     assert done.stdout.split() == ["the", "block", "went", "on", "raised", "after", "the",
                                    "block", "True"], done.stderr
+
+
+def test_a_ctrl_c_python_wrapped_in_another_error_is_still_one():
+    """A SIGINT that lands in a descriptor's ``__set_name__`` while a class is built (the
+    standard library's ``ipaddress`` does so as ``pathlib`` imports it) reaches the command
+    as Python's RuntimeError, its cause the KeyboardInterrupt: told apart from a real
+    RuntimeError, whose causes hold none."""
+    from glshade.interrupt import caused_by_interrupt
+
+    class Landed:
+        def __set_name__(self, owner, name):
+            raise KeyboardInterrupt  # (as a SIGINT landing there would)
+
+    try:
+        type("Network", (), {"broadcast_address": Landed()})
+    except RuntimeError as exc:
+        wrapped = exc
+    assert caused_by_interrupt(wrapped)
+    try:
+        try:
+            raise ValueError("a real fault")
+        except ValueError as inner:
+            raise RuntimeError("and its report") from inner
+    except RuntimeError as exc:
+        assert not caused_by_interrupt(exc)
+    assert caused_by_interrupt(KeyboardInterrupt())

@@ -10,7 +10,7 @@ import contextlib
 import sys
 from typing import Any
 
-__all__ = ["catch_dropped", "check", "held"]
+__all__ = ["catch_dropped", "check", "held", "caused_by_interrupt"]
 
 _dropped = False
 _previous_hook: Any = None
@@ -30,6 +30,27 @@ def catch_dropped() -> None:
     if sys.unraisablehook is not _hook:
         _previous_hook = sys.unraisablehook
         sys.unraisablehook = _hook
+
+
+def caused_by_interrupt(exc: BaseException) -> bool:
+    """Whether ``exc`` is a Ctrl-C in disguise: a KeyboardInterrupt, or an error Python made
+    of one -- a class being built while a module imports wraps an interrupt that lands in
+    a descriptor's ``__set_name__`` in a RuntimeError, an extension's import may turn it
+    into an ImportError -- found along the exception's causes and contexts.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception that ended the work.
+    """
+    seen: set[int] = set()
+    found: BaseException | None = exc
+    while found is not None and id(found) not in seen:
+        if isinstance(found, KeyboardInterrupt):
+            return True
+        seen.add(id(found))
+        found = found.__cause__ or found.__context__
+    return False
 
 
 def check() -> None:

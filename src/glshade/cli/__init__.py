@@ -39,8 +39,13 @@ def main(argv: list[str] | None = None) -> int:
         return _main(argv)
     except KeyboardInterrupt:
         return _interrupted()
-    except ImportError:
-        if seen:
+    except Exception as exc:
+        from ..interrupt import caused_by_interrupt
+
+        # (a Ctrl-C Python wrapped in another error -- RuntimeError from a class built
+        # while a module imported, an extension's ImportError, which may not even chain
+        # it -- is still a Ctrl-C)
+        if caused_by_interrupt(exc) or (seen and isinstance(exc, ImportError)):
             return _interrupted()
         raise
     finally:

@@ -55,6 +55,7 @@ import numpy as np
 import polyscope as ps
 ps.set_allow_headless_backends(True)
 ps.set_verbosity(0)
+ps.set_use_prefs_file(False)  # (no .polyscope.ini or imgui.ini left in the working folder)
 ps.init("openGL3_egl")
 ps.set_ground_plane_mode("none")
 made = {}

@@ -259,8 +259,9 @@ def test_thousand_frames_do_not_grow_memory(make_renderer):
     s = Scene()
     s.add(P.icosphere(2))
     cams = [FRONT.orbit([0, np.sin(a / 2), 0, np.cos(a / 2)]) for a in np.linspace(0, 6, 50)]
-    for _ in r.render_many(s, cams):  # (Frames, colour only)
+    for _ in r.render_many(s, cams):  # (Frames, colour only; its own targets, freed after)
         pass
+    r.render(s, cams[0])  # (the target every later render reuses)
     before = rss_mb()
     children = len(r.context._children)
     for i in range(1000):

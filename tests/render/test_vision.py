@@ -127,6 +127,52 @@ def test_ids_and_depth_match_a_ray_caster_at_every_pixel_centre(make_renderer, s
     assert np.isinf(frame.depth[judged & (hit < 0)]).all()
 
 
+@pytest.mark.parametrize("samples", [0, 4])
+def test_render_many_frames_match_the_ray_caster_and_render_frame(make_renderer, samples):
+    """render_many draws frames ahead of the one it reads (each into targets of its own):
+    7 views -- more than it draws ahead, and not a multiple -- each with 0 mismatches
+    against the ray caster and byte for byte render_frame's, the outputs not asked None."""
+    scene = _scene()
+    r = make_renderer(*SIZE, samples)
+    poses = [POSES[k % len(POSES)] for k in range(7)]
+    cameras = [Camera.from_opencv(K, R, t, SIZE) for R, t in poses]
+    outputs = Outputs.DEPTH | Outputs.INSTANCE | Outputs.NORMAL
+    tris, inst, _ = _triangles(scene)
+    frames = list(r.render_many(scene, cameras, "phong", outputs=outputs))
+    assert len(frames) == 7
+    for (R, t), camera, frame in zip(poses, cameras, frames):
+        hit, z = _cast(tris, R, t, SIZE)
+        judged = ~_near_an_edge(tris, R, t, SIZE)
+        assert (frame.instance != np.where(hit >= 0, inst[hit], 0))[judged].sum() == 0
+        lit = judged & (hit >= 0)
+        assert np.allclose(frame.depth[lit], z[lit], rtol=1e-5)
+        one = r.render_frame(scene, camera, "phong", outputs=outputs)
+        for name in ("color", "depth", "normal", "instance"):
+            assert np.array_equal(getattr(frame, name), getattr(one, name)), name
+        assert frame.face_id is None and frame.semantic is None
+        assert frame.camera == one.camera
+
+
+def test_render_many_pending_frames_survive_other_draws_between_yields(make_renderer):
+    """The frames drawn ahead are not disturbed by draws the caller makes between yields
+    (annotations, other frames), nor by the caller stopping early."""
+    scene = _scene()
+    r = make_renderer(*SIZE, 4)
+    cameras = [Camera.from_opencv(K, R, t, SIZE) for R, t in POSES * 2]
+    outputs = Outputs.DEPTH | Outputs.INSTANCE
+    alone = [r.render_frame(scene, c, "flat", outputs=outputs) for c in cameras]
+    children = len(r.context._children)
+    for k, frame in enumerate(r.render_many(scene, cameras, "flat", outputs=outputs)):
+        r.render_frame(scene, cameras[-1 - k], "phong", outputs=Outputs.ALL)
+        r.annotate(scene, cameras[0])
+        assert np.array_equal(frame.color, alone[k].color)
+        assert np.array_equal(frame.instance, alone[k].instance)
+        assert np.array_equal(frame.depth, alone[k].depth)
+        if k == 3:
+            break
+    assert len(r.context._children) == children  # (its targets freed when stopped)
+
+
 def test_points_lie_on_the_surface_and_project_to_their_own_pixel(make_renderer):
     trimesh = require("trimesh", "the closest-point oracle")
     R, t = POSES[1]

@@ -195,6 +195,33 @@ def _id_pass(options: DrawOptions, scene: Scene) -> DrawOptions:
     return options.replace(mode=ShadingMode.DEPTH, edges=False) if cheap else options
 
 
+#: frames :meth:`Renderer.render_many` draws ahead of the one it reads back, each into
+#: targets of its own: the driver takes in frame k+1's triangles while it fills frame k's
+#: pixels (llvmpipe bins in the calling thread and rasterises in its own: 1.3x the frames
+#: a second at 640x480 here, benchmarks/dataset_bench.py) -- within AHEAD_BYTES of targets
+FRAMES_AHEAD = 4
+AHEAD_BYTES = 256 << 20
+#: bytes a pixel sample of an offscreen target takes: colour (up to float 4x4), normal
+#: (4x4), polygon id, depth and z (4 each)
+TARGET_BYTES = 44
+
+
+@dataclass
+class _Drawn:
+    """A frame drawn and not yet read back: its colour's target and the target of its
+    other outputs (the same without MSAA), the draw whose covered samples were counted and
+    the draw the other outputs came from, what was asked."""
+
+    color_target: OffscreenTarget
+    target: OffscreenTarget
+    counted: DrawState
+    state: DrawState
+    options: DrawOptions
+    want: Outputs
+    blends: bool
+    slot: int
+
+
 class Renderer:
     """Renders scenes into images of ``width`` x ``height`` pixels.
 
@@ -269,7 +296,7 @@ class Renderer:
                                           self.edges)
         self._uniforms = uniforms
         self._targets: dict[str, OffscreenTarget] = {}
-        self._query: Any = None
+        self._queries: dict[int, Any] = {}  # a sample-counting query per target slot
         self._warned: set[int] = set()  # scenes told that the radiosity mode needs a solve
         self.closed = False
 
@@ -306,11 +333,15 @@ class Renderer:
             raise GlshadeError("this Renderer was closed; make a new one")
 
     # ------------------------------------------------------------------ caches
-    def _target(self, color_dtype: str, samples: int | None = None) -> OffscreenTarget:
+    def _target(self, color_dtype: str, samples: int | None = None,
+                slot: int = 0) -> OffscreenTarget:
+        """The offscreen target of this colour type and sample count; ``slot`` > 0: one of
+        the targets :meth:`render_many` draws frames ahead into (kept apart from slot 0,
+        which every other read uses, so a pending frame survives a call between yields)."""
         self._check()
         self.context.make_current()
         samples = self.samples if samples is None else samples
-        key = f"{color_dtype}/{samples}"
+        key = f"{color_dtype}/{samples}/{slot}"
         t = self._targets.get(key)
         if t is None:
             try:
@@ -433,19 +464,23 @@ class Renderer:
                       UserWarning, stacklevel=4)
 
     def _counted_draw(self, target, scene: Scene, camera: Camera, options,
-                      read_visibility: bool = False) -> DrawState:
-        """Draw, counting the samples that pass the depth test: a render that covers no
-        pixel is almost always a mistake, so it is reported (RenderWarning) with its cause."""
-        if self._query is None:
+                      read_visibility: bool = False, slot: int = 0) -> DrawState:
+        """Draw, counting the samples that pass the depth test (:meth:`_check_covered`
+        reads the count: a render that covers no pixel is almost always a mistake)."""
+        query = self._queries.get(slot)
+        if query is None:
             self.context.make_current()
-            self._query = self.ctx.query(samples=True)
-        with self._query:
-            state = self.draw(target, scene, camera, options,
-                              read_visibility=read_visibility)
-        if self._query.samples == 0:
-            warnings.warn(why_blank(scene, camera.with_planes(scene.bounds), options.cull),
-                          RenderWarning, stacklevel=3)
-        return state
+            query = self._queries[slot] = self.ctx.query(samples=True)
+        with query:
+            return self.draw(target, scene, camera, options, read_visibility=read_visibility)
+
+    def _check_covered(self, scene: Scene, state: DrawState, options, slot: int = 0,
+                       stacklevel: int = 4) -> None:
+        """Report a draw that covered no pixel (RenderWarning) with its cause. Reading the
+        count waits for the draw: callers read it with the frame's pixels."""
+        if self._queries[slot].samples == 0:
+            warnings.warn(why_blank(scene, state.camera.with_planes(scene.bounds),
+                                    options.cull), RenderWarning, stacklevel=stacklevel)
 
     def render(self, scene: Scene, camera: Camera, options=None, **changes) -> np.ndarray:
         """The colour image ``(H, W, 4) uint8``, row 0 at the top.
@@ -470,7 +505,8 @@ class Renderer:
         with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
             blends = _blends(options, scene)
             target = self._target("f4" if blends else "f1")
-            self._counted_draw(target, scene, camera, options)
+            state = self._counted_draw(target, scene, camera, options)
+            self._check_covered(scene, state, options)
             return _to_u8(target.read_color()) if blends else target.read_color()
 
     def render_frame(self, scene: Scene, camera: Camera, options=None, *,
@@ -500,44 +536,65 @@ class Renderer:
         **changes
             Single options replaced, by name.
         """
+        options, blends = self._frame_options(scene, options, changes, outputs, color_dtype)
+        with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
+            return self._read_frame(scene, self._draw_frame(scene, camera, options, blends,
+                                                            color_dtype))
+
+    def _frame_options(self, scene: Scene, options, changes: dict, outputs: Outputs,
+                       color_dtype: str) -> tuple[DrawOptions, bool]:
+        """A frame's options (the polygon ids drawn where instance or class ids are asked
+        for: those are looked up from them) and whether it blends in a float target."""
         if color_dtype not in ("u1", "f4"):
             raise OptionError(f"color_dtype must be 'u1' or 'f4', got {color_dtype!r}")
         options = DrawOptions.of(options, **changes).replace(outputs=outputs | Outputs.COLOR)
         blends = color_dtype == "u1" and _blends(options, scene)
+        return options, blends
+
+    def _draw_frame(self, scene: Scene, camera: Camera, options: DrawOptions, blends: bool,
+                    color_dtype: str, slot: int = 0) -> _Drawn:
+        """Draw a frame into the targets of ``slot`` without reading anything back (the
+        read, :meth:`_read_frame`, is what waits for the driver)."""
         dtype = "f1" if color_dtype == "u1" and not blends else "f4"
         want = options.outputs
-        ids = want & (Outputs.INSTANCE | Outputs.SEMANTIC)
-        if ids:  # (instance and class ids are looked up from the polygon ids)
+        if want & (Outputs.INSTANCE | Outputs.SEMANTIC):
             options = options.replace(outputs=want | Outputs.FACE_ID)
-        with held():  # (a Ctrl-C waits for the frame: never mid-way through the driver's work)
-            target = self._target(dtype)
-            if self.samples and want.auxiliary:  # colour multisampled, the rest exact
-                self._counted_draw(target, scene, camera,
-                                   options.replace(outputs=Outputs.COLOR), True)
-                color = target.read_color()
-                target = self._target(dtype, samples=0)
-                state = self.draw(target, scene, camera, _id_pass(options, scene),
-                                  read_visibility=True)
-            else:
-                state = self._counted_draw(target, scene, camera, options, True)
-                color = target.read_color()
-            if blends:
-                color = _to_u8(color)
-            face_id = target.read_face_id() if want & Outputs.FACE_ID or ids else None
-            instance = semantic = None
-            if ids:
-                assert face_id is not None  # (drawn for them)
-                instances, classes = scene.id_tables()
-                if want & Outputs.INSTANCE:
-                    instance = instances[face_id + 1]
-                if want & Outputs.SEMANTIC:
-                    semantic = classes[face_id + 1]
-            return Frame(color,
-                         target.read_depth() if want & Outputs.DEPTH else None,
-                         target.read_normal() if want & Outputs.NORMAL else None,
-                         face_id if want & Outputs.FACE_ID else None,
-                         self.shadows.read() if state.read_visibility else None,
-                         instance, semantic, state.camera)
+        target = self._target(dtype, slot=slot)
+        if self.samples and want.auxiliary:  # colour multisampled, the rest exact
+            drawn = self._counted_draw(target, scene, camera,
+                                       options.replace(outputs=Outputs.COLOR), True, slot)
+            aux = self._target(dtype, samples=0, slot=slot)
+            state = self.draw(aux, scene, camera, _id_pass(options, scene),
+                              read_visibility=True)
+            return _Drawn(target, aux, drawn, state, options, want, blends, slot)
+        state = self._counted_draw(target, scene, camera, options, True, slot)
+        return _Drawn(target, target, state, state, options, want, blends, slot)
+
+    def _read_frame(self, scene: Scene, drawn: _Drawn) -> Frame:
+        """Read a drawn frame's buffers back: the outputs it asked for."""
+        self.context.make_current()
+        self._check_covered(scene, drawn.counted, drawn.options, drawn.slot, stacklevel=5)
+        color = drawn.color_target.read_color()
+        if drawn.blends:
+            color = _to_u8(color)
+        want, target = drawn.want, drawn.target
+        ids = want & (Outputs.INSTANCE | Outputs.SEMANTIC)
+        face_id = target.read_face_id() if want & Outputs.FACE_ID or ids else None
+        instance = semantic = None
+        if ids:
+            assert face_id is not None  # (drawn for them)
+            instances, classes = scene.id_tables()
+            if want & Outputs.INSTANCE:
+                instance = instances[face_id + 1]
+            if want & Outputs.SEMANTIC:
+                semantic = classes[face_id + 1]
+        state = drawn.state
+        return Frame(color,
+                     target.read_depth() if want & Outputs.DEPTH else None,
+                     target.read_normal() if want & Outputs.NORMAL else None,
+                     face_id if want & Outputs.FACE_ID else None,
+                     self.shadows.read() if state.read_visibility else None,
+                     instance, semantic, state.camera)
 
     def pick(self, scene: Scene, camera: Camera, x: float, y: float,
              options=None) -> Pick | None:
@@ -686,9 +743,41 @@ class Renderer:
         **changes
             Single options replaced, by name.
         """
-        options = DrawOptions.of(options, **changes)  # (checked once, before the first)
-        for camera in cameras:
-            yield self.render_frame(scene, camera, options, outputs=outputs)
+        options, blends = self._frame_options(scene, options, changes, outputs, "u1")
+        ahead = self._frames_ahead(options)
+        pending: list[_Drawn] = []
+        try:
+            for camera in cameras:
+                with held():
+                    pending.append(self._draw_frame(scene, camera, options, blends, "u1",
+                                                    len(pending) + 1))
+                if len(pending) == ahead:  # (read as a group: reading frame k while k+1 is
+                    yield from self._read_all(scene, pending)  # drawn waits for both)
+            yield from self._read_all(scene, pending)
+        finally:  # (the targets drawn ahead into are big: not kept past the run)
+            for key in [k for k in self._targets if not k.endswith("/0")]:
+                if not self.closed:
+                    self.context.make_current()
+                    self._targets.pop(key).release()
+
+    def _read_all(self, scene: Scene, pending: list[_Drawn]) -> Iterator[Frame]:
+        """The pending frames read back in order (the list emptied)."""
+        frames = []
+        with held():
+            for drawn in pending:
+                frames.append(self._read_frame(scene, drawn))
+        pending.clear()
+        yield from frames
+
+    def _frames_ahead(self, options: DrawOptions) -> int:
+        """How many frames :meth:`render_many` draws before reading the first back: up to
+        FRAMES_AHEAD, as many as AHEAD_BYTES of targets hold; one where a frame reads
+        buffers every draw shares (the shadows' visibility)."""
+        if options.shadows is not Shadows.OFF:
+            return 1
+        pixels = self.width * self.height
+        per_slot = pixels * TARGET_BYTES * (max(self.samples, 1) + (self.samples > 0))
+        return max(1, min(FRAMES_AHEAD, AHEAD_BYTES // per_slot))
 
     def info(self) -> dict:
         return self.context.info

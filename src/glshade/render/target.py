@@ -97,6 +97,7 @@ class OffscreenTarget(GLResource):
         self.width, self.height, self.samples = int(width), int(height), int(samples)
         self.color_dtype = color_dtype
         self._read_buffers: dict[tuple, np.ndarray] = {}
+        self._unresolved: Outputs | None = None  # a drawing marked for resolving
         ctx = context.ctx
         try:
             def buffers(samples):
@@ -141,6 +142,7 @@ class OffscreenTarget(GLResource):
             What the draw writes besides colour.
         """
         self._check()
+        self._unresolved = None  # (a new drawing: the last one's copy is not wanted)
         if outputs.auxiliary:
             self.fbo_clear_aux.use()
             self.fbo_clear_aux.clear(0.0, 0.0, 0.0, 0.0)
@@ -164,14 +166,22 @@ class OffscreenTarget(GLResource):
         return self.fbo_draw_color
 
     def resolve(self, outputs: Outputs) -> None:
-        """Copy the multisampled drawing into the single-sampled buffers that are read.
+        """Mark the multisampled drawing for copying into the single-sampled buffers that
+        are read; the copy is made by the first read (a software driver makes it on the
+        calling thread once the drawing is done: made at the draw, it would keep the next
+        frame's draw from overlapping this one's).
 
         Parameters
         ----------
         outputs : Outputs
             What the draw writes besides colour.
         """
-        if self.samples:
+        self._unresolved = outputs if self.samples else None
+
+    def _resolved(self) -> None:
+        """Make the copy :meth:`resolve` marked, once."""
+        outputs, self._unresolved = self._unresolved, None
+        if outputs is not None:
             ctx = self.context.ctx
             if outputs.auxiliary:
                 ctx.copy_framebuffer(self.fbo_read_all, self.fbo_draw_all)
@@ -183,6 +193,7 @@ class OffscreenTarget(GLResource):
         draws offscreen targets upside down (``rows_top_down``), so GL's first row is the
         image's top and no flip is needed. ``fresh``: into a new array for the caller;
         else into a buffer this target keeps and reuses (for reads that copy anyway)."""
+        self._resolved()
         fbo = self.fbo_read_all if attachment else self.fbo_read_color
         np_dtype = np.dtype(dtype.replace("f1", "u1"))
         shape = (self.height, self.width, components)

@@ -3,8 +3,10 @@
 MSAA 4 and without, and the data-set writers (BOP, COCO) on the same views; with depth
 exactness beside speed (glshade's depth is at pixel centres and agrees with its mask
 everywhere: every pixel with a depth has an instance and the reverse). Peers (pyrender,
-PyVista, Open3D) run in venvs of their own, where installed: ``--peer NAME=PYTHON``.
+PyVista, Open3D) run in venvs of their own (``benchmarks/peers.sh`` makes them under
+``.peers/``; ``--peer NAME=PYTHON`` names another), in turn, each in its own process.
 
+    bash benchmarks/peers.sh   # once: .peers/{pyrender,pyvista,open3d}
     .venv/bin/python benchmarks/dataset_bench.py [--frames 50] [--size 640x480]
 """
 
@@ -99,11 +101,102 @@ np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
 """
 
 
-def peer_pyrender(python: str, scene, cameras, size) -> tuple[float, np.ndarray, np.ndarray]:
-    """pyrender's frames a second in its own venv, and its frame 0 (depth, mask)."""
+#: PyVista's side (VTK, off screen; VTK picks EGL without a display): colour and depth
+#: (get_image_depth: negative distances along the view axis, NaN on the background) of one
+#: plotter, the mask a second plotter's render of the same meshes unlit in id colours; its
+#: default theme's MSAA
+PYVISTA = """
+import sys, time, numpy as np, pyvista as pv
+data = np.load(sys.argv[1])
+w, h = int(data["size"][0]), int(data["size"][1])
+faces = np.hstack([np.full((len(data["faces"]), 1), 3), data["faces"]]).ravel()
+ball = pv.PolyData(data["vertices"], faces)
+shaded = pv.Plotter(off_screen=True, window_size=(w, h))
+masks = pv.Plotter(off_screen=True, window_size=(w, h))
+masks.background_color = (0, 0, 0)
+for k, m in enumerate(data["models"]):
+    shaded.add_mesh(ball.transform(m, inplace=False), color="white", smooth_shading=True)
+    masks.add_mesh(ball.transform(m, inplace=False), color=((k + 1) / 255, 0, 0),
+                   lighting=False)
+def one(eye):
+    for pl in (shaded, masks):
+        pl.camera.position, pl.camera.focal_point = tuple(eye), (0.0, 0.0, 0.0)
+        pl.camera.up, pl.camera.view_angle = (0.0, 1.0, 0.0), float(data["fov"])
+        pl.camera.clipping_range = (1.0, 30.0)
+    color = shaded.screenshot(return_img=True)
+    depth = -shaded.get_image_depth()
+    mask = masks.screenshot(return_img=True)[..., 0]
+    return np.nan_to_num(depth, nan=0.0), mask
+for eye in data["eyes"][:2]:
+    one(eye)
+start = time.perf_counter()
+for eye in data["eyes"]:
+    depth, mask = one(eye)
+rate = len(data["eyes"]) / (time.perf_counter() - start)
+depth, mask = one(data["eyes"][0])
+np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
+"""
+
+#: Open3D's side (Filament through EGL, EGL_PLATFORM=surfaceless; one renderer a process):
+#: colour and depth (render_to_depth_image, z in view space, inf on the background), then
+#: the mask: the same meshes unlit in id colours, shown in their place, without
+#: post-processing
+OPEN3D = """
+import sys, time, numpy as np, open3d as o3d
+R = o3d.visualization.rendering
+data = np.load(sys.argv[1])
+w, h = int(data["size"][0]), int(data["size"][1])
+r = R.OffscreenRenderer(w, h)
+r.scene.set_background([0, 0, 0, 1])
+names = []
+for k, m in enumerate(data["models"]):
+    ball = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(data["vertices"]),
+                                     o3d.utility.Vector3iVector(data["faces"]))
+    ball.transform(m)
+    ball.compute_vertex_normals()
+    lit, flat = R.MaterialRecord(), R.MaterialRecord()
+    lit.shader, flat.shader = "defaultLit", "defaultUnlit"
+    flat.base_color = [(k + 1) * 20 / 255, 0, 0, 1]  # (read as sRGB, written linear:
+    # 20 levels apart, ids stay distinct and non-zero -- 1/255 came out 0)
+    r.scene.add_geometry(f"lit{k}", ball, lit)
+    r.scene.add_geometry(f"id{k}", ball, flat)
+    names.append((f"lit{k}", f"id{k}"))
+def show(ids):
+    for lit, flat in names:
+        r.scene.show_geometry(lit, not ids)
+        r.scene.show_geometry(flat, ids)
+    r.scene.view.set_post_processing(not ids)
+def one(eye):
+    r.setup_camera(float(data["fov"]), [0, 0, 0], list(eye), [0, 1, 0])
+    show(False)
+    color = np.asarray(r.render_to_image())
+    depth = np.asarray(r.render_to_depth_image(z_in_view_space=True))
+    show(True)
+    mask = np.asarray(r.render_to_image())[..., 0]
+    return np.where(np.isfinite(depth), depth, 0.0), mask
+for eye in data["eyes"][:2]:
+    one(eye)
+start = time.perf_counter()
+for eye in data["eyes"]:
+    depth, mask = one(eye)
+rate = len(data["eyes"]) / (time.perf_counter() - start)
+depth, mask = one(data["eyes"][0])
+np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
+"""
+
+#: each peer's script and the environment it draws headless with
+PEERS = {"pyrender": (PYRENDER, {"PYOPENGL_PLATFORM": "egl"}),
+         "pyvista": (PYVISTA, {}),
+         "open3d": (OPEN3D, {"EGL_PLATFORM": "surfaceless"})}
+
+
+def peer_rate(name: str, python: str, scene, cameras, size):
+    """A peer's frames a second in its own venv, its version, and its frame 0 (depth,
+    mask)."""
     import os
     import subprocess
 
+    script, env = PEERS[name]
     ball = scene.models[0].mesh
     tris, _ = ball.triangulate()
     with tempfile.TemporaryDirectory() as folder:
@@ -111,11 +204,22 @@ def peer_pyrender(python: str, scene, cameras, size) -> tuple[float, np.ndarray,
         np.savez(data, vertices=ball.vertices, faces=tris, size=np.array(size),
                  models=np.stack([m.transform for m in scene.models]),
                  poses=np.stack([np.linalg.inv(c.view_matrix()) for c in cameras]),
-                 fov=cameras[0].fov_y)
-        subprocess.run([python, "-c", PYRENDER, str(data), str(out)], check=True,
-                       env={**os.environ, "PYOPENGL_PLATFORM": "egl"}, timeout=1200)
+                 eyes=np.stack([c.position for c in cameras]), fov=cameras[0].fov_y)
+        run = subprocess.run([python, "-c", script, str(data), str(out)],
+                             env={**os.environ, **env}, timeout=1200, cwd=folder,
+                             capture_output=True, text=True)
+        if run.returncode:
+            raise SystemExit(f"{name} ({python}) failed with status {run.returncode}:\n"
+                             + "\n".join(run.stderr.splitlines()[-8:]))
+        version = subprocess.run(
+            [python, "-c", f"from importlib.metadata import version as v; "
+             f"print(v({PACKAGES[name]!r}))"], capture_output=True, text=True).stdout.strip()
         got = np.load(out)
-        return float(got["rate"]), got["depth"], got["mask"]
+        return float(got["rate"]), version, got["depth"], got["mask"]
+
+
+#: the distribution each peer is installed as (benchmarks/peers.sh makes their venvs)
+PACKAGES = {"pyrender": "pyrender", "pyvista": "pyvista", "open3d": "open3d-cpu"}
 
 
 def exactness(depth, mask, truth) -> tuple[float, float, int]:
@@ -132,30 +236,40 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--frames", type=int, default=50)
     p.add_argument("--size", default="640x480")
-    p.add_argument("--pyrender", metavar="PYTHON", help="a python whose venv has pyrender "
-                   "(0.1.45 or pyrender-maintained) and its EGL")
+    p.add_argument("--peer", action="append", default=[], metavar="NAME=PYTHON",
+                   help="a peer (pyrender, pyvista, open3d) and the python of its venv; "
+                   "default: those benchmarks/peers.sh made under .peers/")
     args = p.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
+    peers = {n: str(py) for n in PEERS
+             if (py := Path(__file__).parents[1] / ".peers" / n / "bin" / "python").exists()}
+    peers.update(dict(item.split("=", 1) for item in args.peer))
     scene, cameras = workload(args.frames)
     rows = []
+    rates = {}
     for samples in (4, 0):
         rate, bad = glshade_rate(scene, cameras, size, samples)
+        rates[samples] = rate
         rows.append((f"glshade render_many, MSAA {samples}", f"{rate:.1f}", f"{bad:,}"))
     for fmt in ("bop", "coco"):
         rate = writer_rate(scene, cameras, size, fmt)
         rows.append((f"glshade write_{fmt} (MSAA 4)", f"{rate:.1f}",
-                     "0 (the masks are the ids')"))
-    if args.pyrender:
-        rate, depth, mask = peer_pyrender(args.pyrender, scene, cameras, size)
-        with glshade.Renderer(*size, samples=0) as r:
-            truth = r.render_frame(scene, cameras[0], "phong",
-                                   outputs=Outputs.DEPTH | Outputs.INSTANCE)
+                     f"0 (the masks are the ids'); {rates[4] / rate:.2f}x render_many"))
+    truth = None
+    best = 0.0
+    for name, python in peers.items():
+        rate, version, depth, mask = peer_rate(name, python, scene, cameras, size)
+        if truth is None:
+            with glshade.Renderer(*size, samples=0) as r:
+                truth = r.render_frame(scene, cameras[0], "phong",
+                                       outputs=Outputs.DEPTH | Outputs.INSTANCE)
         med, p99, bad = exactness(depth, mask, truth)
-        best = max(float(rows[0][1]), float(rows[1][1]))
-        rows.append(("pyrender 0.1.45 (MSAA 4, mask a second draw)", f"{rate:.1f}",
+        best = max(best, rate)
+        rows.append((f"{name} {version} (its MSAA, mask a second draw)", f"{rate:.1f}",
                      f"{bad:,} (depth off by median {med:.2g}, 99th pct {p99:.2g})"))
-        rows.append(("glshade / pyrender", f"{float(rows[0][1]) / rate:.1f}x at MSAA 4, "
-                     f"{float(rows[1][1]) / rate:.1f}x without", f"(best {best:.1f})"))
+    if best:
+        rows.append(("glshade / fastest peer", f"{rates[4] / best:.1f}x at MSAA 4, "
+                     f"{rates[0] / best:.1f}x without", f"(fastest {best:.1f})"))
     print(f"{args.frames} frames at {size[0]}x{size[1]}, 10 spheres x 10,240 triangles, "
           f"colour + depth + instance mask")
     print(table(rows, ("renderer", "frames/s", "depth/mask disagreements")))

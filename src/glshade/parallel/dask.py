@@ -167,19 +167,37 @@ def host_of(address: str) -> str:
 
 
 class MesaThreads(WorkerPlugin):
-    """Worker plugin: share the host's cores among its Dask workers before the first GL
-    context (llvmpipe starts a thread per core in every process otherwise)."""
+    """Worker plugin, before the first GL context: share the host's cores among its Dask
+    workers (llvmpipe starts a thread per core in every process otherwise), and deal each
+    worker its own device where the host has several GPUs
+    (:func:`glshade.render.context.worker_devices`, on the worker's host; or the client's
+    ``GLSHADE_WORKER_DEVICES``), by the worker's rank among its host's workers.
+
+    Parameters
+    ----------
+    workers_per_host : dict
+        Each host's number of workers.
+    ranks : dict
+        Each worker's address to its rank (0, 1, ...) among its host's workers.
+    devices : list of str or None
+        The devices to deal (None: each host's own GPUs).
+    """
 
     idempotent = False
     name = "glshade-mesa-threads"
 
-    def __init__(self, workers_per_host: dict):
+    def __init__(self, workers_per_host: dict, ranks: dict | None = None,
+                 devices: list | None = None):
         self.workers_per_host = workers_per_host
+        self.ranks, self.devices = ranks or {}, devices
 
     def setup(self, worker):
         n = self.workers_per_host.get(host_of(worker.address), 1)
         os.environ.setdefault("LP_NUM_THREADS", str(max(1, (os.cpu_count() or 1) // n)))
+        if worker.address in self.ranks:
+            from ..render.context import deal_device
 
+            deal_device(self.ranks[worker.address], self.devices)
 
 
 def _worker_for(job: str, spec):
@@ -239,9 +257,13 @@ class DaskExecutor(Executor):
                 client.wait_for_workers(1, timeout=30)
                 info = client.scheduler_info()["workers"]
             per_host: dict = {}
-            for address in info:
-                per_host[host_of(address)] = per_host.get(host_of(address), 0) + 1
-            plugin = MesaThreads(per_host)
+            ranks: dict = {}
+            for address in sorted(info):
+                ranks[address] = per_host.get(host_of(address), 0)
+                per_host[host_of(address)] = ranks[address] + 1
+            dealt = os.environ.get("GLSHADE_WORKER_DEVICES", "").strip()
+            plugin = MesaThreads(per_host, ranks, [x.strip() for x in dealt.split(",")
+                                                   if x.strip()] if dealt else None)
             client.register_plugin(plugin, name=plugin.name)
             [spec] = client.scatter([(self.factory, self.args)], broadcast=True, hash=False)
             job = uuid.uuid4().hex

@@ -26,7 +26,7 @@ from ..interrupt import held
 from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
-           "tune_malloc", "egl_devices", "device_index"]
+           "tune_malloc", "egl_devices", "device_index", "worker_devices", "deal_device"]
 
 REQUIRE = 330
 
@@ -478,6 +478,49 @@ def device_index(spec) -> int:
         return hits[0]
     raise OptionError(f"EGL device {text!r} " + ("matches several" if hits else
                       "matches none") + f"; present: {present}")
+
+
+def worker_devices() -> list[str]:
+    """The devices a pool's workers are dealt, one each in turn (rank modulo their number):
+    ``GLSHADE_WORKER_DEVICES`` (a comma list of what ``--device`` takes), else -- unless
+    ``GLSHADE_EGL_DEVICE`` pins every process to one -- the GPUs CUDA shows
+    (``cuda:0 .. cuda:K-1`` under ``CUDA_VISIBLE_DEVICES``, as a scheduler grants them),
+    else every GPU EGL lists; none where there is at most one (each worker takes what a
+    render would). Listed without a context on any device."""
+    spec = os.environ.get("GLSHADE_WORKER_DEVICES", "").strip()
+    if spec:
+        return [x.strip() for x in spec.split(",") if x.strip()]
+    if os.environ.get("GLSHADE_EGL_DEVICE", "").strip():
+        return []
+    try:
+        gpus = [d for d in egl_devices() if not d["software"]]
+    except Exception:  # (no EGL here: the worker's own backend decides)
+        return []
+    visible = os.environ.get("CUDA_VISIBLE_DEVICES")
+    if visible is not None and any(d["cuda"] is not None for d in gpus):
+        shown = len([x for x in visible.split(",") if x.strip()])
+        return [f"cuda:{k}" for k in range(shown)] if shown > 1 else []
+    return [str(d["index"]) for d in gpus] if len(gpus) > 1 else []
+
+
+def deal_device(rank: int, devices: list[str] | None = None) -> str | None:
+    """The device of a pool's worker ``rank`` (0, 1, ...): its turn of ``devices``
+    (:func:`worker_devices` when None), set as its ``GLSHADE_EGL_DEVICE`` before it makes a
+    context; None (and nothing set) where there is nothing to deal.
+
+    Parameters
+    ----------
+    rank : int
+        The worker's number among its host's workers.
+    devices : list of str or None
+        What to deal (None: :func:`worker_devices`).
+    """
+    devices = worker_devices() if devices is None else devices
+    if not devices:
+        return None
+    device = devices[rank % len(devices)]
+    os.environ["GLSHADE_EGL_DEVICE"] = device
+    return device
 
 
 def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:

@@ -1,0 +1,84 @@
+"""Each worker its own device: a pool's workers (local processes or a Dask cluster's) are
+dealt the devices in turn -- GLSHADE_WORKER_DEVICES, else the GPUs CUDA shows or EGL lists
+where there are several -- each set as the worker's GLSHADE_EGL_DEVICE before its first
+context. On this machine EGL lists one software device, named two ways ("0", "llvmpipe"),
+so the dealing is seen by name."""
+
+import os
+from collections import defaultdict
+
+import pytest
+
+from glshade.errors import OptionError
+from glshade.parallel import make_executor
+from glshade.render.context import deal_device, egl_devices, worker_devices
+
+from ..conftest import BACKEND
+
+pytestmark = pytest.mark.gl
+
+
+def test_what_is_dealt(monkeypatch):
+    monkeypatch.delenv("GLSHADE_WORKER_DEVICES", raising=False)
+    monkeypatch.delenv("GLSHADE_EGL_DEVICE", raising=False)
+    gpus = [d for d in egl_devices() if not d["software"]]
+    # here: no GPU, or one -- nothing to deal, each worker takes what a render would
+    assert worker_devices() == ([str(d["index"]) for d in gpus] if len(gpus) > 1 else [])
+    monkeypatch.setenv("GLSHADE_EGL_DEVICE", "0")  # (one device pinned: every worker's)
+    assert worker_devices() == []
+    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", " 0, llvmpipe ,cuda:1 ")
+    assert worker_devices() == ["0", "llvmpipe", "cuda:1"]
+    assert [deal_device(r, ["a", "b"]) for r in range(5)] == ["a", "b", "a", "b", "a"]
+    assert os.environ["GLSHADE_EGL_DEVICE"] == "a"
+    monkeypatch.delenv("GLSHADE_EGL_DEVICE")
+    assert deal_device(3, []) is None and "GLSHADE_EGL_DEVICE" not in os.environ
+
+
+@pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
+def test_local_workers_are_dealt_a_device_each(monkeypatch):
+    from tests.parallel.workers import DeviceWorker
+
+    monkeypatch.delenv("GLSHADE_EGL_DEVICE", raising=False)
+    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", "0,llvmpipe")
+    seen = defaultdict(set)
+    for pid, device, why in make_executor(DeviceWorker, (), jobs=2).map(range(8)):
+        seen[pid].add((device, why))
+    assert len(seen) == 2  # (both workers took items)
+    assert sorted(d for devices in seen.values() for d, _ in devices) == ["0", "llvmpipe"]
+    assert all(why == "GLSHADE_EGL_DEVICE" for ds in seen.values() for _, why in ds)
+
+
+def test_a_bad_worker_device_is_one_line_before_any_worker(monkeypatch):
+    from tests.parallel.workers import DeviceWorker
+
+    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", "0,7")
+    with pytest.raises(OptionError, match=r"^GLSHADE_WORKER_DEVICES: EGL device 7 does "
+                                          r"not exist; present: 0: "):
+        list(make_executor(DeviceWorker, (), jobs=2).map(range(2)))
+
+
+@pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
+def test_dask_workers_are_dealt_a_device_each(tmp_path, dask_cluster, monkeypatch):
+    """A cluster's workers, by rank on their host, each set their own device before the
+    job's renderers are made -- and the job draws on them."""
+    from distributed import Client
+
+    from glshade.batch import BatchSpec, Task
+    from glshade.batch.worker import BatchWorker
+    from glshade.geometry import primitives
+    from glshade.io.meshes import save_mesh
+
+    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", "llvmpipe,0")
+    save_mesh(primitives.cube(), tmp_path / "cube.obj")
+    tasks = [Task(str(tmp_path / "cube.obj"), (str(tmp_path / f"{i}.png"),), ())
+             for i in range(4)]
+    try:
+        rows = list(make_executor(BatchWorker, (BatchSpec(size=(16, 16)),),
+                                  scheduler=dask_cluster.address).map(tasks))
+        assert [r.polygons for r in rows] == [6] * 4
+        with Client(dask_cluster.address, timeout="30s") as client:
+            got = client.run(lambda: os.environ.get("GLSHADE_EGL_DEVICE"))
+        assert sorted(got.values()) == ["0", "llvmpipe"]
+    finally:  # (the cluster serves the rest of the run: its workers as they were)
+        with Client(dask_cluster.address, timeout="30s") as client:
+            client.run(lambda: os.environ.pop("GLSHADE_EGL_DEVICE", None))

@@ -88,3 +88,31 @@ def test_flat_constants_are_for_phong_only_and_counted_in_varyings():
     assert "FLAT_CONSTANTS" in ProgramKey(phong, flat_constants=True).defines()
     assert "FLAT_CONSTANTS" not in ProgramKey(gouraud, flat_constants=True).defines()
     assert "FLAT_CONSTANTS" not in ProgramKey(phong).defines()
+
+
+def test_a_new_scene_of_the_same_kind_compiles_nothing(make_renderer):
+    """Programs are compiled from what a draw needs (mode, light kinds, outputs), never from
+    a scene's numbers: a second scene with other meshes, materials, light places and colours
+    and the same kinds of lights draws with the programs the first compiled -- one source,
+    which a driver's shader cache serves across processes too."""
+    r = make_renderer(32, 32)
+    r.render_frame(scene_with(LIGHT_SETS["three kinds"]), CAMERA, "phong")
+    compiled = []
+    make = r.ctx.program
+    r.ctx.program = lambda *a, **k: compiled.append(1) or make(*a, **k)
+    try:
+        other = Scene(ambient=(0.1, 0.3, 0.2))
+        other.add(P.uv_sphere(9, 17), Material(color=(0.1, 0.2, 0.9), ks=0.9, shininess=90),
+                  translation=(0.4, 0.1, -0.3))
+        other.add(P.cube(), Material(color=(0.7, 0.7, 0.1), kd=0.3), scale=0.4)
+        for light in (PointLight((-3.0, 2.0, 1.0), color=(0.2, 1.0, 0.4)),
+                      PointLight((1.0, -2.0, 5.0), intensity=2.0, attenuation=(1.0, 0.3, 0.2)),
+                      DirectionalLight((-0.2, -1.0, 0.6))):
+            other.add_light(light)
+        r.render_frame(other, Camera.look_at([2.0, 1.0, 3.0], [0, 0, 0]), "phong")
+        assert compiled == []
+        other.add_light(PointLight((0.0, 4.0, 0.0)))  # (another light: another program)
+        r.render_frame(other, Camera.look_at([2.0, 1.0, 3.0], [0, 0, 0]), "phong")
+        assert compiled
+    finally:
+        r.ctx.program = make

@@ -77,3 +77,34 @@ def test_a_bad_option_is_refused_when_the_value_is_made(field, value, words):
     with pytest.raises(OptionError) as raised:
         TraceOptions.of(**{field: value})
     assert str(raised.value).startswith(words)
+
+
+def test_past_the_compiled_in_thresholds_a_program_is_no_scene_s_numbers():
+    """A driver's shader cache serves every scene whose program source is the same: past
+    the triangles and emitters compiled in (where the speed guide measured them faster),
+    two scenes of other sizes, places, colours and model counts compile to one source (a
+    scene's kinds of surface -- glossy or not, emitting or not -- are switches: they do)."""
+    from glshade import Material, Scene
+    from glshade.geometry import primitives as P
+    from glshade.render.passes.pathtrace import MAX_CONTROL_MODELS
+
+    def defines(scene):
+        ts = TraceScene.from_scene(scene)
+        data, layout = ts.tables()
+        return program_defines(ts, data, layout, Accel.BVH, TraceOptions(), storage=True,
+                               controls=MAX_CONTROL_MODELS, most_emitters=0)
+
+    a, _ = cornell_scene()
+    b, _ = cornell_scene()
+    b.add(P.icosphere(3), Material(color=(0.2, 0.7, 0.4), kd=0.6, ks=0.0),
+          translation=(0.3, 0.2, 0.1), scale=0.15)
+    b.add(P.cube(), Material(color=(0.9, 0.1, 0.1), kd=0.5, ks=0.0), translation=(-0.2, 0.1, 0.3),
+          scale=0.1)
+    assert len(b.models) == len(a.models) + 2
+    assert defines(a) == defines(b)
+    c = Scene()  # (nothing alike but a light and the kind of surface)
+    c.add(P.cube(), Material(color=(0.5, 0.5, 0.5), kd=0.7, ks=0.0,
+                             emission=(2.0, 2.0, 2.0)))
+    c.add(P.plane(5.0), Material(color=(0.8, 0.8, 0.8), kd=0.8, ks=0.0),
+          translation=(0, -1, 0))
+    assert defines(c) == defines(a)

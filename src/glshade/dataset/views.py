@@ -142,6 +142,14 @@ class ViewWorker:
         self.context = context
         self._renderer: Renderer | None = None
 
+    def _renderer_made(self):
+        from ..render.renderer import Renderer
+
+        if self._renderer is None:
+            self._renderer = Renderer(*self.job.size, samples=self.job.samples,
+                                      context=self.context)
+        return self._renderer
+
     def frame(self, k: int):
         """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked.
 
@@ -150,15 +158,28 @@ class ViewWorker:
         k : int
             The view.
         """
-        from ..render.renderer import Renderer
-
-        if self._renderer is None:
-            self._renderer = Renderer(*self.job.size, samples=self.job.samples,
-                                      context=self.context)
-        renderer, job, camera = self._renderer, self.job, self.job.cameras[k]
+        renderer, job, camera = self._renderer_made(), self.job, self.job.cameras[k]
         frame = renderer.render_frame(job.scene, camera, job.options,
                                       outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
         return frame, lambda: renderer.annotate(job.scene, camera, job.options, view=frame)
+
+    def frames(self, views: list[int]):
+        """``(k, frame, notes)`` for each of ``views`` in turn, drawn a few ahead of the one
+        handed out (:meth:`Renderer.render_many`; the annotations' draws between them leave
+        the frames drawn ahead as they are).
+
+        Parameters
+        ----------
+        views : list of int
+            The views, in order.
+        """
+        renderer, job = self._renderer_made(), self.job
+        drawn = renderer.render_many(job.scene, [job.cameras[k] for k in views], job.options,
+                                     outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
+        for k, frame in zip(views, drawn):
+            camera = job.cameras[k]
+            yield k, frame, (lambda camera=camera, frame=frame: renderer.annotate(
+                job.scene, camera, job.options, view=frame))
 
     def written(self, k: int, frame, notes) -> tuple[dict, list]:
         """The writer's ``(record, files)`` for view k, the record saying what drew it (a
@@ -239,9 +260,8 @@ def run_views(job: DataSetJob, records_dir: Path, writer, progress=None, context
             pending: list = []
             with ThreadPoolExecutor(max_workers=1) as files:
                 try:
-                    for k in todo:
+                    for k, frame, notes in worker.frames(todo):
                         check()
-                        frame, notes = worker.frame(k)
                         record, to_write = worker.written(k, frame, notes)
                         while pending and pending[0].done():  # (a failed write stops it)
                             pending.pop(0).result()

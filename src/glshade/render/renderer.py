@@ -197,9 +197,10 @@ def _id_pass(options: DrawOptions, scene: Scene) -> DrawOptions:
 
 #: frames :meth:`Renderer.render_many` draws ahead of the one it reads back, each into
 #: targets of its own: the driver takes in frame k+1's triangles while it fills frame k's
-#: pixels (llvmpipe bins in the calling thread and rasterises in its own: 1.3x the frames
-#: a second at 640x480 here, benchmarks/dataset_bench.py) -- within AHEAD_BYTES of targets
-FRAMES_AHEAD = 4
+#: pixels (llvmpipe bins in the calling thread and rasterises in its own threads: at
+#: 640x480 without MSAA 51 frames/s one at a time, 65 four ahead, 69 eight ahead here;
+#: benchmarks/dataset_bench.py) -- as many as AHEAD_BYTES of targets hold
+FRAMES_AHEAD = 8
 AHEAD_BYTES = 256 << 20
 #: bytes a pixel sample of an offscreen target takes: colour (up to float 4x4), normal
 #: (4x4), polygon id, depth and z (4 each)

@@ -23,7 +23,7 @@ from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary, assemble
 from ..units import Binding, Unit
 from .csg import csg_defines
 
-__all__ = ["GpuPathTracer", "program_defines"]
+__all__ = ["GpuPathTracer", "program_defines", "MAX_CONTROL_MODELS"]
 
 #: texture units (render/units.py): the scene's tables, given rays, the solid's tree, the
 #: seven targets, the hierarchy, each pixel's samples past the run's target (adaptive)
@@ -287,7 +287,7 @@ class GpuPathTracer(GLResource):
         self._control = _control(control, len(self.scene.names))
         return program_defines(self.scene, data, self.layout, self.accel, options,
                                storage=self.storage, controls=None if self._control is None
-                               else len(self._control), most_emitters=self.EMITTERS_COMPILED)
+                               else MAX_CONTROL_MODELS, most_emitters=self.EMITTERS_COMPILED)
 
     def _choose(self, accel: Accel, scene) -> np.ndarray | None:
         """Check ``accel`` against ``scene``'s size, set :attr:`accel`; the triangles a
@@ -524,7 +524,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
     storage : bool
         Whether the hierarchy's walk reads storage buffers (GL 4.3).
     controls : int or None
-        The models with a control value (None: no control variate).
+        The rows of the control values' uniform array (None: no control variate): always
+        MAX_CONTROL_MODELS, so the program's source is not the scene's model count.
     most_emitters : int
         Emitting triangles up to which next-event estimation's choice is compiled in.
     """
@@ -555,13 +556,16 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
     return defines
 
 
-#: the most models a control variate covers (its values are a uniform array)
+#: the most models a control variate covers (its values are a uniform array of this size
+#: whatever the scene's model count: the program's source stays the same from scene to
+#: scene, so a driver's shader cache serves them all)
 MAX_CONTROL_MODELS = 256
 
 
 def _control(values, models: int) -> np.ndarray | None:
     """``values`` (M, 3) as the program's ``u_control`` (float32, one row a model, zeros
-    past M), or None; refused unless finite, at least 0 and at most one a model."""
+    past M up to MAX_CONTROL_MODELS: one array size for every scene), or None; refused
+    unless finite, at least 0 and at most one a model."""
     if values is None:
         return None
     a = np.asarray(values, np.float64)
@@ -572,7 +576,7 @@ def _control(values, models: int) -> np.ndarray | None:
     if models > MAX_CONTROL_MODELS:
         raise OptionError(f"a control variate covers at most {MAX_CONTROL_MODELS} models, the "
                           f"scene has {models}")
-    out = np.zeros((models, 3), np.float32)
+    out = np.zeros((MAX_CONTROL_MODELS, 3), np.float32)
     out[:len(a)] = a
     return out
 

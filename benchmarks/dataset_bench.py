@@ -57,6 +57,17 @@ def glshade_rate(scene, cameras, size, samples) -> tuple[float, int]:
         return len(cameras) / (time.perf_counter() - start), bad
 
 
+def cold_rate(scene, cameras, size) -> float:
+    """Frames a second of render_many as a writer runs it: a new renderer (its context,
+    programs and uploads counted), MSAA 4 -- what a writer's rate is compared with."""
+    outputs = Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE
+    start = time.perf_counter()
+    with glshade.Renderer(*size, samples=4) as r:
+        for _ in r.render_many(scene, cameras, outputs=outputs):
+            pass
+    return len(cameras) / (time.perf_counter() - start)
+
+
 def writer_rate(scene, cameras, size, fmt: str) -> float:
     from glshade import dataset
 
@@ -239,11 +250,18 @@ def main() -> None:
     p.add_argument("--peer", action="append", default=[], metavar="NAME=PYTHON",
                    help="a peer (pyrender, pyvista, open3d) and the python of its venv; "
                    "default: those benchmarks/peers.sh made under .peers/")
+    p.add_argument("--only-glshade", action="store_true", help="measure no peer")
     args = p.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
     peers = {n: str(py) for n in PEERS
              if (py := Path(__file__).parents[1] / ".peers" / n / "bin" / "python").exists()}
-    peers.update(dict(item.split("=", 1) for item in args.peer))
+    for item in args.peer:
+        name, _, python = item.partition("=")
+        if name not in PEERS or not python:
+            p.error(f"--peer {item!r}: NAME=PYTHON, NAME one of {', '.join(PEERS)}")
+        peers[name] = python
+    if args.only_glshade:
+        peers = {}
     scene, cameras = workload(args.frames)
     rows = []
     rates = {}
@@ -251,10 +269,13 @@ def main() -> None:
         rate, bad = glshade_rate(scene, cameras, size, samples)
         rates[samples] = rate
         rows.append((f"glshade render_many, MSAA {samples}", f"{rate:.1f}", f"{bad:,}"))
+    cold = cold_rate(scene, cameras, size)
+    rows.append(("glshade render_many, MSAA 4, a new renderer", f"{cold:.1f}",
+                 "(its context, programs and uploads counted, as a writer's are)"))
     for fmt in ("bop", "coco"):
         rate = writer_rate(scene, cameras, size, fmt)
         rows.append((f"glshade write_{fmt} (MSAA 4)", f"{rate:.1f}",
-                     f"0 (the masks are the ids'); {rates[4] / rate:.2f}x render_many"))
+                     f"0 (the masks are the ids'); {cold / rate:.2f}x render_many"))
     truth = None
     best = 0.0
     for name, python in peers.items():

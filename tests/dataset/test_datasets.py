@@ -49,6 +49,7 @@ def read_bop(root: Path):
         c = cams[key]
         view = {"K": np.array(c["cam_K"]).reshape(3, 3), "R": np.array(c["cam_R_w2c"])
                 .reshape(3, 3), "t": np.array(c["cam_t_w2c"]),
+                "rgb": _png(folder / "rgb" / f"{im:06d}.png"),
                 "depth": _png(folder / "depth" / f"{im:06d}.png").astype(float)
                 * c["depth_scale"], "objects": []}
         for g, (gt, info) in enumerate(zip(gts[key], infos[key])):
@@ -96,6 +97,25 @@ def test_every_pose_recomposed_with_K_lands_the_model_in_its_own_mask(bop):
             assert grown[row[inside], col[inside]].all()
             seen += inside.sum()
     assert seen > 100
+
+
+def test_rgb_images_are_three_channels_showing_the_objects(bop):
+    """BOP's rgb/ images are 8-bit RGB (the toolkit's readers take three channels): the
+    background's colour everywhere a pixel from every visible mask (MSAA blends the
+    silhouettes' pixels), and never inside one."""
+    def grown(mask):
+        pad = np.pad(mask, 1)
+        return np.any([pad[1 + dy:1 + dy + SIZE[1], 1 + dx:1 + dx + SIZE[0]]
+                       for dy in (-1, 0, 1) for dx in (-1, 0, 1)], axis=0)
+
+    for view in read_bop(bop):
+        rgb = view["rgb"]
+        assert rgb.shape == (SIZE[1], SIZE[0], 3) and rgb.dtype == np.uint8
+        seen = np.any([obj["mask_visib"] for obj in view["objects"]], axis=0)
+        near, inner = grown(seen), ~grown(~seen)
+        background = rgb[~near]
+        assert len(background) > 100 and (background == background[0]).all()
+        assert inner.sum() > 100 and not (rgb[inner] == background[0]).all(1).any()
 
 
 def test_depth_back_projected_lies_on_the_models(bop):

@@ -146,7 +146,8 @@ class BopViews:
                               f"{steps.max():.0f} steps of depth_scale {depth_scale:g}, past "
                               f"16 bits' 65,535: raise depth_scale to at least "
                               f"{depth_mm.max() / 65535:.3g}")
-        files: list = [(save_image, frame.color, where / "rgb" / f"{k:06d}.png"),
+        files: list = [(save_image, frame.color[..., :3], where / "rgb" / f"{k:06d}.png",
+                        None, 1),
                        (save_gray, steps.astype(np.uint16), where / "depth" / f"{k:06d}.png")]
         gt, info = [], []
         for g, note in enumerate(notes):

@@ -63,7 +63,8 @@ class CocoViews:
                             "area": int(seen.sum()),
                             "bbox": [float(v) for v in bbox(seen)], "iscrowd": 0})
         return ({"image": {"file_name": name, "width": self.size[0], "height": self.size[1]},
-                 "objects": objects}, [(save_image, frame.color, self.out / name)])
+                 "objects": objects}, [(save_image, frame.color[..., :3], self.out / name,
+                                                     None, 1)])
 
 
 def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=None,

@@ -42,7 +42,8 @@ def image_format(path) -> str:
     return IMAGE_FORMATS[suffix]
 
 
-def save_image(array, path, format: str | None = None) -> None:
+def save_image(array, path, format: str | None = None,
+               compress_level: int | None = None) -> None:
     """Write an ``(H, W, 3|4)`` uint8 (or float in [0, 1]) image. The format comes from the
     extension (:func:`image_format`); nothing is left behind if writing fails.
 
@@ -54,6 +55,9 @@ def save_image(array, path, format: str | None = None) -> None:
         Where (PNG, JPEG, PPM ...).
     format : str or None
         The format (None: from the extension).
+    compress_level : int or None
+        PNG's zlib level, 0-9 (None: Pillow's 6; a data set's thousands of frames take 1:
+        a third of the time for a few percent more bytes).
     """
     from PIL import Image
 
@@ -68,11 +72,14 @@ def save_image(array, path, format: str | None = None) -> None:
         if not np.issubdtype(a.dtype, np.floating):
             raise InputError(f"image dtype must be uint8 or float, got {a.dtype}")
         a = (np.clip(a, 0, 1) * 255 + 0.5).astype(np.uint8)
-    img = Image.fromarray(a, "RGBA" if a.shape[2] == 4 else "RGB")
+    img = Image.fromarray(np.ascontiguousarray(a), "RGBA" if a.shape[2] == 4 else "RGB")
     if fmt == "JPEG":
         img = img.convert("RGB")
     with atomic_write(path, "wb") as f:
-        img.save(f, format=fmt)
+        if fmt == "PNG" and compress_level is not None:
+            img.save(f, format=fmt, compress_level=compress_level)
+        else:
+            img.save(f, format=fmt)
 
 
 def save_gray(array, path) -> None:

@@ -153,6 +153,29 @@ def test_render_many_frames_match_the_ray_caster_and_render_frame(make_renderer,
         assert frame.camera == one.camera
 
 
+def test_render_many_hands_out_the_frames_before_a_bad_camera(make_renderer):
+    """A camera that cannot be drawn, or a camera sequence that fails, ends the run where
+    drawing one at a time would: every frame before it handed out first."""
+    scene = _scene()
+    r = make_renderer(*SIZE)
+    cameras = [Camera.from_opencv(K, R, t, SIZE) for R, t in POSES * 2]
+    got = []
+    with pytest.raises(GlshadeError, match="expected a Camera, got str"):
+        for frame in r.render_many(scene, [*cameras[:5], "front", cameras[0]]):
+            got.append(frame)
+    assert len(got) == 5
+    assert np.array_equal(got[4].color, r.render_frame(scene, cameras[4]).color)
+
+    def failing():
+        yield from cameras[:3]
+        raise ValueError("the camera file ended early")
+
+    got = []
+    with pytest.raises(ValueError, match="ended early"):
+        got.extend(r.render_many(scene, failing()))
+    assert len(got) == 3
+
+
 def test_render_many_pending_frames_survive_other_draws_between_yields(make_renderer):
     """The frames drawn ahead are not disturbed by draws the caller makes between yields
     (annotations, other frames), nor by the caller stopping early."""

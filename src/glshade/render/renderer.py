@@ -748,12 +748,16 @@ class Renderer:
         ahead = self._frames_ahead(options)
         pending: list[_Drawn] = []
         try:
-            for camera in cameras:
-                with held():
-                    pending.append(self._draw_frame(scene, camera, options, blends, "u1",
-                                                    len(pending) + 1))
-                if len(pending) == ahead:  # (read as a group: reading frame k while k+1 is
-                    yield from self._read_all(scene, pending)  # drawn waits for both)
+            try:
+                for camera in cameras:
+                    with held():
+                        pending.append(self._draw_frame(scene, camera, options, blends, "u1",
+                                                        len(pending) + 1))
+                    if len(pending) == ahead:  # (read as a group: reading frame k while
+                        yield from self._read_all(scene, pending)  # k+1 is drawn waits)
+            except Exception:  # (a bad camera: the frames before it first, as one at a time)
+                yield from self._read_all(scene, pending)
+                raise
             yield from self._read_all(scene, pending)
         finally:  # (the targets drawn ahead into are big: not kept past the run)
             for key in [k for k in self._targets if not k.endswith("/0")]:

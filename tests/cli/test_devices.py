@@ -37,6 +37,11 @@ def test_doctor_lists_every_egl_device(devices):
     for d in devices:
         assert f"{d['index']:<3} {d['name']} (" in out.stdout
     assert " *0 " in out.stdout and "a render takes: 0 (the driver's first)" in out.stdout
+    gpus = [d for d in devices if not d["software"]]
+    if len(gpus) < 2:
+        assert "workers take: what a render takes (no several GPUs here" in out.stdout
+    dealt = glshade("doctor", env={**os.environ, "GLSHADE_WORKER_DEVICES": "0,llvmpipe"})
+    assert "--jobs and --scheduler workers take: 0, llvmpipe in turn" in dealt.stdout
 
 
 def test_listing_devices_makes_no_context(monkeypatch):

@@ -350,7 +350,8 @@ def doctor(args: a.DoctorArgs) -> int:
     import os
 
     from ..errors import OptionError
-    from ..render.context import chosen_device, create_context, egl_devices, probe_backends
+    from ..render.context import (chosen_device, create_context, egl_devices, probe_backends,
+                                  worker_devices)
 
     ok = True
     try:
@@ -383,6 +384,10 @@ def doctor(args: a.DoctorArgs) -> int:
     if chosen is not None and chosen >= len(devices):
         why += f"; there is no device {chosen}: a render fails"
     print(f"a render takes: {chosen if chosen is not None else 'none'} ({why})")
+    dealt = worker_devices()
+    print("--jobs and --scheduler workers take: " + (
+        f"{', '.join(dealt)} in turn" if dealt else "what a render takes (no several GPUs "
+        "here; GLSHADE_WORKER_DEVICES deals others)"))
     other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
     if other and chosen is not None and other != str(chosen):
         print(f"note: GLCONTEXT_DEVICE_INDEX={other} disagrees: glcontext would take it over "

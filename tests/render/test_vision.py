@@ -176,6 +176,27 @@ def test_render_many_hands_out_the_frames_before_a_bad_camera(make_renderer):
     assert len(got) == 3
 
 
+def test_render_many_with_shadows_draws_one_at_a_time_in_the_frame_s_own_target(
+        make_renderer):
+    """Shadows read back a buffer every draw shares: such frames are drawn one at a time,
+    into the target render_frame uses (no second set of targets), equal to its frames."""
+    scene = _scene()
+    scene.add_light(glshade.PointLight((2.0, 3.0, 4.0)))
+    r = make_renderer(*SIZE, 4)
+    cameras = [Camera.from_opencv(K, R, t, SIZE) for R, t in POSES]
+    outputs = Outputs.DEPTH | Outputs.INSTANCE
+    alone = [r.render_frame(scene, c, "phong", outputs=outputs, shadows="exact")
+             for c in cameras]
+    children = len(r.context._children)
+    many = []
+    for frame in r.render_many(scene, cameras, "phong", outputs=outputs, shadows="exact"):
+        assert len(r.context._children) == children  # (while it runs, too)
+        many.append(frame)
+    for a, b in zip(alone, many):
+        assert np.array_equal(a.color, b.color) and np.array_equal(a.instance, b.instance)
+        assert np.array_equal(a.visibility, b.visibility)
+
+
 def test_render_many_pending_frames_survive_other_draws_between_yields(make_renderer):
     """The frames drawn ahead are not disturbed by draws the caller makes between yields
     (annotations, other frames), nor by the caller stopping early."""

@@ -751,8 +751,9 @@ class Renderer:
             try:
                 for camera in cameras:
                     with held():
-                        pending.append(self._draw_frame(scene, camera, options, blends, "u1",
-                                                        len(pending) + 1))
+                        pending.append(self._draw_frame(  # (one at a time: slot 0's target)
+                            scene, camera, options, blends, "u1",
+                            len(pending) + 1 if ahead > 1 else 0))
                     if len(pending) == ahead:  # (read as a group: reading frame k while
                         yield from self._read_all(scene, pending)  # k+1 is drawn waits)
             except Exception:  # (a bad camera: the frames before it first, as one at a time)

@@ -1,8 +1,8 @@
-"""Each worker its own device: a pool's workers (local processes or a Dask cluster's) are
-dealt the devices in turn -- GLSHADE_WORKER_DEVICES, else the GPUs CUDA shows or EGL lists
-where there are several -- each set as the worker's GLSHADE_EGL_DEVICE before its first
-context. On this machine EGL lists one software device, named two ways ("0", "llvmpipe"),
-so the dealing is seen by name."""
+"""Each worker its own device: a pool numbers its workers (local processes, or a Dask
+cluster's by rank on their host: GLSHADE_WORKER_RANK) and each one's context takes its turn
+of the devices -- GLSHADE_WORKER_DEVICES, else the GPUs CUDA shows or EGL lists where there
+are several. On this machine EGL lists one software device, named two ways ("0",
+"llvmpipe"), so the dealing is seen by name."""
 
 import os
 from collections import defaultdict
@@ -11,7 +11,7 @@ import pytest
 
 from glshade.errors import OptionError
 from glshade.parallel import make_executor
-from glshade.render.context import deal_device, egl_devices, worker_devices
+from glshade.render.context import chosen_device, egl_devices, worker_devices
 
 from ..conftest import BACKEND
 
@@ -19,19 +19,28 @@ pytestmark = pytest.mark.gl
 
 
 def test_what_is_dealt(monkeypatch):
-    monkeypatch.delenv("GLSHADE_WORKER_DEVICES", raising=False)
-    monkeypatch.delenv("GLSHADE_EGL_DEVICE", raising=False)
+    for name in ("GLSHADE_WORKER_DEVICES", "GLSHADE_EGL_DEVICE", "GLSHADE_WORKER_RANK"):
+        monkeypatch.delenv(name, raising=False)
     gpus = [d for d in egl_devices() if not d["software"]]
     # here: no GPU, or one -- nothing to deal, each worker takes what a render would
     assert worker_devices() == ([str(d["index"]) for d in gpus] if len(gpus) > 1 else [])
-    monkeypatch.setenv("GLSHADE_EGL_DEVICE", "0")  # (one device pinned: every worker's)
-    assert worker_devices() == []
+    assert chosen_device()[1] == "the driver's first"
     monkeypatch.setenv("GLSHADE_WORKER_DEVICES", " 0, llvmpipe ,cuda:1 ")
     assert worker_devices() == ["0", "llvmpipe", "cuda:1"]
-    assert [deal_device(r, ["a", "b"]) for r in range(5)] == ["a", "b", "a", "b", "a"]
-    assert os.environ["GLSHADE_EGL_DEVICE"] == "a"
-    monkeypatch.delenv("GLSHADE_EGL_DEVICE")
-    assert deal_device(3, []) is None and "GLSHADE_EGL_DEVICE" not in os.environ
+    assert chosen_device()[1] == "the driver's first"  # (not a pool's worker)
+    whys = []
+    for rank in range(5):
+        monkeypatch.setenv("GLSHADE_WORKER_RANK", str(rank))
+        if rank % 3 == 2:
+            with pytest.raises(OptionError, match="^GLSHADE_WORKER_DEVICES: cuda:1 "):
+                chosen_device()
+        else:
+            index, why = chosen_device()
+            assert index == 0
+            whys.append(why.rsplit(": ", 1)[1])
+    assert whys == ["0", "llvmpipe", "0", "llvmpipe"]
+    monkeypatch.setenv("GLSHADE_EGL_DEVICE", "0")  # (one device asked for: every worker's)
+    assert chosen_device()[1] == "GLSHADE_EGL_DEVICE"
 
 
 @pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
@@ -44,17 +53,17 @@ def test_local_workers_are_dealt_a_device_each(monkeypatch):
     for pid, device, why in make_executor(DeviceWorker, (), jobs=2).map(range(8)):
         seen[pid].add((device, why))
     assert len(seen) == 2  # (both workers took items)
-    assert sorted(d for devices in seen.values() for d, _ in devices) == ["0", "llvmpipe"]
-    assert all(why == "GLSHADE_EGL_DEVICE" for ds in seen.values() for _, why in ds)
+    assert sorted(why.rsplit(": ", 1)[1] for ds in seen.values() for _, why in ds) == \
+        ["0", "llvmpipe"]
 
 
-def test_a_bad_worker_device_is_one_line_before_any_worker(monkeypatch):
+def test_a_bad_worker_device_is_one_line(monkeypatch):
     from tests.parallel.workers import DeviceWorker
 
-    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", "0,7")
+    monkeypatch.setenv("GLSHADE_WORKER_DEVICES", "7,0")
     with pytest.raises(OptionError, match=r"^GLSHADE_WORKER_DEVICES: EGL device 7 does "
                                           r"not exist; present: 0: "):
-        list(make_executor(DeviceWorker, (), jobs=2).map(range(2)))
+        list(make_executor(DeviceWorker, (), jobs=2).map(range(4)))
 
 
 @pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
@@ -77,8 +86,10 @@ def test_dask_workers_are_dealt_a_device_each(tmp_path, dask_cluster, monkeypatc
                                   scheduler=dask_cluster.address).map(tasks))
         assert [r.polygons for r in rows] == [6] * 4
         with Client(dask_cluster.address, timeout="30s") as client:
-            got = client.run(lambda: os.environ.get("GLSHADE_EGL_DEVICE"))
-        assert sorted(got.values()) == ["0", "llvmpipe"]
+            got = client.run(lambda: __import__(  # (a lambda travels by value)
+                "glshade.render.context", fromlist=["chosen_device"]).chosen_device()[1])
+        assert sorted(why.rsplit(": ", 1)[1] for why in got.values()) == ["0", "llvmpipe"]
     finally:  # (the cluster serves the rest of the run: its workers as they were)
         with Client(dask_cluster.address, timeout="30s") as client:
-            client.run(lambda: os.environ.pop("GLSHADE_EGL_DEVICE", None))
+            client.run(lambda: [os.environ.pop(name, None) for name in
+                                ("GLSHADE_WORKER_DEVICES", "GLSHADE_WORKER_RANK")])

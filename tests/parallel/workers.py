@@ -39,7 +39,7 @@ class DeviceWorker:
         scene.add(primitives.cube())
         self.renderer.render(scene, glshade.Camera.look_at((0, 0, 4), (0, 0, 0)))
         time.sleep(0.3)  # (long enough that every worker takes some items)
-        return os.getpid(), os.environ.get("GLSHADE_EGL_DEVICE"), chosen_device()[1]
+        return os.getpid(), os.environ.get("GLSHADE_WORKER_RANK"), chosen_device()[1]
 
     def close(self):
         self.renderer.close()

@@ -384,7 +384,7 @@ def doctor(args: a.DoctorArgs) -> int:
     if chosen is not None and chosen >= len(devices):
         why += f"; there is no device {chosen}: a render fails"
     print(f"a render takes: {chosen if chosen is not None else 'none'} ({why})")
-    dealt = worker_devices()
+    dealt = [] if os.environ.get("GLSHADE_EGL_DEVICE", "").strip() else worker_devices()
     print("--jobs and --scheduler workers take: " + (
         f"{', '.join(dealt)} in turn" if dealt else "what a render takes (no several GPUs "
         "here; GLSHADE_WORKER_DEVICES deals others)"))

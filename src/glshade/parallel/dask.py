@@ -166,12 +166,16 @@ def host_of(address: str) -> str:
     return address.split("://")[-1].rsplit(":", 1)[0]
 
 
+#: a worker's own GLSHADE_WORKER_DEVICES, as it started (a client's replaces it for a job)
+_OWN_DEVICES: dict = {}
+
+
 class MesaThreads(WorkerPlugin):
     """Worker plugin, before the first GL context: share the host's cores among its Dask
-    workers (llvmpipe starts a thread per core in every process otherwise), and deal each
-    worker its own device where the host has several GPUs
-    (:func:`glshade.render.context.worker_devices`, on the worker's host; or the client's
-    ``GLSHADE_WORKER_DEVICES``), by the worker's rank among its host's workers.
+    workers (llvmpipe starts a thread per core in every process otherwise), and number each
+    worker among its host's (``GLSHADE_WORKER_RANK``: its turn of the host's devices where
+    it has several, :func:`glshade.render.context.worker_devices`; the client's
+    ``GLSHADE_WORKER_DEVICES``, if set, is dealt instead).
 
     Parameters
     ----------
@@ -195,9 +199,13 @@ class MesaThreads(WorkerPlugin):
         n = self.workers_per_host.get(host_of(worker.address), 1)
         os.environ.setdefault("LP_NUM_THREADS", str(max(1, (os.cpu_count() or 1) // n)))
         if worker.address in self.ranks:
-            from ..render.context import deal_device
-
-            deal_device(self.ranks[worker.address], self.devices)
+            os.environ["GLSHADE_WORKER_RANK"] = str(self.ranks[worker.address])
+        own = _OWN_DEVICES.setdefault("value", os.environ.get("GLSHADE_WORKER_DEVICES"))
+        dealt = ",".join(self.devices) if self.devices else own  # (a later job without
+        if dealt:                                                 # the client's: the
+            os.environ["GLSHADE_WORKER_DEVICES"] = dealt          # worker's own again)
+        else:
+            os.environ.pop("GLSHADE_WORKER_DEVICES", None)
 
 
 def _worker_for(job: str, spec):

@@ -11,13 +11,13 @@ import contextlib
 import multiprocessing as mp
 import os
 import pickle
+import queue
 import signal
 import sys
 import threading
 from collections.abc import Generator, Iterable
 
 from ..atomic import held_interrupts
-from ..errors import GlshadeError
 from ..interrupt import check
 
 __all__ = ["Executor", "SerialExecutor", "ProcessExecutor", "terminate"]
@@ -80,16 +80,13 @@ _worker = None
 _worker_error: BaseException | None = None
 
 
-def _init_worker(payload: bytes, threads: int, devices: list, ranks):
+def _init_worker(payload: bytes, threads: int, ranks):
     global _worker, _worker_error
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C
-    with ranks.get_lock():  # (each worker its turn of the devices, before its context)
-        rank = ranks.value
-        ranks.value += 1
-    if devices:
-        from ..render.context import deal_device
-
-        deal_device(rank, devices)
+    try:  # (a number a worker: its turn of the devices, where there are several)
+        os.environ["GLSHADE_WORKER_RANK"] = str(ranks.get(timeout=10))
+    except queue.Empty:  # (a worker started in the place of one that died: the default)
+        pass
     # Mesa's software rasterizer starts a thread per core in every process; with one worker
     # per core that oversubscribes the machine. Share the cores out instead (no effect on
     # GPU drivers).
@@ -103,20 +100,6 @@ def _init_worker(payload: bytes, threads: int, devices: list, ranks):
         _worker = factory(*args)
     except Exception as exc:  # reported with the first item, in the parent, as it is; a
         _worker_error = exc     # worker that died while starting would be restarted forever
-
-
-def _devices() -> list[str]:
-    """The devices the workers are dealt (:func:`glshade.render.context.worker_devices`),
-    each checked here first: a bad one is one line before any worker starts."""
-    from ..render.context import device_index, worker_devices
-
-    devices = worker_devices()
-    for device in devices:
-        try:
-            device_index(device)
-        except GlshadeError as exc:
-            raise type(exc)(f"GLSHADE_WORKER_DEVICES: {exc}") from None
-    return devices
 
 
 def _work(item):
@@ -225,11 +208,13 @@ class ProcessExecutor(Executor):
         pool = None
         try:
             payload = pickle.dumps((self.factory, self.args))
-            devices = _devices()
             context = _WorkerContext()
+            ranks = context.Queue()  # (not a shared Value: its memory is a file, which a
+            for rank in range(self.jobs):  # full disk refuses before any work)
+                ranks.put(rank)
             with _without_main_reimport(), held_interrupts():  # the pool starts its workers
                 pool = context.Pool(self.jobs, initializer=_init_worker,
-                                    initargs=(payload, threads, devices, context.Value("i", 0)))
+                                    initargs=(payload, threads, ranks))
             chunk = max(1, min(8, len(items) // (4 * self.jobs)))
             for result in pool.imap(_work, items, chunksize=chunk):
                 check()

@@ -26,7 +26,7 @@ from ..interrupt import held
 from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
-           "tune_malloc", "egl_devices", "device_index", "worker_devices", "deal_device"]
+           "tune_malloc", "egl_devices", "device_index", "worker_devices"]
 
 REQUIRE = 330
 
@@ -481,17 +481,15 @@ def device_index(spec) -> int:
 
 
 def worker_devices() -> list[str]:
-    """The devices a pool's workers are dealt, one each in turn (rank modulo their number):
-    ``GLSHADE_WORKER_DEVICES`` (a comma list of what ``--device`` takes), else -- unless
-    ``GLSHADE_EGL_DEVICE`` pins every process to one -- the GPUs CUDA shows
-    (``cuda:0 .. cuda:K-1`` under ``CUDA_VISIBLE_DEVICES``, as a scheduler grants them),
-    else every GPU EGL lists; none where there is at most one (each worker takes what a
-    render would). Listed without a context on any device."""
+    """The devices a pool's workers are dealt, one each in turn (their
+    ``GLSHADE_WORKER_RANK``, which :mod:`glshade.parallel` sets, modulo their number):
+    ``GLSHADE_WORKER_DEVICES`` (a comma list of what ``--device`` takes), else the GPUs CUDA
+    shows (``cuda:0`` to ``cuda:K-1`` under ``CUDA_VISIBLE_DEVICES``, as a scheduler grants
+    them), else every GPU EGL lists; none where there is at most one (each worker takes
+    what a render would). Listed without a context on any device."""
     spec = os.environ.get("GLSHADE_WORKER_DEVICES", "").strip()
     if spec:
         return [x.strip() for x in spec.split(",") if x.strip()]
-    if os.environ.get("GLSHADE_EGL_DEVICE", "").strip():
-        return []
     try:
         gpus = [d for d in egl_devices() if not d["software"]]
     except Exception:  # (no EGL here: the worker's own backend decides)
@@ -503,29 +501,25 @@ def worker_devices() -> list[str]:
     return [str(d["index"]) for d in gpus] if len(gpus) > 1 else []
 
 
-def deal_device(rank: int, devices: list[str] | None = None) -> str | None:
-    """The device of a pool's worker ``rank`` (0, 1, ...): its turn of ``devices``
-    (:func:`worker_devices` when None), set as its ``GLSHADE_EGL_DEVICE`` before it makes a
-    context; None (and nothing set) where there is nothing to deal.
-
-    Parameters
-    ----------
-    rank : int
-        The worker's number among its host's workers.
-    devices : list of str or None
-        What to deal (None: :func:`worker_devices`).
-    """
-    devices = worker_devices() if devices is None else devices
+def _dealt() -> tuple[str, str] | None:
+    """A pool worker's device, ``(spec, why)``: its turn of :func:`worker_devices`; None
+    outside a pool, or with nothing to deal."""
+    rank = os.environ.get("GLSHADE_WORKER_RANK", "").strip()
+    if not rank.isdigit():
+        return None
+    devices = worker_devices()
     if not devices:
         return None
-    device = devices[rank % len(devices)]
-    os.environ["GLSHADE_EGL_DEVICE"] = device
-    return device
+    spec = devices[int(rank) % len(devices)]
+    source = "GLSHADE_WORKER_DEVICES" if os.environ.get("GLSHADE_WORKER_DEVICES", "").strip() \
+        else "its host's GPUs"
+    return spec, f"dealt to pool worker {rank} from {source}: {spec}"
 
 
 def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:
     """Which EGL device a context would be made on, and why: ``device`` if given, else
-    ``GLSHADE_EGL_DEVICE``, else the driver's first (glcontext's default, or its own
+    ``GLSHADE_EGL_DEVICE``, else a pool worker's turn of the devices
+    (:func:`worker_devices`), else the driver's first (glcontext's default, or its own
     ``GLCONTEXT_DEVICE_INDEX``, which it reads from the environment).
 
     Parameters
@@ -538,6 +532,12 @@ def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:
     env = os.environ.get("GLSHADE_EGL_DEVICE", "").strip()
     if env:
         return device_index(env), "GLSHADE_EGL_DEVICE"
+    dealt = _dealt()
+    if dealt is not None:
+        try:
+            return device_index(dealt[0]), dealt[1]
+        except OptionError as exc:
+            raise OptionError(f"GLSHADE_WORKER_DEVICES: {exc}") from None
     other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
     if other.isdigit():
         return int(other), "GLCONTEXT_DEVICE_INDEX (glcontext's own)"
@@ -549,11 +549,14 @@ def _make_egl(device: int | str | None) -> RenderContext:
 
     settings: dict[str, Any] = {"backend": "egl"}
     dev = device if device is not None else os.environ.get("GLSHADE_EGL_DEVICE")
+    source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
+    dealt = _dealt() if dev in (None, "") else None
+    if dealt is not None:
+        dev, source = dealt[0], "GLSHADE_WORKER_DEVICES: "
     if dev not in (None, ""):
         try:
             settings["device_index"] = device_index(dev)
         except OptionError as exc:
-            source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
             raise OptionError(f"{source}{exc}") from None
         other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
         if other and other != str(settings["device_index"]):

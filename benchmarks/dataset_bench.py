@@ -78,6 +78,20 @@ def writer_rate(scene, cameras, size, fmt: str) -> float:
         return len(cameras) / (time.perf_counter() - start)
 
 
+#: the end of every peer's script: ``one(view)`` -> (depth, mask) for each of ``views``,
+#: two first (its programs and uploads made), then all of them timed; frame 0's depth and
+#: mask saved with the rate
+TIMED = """
+for view in views[:2]:
+    one(view)
+start = time.perf_counter()
+for view in views:
+    depth, mask = one(view)
+rate = len(views) / (time.perf_counter() - start)
+depth, mask = one(views[0])
+np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
+"""
+
 #: pyrender's side of the workload, run by the peer's own python (PYOPENGL_PLATFORM=egl):
 #: the same triangles and cameras from an .npz, colour + depth in one draw and the instance
 #: mask in a second (RenderFlags.SEG, a colour a node), its default MSAA 4; frame 0's depth
@@ -101,15 +115,8 @@ def one(pose):
     color, depth = r.render(scene)
     seg, _ = r.render(scene, pyrender.RenderFlags.SEG, colours)
     return depth, seg[..., 0]
-for pose in data["poses"][:2]:
-    one(pose)
-start = time.perf_counter()
-for pose in data["poses"]:
-    depth, mask = one(pose)
-rate = len(data["poses"]) / (time.perf_counter() - start)
-depth, mask = one(data["poses"][0])
-np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
-"""
+views = data["poses"]
+""" + TIMED
 
 
 #: PyVista's side (VTK, off screen; VTK picks EGL without a display): colour and depth
@@ -138,15 +145,8 @@ def one(eye):
     depth = -shaded.get_image_depth()
     mask = masks.screenshot(return_img=True)[..., 0]
     return np.nan_to_num(depth, nan=0.0), mask
-for eye in data["eyes"][:2]:
-    one(eye)
-start = time.perf_counter()
-for eye in data["eyes"]:
-    depth, mask = one(eye)
-rate = len(data["eyes"]) / (time.perf_counter() - start)
-depth, mask = one(data["eyes"][0])
-np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
-"""
+views = data["eyes"]
+""" + TIMED
 
 #: Open3D's side (Filament through EGL, EGL_PLATFORM=surfaceless; one renderer a process):
 #: colour and depth (render_to_depth_image, z in view space, inf on the background), then
@@ -185,15 +185,8 @@ def one(eye):
     show(True)
     mask = np.asarray(r.render_to_image())[..., 0]
     return np.where(np.isfinite(depth), depth, 0.0), mask
-for eye in data["eyes"][:2]:
-    one(eye)
-start = time.perf_counter()
-for eye in data["eyes"]:
-    depth, mask = one(eye)
-rate = len(data["eyes"]) / (time.perf_counter() - start)
-depth, mask = one(data["eyes"][0])
-np.savez(sys.argv[2], depth=depth, mask=mask, rate=rate)
-"""
+views = data["eyes"]
+""" + TIMED
 
 #: each peer's script and the environment it draws headless with
 PEERS = {"pyrender": (PYRENDER, {"PYOPENGL_PLATFORM": "egl"}),

@@ -252,7 +252,7 @@ def main() -> None:
         name, _, python = item.partition("=")
         if name not in PEERS or not python:
             p.error(f"--peer {item!r}: NAME=PYTHON, NAME one of {', '.join(PEERS)}")
-        peers[name] = python
+        peers[name] = str(Path(python).absolute()) if "/" in python else python
     if args.only_glshade:
         peers = {}
     scene, cameras = workload(args.frames)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..scene.intrinsics import GL_FROM_CV
 
-__all__ = ["Annotation", "objects", "plan", "records", "bbox", "model_pose"]
+__all__ = ["Annotation", "objects", "plan", "windows", "records", "bbox", "model_pose"]
 
 
 @dataclass(frozen=True)
@@ -189,6 +189,47 @@ def plan(models: dict, camera, size) -> tuple[list, list[list]]:
     return _batches(_screen_boxes(models, camera, size))
 
 
+def windows(models: dict, camera, size) -> dict[int, tuple[slice, slice]]:
+    """Each instance's pixel window ``(rows, columns)``: its screen box (a pixel wider each
+    way, the one :func:`plan` batches by) in whole pixels, clipped to the image; the whole
+    image where a box corner is behind the eye. Every pixel centre the instance covers lies
+    in it, so its masks are worked out there alone (an object is a few percent of a view).
+
+    Parameters
+    ----------
+    models : dict
+        :func:`objects`' instances.
+    camera : Camera
+        The view, its planes fitted to the scene.
+    size : (int, int)
+        The image's width and height in pixels.
+    """
+    w, h = size
+    out = {}
+    for key, box in _screen_boxes(models, camera, size).items():
+        if box is None or not np.isfinite(box).all():
+            out[key] = (slice(0, h), slice(0, w))
+            continue
+        x0, y0, x1, y1 = (int(np.clip(v, 0, n)) for v, n in zip(
+            (np.floor(box[0]), np.floor(box[1]), np.ceil(box[2]), np.ceil(box[3])),
+            (w, h, w, h)))
+        out[key] = (slice(y0, y1), slice(x0, x1))
+    return out
+
+
+def _placed(window: tuple[slice, slice], crop: np.ndarray, shape) -> np.ndarray:
+    """A window's mask placed in a picture of ``shape`` (False elsewhere)."""
+    out = np.zeros(shape, bool)
+    out[window] = crop
+    return out
+
+
+def _shifted(box: tuple[int, int, int, int], window) -> tuple[int, int, int, int]:
+    """A window's box in the picture's pixels."""
+    return box if box[0] < 0 else (box[0] + window[1].start, box[1] + window[0].start,
+                                   box[2], box[3])
+
+
 def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray,
             full: dict) -> list[Annotation]:
     """The annotations of a view, in instance order, from its instance mask and each
@@ -207,20 +248,28 @@ def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray
     depth : ndarray
         ``(H, W)`` float32 the view's depth (``inf``: nothing drawn).
     full : dict
-        Each instance's full (amodal) mask, ``(H, W)`` bool.
+        Each instance's full (amodal) mask as ``(window, mask)``: its :func:`windows`
+        window and the ``bool`` mask within it.
     """
     labels = scene.labels
+    seen = np.bincount(instance.ravel(), minlength=max(models, default=0) + 1)
     out = []
     for key, parts in sorted(models.items()):
-        mask = full[key]
-        if not mask.any():
+        window, crop = full[key]
+        n_all = int(crop.sum())
+        if not n_all:
             continue
-        visib = instance == key
-        n_all, n_visib = int(mask.sum()), int(visib.sum())
+        visib = instance[window] == key
+        n_visib = int(visib.sum())
+        if n_visib != seen[key]:  # (seen outside its window: never, but never wrong)
+            window, crop = (slice(None), slice(None)), _placed(window, crop, instance.shape)
+            visib = instance == key
+            n_visib = int(visib.sum())
         rotation, translation = model_pose(parts[0], camera)
         label = parts[0].label
         out.append(Annotation(
-            key, label, labels.get(label, 0), rotation, translation, mask, visib,
-            n_all, int((mask & np.isfinite(depth)).sum()), n_visib, n_visib / n_all,
-            bbox(mask), bbox(visib)))
+            key, label, labels.get(label, 0), rotation, translation,
+            _placed(window, crop, instance.shape), _placed(window, visib, instance.shape),
+            n_all, int((crop & np.isfinite(depth[window])).sum()), n_visib, n_visib / n_all,
+            _shifted(bbox(crop), window), _shifted(bbox(visib), window)))
     return out

@@ -691,8 +691,10 @@ class Renderer:
         assert view.instance is not None and view.depth is not None
         camera = camera.with_planes(scene.bounds)
         models = annotate.objects(scene)
-        alone, batches = annotate.plan(models, camera, (self.width, self.height))
-        full = {k: view.instance == k for k in alone}
+        size = (self.width, self.height)
+        alone, batches = annotate.plan(models, camera, size)
+        window = annotate.windows(models, camera, size)  # (masks worked out there alone)
+        full = {k: (window[k], view.instance[window[k]] == k) for k in alone}
         every: list[Any] = scene.every_model
         shown = [m.visible for m in every]
         instances, _ = scene.id_tables()
@@ -701,8 +703,9 @@ class Renderer:
                 members = {id(m) for k in batch for m in models[k]}
                 for m in every:
                     m.visible = id(m) in members
-                drawn = instances[self.render_ids(scene, camera, options) + 1]
-                full.update({k: drawn == k for k in batch})
+                ids = self.render_ids(scene, camera, options)
+                full.update({k: (window[k], instances[ids[window[k]] + 1] == k)
+                             for k in batch})
         finally:
             for m, was in zip(every, shown):
                 m.visible = was

@@ -54,3 +54,24 @@ def test_sigkill_mid_animation_then_rerun_leaves_no_temporary(tmp_path):
     assert subprocess.run([*cmd, "--frames", "2"], cwd=ROOT).returncode == 0
     assert [p.name for p in tmp_path.iterdir()] == ["frames"]
     assert len(list(out.iterdir())) == 2
+
+
+def test_writing_many_files_into_one_folder_looks_for_stale_ones_once(tmp_path,
+                                                                     monkeypatch):
+    """A data set writes tens of thousands of files into one folder: looking there for a
+    dead writer's temporaries before every file made the writing quadratic. One look a
+    folder -- and a stale temporary found then is still removed by its output's writer."""
+    stale = tmp_path / f".late.png.{HOST}-{_dead_pid()}.k2j4h1.part"
+    stale.write_bytes(b"half")
+    looks = []
+    scandir = os.scandir
+    monkeypatch.setattr(os, "scandir", lambda p=".": looks.append(os.fspath(p)) or scandir(p))
+    for k in range(40):
+        with atomic_write(tmp_path / f"{k:03d}.png") as f:
+            f.write(b"png")
+    assert looks.count(os.fspath(tmp_path)) == 1
+    assert stale.exists()  # (another output's: left to its writer)
+    with atomic_write(tmp_path / "late.png") as f:
+        f.write(b"png")
+    assert not stale.exists() and looks.count(os.fspath(tmp_path)) == 1
+    assert len(list(tmp_path.iterdir())) == 41

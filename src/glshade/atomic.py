@@ -20,6 +20,7 @@ import shutil
 import signal
 import socket
 import tempfile
+import threading
 from pathlib import Path
 
 from .errors import OutputWriteError
@@ -38,7 +39,8 @@ def _tag(path: Path) -> str:
 
 def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
     """Make a temporary file (or folder) beside ``path``, named for this process; return
-    its name. Stale ones of the same output are removed first.
+    its name. Stale ones of the same output are removed first (those this process found in
+    the folder at its first write there).
 
     Parameters
     ----------
@@ -51,7 +53,7 @@ def temporary(path, *, folder: bool = False, suffix: str = "") -> str:
     """
     path = Path(path)
     parent = path.parent if str(path.parent) else Path(".")
-    remove_stale(parent, name=path.name)
+    _remove_stale_once(parent, path.name)
     if folder:
         return tempfile.mkdtemp(prefix=_tag(path), suffix=".part" + suffix, dir=parent)
     fd, tmp = tempfile.mkstemp(prefix=_tag(path), suffix=".part" + suffix, dir=parent)
@@ -116,6 +118,47 @@ def part(path, *, folder: bool = False, suffix: str = ""):
         raise
 
 
+#: each folder's stale temporaries by output name, found on this process's first write
+#: there (one scan a folder: a data set writes tens of thousands of files into one, and a
+#: scan a file made writing it quadratic in its size)
+_STALE: dict[str, dict[str, list[Path]]] = {}
+_STALE_LOCK = threading.Lock()
+
+
+def _remove_stale_once(folder: Path, name: str) -> None:
+    """Remove output ``name``'s stale temporaries in ``folder``, as found by this process's
+    first look there (a writer that dies while this process runs leaves its temporary for
+    the next process to remove)."""
+    key = os.path.abspath(folder)
+    with _STALE_LOCK:
+        found = _STALE.get(key)
+        if found is None:
+            found = _STALE[key] = {}
+            for p, output in _stale(folder, recursive=False):
+                found.setdefault(output, []).append(p)
+        stale = found.pop(name, [])
+    for p in stale:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(p) if p.is_dir() else p.unlink()
+
+
+def _stale(folder: Path, recursive: bool) -> list[tuple[Path, str]]:
+    """The temporaries in ``folder`` of processes of this host that no longer run, each
+    with the name of the output it stood in for."""
+    if not folder.is_dir():
+        return []
+    found = folder.rglob(".*.part*") if recursive else folder.glob(".*.part*")
+    out = []
+    for p in found:
+        m = _PART.match(p.name)
+        if not m or m["host"] != HOST:
+            continue
+        if int(m["pid"]) == os.getpid() or _alive(int(m["pid"])):
+            continue
+        out.append((p, m["name"]))
+    return out
+
+
 def _alive(pid: int) -> bool:
     try:
         os.kill(pid, 0)
@@ -139,16 +182,9 @@ def remove_stale(folder, *, name: str | None = None, recursive: bool = False) ->
     recursive : bool
         Look in sub-folders too.
     """
-    folder = Path(folder)
-    if not folder.is_dir():
-        return 0
-    found = folder.rglob(".*.part*") if recursive else folder.glob(".*.part*")
     removed = 0
-    for p in found:
-        m = _PART.match(p.name)
-        if not m or m["host"] != HOST or (name is not None and m["name"] != name):
-            continue
-        if int(m["pid"]) == os.getpid() or _alive(int(m["pid"])):
+    for p, output in _stale(Path(folder), recursive):
+        if name is not None and output != name:
             continue
         with contextlib.suppress(OSError):
             shutil.rmtree(p) if p.is_dir() else p.unlink()

@@ -110,6 +110,12 @@ def _models(scene, folder: Path, mm: float) -> None:
                   folder / f"obj_{obj_id:06d}.ply")
 
 
+def _save_mask(mask: np.ndarray, path: Path) -> None:
+    """A bool mask as BOP keeps it: 8-bit, 255 on the object (made on the thread that
+    writes the files, not the one that draws)."""
+    save_gray(mask.view(np.uint8) * np.uint8(255), path)
+
+
 @dataclass(frozen=True)
 class BopViews:
     """What a BOP view writes (picklable: it travels to workers): its rgb, 16-bit depth and
@@ -152,8 +158,7 @@ class BopViews:
         gt, info = [], []
         for g, note in enumerate(notes):
             for name, mask in (("mask", note.mask), ("mask_visib", note.mask_visib)):
-                files.append((save_gray, mask.astype(np.uint8) * 255,
-                              where / name / f"{k:06d}_{g:06d}.png"))
+                files.append((_save_mask, mask, where / name / f"{k:06d}_{g:06d}.png"))
             gt.append({"cam_R_m2c": note.cam_R_m2c.ravel().tolist(),
                        "cam_t_m2c": (note.cam_t_m2c * mm).tolist(), "obj_id": note.obj_id})
             info.append({"bbox_obj": list(note.bbox_obj), "bbox_visib": list(note.bbox_visib),

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..scene.intrinsics import GL_FROM_CV
 
-__all__ = ["Annotation", "objects", "plan", "windows", "records", "bbox", "model_pose"]
+__all__ = ["Annotation", "objects", "plan", "records", "bbox", "model_pose"]
 
 
 @dataclass(frozen=True)
@@ -171,11 +171,15 @@ def objects(scene) -> dict[int, list]:
     return out
 
 
-def plan(models: dict, camera, size) -> tuple[list, list[list]]:
-    """Which full masks need draws of their own: ``(alone, batches)`` -- the instances no
-    other's screen box meets (their full mask is their visible one: nothing can hide any of
-    them), and the rest in batches whose boxes meet none of their batch's (their
-    silhouettes cannot touch: one draw a batch, the others hidden).
+def plan(models: dict, camera, size) -> tuple[list, list[list], dict]:
+    """Which full masks need draws of their own, and where each object's masks lie:
+    ``(alone, batches, windows)`` -- the instances no other's screen box meets (their full
+    mask is their visible one: nothing can hide any of them), the rest in batches whose
+    boxes meet none of their batch's (their silhouettes cannot touch: one draw a batch, the
+    others hidden), and each instance's pixel window ``(rows, columns)``: its screen box (a
+    pixel wider each way) in whole pixels, clipped to the image, the whole image where a
+    box corner is behind the eye. Every pixel centre an instance covers lies in its window,
+    so its masks are worked out there alone (an object is a few percent of a view).
 
     Parameters
     ----------
@@ -186,35 +190,19 @@ def plan(models: dict, camera, size) -> tuple[list, list[list]]:
     size : (int, int)
         The image's width and height in pixels.
     """
-    return _batches(_screen_boxes(models, camera, size))
+    boxes = _screen_boxes(models, camera, size)
+    return (*_batches(boxes), {key: _window(box, size) for key, box in boxes.items()})
 
 
-def windows(models: dict, camera, size) -> dict[int, tuple[slice, slice]]:
-    """Each instance's pixel window ``(rows, columns)``: its screen box (a pixel wider each
-    way, the one :func:`plan` batches by) in whole pixels, clipped to the image; the whole
-    image where a box corner is behind the eye. Every pixel centre the instance covers lies
-    in it, so its masks are worked out there alone (an object is a few percent of a view).
-
-    Parameters
-    ----------
-    models : dict
-        :func:`objects`' instances.
-    camera : Camera
-        The view, its planes fitted to the scene.
-    size : (int, int)
-        The image's width and height in pixels.
-    """
+def _window(box, size) -> tuple[slice, slice]:
+    """A screen box's pixel window (rows, columns), clipped to the image."""
     w, h = size
-    out = {}
-    for key, box in _screen_boxes(models, camera, size).items():
-        if box is None or not np.isfinite(box).all():
-            out[key] = (slice(0, h), slice(0, w))
-            continue
-        x0, y0, x1, y1 = (int(np.clip(v, 0, n)) for v, n in zip(
-            (np.floor(box[0]), np.floor(box[1]), np.ceil(box[2]), np.ceil(box[3])),
-            (w, h, w, h)))
-        out[key] = (slice(y0, y1), slice(x0, x1))
-    return out
+    if box is None or not np.isfinite(box).all():
+        return slice(0, h), slice(0, w)
+    x0, y0, x1, y1 = (int(np.clip(v, 0, n)) for v, n in zip(
+        (np.floor(box[0]), np.floor(box[1]), np.ceil(box[2]), np.ceil(box[3])),
+        (w, h, w, h)))
+    return slice(y0, y1), slice(x0, x1)
 
 
 def _placed(window: tuple[slice, slice], crop: np.ndarray, shape) -> np.ndarray:
@@ -248,8 +236,8 @@ def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray
     depth : ndarray
         ``(H, W)`` float32 the view's depth (``inf``: nothing drawn).
     full : dict
-        Each instance's full (amodal) mask as ``(window, mask)``: its :func:`windows`
-        window and the ``bool`` mask within it.
+        Each instance's full (amodal) mask as ``(window, mask)``: its window
+        (:func:`plan`) and the ``bool`` mask within it.
     """
     labels = scene.labels
     seen = np.bincount(instance.ravel(), minlength=max(models, default=0) + 1)

@@ -692,8 +692,7 @@ class Renderer:
         camera = camera.with_planes(scene.bounds)
         models = annotate.objects(scene)
         size = (self.width, self.height)
-        alone, batches = annotate.plan(models, camera, size)
-        window = annotate.windows(models, camera, size)  # (masks worked out there alone)
+        alone, batches, window = annotate.plan(models, camera, size)
         full = {k: (window[k], view.instance[window[k]] == k) for k in alone}
         every: list[Any] = scene.every_model
         shown = [m.visible for m in every]

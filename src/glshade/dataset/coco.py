@@ -16,7 +16,6 @@ import numpy as np
 
 from ..errors import EnvironmentFailure
 from ..io.images import save_image
-from ..render.annotate import bbox
 from .views import DataSetJob, load_scene_arg, renderers, run_views, write_json
 
 __all__ = ["write_coco", "CocoViews"]
@@ -54,14 +53,18 @@ class CocoViews:
         mask_api = _mask_api()
         name = f"images/{k + 1:06d}.png"
         objects = []
-        for instance in np.unique(frame.instance[frame.instance > 0]).tolist():
-            seen = frame.instance == instance
-            rle = mask_api.encode(np.asfortranarray(seen.astype(np.uint8)))
+        # (the ids in column order once: each object's mask is then one comparison, already
+        # in the order pycocotools encodes; its area and box come from the counts and RLE)
+        ids = np.asfortranarray(frame.instance)
+        areas = np.bincount(ids.ravel(order="K"))
+        for instance in np.flatnonzero(areas[1:]).tolist():
+            instance += 1
+            rle = mask_api.encode((ids == instance).view(np.uint8))
             objects.append({"category_id": self.classes[instance], "instance_id": instance,
                             "segmentation": {"size": [int(v) for v in rle["size"]],
                                              "counts": rle["counts"].decode("ascii")},
-                            "area": int(seen.sum()),
-                            "bbox": [float(v) for v in bbox(seen)], "iscrowd": 0})
+                            "area": int(areas[instance]),
+                            "bbox": [float(v) for v in mask_api.toBbox(rle)], "iscrowd": 0})
         return ({"image": {"file_name": name, "width": self.size[0], "height": self.size[1]},
                  "objects": objects}, [(save_image, frame.color[..., :3], self.out / name,
                                                      None, 1)])

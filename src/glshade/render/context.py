@@ -422,21 +422,29 @@ def egl_devices() -> list[dict]:
     return [found.describe(i) for i in range(len(found.handles))]
 
 
+def _cuda_shown() -> list[str] | None:
+    """The devices ``CUDA_VISIBLE_DEVICES`` shows a program, in order, as CUDA reads it (up
+    to the first ``-1``); None where it is unset or empty (every device)."""
+    visible = os.environ.get("CUDA_VISIBLE_DEVICES")
+    if visible is None or not visible.strip():
+        return None
+    listed = [x.strip() for x in visible.split(",") if x.strip()]
+    return listed[:listed.index("-1")] if "-1" in listed else listed
+
+
 def _cuda_visible(ordinal: int) -> int:
     """A CUDA ordinal as a program sees it (``cuda:N``) to the device's own, through
     ``CUDA_VISIBLE_DEVICES`` as CUDA reads it (a list of ordinals; UUIDs cannot be mapped
     without NVIDIA's management library: refused in one line)."""
     visible = os.environ.get("CUDA_VISIBLE_DEVICES")
-    if visible is None or not visible.strip():
+    listed = _cuda_shown()
+    if listed is None:
         return ordinal
-    listed = [x.strip() for x in visible.split(",") if x.strip()]
-    if not all(x.lstrip("-").isdigit() for x in listed):
+    if not all(x.isdigit() for x in listed):
         raise OptionError(f"cuda:{ordinal}: CUDA_VISIBLE_DEVICES={visible!r} names devices "
                           "by UUID, which EGL cannot match: give ordinals there, or an EGL "
                           "index (glshade doctor lists them)")
     shown = [int(x) for x in listed]
-    if -1 in shown:  # (CUDA stops at the first invalid entry)
-        shown = shown[:shown.index(-1)]
     if ordinal >= len(shown):
         raise OptionError(f"cuda:{ordinal} does not exist: CUDA_VISIBLE_DEVICES={visible!r} "
                           f"shows {len(shown)} device{'s' if len(shown) != 1 else ''}")
@@ -494,26 +502,38 @@ def worker_devices() -> list[str]:
         gpus = [d for d in egl_devices() if not d["software"]]
     except Exception:  # (no EGL here: the worker's own backend decides)
         return []
-    visible = os.environ.get("CUDA_VISIBLE_DEVICES")
-    if visible is not None and any(d["cuda"] is not None for d in gpus):
-        shown = len([x for x in visible.split(",") if x.strip()])
-        return [f"cuda:{k}" for k in range(shown)] if shown > 1 else []
+    shown = _cuda_shown()
+    if shown is not None and any(d["cuda"] is not None for d in gpus):
+        return [f"cuda:{k}" for k in range(len(shown))] if len(shown) > 1 else []
     return [str(d["index"]) for d in gpus] if len(gpus) > 1 else []
 
 
-def _dealt() -> tuple[str, str] | None:
-    """A pool worker's device, ``(spec, why)``: its turn of :func:`worker_devices`; None
-    outside a pool, or with nothing to deal."""
+def _asked(device) -> tuple[str, str, str] | None:
+    """The device a context is asked to take, ``(spec, where, why)`` -- ``where`` the
+    prefix that names it in an error: ``device`` if given, else ``GLSHADE_EGL_DEVICE``,
+    else a pool worker's turn of :func:`worker_devices` (its ``GLSHADE_WORKER_RANK``, which
+    :mod:`glshade.parallel` sets); None where nothing asks (the driver's choice)."""
+    if device not in (None, ""):
+        return str(device), "", "asked for (--device / device=)"
+    env = os.environ.get("GLSHADE_EGL_DEVICE", "").strip()
+    if env:
+        return env, "GLSHADE_EGL_DEVICE: ", "GLSHADE_EGL_DEVICE"
     rank = os.environ.get("GLSHADE_WORKER_RANK", "").strip()
-    if not rank.isdigit():
-        return None
-    devices = worker_devices()
+    devices = worker_devices() if rank.isdigit() else []
     if not devices:
         return None
     spec = devices[int(rank) % len(devices)]
     source = "GLSHADE_WORKER_DEVICES" if os.environ.get("GLSHADE_WORKER_DEVICES", "").strip() \
         else "its host's GPUs"
-    return spec, f"dealt to pool worker {rank} from {source}: {spec}"
+    return spec, "GLSHADE_WORKER_DEVICES: ", f"dealt to pool worker {rank} from {source}: {spec}"
+
+
+def _index(asked: tuple[str, str, str]) -> int:
+    """The EGL index of an :func:`_asked` device; one line naming where it was asked."""
+    try:
+        return device_index(asked[0])
+    except OptionError as exc:
+        raise OptionError(f"{asked[1]}{exc}") from None
 
 
 def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:
@@ -527,17 +547,9 @@ def chosen_device(device: int | str | None = None) -> tuple[int | None, str]:
     device : int, str or None
         The caller's choice.
     """
-    if device not in (None, ""):
-        return device_index(device), "asked for (--device / device=)"
-    env = os.environ.get("GLSHADE_EGL_DEVICE", "").strip()
-    if env:
-        return device_index(env), "GLSHADE_EGL_DEVICE"
-    dealt = _dealt()
-    if dealt is not None:
-        try:
-            return device_index(dealt[0]), dealt[1]
-        except OptionError as exc:
-            raise OptionError(f"GLSHADE_WORKER_DEVICES: {exc}") from None
+    asked = _asked(device)
+    if asked is not None:
+        return _index(asked), asked[2]
     other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
     if other.isdigit():
         return int(other), "GLCONTEXT_DEVICE_INDEX (glcontext's own)"
@@ -548,16 +560,9 @@ def _make_egl(device: int | str | None) -> RenderContext:
     import moderngl
 
     settings: dict[str, Any] = {"backend": "egl"}
-    dev = device if device is not None else os.environ.get("GLSHADE_EGL_DEVICE")
-    source = "" if device is not None else "GLSHADE_EGL_DEVICE: "
-    dealt = _dealt() if dev in (None, "") else None
-    if dealt is not None:
-        dev, source = dealt[0], "GLSHADE_WORKER_DEVICES: "
-    if dev not in (None, ""):
-        try:
-            settings["device_index"] = device_index(dev)
-        except OptionError as exc:
-            raise OptionError(f"{source}{exc}") from None
+    asked = _asked(device)
+    if asked is not None:
+        settings["device_index"] = _index(asked)
         other = os.environ.get("GLCONTEXT_DEVICE_INDEX", "").strip()
         if other and other != str(settings["device_index"]):
             import warnings

@@ -142,14 +142,6 @@ class ViewWorker:
         self.context = context
         self._renderer: Renderer | None = None
 
-    def _renderer_made(self):
-        from ..render.renderer import Renderer
-
-        if self._renderer is None:
-            self._renderer = Renderer(*self.job.size, samples=self.job.samples,
-                                      context=self.context)
-        return self._renderer
-
     def frame(self, k: int):
         """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked.
 
@@ -158,22 +150,25 @@ class ViewWorker:
         k : int
             The view.
         """
-        renderer, job, camera = self._renderer_made(), self.job, self.job.cameras[k]
-        frame = renderer.render_frame(job.scene, camera, job.options,
-                                      outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
-        return frame, lambda: renderer.annotate(job.scene, camera, job.options, view=frame)
+        return next(self.frames([k]))[1:]
 
     def frames(self, views: list[int]):
         """``(k, frame, notes)`` for each of ``views`` in turn, drawn a few ahead of the one
         handed out (:meth:`Renderer.render_many`; the annotations' draws between them leave
-        the frames drawn ahead as they are).
+        the frames drawn ahead as they are); ``notes()`` a view's annotations, drawn if
+        asked.
 
         Parameters
         ----------
         views : list of int
             The views, in order.
         """
-        renderer, job = self._renderer_made(), self.job
+        from ..render.renderer import Renderer
+
+        if self._renderer is None:
+            self._renderer = Renderer(*self.job.size, samples=self.job.samples,
+                                      context=self.context)
+        renderer, job = self._renderer, self.job
         drawn = renderer.render_many(job.scene, [job.cameras[k] for k in views], job.options,
                                      outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
         for k, frame in zip(views, drawn):

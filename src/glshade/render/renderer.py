@@ -14,7 +14,7 @@ from typing import Any
 
 import math
 import warnings
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sized
 from dataclasses import dataclass
 
 import numpy as np
@@ -748,6 +748,8 @@ class Renderer:
         """
         options, blends = self._frame_options(scene, options, changes, outputs, "u1")
         ahead = self._frames_ahead(options)
+        if isinstance(cameras, Sized):  # (no targets for frames that will not come)
+            ahead = max(1, min(ahead, len(cameras)))
         pending: list[_Drawn] = []
         try:
             try:

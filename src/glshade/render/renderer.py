@@ -785,8 +785,10 @@ class Renderer:
         buffers every draw shares (the shadows' visibility)."""
         if options.shadows is not Shadows.OFF:
             return 1
-        pixels = self.width * self.height
-        per_slot = pixels * TARGET_BYTES * (max(self.samples, 1) + (self.samples > 0))
+        # (a slot's targets: with MSAA the multisampled one, its resolved copy and the
+        # single-sampled one of the ids; without, one)
+        per_slot = self.width * self.height * TARGET_BYTES * (
+            self.samples + 2 if self.samples else 1)
         return max(1, min(FRAMES_AHEAD, AHEAD_BYTES // per_slot))
 
     def info(self) -> dict:

@@ -22,8 +22,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import weakref
-
 import numpy as np
 
 from ...geometry.transforms import gl_bytes, ray_uniforms
@@ -32,6 +30,7 @@ from ...solids.encoding import (ROW, TreeData, glsl_defines, may_start_inside, s
                                 tree_data)
 from ...solids.proxy import DIRECTIONS, screen_polygon
 from ...solids.tree import Solid, tie_length
+from ..arrays import PerObject
 from ..base import GLResource
 from ..data import data_texture
 from ..programs import MaterialUniforms, ProgramKey, UniformWriter
@@ -68,6 +67,16 @@ def csg_defines(data: TreeData, slots: tuple = (), blocks: bool = True) -> tuple
     return defines
 
 
+class _Tree:
+    """A solid's tree data and its GPU copy (a texture, or a uniform buffer when small)."""
+
+    def __init__(self, data: TreeData, store):
+        self.data, self.store = data, store
+
+    def release(self) -> None:
+        self.store.release()
+
+
 class CsgPass(GLResource, Stage):
     """The programs (per shading variant and tree class, :meth:`program`), each solid's data
     texture, the screen polygon's buffer and the drawing of solids, for one Renderer: a GL
@@ -97,7 +106,7 @@ class CsgPass(GLResource, Stage):
         self._fan: Any = None  # (buffer of the screen polygon's corners, vertex arrays)
         # per solid (solids are values: a new tree is a new object): its data and texture,
         # dropped (and the texture released) once the solid is gone
-        self._data: dict[int, tuple] = {}
+        self._data = PerObject(self._tree)
         # the most slots the one-step cast may have here: each takes six interpolated
         # floats (csg.vert), and GL 3.3 promises only 60 (desktop drivers give 124-128);
         # a tree over it walks instead
@@ -113,21 +122,18 @@ class CsgPass(GLResource, Stage):
             The solid.
         """
         self._check()
-        for key in [k for k, v in self._data.items() if v[0]() is None]:
-            self._data.pop(key)[2].release()
-        found = self._data.get(id(solid))
-        if found is None or found[0]() is not solid:
-            if found is not None:
-                found[2].release()
-            data = tree_data(solid)
-            block = size_class(data.leaves)[2]
-            if block:
-                assert len(data.texels) <= block  # (16 L - 4 texels: 1,020 at 64 leaves)
-                store = self.context.ctx.buffer(data.texels.tobytes().ljust(16 * block, b"\0"))
-            else:
-                store = data_texture(self.context.ctx, data.texels, ROW)
-            found = self._data[id(solid)] = (weakref.ref(solid), data, store)
-        return found[1], found[2]
+        tree = self._data(solid)
+        return tree.data, tree.store
+
+    def _tree(self, solid: Solid) -> _Tree:
+        data = tree_data(solid)
+        block = size_class(data.leaves)[2]
+        if block:
+            assert len(data.texels) <= block  # (16 L - 4 texels: 1,020 at 64 leaves)
+            store = self.context.ctx.buffer(data.texels.tobytes().ljust(16 * block, b"\0"))
+        else:
+            store = data_texture(self.context.ctx, data.texels, ROW)
+        return _Tree(data, store)
 
     def program(self, key: ProgramKey, data: TreeData, slots: tuple = ()):
         """The program of a variant for a tree like ``data``: one per size class (32, 64,
@@ -260,9 +266,7 @@ class CsgPass(GLResource, Stage):
         for p in self._programs.values():
             p.release()
         self._programs.clear()
-        for _, _, tex in self._data.values():
-            tex.release()
-        self._data.clear()
+        self._data.release()
         if self._fan is not None:
             for vao in self._fan[1].values():
                 vao.release()

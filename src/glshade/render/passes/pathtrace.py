@@ -44,6 +44,8 @@ def _driver(context) -> tuple[str, str]:
 #: the compute kernel's seven images (pathtrace.comp), in the targets' order
 _IMAGE_NAMES = ("out_state0", "out_state1", "out_state2", "out_state3", "out_sum",
                 "out_square", "out_hit")
+
+
 def _kernel(context, asked: Kernel) -> Kernel:
     """The kernel a new tracer runs: the one asked for (compute needs GL 4.3), or for
     "auto" the one measured faster on this GL before, the fragment program where compute

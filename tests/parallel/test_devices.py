@@ -13,8 +13,6 @@ from glshade.errors import OptionError
 from glshade.parallel import make_executor
 from glshade.render.context import chosen_device, egl_devices, worker_devices
 
-from ..conftest import BACKEND
-
 pytestmark = pytest.mark.gl
 
 
@@ -43,7 +41,6 @@ def test_what_is_dealt(monkeypatch):
     assert chosen_device()[1] == "GLSHADE_EGL_DEVICE"
 
 
-@pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
 def test_local_workers_are_dealt_a_device_each(monkeypatch):
     from tests.parallel.workers import DeviceWorker
 
@@ -66,7 +63,6 @@ def test_a_bad_worker_device_is_one_line(monkeypatch):
         list(make_executor(DeviceWorker, (), jobs=2).map(range(4)))
 
 
-@pytest.mark.skipif(BACKEND != "egl", reason="devices are EGL's (the OSMesa pass has none)")
 def test_dask_workers_are_dealt_a_device_each(tmp_path, dask_cluster, monkeypatch):
     """A cluster's workers, by rank on their host, each set their own device before the
     job's renderers are made -- and the job draws on them."""

@@ -15,6 +15,7 @@ from ...options import TraceOptions
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
+from .. import kernels
 from ..base import GLResource
 from ..data import NEAREST, data_texture
 from ..film import LAYOUT_BLOCKS, film_layout, film_places
@@ -30,17 +31,6 @@ __all__ = ["GpuPathTracer", "program_defines", "MAX_CONTROL_MODELS"]
 _DATA, _RAYS, _CSG, _TARGETS = Unit.TRACE_DATA, Unit.TRACE_RAYS, Unit.TRACE_CSG, \
     Unit.TRACE_TARGETS
 _BVH, _EXTRA = Unit.TRACE_BVH, Unit.TRACE_EXTRA
-#: the kernel each GL ran faster ("auto"), by (renderer string, GL version): measured once
-#: a process per device and driver
-_KERNELS: dict[tuple[str, str], Kernel] = {}
-
-
-def _driver(context) -> tuple[str, str]:
-    """What a kernel choice is kept by: the GL's renderer and version strings."""
-    info = context.ctx.info
-    return str(info.get("GL_RENDERER", "")), str(info.get("GL_VERSION", ""))
-
-
 #: the compute kernel's seven images (pathtrace.comp), in the targets' order
 _IMAGE_NAMES = ("out_state0", "out_state1", "out_state2", "out_state3", "out_sum",
                 "out_square", "out_hit")
@@ -48,15 +38,15 @@ _IMAGE_NAMES = ("out_state0", "out_state1", "out_state2", "out_state3", "out_sum
 
 def _kernel(context, asked: Kernel) -> Kernel:
     """The kernel a new tracer runs: the one asked for (compute needs GL 4.3), or for
-    "auto" the one measured faster on this GL before, the fragment program where compute
-    shaders are missing, else AUTO (measured at the first run)."""
+    "auto" the one measured faster on this GL before (render/kernels.py), the fragment
+    program where compute shaders are missing, else AUTO (measured at the first run)."""
     if asked is Kernel.COMPUTE:
         context.require(430, "kernel='compute' needs", "use kernel='fragment'")
     if asked is not Kernel.AUTO:
         return asked
     if context.ctx.version_code < 430:
         return Kernel.FRAGMENT
-    return _KERNELS.get(_driver(context), Kernel.AUTO)
+    return kernels.chosen(context)
 
 
 _TARGET_NAMES = ("u_state0", "u_state1", "u_state2", "u_state3", "u_acc0", "u_acc1", "u_acc2")
@@ -253,7 +243,8 @@ class GpuPathTracer(GLResource):
 
     def _measure(self) -> Kernel:
         """Time a pass of each kernel here (after one each to warm up) and keep the faster
-        for this renderer and driver (:data:`_KERNELS`); the targets are cleared after."""
+        for this renderer and driver (:func:`glshade.render.kernels.keep`); the targets are
+        cleared after."""
         import time
 
         took = {}
@@ -272,7 +263,7 @@ class GpuPathTracer(GLResource):
                     took[kernel] = time.perf_counter() - start
         self.reset()
         chosen = min(took, key=lambda k: took[k])
-        _KERNELS[_driver(self.context)] = chosen
+        kernels.keep(self.context, chosen)
         return chosen
 
     def _defines(self, context, data: np.ndarray, options: TraceOptions,

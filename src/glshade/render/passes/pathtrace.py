@@ -112,6 +112,8 @@ class GpuPathTracer(GLResource):
     #: path on by at least one bounce; Russian roulette caps a path's odds of going on at
     #: 0.99, so thousands of passes without a pixel finishing mean nothing was drawn)
     STALL_PASSES = 10_000
+    #: timed passes of each kernel when ``kernel="auto"`` measures (their best counts)
+    MEASURE_ROUNDS = 3
 
     def __init__(self, context, scene, width: int, height: int,
                  options: TraceOptions | None = None, *, shaders: ShaderLibrary | None = None,
@@ -242,15 +244,18 @@ class GpuPathTracer(GLResource):
             vao.render(moderngl.TRIANGLES, vertices=3)
 
     def _measure(self) -> Kernel:
-        """Time a pass of each kernel here (after one each to warm up) and keep the faster
-        for this renderer and driver (:func:`glshade.render.kernels.keep`); the targets are
-        cleared after."""
+        """Time passes of each kernel here, in turn (one each to warm up, then the best of
+        :attr:`MEASURE_ROUNDS` each: the choice is kept between processes, so one slow pass
+        must not decide it), and keep the faster for this renderer and driver
+        (:func:`glshade.render.kernels.keep`); the targets are cleared after."""
         import time
 
-        took = {}
-        for kernel in (Kernel.FRAGMENT, Kernel.COMPUTE):
+        took: dict = {}
+        kinds = (Kernel.FRAGMENT, Kernel.COMPUTE)
+        for kernel in kinds:
             self._program(kernel)
-            for timed in (False, True):
+        for round_ in range(1 + self.MEASURE_ROUNDS):
+            for kernel in kinds:
                 self.reset()
                 self._write({"u_target": 1.0, "u_cap": 1.0}, self._programs[kernel][0])
                 for i, tex in enumerate(self._targets[self._current]):
@@ -259,8 +264,8 @@ class GpuPathTracer(GLResource):
                 start = time.perf_counter()
                 self._pass(kernel)
                 self.context.ctx.finish()
-                if timed:
-                    took[kernel] = time.perf_counter() - start
+                if round_:  # (the first round warms up)
+                    took[kernel] = min(took.get(kernel, np.inf), time.perf_counter() - start)
         self.reset()
         chosen = min(took, key=lambda k: took[k])
         kernels.keep(self.context, chosen)

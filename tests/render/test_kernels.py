@@ -1,6 +1,6 @@
 """``kernel="auto"``'s measured choice outlives the process that measured it: kept in the
 cache file by renderer and version, taken by a later process before its first pass (no
-measurement), and a broken file only means measuring again."""
+measurement), said by ``glshade doctor``; a broken file only means measuring again."""
 
 import json
 import os
@@ -8,6 +8,8 @@ import subprocess
 import sys
 
 import pytest
+
+from tests.conftest import glshade
 
 pytestmark = pytest.mark.gl
 
@@ -46,6 +48,9 @@ def test_the_measured_kernel_is_kept_between_processes(tmp_path, gl_context):
     assert key.startswith(gl_context.ctx.info["GL_RENDERER"])   # (kept by the renderer)
     file.write_text(json.dumps({key: other}))
     assert _run(tmp_path) == [other, other]
+    said = glshade("doctor", env=dict(os.environ, XDG_CACHE_HOME=str(tmp_path))).stdout
+    assert f"path tracer kernel {other} (measured faster here before; kept in {file})" \
+        in said, said
     # a broken file: measured again, and written whole
     file.write_text("{not json")
     before, measured = _run(tmp_path)
@@ -55,5 +60,7 @@ def test_the_measured_kernel_is_kept_between_processes(tmp_path, gl_context):
 def test_an_unwritable_cache_only_means_measuring_again(tmp_path):
     blocker = tmp_path / "blocked"
     blocker.write_text("a file where the cache's folder would go")
+    said = glshade("doctor", env=dict(os.environ, XDG_CACHE_HOME=str(blocker))).stdout
+    assert "path tracer kernel not measured on this GL yet" in said, said
     assert _run(blocker)[0] == "auto"
     assert _run(blocker)[0] == "auto"   # (nothing kept, nothing broken)

@@ -350,6 +350,7 @@ def doctor(args: a.DoctorArgs) -> int:
     import os
 
     from ..errors import OptionError
+    from ..render import kernels
     from ..render.context import (chosen_device, create_context, egl_devices, probe_backends,
                                   worker_devices)
 
@@ -357,9 +358,15 @@ def doctor(args: a.DoctorArgs) -> int:
     try:
         with create_context(args.backend) as ctx:
             facts = ctx.info
+            kernel = kernels.chosen(ctx).value if ctx.ctx.version_code >= 430 else None
         print(f"backend chosen     {facts['backend']}")
         for key in ("vendor", "renderer", "version", "max_samples", "max_texture_size"):
             print(f"{key.replace('_', ' '):<18} {facts[key]}")
+        print("path tracer kernel " + (
+            "fragment (no compute kernels before GL 4.3)" if kernel is None else
+            f"{kernel} (measured faster here before; kept in {kernels.cache_file()})"
+            if kernel != "auto" else "not measured on this GL yet (the first trace with "
+            "kernel='auto' times both)"))
     except Exception as exc:  # report, then go on to the per-backend probe
         ok = False
         print(f"backend chosen     none: {exc}")

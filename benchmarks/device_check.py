@@ -5,8 +5,9 @@ tests).
 1. The device: the EGL device a render takes and why (``glshade doctor``'s listing, no
    context made to list them), its CUDA ordinal where the driver says, and its renderer.
 2. Opaque frames/s: the teapot x100 (an instanced group) at 1920x1080 Phong, no MSAA.
-3. The path tracer: paths/s on the Cornell box (the fragment tracer; a compute kernel is
-   not built yet: its row says so).
+3. The path tracer: paths/s on the Cornell box, the fragment program against the compute
+   kernel; and on a small picture (128²), the compute kernel with one stream a pixel
+   against the streams a pixel this GL gets by default (``TraceOptions.streams``).
 4. Exact transparency against blending: ms a frame, 8 layers at 256x256.
 5. Exactness against llvmpipe: the same scenes drawn on Mesa's software device in a
    process of its own -- polygon ids and depth byte-identical, colours within 1/255, the
@@ -147,6 +148,18 @@ def main(argv=None) -> int:
                         kernel=kernel)
         rates[kernel] = trace_size[0] * trace_size[1] * spp / (time.perf_counter() - start)
     results["trace_paths_per_s"] = rates
+    small = (32, 32) if quick else (128, 128)
+    shared = {}
+    for asked in (1, None):  # (one invocation a pixel, then the default's streams)
+        with pathtrace.PathTracer(box, small, kernel="compute", streams=asked) as tracer:
+            tracer.add(box_camera, 1)  # (compiled)
+            tracer.reset()
+            start = time.perf_counter()
+            tracer.add(box_camera, spp)
+            tracer.result()  # (read back: the passes done)
+            shared[tracer.gpu.streams] = small[0] * small[1] * spp / (
+                time.perf_counter() - start)
+    results["trace_streams_paths_per_s"] = {str(k): v for k, v in shared.items()}
     layered = glass(8)
     cam = Camera.look_at((0.5, 0.4, 4.0), (0, 0, 0))
     with glshade.Renderer(*((64, 64) if quick else (256, 256)), samples=0) as r:
@@ -172,6 +185,9 @@ def main(argv=None) -> int:
             ("path tracer M paths/s (fragment / compute)",
              f"{rates['fragment'] / 1e6:.3f} / {rates['compute'] / 1e6:.3f}",
              f"{trace_size[0]}x{trace_size[1]} x {spp}, Cornell box"),
+            (f"compute M paths/s, streams {' / '.join(map(str, shared))}",
+             " / ".join(f"{v / 1e6:.3f}" for v in shared.values()),
+             f"{small[0]}x{small[1]} x {spp}, Cornell box"),
             ("exact / blend transparency ms", f"{ms['exact']:.1f} / {ms['blend']:.1f}",
              f"{ms['exact'] / ms['blend']:.2f}x"),
             ("against llvmpipe: ids, depth", f"{e['ids_identical']}, {e['depth_identical']}",

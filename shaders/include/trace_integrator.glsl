@@ -163,21 +163,25 @@ bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho
 #define STEPS 256
 // a bounce that ends above this many counted iterations may have met the driver's limit
 #define NEAR_LIMIT LOOP_BUDGET
+// the count a target pixel past the image holds: more than any run's (always finished)
+#define PAST_IMAGE 3.0e38
 
 // One pass at the targets' pixel ``at`` (holding image pixel ``image_of(at)``): its state and
 // sums read, the path continued, what the pass leaves there returned in ``o`` -- the seven
 // targets in order. The fragment program writes them as its outputs, the compute kernel
 // stores them in images: the same code, the same numbers.
 void trace_pixel(ivec2 at, out vec4 o[7]) {
-    ivec2 image = image_of(at);
-    float target = min(u_target + texelFetch(u_extra, at, 0).r, u_cap);
-    if (image.x >= int(u_size.x) || image.y >= int(u_size.y)) {
+    ivec2 image = image_of(at);  // (stream j's copy of the pixel: j image heights up)
+    if (image.x >= int(u_size.x) || image.y >= int(u_size.y) * u_streams) {
         // (past the image: no path, and finished, so no pass waits for it)
         o[0] = o[1] = o[2] = o[3] = o[5] = o[6] = vec4(0.0);
-        o[4] = vec4(0.0, 0.0, 0.0, target);
+        o[4] = vec4(0.0, 0.0, 0.0, PAST_IMAGE);
         return;
     }
-    uvec2 pixel = uvec2(image);
+    int stream = image.y / int(u_size.y);
+    uvec2 pixel = uvec2(image.x, image.y - stream * int(u_size.y));
+    // (this stream's share of the samples the pixel should have finished)
+    float target = stream_share(min(u_target + texelFetch(u_extra, at, 0).r, u_cap), stream);
     vec4 s0 = texelFetch(u_state0, at, 0), s1 = texelFetch(u_state1, at, 0);
     vec4 s2 = texelFetch(u_state2, at, 0), s3 = texelFetch(u_state3, at, 0);
     vec4 sum = texelFetch(u_acc0, at, 0), square = texelFetch(u_acc1, at, 0);
@@ -197,10 +201,11 @@ void trace_pixel(ivec2 at, out vec4 o[7]) {
     for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
         if (!flying) {
             if (sum.w >= target) break;
-            p = start(pixel, uint(sum.w));  // (samples finish in order: k is the count)
+            // (a stream's samples finish in order: its count gives the next k)
+            p = start(pixel, uint(stream) + uint(u_streams) * uint(sum.w));
             flying = true;
         }
-        g_sample = uint(sum.w);
+        g_sample = uint(stream) + uint(u_streams) * uint(sum.w);
         bool going = bounce(p);
         if (g_iter >= NEAR_LIMIT) hit.y += 1.0;
         if (!going) {

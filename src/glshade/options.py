@@ -20,8 +20,8 @@ from .errors import OptionError
 from .modes import (Accel, Backend, Culling, Kernel, Outputs, Sampler, ShadingMode, Shadows,
                     Transparency, choose)
 
-__all__ = ["DrawOptions", "RenderConfig", "TraceOptions", "MAX_PATH_DEPTH", "COHERENT_TILE",
-           "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS", "check_whole", "check_size",
+__all__ = ["DrawOptions", "RenderConfig", "TraceOptions", "MAX_PATH_DEPTH", "MAX_STREAMS",
+           "COHERENT_TILE", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS", "check_whole", "check_size",
            "check_samples", "HEMICUBE_RESOLUTION"]
 
 #: the largest image side glshade makes (GL's framebuffers go no further on most drivers)
@@ -318,6 +318,8 @@ class RenderConfig:
 #: the most vertices ``max_depth`` may ask of a path (a GL int, checked before any
 #: arithmetic; far past what Russian roulette lets a path reach)
 MAX_PATH_DEPTH = 1_000_000
+#: the most streams a pixel's samples may be shared among (``TraceOptions.streams``)
+MAX_STREAMS = 64
 #: the pixels that share random numbers with ``coherent=True``: llvmpipe shades a 4x2 block
 #: in one 8-wide SIMD step (docs/guide/speed.md: measured against 2x2 to 8x8)
 COHERENT_TILE = (4, 2)
@@ -387,6 +389,13 @@ class TraceOptions:
         4.3: what a GPU with few graphics units wants) or ``"auto"`` (the faster on this
         GL, measured on first use and kept per renderer and driver) -- the same passes,
         the same numbers.
+    streams : int or None
+        Invocations that share each pixel's samples, 1 to ``MAX_STREAMS`` (sample k goes
+        to stream k mod ``streams``; the sums are added when read): a GPU holds far more
+        invocations at once than a small picture has pixels (an H100 about 270,000, a 128²
+        picture 16,384), and one invocation a pixel would leave most of it idle. The same
+        samples, the same picture to rounding. None: one on a software renderer, else
+        enough for the tracer's ``FILL_INVOCATIONS``.
 
     Examples
     --------
@@ -403,6 +412,7 @@ class TraceOptions:
     coherent: tuple[int, int] = (1, 1)
     storage: bool | None = None
     kernel: Kernel = Kernel.AUTO
+    streams: int | None = None
 
     def __post_init__(self) -> None:
         put = object.__setattr__  # (frozen: each field replaced by its checked form)
@@ -417,6 +427,11 @@ class TraceOptions:
             raise OptionError(f"storage must be True, False or None (where the GL has "
                               f"storage buffers), got {self.storage!r}")
         put(self, "coherent", _tile(self.coherent))
+        if self.streams is not None:
+            put(self, "streams", check_whole("streams", self.streams, 1))
+            if self.streams > MAX_STREAMS:
+                raise OptionError(f"streams must be 1 to {MAX_STREAMS} (invocations sharing "
+                                  f"a pixel's samples), got {self.streams}")
 
     @classmethod
     def of(cls, options: TraceOptions | None = None, **changes: Any) -> TraceOptions:

@@ -150,6 +150,7 @@ class PathtraceArgs(RenderArgs):
     no_lights: bool = False
     sampler: str = "pcg"
     kernel: str = "auto"
+    streams: int | None = None
     coherent: bool = False
     control: bool = False
     adaptive: bool = False

@@ -449,6 +449,10 @@ def add_pathtrace(sub) -> None:
                    help="the program a pass runs: a fragment program or a compute kernel "
                    "(GL 4.3; the same numbers); auto (default) measures both on first use "
                    "and keeps the faster for this GL")
+    p.add_argument("--streams", type=v.count, metavar="S", help="invocations sharing "
+                   "each pixel's samples, 1 to 64 (default: one on a software renderer, else "
+                   "enough to fill a large GPU: a small picture has too few pixels for its "
+                   "cores; the same picture to rounding)")
     p.add_argument("--coherent", action="store_true", help="blocks of 4x2 pixels draw the "
                    "same random numbers, so their rays run together (faster on a large mesh; "
                    "each pixel as noisy, the noise in blocks)")

@@ -26,7 +26,7 @@ def pathtrace(args: PathtraceArgs) -> int:
     # (how paths are traced: one value, checked before the scene is read, passed whole)
     options = pt.TraceOptions.of(max_depth=args.max_depth, sampler=args.sampler,
                                  mis=not args.no_mis, coherent=args.coherent,
-                                 kernel=args.kernel)
+                                 kernel=args.kernel, streams=args.streams)
 
     job = load_job(replace(args, mode=None), args.scene)
     w, h = job.size

@@ -348,8 +348,8 @@ def trace(scene, camera=None, size=(256, 256), *, options: TraceOptions | None =
     options : TraceOptions or None
         How paths are traced (None: the defaults). Its fields may be given as keywords
         instead -- ``max_depth``, ``accel``, ``sampler``, ``mis``, ``coherent``,
-        ``storage`` (see :class:`TraceOptions`) -- checked once, here, before a context or
-        a scene is made.
+        ``storage``, ``kernel``, ``streams`` (see :class:`TraceOptions`) -- checked once,
+        here, before a context or a scene is made.
     spp : int or None
         Samples a pixel (default 64 when ``until`` is None too).
     until : float or None

@@ -11,7 +11,7 @@ import numpy as np
 
 from ...errors import EnvironmentFailure, OptionError
 from ...modes import Accel, Kernel, Sampler
-from ...options import TraceOptions
+from ...options import MAX_STREAMS, TraceOptions
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
 from ...solids.tree import TIE
@@ -114,6 +114,10 @@ class GpuPathTracer(GLResource):
     STALL_PASSES = 10_000
     #: timed passes of each kernel when ``kernel="auto"`` measures (their best counts)
     MEASURE_ROUNDS = 3
+    #: invocations a pass should have on a GPU (``streams=None``): about what an H100 holds
+    #: at once (132 multiprocessors x 2,048 threads); a picture with fewer pixels shares
+    #: each pixel's samples among several
+    FILL_INVOCATIONS = 270_336
 
     def __init__(self, context, scene, width: int, height: int,
                  options: TraceOptions | None = None, *, shaders: ShaderLibrary | None = None,
@@ -122,8 +126,12 @@ class GpuPathTracer(GLResource):
         from ..target import check_fits
 
         self.width, self.height = int(width), int(height)
-        #: the targets' size (the image in blocks: glshade.pathtrace.film)
-        self.target_size, self._blocks = film_layout(self.width, self.height,
+        #: how paths are traced (a TraceOptions)
+        self.options = options = TraceOptions.of(options, **changes)
+        #: invocations sharing each pixel's samples (TraceOptions.streams, decided here)
+        self.streams = self._streams(context, options.streams)
+        #: the targets' size (the image in blocks, a copy a stream: glshade.render.film)
+        self.target_size, self._blocks = film_layout(self.width, self.height * self.streams,
                                                      self.LAYOUT_BLOCKS)
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
         check_fits(context, *self.target_size, bytes_per_pixel=2 * 7 * 16 + 4)
@@ -131,8 +139,6 @@ class GpuPathTracer(GLResource):
         context.make_current()  # (its objects are made in its own context, whatever was last)
         ctx = context.ctx
         self.scene = scene
-        #: how paths are traced (a TraceOptions)
-        self.options = options = TraceOptions.of(options, **changes)
         if not 1 <= int(budget) <= LOOP_BUDGET:
             raise OptionError(f"budget must be 1 to {LOOP_BUDGET:,} loop iterations (the "
                               f"driver stops a shader at {LOOP_CAP:,}), got {budget!r}")
@@ -167,8 +173,9 @@ class GpuPathTracer(GLResource):
             self._bvh = self._keep(ctx.texture((width, len(tree) // width), 4,
                                                tree.tobytes(), dtype="u4"))
             self._bvh.filter = (NEAREST, NEAREST)  # (a texel read whole)
-        #: each image pixel's row and column in the targets (glshade.pathtrace.film)
-        self._where = film_places(self.width, self.height, self._blocks)
+        #: each image pixel's rows and columns in the targets, ``(S H, W)``: stream j's
+        #: copies in rows j H to (j + 1) H, GL's order (glshade.render.film)
+        self._where = film_places(self.width, self.height * self.streams, self._blocks)
         # two sets of the seven targets, read and written in turn
         size = self.target_size
         self._targets = [[self._keep(ctx.texture(size, 4, dtype="f4")) for _ in range(7)]
@@ -181,12 +188,30 @@ class GpuPathTracer(GLResource):
                                              dtype="f4"))
         self._current = 0
         self._left = self._keep(self._shaders.compile("pathtrace.vert", "pathtrace_left.frag"))
+        self._write(self._film_uniforms(), self._left)
         self._left_vao = self._keep(ctx.vertex_array(self._left, []))
         self._left_fbo = self._keep(ctx.simple_framebuffer(size, components=1))
         self._query = ctx.query(samples=True)  # (moderngl frees a query with its context)
         self.passes = 0
         self.samples = 0
         self.reset()
+
+    def _streams(self, context, asked: int | None) -> int:
+        """The streams a pixel's samples are shared among: ``asked``, else one on a
+        software renderer (its few cores are filled by the pixels), else enough that the
+        picture's copies make :attr:`FILL_INVOCATIONS`, at most ``MAX_STREAMS``."""
+        if asked is not None:
+            return asked
+        if context.software:
+            return 1
+        pixels = self.width * self.height
+        return int(min(MAX_STREAMS, max(1, -(-self.FILL_INVOCATIONS // pixels))))
+
+    def _film_uniforms(self) -> dict:
+        """Where a pixel's copies lie in the targets: what every program of the tracer
+        that reads them needs (pixel_blocks.glsl)."""
+        return {"u_blocks": self._blocks, "u_streams": self.streams,
+                "u_size": (float(self.width), float(self.height))}
 
     def _solid(self, scene) -> tuple[str, ...]:
         """The scene's CSG solid (one at most): its tree's texture and uniforms kept, its
@@ -314,11 +339,10 @@ class GpuPathTracer(GLResource):
 
     def _static_uniforms(self) -> dict:
         """The uniforms that stay for this tracer's life: sizes, tables, lights, the solid."""
-        values: dict = {"u_size": (float(self.width), float(self.height)),
+        values: dict = {**self._film_uniforms(),
                         "u_target_size": tuple(int(x) for x in self.target_size),
                         **{name: Binding.TRACE_IMAGES + i for i, name in enumerate(
                             _IMAGE_NAMES)},
-                        "u_blocks": self._blocks,
                         "u_max_depth": int(self.max_depth or 0),
                         "u_eps": 1e-5 * self.scene.size, "u_budget": self.budget,
                         "u_data": _DATA, "u_bvh": _BVH, "u_rays": _RAYS,
@@ -349,7 +373,8 @@ class GpuPathTracer(GLResource):
     def _set_extra(self, extra: np.ndarray) -> None:
         self.extra = extra
         texels = np.zeros(self.target_size[::-1], np.float32)
-        texels[self._where] = extra[::-1]  # (GL's rows: bottom first)
+        # (GL's rows: bottom first; each stream's copy holds the pixel's count)
+        texels[self._where] = np.tile(extra[::-1], (self.streams, 1))
         self._extra.write(texels.tobytes())
 
     @property
@@ -477,7 +502,7 @@ class GpuPathTracer(GLResource):
         ctx.viewport = (0, 0, self.width, self.height)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
         self._targets[self._current][4].use(location=Unit.TRACE_SHOW)
-        self._write({"u_sum": Unit.TRACE_SHOW, "u_blocks": self._blocks,
+        self._write({"u_sum": Unit.TRACE_SHOW, **self._film_uniforms(),
                      "u_exposure": float(exposure), "u_srgb": bool(srgb)}, self._show)
         self._show_vao.render(moderngl.TRIANGLES, vertices=3)
 
@@ -488,14 +513,15 @@ class GpuPathTracer(GLResource):
         """(sum, square, hits): ``(H, W, 4)`` float64, top row first: the samples' sum
         (RGB) and count (A); the sum of their squares (RGB) and of first hits on an
         emitter (A); the count of camera rays that hit anything (R) and of bounces that
-        came near the driver's loop limit (G)."""
+        came near the driver's loop limit (G) -- each the sum of the pixel's streams."""
         self._check()
         w, h = self.target_size
         y, x = self._where
         out = []
         for tex in self._targets[self._current][4:]:
             a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]
-            out.append(a[::-1].astype(np.float64))
+            a = a.astype(np.float64).reshape(self.streams, self.height, self.width, 4)
+            out.append(a.sum(0)[::-1])
         return out[0], out[1], out[2]
 
 

@@ -111,6 +111,21 @@ def software_arrays(quick: bool) -> dict:
             return {k: data[k] for k in data.files}
 
 
+def paths_per_s(scene, camera, size, spp: int, **options) -> tuple[int, float]:
+    """The tracer's streams and its paths a second at ``size`` x ``spp``: one tracer made
+    and compiled before the clock (its context, program and tables: a GPU traces a small
+    picture in less time than a context takes to make), the picture read back inside it."""
+    from glshade import pathtrace
+
+    with pathtrace.PathTracer(scene, size, **options) as tracer:
+        tracer.add(camera, 1)  # (compiled; the kernel chosen)
+        tracer.reset()
+        start = time.perf_counter()
+        tracer.add(camera, spp)
+        tracer.result()  # (read back: the passes done)
+        return tracer.gpu.streams, size[0] * size[1] * spp / (time.perf_counter() - start)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small sizes: seconds")
@@ -135,30 +150,15 @@ def main(argv=None) -> int:
         cam = Camera.look_at((0.0, 40.0, 60.0), (0, 0, 0), fov_y=50).with_planes(scene.bounds)
         results["opaque_fps"] = 1.0 / timed(lambda: r.render(scene, cam, "phong"),
                                             1 if quick else 5)
-    from glshade import pathtrace
-
     box, box_camera = cornell_scene()
     trace_size, spp = ((32, 32), 4) if quick else ((256, 256), 32)
-    rates = {}
-    for kernel in ("fragment", "compute"):
-        pathtrace.trace(box, box_camera, size=(16, 16), spp=1, progress=False,
-                        kernel=kernel)  # (compiled)
-        start = time.perf_counter()
-        pathtrace.trace(box, box_camera, size=trace_size, spp=spp, progress=False,
-                        kernel=kernel)
-        rates[kernel] = trace_size[0] * trace_size[1] * spp / (time.perf_counter() - start)
+    rates = {kernel: paths_per_s(box, box_camera, trace_size, spp, kernel=kernel)[1]
+             for kernel in ("fragment", "compute")}
     results["trace_paths_per_s"] = rates
     small = (32, 32) if quick else (128, 128)
-    shared = {}
-    for asked in (1, None):  # (one invocation a pixel, then the default's streams)
-        with pathtrace.PathTracer(box, small, kernel="compute", streams=asked) as tracer:
-            tracer.add(box_camera, 1)  # (compiled)
-            tracer.reset()
-            start = time.perf_counter()
-            tracer.add(box_camera, spp)
-            tracer.result()  # (read back: the passes done)
-            shared[tracer.gpu.streams] = small[0] * small[1] * spp / (
-                time.perf_counter() - start)
+    # (one invocation a pixel, then the streams this GL takes by default)
+    shared = dict(paths_per_s(box, box_camera, small, spp, kernel="compute", streams=asked)
+                  for asked in (1, None))
     results["trace_streams_paths_per_s"] = {str(k): v for k, v in shared.items()}
     layered = glass(8)
     cam = Camera.look_at((0.5, 0.4, 4.0), (0, 0, 0))

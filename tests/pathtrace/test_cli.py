@@ -141,3 +141,15 @@ def test_a_black_path_traced_picture_says_why(tmp_path):
                                 "scene lies in the camera's view (between its near and far "
                                 "planes, inside its field of view)")
     assert "inf%" not in r.stdout and "relative error none (nothing lit)" in r.stdout
+
+
+@pytest.mark.parametrize("sampler", ["pcg", "sobol"])
+def test_the_error_printed_says_how_it_was_figured(tmp_path, sampler):
+    """The summary's error is the samples' spread over sqrt(n): right for independent
+    numbers, and said to be figured so (too high) for Sobol points."""
+    out = tmp_path / "s.png"
+    r = glshade("pathtrace", "primitive:icosphere:2", "-o", str(out), "--spp", "8",
+                "--size", "16x16", "--sampler", sampler, "--backend", BACKEND)
+    assert r.returncode == 0, r.stderr
+    caveat = "(figured as for independent samples: Sobol points' own is lower)"
+    assert (caveat in r.stdout) == (sampler == "sobol"), r.stdout

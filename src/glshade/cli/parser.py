@@ -444,7 +444,9 @@ def add_pathtrace(sub) -> None:
     p.add_argument("--sampler", choices=("pcg", "sobol"), default="pcg",
                    help="the paths' random numbers: pcg (independent, default) or sobol "
                    "(Owen-scrambled Sobol points at the first three vertices: less error for "
-                   "the same samples; its --until estimate errs on the safe side)")
+                   "the same samples; the error printed, and --until's, is figured as for "
+                   "independent samples: higher than Sobol points' own, so --until traces "
+                   "more than it needs -- give --spp)")
     p.add_argument("--kernel", choices=("auto", "fragment", "compute"), default="auto",
                    help="the program a pass runs: a fragment program or a compute kernel "
                    "(GL 4.3; the same numbers); auto (default) measures both on first use "

@@ -16,6 +16,12 @@ __all__ = ["pathtrace"]
 EXIT_INTERRUPTED = 130
 
 
+#: what the summary says of Sobol points' error figure: it is the samples' spread over
+#: sqrt(n), right for independent samples; stratified points' error is lower (on the
+#: Cornell box + sphere at 256 samples: 13.8% printed, 3.1% against a long render)
+_SOBOL_ERROR = " (figured as for independent samples: Sobol points' own is lower)"
+
+
 def pathtrace(args: PathtraceArgs) -> int:
     """Path-trace a scene file or mesh to an image; a Ctrl-C writes the image so far."""
     from .. import pathtrace as pt
@@ -83,8 +89,8 @@ def pathtrace(args: PathtraceArgs) -> int:
             f"{options.sampler.value}{', coherent' if options.coherent != (1, 1) else ''}"
             f"{', control' if args.control else ''}"
             f"{', adaptive' if args.adaptive else ''}), "
-            f"relative error "
-            f"{said}, exposure {exposure:.4g} -> {args.output}")
+            f"relative error {said}{_SOBOL_ERROR if options.sampler.value == 'sobol' else ''}"
+            f", exposure {exposure:.4g} -> {args.output}")
     if result.interrupted:
         print(f"glshade: interrupted after {result.samples:,} samples a pixel; the image so "
               f"far is in {args.output}", file=sys.stderr)

@@ -444,9 +444,8 @@ def add_pathtrace(sub) -> None:
     p.add_argument("--sampler", choices=("pcg", "sobol"), default="pcg",
                    help="the paths' random numbers: pcg (independent, default) or sobol "
                    "(Owen-scrambled Sobol points at the first three vertices: less error for "
-                   "the same samples; the error printed, and --until's, is figured as for "
-                   "independent samples: higher than Sobol points' own, so --until traces "
-                   "more than it needs -- give --spp)")
+                   "the same samples; the error printed and --until's is figured from the "
+                   "first samples' mean against the rest's)")
     p.add_argument("--kernel", choices=("auto", "fragment", "compute"), default="auto",
                    help="the program a pass runs: a fragment program or a compute kernel "
                    "(GL 4.3; the same numbers); auto (default) measures both on first use "

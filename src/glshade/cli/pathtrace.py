@@ -16,10 +16,10 @@ __all__ = ["pathtrace"]
 EXIT_INTERRUPTED = 130
 
 
-#: what the summary says of Sobol points' error figure: it is the samples' spread over
-#: sqrt(n), right for independent samples; stratified points' error is lower (on the
-#: Cornell box + sphere at 256 samples: 13.8% printed, 3.1% against a long render)
-_SOBOL_ERROR = " (figured as for independent samples: Sobol points' own is lower)"
+#: what the summary says of Sobol points' error where it could only be figured from the
+#: samples' spread (adaptive counts: no halves to compare, PathTraced.se_from): right for
+#: independent samples, too high for stratified points
+_SPREAD_ERROR = " (figured as for independent samples: Sobol points' own is lower)"
 
 
 def pathtrace(args: PathtraceArgs) -> int:
@@ -83,13 +83,15 @@ def pathtrace(args: PathtraceArgs) -> int:
     save_image(image, args.output)
     rays = int(result.counts.sum()) if result.counts is not None else result.samples * w * h
     error = result.relative_error
+    # (Sobol points' error figured from the samples' spread: only where no halves serve)
+    sobol_spread = options.sampler.value == "sobol" and result.se_from == "spread"
     said = f"{error:.2%}" if np.isfinite(error) else "none (nothing lit)"
     line = (f"{w}x{h}, {result.samples:,} samples a pixel in {result.seconds:.2f} s "
             f"({rays / max(result.seconds, 1e-9) / 1e6:.2f} M paths/s, "
             f"{options.sampler.value}{', coherent' if options.coherent != (1, 1) else ''}"
             f"{', control' if args.control else ''}"
             f"{', adaptive' if args.adaptive else ''}), "
-            f"relative error {said}{_SOBOL_ERROR if options.sampler.value == 'sobol' else ''}"
+            f"relative error {said}{_SPREAD_ERROR if sobol_spread else ''}"
             f", exposure {exposure:.4g} -> {args.output}")
     if result.interrupted:
         print(f"glshade: interrupted after {result.samples:,} samples a pixel; the image so "

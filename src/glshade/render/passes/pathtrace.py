@@ -509,20 +509,28 @@ class GpuPathTracer(GLResource):
     def _release_extra(self) -> None:
         self.context.rest()  # (never release the bound framebuffer)
 
+    def sums(self) -> np.ndarray:
+        """``(H, W, 4)`` float64, top row first: the samples' sum (RGB) and count (A) --
+        :meth:`read`'s first array alone (one target read back, not three)."""
+        self._check()
+        return self._read(self._targets[self._current][4])
+
+    def _read(self, tex) -> np.ndarray:
+        """One target, each pixel's streams added, top row first."""
+        w, h = self.target_size
+        y, x = self._where
+        a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]
+        a = a.astype(np.float64).reshape(self.streams, self.height, self.width, 4)
+        return a.sum(0)[::-1]
+
     def read(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(sum, square, hits): ``(H, W, 4)`` float64, top row first: the samples' sum
         (RGB) and count (A); the sum of their squares (RGB) and of first hits on an
         emitter (A); the count of camera rays that hit anything (R) and of bounces that
         came near the driver's loop limit (G) -- each the sum of the pixel's streams."""
         self._check()
-        w, h = self.target_size
-        y, x = self._where
-        out = []
-        for tex in self._targets[self._current][4:]:
-            a = np.frombuffer(tex.read(), np.float32).reshape(h, w, 4)[y, x]
-            a = a.astype(np.float64).reshape(self.streams, self.height, self.width, 4)
-            out.append(a.sum(0)[::-1])
-        return out[0], out[1], out[2]
+        total, square, hits = (self._read(tex) for tex in self._targets[self._current][4:])
+        return total, square, hits
 
 
 def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,

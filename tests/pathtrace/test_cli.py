@@ -143,15 +143,16 @@ def test_a_black_path_traced_picture_says_why(tmp_path):
     assert "inf%" not in r.stdout and "relative error none (nothing lit)" in r.stdout
 
 
-@pytest.mark.parametrize("sampler,adaptive", [("pcg", False), ("sobol", False),
-                                              ("sobol", True)])
-def test_the_error_printed_says_how_it_was_figured(tmp_path, sampler, adaptive):
-    """Sobol points' error is figured by halves; where adaptive counts leave no halves to
-    compare, the summary says it is the samples' spread (too high for them)."""
+@pytest.mark.parametrize("sampler,spp,adaptive", [("pcg", "8", False), ("sobol", "8", False),
+                                                  ("sobol", "64", True), ("sobol", "1", False)])
+def test_the_error_printed_says_how_it_was_figured(tmp_path, sampler, spp, adaptive):
+    """Sobol points' error is figured by halves (adaptive counts too); where no halves
+    serve -- one sample a pixel -- the summary says it is the samples' spread, too high
+    for them."""
     out = tmp_path / "s.png"
-    r = glshade("pathtrace", "primitive:icosphere:2", "-o", str(out), "--spp", "8",
+    r = glshade("pathtrace", "primitive:icosphere:2", "-o", str(out), "--spp", spp,
                 "--size", "16x16", "--sampler", sampler, "--backend", BACKEND,
                 *(["--adaptive"] if adaptive else []))
     assert r.returncode == 0, r.stderr
     caveat = "(figured as for independent samples: Sobol points' own is lower)"
-    assert (caveat in r.stdout) == (sampler == "sobol" and adaptive), r.stdout
+    assert (caveat in r.stdout) == (sampler == "sobol" and spp == "1"), r.stdout

@@ -17,8 +17,8 @@ EXIT_INTERRUPTED = 130
 
 
 #: what the summary says of Sobol points' error where it could only be figured from the
-#: samples' spread (adaptive counts: no halves to compare, PathTraced.se_from): right for
-#: independent samples, too high for stratified points
+#: samples' spread (no halves to compare -- one sample a pixel: PathTraced.se_from):
+#: right for independent samples, too high for stratified points
 _SPREAD_ERROR = " (figured as for independent samples: Sobol points' own is lower)"
 
 

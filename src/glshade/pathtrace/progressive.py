@@ -64,11 +64,13 @@ class PathTraced:
         How ``se`` was figured. ``"spread"``: the samples' spread over sqrt(n), right for
         independent samples (``sampler="pcg"``) but far too high for Sobol points, whose
         error falls faster (the Cornell box + sphere at 256 samples: 13.8% where the error
-        against a long render is 3.1%). ``"halves"`` (Sobol points, every pixel alike):
-        the difference between the mean of the pixel's first samples -- up to a power of
-        two near half -- and of the rest, each a well-stratified set: 3.5% there, a little
-        high (1.1-1.3x at 64 to 1,024 samples), one degree of freedom a pixel (noisy
-        pixel by pixel, right over the picture).
+        against a long render is 3.1%). ``"halves"`` (Sobol points): the difference
+        between the mean of the pixel's first samples -- up to a mark near half its count
+        (a power of two, or a step of adaptive sampling) -- and of the rest, each a
+        well-stratified set: 3.5% there, a little high (1.1-1.3x at 64 to 1,024 samples),
+        one degree of freedom a pixel (noisy pixel by pixel, right over the picture).
+        Sobol points fall back to the spread where no mark serves (one sample a pixel, or
+        counts given to :meth:`PathTracer.add` in one step).
     """
 
     image: np.ndarray
@@ -147,21 +149,24 @@ def _moments(total: np.ndarray, square: np.ndarray):
     return mean, np.sqrt(var / n)
 
 
-def _by_halves(total: np.ndarray, marks: dict, counts: np.ndarray) -> np.ndarray | None:
+def _by_halves(total: np.ndarray, marks: list) -> np.ndarray | None:
     """Each pixel's standard error from its first n1 samples' mean against the rest's
-    (``marks``: the sums at powers of two; the one nearest half the count, n1 within a
-    quarter to three quarters of it), or None where no mark serves (counts that differ,
-    fewer than two samples). For independent halves the figure's square is the mean's
-    variance exactly (``(m1 - m2)^2 n1 n2 / N^2``); Sobol points' halves are each
-    stratified and slightly anti-correlated, so it errs a little high."""
-    n = int(counts.flat[0])
-    if not marks or n < 2 or (counts != n).any():
+    (``marks``: sums read as pixels passed powers of two, their counts in A; each pixel
+    takes the one nearest half its count), or None where some pixel has no mark within a
+    quarter to three quarters of its count, or fewer than two samples. For independent
+    halves the figure's square is the mean's variance exactly (``(m1 - m2)^2 n1 n2 /
+    N^2``); Sobol points' halves are each stratified and slightly anti-correlated, so it
+    errs a little high."""
+    n = total[..., 3:4]
+    if not marks or (n < 2).any():
         return None
-    n1 = min(marks, key=lambda k: abs(2 * k - n))
-    if not n <= 4 * n1 <= 3 * n:
+    stack = np.stack(marks)  # (K, H, W, 4)
+    pick = np.abs(2 * stack[..., 3:4] - n).argmin(0)  # (H, W, 1)
+    first = np.take_along_axis(stack, pick[None], 0)[0]
+    n1 = first[..., 3:4]
+    if ((4 * n1 < n) | (4 * n1 > 3 * n)).any():
         return None
-    first = marks[n1][..., :3]
-    m1, m2 = first / n1, (total[..., :3] - first) / (n - n1)
+    m1, m2 = first[..., :3] / n1, (total[..., :3] - first[..., :3]) / (n - n1)
     return np.abs(m1 - m2) * np.sqrt(n1 * (n - n1)) / n
 
 
@@ -220,9 +225,9 @@ class PathTracer:
             raise
         self.camera = None
         self.seconds = 0.0
-        #: Sobol points: the sums when every pixel had a power of two samples (the last
-        #: few), from which result() figures the error by halves
-        self._marks: dict[int, np.ndarray] = {}
+        #: Sobol points: ``(H, W, 4)`` sums read as pixels passed powers of two (the
+        #: count in A), from which result() figures the error by halves
+        self._marks: list[np.ndarray] = []
 
     @property
     def samples(self) -> int:
@@ -234,7 +239,7 @@ class PathTracer:
         camera does)."""
         self.gpu.reset()
         self.seconds = 0.0
-        self._marks = {}
+        self._marks = []
 
     @property
     def counts(self) -> np.ndarray:
@@ -261,32 +266,37 @@ class PathTracer:
         self.camera = camera
         t0 = time.perf_counter()
         if self.options.sampler is Sampler.SOBOL and counts is None:
-            self._run_marking(camera, int(samples))
+            self._run_marking(camera, self.gpu.counts + int(samples))
         else:
             self.gpu.run(camera, int(samples), self.seed, counts=counts)
-            self._marks = {} if counts is not None else self._marks
+            if self.options.sampler is Sampler.SOBOL:  # (counts that differ: a mark at
+                self._mark(int(np.min(counts)))        # the end; trace's adaptive runs
+                                                       # end a step at each pixel's half)
         self.context.ctx.finish()
         self.seconds += time.perf_counter() - t0
         return restarted
 
-    def _run_marking(self, camera, samples: int) -> None:
-        """Add ``samples`` to every pixel, stopping at each power of two on the way to read
-        the sums there (Sobol points' error by halves, :meth:`result`; a pixel's samples
-        are the same however a run is split)."""
-        have = self.gpu.samples
-        if self.gpu.extra.any():  # (counts that differ: no common power of two)
-            self._marks = {}
-        else:
-            goal = have + samples
-            # (the powers of two above ``have``, from a quarter of the goal: a result at N
-            # takes the mark nearest N / 2, so smaller ones are never needed again)
-            mark = max(1 << have.bit_length(), 1 << (max(goal // 4, 1) - 1).bit_length())
-            while mark <= goal:
-                self.gpu.run(camera, mark - self.gpu.samples, self.seed)
-                self._marks[mark] = self.gpu.sums()
-                self._marks = {k: v for k, v in self._marks.items() if 4 * k >= mark}
-                mark *= 2
-        self.gpu.run(camera, have + samples - self.gpu.samples, self.seed)
+    def _run_marking(self, camera, target: np.ndarray) -> None:
+        """Run every pixel to its ``target`` ``(H, W)`` samples, stopping where pixels
+        pass each power of two to read the sums there (Sobol points' error by halves,
+        :meth:`result`; a pixel's samples are the same however a run is split). Marks
+        below a quarter of the fewest target never serve again and are dropped."""
+        least = int(target.min())
+        mark = 1 << (max(least // 4, 1) - 1).bit_length()
+        while mark <= int(target.max()):
+            have = self.gpu.counts
+            if (have < np.minimum(target, mark)).any():  # (someone passes it here)
+                self.gpu.run(camera, 0, self.seed,
+                             counts=np.maximum(have, np.minimum(target, mark)))
+                self._mark(least)
+            mark *= 2
+        self.gpu.run(camera, 0, self.seed, counts=target)
+
+    def _mark(self, least: int) -> None:
+        """Read the sums as they stand for :meth:`result`'s halves, dropping the marks that
+        can serve no pixel once each has ``least`` samples (under a quarter of it)."""
+        self._marks = [m for m in self._marks if 4 * m[..., 3].max() >= least]
+        self._marks.append(self.gpu.sums())
 
     def deviations(self, camera, samples: int) -> np.ndarray:
         """``(H, W)`` each pixel's per-sample standard deviation (RMS over channels) from
@@ -344,7 +354,7 @@ class PathTracer:
         mean, se = _moments(total, square)
         counts = self.gpu.counts
         se_from = "spread"
-        halves = _by_halves(total, self._marks, counts)
+        halves = _by_halves(total, self._marks)
         if halves is not None:
             se, se_from = halves, "halves"
         n = np.maximum(counts, 1)
@@ -530,6 +540,10 @@ def _adaptive(tracer: PathTracer, camera, spp: int | None, until: float | None, 
         start = tracer.counts
         todo = counts - start
         chunks = max(1, -(-int(todo.sum()) // (per_pass * pixels)))
+        if tracer.options.sampler is Sampler.SOBOL:
+            # (an even number of steps: one ends at each pixel's half, a mark for Sobol
+            # points' error by halves -- PathTracer.result)
+            chunks += chunks % 2
         for j in range(1, chunks + 1):
             tracer.add(camera, counts=start + todo * j // chunks)
             if bar is not None:

@@ -269,9 +269,10 @@ class PathTracer:
             self._run_marking(camera, self.gpu.counts + int(samples))
         else:
             self.gpu.run(camera, int(samples), self.seed, counts=counts)
-            if self.options.sampler is Sampler.SOBOL:  # (counts that differ: a mark at
-                self._mark(int(np.min(counts)))        # the end; trace's adaptive runs
-                                                       # end a step at each pixel's half)
+            if self.options.sampler is Sampler.SOBOL:
+                # (counts that differ: a mark at the end -- trace's adaptive runs end a
+                # step at each pixel's half)
+                self._mark(int(self.gpu.counts.min()))
         self.context.ctx.finish()
         self.seconds += time.perf_counter() - t0
         return restarted

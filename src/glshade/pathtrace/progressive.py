@@ -287,11 +287,20 @@ class PathTracer:
         while mark <= int(target.max()):
             have = self.gpu.counts
             if (have < np.minimum(target, mark)).any():  # (someone passes it here)
-                self.gpu.run(camera, 0, self.seed,
-                             counts=np.maximum(have, np.minimum(target, mark)))
+                self._run_to(camera, np.maximum(have, np.minimum(target, mark)))
                 self._mark(least)
             mark *= 2
-        self.gpu.run(camera, 0, self.seed, counts=target)
+        self._run_to(camera, target)
+
+    def _run_to(self, camera, counts: np.ndarray) -> None:
+        """Every pixel to its ``counts`` -- where they are all one number and the pixels
+        alike, as a plain count (no per-pixel table to upload: a viewer adds a sample a
+        frame)."""
+        n = int(counts.flat[0])
+        if not self.gpu.extra.any() and (counts == n).all():
+            self.gpu.run(camera, n - self.gpu.samples, self.seed)
+        else:
+            self.gpu.run(camera, 0, self.seed, counts=counts)
 
     def _mark(self, least: int) -> None:
         """Read the sums as they stand for :meth:`result`'s halves, dropping the marks that

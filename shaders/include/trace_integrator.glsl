@@ -199,13 +199,13 @@ void trace_pixel(ivec2 at, out vec4 o[7]) {
     g_pixel_seed = pcg(pcg(pcg(u_seed ^ 0x5bd1e995u) + block.x) + block.y);
 #endif
     for (int step = 0; step < STEPS && g_iter < u_budget; ++step) {
+        // (a stream's samples finish in order: its count gives the sample's number k)
+        g_sample = uint(stream) + uint(u_streams) * uint(sum.w);
         if (!flying) {
             if (sum.w >= target) break;
-            // (a stream's samples finish in order: its count gives the next k)
-            p = start(pixel, uint(stream) + uint(u_streams) * uint(sum.w));
+            p = start(pixel, g_sample);
             flying = true;
         }
-        g_sample = uint(stream) + uint(u_streams) * uint(sum.w);
         bool going = bounce(p);
         if (g_iter >= NEAR_LIMIT) hit.y += 1.0;
         if (!going) {

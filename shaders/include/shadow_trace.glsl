@@ -19,12 +19,30 @@
 #ifndef SHADOW_TRACE_GLSL
 #define SHADOW_TRACE_GLSL
 
+#ifdef SHADOW_TEXELS
+// (no storage buffers: a GL 4.1 context's fragment pass, shadow_rays.frag) the same words
+// in RGBA32UI / RGBA32F textures, SHADOW_TEXEL_ROW texels a row; the rays that ran out are
+// flagged by the caller's output, not counted here
+uniform usampler2D u_walk_nodes;
+uniform usampler2D u_walk_tris;
+uniform sampler2D u_polygon_normals;
+ivec2 shadow_texel(int i) {
+    return ivec2(i % SHADOW_TEXEL_ROW, i / SHADOW_TEXEL_ROW);
+}
+#define NODE_WORDS(i) texelFetch(u_walk_nodes, shadow_texel(i), 0)
+#define TRI_WORDS(i) texelFetch(u_walk_tris, shadow_texel(i), 0)
+#define POLYGON_NORMAL(i) texelFetch(u_polygon_normals, shadow_texel(i), 0)
+#else
 layout(std430, binding = BINDING_WALK_NODES) readonly buffer Nodes { uvec4 nodes[]; };
 layout(std430, binding = BINDING_WALK_TRIANGLES) readonly buffer Tris { uvec4 tris[]; };
 layout(std430, binding = BINDING_RAY_COUNTS) buffer Counts { uint undecided; };
 // each mesh polygon's world unit normal, by id (padded to vec4); ids past u_polygons (a
 // patch's, a solid's leaf) take the surface's shading normal
 layout(std430, binding = BINDING_POLYGON_NORMALS) readonly buffer Normals { vec4 polygon_normals[]; };
+#define NODE_WORDS(i) nodes[i]
+#define TRI_WORDS(i) tris[i]
+#define POLYGON_NORMAL(i) polygon_normals[i]
+#endif
 uniform int u_polygons;
 uniform float u_scale;             // the scene's largest coordinate (float32 precision)
 uniform float u_eps;               // relative offset of a ray's start
@@ -37,15 +55,15 @@ uniform vec4 u_shadow_lights[8];   // world: point (xyz, 1), direction TO it (xy
 int g_own;  // the polygon the ray leaves from (a planar polygon cannot shade itself)
 
 uvec4 walk_node(int i) {
-    return nodes[i];
+    return NODE_WORDS(i);
 }
 
 bool walk_rows(int k, out vec3 p0, out vec3 e1, out vec3 e2) {
-    uvec4 a = tris[3 * k];
+    uvec4 a = TRI_WORDS(3 * k);
     if (int(a.w) == g_own) return false;  // (before the other rows are read)
     p0 = uintBitsToFloat(a.xyz);
-    e1 = uintBitsToFloat(tris[3 * k + 1].xyz);
-    e2 = uintBitsToFloat(tris[3 * k + 2].xyz);
+    e1 = uintBitsToFloat(TRI_WORDS(3 * k + 1).xyz);
+    e2 = uintBitsToFloat(TRI_WORDS(3 * k + 2).xyz);
     return true;
 }
 #include "bvh_walk.glsl"
@@ -89,7 +107,7 @@ ShadowRay shadow_ray(vec3 p, float depth, vec4 light, int own, vec3 shading_n, v
     // neighbour rises over the point: a grazing ray that started on the surface would
     // clip it), then eps along the ray
     bool polygon = own >= 0 && own < u_polygons;
-    vec3 n = polygon ? polygon_normals[max(own, 0)].xyz : shading_n;
+    vec3 n = polygon ? POLYGON_NORMAL(max(own, 0)).xyz : shading_n;
     r.behind = polygon && dot(n, r.d) * dot(n, to_eye) < 0.0;
     r.o = p + (dot(n, r.d) < 0.0 ? -r.eps : r.eps) * n;
     return r;

@@ -358,7 +358,7 @@ def doctor(args: a.DoctorArgs) -> int:
     try:
         with create_context(args.backend) as ctx:
             facts = ctx.info
-            kernel = kernels.chosen(ctx).value if ctx.ctx.version_code >= 430 else None
+            kernel = kernels.chosen(ctx).value if ctx.features.storage else None
         print(f"backend chosen     {facts['backend']}")
         for key in ("vendor", "renderer", "version", "max_samples", "max_texture_size"):
             print(f"{key.replace('_', ' '):<18} {facts[key]}")

@@ -154,6 +154,7 @@ class RenderContext:
         self._loader = loader
         self._children: list = []
         self.released = False
+        self._features = None
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
         self._idle = ctx.simple_framebuffer((1, 1))
@@ -224,25 +225,31 @@ class RenderContext:
         if self.released:
             raise ContextError("this RenderContext was released; make a new one")
 
+    @property
+    def features(self):
+        """What this context can do and the path each feature takes here
+        (:class:`~glshade.render.features.Features`), decided once from its version and
+        extensions."""
+        if self._features is None:
+            from .features import Features
+
+            self._features = Features.of(self.ctx, self.detail)
+        return self._features
+
     def require(self, version: int, what: str, instead: str) -> None:
-        """Refuse, in one line, a feature this GL is too old for: ``version`` as GL's
-        version code (430: 4.3); ``what`` ends in the verb ("shadows='exact' needs");
-        ``instead`` names the way that works.
+        """Refuse, in one line, a feature this GL is too old for
+        (:meth:`Features.require <glshade.render.features.Features.require>`).
 
         Parameters
         ----------
         version : int
             GL's version code needed (430: 4.3).
         what : str
-            What needs it, ending in the verb ("shadows='exact' needs").
+            What needs it, ending in the verb ("kernel='compute' needs").
         instead : str
             The way that works on this GL.
         """
-        have = self.ctx.version_code
-        if have < version:
-            raise EnvironmentFailure(
-                f"{what} OpenGL {version // 100}.{version % 100 // 10}; this GL is "
-                f"{have // 100}.{have % 100 // 10} ({self.detail}): {instead}")
+        self.features.require(version, what, instead)
 
     def release(self) -> None:
         if self.released:

@@ -302,7 +302,10 @@ class ProgramKey:
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
                  ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", capture),
-                 ("OIT_FETCH", self.oit is Role.FETCH), ("GLSL_430", capture or forward),
+                 ("OIT_FETCH", self.oit is Role.FETCH),
+                 ("GLSL_430", capture or self.forward is Forward.RAYS),
+                 # (a sampler array indexed in a loop: GLSL 4.00, what every Mac has)
+                 ("GLSL_410", self.forward is Forward.MAPS and not capture),
                  ("OIT_BLEND", self.oit is Role.BLEND), ("TEXTURED", self.textured),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
                  ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),

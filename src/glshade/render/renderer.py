@@ -409,7 +409,8 @@ class Renderer:
         self.context.make_current()
         self.meshes.sync()
         state = DrawState.of(target, scene, camera, options, viewport,
-                             read_visibility=read_visibility, clear=clear)
+                             read_visibility=read_visibility, clear=clear,
+                             traced_forward=self.context.features.storage)
         # the pipeline: shadows -> meshes -> patches -> CSG solids -> point clouds ->
         # polylines -> transparency -> edges
         return run(self.ctx, self.stages, state)

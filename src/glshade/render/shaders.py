@@ -65,7 +65,8 @@ def assemble(name: str, root: Path | None = None,
     """Source of ``name`` with includes expanded and ``defines`` injected after
     ``#version``; and the file of each ``#line`` source number (index = source string
     number used in ``#line L N``). The define ``GLSL_430`` raises the file's ``#version``
-    to 430 core (storage buffers and image atomics in a program written for 330).
+    to 430 core (storage buffers and image atomics in a program written for 330),
+    ``GLSL_410`` to 410 core (sampler arrays indexed in a loop: what a Mac's GL has).
 
     Parameters
     ----------
@@ -97,7 +98,8 @@ def assemble(name: str, root: Path | None = None,
                 if not line.startswith("#version"):
                     raise ShaderError(f"{files[number]}:1: the first line must be #version, "
                                       f"got {line!r}")
-                out.append("#version 430 core" if "GLSL_430" in defines else line)
+                out.append("#version 430 core" if "GLSL_430" in defines else
+                           "#version 410 core" if "GLSL_410" in defines else line)
                 out.extend(f"#extension {_EXTENSIONS[d]} : require" for d in defines
                            if d in _EXTENSIONS)
                 out.extend(f"#define {d}" for d in defines)

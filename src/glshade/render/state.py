@@ -102,7 +102,8 @@ class DrawState:
     @classmethod
     def of(cls, target, scene: Scene, camera: Camera, options: DrawOptions,
            viewport: tuple[int, int, int, int] | None = None, *,
-           read_visibility: bool = False, clear: bool = True) -> DrawState:
+           read_visibility: bool = False, clear: bool = True,
+           traced_forward: bool = True) -> DrawState:
         """The facts of drawing ``scene`` seen by ``camera`` (its planes already fitted)
         with ``options`` into ``target``.
 
@@ -119,6 +120,9 @@ class DrawState:
             G-buffer (not found by the shading programs as they shade).
         clear
             the target is cleared first.
+        traced_forward
+            the shading programs can trace their own shadow rays (they count those that
+            run out in a storage buffer: GL 4.3); else exact shadows go through a G-buffer.
         """
         view = camera.view_matrix()
         vx, vy, vw, vh = viewport or (0, 0, target.width, target.height)
@@ -136,7 +140,7 @@ class DrawState:
         if shadows and not read_visibility:
             if options.shadows is Shadows.MAP:
                 forward = Forward.MAPS
-            elif not scene.solids:
+            elif not scene.solids and traced_forward:
                 forward = Forward.RAYS
         variant = Variant(options.mode, options.outputs.auxiliary,
                           tuple(light_kind(x) for x in lights), options.srgb,

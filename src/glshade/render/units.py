@@ -43,6 +43,10 @@ class Unit:
     CAST_TREE = 2
     #: the light map a lookup pass reads
     LOOKUP_MAP = 4
+    #: without storage buffers (a GL 4.1 context): the hierarchy's nodes, triangles and
+    #: polygon normals as textures, and the visibility so far a solid's cast reads
+    #: (shadow_rays.frag)
+    WALK_NODES, WALK_TRIANGLES, WALK_NORMALS, CAST_PREVIOUS = 5, 6, 7, 8
 
     # ---- the transparency resolve (oit_resolve.frag)
     OIT_BEHIND, OIT_HEADS = 2, 3

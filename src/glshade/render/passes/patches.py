@@ -125,9 +125,8 @@ class PatchPass(GLResource, Stage):
 
         self._check()
         ctx = self.context.ctx
-        if ctx.version_code < 400:
-            raise SceneError(f"GPU tessellation needs OpenGL 4.0; this context is "
-                             f"{ctx.version_code / 100:.1f} (tessellate on the CPU)")
+        self.context.require(400, "GPU tessellation needs", "tessellate on the CPU "
+                             "(tessellation='cpu')")
         mode = state.options.mode
         if mode not in GPU_MODES:
             raise SceneError(f"a GPU-tessellated patch model draws in "

@@ -44,7 +44,7 @@ def _kernel(context, asked: Kernel) -> Kernel:
         context.require(430, "kernel='compute' needs", "use kernel='fragment'")
     if asked is not Kernel.AUTO:
         return asked
-    if context.ctx.version_code < 430:
+    if not context.features.storage:
         return Kernel.FRAGMENT
     return kernels.chosen(context)
 
@@ -303,7 +303,7 @@ class GpuPathTracer(GLResource):
         #: whether the hierarchy's walk reads storage buffers (else texel fetches)
         self.storage = False
         if self.accel is not Accel.FLAT and self.layout["nodes"]:
-            have = context.ctx.version_code >= 430
+            have = context.features.storage
             self.storage = have if options.storage is None else options.storage
             if self.storage and not have:
                 context.require(430, "storage=True needs", "leave storage at None")

@@ -22,7 +22,7 @@ from ..base import GLResource
 from ..programs import UniformWriter
 from ..units import Binding, Unit
 
-__all__ = ["ShadowMaps", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
+__all__ = ["ShadowMaps", "LayerScratch", "fill_layers", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
 
 #: texels a side of a directional light's map
 MAP_SIZE = 2048
@@ -86,6 +86,98 @@ def shadow_lights(lights) -> np.ndarray:
     return rows
 
 
+class LayerScratch:
+    """The targets of a fragment pass that fills the layers of a visibility array where
+    the GL has no compute shaders: an R8 picture, an R8 target of flags, and the pixel
+    buffer that carries the picture into a layer -- made once a size.
+
+    Parameters
+    ----------
+    ctx : moderngl.Context
+        The context.
+    """
+
+    def __init__(self, ctx):
+        self.ctx = ctx
+        self._made: tuple | None = None  # (size, fbo, picture, flags, pixel buffer)
+
+    def at(self, width: int, height: int) -> tuple:
+        """``(framebuffer, picture, flags, pixel buffer)`` of ``width x height``."""
+        if self._made is None or self._made[0] != (width, height):
+            self.release()
+            from ..data import NEAREST
+
+            ctx = self.ctx
+            picture = ctx.texture((width, height), 1, dtype="f1")
+            flags = ctx.texture((width, height), 1, dtype="f1")
+            for tex in (picture, flags):
+                tex.filter = (NEAREST, NEAREST)
+            self._made = ((width, height), ctx.framebuffer([picture, flags]), picture, flags,
+                          ctx.buffer(reserve=width * height))
+        return self._made[1:]
+
+    def release(self) -> None:
+        if self._made is not None:
+            for obj in self._made[:0:-1]:
+                obj.release()
+            self._made = None
+
+
+def fill_layers(context, scratch: LayerScratch, prog, viewport, vis, layers, put,
+                uniform: str, flagged: bool) -> int:
+    """Draw the fragment program ``prog`` (over shaders/fullscreen.vert) in ``viewport``
+    once for each of ``layers``, its ``uniform`` set to the layer; copy each picture into
+    that layer of the array ``vis`` (a pixel buffer: it never leaves the GPU); count the
+    pixels its second output flagged (``flagged``). Returns the count.
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context.
+    scratch : LayerScratch
+        The pass's targets.
+    prog : moderngl.Program
+        The fragment program.
+    viewport : tuple of int
+        ``(x, y, w, h)`` in the array's pixels.
+    vis : moderngl.TextureArray
+        The R8 array filled.
+    layers : iterable of int
+        Its layers to fill.
+    put : callable
+        Writes ``prog``'s uniforms.
+    uniform : str
+        The uniform that says which layer.
+    flagged : bool
+        Count the flags.
+    """
+    import moderngl
+
+    ctx = context.ctx
+    width, height, _ = vis.size
+    fbo, _, flags, pixels = scratch.at(width, height)
+    x, y, w, h = (int(v) for v in viewport)
+    vao = ctx.vertex_array(prog, [])
+    count = 0
+    fbo.use()
+    ctx.viewport = (x, y, w, h)
+    ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
+    try:
+        for layer in layers:
+            put(prog, uniform, int(layer))
+            vao.render(moderngl.TRIANGLES, vertices=3)
+            fbo.read_into(pixels, (x, y, w, h), components=1, attachment=0, alignment=1)
+            vis.write(pixels, (x, y, int(layer), w, h, 1), alignment=1)
+            if flagged:
+                seen = np.frombuffer(fbo.read((x, y, w, h), components=1, attachment=1,
+                                              alignment=1), np.uint8)
+                count += int(np.count_nonzero(seen))
+    finally:
+        vao.release()
+        context.rest()
+    return count
+
+
 class ShadowMaps(GLResource):
     """The depth maps of a Renderer's lights and the program that draws them.
 
@@ -108,6 +200,7 @@ class ShadowMaps(GLResource):
         #: per light of the last draw: (faces, texels a side, texel footprint in pixels)
         self.facts: list[tuple[int, int, float]] = []
         self._warned_solids = False
+        self._scratch = LayerScratch(context.ctx)  # (the fragment lookups' targets)
 
     def _soup_for(self, key, triangles: np.ndarray):
         if self._soup is None or self._soup[0] != key:
@@ -252,23 +345,35 @@ class ShadowMaps(GLResource):
 
         maps = self.draw_maps(state, occluders)
         ortho = state.camera.projection is Projection.ORTHOGRAPHIC
+        storage = self.context.features.storage
         prog = self._lookup.get(ortho)
         if prog is None:
-            from ..shaders import assemble
+            defines = ("ORTHOGRAPHIC",) if ortho else ()
+            if storage:
+                from ..shaders import assemble
 
-            source, _ = assemble("shadow_maps.comp",
-                                 defines=("ORTHOGRAPHIC",) if ortho else ())
-            prog = self._lookup[ortho] = self.context.ctx.compute_shader(source)
+                source, _ = assemble("shadow_maps.comp", defines=defines)
+                prog = self.context.ctx.compute_shader(source)
+            else:  # (no compute shaders: a fragment program drawn over the viewport)
+                prog = self.shaders.compile("fullscreen.vert", "shadow_maps.frag",
+                                            defines=defines)
+            self._lookup[ortho] = prog
         bind_gbuffer(put, prog, state, gbuf)
         for i, one in enumerate(maps):
             one[0].use(Unit.LOOKUP_MAP)
-            values = {"u_layer": i, **self.lookup_uniforms([one], [Unit.LOOKUP_MAP])}
+            values = self.lookup_uniforms([one], [Unit.LOOKUP_MAP])
             for name, value in values.items():
                 put(prog, name, value)
+            if not storage:
+                fill_layers(self.context, self._scratch, prog, state.viewport, vis, [i], put,
+                            "u_layer", flagged=False)
+                continue
+            put(prog, "u_layer", i)
             vis.bind_to_image(Binding.VISIBILITY_IMAGE, read=False, write=True)
             _, _, w, h = (int(v) for v in state.viewport)
             prog.run(math.ceil(w / 8), math.ceil(h / 8), 1)
-        self.context.ctx.memory_barrier()
+        if storage:
+            self.context.ctx.memory_barrier()
 
     @staticmethod
     def _footprint(state, views, facts, bounds) -> float:
@@ -310,3 +415,4 @@ class ShadowMaps(GLResource):
         for p in self._lookup.values():
             p.release()
         self._lookup.clear()
+        self._scratch.release()

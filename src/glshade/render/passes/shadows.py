@@ -10,9 +10,18 @@ solid's rays after the triangles'), leaving a texture array (a layer a light) th
 shading programs read (shaders/include/shadow_mask.glsl). Either way a ray's work is
 bounded, and the rays that ran out are counted and reported.
 
+Where the GL has no compute shaders or storage buffers (OpenGL 4.1: every Mac; the
+context's :class:`~glshade.render.features.Features` say), the same hierarchy lies in
+textures and the visibility array is filled by fragment programs drawn over the viewport,
+a light a draw (shaders/shadow_rays.frag: the same rays through the same walk, so the same
+visibility bit for bit; each draw's picture is copied into its layer through a pixel
+buffer, and its rays that ran out are flagged in a second target and counted); a plain
+draw goes through the G-buffer too (its fragments could not count their rays).
+
 ``map``: the light's depth map (2D for a directional light, six faces of a cube for a point
 light) with percentage-closer filtering, looked up the same two ways
-(shaders/include/shadow_lookup.glsl, shaders/shadow_maps.comp).
+(shaders/include/shadow_lookup.glsl, shaders/shadow_maps.comp; without compute shaders
+shaders/shadow_maps.frag).
 """
 
 from __future__ import annotations
@@ -36,7 +45,7 @@ from ..units import Binding, Unit
 from ..state import DrawState
 from . import Stage, run
 from .gbuffer import GBuffer, bind_gbuffer
-from .shadow_maps import ShadowMaps, shadow_lights
+from .shadow_maps import LayerScratch, ShadowMaps, fill_layers, shadow_lights
 
 __all__ = ["ShadowPass", "UNIT", "MAP_FORWARD_UNIT", "SHADOW_EPS", "RAY_BUDGET"]
 
@@ -50,6 +59,10 @@ SHADOW_EPS = 2e-5
 #: loop iterations one shadow ray may take (llvmpipe stops a shader at 65,535); a ray that
 #: runs out shows its light as seen, and is counted and reported
 RAY_BUDGET = LOOP_BUDGET
+#: texels a row of the hierarchy's textures where the GL has no storage buffers
+#: (shadow_trace.glsl's SHADOW_TEXEL_ROW): 16,384 rows of it (every GL 4.1's largest
+#: texture) hold 22 million triangles
+TEXEL_ROW = 4096
 #: triangles wider than this fraction of the scene's diagonal are tested by every ray in a
 #: list of their own (at most MAX_BIG of them), the rest through the hierarchy
 BIG_TRIANGLE, MAX_BIG = 0.25, 64
@@ -59,7 +72,7 @@ BIG_TRIANGLE, MAX_BIG = 0.25, 64
 class _Occluding:
     """The scene's occluders on the GPU: the BVH's ``nodes``, the ``tris`` (the ``big``
     ones first, tested by every ray), each mesh polygon's world ``normals`` (storage
-    buffers), the triangles as ``found`` on the CPU (the maps draw them), the scene's
+    buffers; textures of :data:`TEXEL_ROW` texels a row without them), the triangles as ``found`` on the CPU (the maps draw them), the scene's
     largest coordinate ``scale``, and the ``key`` of the geometry they were built for."""
 
     key: tuple
@@ -83,6 +96,20 @@ def _geometry_key(scene) -> tuple:
                  for m in scene.models) + \
         tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
               for p in scene.patch_models)
+
+
+def _texels(ctx, words: np.ndarray):
+    """``(N, 4)`` words (uint32 or float32) as a texture of :data:`TEXEL_ROW` texels a row,
+    read whole (NEAREST): a storage buffer's words where the GL has none."""
+    words = np.ascontiguousarray(words).reshape(-1, 4)
+    width = min(TEXEL_ROW, max(len(words), 1))
+    rows = -(-max(len(words), 1) // width)
+    data = np.zeros((rows * width, 4), words.dtype)
+    data[:len(words)] = words
+    dtype = "f4" if words.dtype == np.float32 else "u4"
+    tex = ctx.texture((width, rows), 4, data.tobytes(), dtype=dtype)
+    tex.filter = (NEAREST, NEAREST)
+    return tex
 
 
 def _hidden(model):
@@ -125,6 +152,7 @@ class ShadowPass(GLResource, Stage):
         self._solid_data: dict = {}  # id(solid) -> (solid, its tree data, its texture)
         self._put = UniformWriter().put
         self._lights_drawn = 0
+        self._scratch = LayerScratch(context.ctx)  # (the fragment fills' targets)
 
     # ---------------------------------------------------------------- resources
     def _gbuffer_for(self, width: int, height: int, rows_top_down: bool) -> GBuffer:
@@ -225,20 +253,30 @@ class ShadowPass(GLResource, Stage):
             tris[2::3, :3] = tri[:, 2] - tri[:, 0]
         normals = np.zeros((max(len(found.normals), 1), 4), np.float32)
         normals[:len(found.normals), :3] = found.normals
+        if self.context.features.storage:
+            made = [ctx.buffer(a.tobytes()) for a in (packed.entries, tris, normals)]
+        else:
+            made = [_texels(ctx, a) for a in (packed.entries, tris, normals)]
         self._occluding = _Occluding(
-            key, ctx.buffer(packed.entries.tobytes()), ctx.buffer(tris.tobytes()),
-            ctx.buffer(normals.tobytes()), found, len(big),
+            key, *made, found, len(big),
             float(np.abs(found.bounds).max()) if len(found) else 1.0, packed.uniforms())
         return self._occluding
 
     def _program(self, defines: tuple):
-        """The exact method's compute program for ``defines`` (compiled once)."""
+        """The exact method's program for ``defines`` (compiled once): the compute pass, or
+        without compute shaders the fragment program drawn over the viewport."""
         prog = self._programs.get(defines)
         if prog is None:
-            from ..shaders import assemble
+            if self.context.features.storage:
+                from ..shaders import assemble
 
-            source, _ = assemble("shadow_rays.comp", defines=defines)
-            prog = self._programs[defines] = self.context.ctx.compute_shader(source)
+                source, _ = assemble("shadow_rays.comp", defines=defines)
+                prog = self.context.ctx.compute_shader(source)
+            else:
+                prog = self.shaders.compile(
+                    "fullscreen.vert", "shadow_rays.frag",
+                    defines=("SHADOW_TEXELS", f"SHADOW_TEXEL_ROW {TEXEL_ROW}") + defines)
+            self._programs[defines] = prog
         return prog
 
     # ---------------------------------------------------------------- the stage
@@ -258,9 +296,8 @@ class ShadowPass(GLResource, Stage):
         """
         self._check()
         self.drawn = True
-        # (compute shaders, storage buffers, sampler arrays)
-        self.context.require(430, f"shadows={state.options.shadows.value!r} needs",
-                             "use shadows='off'")
+        if state.options.shadows is Shadows.MAP:  # (its lookups index sampler arrays)
+            self.context.require(400, "shadows='map' needs", "use shadows='exact'")
         self._array = None
         if state.variant.forward is not Forward.ARRAY:
             return state.with_uniforms(self._forward(state))
@@ -369,7 +406,15 @@ class ShadowPass(GLResource, Stage):
                 "u_polygons": len(occ.found.normals), **occ.root,
                 "u_shadow_lights": shadow_lights(state.lights).astype("f4")}
 
-    def _bind_occluding(self, occ: _Occluding) -> None:
+    def _bind_occluding(self, occ: _Occluding, prog=None) -> None:
+        """Bind the hierarchy's buffers, or (no storage buffers) its textures for ``prog``."""
+        if not self.context.features.storage:
+            for name, tex, unit in (("u_walk_nodes", occ.nodes, Unit.WALK_NODES),
+                                    ("u_walk_tris", occ.tris, Unit.WALK_TRIANGLES),
+                                    ("u_polygon_normals", occ.normals, Unit.WALK_NORMALS)):
+                tex.use(unit)
+                self._put(prog, name, unit)
+            return
         occ.nodes.bind_to_storage_buffer(Binding.WALK_NODES)
         occ.tris.bind_to_storage_buffer(Binding.WALK_TRIANGLES)
         self._counts.bind_to_storage_buffer(Binding.RAY_COUNTS)
@@ -386,7 +431,7 @@ class ShadowPass(GLResource, Stage):
         values = self._ray_uniforms(state, occ, 1)
         for name, value in values.items():
             self._put(prog, name, value)
-        self._bind_occluding(occ)
+        self._bind_occluding(occ, prog)
         self.dispatch(prog, state, vis)
         for model in state.scene.solids:  # (each hides more of what the triangles left)
             if model.visible:
@@ -420,6 +465,10 @@ class ShadowPass(GLResource, Stage):
         extra["u_csg_kind_start"] = np.array(tree.kind_start, "i4")
         for name, value in {**values, **extra}.items():
             self._put(prog, name, value)
+        if not self.context.features.storage:  # (the triangles' answers, read)
+            self._bind_occluding(self.occluding(state.scene), prog)
+            vis.use(Unit.CAST_PREVIOUS)
+            self._put(prog, "u_previous", Unit.CAST_PREVIOUS)
         self.dispatch(prog, state, vis, keep_count=True)
 
     def dispatch(self, prog, state, vis, keep_count: bool = False) -> None:
@@ -438,21 +487,51 @@ class ShadowPass(GLResource, Stage):
             Add to the count of rays out of budget (else start it anew).
         """
         ctx = self.context.ctx
-        if not keep_count:
-            self._counts.write(np.zeros(1, np.uint32).tobytes())
-        vis.bind_to_image(Binding.VISIBILITY_IMAGE, read=True, write=True)
-        _, _, w, h = (int(v) for v in state.viewport)
-        prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
-        ctx.memory_barrier()
-        undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
+        if not self.context.features.storage:
+            undecided = self._fill_layers(prog, state, vis, range(len(state.lights)))
+            undecided += self.undecided if keep_count else 0
+        else:
+            if not keep_count:
+                self._counts.write(np.zeros(1, np.uint32).tobytes())
+            vis.bind_to_image(Binding.VISIBILITY_IMAGE, read=True, write=True)
+            _, _, w, h = (int(v) for v in state.viewport)
+            prog.run(math.ceil(w / 8), math.ceil(h / 8), max(len(state.lights), 1))
+            ctx.memory_barrier()
+            undecided = int(np.frombuffer(self._counts.read(), np.uint32)[0])
         self.undecided, new = undecided, undecided - (self.undecided if keep_count else 0)
         if new:
             self._warn_undecided(new)
+
+    def _fill_layers(self, prog, state, vis, layers, uniform: str = "u_light",
+                     flagged: bool = True) -> int:
+        """Without compute shaders: draw ``prog`` over the viewport once for each of
+        ``layers`` (its ``uniform`` set to it), each picture copied into that layer of
+        ``vis`` through a pixel buffer (on the GPU); the pixels it flagged in its second
+        target counted (``flagged``). Returns their count.
+
+        Parameters
+        ----------
+        prog : moderngl.Program
+            A fragment program over shaders/fullscreen.vert.
+        state : DrawState
+            The draw (its viewport).
+        vis : moderngl.TextureArray
+            The visibility array.
+        layers : iterable of int
+            The layers to fill.
+        uniform : str
+            The uniform that says which.
+        flagged : bool
+            Count the second target's flags (rays that ran out).
+        """
+        return fill_layers(self.context, self._scratch, prog, state.viewport, vis, layers,
+                           self._put, uniform, flagged)
 
     def _release_extra(self) -> None:
         for p in self._programs.values():
             p.release()
         self._programs.clear()
+        self._scratch.release()
         if self._gbuffer is not None:
             for obj in self._gbuffer[2]:
                 obj.release()

@@ -34,8 +34,21 @@ flat in int v_polygon;                         // this mesh's polygon (polygon_i
 // (SRGB is defined for programs that encode for display: no cost for the others)
 #include "srgb.glsl"
 
-#if defined(OIT_CAPTURE) || defined(OIT_BLEND)
+#if defined(OIT_CAPTURE) || defined(OIT_BLEND) || defined(OIT_PEEL)
 uniform float u_opacity;                       // the surface's Material.opacity
+#endif
+#ifdef OIT_PEEL
+// Depth peeling, exact transparency without storage buffers (render/passes/peeling.py): a
+// layer is the nearest of a pixel's transparent fragments beyond the last layer peeled
+// and before the opaque surface. Its depth is found first (u_peel_color 0: every fragment
+// left writes its depth into an R32F target blended by MIN), then its colour (1: the
+// fragments at exactly that depth, premultiplied, blended under the layers before). Depths
+// are compared as the same float32 gl_FragCoord.z each pass computes: none is lost or
+// peeled twice; fragments at one depth are one layer, composited in drawing order.
+uniform sampler2D u_peel_before;  // the last layer's depth (-1: none yet)
+uniform sampler2D u_peel_near;    // this layer's (its colour pass)
+uniform sampler2D u_peel_opaque;  // the opaque surfaces' depth
+uniform int u_peel_color;
 #endif
 #ifdef TEXTURED
 float g_map_opacity = 1.0;                     // its opacity map here (textures.glsl)
@@ -107,6 +120,17 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
 #endif
 #elif defined(OIT_BLEND)
     frag_color = vec4(color, SURFACE_OPACITY);
+#elif defined(OIT_PEEL)
+    ivec2 peel_px = ivec2(gl_FragCoord.xy);
+    float z = gl_FragCoord.z;
+    if (z <= texelFetch(u_peel_before, peel_px, 0).r ||
+        z >= texelFetch(u_peel_opaque, peel_px, 0).r) discard;
+    if (u_peel_color == 0) {
+        frag_color = vec4(z, 0.0, 0.0, 1.0);
+    } else {
+        if (z != texelFetch(u_peel_near, peel_px, 0).r) discard;
+        frag_color = vec4(color * SURFACE_OPACITY, SURFACE_OPACITY);
+    }
 #else
     frag_color = vec4(color, 1.0);
 #endif

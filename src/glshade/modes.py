@@ -214,11 +214,13 @@ class Projection(str, enum.Enum):
 
 class Backend(enum.Enum):
     """Where a GL context comes from (:func:`glshade.create_context`). WINDOW is the
-    viewer's own; headless rendering takes AUTO (EGL, else OSMesa), EGL or OSMESA."""
+    viewer's own; headless rendering takes AUTO (on Linux EGL, the platform's own, then
+    OSMesa; elsewhere the platform's own first), EGL, OSMESA or NATIVE."""
 
     AUTO = "auto"
     EGL = "egl"
     OSMESA = "osmesa"
+    NATIVE = "native"  # the platform's own: CGL on macOS, WGL on Windows, GLX on Linux
     WINDOW = "window"
 
     @classmethod

@@ -158,8 +158,12 @@ def counting(request, monkeypatch):
 
 
 def _counted_by(renderer, counting):
-    """The path the last exact draw took is the one asked for (where the GL has fetch)."""
+    """The path the last exact draw took is the one asked for (where the GL has fetch);
+    where it has no storage buffers (a 4.1 tier), depth peeling, which counts nothing."""
     used = renderer.transparent.counted_by_fetch
+    if not renderer.context.features.storage:
+        assert not used and renderer.transparent.peeled
+        return
     has = "GL_EXT_shader_framebuffer_fetch" in renderer.ctx.extensions
     assert used == (counting == "fetch" and has)
 
@@ -204,7 +208,15 @@ def test_weighted_and_blend_are_the_approximations_they_are(make_renderer):
     expected, judge = a_buffer(tri, col, a)
     r = make_renderer(W, H)
     errors = {}
-    for method in ("exact", "weighted", "blend"):
+    methods = ("exact", "weighted", "blend")
+    if not r.context.features.storage:  # (weighted keeps fragment lists: GL 4.3)
+        with pytest.raises(g.errors.EnvironmentFailure, match=r"transparency='weighted' "
+                           r"keeps .* need OpenGL 4\.3; this GL is .*use transparency="
+                           r"'exact' \(depth peeling here\) or 'blend'"):
+            r.render(scene_of(tri, col, a), CAMERA, "flat", transparency="weighted")
+        methods = ("exact", "blend")
+        errors["weighted"] = 2.0
+    for method in methods:
         got = r.render(scene_of(tri, col, a), CAMERA, "flat", cull=False,
                        transparency=method).astype(float)[..., :3]
         errors[method] = np.abs(got - expected * 255)[judge].max()
@@ -260,6 +272,9 @@ def test_n_stacked_layers_cover_one_minus_one_minus_a_to_the_n(make_renderer, op
         img = r.render(s, g.Camera.look_at((0, 0, 3), (0, 0, 0)), "flat",
                        max_layers=64)
         assert abs(img[16, 16, 0] - 255 * (1 - (1 - opacity) ** n)) <= 1.0, (n, img[16, 16])
+        if not r.context.features.storage:  # (depth peeling: n layers peeled)
+            assert r.transparent.peeled == n
+            continue
         used = [key[-1] for key in r.transparent.compiled]
         assert used[-1] == sorted_slots or sorted_slots in used, (n, used)
 
@@ -336,15 +351,28 @@ def test_the_debug_modes_draw_transparent_surfaces_as_they_are(make_renderer):
     assert np.array_equal(a, r.render(scene, camera, "normals"))
 
 
-def test_a_gl_without_storage_buffers_is_told_what_to_use(make_renderer, monkeypatch):
-    """Fragment lists need GL 4.3; an older GL gets one line naming the way that works."""
+@pytest.mark.parametrize("tier", ["4.1", "3.3"])
+def test_a_gl_without_storage_buffers_peels_and_is_told_what_to_use(tier):
+    """Fragment lists need GL 4.3; on an older GL (a context held to its tier) the default,
+    exact, peels depth layers -- the lists' picture within one 8-bit step -- and weighted
+    gets one line naming the ways that work."""
+    from glshade.render.context import create_context
+    from glshade.render.renderer import Renderer
+    from tests.conftest import BACKEND
+
     scene, camera = glass_over_cube()
-    r = make_renderer(32, 24)
-    monkeypatch.setattr(r.ctx, "version_code", 330)
-    with pytest.raises(g.errors.EnvironmentFailure, match=r"need OpenGL 4\.3; this GL is 3\.3"
-                       r".*use transparency='blend'"):
-        r.render(scene, camera, "phong")
-    assert r.render(scene, camera, "phong", transparency="blend").shape == (24, 32, 4)
+    with create_context(BACKEND, tier=tier) as older:
+        r = Renderer(32, 24, context=older)
+        assert older.features.tier == tier and not older.features.storage
+        with pytest.raises(g.errors.EnvironmentFailure, match=rf"need OpenGL 4\.3; this GL "
+                           rf"is {tier}.*use transparency='exact' \(depth peeling here\) "
+                           r"or 'blend'"):
+            r.render(scene, camera, "phong", transparency="weighted")
+        peeled = r.render(scene, camera, "phong")
+        assert r.transparent.peeled == 2  # (the sphere's front and back)
+        blended = r.render(scene, camera, "phong", transparency="blend")
+        r.close()
+    assert blended.shape == (24, 32, 4) and np.abs(peeled.astype(int) - blended).max() > 0
 
 
 require("hypothesis", "property-based sweeps are part of the test extra")

@@ -3,10 +3,15 @@
 1. ``egl``: moderngl's standalone EGL context. With a GPU this is the vendor's driver
    (``device=`` or ``GLSHADE_EGL_DEVICE`` picks one of several); without one it is Mesa's
    llvmpipe through EGL, surfaceless: no display needed. The default, and what CI uses.
-2. ``osmesa``: Mesa's off-screen library (Debian ``libosmesa6``) through ctypes, for systems
+2. ``native``: moderngl's default standalone context for the platform -- CGL on macOS, WGL
+   on Windows, GLX on Linux (an X display: a desktop, or ``xvfb-run``). The first rung on
+   macOS and Windows, where EGL and OSMesa do not exist; a Mac's GL is 4.1 core, and the
+   passes take the paths its :class:`~glshade.render.features.Features` say.
+3. ``osmesa``: Mesa's off-screen library (Debian ``libosmesa6``) through ctypes, for systems
    without EGL. Mesa 25.1 dropped OSMesa, so this is a fallback, never the default.
 
-``auto`` walks the ladder (``GLSHADE_BACKEND`` overrides it, read when a context is made,
+``auto`` walks the ladder (:func:`ladder`: EGL, native, OSMesa on Linux; native first
+elsewhere) (``GLSHADE_BACKEND`` overrides it, read when a context is made,
 never at import). One backend per process is the simple rule: after an OSMesa context has
 been current, an EGL context made later in the same process can silently draw nothing.
 """
@@ -20,13 +25,14 @@ import threading
 import ctypes.util
 import os
 import re
+import sys
 
 from ..errors import ContextError, EnvironmentFailure, NoGpuError, OptionError
 from ..interrupt import held
 from ..modes import Backend
 
 __all__ = ["Backend", "RenderContext", "create_context", "window_context", "probe_backends",
-           "tune_malloc", "egl_devices", "device_index", "worker_devices"]
+           "tune_malloc", "egl_devices", "device_index", "worker_devices", "ladder"]
 
 REQUIRE = 330
 
@@ -145,9 +151,13 @@ class RenderContext:
         What the backend says of itself (the renderer's name, the device).
     loader : object or None
         The backend's library handle, kept alive as long as the context.
+    tier : str or None
+        Hold the context to an older GL's paths (``"4.1"``: a Mac's; ``"3.3"``):
+        :meth:`Features.capped <glshade.render.features.Features.capped>`.
     """
 
-    def __init__(self, ctx, backend: Backend, detail: str = "", loader=None):
+    def __init__(self, ctx, backend: Backend, detail: str = "", loader=None,
+                 tier: str | None = None):
         self.ctx = ctx
         self.backend = backend
         self.detail = detail
@@ -155,10 +165,15 @@ class RenderContext:
         self._children: list = []
         self.released = False
         self._features = None
+        self._tier = None
+        self.hold_to(tier)
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
         self._idle = ctx.simple_framebuffer((1, 1))
         self.thread = threading.get_ident()  # (the thread it is current on)
+        # (moderngl's ``info`` asks for every limit, compute shaders' too: on a GL before 4.3
+        # those queries leave GL_INVALID_ENUM, read and cleared here)
+        _ = ctx.error
 
     def make_current(self) -> None:
         """Make this context current on the calling thread: with several contexts in one
@@ -233,8 +248,23 @@ class RenderContext:
         if self._features is None:
             from .features import Features
 
-            self._features = Features.of(self.ctx, self.detail)
+            self._features = Features.of(self.ctx, self.detail).capped(self._tier)
         return self._features
+
+    def hold_to(self, tier: str | None) -> None:
+        """Take an older GL's paths from now on (``"4.1"``: a Mac's, ``"3.3"``), or the
+        context's own (None) -- before anything is drawn with it: passes keep what they
+        made for the tier they found.
+
+        Parameters
+        ----------
+        tier : str or None
+            ``"4.3"``, ``"4.1"``, ``"3.3"`` or None.
+        """
+        from .features import Features
+
+        self._features = Features.of(self.ctx, self.detail).capped(tier)
+        self._tier = tier
 
     def require(self, version: int, what: str, instead: str) -> None:
         """Refuse, in one line, a feature this GL is too old for
@@ -611,6 +641,22 @@ def _make_osmesa() -> RenderContext:
     return RenderContext(ctx, Backend.OSMESA, ctx.info.get("GL_RENDERER", ""), loader)
 
 
+def _make_native() -> RenderContext:
+    import moderngl
+
+    try:
+        with held():
+            # (glcontext's default for the platform: CGL on macOS, WGL on Windows, GLX on
+            # Linux, which wants an X display)
+            ctx = moderngl.create_context(standalone=True, require=REQUIRE)
+    except Exception as exc:
+        text = str(exc).strip() or type(exc).__name__
+        if sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+            text += " (GLX needs an X display: DISPLAY is not set)"
+        raise ContextError(text) from None
+    return RenderContext(ctx, Backend.NATIVE, ctx.info.get("GL_RENDERER", ""))
+
+
 def window_context() -> RenderContext:
     """The RenderContext of the window whose GL context is current (glfw's, made by the
     viewer): moderngl wraps it; the window keeps only this."""
@@ -620,12 +666,25 @@ def window_context() -> RenderContext:
     return RenderContext(ctx, Backend.WINDOW, ctx.info.get("GL_RENDERER", ""))
 
 
-_MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT), Backend.OSMESA: (lambda d: _make_osmesa(),
-                                                                 _OSMESA_HINT)}
+_NATIVE_HINT = ("on Linux, run under an X display (DISPLAY set, or xvfb-run) or use egl; on "
+                "macOS and Windows, the system's OpenGL driver makes it (update the graphics "
+                "driver)")
+_MAKERS = {Backend.EGL: (_make_egl, _EGL_HINT),
+           Backend.OSMESA: (lambda d: _make_osmesa(), _OSMESA_HINT),
+           Backend.NATIVE: (lambda d: _make_native(), _NATIVE_HINT)}
+
+
+def ladder() -> list[Backend]:
+    """The backends ``auto`` tries, in order: on Linux EGL (no display needed), the
+    platform's own (GLX), then OSMesa; elsewhere the platform's own first (CGL on macOS,
+    WGL on Windows: EGL and OSMesa are Mesa's, on Linux)."""
+    if sys.platform.startswith("linux"):
+        return [Backend.EGL, Backend.NATIVE, Backend.OSMESA]
+    return [Backend.NATIVE, Backend.EGL, Backend.OSMESA]
 
 
 def create_context(backend="auto", device: int | str | None = None, *,
-                   require_gpu: bool | None = None) -> RenderContext:
+                   require_gpu: bool | None = None, tier: str | None = None) -> RenderContext:
     """A headless GL 3.3+ context: EGL, else OSMesa (``"auto"``), or the one asked for;
     ``device`` (or ``GLSHADE_EGL_DEVICE``): an EGL device's index or name (:func:`egl_devices`).
     A software rasterizer is refused where ``require_gpu`` (or ``GLSHADE_REQUIRE_GPU=1``)
@@ -639,6 +698,10 @@ def create_context(backend="auto", device: int | str | None = None, *,
         An EGL device's index or name (None: ``GLSHADE_EGL_DEVICE``, else the first).
     require_gpu : bool or None
         Refuse a software rasterizer (None: ``GLSHADE_REQUIRE_GPU``).
+    tier : str or None
+        Hold the context to an older GL's paths -- ``"4.1"`` (a Mac's) or ``"3.3"`` -- to
+        see on any machine what they draw (None: ``GLSHADE_GL_TIER``, else the context's
+        own).
 
     Raises
     ------
@@ -657,10 +720,15 @@ def create_context(backend="auto", device: int | str | None = None, *,
             raise OptionError(f"GLSHADE_BACKEND: {exc}") from None
     if choice is Backend.WINDOW:
         raise OptionError("the window backend belongs to the viewer (glshade view); "
-                           "headless rendering uses egl or osmesa")
-    ladder = [Backend.EGL, Backend.OSMESA] if choice is Backend.AUTO else [choice]
+                           "headless rendering uses egl, native or osmesa")
+    if tier is None:
+        tier = os.environ.get("GLSHADE_GL_TIER", "").strip() or None
+    from .features import Features
+
+    Features(330, False).capped(tier)  # (a bad tier refused before any context is made)
+    tried_backends = ladder() if choice is Backend.AUTO else [choice]
     failures = []
-    for b in ladder:
+    for b in tried_backends:
         make, hint = _MAKERS[b]
         try:
             made = make(device)
@@ -671,8 +739,9 @@ def create_context(backend="auto", device: int | str | None = None, *,
                             "    fix: pip install moderngl")
         else:
             check_gpu(made, require_gpu)
+            made.hold_to(tier)
             return made
-    tried = ", ".join(b.value for b in ladder)
+    tried = ", ".join(b.value for b in tried_backends)
     raise ContextError(f"no OpenGL {REQUIRE // 100}.{REQUIRE % 100 // 10} context could be "
                        f"made (tried {tried}):\n" + "\n".join(failures))
 
@@ -714,7 +783,7 @@ def probe_backends() -> dict[str, str]:
     import sys
 
     out = {}
-    for b in (Backend.EGL, Backend.OSMESA):
+    for b in ladder():
         code = ("import sys\nfrom glshade.render.context import create_context\n"
                 f"c = create_context({b.value!r})\nprint(c.info['renderer'], '|', "
                 "c.info['version'])\nc.release()\n")

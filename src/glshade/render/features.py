@@ -23,7 +23,7 @@ The tiers, by what the context reports (``GL_VERSION`` and ``GL_EXTENSIONS``):
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import EnvironmentFailure
 
@@ -67,6 +67,26 @@ class Features:
         # (a 4.3 core context has them whether or not it lists their ARB names)
         return cls(version, version >= 430, "GL_EXT_shader_framebuffer_fetch" in extensions,
                    detail)
+
+    def capped(self, tier: str | None) -> Features:
+        """These features held to an older GL's paths: ``"4.1"`` (what a Mac has) or
+        ``"3.3"`` -- what a context made with ``create_context(tier=...)`` takes, to see
+        (and test) on any machine the pictures an older GL gives; None: as they are.
+
+        Parameters
+        ----------
+        tier : str or None
+            ``"4.3"``, ``"4.1"``, ``"3.3"`` or None.
+        """
+        if tier is None:
+            return self
+        codes = {"4.3": 430, "4.1": 410, "3.3": 330}
+        if str(tier) not in codes:
+            from ..errors import OptionError
+
+            raise OptionError(f"tier must be one of {', '.join(codes)}, got {tier!r}")
+        version = min(self.version, codes[str(tier)])
+        return replace(self, version=version, storage=self.storage and version >= 430)
 
     @property
     def tier(self) -> str:

@@ -36,6 +36,9 @@ class Unit:
     POLYGONS, POLYGON_PLANES = 13, 14
     #: a forward map-shadowed draw's light maps, one a light from here (up to 8)
     LIGHT_MAPS = 16
+    #: depth peeling's depths: the last layer's, this layer's, the opaque surfaces'
+    #: (shaders/include/outputs.glsl, OIT_PEEL)
+    PEEL_BEFORE, PEEL_NEAR, PEEL_OPAQUE = 24, 25, 26
 
     # ---- the shadow pass's compute programs (shadow_rays.comp, shadow_maps.comp)
     GBUFFER_FACE, GBUFFER_DEPTH, GBUFFER_NORMAL = 0, 1, 3

@@ -11,6 +11,9 @@
   its own slots, the resolve sorts just as many slots as the deepest pixel has (1, 2, 4 or
   8, flagged by the capture) in registers: llvmpipe runs every branch of a shader, so a
   resolve carrying the list walk costs a frame of depth one as much as one of depth eight.
+  Where the GL has no storage buffers (OpenGL 4.1 core: every Mac), ``exact`` peels
+  depth layers instead (:mod:`~glshade.render.passes.peeling`), until an occlusion query
+  counts no fragment left: the same picture within one 8-bit step.
 - ``weighted``: the same lists, resolved by McGuire and Bavoil's weighted blended estimate
   (order-free, approximate: for comparison).
 - ``blend``: each surface blended "over" as it is drawn, in the scene's order (what a
@@ -117,9 +120,11 @@ class TransparencyPass(GLResource, Stage):
         self._programs: dict = {}
         self._behind = None  # (size, the opaque picture's copy)
         self._fetch: tuple | None = None  # (size, depth buffer, heads texture, fbos)
-        self._has_fetch = "GL_EXT_shader_framebuffer_fetch" in ctx.extensions
+        self._has_fetch = context.features.framebuffer_fetch
         self._last = TransparencyReport(Transparency.EXACT.value)
         self._counted_in: tuple | None = None  # (the last lists' counts: texture or buffer)
+        self._peeling = None  # (depth peeling's targets, where the GL has no storage buffers)
+        self._peeled = 0
 
     def _heads_for(self, width: int, height: int):
         """The atomics path's per-pixel fragment counts and pool list heads (a storage
@@ -141,6 +146,12 @@ class TransparencyPass(GLResource, Stage):
         """The keys of the resolve programs compiled so far: ``(method, layers, fetch,
         deepest)`` each (:meth:`_resolve_program`)."""
         return tuple(self._programs)
+
+    @property
+    def peeled(self) -> int:
+        """The layers the last exact draw peeled (depth peeling, where the GL has no storage
+        buffers); 0 where it kept fragment lists."""
+        return self._peeled
 
     @property
     def counted_by_fetch(self) -> bool:
@@ -266,11 +277,14 @@ class TransparencyPass(GLResource, Stage):
         self._check()
         ctx = self.context.ctx
         options = state.options
-        if options.transparency is not Transparency.BLEND:
-            self.context.require(430, f"transparency={options.transparency.value!r} keeps "
-                                 "per-pixel fragment lists in storage buffers, which need",
-                                 "use transparency='blend'")
+        if options.transparency is Transparency.WEIGHTED:
+            self.context.require(430, "transparency='weighted' keeps per-pixel fragment "
+                                 "lists in storage buffers, which need",
+                                 "use transparency='exact' (depth peeling here) or 'blend'")
         target = state.target
+        if options.transparency is Transparency.EXACT and not self.context.features.storage:
+            self._peel(state, models)
+            return
         if options.transparency is Transparency.BLEND:
             target.bind(Outputs.COLOR)
             fbo = ctx.fbo  # (the target's, bound: its masks are GL's now)
@@ -288,6 +302,7 @@ class TransparencyPass(GLResource, Stage):
                 ctx.disable(moderngl.BLEND)
             self._last, self._counted_in = TransparencyReport(Transparency.BLEND.value), None
             return
+        self._peeled = 0
         width, height = int(target.width), int(target.height)
         self._room(width * height * SLOTS, width * height * START_POOL_PER_PIXEL)
         layout = {"u_oit_width": width, "u_oit_pixels": width * height,
@@ -304,6 +319,24 @@ class TransparencyPass(GLResource, Stage):
         # the most fragments a pixel has, rounded up to 1, 2, 4, 8 (0: some have more)
         deepest = 0 if pooled else 2 ** sum(deep)
         self._resolve(state, heads, layout, deepest)
+
+    def _peel(self, state, models) -> None:
+        """Exact transparency without storage buffers: depth peeling (peeling.py)."""
+        if self._peeling is None:
+            from .peeling import DepthPeeling
+
+            self._peeling = DepthPeeling(self.context, self.shaders)
+        self._drop_fetch()  # (no lists: counted_by_fetch says so)
+        fragments, self._peeled, over, dropped = self._peeling.run(state, models, self.meshes,
+                                                                   self._put)
+        layers = state.options.max_layers
+        self._last = TransparencyReport(Transparency.EXACT.value, fragments, layers, over,
+                                        dropped, 0)
+        self._counted_in = None
+        if over:
+            warn_user(f"{over:,} pixels had more than max_layers={layers} transparent "
+                      f"surfaces: the nearest {layers} were composited, {dropped:,} "
+                      "farther fragments left out (raise max_layers)", RenderWarning)
 
     def _capture(self, state, models, heads, fetch, layout: dict) -> None:
         """Draw the transparent ``models`` into their pixels' lists: counted through
@@ -394,6 +427,9 @@ class TransparencyPass(GLResource, Stage):
         for p in self._programs.values():
             p.release()
         self._programs.clear()
+        if self._peeling is not None:
+            self._peeling.release()
+            self._peeling = None
         self._drop_heads()
         self._drop_fetch()
         if self._behind is not None:

@@ -353,11 +353,13 @@ def doctor(args: a.DoctorArgs) -> int:
     from ..render import kernels
     from ..render.context import (chosen_device, create_context, egl_devices, probe_backends,
                                   worker_devices)
+    from ..render.features import feature_table
 
     ok = True
     try:
         with create_context(args.backend) as ctx:
             facts = ctx.info
+            features = ctx.features
             kernel = kernels.chosen(ctx).value if ctx.features.storage else None
         print(f"backend chosen     {facts['backend']}")
         for key in ("vendor", "renderer", "version", "max_samples", "max_texture_size"):
@@ -367,6 +369,9 @@ def doctor(args: a.DoctorArgs) -> int:
             f"{kernel} (measured faster here before; kept in {kernels.cache_file()})"
             if kernel != "auto" else "not measured on this GL yet (the first trace with "
             "kernel='auto' times both)"))
+        # each feature and the path it takes on this GL: what a student's report needs
+        for line in feature_table(features):
+            print(line)
     except Exception as exc:  # report, then go on to the per-backend probe
         ok = False
         print(f"backend chosen     none: {exc}")

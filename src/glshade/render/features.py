@@ -132,8 +132,8 @@ class Features:
             self.storage else "depth maps; a read-back's lookups in a compute pass (GL 4.3)",
             "shadows exact": "fragment programs walking the BVH in textures (GL 3.3)" if not
             self.storage else "rays through the BVH in storage buffers (GL 4.3)",
-            "transparency exact": ("depth peeling until an occlusion query counts no "
-                                   "fragment (GL 3.3)") if not self.storage else
+            "transparency exact": "depth peeling, a pass a layer (GL 3.3)"
+            if not self.storage else
             "per-pixel fragment lists in storage buffers (GL 4.3)",
             "transparency weighted": "fragment lists (GL 4.3)" if self.storage else
             "refused: needs OpenGL 4.3 (use transparency='exact' or 'blend')",

@@ -18,17 +18,23 @@ demo: setup-demo
 			--color 0.85,0.55,0.3 --background 0.12,0.12,0.14 -o out/teapot-$$mode.png || exit 1; \
 	done
 
-# Everything on EGL; then, on OSMesa (one backend per process), the tests of what a backend
-# can change (marked backend: the renderer's passes, the tracer's and tessellation's
-# programs, each against its oracle -- tests/conftest.py says which); the slow ones and those
-# whose point does not depend on the backend (marked once) run once, on EGL; then the viewer
-# in a real window under Xvfb.
+# Everything on EGL; then the tests of what a backend or a GL's version can change (marked
+# backend: the renderer's passes, the tracer's and tessellation's programs, each against its
+# oracle -- tests/conftest.py says which) again on OSMesa (one backend per process), on the
+# GL a Mac has (4.1 core without the later extensions: scripts/mac-gl41.sh, where the
+# passes take their 4.1 paths) and on the platform's own context (GLX under Xvfb: what
+# macOS's CGL and Windows's WGL are elsewhere); the slow ones and those whose point does not
+# depend on the backend (marked once) run once, on EGL; then the viewer in a real window
+# under Xvfb.
 # Both headless passes run on every core (pytest-xdist, at most 4 worker processes: each
 # llvmpipe context renders on all cores itself); the viewer's tests share one display.
 XDIST := -n auto --maxprocesses 4 --dist worksteal --durations=15
+BACKEND_TIER := -m "gl and backend and not slow and not once" --ignore=tests/viewer
 test: setup
 	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
-	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST) -m "gl and backend and not slow and not once" --ignore=tests/viewer
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
+	GLSHADE_TEST_TIER=4.1 scripts/mac-gl41.sh $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
+	GLSHADE_TEST_BACKEND=native scripts/with-display.sh $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

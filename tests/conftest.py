@@ -3,7 +3,8 @@
 Where no context can be made the GL tests skip with the collected error text on a
 developer's machine, but FAIL when ``CI`` or ``GLSHADE_REQUIRE_GL`` is set, so CI can never
 go green by skipping the renderer. ``GLSHADE_TEST_BACKEND`` picks the backend (the README's
-test command runs the GL tests once with egl and once with osmesa).
+test command runs the GL tests with egl, then the backend tier with osmesa, on a 4.1 core
+context -- ``GLSHADE_TEST_TIER=4.1`` says the context must be one -- and with native).
 """
 
 import os
@@ -76,6 +77,13 @@ def gl_context():
         if os.environ.get("CI") or os.environ.get("GLSHADE_REQUIRE_GL"):
             pytest.fail(f"no GL context in CI ({BACKEND}): {exc}", pytrace=False)
         pytest.skip(f"no GL context ({BACKEND}): {exc}")
+    expected = os.environ.get("GLSHADE_TEST_TIER")
+    if expected and ctx.features.tier != expected:  # (a tier's pass never runs on another)
+        found = ctx.features
+        ctx.release()
+        pytest.fail(f"GLSHADE_TEST_TIER={expected}, and the context is tier {found.tier} "
+                    f"(OpenGL {found.version_text}): the driver ignored the overrides",
+                    pytrace=False)
     yield ctx
     ctx.release()
 

@@ -270,6 +270,8 @@ class Renderer:
         if context is not None:  # (a context of the caller's: refused, never released)
             check_gpu(context, config.require_gpu, release=False)
         self.ctx = self.context.ctx
+        # (with several contexts in a process, the GL objects made here must go to this one)
+        self.context.make_current()
         try:
             check_fits(self.context, config.width, config.height, config.samples)
         except InputError:

@@ -160,6 +160,11 @@ def _stale(folder: Path, recursive: bool) -> list[tuple[Path, str]]:
 
 
 def _alive(pid: int) -> bool:
+    """Whether process ``pid`` of this host runs. (On Windows ``os.kill(pid, 0)`` would end
+    it -- any signal but the console's two is TerminateProcess there --: asked of the
+    kernel instead.)"""
+    if os.name == "nt":
+        return _alive_windows(pid)
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -167,6 +172,21 @@ def _alive(pid: int) -> bool:
     except PermissionError:  # someone else's process
         return True
     return True
+
+
+def _alive_windows(pid: int) -> bool:
+    import ctypes
+
+    kernel = ctypes.windll.kernel32  # type: ignore[attr-defined]
+    handle = kernel.OpenProcess(0x1000, False, int(pid))  # PROCESS_QUERY_LIMITED_INFORMATION
+    if not handle:
+        return ctypes.get_last_error() == 5 or kernel.GetLastError() == 5  # (denied: it runs)
+    try:
+        code = ctypes.c_ulong()
+        return bool(kernel.GetExitCodeProcess(handle, ctypes.byref(code))) and \
+            code.value == 259  # STILL_ACTIVE
+    finally:
+        kernel.CloseHandle(handle)
 
 
 def remove_stale(folder, *, name: str | None = None, recursive: bool = False) -> int:

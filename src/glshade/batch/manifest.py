@@ -35,7 +35,9 @@ def write_manifest(rows: list[Row], path) -> None:
     for r in rows:
         w.writerow([r.input, r.status, "" if r.polygons is None else r.polygons,
                     "" if r.seconds is None else f"{r.seconds:.4f}",
-                    ";".join(os.path.relpath(o, base) for o in r.outputs),
+                    # (forward slashes: a manifest written on Windows reads everywhere)
+                    ";".join(os.path.relpath(o, base).replace(os.sep, "/")
+                             for o in r.outputs),
                     r.message, r.renderer])
     # (file names are bytes: one that is not UTF-8 is written back as the bytes it was)
     with atomic_write(path, "w", encoding="utf-8", errors="surrogateescape") as f:
@@ -64,6 +66,7 @@ def read_manifest(path) -> dict[str, Row]:
             rows[d["input"]] = Row(d["input"], d["status"],
                                    int(d["polygons"]) if d["polygons"] else None,
                                    float(d["seconds"]) if d["seconds"] else None,
+                                   # (Windows reads either separator)
                                    tuple(str(path.parent.resolve() / x)
                                          for x in d["outputs"].split(";") if x),
                                    d["message"], d.get("renderer") or "")

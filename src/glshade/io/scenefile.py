@@ -504,7 +504,7 @@ def _material(m: dict, mesh, base: Path, where) -> Material | None:
     values = dict(m)
     for key in ("texture", "specular_texture", "opacity_texture"):
         if key in m:
-            file = base / m[key] if not Path(m[key]).is_absolute() else Path(m[key])
+            file = beside(base, m[key])
             try:
                 values[key] = Texture(file, **sampling)
             except GlshadeError as exc:
@@ -529,7 +529,7 @@ def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path)
         if spec.startswith("patches:"):
             surface = named(spec[len("patches:"):])
         else:
-            file = (base / spec) if not Path(spec).is_absolute() else Path(spec)
+            file = beside(base, spec)
             surface = PatchSurface(read_patches(file), file.stem)
         model = scene.add(surface, Material.from_values(m), m.get("transform"),
                           rotation=m.get("rotation"),
@@ -542,6 +542,28 @@ def _add_patches(scene, m: dict, i: int, loc: _Locator, source: str, base: Path)
     model.visible = m.get("visible", True)
 
 
+def beside(base: Path, spec: str) -> Path:
+    """The file a scene file names: relative to the scene's folder ``base`` unless absolute,
+    with either separator -- a scene written on Windows (``models\\part.obj``) reads on
+    macOS and Linux, where a backslash is a letter of a name: taken as a separator when the
+    file does not exist by the name as written.
+
+    Parameters
+    ----------
+    base : Path
+        The scene file's folder.
+    spec : str
+        The path as written.
+    """
+    file = Path(spec) if Path(spec).is_absolute() else base / spec
+    if "\\" in spec and not file.exists():
+        other = Path(spec.replace("\\", "/"))
+        other = other if other.is_absolute() else base / other
+        if other.exists():
+            return other
+    return file
+
+
 def _load_mesh(spec: str, base: Path, where: str):
     from ..geometry import primitives
     from .meshes import load_mesh
@@ -549,7 +571,7 @@ def _load_mesh(spec: str, base: Path, where: str):
     try:
         if spec.startswith("primitive:"):
             return primitives.from_spec(spec)
-        file = (base / spec) if not Path(spec).is_absolute() else Path(spec)
+        file = beside(base, spec)
         if not file.exists():
             raise SceneFormatError(f"{where}: mesh file {str(file)!r} does not exist")
         return load_mesh(file)

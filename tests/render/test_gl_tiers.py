@@ -96,8 +96,8 @@ def test_shadows_at_4_1_are_the_4_3_visibility(tiers, kind, elevation, azimuth, 
     scene = scene_of(kind, light)
     methods = ("exact",) if kind in ("sphere", "bored") else ("exact", "map")
     for method in methods:
-        f43, f41 = _both(tiers(samples), lambda r: r.render_frame(
-            scene, camera, "phong", shadows=method))
+        f43, f41 = _both(tiers(samples), lambda r, m=method: r.render_frame(
+            scene, camera, "phong", shadows=m))
         assert np.array_equal(f41.visibility, f43.visibility), (method, int(
             (f41.visibility != f43.visibility).sum()))
         assert np.array_equal(f41.color, f43.color), method

@@ -450,3 +450,28 @@ def test_t_on_a_scene_it_cannot_trace_says_why(viewer_factory, capsys):
     v.key("t")
     assert v.tracer is None and "rho_d + k_s" in capsys.readouterr().err
     v.step()
+
+
+def test_a_framebuffer_twice_the_window_picks_and_recentres_by_window_coordinates(
+        viewer_factory, monkeypatch):
+    """A HiDPI screen (a Retina Mac): the framebuffer has twice the window's size, and the
+    mouse reports window coordinates. Held here by glfw reporting the window at half its
+    framebuffer (Xvfb has no scale of its own): the picture keeps the framebuffer's size,
+    and a click at window (x, y) picks and recentres on framebuffer pixel (2x, 2y), as the
+    same click at (2x, 2y) does on a screen of scale 1."""
+    import glfw
+
+    x, y = 120, 100
+    plain = viewer_factory(teapot_scene(), CAM)
+    plain.step()
+    picked_1 = plain.pick(x, y)
+    assert plain.recentre(x, y)
+    monkeypatch.setattr(glfw, "get_window_size", lambda window: (120, 90))
+    hidpi = viewer_factory(teapot_scene(), CAM)
+    hidpi.step()
+    assert (hidpi.target.width, hidpi.target.height) == (240, 180)   # (the framebuffer's)
+    picked_2 = hidpi.pick(x / 2, y / 2)
+    assert picked_1 is not None and picked_2.face_id == picked_1.face_id
+    np.testing.assert_allclose(picked_2.point, picked_1.point, atol=1e-9)
+    assert hidpi.recentre(x / 2, y / 2)
+    np.testing.assert_allclose(hidpi.center, plain.center, atol=1e-9)

@@ -27,7 +27,7 @@ import os
 import re
 import sys
 
-from ..errors import ContextError, EnvironmentFailure, NoGpuError, OptionError
+from ..errors import ContextError, NoGpuError, OptionError
 from ..interrupt import held
 from ..modes import Backend
 

@@ -53,6 +53,9 @@ class Unit:
 
     # ---- the transparency resolve (oit_resolve.frag)
     OIT_BEHIND, OIT_HEADS = 2, 3
+    #: depth peeling's composite (peel_composite.frag): the layers' accumulation, over the
+    #: opaque copy on OIT_BEHIND
+    PEEL_ACCUM = 4
 
     # ---- the path tracer (pathtrace.frag): its tables, given rays, the solid's tree,
     # seven targets, the hierarchy's texture, the adaptive extras

@@ -155,7 +155,7 @@ class DepthPeeling:
             ctx.blend_func = moderngl.DEFAULT_BLENDING
             ctx.disable(moderngl.BLEND)
         if peeled:
-            self._composite(state, t)
+            self._composite(state, t, put)
         target.bind(state.options.outputs)
         return fragments + left_out, peeled, pixels_over, left_out
 
@@ -164,16 +164,16 @@ class DepthPeeling:
         return {"u_peel_before": Unit.PEEL_BEFORE, "u_peel_near": Unit.PEEL_NEAR,
                 "u_peel_opaque": Unit.PEEL_OPAQUE, "u_peel_color": color}
 
-    def _composite(self, state, t) -> None:
+    def _composite(self, state, t, put) -> None:
         """The layers over the opaque picture: C + T behind, the picture's alpha kept."""
         import moderngl
 
         ctx = self.context.ctx
         prog = self._composite_program()
-        t["accum"].use(Unit.OIT_HEADS)
+        t["accum"].use(Unit.PEEL_ACCUM)
         t["behind"].use(Unit.OIT_BEHIND)
-        prog["u_accum"].value = Unit.OIT_HEADS
-        prog["u_behind"].value = Unit.OIT_BEHIND
+        put(prog, "u_accum", Unit.PEEL_ACCUM)
+        put(prog, "u_behind", Unit.OIT_BEHIND)
         state.target.bind(Outputs.COLOR)
         ctx.viewport = state.viewport
         vao = ctx.vertex_array(prog, [])

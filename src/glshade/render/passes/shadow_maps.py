@@ -22,7 +22,8 @@ from ..base import GLResource
 from ..programs import UniformWriter
 from ..units import Binding, Unit
 
-__all__ = ["ShadowMaps", "LayerScratch", "fill_layers", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS", "shadow_lights"]
+__all__ = ["ShadowMaps", "LayerScratch", "fill_layers", "MAP_SIZE", "CUBE_SIZE", "PCF_RADIUS",
+           "shadow_lights"]
 
 #: texels a side of a directional light's map
 MAP_SIZE = 2048
@@ -102,7 +103,13 @@ class LayerScratch:
         self._made: tuple | None = None  # (size, fbo, picture, flags, pixel buffer)
 
     def at(self, width: int, height: int) -> tuple:
-        """``(framebuffer, picture, flags, pixel buffer)`` of ``width x height``."""
+        """``(framebuffer, picture, flags, pixel buffer)`` of ``width x height``.
+
+        Parameters
+        ----------
+        width, height : int
+            The visibility array's size in pixels.
+        """
         if self._made is None or self._made[0] != (width, height):
             self.release()
             from ..data import NEAREST

@@ -72,8 +72,9 @@ BIG_TRIANGLE, MAX_BIG = 0.25, 64
 class _Occluding:
     """The scene's occluders on the GPU: the BVH's ``nodes``, the ``tris`` (the ``big``
     ones first, tested by every ray), each mesh polygon's world ``normals`` (storage
-    buffers; textures of :data:`TEXEL_ROW` texels a row without them), the triangles as ``found`` on the CPU (the maps draw them), the scene's
-    largest coordinate ``scale``, and the ``key`` of the geometry they were built for."""
+    buffers; textures of :data:`TEXEL_ROW` texels a row without them), the triangles as
+    ``found`` on the CPU (the maps draw them), the scene's largest coordinate ``scale``, and
+    the ``key`` of the geometry they were built for."""
 
     key: tuple
     nodes: Any
@@ -257,8 +258,9 @@ class ShadowPass(GLResource, Stage):
             made = [ctx.buffer(a.tobytes()) for a in (packed.entries, tris, normals)]
         else:
             made = [_texels(ctx, a) for a in (packed.entries, tris, normals)]
+        nodes, tris_data, normals_data = made
         self._occluding = _Occluding(
-            key, *made, found, len(big),
+            key, nodes, tris_data, normals_data, found, len(big),
             float(np.abs(found.bounds).max()) if len(found) else 1.0, packed.uniforms())
         return self._occluding
 

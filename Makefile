@@ -20,12 +20,13 @@ demo: setup-demo
 
 # Everything on EGL; then the tests of what a backend or a GL's version can change (marked
 # backend: the renderer's passes, the tracer's and tessellation's programs, each against its
-# oracle -- tests/conftest.py says which) again on OSMesa (one backend per process), on the
-# GL a Mac has (4.1 core without the later extensions: scripts/mac-gl41.sh, where the
-# passes take their 4.1 paths) and on the platform's own context (GLX under Xvfb: what
-# macOS's CGL and Windows's WGL are elsewhere); the slow ones and those whose point does not
-# depend on the backend (marked once) run once, on EGL; then the viewer in a real window
-# under Xvfb.
+# oracle -- tests/conftest.py says which) again on OSMesa (one backend per process), and
+# on what a Mac has: the platform's own context (GLX under Xvfb, as CGL is on macOS and WGL
+# on Windows) held to 4.1 core without the later extensions (scripts/mac-gl41.sh), where
+# the passes take their 4.1 paths; the slow ones and those whose point does not depend on
+# the backend (marked once) run once, on EGL -- among them the 4.1 paths against their 4.3
+# twins (tests/render/test_gl_tiers.py) and 3.3 core (tests/cli/test_gl33.py); then the
+# viewer in a real window under Xvfb.
 # Both headless passes run on every core (pytest-xdist, at most 4 worker processes: each
 # llvmpipe context renders on all cores itself); the viewer's tests share one display.
 XDIST := -n auto --maxprocesses 4 --dist worksteal --durations=15
@@ -33,8 +34,8 @@ BACKEND_TIER := -m "gl and backend and not slow and not once" --ignore=tests/vie
 test: setup
 	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
 	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
-	GLSHADE_TEST_TIER=4.1 scripts/mac-gl41.sh $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
-	GLSHADE_TEST_BACKEND=native scripts/with-display.sh $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
+	GLSHADE_TEST_BACKEND=native GLSHADE_TEST_TIER=4.1 scripts/with-display.sh \
+		scripts/mac-gl41.sh $(PY) -m pytest -q $(XDIST) $(BACKEND_TIER)
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

@@ -3,8 +3,8 @@
 Where no context can be made the GL tests skip with the collected error text on a
 developer's machine, but FAIL when ``CI`` or ``GLSHADE_REQUIRE_GL`` is set, so CI can never
 go green by skipping the renderer. ``GLSHADE_TEST_BACKEND`` picks the backend (the README's
-test command runs the GL tests with egl, then the backend tier with osmesa, on a 4.1 core
-context -- ``GLSHADE_TEST_TIER=4.1`` says the context must be one -- and with native).
+test command runs the GL tests with egl, then the backend tier with osmesa, and with native
+held to 4.1 core as a Mac's is -- ``GLSHADE_TEST_TIER=4.1`` says the context must be one).
 """
 
 import os

@@ -180,7 +180,7 @@ def _alive_windows(pid: int) -> bool:
     kernel = ctypes.windll.kernel32  # type: ignore[attr-defined]
     handle = kernel.OpenProcess(0x1000, False, int(pid))  # PROCESS_QUERY_LIMITED_INFORMATION
     if not handle:
-        return ctypes.get_last_error() == 5 or kernel.GetLastError() == 5  # (denied: it runs)
+        return kernel.GetLastError() == 5  # (ERROR_ACCESS_DENIED: it runs, someone else's)
     try:
         code = ctypes.c_ulong()
         return bool(kernel.GetExitCodeProcess(handle, ctypes.byref(code))) and \

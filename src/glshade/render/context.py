@@ -28,6 +28,7 @@ import re
 import sys
 
 from ..errors import ContextError, NoGpuError, OptionError
+from .features import Features
 from ..interrupt import held
 from ..modes import Backend
 
@@ -164,8 +165,8 @@ class RenderContext:
         self._loader = loader
         self._children: list = []
         self.released = False
-        self._features = None
-        self._tier = None
+        self._features: Features | None = None
+        self._tier: str | None = None
         self.hold_to(tier)
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
@@ -241,13 +242,11 @@ class RenderContext:
             raise ContextError("this RenderContext was released; make a new one")
 
     @property
-    def features(self):
+    def features(self) -> Features:
         """What this context can do and the path each feature takes here
         (:class:`~glshade.render.features.Features`), decided once from its version and
         extensions."""
         if self._features is None:
-            from .features import Features
-
             self._features = Features.of(self.ctx, self.detail).capped(self._tier)
         return self._features
 
@@ -261,8 +260,6 @@ class RenderContext:
         tier : str or None
             ``"4.3"``, ``"4.1"``, ``"3.3"`` or None.
         """
-        from .features import Features
-
         self._features = Features.of(self.ctx, self.detail).capped(tier)
         self._tier = tier
 
@@ -723,8 +720,6 @@ def create_context(backend="auto", device: int | str | None = None, *,
                            "headless rendering uses egl, native or osmesa")
     if tier is None:
         tier = os.environ.get("GLSHADE_GL_TIER", "").strip() or None
-    from .features import Features
-
     Features(330, False).capped(tier)  # (a bad tier refused before any context is made)
     tried_backends = ladder() if choice is Backend.AUTO else [choice]
     failures = []

@@ -727,7 +727,7 @@ def test_rays_that_run_out_are_counted_and_shown_seen(renderers, monkeypatch, th
 
 
 @pytest.mark.parametrize("tier", ["4.1", "3.3"])
-def test_an_older_gl_casts_shadows_or_is_told_what_to_use(tier):
+def test_an_older_gl_casts_shadows_or_is_told_what_to_use(gl_context, tier):
     """Without compute shaders (a context held to 4.1 or 3.3) exact shadows are traced by
     fragment programs, with the visibility of this driver's own tier bit for bit; maps need
     GL 4.0 (their lookups index sampler arrays): at 3.3 one line names the version and the

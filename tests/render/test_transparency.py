@@ -352,7 +352,7 @@ def test_the_debug_modes_draw_transparent_surfaces_as_they_are(make_renderer):
 
 
 @pytest.mark.parametrize("tier", ["4.1", "3.3"])
-def test_a_gl_without_storage_buffers_peels_and_is_told_what_to_use(tier):
+def test_a_gl_without_storage_buffers_peels_and_is_told_what_to_use(gl_context, tier):
     """Fragment lists need GL 4.3; on an older GL (a context held to its tier) the default,
     exact, peels depth layers -- the lists' picture within one 8-bit step -- and weighted
     gets one line naming the ways that work."""

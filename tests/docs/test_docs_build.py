@@ -27,7 +27,9 @@ def site(tmp_path_factory):
         r = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b",
                             "html", "-d", str(generated), str(ROOT / "docs"), str(out)],
                            capture_output=True, text=True, timeout=900,
-                           env={**__import__("os").environ, "GLSHADE_BACKEND": BACKEND})
+                           env={k: v for k, v in {**__import__("os").environ,
+                                                   "GLSHADE_BACKEND": BACKEND}.items()
+                                if k != "DISPLAY"})  # (no display, as on a server)
     assert r.returncode == 0, (r.stdout + r.stderr)[-4000:]
     return out
 
@@ -41,6 +43,12 @@ def test_the_front_page_is_the_readme_with_its_pictures(site):
 
 
 def test_the_tutorials_are_the_executed_notebooks(site):
+    """Each chapter notebook ran top to bottom in the build (``nb_execution_mode`` "force",
+    an error in any cell -- a failed check of its numbers among them -- fails the build:
+    the one place they run) and shows its pictures rendered headless."""
+    conf = (ROOT / "docs" / "conf.py").read_text(encoding="utf-8")
+    assert 'GLSHADE_DOCS_EXECUTE", "force")' in conf and \
+        "nb_execution_raise_on_error = True" in conf
     pages = sorted((site / "notebooks").glob("*.html"))
     assert len(pages) == len(list((ROOT / "docs" / "notebooks").glob("*.ipynb"))) == 9
     for page in pages:

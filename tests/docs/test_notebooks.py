@@ -1,8 +1,9 @@
-"""The chapter notebooks run top to bottom in a real Jupyter kernel (nbclient), with no
-display, on the backend under test; each checks numbers against the notes (its asserts)
-and shows pictures rendered headless (image outputs in the executed notebook)."""
+"""Notebooks in a real Jupyter kernel (nbclient), with no display, on the backend under
+test: progress widgets and every result's picture. The chapter notebooks themselves run top
+to bottom once, in the documentation build (tests/docs/test_docs_build.py: executed there,
+an error or a failed check in any cell fails the build), where their numbers are checked
+and their pictures looked for."""
 
-import json
 
 import nbformat
 import pytest
@@ -10,7 +11,7 @@ from nbclient import NotebookClient
 
 from tests.conftest import BACKEND, ROOT
 
-pytestmark = [pytest.mark.gl, pytest.mark.once]  # (the docs build runs them too)
+pytestmark = [pytest.mark.gl, pytest.mark.once]
 NOTEBOOKS = sorted((ROOT / "docs" / "notebooks").glob("*.ipynb"))
 CHAPTERS = ("shading", "newell", "quaternions", "brep", "csg", "hidden", "radiosity",
             "patches")
@@ -21,27 +22,12 @@ def test_every_chapter_has_a_notebook():
     assert all(c in names for c in CHAPTERS), names
 
 
-def execute(path, tmp_path, monkeypatch):
-    monkeypatch.setenv("GLSHADE_BACKEND", BACKEND)  # (the kernel inherits it)
-    monkeypatch.delenv("DISPLAY", raising=False)      # no display, as on a server
-    nb = nbformat.read(path, as_version=4)
-    NotebookClient(nb, timeout=600, kernel_name="python3",
-                   resources={"metadata": {"path": str(tmp_path)}}).execute()
-    return nb
-
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
-def test_the_notebook_runs_and_checks_its_numbers(path, tmp_path, monkeypatch):
-    source = "\n".join(c.source for c in nbformat.read(path, as_version=4).cells
-                       if c.cell_type == "code")
-    assert "assert " in source  # (a notebook that checks nothing is only a picture)
-    nb = execute(path, tmp_path, monkeypatch)  # (an error in any cell raises here)
-    outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.outputs]
-    kinds = {k for o in outputs for k in o.get("data", {})}
-    assert {"image/png"} & kinds or any("<img" in o.get("data", {}).get("text/html", "")
-                                        for o in outputs), kinds
-    text = json.dumps([o.get("text", "") for o in outputs])
-    assert "Traceback" not in text
+def test_every_chapter_notebook_checks_numbers():
+    for path in NOTEBOOKS:
+        source = "\n".join(c.source for c in nbformat.read(path, as_version=4).cells
+                           if c.cell_type == "code")
+        # (a notebook that checks nothing is only a picture)
+        assert "assert " in source, path.name
 
 
 def test_progress_in_a_notebook_is_tqdms_widget_and_in_a_log_plain_lines(tmp_path,

@@ -13,7 +13,7 @@ import pytest
 
 import glshade as g
 from tests.conftest import BACKEND, require
-from tests.render.test_shadows import FOV, H, W, scene_of
+from tests.render.test_shadows import FOV, H, W, light_and_eye, scene_of
 from tests.render.test_transparency import CAMERA, a_buffer, crossing, soup
 from tests.render.test_transparency import H as SOUP_H, W as SOUP_W
 from tests.render.test_transparency import scene_of as soup_scene
@@ -82,15 +82,9 @@ def test_shadows_at_4_1_are_the_4_3_visibility(tiers, kind, elevation, azimuth, 
     4, meshes and CSG solids casting: exact visibility byte for byte, map visibility byte
     for byte (one lookup, drawn by a fragment program instead of a compute pass), and the
     pictures the same bytes."""
-    e, a = np.radians(elevation), np.radians(azimuth)
-    towards = np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
-    light = g.PointLight(position=tuple(5.0 * towards + (0, 0.5, 0))) if point else \
-        g.DirectionalLight(direction=tuple(-towards))
-    ee, ea = np.radians(eye_elevation), np.radians(eye_azimuth)
-    target = (0.0, 0.5, 0.0)
-    eye = np.array(target) + distance * np.array(
-        [np.cos(ee) * np.cos(ea), np.sin(ee), np.cos(ee) * np.sin(ea)])
-    camera = g.Camera.look_at(tuple(eye), target, fov_y=FOV)
+    light, eye, target = light_and_eye(elevation, azimuth, eye_elevation, eye_azimuth,
+                                       distance, point)
+    camera = g.Camera.look_at(eye, target, fov_y=FOV)
     if ortho:
         camera = camera.replace(projection="orthographic", height=4.0)
     scene = scene_of(kind, light)

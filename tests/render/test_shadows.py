@@ -250,6 +250,22 @@ def scene_of(kind, light):
     return s
 
 
+def light_and_eye(elevation, azimuth, eye_elevation, eye_azimuth, distance, point):
+    """A sweep's light -- ``elevation`` and ``azimuth`` in degrees above the floor: a point
+    light 5 units away that way, or a directional one from there -- and its eye, looking at
+    the object's middle from ``distance`` at ``eye_elevation``, ``eye_azimuth``: ``(light,
+    eye, target)``."""
+    e, a = np.radians(elevation), np.radians(azimuth)
+    towards = np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
+    light = g.PointLight(position=tuple(5.0 * towards + (0, 0.5, 0))) if point else \
+        g.DirectionalLight(direction=tuple(-towards))
+    ee, ea = np.radians(eye_elevation), np.radians(eye_azimuth)
+    target = (0.0, 0.5, 0.0)
+    eye = tuple(np.array(target) + distance * np.array(
+        [np.cos(ee) * np.cos(ea), np.sin(ee), np.cos(ee) * np.sin(ea)]))
+    return light, eye, target
+
+
 @pytest.fixture(scope="module")
 def renderers(gl_context):
     from glshade.render.renderer import Renderer
@@ -581,14 +597,8 @@ def test_exact_shadows_over_lights_and_eyes(renderers, kind, elevation, azimuth,
     light 5 units away that way), eyes from grazing to high at any azimuth and distance,
     inside the scene's box too (its fitted near plane then tiny); 0 mismatches outside the
     half-pixel band."""
-    e, a = np.radians(elevation), np.radians(azimuth)
-    towards = np.array([np.cos(e) * np.cos(a), np.sin(e), np.cos(e) * np.sin(a)])
-    light = g.PointLight(position=tuple(5.0 * towards + (0, 0.5, 0))) if point else \
-        g.DirectionalLight(direction=tuple(-towards))
-    ee, ea = np.radians(eye_elevation), np.radians(eye_azimuth)
-    target = (0.0, 0.5, 0.0)
-    position = tuple(np.array(target) + distance * np.array(
-        [np.cos(ee) * np.cos(ea), np.sin(ee), np.cos(ee) * np.sin(ea)]))
+    light, position, target = light_and_eye(elevation, azimuth, eye_elevation, eye_azimuth,
+                                            distance, point)
     seen, decided, drawn = oracle_visibility(kind, position, target, light)
     camera = g.Camera.look_at(position, target, fov_y=FOV)
     frame = renderers[0].render_frame(scene_of(kind, light), camera, "phong",
@@ -599,7 +609,7 @@ def test_exact_shadows_over_lights_and_eyes(renderers, kind, elevation, azimuth,
     # right, and neither shows)
     flat = renderers[0].render_frame(scene_of(kind, light), camera, "flat").normal
     to = np.asarray(light.position) - _points(position, target, frame.depth) if point \
-        else np.broadcast_to(towards, flat.shape)
+        else np.broadcast_to(-np.asarray(light.direction), flat.shape)
     to = to / np.linalg.norm(to, axis=-1, keepdims=True)
     decided &= np.abs(np.einsum("hwk,hwk->hw", flat, to)) > 2 / 255
     wrong = ((frame.visibility[..., 0] > 0.5) != seen) & decided

@@ -734,7 +734,8 @@ def create_context(backend="auto", device: int | str | None = None, *,
                             "    fix: pip install moderngl")
         else:
             check_gpu(made, require_gpu)
-            made.hold_to(tier)
+            with held():  # (the driver answers its queries whole)
+                made.hold_to(tier)
             return made
     tried = ", ".join(b.value for b in tried_backends)
     raise ContextError(f"no OpenGL {REQUIRE // 100}.{REQUIRE % 100 // 10} context could be "

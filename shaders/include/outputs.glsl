@@ -40,15 +40,15 @@ uniform float u_opacity;                       // the surface's Material.opacity
 #ifdef OIT_PEEL
 // Depth peeling, exact transparency without storage buffers (render/passes/peeling.py): a
 // layer is the nearest of a pixel's transparent fragments beyond the last layer peeled
-// and before the opaque surface. Its depth is found first (u_peel_color 0: every fragment
-// left writes its depth into an R32F target blended by MIN), then its colour (1: the
-// fragments at exactly that depth, premultiplied, blended under the layers before). Depths
+// and before the opaque surface. Its depth is found first (OIT_PEEL_DEPTH: every fragment
+// left writes its depth into an R32F target blended by MIN -- a program of its own, so the
+// compiler drops the lighting it does not use), then its colour (the fragments at exactly
+// that depth, premultiplied, blended under the layers before). Depths
 // are compared as the same float32 gl_FragCoord.z each pass computes: none is lost or
 // peeled twice; fragments at one depth are one layer, composited in drawing order.
 uniform sampler2D u_peel_before;  // the last layer's depth (-1: none yet)
 uniform sampler2D u_peel_near;    // this layer's (its colour pass)
 uniform sampler2D u_peel_opaque;  // the opaque surfaces' depth
-uniform int u_peel_color;
 #endif
 #ifdef TEXTURED
 float g_map_opacity = 1.0;                     // its opacity map here (textures.glsl)
@@ -125,12 +125,12 @@ void write_outputs(vec3 color, vec3 n_world, float depth_view) {
     float z = gl_FragCoord.z;
     if (z <= texelFetch(u_peel_before, peel_px, 0).r ||
         z >= texelFetch(u_peel_opaque, peel_px, 0).r) discard;
-    if (u_peel_color == 0) {
-        frag_color = vec4(z, 0.0, 0.0, 1.0);
-    } else {
-        if (z != texelFetch(u_peel_near, peel_px, 0).r) discard;
-        frag_color = vec4(color * SURFACE_OPACITY, SURFACE_OPACITY);
-    }
+#ifdef OIT_PEEL_DEPTH
+    frag_color = vec4(z, 0.0, 0.0, 1.0);
+#else
+    if (z != texelFetch(u_peel_near, peel_px, 0).r) discard;
+    frag_color = vec4(color * SURFACE_OPACITY, SURFACE_OPACITY);
+#endif
 #else
     frag_color = vec4(color, 1.0);
 #endif

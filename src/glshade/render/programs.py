@@ -34,14 +34,16 @@ class Forward(enum.Enum):
 class Role(enum.Enum):
     """What a model's draw is for: an opaque surface's, or a transparent one's --
     ``CAPTURE`` (into per-pixel fragment lists through storage-buffer atomics), ``FETCH``
-    (the same, counted through framebuffer fetch, OIT_FETCH), ``PEEL`` (one layer of depth
-    peeling, where the GL has no storage buffers: OIT_PEEL) or ``BLEND`` (its opacity as
+    (the same, counted through framebuffer fetch, OIT_FETCH), ``PEEL_DEPTH`` and ``PEEL`` (a
+    layer's depth, then its colour, in depth peeling where the GL has no storage buffers:
+    OIT_PEEL) or ``BLEND`` (its opacity as
     alpha, blended in drawing order)."""
 
     OPAQUE = "opaque"
     CAPTURE = "capture"
     FETCH = "fetch"
     PEEL = "peel"
+    PEEL_DEPTH = "peel-depth"
     BLEND = "blend"
 
 
@@ -308,7 +310,9 @@ class ProgramKey:
                  ("GLSL_430", capture or self.forward is Forward.RAYS),
                  # (a sampler array indexed in a loop: GLSL 4.00, what every Mac has)
                  ("GLSL_410", self.forward is Forward.MAPS and not capture),
-                 ("OIT_BLEND", self.oit is Role.BLEND), ("OIT_PEEL", self.oit is Role.PEEL),
+                 ("OIT_BLEND", self.oit is Role.BLEND),
+                 ("OIT_PEEL", self.oit in (Role.PEEL, Role.PEEL_DEPTH)),
+                 ("OIT_PEEL_DEPTH", self.oit is Role.PEEL_DEPTH),
                  ("TEXTURED", self.textured),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
                  ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),

@@ -10,9 +10,10 @@ query runs around the whole draw and GL runs one query of a kind at a time.) A l
 two draws of the transparent surfaces (shaders/include/outputs.glsl, OIT_PEEL): the first
 (a program of its own, OIT_PEEL_DEPTH, unlit) finds its depth (each fragment left writes
 its float32 depth into an R32F target blended by MIN), the second adds the colour of the
-fragments at exactly that depth, premultiplied, to a float accumulation (colour, transmittance) by blending. A full-viewport pass then puts the
-layers over a float copy of the opaque picture: out = C + T behind, in one rounding -- what
-the fragment lists' resolve computes, from the same colours and opacities.
+fragments at exactly that depth, premultiplied, to a float accumulation (colour,
+transmittance) by blending. A full-viewport pass then puts the layers over a float copy of
+the opaque picture: out = C + T behind, in one rounding -- what the fragment lists' resolve
+computes, from the same colours and opacities.
 
 The cost is a depth and a colour draw of every transparent surface a layer: quadratic in
 the depth complexity (measured in benchmarks/transparency_bench.py: 8 layers over 512x512,

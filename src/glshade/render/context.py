@@ -165,9 +165,8 @@ class RenderContext:
         self._loader = loader
         self._children: list = []
         self.released = False
-        self._features: Features | None = None
-        self._tier: str | None = None
-        self.hold_to(tier)
+        self._features: Features | None = None  # (read from the driver when first asked)
+        self._tier: str | None = tier
         # A framebuffer to bind while others are released: moderngl re-binds the previously
         # bound framebuffer after making a new one, and a deleted one would be an error.
         self._idle = ctx.simple_framebuffer((1, 1))
@@ -734,8 +733,9 @@ def create_context(backend="auto", device: int | str | None = None, *,
                             "    fix: pip install moderngl")
         else:
             check_gpu(made, require_gpu)
-            with held():  # (the driver answers its queries whole)
-                made.hold_to(tier)
+            if tier is not None:
+                with held():  # (the driver answers its queries whole)
+                    made.hold_to(tier)
             return made
     tried = ", ".join(b.value for b in tried_backends)
     raise ContextError(f"no OpenGL {REQUIRE // 100}.{REQUIRE % 100 // 10} context could be "

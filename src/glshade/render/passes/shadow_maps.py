@@ -194,9 +194,11 @@ class ShadowMaps(GLResource):
         The context its GL objects live in.
     shaders : ShaderLibrary
         Where its programs are compiled.
+    scratch : LayerScratch or None
+        The targets its fragment lookups draw into (None: its own).
     """
 
-    def __init__(self, context, shaders):
+    def __init__(self, context, shaders, scratch: LayerScratch | None = None):
         super().__init__(context)
         self.shaders = shaders
         self._maps: dict[int, tuple] = {}    # light index -> (key, texture, framebuffer)
@@ -207,7 +209,9 @@ class ShadowMaps(GLResource):
         #: per light of the last draw: (faces, texels a side, texel footprint in pixels)
         self.facts: list[tuple[int, int, float]] = []
         self._warned_solids = False
-        self._scratch = LayerScratch(context.ctx)  # (the fragment lookups' targets)
+        # (the fragment lookups' targets: the shadow pass's own, shared, where it has them)
+        self._owns_scratch = scratch is None
+        self._scratch = LayerScratch(context.ctx) if scratch is None else scratch
 
     def _soup_for(self, key, triangles: np.ndarray):
         if self._soup is None or self._soup[0] != key:
@@ -422,4 +426,5 @@ class ShadowMaps(GLResource):
         for p in self._lookup.values():
             p.release()
         self._lookup.clear()
-        self._scratch.release()
+        if self._owns_scratch:
+            self._scratch.release()

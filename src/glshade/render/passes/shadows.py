@@ -357,7 +357,7 @@ class ShadowPass(GLResource, Stage):
 
     def _maps(self) -> ShadowMaps:
         if self.maps is None:
-            self.maps = ShadowMaps(self.context, self.shaders)
+            self.maps = ShadowMaps(self.context, self.shaders, self._scratch)
         return self.maps
 
     def _forward(self, state) -> dict:

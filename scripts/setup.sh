@@ -43,12 +43,14 @@ if [ "$KIND" = demo ] && [ -f "$VENV/.glshade-installed-test" ] \
 fi
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
     # uv, the standard fast installer, resolves and unpacks the test extras in seconds (pip:
-    # about a minute); pip does it alone where uv cannot be had. (pip's warnings about this
-    # machine's unreachable extra indexes are filtered out.)
+    # about a minute), compiling the bytecode as pip does (else a package's first import
+    # compiles it, and its compile warnings reach a command's stderr); pip does it alone
+    # where uv cannot be had. (pip's warnings about this machine's unreachable extra
+    # indexes are filtered out.)
     pip=("$VENV/bin/python" -m pip install -q --disable-pip-version-check)
     if "${pip[@]}" "uv>=0.4" 2> >(grep -v "Location .* is ignored" >&2) \
             && "$VENV/bin/python" -m uv pip install -q --python "$VENV/bin/python" \
-                -e ".$EXTRAS"; then
+                --compile-bytecode -e ".$EXTRAS"; then
         :
     elif ! "${pip[@]}" -e ".$EXTRAS" 2> >(grep -v "Location .* is ignored" >&2); then
         echo "setup: pip install failed" >&2

@@ -33,6 +33,10 @@ in vec3 in_face_centroid;
 in vec2 in_uv;
 out vec2 v_uv;  // (per pixel: the polygon's one lit colour times its texels)
 #endif
+#ifdef VERTEX_COLORS
+in vec4 in_color;  // (the polygon's one colour at each of its corners: gpu_mesh.py)
+flat out float v_alpha;
+#endif
 out vec3 v_position_view;
 
 void main() {
@@ -41,6 +45,10 @@ void main() {
     v_position_view = p_view.xyz;
 #ifdef TEXTURED
     v_uv = in_uv;
+#endif
+#ifdef VERTEX_COLORS
+    g_surface_color = in_color.rgb;
+    v_alpha = in_color.a;
 #endif
     flat_polygon(in_face_normal, in_face_centroid);
     gl_Position = u_proj * p_view;

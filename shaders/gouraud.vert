@@ -12,9 +12,17 @@ in vec3 in_normal;
 in vec2 in_uv;
 out vec2 v_uv;
 #endif
+#ifdef VERTEX_COLORS
+in vec4 in_color;
+out float v_alpha;
+#endif
 
 void main() {
     PASS_POLYGON_ID();
+#ifdef VERTEX_COLORS
+    g_surface_color = in_color.rgb;  // (lit at the vertex with its own C)
+    v_alpha = in_color.a;
+#endif
     gouraud_stage(in_position, in_normal);
 #ifdef TEXTURED
     v_uv = in_uv;

@@ -12,6 +12,9 @@ in vec3 v_normal_view;
 #ifdef TEXTURED
 in vec2 v_uv;
 #endif
+#ifdef VERTEX_COLORS
+in vec4 v_color;
+#endif
 #ifdef WORLD_NORMALS
 in vec3 v_normal_world;
 #endif
@@ -25,12 +28,21 @@ void main() {
 #endif
     face_viewer(n, n_world);
     SHADOW_PREPARE(v_position_view, n_world);
+#ifdef VERTEX_COLORS
+    g_surface_color = v_color.rgb;  // (the notes' C at this pixel: surface_color.glsl)
+#endif
 #ifdef TEXTURED
     vec3 specular;
     vec3 lit = light_parts(v_position_view, n, view_dir(v_position_view), specular);
     g_map_opacity = map_opacity(v_uv);
+#ifdef VERTEX_COLORS
+    g_map_opacity *= v_color.a;
+#endif
     write_outputs(textured_color(lit, specular, v_uv), n_world, -v_position_view.z);
 #else
+#ifdef VERTEX_COLORS
+    g_map_opacity = v_color.a;
+#endif
     write_outputs(light_intensity(v_position_view, n, view_dir(v_position_view)), n_world,
                   -v_position_view.z);
 #endif

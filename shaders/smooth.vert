@@ -15,12 +15,19 @@ in vec3 in_normal;
 in vec2 in_uv;
 out vec2 v_uv;  // (interpolated perspective-correct)
 #endif
+#ifdef VERTEX_COLORS
+in vec4 in_color;
+out vec4 v_color;  // (the mesh's C and alpha, interpolated: lit per pixel)
+#endif
 
 void main() {
     PASS_POLYGON_ID();
     smooth_stage(in_position, in_normal);
 #ifdef TEXTURED
     v_uv = in_uv;
+#endif
+#ifdef VERTEX_COLORS
+    v_color = in_color;
 #endif
 #ifdef FLAT_CONSTANTS
     forward_constants();

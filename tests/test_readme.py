@@ -80,7 +80,8 @@ def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
     # same wheel, the same resolved dependencies)
     import importlib.util
 
-    install = ([sys.executable, "-m", "uv", "pip", "install", "-q", "--python", str(python)]
+    install = ([sys.executable, "-m", "uv", "pip", "install", "-q", "--compile-bytecode",
+                "--python", str(python)]
                if importlib.util.find_spec("uv") else
                [str(python), "-m", "pip", "install", "-q", "--disable-pip-version-check"])
     out = subprocess.run([*install, f"{wheel}[notebook]"], capture_output=True, text=True,

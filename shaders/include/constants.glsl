@@ -17,10 +17,12 @@
 #define DIRECTIONAL 0
 #define POINT 1
 #define ATTENUATED 2
+#define SPOT 3  // (a point light in a cone, with its attenuation: lighting.glsl)
 #ifndef LIGHT_COUNT
 #define LIGHT_COUNT 1
 #define LIGHT_KINDS POINT
 #endif
+#include "surface_color.glsl"
 
 #if defined(FLAT_CONSTANTS) && !defined(FORWARD_CONSTANTS)
 flat in vec4 k_ambient_shininess;               // (Ia ka C, n)
@@ -33,10 +35,21 @@ flat in vec3 k_light_attenuation[LIGHT_COUNT];
 #else
 #define LIGHT_ATTENUATION(i) vec3(1.0, 0.0, 0.0)
 #endif
+#ifdef ANY_SPOT
+flat in vec4 k_light_spot[LIGHT_COUNT];
+#define LIGHT_SPOT(i) k_light_spot[i]
+#else
+#define LIGHT_SPOT(i) vec4(0.0)
+#endif
+#ifdef VERTEX_COLORS  // (the pixel's C times the constants: surface_color.glsl)
+#define AMBIENT_TERM (k_ambient_shininess.xyz * SURFACE_C)
+#define LIGHT_DIFFUSE(i) (k_light_diffuse[i] * SURFACE_C)
+#else
 #define AMBIENT_TERM k_ambient_shininess.xyz
+#define LIGHT_DIFFUSE(i) k_light_diffuse[i]
+#endif
 #define SHININESS k_ambient_shininess.w
 #define LIGHT_POS_VIEW(i) k_light_pos_view[i]
-#define LIGHT_DIFFUSE(i) k_light_diffuse[i]
 #define LIGHT_SPECULAR(i) k_light_specular[i]
 
 #else
@@ -44,10 +57,16 @@ uniform vec3 u_light_specular[MAX_LIGHTS];     // Ip ks
 uniform float u_shininess;                     // n
 uniform vec4 u_light_pos_view[MAX_LIGHTS];     // point: position; directional: unit vector TO it
 uniform vec3 u_light_attenuation[MAX_LIGHTS];  // (constant, linear, quadratic)
+uniform vec4 u_light_spot[MAX_LIGHTS];         // a spot's axis x cone scale, cone offset
 #ifdef INSTANCED  // (an instance's colour is its own: its row, instances.glsl)
 #include "instances.glsl"
+#ifdef VERTEX_COLORS
+#define AMBIENT_TERM (instance_ambient() * SURFACE_C)
+#define LIGHT_DIFFUSE(i) (instance_diffuse(i) * SURFACE_C)
+#else
 #define AMBIENT_TERM instance_ambient()
 #define LIGHT_DIFFUSE(i) instance_diffuse(i)
+#endif
 #elif defined(POINT_COLORS)  // (a cloud's colour is each point's own: points.frag)
 uniform vec3 u_ambient_term;                   // Ia ka (C = 1 where C is the point's)
 uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd (likewise)
@@ -58,13 +77,19 @@ flat in vec3 f_color;
 #else
 uniform vec3 u_ambient_term;                   // Ia ka C
 uniform vec3 u_light_diffuse[MAX_LIGHTS];      // Ip kd C
+#ifdef VERTEX_COLORS  // (times the mesh's C at the point lit: surface_color.glsl)
+#define AMBIENT_TERM (u_ambient_term * SURFACE_C)
+#define LIGHT_DIFFUSE(i) (u_light_diffuse[i] * SURFACE_C)
+#else
 #define AMBIENT_TERM u_ambient_term
 #define LIGHT_DIFFUSE(i) u_light_diffuse[i]
+#endif
 #endif
 #define SHININESS u_shininess
 #define LIGHT_POS_VIEW(i) u_light_pos_view[i]
 #define LIGHT_SPECULAR(i) u_light_specular[i]
 #define LIGHT_ATTENUATION(i) u_light_attenuation[i]
+#define LIGHT_SPOT(i) u_light_spot[i]
 
 #ifdef FORWARD_CONSTANTS
 flat out vec4 k_ambient_shininess;
@@ -74,8 +99,13 @@ flat out vec3 k_light_specular[LIGHT_COUNT];
 #ifdef ANY_ATTENUATED
 flat out vec3 k_light_attenuation[LIGHT_COUNT];
 #endif
+#ifdef ANY_SPOT
+flat out vec4 k_light_spot[LIGHT_COUNT];
+#endif
 
 void forward_constants() {
+    // (a vertex stage that forwards never sets the surface colour: the constants go on
+    // without it, and the fragment stage multiplies in the pixel's)
     k_ambient_shininess = vec4(AMBIENT_TERM, u_shininess);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         k_light_pos_view[i] = u_light_pos_view[i];
@@ -83,6 +113,9 @@ void forward_constants() {
         k_light_specular[i] = u_light_specular[i];
 #ifdef ANY_ATTENUATED
         k_light_attenuation[i] = u_light_attenuation[i];
+#endif
+#ifdef ANY_SPOT
+        k_light_spot[i] = u_light_spot[i];
 #endif
     }
 }

@@ -6,7 +6,8 @@
 // colour; specular multiplies the light's colour. All vectors are unit length, in view space.
 //
 // Programs are specialised when compiled (the renderer's defines): LIGHT_COUNT (1 to 8)
-// lights whose kinds are the list LIGHT_KINDS (each DIRECTIONAL, POINT or ATTENUATED),
+// lights whose kinds are the list LIGHT_KINDS (each DIRECTIONAL, POINT, ATTENUATED or
+// SPOT: a point light times KHR_lights_punctual's cone, clamp(cos a scale + offset)^2),
 // ORTHOGRAPHIC, and FLAT_CONSTANTS (where the per-draw constants come from: constants.glsl).
 // Each light's term is then straight-line code: no loop over uniform arrays, no branch on
 // a uniform that the software rasterizer would evaluate on both sides.
@@ -28,6 +29,10 @@ vec3 view_dir(vec3 p_view) {
 #endif
 }
 
+#ifdef PBR
+// (glTF's metallic-roughness model in the notes' place: its light_term)
+#include "pbr.glsl"
+#else
 // One light's diffuse and specular terms, k kd max(L.N, 0) Ip C (returned) and
 // k ks max(R.V, 0)^n Ip (``specular``); `kind` is a constant, so each call compiles to the
 // code of its kind alone.
@@ -39,9 +44,15 @@ vec3 light_term_parts(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view,
         vec3 to_light = l - p_view;
         float dist = length(to_light);
         l = to_light / max(dist, 1e-30);
-        if (kind == ATTENUATED) {
+        if (kind == ATTENUATED || kind == SPOT) {
             vec3 att = LIGHT_ATTENUATION(i);
             k = 1.0 / max(att.x + att.y * dist + att.z * dist * dist, 1e-30);
+        }
+        if (kind == SPOT) {
+            // KHR_lights_punctual's cone: clamp(cos(angle from the axis) scale + offset)^2
+            vec4 spot = LIGHT_SPOT(i);
+            float s = clamp(dot(spot.xyz, -l) + spot.w, 0.0, 1.0);
+            k *= s * s;
         }
     }
     float ln = dot(l, n_view);
@@ -50,7 +61,7 @@ vec3 light_term_parts(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view,
     float spec = rv > 0.0 ? pow(rv, SHININESS) : 0.0;
     vec3 diffuse = ln * LIGHT_DIFFUSE(i);
     specular = spec * LIGHT_SPECULAR(i);
-    if (kind == ATTENUATED) {
+    if (kind == ATTENUATED || kind == SPOT) {
         diffuse *= k;
         specular *= k;
     }
@@ -65,6 +76,7 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 diffuse = light_term_parts(i, kind, p_view, n_view, v_view, specular);
     return diffuse + specular;
 }
+#endif
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
     vec3 color = AMBIENT_TERM;
@@ -89,7 +101,7 @@ vec3 light_terms(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 terms[LIGHT_COU
 }
 #endif
 
-#ifdef TEXTURED
+#if defined(TEXTURED) && !defined(PBR)
 // The formula in its two parts, for textured surfaces (textures.glsl): the ambient and
 // diffuse terms (returned; the diffuse map, the notes' C, multiplies them) and the
 // specular one (``specular``; the specular map multiplies it).

@@ -50,8 +50,9 @@ uniform sampler2D u_peel_before;  // the last layer's depth (-1: none yet)
 uniform sampler2D u_peel_near;    // this layer's (its colour pass)
 uniform sampler2D u_peel_opaque;  // the opaque surfaces' depth
 #endif
-#ifdef TEXTURED
-float g_map_opacity = 1.0;                     // its opacity map here (textures.glsl)
+#if defined(TEXTURED) || defined(VERTEX_COLORS)
+// its opacity map here (textures.glsl), times the mesh colour's alpha (surface_color.glsl)
+float g_map_opacity = 1.0;
 #define SURFACE_OPACITY (u_opacity * g_map_opacity)
 #else
 #define SURFACE_OPACITY u_opacity
@@ -81,7 +82,14 @@ uniform uint u_oit_base;      // where the pool starts (after every pixel's slot
 #endif
 #endif
 
+#ifdef EMISSIVE
+uniform vec3 u_emission;                       // what the surface gives off by itself
+#endif
+
 void write_outputs(vec3 color, vec3 n_world, float depth_view) {
+#ifdef EMISSIVE
+    color += u_emission;  // (added to the lit colour in every mode, as glTF adds it)
+#endif
     color = clamp(color, 0.0, 1.0);
 #ifdef SRGB
     color = encode_srgb(color);

@@ -10,9 +10,11 @@ uniform int u_emit;
 uniform int u_n_emit;
 uniform float u_emit_power;   // the emitters' power, sum of area x mean(E) (MIS)
 #if LIGHTS > 0  // (the scene's point and directional lights, LIGHTS of them)
-uniform vec4 u_light_pos[LIGHTS];  // (position or direction to the light, kind: 0 dir, 1 point)
+uniform vec4 u_light_pos[LIGHTS];  // (position or direction to the light, kind: 0 dir, 1 point,
+                                   // 2 spot)
 uniform vec3 u_light_irr[LIGHTS];
 uniform vec3 u_light_att[LIGHTS];
+uniform vec4 u_light_spot[LIGHTS];  // a spot's axis x its cone's scale, the cone's offset
 #endif
 
 // MIS (Veach's power heuristic): the weight of a sample drawn with density a where another
@@ -94,6 +96,10 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
             wi = to / dist;
             vec3 c = u_light_att[i];
             att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+            if (u_light_pos[i].w > 1.5) {  // (a spot: KHR_lights_punctual's cone)
+                float s = clamp(dot(u_light_spot[i].xyz, -wi) + u_light_spot[i].w, 0.0, 1.0);
+                att *= s * s;
+            }
         }
         float cx = dot(n, wi);
         if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {

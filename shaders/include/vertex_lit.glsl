@@ -32,6 +32,9 @@ LIT_IN vec3 v_spec_back;
 #endif
 #endif
 #endif
+#ifdef VERTEX_COLORS
+LIT_IN float v_alpha;  // (the mesh colour's alpha: multiplies the opacity)
+#endif
 in vec3 v_position_view;
 
 void main() {
@@ -69,6 +72,9 @@ void main() {
 #endif
     color = textured_color(color, specular, v_uv);
     g_map_opacity = map_opacity(v_uv);
+#endif
+#ifdef VERTEX_COLORS
+    g_map_opacity *= v_alpha;
 #endif
     write_outputs(color, n_world, -v_position_view.z);
 }

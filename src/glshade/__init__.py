@@ -38,6 +38,8 @@ _EXPORTS = {
     "Material": ("scene.material", "Material"), "PointLight": ("scene.lights", "PointLight"),
     "Texture": ("scene.texture", "Texture"),
     "DirectionalLight": ("scene.lights", "DirectionalLight"), "Scene": ("scene.scene", "Scene"),
+    "SpotLight": ("scene.lights", "SpotLight"), "PBRMaterial": ("scene.pbr", "PBRMaterial"),
+    "LightingModel": ("modes", "LightingModel"),
     # drawing options
     "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
     "Culling": ("modes", "Culling"), "Projection": ("modes", "Projection"),
@@ -99,7 +101,9 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .render.renderer import Frame, Pick, Renderer
     from .scene.camera import Camera, View, default_camera
     from .scene.keyframes import CameraPath, Keyframe
-    from .scene.lights import DirectionalLight, PointLight
+    from .modes import LightingModel
+    from .scene.lights import DirectionalLight, PointLight, SpotLight
+    from .scene.pbr import PBRMaterial
     from .scene.material import Material
     from .scene.scene import Scene
     from .scene.texture import Texture

@@ -9,7 +9,8 @@ from typing import TypeVar
 
 from .errors import OptionError
 
-__all__ = ["ShadingMode", "Outputs", "Culling", "Shadows", "Transparency", "Projection",
+__all__ = ["ShadingMode", "LightingModel", "Outputs", "Culling", "Shadows", "Transparency",
+           "Projection",
            "Backend", "Sampler", "Accel", "Kernel", "Tessellation", "PointStyle", "LineUnits",
            "LineCaps", "LineJoins",
            "HEADLESS_BACKENDS", "parse_enum", "choose"]
@@ -151,6 +152,15 @@ class Culling(enum.Enum):
 
     def __bool__(self) -> bool:  # (so `if options.cull:` reads as before: AUTO and ON cull)
         return self is not Culling.OFF
+
+
+class LightingModel(enum.Enum):
+    """What a shading scheme (flat, Gouraud, Phong) evaluates: the lighting model a material
+    is written for. Each is one GLSL include and one material class, compiled into a program
+    variant (never a branch through the passes)."""
+
+    NOTES = "notes"  # the course notes' ambient + diffuse + specular (Material, lighting.glsl)
+    PBR = "pbr"      # glTF 2.0's metallic-roughness BRDF, its Appendix B (PBRMaterial, pbr.glsl)
 
 
 class Shadows(enum.Enum):

@@ -394,6 +394,7 @@ def test_gltf_parts_sharing_a_material_name_keep_their_own_colours(tmp_path):
         scene.add_geometry(part, geom_name=f"part{k}")
     scene.export(tmp_path / "two.glb")
     mesh = glshade.load_mesh(tmp_path / "two.glb")
-    colours = {tuple(np.round(mesh.materials[n].diffuse, 3)): len(f)
+    # (untextured glTF materials are glTF's model: PBRMaterials with their base colours)
+    colours = {tuple(np.round(mesh.materials[n].base_color, 3)): len(f)
                for n, f in mesh.material_groups.items()}
     assert colours == {(1.0, 0.0, 0.0): 1, (0.0, 0.0, 1.0): 1}

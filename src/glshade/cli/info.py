@@ -31,6 +31,9 @@ def mesh_summary(mesh) -> dict:
         "euler_characteristic": mesh.n_vertices - mesh.n_edges + mesh.n_faces,
         "signed_volume": mesh.signed_volume(),
         "texture_coordinates": mesh.uv is not None,
+        # (which colours the mesh carries: "vertex", "face", both or neither)
+        "colors": [k for k, c in (("vertex", mesh.colors), ("face", mesh.face_colors))
+                   if c is not None],
         "materials": materials_summary(mesh),
         "unused_material_statements": list(mesh.material_notes),
         "gpu_bytes": gpu_bytes(mesh),
@@ -38,11 +41,21 @@ def mesh_summary(mesh) -> dict:
 
 
 def material_summary(material, faces: int | None = None) -> dict:
-    """One material's coefficients and textures, as plain JSON-able data."""
-    out = {"name": material.name, "ambient": list(material.ambient_rgb),
+    """One material's coefficients and textures, as plain JSON-able data, with its lighting
+    model (``"notes"`` or ``"pbr"``)."""
+    if material.lighting.value == "pbr":
+        out = {"name": material.name, "model": "pbr", "base_color": list(material.base_color),
+               "metallic": material.metallic, "roughness": material.roughness,
+               "emissive": list(material.emissive), "opacity": material.opacity,
+               "vertex_colors": material.vertex_colors, "textures": {}}
+        if faces is not None:
+            out["faces"] = faces
+        return out
+    out = {"name": material.name, "model": "notes", "ambient": list(material.ambient_rgb),
            "diffuse": list(material.diffuse_rgb), "specular": list(material.specular_rgb),
            "shininess": material.shininess, "opacity": material.opacity,
-           "illum": material.illum,
+           "illum": material.illum, "emission": list(material.emission),
+           "vertex_colors": material.vertex_colors,
            "textures": {k: {"file": str(t.path) if t.path else None, "size": list(t.size),
                             "filter": t.filter, "wrap": t.wrap}
                         for k, t in material.textures.items()}}
@@ -71,6 +84,12 @@ def _print_materials(materials: list[dict], notes: list[str]) -> None:
         if m.get("missing"):
             print(f"  {str(m['name'])[:18]:<18} {m['faces']:>7,}  (in no material library: "
                   "drawn with the default)")
+            continue
+        faces = f"{m['faces']:>7,}" if "faces" in m else " " * 7
+        if m.get("model") == "pbr":  # (glTF's metallic-roughness: its factors)
+            base = ", ".join(f"{x:.3g}" for x in m["base_color"])
+            print(f"  {str(m['name'])[:18]:<18} {faces}  PBR base ({base}), metallic "
+                  f"{m['metallic']:.3g}, roughness {m['roughness']:.3g}")
             continue
         kd = ", ".join(f"{x:.3g}" for x in m["diffuse"])
         maps = "; ".join(f"{k} {Path(t['file']).name if t['file'] else 'an image'} "
@@ -169,10 +188,14 @@ def scene_summary(scene_file) -> dict:
                        "material": material_summary(m.material),
                        "bounds": {"min": corners.min(0).tolist(),
                                   "max": corners.max(0).tolist()}})
-    lights = [{"kind": "directional" if isinstance(x, DirectionalLight) else "point",
+    lights = [{"kind": "directional" if isinstance(x, DirectionalLight) else
+               "spot" if hasattr(x, "spot_vector") else "point",
                "at": list(map(float, x.direction if isinstance(x, DirectionalLight)
                               else x.position)),
-               "color": list(map(float, x.color)), "intensity": float(x.intensity)}
+               "color": list(map(float, x.color)), "intensity": float(x.intensity),
+               **({"direction": list(map(float, x.direction)),
+                   "inner_angle": x.inner_angle, "outer_angle": x.outer_angle}
+                  if hasattr(x, "spot_vector") else {})}
               for x in sf.scene.lights]
     return {"kind": "scene", "models": models,
             "solids": [{"name": x.name, "leaves": len(x.solid.leaves())}
@@ -209,8 +232,11 @@ def _scene_info(args: InfoArgs) -> int:
           "lights: none (a headlight at the camera)")
     for x in s["lights"]:
         where = "shining along" if x["kind"] == "directional" else "at"
+        cone = (f", pointing ({', '.join(f'{v:.3g}' for v in x['direction'])}), cone "
+                f"{x['inner_angle']:.3g} to {x['outer_angle']:.3g} rad"
+                if x["kind"] == "spot" else "")
         print(f"  {x['kind']:<11} {where} ({', '.join(f'{v:.3g}' for v in x['at'])}), "
-              f"intensity {x['intensity']:g}")
+              f"intensity {x['intensity']:g}{cone}")
     return EXIT_OK
 
 
@@ -353,6 +379,9 @@ def info(args: InfoArgs) -> int:
         print(f"  problems: {t['problems']}")
     if info["texture_coordinates"]:
         print("texture coordinates: yes (vt, one per face corner)")
+    if info["colors"]:
+        print(f"colours: per {' and per '.join(info['colors'])} (linear RGBA; the surface "
+              "colour C, times the material's)")
     _print_materials(info["materials"], info["unused_material_statements"])
     return EXIT_OK
 

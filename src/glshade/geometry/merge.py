@@ -21,10 +21,10 @@ __all__ = ["weld", "split_creases", "split_point_contacts", "oriented", "concate
 
 
 def _with(mesh: Mesh, vertices, indices, offsets, normals=None, groups=None,
-          uv=None) -> Mesh:
+          uv=None, colors=None, face_colors=None) -> Mesh:
     out = Mesh.from_csr(vertices, indices, offsets, normals=normals,
                         groups=mesh.groups if groups is None else groups, name=mesh.name,
-                        uv=uv)
+                        uv=uv, colors=colors, face_colors=face_colors)
     out.analytic = mesh.analytic
     out.materials, out.material_groups = mesh.materials, mesh.material_groups
     return out
@@ -62,7 +62,9 @@ def split_creases(mesh: Mesh, angle_deg: float = 30.0) -> Mesh:
     source = mesh.face_indices[uniq]
     normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
     return _with(mesh, mesh.vertices[source], corner_vertex.astype(np.int64),
-                 mesh.face_offsets.copy(), normals, uv=mesh.uv)  # (the same corners)
+                 mesh.face_offsets.copy(), normals, uv=mesh.uv,  # (the same corners)
+                 colors=mesh.colors[source] if mesh.colors is not None else None,
+                 face_colors=mesh.face_colors)
 
 
 def dihedral_angles(mesh: Mesh) -> np.ndarray:
@@ -120,7 +122,9 @@ def split_point_contacts(mesh: Mesh) -> Mesh:
     source = uniq // max(mesh.n_faces, 1)
     normals = mesh.normals_from_file[source] if mesh.normals_from_file is not None else None
     return _with(mesh, mesh.vertices[source], corner_vertex.ravel().astype(np.int64),
-                 mesh.face_offsets.copy(), normals, uv=mesh.uv)
+                 mesh.face_offsets.copy(), normals, uv=mesh.uv,
+                 colors=mesh.colors[source] if mesh.colors is not None else None,
+                 face_colors=mesh.face_colors)
 
 
 def oriented(mesh: Mesh) -> Mesh:
@@ -182,8 +186,12 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
         normals = mesh.normals_from_file[first][used]
     face_number = np.cumsum(ok_face) - 1
     groups = {name: face_number[g[ok_face[g]]] for name, g in mesh.groups.items()}
+    # (a welded vertex keeps the colour of the first of the vertices merged into it)
     out = _with(mesh, vertices[used], remap[idx[keep]], offsets, normals, groups,
-                uv=mesh.uv[keep] if mesh.uv is not None else None)
+                uv=mesh.uv[keep] if mesh.uv is not None else None,
+                colors=mesh.colors[first][used] if mesh.colors is not None else None,
+                face_colors=mesh.face_colors[ok_face] if mesh.face_colors is not None
+                else None)
     out.material_groups = {name: face_number[g[ok_face[g]]]
                            for name, g in mesh.material_groups.items()}
     return out
@@ -192,7 +200,7 @@ def weld(mesh: Mesh, tolerance: float | None = None) -> Mesh:
 def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> Mesh:
     """Join meshes into one; with ``names`` each input becomes a named group of faces.
     Texture coordinates are kept where any input has them ((0, 0) for the corners of one
-    that has none); material parts and their materials too.
+    that has none), colours likewise (white); material parts and their materials too.
 
     Parameters
     ----------
@@ -230,11 +238,19 @@ def concatenate(meshes: Iterable[Mesh], names: Iterable[str] | None = None) -> M
     if any(m.uv is not None for m in meshes):
         uv = np.concatenate([m.uv if m.uv is not None else np.zeros((len(m.face_indices), 2))
                              for m in meshes])
+    # (colours where any input has them: white for one that has none)
+    colors = face_colors = None
+    if any(m.colors is not None for m in meshes):
+        colors = np.concatenate([m.colors if m.colors is not None else
+                                 np.ones((m.n_vertices, 4)) for m in meshes])
+    if any(m.face_colors is not None for m in meshes):
+        face_colors = np.concatenate([m.face_colors if m.face_colors is not None else
+                                      np.ones((m.n_faces, 4)) for m in meshes])
     out = Mesh.from_csr(
         np.concatenate(vert) if vert else np.zeros((0, 3)),
         np.concatenate(idx) if idx else np.zeros(0, np.int64),
         offsets,
-        groups=groups, uv=uv,
+        groups=groups, uv=uv, colors=colors, face_colors=face_colors,
     )
     out.material_groups, out.materials = parts, materials
     return out

@@ -30,6 +30,25 @@ def _readonly(a: np.ndarray) -> np.ndarray:
     return a
 
 
+def _colors(value, count: int, name: str, what: str):
+    """``(count, 4)`` float64 RGBA from ``(count, 3|4)`` values in [0, 1], read-only; None
+    stays None; a GeometryError names the first bad row."""
+    if value is None:
+        return None
+    c = np.array(value, dtype=np.float64)
+    if c.ndim != 2 or c.shape[0] != count or c.shape[1] not in (3, 4):
+        raise GeometryError(f"{name} must have shape ({count}, 3) or ({count}, 4) (RGB or "
+                            f"RGBA a {what}, linear, each in [0, 1]), got {c.shape}")
+    bad = ~(np.isfinite(c) & (c >= 0) & (c <= 1)).all(axis=1)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise GeometryError(f"{name}: {what} {i} has {c[i].tolist()}, not in [0, 1] "
+                            f"({int(bad.sum())} such rows; 8-bit colours are divided by 255)")
+    if c.shape[1] == 3:
+        c = np.hstack([c, np.ones((count, 1))])
+    return _readonly(c)
+
+
 class Mesh:
     """A polygon mesh: vertices ``(V, 3)`` float64 and faces of any size n >= 3.
 
@@ -49,6 +68,13 @@ class Mesh:
         bottom-left.
     name : str, optional
         The mesh's name (a file's stem; what a scene calls its model by default).
+    colors : (V, 3) or (V, 4) array_like, optional
+        A colour per vertex, linear RGB (and alpha), each in [0, 1]: the notes' surface
+        colour C at the vertex (what a texture would give), multiplying the material's
+        ambient and diffuse colours; alpha multiplies its opacity. A PLY's or OBJ's vertex
+        colours, a glTF's ``COLOR_0``.
+    face_colors : (F, 3) or (F, 4) array_like, optional
+        A colour per polygon, likewise (with ``colors`` too, the two multiply).
 
     Raises
     ------
@@ -66,6 +92,8 @@ class Mesh:
         groups: Mapping[str, ArrayLike] | None = None,
         name: str | None = None,
         uv: ArrayLike | None = None,
+        colors: ArrayLike | None = None,
+        face_colors: ArrayLike | None = None,
     ):
         v = np.array(vertices, dtype=np.float64)
         if v.ndim != 2 or v.shape[1] != 3:
@@ -122,6 +150,11 @@ class Mesh:
                 raise GeometryError(f"texture coordinate of corner {c} (face "
                                     f"{int(self.corner_face[c])}) is not finite: {t[c].tolist()}")
             self.uv = _readonly(t)
+        #: ``(V, 4)`` linear RGBA a vertex, or None
+        self.colors: NDArray[np.float64] | None = _colors(colors, len(v), "colors", "vertex")
+        #: ``(F, 4)`` linear RGBA a polygon, or None
+        self.face_colors: NDArray[np.float64] | None = _colors(face_colors, self.n_faces,
+                                                                "face_colors", "face")
         #: materials by name and the faces of each (an OBJ's ``usemtl`` parts); a scene
         #: draws each part with its material (Scene.add)
         self.materials: dict[str, object] = {}
@@ -176,6 +209,41 @@ class Mesh:
     @property
     def n_faces(self) -> int:
         return len(self.face_sizes)
+
+    @property
+    def colored(self) -> bool:
+        """Whether the mesh carries colours (per vertex, per polygon or both)."""
+        return self.colors is not None or self.face_colors is not None
+
+    @cached_property
+    def corner_colors(self) -> NDArray[np.float64] | None:
+        """``(C, 4)`` linear RGBA at each face corner: the vertex's colour times its
+        polygon's (None without colours)."""
+        if not self.colored:
+            return None
+        c = np.ones((len(self.face_indices), 4))
+        if self.colors is not None:
+            c = c * self.colors[self.face_indices]
+        if self.face_colors is not None:
+            c = c * self.face_colors[self.corner_face]
+        return _readonly(c)
+
+    @cached_property
+    def translucent(self) -> bool:
+        """Whether any of its colours has an alpha below 1 (drawn as a transparent surface
+        where the material takes its colours)."""
+        corners = self.corner_colors
+        return corners is not None and bool((corners[:, 3] < 1).any())
+
+    @cached_property
+    def polygon_colors(self) -> NDArray[np.float64] | None:
+        """``(F, 4)`` each polygon's one colour for uniform (flat) shading: the mean of its
+        corners' colours (None without colours)."""
+        corners = self.corner_colors
+        if corners is None:
+            return None
+        sums = np.add.reduceat(corners, self.face_offsets[:-1], axis=0)
+        return _readonly(sums / self.face_sizes[:, None])
 
     @cached_property
     def n_edges(self) -> int:
@@ -437,7 +505,10 @@ class Mesh:
         return Mesh.from_csr(self.vertices[used], idx.astype(np.int64),
                              np.concatenate([[0], np.cumsum(sizes)]), normals=normals,
                              name=self.name,
-                             uv=self.uv[corners] if self.uv is not None else None)
+                             uv=self.uv[corners] if self.uv is not None else None,
+                             colors=self.colors[used] if self.colors is not None else None,
+                             face_colors=(self.face_colors[f] if self.face_colors is not None
+                                          else None))
 
     def signed_volume(self) -> float:
         """Signed volume enclosed (divergence theorem); positive for outward orientation of
@@ -516,14 +587,18 @@ class Mesh:
         else:
             uv = self.uv
         out = Mesh.from_csr(vertices, idx.copy(), self.face_offsets.copy(), normals=normals,
-                            groups=self.groups, name=self.name, uv=uv)
+                            groups=self.groups, name=self.name, uv=uv, colors=self.colors,
+                            face_colors=self.face_colors)
         out.analytic = analytic
         out.materials, out.material_groups = self.materials, self.material_groups
         return out
 
     @classmethod
-    def from_trimesh(cls, tm, name: str | None = None) -> Mesh:
-        """From a ``trimesh.Trimesh`` or ``trimesh.Scene`` (the ``formats`` extra).
+    def from_trimesh(cls, tm, name: str | None = None, linear_colors: bool = False) -> Mesh:
+        """From a ``trimesh.Trimesh`` or ``trimesh.Scene`` (the ``formats`` extra), with its
+        texture coordinates, vertex and face colours, and its materials' colours, factors
+        and maps as material parts (:attr:`materials`, described as plain data: ``Scene.add``
+        draws each part with the material made from it).
 
         Parameters
         ----------
@@ -531,16 +606,27 @@ class Mesh:
             The mesh (a scene's geometry is joined, each part a group).
         name : str or None
             The mesh's name (None: trimesh's).
+        linear_colors : bool
+            trimesh's colour bytes are linear (a glTF's ``COLOR_0``) rather than
+            sRGB-encoded (as trimesh shows them and PLY files hold them).
         """
         from .trimesh_bridge import from_trimesh
 
-        return from_trimesh(tm, name)
+        return from_trimesh(tm, name, linear_colors)
 
-    def to_trimesh(self):
-        """A ``trimesh.Trimesh`` of the triangulation (the ``formats`` extra)."""
+    def to_trimesh(self, image=None):
+        """A ``trimesh.Trimesh`` of the triangulation (the ``formats`` extra), with the
+        mesh's colours and texture coordinates
+        (:func:`~glshade.geometry.trimesh_bridge.to_trimesh`).
+
+        Parameters
+        ----------
+        image : PIL.Image.Image or None
+            The texture image its texture visual shows (a material's map).
+        """
         from .trimesh_bridge import to_trimesh
 
-        return to_trimesh(self)
+        return to_trimesh(self, image)
 
     def split_creases(self, angle_deg: float = 30.0) -> Mesh:
         """Duplicate vertices along edges sharper than ``angle_deg``, so smooth shading

@@ -62,5 +62,10 @@ def phong_tessellate(mesh: Mesh, level: int = 4, alpha: float = 0.75) -> Mesh:
     if mesh.uv is not None:  # (texture coordinates interpolated like the points)
         points_uv = np.einsum("pc,tcx->tpx", bary, mesh.uv[mesh.corner_triangles])
         uv = points_uv.reshape(-1, 2)[faces.ravel()]
+    colors = None
+    corner_colors = mesh.corner_colors
+    if corner_colors is not None:  # (colours likewise: a polygon's own on each piece)
+        points_color = np.einsum("pc,tcx->tpx", bary, corner_colors[mesh.corner_triangles])
+        colors = points_color.reshape(-1, 4)
     return Mesh(curved.reshape(-1, 3), faces, normals=nn.reshape(-1, 3), name=mesh.name,
-                uv=uv)
+                uv=uv, colors=colors)

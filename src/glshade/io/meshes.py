@@ -12,7 +12,6 @@ from typing import Any
 
 from pathlib import Path
 
-import numpy as np
 
 from ..atomic import atomic_write
 from .._paths import file_fault
@@ -162,32 +161,12 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
         reason = lines[-1] if lines else type(exc).__name__
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
     parts = trimesh_parts(loaded, path.stem)
-    mesh = from_trimesh(parts, name=path.stem)
-    _materials_from_trimesh(mesh, parts)
+    # (a glTF's COLOR_0 is linear: trimesh scales it to bytes without a curve)
+    mesh = from_trimesh(parts, name=path.stem, linear_colors=fmt in ("glb", "gltf"))
+    from ..scene.describe import material_from_description
+
+    # (the parts' materials, described by the bridge, made here: a glTF's metallic-roughness
+    # ones PBRMaterials; what is read and not drawn, one warning naming it)
+    mesh.materials = {name: material_from_description(d, f"{path.name}: {name}")
+                      for name, d in mesh.materials.items()}
     return mesh
-
-
-def _materials_from_trimesh(mesh: Mesh, meshes: list) -> None:
-    """Each source mesh's glTF base colour as a material part of ``mesh``."""
-    from ..scene.material import Material
-    from ..scene.texture import Texture
-
-    start = 0
-    for k, m in enumerate(meshes):
-        count = len(m.faces)
-        material = getattr(m.visual, "material", None)
-        factor = getattr(material, "baseColorFactor", None)
-        image = getattr(material, "baseColorTexture", None)
-        if factor is not None or image is not None:
-            rgba = np.asarray(factor if factor is not None else [255] * 4, np.float64)
-            rgba = rgba / 255.0 if rgba.max() > 1 else rgba
-            name = getattr(material, "name", None) or f"material {k}"
-            if name in mesh.materials:
-                name = f"{name} ({k})"   # (a name used twice: a part each, never merged)
-            mesh.materials[name] = Material(
-                name=name, color=tuple(rgba[:3]), diffuse=tuple(rgba[:3]),
-                opacity=float(rgba[3]) if len(rgba) > 3 else 1.0,
-                texture=Texture(image) if image is not None else None)
-            mesh.material_groups[name] = np.arange(start, start + count)
-        start += count
-

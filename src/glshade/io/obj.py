@@ -108,14 +108,14 @@ def read(path, data: bytes) -> Mesh:
             parts[key][0].append(i)
             parts[key][1].append(b" ".join(line[1:]).decode("utf-8", "replace") or "default")
     v_lines, f_lines = np.flatnonzero(is_v), np.flatnonzero(is_f)
-    vertices = _vertices(path, data, starts, ends, v_lines)
+    vertices, colors = _vertices(path, data, starts, ends, v_lines)
     idx, sizes = _faces(path, data, starts, ends, f_lines, v_lines, len(vertices))
     uv = _texture_coordinates(path, data, starts, ends, np.flatnonzero(is_vt), f_lines, sizes) \
         if is_vt.any() else None
     mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes),
                       line_of_face=lambda f: int(f_lines[f]) + 1,
                       line_of_vertex=lambda i: int(v_lines[i]) + 1,
-                      groups=_named_parts(*parts[b"g"], f_lines), uv=uv)
+                      groups=_named_parts(*parts[b"g"], f_lines), uv=uv, colors=colors)
     if parts[b"usemtl"][0]:
         mesh.material_groups = _named_parts(*parts[b"usemtl"], f_lines)
         mesh.materials, mesh.material_notes = _materials(
@@ -276,7 +276,7 @@ def read_points(path, data: bytes) -> dict:
     v_lines = np.flatnonzero((b0 == ord("v")) & ((ends - starts == 1) | (b1 == 32)))
     if not len(v_lines):
         raise MeshFormatError(path, "no 'v' lines: a point set needs vertices")
-    points = _vertices(path, data, starts, ends, v_lines)
+    points, _ = _vertices(path, data, starts, ends, v_lines)
     colors = None
     vblob = join_lines(data, starts, ends, v_lines)
     counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
@@ -287,8 +287,10 @@ def read_points(path, data: bytes) -> dict:
     return {"points": points, "normals": None, "colors": colors, "integer_colors": False}
 
 
-def _vertices(path, data: bytes, starts, ends, v_lines) -> np.ndarray:
-    """The ``v`` lines' positions ``(V, 3)`` (a w or a colour after them dropped)."""
+def _vertices(path, data: bytes, starts, ends, v_lines):
+    """The ``v`` lines' positions ``(V, 3)`` (a w after them dropped), and their colours
+    ``(V, 3)`` where lines carry ``v x y z r g b`` (None where none does; white on a line
+    without one where others have one)."""
     vblob = join_lines(data, starts, ends, v_lines)
     numbers = _blank_keyword(vblob, b"v") if len(v_lines) else b""
     values = parse_decimals(numbers)
@@ -298,14 +300,27 @@ def _vertices(path, data: bytes, starts, ends, v_lines) -> np.ndarray:
         _obj_diagnose(path, data)
         raise MeshFormatError(path, "malformed vertex data")
     if len(values) == 3 * len(v_lines):
-        return values.reshape(-1, 3)
+        return values.reshape(-1, 3), None
     counts = token_counts(normalize_whitespace(vblob), len(v_lines)) - 1
     bad = ~np.isin(counts, (3, 4, 6, 7))
     if bad.any() or counts.sum() != len(values):
         _obj_diagnose(path, data)
         raise MeshFormatError(path, "malformed vertex data")
-    vertices = ragged_take(values, offsets_from_sizes(counts)[:-1], np.full(len(counts), 3))
-    return vertices.reshape(-1, 3)
+    first = offsets_from_sizes(counts)[:-1]
+    vertices = ragged_take(values, first, np.full(len(counts), 3)).reshape(-1, 3)
+    colored = counts >= 6
+    if not colored.any():
+        return vertices, None
+    colors = np.ones((len(counts), 3))
+    # (x y z r g b, or x y z w r g b: the colour is the last three)
+    at = first[colored] + counts[colored] - 3
+    colors[colored] = values[at[:, None] + np.arange(3)]
+    wrong = ~(np.isfinite(colors) & (colors >= 0) & (colors <= 1)).all(1)
+    if wrong.any():
+        i = int(np.flatnonzero(wrong)[0])
+        raise MeshFormatError(path, f"vertex colour {colors[i].tolist()} is not in [0, 1] "
+                              "(v x y z r g b: linear RGB)", line=int(v_lines[i]) + 1)
+    return vertices, colors
 
 
 def _faces(path, data: bytes, starts, ends, f_lines, v_lines, n_vertices: int):

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..errors import MeshFormatError
 from ..geometry.mesh import Mesh
+from ..scene.texture import srgb_to_linear
 from ._common import (
     COMMENT, build_mesh, join_lines, numeric_diagnose, offsets_from_sizes, write_faces,
     write_vertices,
@@ -37,6 +38,9 @@ def read(path, data: bytes) -> Mesh:
         raise MeshFormatError(path, "the file is empty")
     first = text[starts[keep[0]]:ends[keep[0]]].split()
     header, rest, pos, normals = _header(path, first)
+    keyword = _KEYWORD.fullmatch(header) if header else None
+    texture_words = bool(keyword and keyword.group(1))  # (STOFF: s t last on a vertex line)
+    color_words = bool(keyword and keyword.group(2))    # (COFF: a colour on each)
     if len(rest) < 2:
         if len(keep) < pos + 1:
             raise MeshFormatError(path, "missing the 'vertices faces edges' counts line")
@@ -85,9 +89,44 @@ def read(path, data: bytes) -> Mesh:
                               f"lists {int(fcount[f]) - 1} numbers", line=int(fl[f]) + 1)
     k = k.astype(np.int64)
     idx = ragged_take(fvals, line_off + 1, k)
+    colors = face_colors = None
+    if color_words and nv:  # COFF: x y z [nx ny nz] r g b [a] [s t]
+        at = 3 + 3 * (vertex_normals is not None)
+        width = vcount - at - 2 * texture_words
+        colors = _colors(path, vals, vertex_start + at, width, "vertex", vl)
+    extra = fcount - 1 - k  # (a face's colour after its indices: r g b [a])
+    if nf and (extra >= 3).all():
+        face_colors = _colors(path, fvals, line_off + 1 + k, extra, "face", fl)
     return build_mesh(path, vertices, idx, offsets_from_sizes(k),
                       line_of_face=lambda f: int(fl[f]) + 1,
-                      line_of_vertex=lambda i: int(vl[i]) + 1, normals=vertex_normals)
+                      line_of_vertex=lambda i: int(vl[i]) + 1, normals=vertex_normals,
+                      colors=colors, face_colors=face_colors)
+
+
+def _colors(path, vals, start, width, what: str, lines):
+    """``(N, 4)`` linear RGBA of OFF colour columns (3 or 4 numbers at ``start``): 0-255
+    bytes, sRGB-encoded, where any number of the file's colours is above 1, else linear
+    floats in [0, 1]."""
+    bad = (width != 3) & (width != 4)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise MeshFormatError(path, f"{what} {i} has {int(width[i])} colour numbers, expected "
+                              "r g b or r g b a", line=int(lines[i]) + 1)
+    rgba = np.ones((len(start), 4))
+    rgba[:, :3] = vals[start[:, None] + np.arange(3)]
+    four = width == 4
+    rgba[four, 3] = vals[start[four] + 3]
+    bytes_ = (rgba > 1).any()
+    top = 255.0 if bytes_ else 1.0
+    bad = ~(np.isfinite(rgba) & (rgba >= 0) & (rgba <= top)).all(1)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise MeshFormatError(path, f"{what} {i} has colour {rgba[i].tolist()}: colours lie "
+                              "in 0-1 (floats) or 0-255 (bytes)", line=int(lines[i]) + 1)
+    if bytes_:
+        rgba[:, :3] = srgb_to_linear(rgba[:, :3] / 255.0)
+        rgba[:, 3] = np.where(four, rgba[:, 3] / 255.0, 1.0)
+    return rgba
 
 
 #: the keyword's optional prefixes: texture coordinates, colours, normals, 4-D, n-D

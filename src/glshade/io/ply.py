@@ -12,6 +12,7 @@ from ..geometry.mesh import Mesh
 from ._common import (
     build_mesh, join_lines, numeric_diagnose, offsets_from_sizes, write_faces, write_vertices,
 )
+from ..scene.texture import srgb_to_linear
 from .text import line_starts, normalize_whitespace, parse_numbers, ragged_take, token_counts
 
 __all__ = ["read", "read_points", "write"]
@@ -88,6 +89,44 @@ def _vertex_columns(path, props):
     return cols, ncols, _uv_columns(names)
 
 
+#: the names PLY writers give a vertex's (or a face's) colour, and its alpha
+_COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffuse_green",
+                                                            "diffuse_blue"))
+_ALPHA_NAMES = ("alpha", "a", "diffuse_alpha")
+
+
+def _color_columns(props) -> tuple[list, bool] | None:
+    """The columns of an element's colour (RGB, and alpha where given) among ``props``, and
+    whether they are integers (bytes, sRGB-encoded: BOP's models) or floats (linear)."""
+    names = [p[0] for p in props]
+    for trio, alpha in zip(_COLOR_NAMES, _ALPHA_NAMES):
+        if all(c in names for c in trio):
+            cols = [names.index(c) for c in trio]
+            if alpha in names:
+                cols.append(names.index(alpha))
+            return cols, np.dtype(props[cols[0]][2]).kind in "iu"
+    return None
+
+
+def _linear_colors(path, table, found, what: str):
+    """``(N, 3|4)`` linear RGB(A) from an element's colour columns: integers are
+    sRGB-encoded bytes (0-255; alpha linear), floats linear in [0, 1]; None without."""
+    if found is None:
+        return None
+    cols, integer = found
+    c = table[:, cols].astype(np.float64)
+    top = 255.0 if integer else 1.0
+    bad = ~(np.isfinite(c) & (c >= 0) & (c <= top)).all(1)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        rule = "integer colours lie in 0-255" if integer else "float colours lie in 0-1"
+        raise MeshFormatError(path, f"{what} {i} has colour {c[i].tolist()}: {rule}")
+    if integer:
+        c = c / 255.0
+        c[:, :3] = srgb_to_linear(c[:, :3])
+    return c
+
+
 #: the names PLY writers give a vertex's texture coordinates
 _UV_NAMES = (("u", "v"), ("s", "t"), ("texture_u", "texture_v"), ("texture_s", "texture_t"))
 
@@ -99,19 +138,20 @@ def _uv_columns(names: list) -> list | None:
     return None
 
 
-def _finish(path, vertices, idx, sizes, normals, uv) -> Mesh:
-    """The mesh, with file normals and per-vertex texture coordinates (made per corner)
-    where the file has them."""
+def _finish(path, vertices, idx, sizes, normals, uv, colors=None, face_colors=None) -> Mesh:
+    """The mesh, with file normals, per-vertex texture coordinates (made per corner) and
+    vertex and face colours where the file has them."""
     mesh = build_mesh(path, vertices, idx, offsets_from_sizes(sizes))
     if normals is not None and not np.isfinite(normals).all():
         normals = None
     if uv is not None and not np.isfinite(uv).all():
         raise MeshFormatError(path, f"vertex {int(np.flatnonzero(~np.isfinite(uv).all(1))[0])}"
                               " has a non-finite texture coordinate")
-    if normals is None and uv is None:
+    if normals is None and uv is None and colors is None and face_colors is None:
         return mesh
     return Mesh.from_csr(mesh.vertices, mesh.face_indices, mesh.face_offsets, normals=normals,
-                         uv=None if uv is None else uv[mesh.face_indices])
+                         uv=None if uv is None else uv[mesh.face_indices], colors=colors,
+                         face_colors=face_colors)
 
 
 def _binary_vertices(path, data: bytes, pos: int, count: int, props, order: str):
@@ -151,7 +191,7 @@ def read(path, data: bytes) -> Mesh:
     if fmt == "ascii":
         return _read_ply_ascii(path, data[pos:], elements, first_body_line)
     order = "<" if fmt == "binary_little_endian" else ">"
-    vertices = normals = idx = sizes = uv = None
+    vertices = normals = idx = sizes = uv = colors = face_colors = None
     for name, count, props in elements:
         if name == "vertex":
             cols, ncols, uvcols = _vertex_columns(path, props)
@@ -161,28 +201,54 @@ def read(path, data: bytes) -> Mesh:
                 normals = table[:, ncols]
             if uvcols:
                 uv = table[:, uvcols]
+            colors = _linear_colors(path, table, _color_columns(props), "vertex")
         elif name == "face":
             li = _face_layout(path, props)
-            idx, sizes, pos = _ply_binary_faces(path, data, pos, count, props, li, order)
+            start = pos
+            idx, sizes, pos, starts = _ply_binary_faces(path, data, pos, count, props, li,
+                                                        order)
+            found = _color_columns(props)
+            if found is not None:
+                table = _binary_face_scalars(data, start, starts, sizes, props, li, order)
+                face_colors = _linear_colors(path, table, found, "face")
             break
         else:
             if any(p[1] == "list" for p in props):
                 raise MeshFormatError(path, f"element {name!r} with list properties before "
                                       "the faces is not supported")
             pos += count * sum(np.dtype(p[2]).itemsize for p in props)
-    return _finish(path, vertices, idx, sizes, normals, uv)
+    return _finish(path, vertices, idx, sizes, normals, uv, colors, face_colors)
+
+
+def _binary_face_scalars(data, pos, starts, sizes, props, li, order):
+    """``(F, len(props))`` float64: each face record's scalar properties (the list's column
+    left 0), read at the records' starts (bytes after ``pos``)."""
+    table = np.zeros((len(starts), len(props)))
+    body = np.frombuffer(data, np.uint8, offset=pos)
+    offset = np.zeros(len(starts), np.int64)
+    for k, p in enumerate(props):
+        if k == li:  # (the count, then its indices)
+            offset += np.dtype(p[2]).itemsize + sizes * np.dtype(p[3]).itemsize
+            continue
+        t = np.dtype(order + p[2])
+        at = starts + offset
+        window = np.lib.stride_tricks.sliding_window_view(body, t.itemsize)
+        table[:, k] = window[at].copy().view(t).ravel().astype(np.float64)
+        offset += t.itemsize
+    return table
 
 
 def _ply_binary_faces(path, data, pos, count, props, li, order):
-    """Faces of a binary PLY. Same-size faces are one frombuffer; mixed sizes find the
-    record starts by pointer doubling over the byte positions (vectorized)."""
+    """Faces of a binary PLY, and each record's start (bytes after ``pos``). Same-size
+    faces are one frombuffer; mixed sizes find the record starts by pointer doubling over
+    the byte positions (vectorized)."""
     pre = sum(np.dtype(p[2]).itemsize for p in props[:li])
     post = sum(np.dtype(p[2]).itemsize for p in props[li + 1:])
     ctype = np.dtype(order + props[li][2])
     itype = np.dtype(order + props[li][3])
     head = pre + ctype.itemsize
     if count == 0:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64), pos
+        return np.zeros(0, np.int64), np.zeros(0, np.int64), pos, np.zeros(0, np.int64)
     if pos + head > len(data):
         raise MeshFormatError(path, "truncated: the face data is missing", byte=len(data))
     k0 = int(np.frombuffer(data, ctype, count=1, offset=pos + pre)[0])
@@ -194,7 +260,8 @@ def _ply_binary_faces(path, data, pos, count, props, li, order):
         rec = np.frombuffer(data, dt, count=count, offset=pos)
         if (rec["n"] == k0).all():
             idx = rec["i"].astype(np.int64).ravel()
-            return idx, np.full(count, k0, np.int64), pos + count * rec_size
+            return (idx, np.full(count, k0, np.int64), pos + count * rec_size,
+                    np.arange(count, dtype=np.int64) * rec_size)
     # Mixed sizes: next(p) = p + head + n(p) * isize + post for every byte position p.
     body = np.frombuffer(data, np.uint8, offset=pos)
     n_pos = len(body) - head + 1
@@ -238,7 +305,7 @@ def _ply_binary_faces(path, data, pos, count, props, li, order):
         np.arange(int(sizes.sum())) - np.repeat(offsets_from_sizes(sizes)[:-1], sizes))
     window = np.lib.stride_tricks.sliding_window_view(body, itype.itemsize)
     idx = window[corner].copy().view(itype).ravel().astype(np.int64)
-    return idx, sizes, pos + int(end)
+    return idx, sizes, pos + int(end), starts
 
 
 def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
@@ -246,7 +313,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
     starts, ends = line_starts(text)
     keep = np.flatnonzero(ends > starts)
     line = 0
-    vertices = normals = idx = sizes = uv = None
+    vertices = normals = idx = sizes = uv = colors = face_colors = None
     for name, count, props in elements:
         lines = keep[line:line + count]
         if len(lines) < count:
@@ -270,6 +337,7 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
             vertices = table[:, cols]
             normals = table[:, ncols] if ncols else None
             uv = table[:, uvcols] if uvcols else None
+            colors = _linear_colors(path, table, _color_columns(props), "vertex")
         elif name == "face":
             li = _face_layout(path, props)
             off = offsets_from_sizes(counts)[:-1]
@@ -284,13 +352,14 @@ def _read_ply_ascii(path, body: bytes, elements, first_line: int) -> Mesh:
                                       line=int(lines[f]) + first_line)
             sizes = k.astype(np.int64)
             idx = ragged_take(vals, off + li + 1, sizes)
+            found = _color_columns(props)
+            if found is not None:  # (a face's scalars: before the list, or after it)
+                at = np.arange(len(props))
+                shift = np.where(at > li, sizes[:, None], 0)
+                table = vals[off[:, None] + at[None] + shift]
+                face_colors = _linear_colors(path, table, found, "face")
             break
-    return _finish(path, vertices, idx, sizes, normals, uv)
-
-
-#: the names PLY writers give a vertex's colour
-_COLOR_NAMES = (("red", "green", "blue"), ("r", "g", "b"), ("diffuse_red", "diffuse_green",
-                                                            "diffuse_blue"))
+    return _finish(path, vertices, idx, sizes, normals, uv, colors, face_colors)
 
 
 def read_points(path, data: bytes) -> dict:

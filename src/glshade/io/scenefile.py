@@ -30,7 +30,10 @@ tables Bezier patches (``source = "patches:teapot"`` or a ``.bpt`` file, ``level
 a side, ``tessellation = "cpu"`` or ``"gpu"``), with the mesh's material and placement keys.
 A ``[[mesh]]`` with ``instances = "transforms.npy"`` (a ``(K, 4, 4)`` array beside the file,
 or a table of K matrices) is K copies (``Scene.add``'s ``instances``), each coloured by
-``instance_colors`` (``(K, 3)``, the same two forms) where given.
+``instance_colors`` (``(K, 3)``, the same two forms) where given; ``vertex_colors = false``
+ignores the colours its mesh file holds. A ``[[light]]`` is a point light (``position``), a
+directional one (``direction``), or with ``type = "spot"`` a spot light (``position``,
+``direction``, ``inner_angle``, ``outer_angle`` in radians).
 """
 
 from __future__ import annotations
@@ -51,7 +54,8 @@ from ..scene.keyframes import OrientationInterp, PositionInterp
 from ..scene.material import check_illum
 from ..scene.texture import check_texture_filter, check_texture_wrap
 from ..scene import (
-    Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, default_camera,
+    Camera, CameraPath, DirectionalLight, Keyframe, Material, PointLight, Scene, SpotLight,
+    default_camera,
 )
 
 if sys.version_info >= (3, 11):
@@ -138,9 +142,11 @@ _SCHEMA = {
              "ambient": "color", "diffuse": "color", "specular": "color", "illum": "illum",
              "texture": "str", "specular_texture": "str", "opacity_texture": "str",
              "texture_filter": "texture_filter", "texture_wrap": "texture_wrap",
-             "label": "str", "instances": "array", "instance_colors": "array"},
+             "vertex_colors": "bool", "label": "str", "instances": "array",
+             "instance_colors": "array"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
-              "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool"},
+              "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool",
+              "inner_angle": "nonneg", "outer_angle": "nonneg"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
                "orientation": "quat", "fov_y": "fov", "near": "positive", "far": "positive",
                "interpolation": "interp", "position_interpolation": "pinterp",
@@ -276,7 +282,8 @@ _KINDS = {
     "scale": _scale,
     "mat4": _mat4,
     "mat3": lambda value: _matrix(value, 3),
-    "light_type": _is(lambda v: v in ("point", "directional"), "'point' or 'directional'"),
+    "light_type": _is(lambda v: v in ("point", "directional", "spot"),
+                      "'point', 'directional' or 'spot'"),
     "array": _is(lambda v: (isinstance(v, str) and bool(v)) or isinstance(v, list),
                  "a .npy file (its path) or a table of numbers"),
     # (the API's own rules)
@@ -416,12 +423,21 @@ def load_scene(path) -> SceneFile:
     for i, light in enumerate(d.get("light", [])):
         where = f"{source}:{loc.line('light', i, None)}: [[light]] {i + 1}"
         kind = light.get("type", "direction" in light and "directional" or "point")
-        needs = "position" if kind == "point" else "direction"
-        if needs not in light:
-            raise SceneFormatError(f"{where}: a {kind} light needs a '{needs}'")
+        for needs in {"point": ("position",), "directional": ("direction",),
+                      "spot": ("position", "direction")}[kind]:
+            if needs not in light:
+                raise SceneFormatError(f"{where}: a {kind} light needs a '{needs}'")
+        cone = [k for k in ("inner_angle", "outer_angle") if k in light]
+        if cone and kind != "spot":
+            raise SceneFormatError(f"{where}: '{cone[0]}' is a spot light's (type = \"spot\"), "
+                                   f"not a {kind} light's")
         try:  # (a value the light refuses -- a zero direction -- is named with its line)
-            obj: PointLight | DirectionalLight
-            if kind == "point":
+            obj: PointLight | DirectionalLight | SpotLight
+            if kind == "spot":
+                obj = SpotLight(**{k: light[k] for k in (
+                    "position", "direction", "color", "intensity", "inner_angle",
+                    "outer_angle", "attenuation", "shadows") if k in light})
+            elif kind == "point":
                 obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
                                                           "attenuation", "shadows")
                                     if k in light})
@@ -481,7 +497,7 @@ def _array(value, base: Path, where: str):
 #: a [[mesh]]'s keys that make its material (without any, an OBJ's own materials are kept)
 _MATERIAL_KEYS = ("color", "ka", "kd", "ks", "shininess", "emission", "reflectance", "opacity",
                   "ambient", "diffuse", "specular", "illum", "texture", "specular_texture",
-                  "opacity_texture")
+                  "opacity_texture", "vertex_colors")
 
 
 def _material(m: dict, mesh, base: Path, where) -> Material | None:

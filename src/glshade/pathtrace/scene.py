@@ -51,8 +51,9 @@ class TraceScene:
     emitter_cdf : ndarray
         ``(K,)`` their cumulative chances, by emitted power.
     lights : ndarray
-        ``(L, 10)`` rows of kind (0 directional, 1 point), position or direction to the
-        light (3), irradiance RGB (3), attenuation (3).
+        ``(L, 14)`` rows of kind (0 directional, 1 point, 2 spot), position or direction
+        to the light (3), irradiance RGB (3), attenuation (3), a spot's cone (4: its axis
+        times the cone's scale, the cone's offset; zero for the others).
     model : ndarray
         ``(T,)`` each triangle's model.
     names : tuple
@@ -205,7 +206,7 @@ class TraceScene:
         chosen = list(scene.lights) if lights else []
         if lights and not chosen and not len(emitters) and camera is not None:
             chosen = scene.lights_for(camera)
-        light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 10)
+        light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 14)
         if len(light_rows) > MAX_LIGHTS:
             raise SceneError(f"the path tracer takes at most {MAX_LIGHTS} lights, the scene "
                              f"has {len(light_rows)}")
@@ -222,7 +223,12 @@ class TraceScene:
 
 def _refuse_unlit_parts(material, name: str) -> None:
     """The path tracer traces opaque, untextured Phong surfaces: a material's opacity or
-    maps would be left out of the picture, so the trace refuses them by name."""
+    maps would be left out of the picture, so the trace refuses them by name -- and a
+    PBRMaterial, whose BRDF it does not sample yet."""
+    if material.lighting.value != "notes":
+        raise SceneError(f"{name}: the path tracer traces the notes' Material, not a "
+                         f"{type(material).__name__} (draw it with glshade render, or give "
+                         "it a Material)")
     if material.transparent:
         raise SceneError(f"{name}: opacity {float(material.opacity):g} is not traced (the path "
                          "tracer's surfaces are opaque): set opacity = 1, or draw it with "
@@ -286,9 +292,14 @@ def _material_row(material, name: str) -> list:
 
 
 def _light_row(light) -> list:
+    """A light's row: kind (0 directional, 1 point, 2 spot), position or direction to it,
+    irradiance, attenuation (c, l, q), and a spot's cone (its axis times the cone's scale,
+    and its offset: trace_lights.glsl; zero for the others)."""
     irradiance = np.asarray(light.color, np.float64) * light.intensity
     if isinstance(light, DirectionalLight):
         d = -np.asarray(light.direction, np.float64)
-        return [0.0, *(d / np.linalg.norm(d)), *irradiance, 1.0, 0.0, 0.0]
-    return [1.0, *np.asarray(light.position, np.float64), *irradiance,
-            *np.asarray(light.attenuation, np.float64)]
+        return [0.0, *(d / np.linalg.norm(d)), *irradiance, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    spot = light.spot_vector(np.eye(4)).tolist() if hasattr(light, "spot_vector") else [0.0] * 4
+    return [2.0 if hasattr(light, "spot_vector") else 1.0,
+            *np.asarray(light.position, np.float64), *irradiance,
+            *np.asarray(light.attenuation, np.float64), *spot]

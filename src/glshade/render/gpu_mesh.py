@@ -103,37 +103,48 @@ class Chunks(NamedTuple):
 
 
 def _layout(mesh: Mesh):
-    """What a GpuMesh uploads, without GL: ``(mesh, source, uv, tri, owner)`` -- the mesh
-    as drawn (a two-sided wall's sides split), the mesh vertex each GPU vertex copies
-    (None: one to one; a texture seam splits vertices by their (vertex, uv) pairs) and its
-    uv, the triangles over GPU vertices and each triangle's polygon."""
+    """What a GpuMesh uploads, without GL: ``(mesh, source, uv, color, tri, owner)`` -- the
+    mesh as drawn (a two-sided wall's sides split), the mesh vertex each GPU vertex copies
+    (None: one to one; a texture seam or a polygon's own colour splits vertices by their
+    (vertex, uv, colour) rows), its uv and its RGBA colour (None where the mesh has none),
+    the triangles over GPU vertices and each triangle's polygon."""
     if len(mesh.folded_vertices) and mesh.normals_from_file is None:
         # a two-sided wall: give each side its own vertices, so each has its own normal
         mesh = mesh.split_creases(179.0)
     tri, owner = mesh.triangles
-    source = uv = None
-    if mesh.uv is not None:
-        pairs = np.column_stack([mesh.face_indices, mesh.uv])
-        unique, corner_vertex = np.unique(pairs, axis=0, return_inverse=True)
-        source, uv = unique[:, 0].astype(np.int64), unique[:, 1:]
+    source: np.ndarray | None = None
+    uv: np.ndarray | None = None
+    color: np.ndarray | None = None
+    if mesh.uv is not None or mesh.face_colors is not None:
+        parts: list[np.ndarray] = [mesh.face_indices[:, None].astype(np.float64)]
+        if mesh.uv is not None:
+            parts.append(mesh.uv)
+        if mesh.corner_colors is not None and mesh.face_colors is not None:
+            parts.append(mesh.corner_colors)
+        unique, corner_vertex = np.unique(np.hstack(parts), axis=0, return_inverse=True)
+        source = unique[:, 0].astype(np.int64)
+        uv = unique[:, 1:3] if mesh.uv is not None else None
+        color = unique[:, -4:] if mesh.face_colors is not None else None
         tri = corner_vertex.ravel()[mesh.corner_triangles]
-    return mesh, source, uv, tri, owner
+    if mesh.colors is not None and color is None:
+        color = mesh.colors if source is None else mesh.colors[source]
+    return mesh, source, uv, color, tri, owner
 
 
 def gpu_bytes(mesh: Mesh) -> int:
     """The bytes a mesh's GPU copy takes for the smooth modes' colour draws (what Phong
-    reads): float32 position and normal (and uv) a GPU vertex, three uint32 indices a
-    triangle. Flat draws and draws with polygon ids add per-corner copies (36 to 44 bytes
-    a corner, made on their first use).
+    reads): float32 position and normal (and uv, and RGBA colour) a GPU vertex, three
+    uint32 indices a triangle. Flat draws and draws with polygon ids add per-corner copies
+    (36 to 60 bytes a corner, made on their first use).
 
     Parameters
     ----------
     mesh : Mesh
         The mesh.
     """
-    drawn, source, _, tri, _ = _layout(mesh)
+    drawn, source, uv, color, tri, _ = _layout(mesh)
     n = drawn.n_vertices if source is None else len(source)
-    return n * (32 if drawn.uv is not None else 24) + 12 * len(tri)
+    return n * (24 + 8 * (uv is not None) + 16 * (color is not None)) + 12 * len(tri)
 
 
 class GpuMesh(GLResource):
@@ -161,7 +172,7 @@ class GpuMesh(GLResource):
 
     def _upload(self, mesh: Mesh) -> None:
         self._mesh = weakref.ref(mesh)  # the renderer's cache must not keep meshes alive
-        mesh, source, uv, tri, owner = _layout(mesh)
+        mesh, source, uv, color, tri, owner = _layout(mesh)
         if len(tri) == 0:
             raise GlshadeError("a GpuMesh needs at least one triangle (the renderer skips "
                                "empty meshes)")
@@ -171,9 +182,12 @@ class GpuMesh(GLResource):
         self._corners = np.vstack([box_corners(mesh.bounds).T, np.ones(8)])  # (homogeneous)
         #: whether the vertices carry texture coordinates (``in_uv``)
         self.textured = mesh.uv is not None
+        #: whether the vertices carry colours (``in_color``, RGBA)
+        self.colored = color is not None
         columns = [mesh.vertices, drawable_normals(mesh)]
         if source is not None:
-            columns = [c[source] for c in columns] + [uv]
+            columns = [c[source] for c in columns]
+        columns += [c for c in (uv, color) if c is not None]
         #: a big mesh's spatial chunks (None: drawn whole), in the order uploaded
         self.chunks: Chunks | None = None
         self._order: np.ndarray | None = None
@@ -191,7 +205,8 @@ class GpuMesh(GLResource):
         self._tables: list[Any] = [None, None]  # (a big mesh's: polygon_tables)
 
     def _vertex_rows(self, rows) -> np.ndarray:
-        """float32 position, normal (and uv) of GPU vertices ``rows`` (a slice or indices)."""
+        """float32 position, normal (and uv, colour) of GPU vertices ``rows`` (a slice or
+        indices)."""
         return np.hstack([c[rows] for c in self._columns]).astype("f4")
 
     @property
@@ -237,8 +252,8 @@ class GpuMesh(GLResource):
         return bool((model_view[2] @ self._corners < -near).all())
 
     def _flat_buffer(self):
-        """Per-corner copies with the polygon's Newell normal and centroid (flat mode), and
-        each corner's polygon id."""
+        """Per-corner copies with the polygon's Newell normal and centroid (flat mode) -- and
+        its colour, the mean of its corners' --, and each corner's polygon id."""
         if self._flat_vbo is None:
             m = self._mesh()
             if m is None:
@@ -248,11 +263,15 @@ class GpuMesh(GLResource):
             if corner_uv is not None and self._order is not None:
                 corner_uv = corner_uv[self._order]
 
+            colors = m.polygon_colors if self.colored else None
+
             def rows(sl):
                 corners, face = tri[sl].ravel(), np.repeat(owner[sl], 3)
                 parts = [m.vertices[corners], m.face_normals[face], m.face_centroids[face]]
                 if corner_uv is not None:
                     parts.append(m.uv[corner_uv[sl].ravel()])
+                if colors is not None:  # (uniform shading: the polygon's one colour)
+                    parts.append(colors[face])
                 return np.hstack(parts).astype("f4")
 
             ctx = self.context.ctx
@@ -388,6 +407,8 @@ class GpuMesh(GLResource):
                 buffer, ibo = self.vbo, self.ibo
             if self.textured:
                 layout.append(("in_uv", "2f"))
+            if self.colored:
+                layout.append(("in_color", "4f"))
             names = [n for n, _ in layout if n in program]
             fmt = " ".join(f if n in names else f"{4 * int(f[0])}x" for n, f in layout)
             content = [(buffer, fmt, *names)]

@@ -12,7 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..modes import ShadingMode
+from ..modes import LightingModel, ShadingMode
 from ..scene.lights import DirectionalLight
 
 __all__ = ["ProgramKey", "Variant", "Forward", "Role", "light_kind", "UniformWriter",
@@ -48,16 +48,18 @@ class Role(enum.Enum):
 
 
 def light_kind(light) -> str:
-    """The GLSL kind of a light: DIRECTIONAL, POINT, or ATTENUATED (a point light whose
-    intensity falls off with distance).
+    """The GLSL kind of a light: DIRECTIONAL, POINT, ATTENUATED (a point light whose
+    intensity falls off with distance) or SPOT (a cone, with its attenuation).
 
     Parameters
     ----------
-    light : PointLight or DirectionalLight
+    light : PointLight, SpotLight or DirectionalLight
         The light.
     """
     if isinstance(light, DirectionalLight):
         return "DIRECTIONAL"
+    if hasattr(light, "spot_vector"):
+        return "SPOT"
     return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
 
 
@@ -106,10 +108,23 @@ def material_uniforms(material, lights, ambient) -> list:
     ambient : array_like
         ``(3,)`` the ambient intensity.
     """
+    if material.lighting is LightingModel.PBR:  # (pbr.glsl: the light's colour x intensity
+        # in the specular slot, Ia x the base colour the ambient term)
+        ip = np.array([np.asarray(x.color) * x.intensity for x in lights], "f4")
+        base = np.asarray(material.base_color, np.float64)
+        return [("u_ambient_term", tuple(float(x) for x in np.asarray(ambient) * base)),
+                ("u_light_diffuse", np.zeros_like(ip).tobytes()),
+                ("u_light_specular", ip.tobytes()), ("u_shininess", 0.0),
+                ("u_emission", tuple(float(x) for x in material.emission)),
+                ("u_pbr_base", (*(float(x) for x in base), float(material.metallic))),
+                ("u_pbr_roughness", float(material.roughness))]
     ambient_term, diffuse, specular = lighting_products(material, lights, ambient)
     return [("u_ambient_term", tuple(float(x) for x in ambient_term[0])),
             ("u_light_diffuse", diffuse[0].tobytes()), ("u_light_specular", specular.tobytes()),
-            ("u_shininess", float(material.shininess))]
+            ("u_shininess", float(material.shininess)),
+            # (what the surface gives off by itself: added to the lit colour, unshadowed;
+            # read only by the programs compiled EMISSIVE)
+            ("u_emission", tuple(float(x) for x in material.emission))]
 
 
 class MaterialUniforms:
@@ -146,7 +161,7 @@ FLAT_CONSTANTS_PIXELS = 128
 
 
 def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors: int,
-                       textured: bool = False) -> bool:
+                       textured: bool = False, colored: bool = False) -> bool:
     """Whether a Phong program's lighting constants fit the driver's varyings alongside its
     own (position, normal and, with aux outputs, the world normal): one vector for ambient
     and n, then per light its position, diffuse and specular (and attenuation).
@@ -163,11 +178,14 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
         The driver's varying vectors.
     textured : bool
         The program reads texture coordinates.
+    colored : bool
+        The program reads vertex colours.
     """
     if mode is not ShadingMode.PHONG:
         return False
-    per_light = 3 + ("ATTENUATED" in lights)
-    return 2 + bool(aux) + bool(textured) + 1 + per_light * len(lights) <= max_vectors
+    per_light = 3 + ("ATTENUATED" in lights or "SPOT" in lights) + ("SPOT" in lights)
+    return (2 + bool(aux) + bool(textured) + bool(colored) + 1 + per_light * len(lights)
+            <= max_vectors)
 
 
 #: the shading modes that show a material's textures (the others show geometry)
@@ -243,6 +261,13 @@ class ProgramKey:
     fetch : bool
         A big mesh's draw over shared vertices: its polygon ids found per triangle in a
         table (polygon_fetch.glsl), flat's polygon lit once a triangle by flat.geom.
+    colored : bool
+        The mesh's colours are the notes' C (surface_color.glsl): per vertex, or a
+        polygon's mean in flat shading.
+    emissive : bool
+        The material gives off light of its own, added to the lit colour.
+    lighting : LightingModel
+        The lighting model the schemes evaluate (the material's).
     """
 
     mode: ShadingMode
@@ -264,12 +289,19 @@ class ProgramKey:
     instanced: bool = False
     #: a big mesh's draw: polygons per triangle from a table, no per-corner copies
     fetch: bool = False
+    #: the mesh's colours multiply the material's (surface_color.glsl)
+    colored: bool = False
+    #: the material's emission is added to the lit colour (outputs.glsl)
+    emissive: bool = False
+    #: the lighting model evaluated (the notes' or glTF's: pbr.glsl)
+    lighting: LightingModel = LightingModel.NOTES
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: Role = Role.OPAQUE,
            textured: bool = False, instanced: bool = False,
-           fetch: bool = False) -> ProgramKey:
+           fetch: bool = False, colored: bool = False, emissive: bool = False,
+           lighting: LightingModel = LightingModel.NOTES) -> ProgramKey:
         """The key of a draw's variant for one model.
 
         Parameters
@@ -288,6 +320,12 @@ class ProgramKey:
             One draw of many instances.
         fetch : bool
             A big mesh's draw: polygons found per triangle (opaque draws only).
+        colored : bool
+            The mesh's colours multiply the material's.
+        emissive : bool
+            The material's emission is added.
+        lighting : LightingModel
+            The material's lighting model.
         """
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         opaque = oit is Role.OPAQUE
@@ -295,7 +333,9 @@ class ProgramKey:
                    variant.orthographic, two_sided, flat_constants,
                    variant.shadows and opaque, oit, textured and variant.mode in TEXTURED_MODES,
                    variant.forward if variant.shadows and opaque else Forward.ARRAY,
-                   instanced, fetch and opaque)
+                   instanced, fetch and opaque, colored and variant.mode in TEXTURED_MODES,
+                   emissive and variant.mode in TEXTURED_MODES,
+                   lighting if variant.mode in TEXTURED_MODES else LightingModel.NOTES)
 
     def defines(self) -> tuple[str, ...]:
         forward = self.forward is not Forward.ARRAY
@@ -304,7 +344,9 @@ class ProgramKey:
         capture = self.oit in (Role.CAPTURE, Role.FETCH)
         flags = (("GLSHADE_AUX_OUTPUTS", self.aux), ("WORLD_NORMALS", world), ("SRGB", self.srgb),
                  ("ORTHOGRAPHIC", self.orthographic), ("TWO_SIDED", self.two_sided),
-                 ("FLAT_CONSTANTS", flat), ("ANY_ATTENUATED", "ATTENUATED" in self.lights),
+                 ("FLAT_CONSTANTS", flat),
+                 ("ANY_ATTENUATED", "ATTENUATED" in self.lights or "SPOT" in self.lights),
+                 ("ANY_SPOT", "SPOT" in self.lights),
                  ("SHADOW_MASK", self.shadows), ("OIT_CAPTURE", capture),
                  ("OIT_FETCH", self.oit is Role.FETCH),
                  ("GLSL_430", capture or self.forward is Forward.RAYS),
@@ -314,6 +356,8 @@ class ProgramKey:
                  ("OIT_PEEL", self.oit in (Role.PEEL, Role.PEEL_DEPTH)),
                  ("OIT_PEEL_DEPTH", self.oit is Role.PEEL_DEPTH),
                  ("TEXTURED", self.textured),
+                 ("VERTEX_COLORS", self.colored), ("EMISSIVE", self.emissive),
+                 ("PBR", self.lighting is LightingModel.PBR),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
                  ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),
                  ("INSTANCED", self.instanced),

@@ -47,7 +47,7 @@ def sees_through(options, scene) -> bool:
         What is drawn.
     """
     return options.mode in TRANSPARENT_MODES and any(
-        m.visible and m.material.transparent for m in scene.models)
+        m.visible and m.transparent for m in scene.models)
 
 
 @dataclass(frozen=True, eq=False)
@@ -197,7 +197,7 @@ class DrawState:
         model : Model
             A scene model.
         """
-        return model.material.transparent and self.options.mode in TRANSPARENT_MODES
+        return model.transparent and self.options.mode in TRANSPARENT_MODES
 
     def drawn(self, model) -> bool:
         """Whether ``model``'s mesh is drawn at all: shown, with triangles.
@@ -215,9 +215,12 @@ def _frame_uniforms(scene, camera, lights, view, proj, mode) -> list:
     # (only as many entries as lights: a program's arrays are cut to what it uses)
     pos = np.array([light.view_vector(view) for light in lights], dtype="f4")
     att = np.array([light.attenuation for light in lights], dtype="f4")
+    # (a spot light's cone: its axis times the cone's scale, and its offset; 0 elsewhere)
+    spot = np.array([light.spot_vector(view) if hasattr(light, "spot_vector") else
+                     np.zeros(4) for light in lights], dtype="f4")
     out: list[tuple[str, Any]] = [
         ("u_proj", gl_bytes(proj)), ("u_light_pos_view", pos.tobytes()),
-        ("u_light_attenuation", att.tobytes())]
+        ("u_light_attenuation", att.tobytes()), ("u_light_spot", spot.tobytes())]
     if mode is ShadingMode.DEPTH:
         corners = box_corners(scene.bounds)
         d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]

@@ -15,7 +15,7 @@ from ..errors import SceneError, plain
 from ..geometry.transforms import MAX_DRAWABLE_COORDINATE
 from .material import color3, nonnegative
 
-__all__ = ["PointLight", "DirectionalLight", "lights_for", "MAX_LIGHTS"]
+__all__ = ["PointLight", "DirectionalLight", "SpotLight", "lights_for", "MAX_LIGHTS"]
 
 MAX_LIGHTS = 8
 
@@ -120,6 +120,110 @@ class DirectionalLight:
         """
         x, y, z = view[:3, :3] @ self.direction
         return np.array([-x, -y, -z, 0.0])
+
+
+@dataclass(frozen=True)
+class SpotLight:
+    """A point light whose light leaves in a cone: KHR_lights_punctual's spot light. Full
+    within ``inner_angle`` of ``direction``, none beyond ``outer_angle``, and between them
+    a smooth falloff by the cosines: with ``s = clamp((cos a - cos outer) / (cos inner -
+    cos outer), 0, 1)`` at angle ``a`` from the axis, the light is multiplied by ``s^2``
+    (glTF's rule, which pyrender and three.js follow).
+
+    The notes' model (:class:`~glshade.Material`) keeps its own rule for distance: none,
+    unless ``attenuation=(c, l, q)`` asks, as for a :class:`PointLight`.
+
+    Parameters
+    ----------
+    position : tuple
+        ``(3,)`` world position.
+    direction : tuple
+        ``(3,)`` the way the cone points (world), non-zero.
+    color : tuple
+        Linear RGB, each >= 0.
+    intensity : float
+        A factor on the colour, >= 0.
+    inner_angle : float
+        Radians from the axis within which the light is full, in [0, outer_angle).
+    outer_angle : float
+        Radians from the axis beyond which there is none, in (0, pi/2].
+    shadows : bool
+        Whether it casts shadows where a draw casts them.
+    attenuation : tuple
+        ``(c, l, q)``: the light divided by ``c + l d + q d^2`` at distance d (the notes'
+        model).
+    """
+
+    position: tuple = (0.0, 5.0, 0.0)
+    direction: tuple = (0.0, -1.0, 0.0)
+    color: tuple = (1.0, 1.0, 1.0)
+    intensity: float = 1.0
+    inner_angle: float = 0.0
+    outer_angle: float = np.pi / 4
+    shadows: bool = True
+    attenuation: tuple = (1.0, 0.0, 0.0)
+
+    def __post_init__(self):
+        point = PointLight(self.position, self.color, self.intensity, self.attenuation,
+                           self.shadows)  # (the same checks, the same messages)
+        for name in ("position", "color", "intensity", "attenuation"):
+            object.__setattr__(self, name, getattr(point, name))
+        axis = DirectionalLight(self.direction).direction
+        object.__setattr__(self, "direction", axis)
+        inner, outer = float(self.inner_angle), float(self.outer_angle)
+        if not (np.isfinite(outer) and 0 < outer <= np.pi / 2):
+            raise SceneError(f"a spot light's outer_angle must be in (0, pi/2] radians, got "
+                             f"{self.outer_angle!r}")
+        if not (np.isfinite(inner) and 0 <= inner < outer):
+            raise SceneError(f"a spot light's inner_angle must be in [0, outer_angle = "
+                             f"{outer:g}) radians, got {self.inner_angle!r}")
+        object.__setattr__(self, "inner_angle", inner)
+        object.__setattr__(self, "outer_angle", outer)
+
+    def cone(self) -> tuple[float, float]:
+        """``(scale, offset)``: the falloff is ``clamp(cos(a) * scale + offset, 0, 1)^2``
+        (KHR_lights_punctual's lightAngleScale and lightAngleOffset)."""
+        scale = 1.0 / max(1e-3, np.cos(self.inner_angle) - np.cos(self.outer_angle))
+        return float(scale), float(-np.cos(self.outer_angle) * scale)
+
+    def falloff(self, points) -> np.ndarray:
+        """The cone's factor at world ``points`` ``(..., 3)``: 1 within the inner cone, 0
+        beyond the outer one.
+
+        Parameters
+        ----------
+        points : array_like
+            ``(..., 3)`` world positions.
+        """
+        to = np.asarray(points, np.float64) - self.position
+        cos = (to @ np.asarray(self.direction)) / np.maximum(np.linalg.norm(to, axis=-1),
+                                                               1e-300)
+        scale, offset = self.cone()
+        return np.clip(cos * scale + offset, 0.0, 1.0) ** 2
+
+    def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``[x, y, z, 1]``: the position in view space.
+
+        Parameters
+        ----------
+        view : ndarray
+            ``(4, 4)`` the world-to-view matrix.
+        """
+        x, y, z = view[:3, :3] @ self.position + view[:3, 3]
+        return np.array([x, y, z, 1.0])
+
+    def spot_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``[sx, sy, sz, offset]``: the axis in view space times the cone's scale, and its
+        offset (lighting.glsl's cone: ``clamp(dot(s, -L) + offset, 0, 1)^2``).
+
+        Parameters
+        ----------
+        view : ndarray
+            ``(4, 4)`` the world-to-view matrix.
+        """
+        scale, offset = self.cone()
+        x, y, z = (view[:3, :3] @ self.direction) * scale
+        return np.array([x, y, z, offset])
 
 
 def _check_shadows(value) -> None:

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError, plain
+from ..modes import LightingModel
 from .texture import Texture
 
 __all__ = ["Material", "color3", "nonnegative", "check_illum"]
@@ -121,6 +122,10 @@ class Material:
         Maps of the diffuse colour, the specular colour and the opacity.
     name : str or None
         The material's name (an MTL's ``newmtl``).
+    vertex_colors : bool
+        Whether the colours a mesh carries (:attr:`Mesh.colors`, :attr:`Mesh.face_colors`)
+        are its surface colour C, multiplying ``color`` (and the ambient and diffuse
+        colours) and, by their alpha, the opacity; False ignores them.
     """
 
     color: tuple = (0.8, 0.8, 0.8)
@@ -140,11 +145,19 @@ class Material:
     opacity_texture: Texture | None = None
     #: the name it has in its file (an MTL ``newmtl``), for reports
     name: str | None = None
+    #: whether a mesh's colours (Mesh.colors, Mesh.face_colors) multiply ``color``
+    vertex_colors: bool = True
+
+    #: the lighting model it is written for (the programs it is drawn with)
+    lighting = LightingModel.NOTES
 
     def __post_init__(self):
         for name in ("ambient", "diffuse", "specular"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, color3(getattr(self, name), name))
+        if not isinstance(self.vertex_colors, (bool, np.bool_)):
+            raise SceneError(f"vertex_colors must be True or False, got {self.vertex_colors!r}")
+        object.__setattr__(self, "vertex_colors", bool(self.vertex_colors))
         check_illum(self.illum)
         for name in ("texture", "specular_texture", "opacity_texture"):
             value = getattr(self, name)
@@ -237,3 +250,4 @@ class Material:
         """
         names = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in values.items() if k in names and v is not None})
+

@@ -60,7 +60,7 @@ def occluders(scene) -> Occluders:
         mesh = model.mesh
         t, face = mesh.triangles
         n = np.zeros((mesh.n_faces, 3))
-        if model.visible and len(t) and not model.material.transparent:  # (opaque only)
+        if model.visible and len(t) and not model.transparent:  # (opaque only)
             m = model.transform
             v = mesh.vertices @ m[:3, :3].T + m[:3, 3]
             tris.append(v[t])

@@ -16,15 +16,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import GeometryError, SceneError, plain
-from ..modes import Tessellation, choose
+from ..modes import LightingModel, Tessellation, choose
 from ..geometry.analytic import affine_matrix
 from ..geometry.mesh import Mesh
 from ..geometry.lines import Polyline
 from ..geometry.points import PointCloud
 from ..geometry.transforms import MAX_DRAWABLE_COORDINATE, box_corners, compose_transform
 from ..solids.tree import Solid
-from .lights import MAX_LIGHTS, DirectionalLight, PointLight, lights_for
+from .lights import MAX_LIGHTS, DirectionalLight, PointLight, SpotLight, lights_for
+from .describe import material_from_description
 from .material import Material, color3
+from .pbr import PBRMaterial
 
 __all__ = ["Model", "InstanceGroup", "SolidModel", "PatchModel", "CloudModel", "LineModel",
            "Scene",
@@ -63,7 +65,7 @@ class Model:
     """
 
     mesh: Mesh
-    material: Material = field(default_factory=Material)
+    material: Material | PBRMaterial = field(default_factory=Material)
     transform: NDArray[np.float64] = field(default_factory=lambda: np.eye(4))
     name: str | None = None
     visible: bool = True
@@ -75,6 +77,13 @@ class Model:
     instance_id: int = 0
     group: InstanceGroup | None = field(default=None, repr=False)
     _constant: tuple | None = field(default=None, repr=False)
+
+    @property
+    def transparent(self) -> bool:
+        """Whether it is drawn as a transparent surface: its material's opacity (or opacity
+        map), or its mesh's colours with an alpha below 1 where the material takes them."""
+        return self.material.transparent or (self.material.vertex_colors
+                                             and self.mesh.translucent)
 
     @property
     def corners(self) -> NDArray[np.float64]:
@@ -323,6 +332,14 @@ class LineModel(_Placed):
         return self.lines.n_segments
 
 
+
+def _notes_only(material, what: str) -> None:
+    """Refuse a material of another lighting model for what only the notes' model lights
+    (clouds, lines, ray-cast solids, GPU patches), naming both."""
+    if material is not None and material.lighting is not LightingModel.NOTES:
+        raise SceneError(f"{what} is lit by the notes' model: give it a glshade.Material, "
+                         f"not a {type(material).__name__} (meshes take either)")
+
 class Scene:
     """Meshes, lights, ambient intensity ``Ia`` and background colour.
 
@@ -376,7 +393,7 @@ class Scene:
 
         return facts_html(repr(self), [bounds_fact(self.bounds)], picture(self))
 
-    def add(self, mesh: Mesh | Solid, material: Material | None = None,
+    def add(self, mesh: Mesh | Solid, material: Material | PBRMaterial | None = None,
             transform: ArrayLike | None = None,
             *, rotation: ArrayLike | None = None, translation: ArrayLike = (0, 0, 0),
             scale: ArrayLike = 1.0, name: str | None = None,
@@ -403,8 +420,9 @@ class Scene:
             What to add (a :class:`~glshade.geometry.points.PointCloud` becomes a
             :class:`CloudModel`, a :class:`~glshade.geometry.lines.Polyline` a
             :class:`LineModel`, placed by a similarity).
-        material : Material or None
-            Its material (None: the default Material, or an OBJ's own).
+        material : Material, PBRMaterial or None
+            Its material (None: the default Material, or the file's own); a PBRMaterial
+            for meshes only.
         transform : array_like or None
             ``(4, 4)`` model-to-world matrix for column vectors (instead of the next three).
         rotation : array_like or None
@@ -479,8 +497,11 @@ class Scene:
         materials = [model.material] * k
         if colors is not None:
             table = _instance_colors(colors, k)
-            materials = [dataclasses.replace(model.material, color=tuple(map(float, c)))
-                         for c in table]
+            # (an instance's colour is its material's: the notes' C, or glTF's base colour)
+            base = model.material
+            materials = [dataclasses.replace(base, base_color=tuple(map(float, c)))
+                         if isinstance(base, PBRMaterial) else
+                         dataclasses.replace(base, color=tuple(map(float, c))) for c in table]
         models = tuple(Model(model.mesh, materials[i], transforms[i], model.name,
                              vertex_colors=model.vertex_colors) for i in range(k))
         group = InstanceGroup(models, table, tuple(materials))
@@ -584,9 +605,12 @@ class Scene:
             parts.append(("", np.flatnonzero(~covered)))
         models = []
         for part, faces in parts:
-            material = mesh.materials.get(part)
+            # (a part's material: made from its file's description where the mesh holds one)
+            material = material_from_description(mesh.materials.get(part),
+                                                 f"{name or 'mesh'}: {part}")
             sub = mesh.subset(faces)
-            models.append(Model(sub, material if isinstance(material, Material) else Material(),
+            models.append(Model(sub, material if isinstance(material, (Material, PBRMaterial))
+                                else Material(),
                                 m, f"{name}:{part}" if part and name else (part or name)))
         self.models.extend(models)
         return models[0]
@@ -595,6 +619,8 @@ class Scene:
                      level):
         """Patches for the GPU's tessellator (see :class:`PatchModel`)."""
         from ..patches import PatchSurface
+
+        _notes_only(material, "GPU-tessellated patches")
 
         if isinstance(patches, PatchSurface):
             patches = patches.patches
@@ -626,6 +652,7 @@ class Scene:
         if given:
             raise SceneError(f"{', '.join(given)} {'is' if len(given) == 1 else 'are'} for "
                              f"meshes and patches, not {what}")
+        _notes_only(material, what)
         if material is not None and material.opacity < 1:
             raise SceneError(f"{kinds} are drawn opaque; this material's opacity is "
                              f"{plain(material.opacity)}")
@@ -652,6 +679,7 @@ class Scene:
 
     def _add_solid(self, solid, material, transform, rotation, translation, scale, name):
         """A CSG solid, ray cast on the GPU (its placement becomes a Transformed node)."""
+        _notes_only(material, "a CSG solid")
         m = _placement(transform, rotation, translation, scale)
         if not np.allclose(m, np.eye(4)):
             solid = solid.transformed(m)
@@ -683,15 +711,16 @@ class Scene:
                     model.material, **{k: t.replace(filter=filter) for k, t in maps.items()})
 
     def add_light(self, light) -> None:
-        """Add a PointLight or DirectionalLight (at most MAX_LIGHTS).
+        """Add a PointLight, SpotLight or DirectionalLight (at most MAX_LIGHTS).
 
         Parameters
         ----------
-        light : PointLight or DirectionalLight
+        light : PointLight, SpotLight or DirectionalLight
             The light.
         """
-        if not isinstance(light, (PointLight, DirectionalLight)):
-            raise SceneError(f"expected a PointLight or DirectionalLight, got {light!r}")
+        if not isinstance(light, (PointLight, SpotLight, DirectionalLight)):
+            raise SceneError(f"expected a PointLight, SpotLight or DirectionalLight, got "
+                             f"{light!r}")
         if len(self.lights) >= MAX_LIGHTS:
             raise SceneError(f"at most {MAX_LIGHTS} lights per scene")
         self.lights.append(light)

@@ -18,7 +18,7 @@ import moderngl
 import numpy as np
 
 from ...geometry.transforms import gl_bytes, model_matrices
-from ...modes import Culling, ShadingMode
+from ...modes import Culling, LightingModel, ShadingMode
 from ..base import GLResource
 from ..gpu_mesh import GpuMesh
 from ..programs import (
@@ -162,7 +162,8 @@ class MeshPass(GLResource, Stage):
 
     def program(self, variant: Variant, two_sided: bool, flat: bool = False,
                 role: Role = Role.OPAQUE, textured: bool = False, instanced: bool = False,
-                fetch: bool = False):
+                fetch: bool = False, colored: bool = False, emissive: bool = False,
+                lighting: LightingModel = LightingModel.NOTES):
         """The compiled program of a variant, with flat lighting constants if asked for and
         they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
         material's maps sampled.
@@ -183,16 +184,24 @@ class MeshPass(GLResource, Stage):
             One draw of a group's instances (instances.glsl).
         fetch : bool
             A big mesh's draw over its shared vertices (polygon_fetch.glsl).
+        colored : bool
+            The mesh's colours multiply the material's (surface_color.glsl).
+        emissive : bool
+            The material's emission is added to the lit colour.
+        lighting : LightingModel
+            The material's lighting model (the notes' or glTF's).
         """
-        found = (variant, two_sided, flat, role, textured, instanced, fetch)
+        found = (variant, two_sided, flat, role, textured, instanced, fetch, colored, emissive,
+                 lighting)
         program = self._programs.get(found)
         if program is None:
             forwarded = variant.shadows and variant.forward is not Forward.ARRAY
             world = (variant.aux or forwarded) and role is Role.OPAQUE
             flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
-                                               self.max_varyings, textured)
+                                               self.max_varyings, textured, colored)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
-                                textured=textured, instanced=instanced, fetch=fetch)
+                                textured=textured, instanced=instanced, fetch=fetch,
+                                colored=colored, emissive=emissive, lighting=lighting)
             program = self._programs[found] = self.shaders.program(key)
         return program
 
@@ -241,12 +250,14 @@ class MeshPass(GLResource, Stage):
     @staticmethod
     def _instanced(state: DrawState, group, models, index: int) -> bool:
         """Whether ``group`` (starting at ``models[index]``) is drawn by one instanced call:
-        more than one, all shown and opaque, untextured, where it was added with the mesh
-        and materials it was added with, and not in the ``radiosity`` mode (its colours are
-        per model); else model by model."""
+        more than one, all shown and opaque, untextured, in the notes' model (an instance's
+        row holds its products), where it was added with the mesh and materials it was
+        added with, and not in the ``radiosity`` mode (its colours are per model); else
+        model by model."""
         first = group.models[0]
         if (len(group) < 2 or state.options.mode is ShadingMode.RADIOSITY
-                or state.transparent(first) or first.material.textures):
+                or state.transparent(first) or first.material.textures
+                or first.material.lighting is not LightingModel.NOTES):
             return False
         run = models[index:index + len(group)]
         return len(run) == len(group) and all(
@@ -285,7 +296,9 @@ class MeshPass(GLResource, Stage):
                 chosen = np.flatnonzero((culled == cull) & (mirrored == mirror) & inside)
                 if not len(chosen):
                     continue
-                prog = self.program(state.variant, not cull, flat, instanced=True)
+                prog = self.program(state.variant, not cull, flat, instanced=True,
+                                    colored=gpu.colored and first.material.vertex_colors,
+                                    emissive=any(first.material.emission))
                 if id(prog) not in prepared:
                     for name, value in state.frame_uniforms:
                         put(prog, name, value)
@@ -355,15 +368,21 @@ class MeshPass(GLResource, Stage):
             options.cull is Culling.AUTO and gpu.closed
             and gpu.beyond(model_view, near) and role is Role.OPAQUE)  # (seen from outside)
         flat = self.flat_constants and gpu.n_triangles * FLAT_CONSTANTS_PIXELS <= pixels
-        textured = (gpu.textured and bool(model.material.textures)
+        material = model.material
+        textured = (gpu.textured and bool(material.textures)
                     and options.mode in TEXTURED_MODES)
+        colored = gpu.colored and material.vertex_colors and options.mode in TEXTURED_MODES
         # a big mesh draws its shared vertices in every mode that can (flat lit per
-        # triangle, ids per triangle from a table): no copy of them at every corner
+        # triangle, ids per triangle from a table): no copy of them at every corner -- but
+        # a coloured one's flat draw, whose polygon colour is the mean of its corners'
         variant = state.variant
         fetch = gpu.chunks is not None and role is Role.OPAQUE and (
-            options.mode is ShadingMode.FLAT or (options.mode is not ShadingMode.RADIOSITY and (
-                variant.aux or (variant.shadows and variant.forward is Forward.RAYS))))
-        prog = self.program(variant, not cull, flat, role, textured, fetch=fetch)
+            (options.mode is ShadingMode.FLAT and not colored) or (
+                options.mode not in (ShadingMode.RADIOSITY, ShadingMode.FLAT) and (
+                    variant.aux or (variant.shadows and variant.forward is Forward.RAYS))))
+        prog = self.program(variant, not cull, flat, role, textured, fetch=fetch,
+                            colored=colored, emissive=any(material.emission),
+                            lighting=material.lighting)
         if id(prog) not in prepared:  # the frame's uniforms, once per program used
             for name, value in state.frame_uniforms:
                 put(prog, name, value)

@@ -358,7 +358,9 @@ class GpuPathTracer(GLResource):
             pos = np.ascontiguousarray(lights[:, [1, 2, 3, 0]], np.float32)
             values.update(u_light_pos=pos.tobytes(),
                           u_light_irr=np.ascontiguousarray(lights[:, 4:7], np.float32).tobytes(),
-                          u_light_att=np.ascontiguousarray(lights[:, 7:10], np.float32).tobytes())
+                          u_light_att=np.ascontiguousarray(lights[:, 7:10], np.float32).tobytes(),
+                          u_light_spot=np.ascontiguousarray(lights[:, 10:14],
+                                                            np.float32).tobytes())
         return values
 
     def reset(self) -> None:

@@ -93,7 +93,7 @@ class _Occluding:
 def _geometry_key(scene) -> tuple:
     """What the occluders depend on: each mesh and patch model, its transform, whether it
     is shown and whether it is opaque (transparent surfaces cast no shadows)."""
-    return tuple((id(m.mesh), m.transform.tobytes(), m.visible, not m.material.transparent)
+    return tuple((id(m.mesh), m.transform.tobytes(), m.visible, not m.transparent)
                  for m in scene.models) + \
         tuple((id(p.patches), p.level, p.transform.tobytes(), p.visible)
               for p in scene.patch_models)
@@ -309,11 +309,11 @@ class ShadowPass(GLResource, Stage):
         options = state.options.replace(shadows=Shadows.OFF, mode=ShadingMode.NORMALS,
                                         outputs=Outputs.ALL, edges=False, srgb=False)
         scene = state.scene
-        if any(m.material.transparent for m in scene.models):
+        if any(m.transparent for m in scene.models):
             # the opaque surfaces' points (transparent ones receive no shadows), hidden
             # copies keeping the polygon ids of the transparent ones
             scene = copy.copy(scene)
-            scene.models = [m if not m.material.transparent else _hidden(m)
+            scene.models = [m if not m.transparent else _hidden(m)
                             for m in scene.models]
         points = DrawState.of(gbuf, scene, state.camera, options, state.viewport)
         run(self.context.ctx, self.opaque, points)

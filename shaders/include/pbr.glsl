@@ -1,0 +1,71 @@
+// glTF 2.0's metallic-roughness lighting model (scene/pbr.py PBRMaterial), the BRDF of the
+// glTF 2.0 specification's Appendix B, in one place for every program that lights it
+// (included by lighting.glsl in place of the notes' formula when a program is compiled
+// PBR: flat, Gouraud and Phong evaluate it where they evaluate the notes' model):
+//   f = (1 - F) (1 - metallic) base / pi + F D V,
+//   F = F0 + (1 - F0) (1 - V.H)^5,  F0 = mix(0.04, base, metallic)          (Schlick)
+//   D = a^2 / (pi ((N.H)^2 (a^2 - 1) + 1)^2),  a = roughness^2         (Trowbridge-Reitz)
+//   V = 0.5 / (N.L sqrt((N.V)^2 (1 - a^2) + a^2) + N.V sqrt((N.L)^2 (1 - a^2) + a^2))
+//                                                          (height-correlated Smith)
+// and each light adds f x its colour x intensity x N.L, the intensity over d^2 for point and
+// spot lights (candela), as it is for directional ones (lux); nothing from behind the
+// surface. The light's colour x intensity arrives as LIGHT_SPECULAR(i) (constants.glsl),
+// the scene's ambient light x the base colour as AMBIENT_TERM. Its numpy twin:
+// cpu/lighting.py (pbr_radiance).
+#ifndef PBR_GLSL
+#define PBR_GLSL
+#define PBR_PI 3.14159265358979
+
+uniform vec4 u_pbr_base;        // base colour (linear RGB), metallic
+uniform float u_pbr_roughness;  // perceptual roughness
+
+// The base colour at the point lit: the material's times the mesh's (surface_color.glsl).
+vec3 pbr_base_color() {
+#ifdef VERTEX_COLORS
+    return u_pbr_base.rgb * SURFACE_C;
+#else
+    return u_pbr_base.rgb;
+#endif
+}
+
+// f(l, v) N.L for unit n, l, v (zero where N.L <= 0).
+vec3 pbr_brdf_cos(vec3 n, vec3 l, vec3 v, vec3 base, float metallic, float roughness) {
+    float nl = dot(n, l);
+    float nv = max(dot(n, v), 1e-4);  // (a silhouette's grazing view, rounded: not 0)
+    vec3 h = normalize(l + v);
+    float nh = max(dot(n, h), 0.0);
+    float vh = max(dot(v, h), 0.0);
+    float a = roughness * roughness;
+    float a2 = a * a;
+    vec3 f0 = mix(vec3(0.04), base, metallic);
+    float w = 1.0 - vh;
+    vec3 fresnel = f0 + (1.0 - f0) * (w * w * w * w * w);
+    float d = nh * nh * (a2 - 1.0) + 1.0;
+    float distribution = a2 / (PBR_PI * max(d * d, 1e-30));
+    float nlc = max(nl, 0.0);
+    float visibility = 0.5 / max(nlc * sqrt(nv * nv * (1.0 - a2) + a2) +
+                                 nv * sqrt(nlc * nlc * (1.0 - a2) + a2), 1e-30);
+    vec3 diffuse = (1.0 - fresnel) * (1.0 - metallic) * base / PBR_PI;
+    vec3 f = diffuse + fresnel * (distribution * visibility);
+    return nl > 0.0 ? f * nl : vec3(0.0);
+}
+
+// One light's term: f x colour x intensity (/ d^2, x a spot's cone) x N.L.
+vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
+    vec3 l = LIGHT_POS_VIEW(i).xyz;
+    float k = 1.0;
+    if (kind != DIRECTIONAL) {
+        vec3 to_light = l - p_view;
+        float d2 = max(dot(to_light, to_light), 1e-30);
+        l = to_light * inversesqrt(d2);
+        k = 1.0 / d2;
+        if (kind == SPOT) {  // (KHR_lights_punctual's cone, as for the notes' model)
+            vec4 spot = LIGHT_SPOT(i);
+            float s = clamp(dot(spot.xyz, -l) + spot.w, 0.0, 1.0);
+            k *= s * s;
+        }
+    }
+    return k * LIGHT_SPECULAR(i) *
+           pbr_brdf_cos(n_view, l, v_view, pbr_base_color(), u_pbr_base.a, u_pbr_roughness);
+}
+#endif

@@ -1,0 +1,202 @@
+"""glTF's metallic-roughness model (PBRMaterial) against the BRDF of the glTF 2.0
+specification's Appendix B written out here in float64 numpy: Phong at every pixel centre
+of a finely tessellated sphere (the ray met with the exact sphere, its exact normal),
+Gouraud as the BRDF at a coarse sphere's vertices interpolated barycentrically, flat as the
+BRDF once at each polygon's centre -- under directional and point lights, over metallic
+and roughness from 0 to 1 (hypothesis), within 2/255 (linear) away from the silhouette."""
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from glshade import Camera, DirectionalLight, Mesh, PointLight, Scene
+from glshade.errors import SceneError
+from glshade.geometry import primitives as P
+from glshade.scene.pbr import PBRMaterial
+from tests.oracle.neighbours import inside_regions
+
+pytestmark = pytest.mark.gl
+
+W = H = 80
+EYE = np.array([0.6, 0.9, 3.6])
+CAMERA = Camera.look_at(eye=tuple(EYE), target=(0.0, 0.0, 0.0), fov_y=38.0)
+AMBIENT = np.array([0.05, 0.04, 0.03])
+BASE = np.array([0.9, 0.55, 0.3])
+LIGHTS = {"directional": DirectionalLight(direction=(-0.4, -0.7, -0.6), intensity=2.5,
+                                          color=(1.0, 0.95, 0.9)),
+          "point": PointLight(position=(1.8, 2.4, 2.2), intensity=14.0)}
+
+
+def appendix_b(n, to_light, v, base, metallic, roughness):
+    """f(l, v) N.L, the specification's formulas, float64, per row."""
+    nl = np.einsum("ij,ij->i", n, to_light)
+    nv = np.maximum(np.einsum("ij,ij->i", n, v), 1e-4)
+    h = to_light + v
+    h /= np.linalg.norm(h, axis=1, keepdims=True)
+    nh = np.maximum(np.einsum("ij,ij->i", n, h), 0)
+    vh = np.maximum(np.einsum("ij,ij->i", v, h), 0)
+    alpha = roughness ** 2
+    a2 = alpha ** 2
+    f0 = 0.04 * (1 - metallic) + base * metallic
+    fresnel = f0 + (1 - f0) * ((1 - vh) ** 5)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = np.pi * (nh ** 2 * (a2 - 1) + 1) ** 2
+        dist = np.where(denom > 0, a2 / np.where(denom > 0, denom, 1.0), 0.0)
+        nlc = np.maximum(nl, 0)
+        vis = 0.5 / (nlc * np.sqrt(nv ** 2 * (1 - a2) + a2) + nv * np.sqrt(nlc ** 2 * (1 - a2)
+                                                                          + a2))
+    diffuse = (1 - fresnel) * (1 - metallic) * base / np.pi
+    f = diffuse + fresnel * (dist * vis)[:, None]
+    return np.where((nl > 0)[:, None], f * nl[:, None], 0.0)
+
+
+def radiance(p, n, base, metallic, roughness, light):
+    """Outgoing radiance at points ``p`` with normals ``n``: the light through the BRDF
+    (lux, or candela / d^2) plus the ambient x base colour."""
+    v = EYE - p
+    v /= np.linalg.norm(v, axis=1, keepdims=True)
+    ip = np.asarray(light.color) * light.intensity
+    if isinstance(light, DirectionalLight):
+        l = np.broadcast_to(-np.asarray(light.direction), p.shape)  # noqa: E741
+        k = np.ones(len(p))
+    else:
+        to = np.asarray(light.position) - p
+        d2 = np.einsum("ij,ij->i", to, to)
+        l = to / np.sqrt(d2)[:, None]  # noqa: E741
+        k = 1 / d2
+    return AMBIENT * base + k[:, None] * ip * appendix_b(n, l, v, base, metallic, roughness)
+
+
+def scene_of(mesh, material, light):
+    s = Scene(ambient=tuple(AMBIENT), background=(0, 0, 0))
+    s.add(mesh, material)
+    s.add_light(light)
+    return s
+
+
+def sphere_hits():
+    """Pixel rays met with the exact unit sphere: ``(hit (H, W), p (H, W, 3))``."""
+    o, d = CAMERA.rays((W, H))
+    b = np.einsum("...k,...k", o, d)
+    c = np.einsum("...k,...k", o, o) - 1
+    disc = b * b - c
+    t = -b - np.sqrt(np.maximum(disc, 0))
+    return disc > 0, o + t[..., None] * d
+
+
+@settings(max_examples=10, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(metallic=st.floats(0, 1), roughness=st.floats(0, 1),
+       light=st.sampled_from(sorted(LIGHTS)))
+def test_phong_is_appendix_b_at_every_pixel(make_renderer, metallic, roughness, light):
+    sphere = P.uv_sphere(96, 192)
+    material = PBRMaterial(base_color=tuple(BASE), metallic=metallic, roughness=roughness)
+    r = make_renderer(W, H, samples=0)
+    got = r.render_frame(scene_of(sphere, material, LIGHTS[light]), CAMERA, "phong",
+                         color_dtype="f4").color[..., :3]
+    hit, p = sphere_hits()
+    n = p / np.linalg.norm(p, axis=-1, keepdims=True)
+    v = EYE - p
+    v /= np.linalg.norm(v, axis=-1, keepdims=True)
+    away = hit & (np.einsum("...k,...k", n, v) > 0.25)  # (away from the silhouette)
+    want = np.clip(radiance(p[away], n[away], BASE, metallic, roughness, LIGHTS[light]), 0, 1)
+    diff = np.abs(got[away] - want)
+    # (a mirror-like highlight is a few pixels whose normal the tessellation still bends:
+    # at roughness below 0.1 the 99.5th percentile holds the bound)
+    bound = np.quantile(diff, 0.995) if roughness < 0.1 else diff.max()
+    assert bound <= 2 / 255, (bound * 255, metallic, roughness, light)
+    assert away.sum() > 0.3 * W * H
+
+
+def triangle_hits(mesh):
+    """Each pixel's nearest triangle of ``mesh`` (-1: none) and its barycentrics."""
+    o, d = CAMERA.rays((W, H))
+    o, d = o.reshape(-1, 3), d.reshape(-1, 3)
+    corners = mesh.vertices[mesh.triangles[0]]
+    p0, e1, e2 = corners[:, 0], corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    best = np.full(len(o), np.inf)
+    which = np.full(len(o), -1)
+    bary = np.zeros((len(o), 3))
+    for s in range(0, len(o), 256):
+        dd, oo = d[s:s + 256, None], o[s:s + 256, None]
+        pv = np.cross(dd, e2)
+        det = np.einsum("rtk,tk->rt", pv, e1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sv = oo - p0
+            u = np.einsum("rtk,rtk->rt", sv, pv) / det
+            qv = np.cross(sv, e1)
+            w = np.einsum("rtk,rtk->rt", dd, qv) / det
+            t = np.einsum("rtk,tk->rt", qv, e2) / det
+        ok = (u >= 0) & (w >= 0) & (u + w <= 1) & (t > 0)
+        t = np.where(ok, t, np.inf)
+        k = t.argmin(1)
+        rows = np.arange(len(k))
+        found = np.isfinite(t[rows, k])
+        which[s:s + 256] = np.where(found, k, -1)
+        best[s:s + 256] = t[rows, k]
+        bary[s:s + 256] = np.stack([1 - u[rows, k] - w[rows, k], u[rows, k], w[rows, k]], 1)
+    return which.reshape(H, W), bary.reshape(H, W, 3)
+
+
+@pytest.mark.parametrize("light", sorted(LIGHTS))
+@pytest.mark.parametrize("mode", ["gouraud", "flat"])
+def test_gouraud_and_flat_evaluate_it_where_the_notes_model_is(make_renderer, mode, light):
+    """Gouraud: the BRDF at each vertex (its own normal and view), interpolated; flat: once
+    a polygon, at its centre with its Newell normal."""
+    sphere = P.uv_sphere(12, 24)
+    mesh = Mesh(sphere.vertices, sphere.faces)  # (normals: unit positions, computed here)
+    metallic, roughness = 0.3, 0.45
+    material = PBRMaterial(base_color=tuple(BASE), metallic=metallic, roughness=roughness)
+    r = make_renderer(W, H, samples=0)
+    got = r.render_frame(scene_of(mesh, material, LIGHTS[light]), CAMERA, mode,
+                         color_dtype="f4").color[..., :3]
+    which, bary = triangle_hits(mesh)
+    tri, owner = mesh.triangles
+    seen = which >= 0
+    inside = inside_regions(which if mode == "gouraud" else np.where(seen, owner[which], -1))
+    inside &= seen
+    if mode == "gouraud":
+        v = mesh.vertices
+        normals = v / np.linalg.norm(v, axis=1, keepdims=True)  # (a sphere's vertex normals)
+        at_vertices = np.clip(radiance(v, normals, BASE, metallic, roughness, LIGHTS[light]),
+                              0, None)
+        want = np.einsum("hwc,hwck->hwk", bary, at_vertices[tri[np.maximum(which, 0)]])
+    else:
+        faces = [np.asarray(f) for f in sphere.faces]
+        centres = np.array([mesh.vertices[f].mean(0) for f in faces])
+        newell = np.array([np.cross(mesh.vertices[f], mesh.vertices[np.roll(f, -1)]).sum(0)
+                           for f in faces])
+        newell /= np.linalg.norm(newell, axis=1, keepdims=True)
+        per_polygon = radiance(centres, newell, BASE, metallic, roughness, LIGHTS[light])
+        want = per_polygon[owner[np.maximum(which, 0)]]
+    want = np.clip(want, 0, 1)
+    diff = np.abs(got - want)[inside]
+    assert inside.sum() > 400
+    assert diff.max() <= 2 / 255, (mode, light, diff.max() * 255)
+
+
+def test_emission_and_vertex_colours_take_their_places(make_renderer):
+    """The emissive colour adds as it is; a mesh's colours multiply the base colour (here,
+    a dark light: the ambient term alone, Ia x base x C)."""
+    sphere = P.uv_sphere(12, 24)
+    colors = np.random.default_rng(1).uniform(0.2, 1, (sphere.n_vertices, 3))
+    mesh = Mesh(sphere.vertices, sphere.faces, colors=colors)
+    dark = DirectionalLight(direction=(0, -1, 0), intensity=0.0)
+    r = make_renderer(W, H, samples=0)
+    material = PBRMaterial(base_color=tuple(BASE), emissive=(0.1, 0.2, 0.05))
+    frame = r.render_frame(scene_of(mesh, material, dark), CAMERA, "flat", color_dtype="f4")
+    polygons = frame.face_id[frame.face_id >= 0]
+    got = frame.color[..., :3][frame.face_id >= 0]
+    means = np.array([colors[np.asarray(f)].mean(0) for f in sphere.faces])
+    want = AMBIENT * BASE * means[polygons] + (0.1, 0.2, 0.05)
+    assert np.abs(got - want).max() <= 1e-5
+
+
+def test_bad_factors_are_refused_naming_them():
+    with pytest.raises(SceneError, match="metallic must be in"):
+        PBRMaterial(metallic=1.5)
+    with pytest.raises(SceneError, match="roughness must be a non-negative"):
+        PBRMaterial(roughness=-0.1)
+    with pytest.raises(SceneError, match="base_color must be 3 numbers in"):
+        PBRMaterial(base_color=(2, 0, 0))

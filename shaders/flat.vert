@@ -33,6 +33,9 @@ in vec3 in_face_centroid;
 in vec2 in_uv;
 out vec2 v_uv;  // (per pixel: the polygon's one lit colour times its texels)
 #endif
+#ifdef PBR_TEXTURED
+in vec2 in_face_uv;  // (the mean of the polygon's corners' uv: gpu_mesh.py)
+#endif
 #ifdef VERTEX_COLORS
 in vec4 in_color;  // (the polygon's one colour at each of its corners: gpu_mesh.py)
 flat out float v_alpha;
@@ -49,6 +52,9 @@ void main() {
 #ifdef VERTEX_COLORS
     g_surface_color = in_color.rgb;
     v_alpha = in_color.a;
+#endif
+#ifdef PBR_TEXTURED
+    g_pbr_uv = in_face_uv;  // (glTF's maps read once, at the polygon's centre)
 #endif
     flat_polygon(in_face_normal, in_face_centroid);
     gl_Position = u_proj * p_view;

@@ -23,6 +23,9 @@ void main() {
     g_surface_color = in_color.rgb;  // (lit at the vertex with its own C)
     v_alpha = in_color.a;
 #endif
+#ifdef PBR_TEXTURED
+    g_pbr_uv = in_uv;  // (glTF's maps read at the vertex: where Gouraud lights)
+#endif
     gouraud_stage(in_position, in_normal);
 #ifdef TEXTURED
     v_uv = in_uv;

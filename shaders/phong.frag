@@ -31,7 +31,11 @@ void main() {
 #ifdef VERTEX_COLORS
     g_surface_color = v_color.rgb;  // (the notes' C at this pixel: surface_color.glsl)
 #endif
-#ifdef TEXTURED
+#ifdef PBR_TEXTURED
+    g_pbr_uv = v_uv;  // (the maps at this pixel: pbr.glsl)
+    g_map_opacity = pbr_map_alpha(v_uv);
+#endif
+#ifdef NOTES_TEXTURED
     vec3 specular;
     vec3 lit = light_parts(v_position_view, n, view_dir(v_position_view), specular);
     g_map_opacity = map_opacity(v_uv);
@@ -41,7 +45,7 @@ void main() {
     write_outputs(textured_color(lit, specular, v_uv), n_world, -v_position_view.z);
 #else
 #ifdef VERTEX_COLORS
-    g_map_opacity = v_color.a;
+    g_map_opacity *= v_color.a;
 #endif
     write_outputs(light_intensity(v_position_view, n, view_dir(v_position_view)), n_world,
                   -v_position_view.z);

@@ -5,7 +5,7 @@
 // also light the back). The includer has transforms.glsl and lighting.glsl.
 #ifndef FLAT_POLYGON_GLSL
 #define FLAT_POLYGON_GLSL
-#ifdef TEXTURED
+#ifdef NOTES_TEXTURED
 #ifdef SHADOW_MASK
 flat out vec3 v_spec_terms_front[LIGHT_COUNT];  // (v_terms_*: ambient and diffuse)
 #ifdef TWO_SIDED
@@ -38,7 +38,7 @@ void flat_polygon(vec3 face_normal, vec3 face_centroid) {
     vec3 n = normalize(u_normal_view * face_normal);
     vec3 c = (u_model_view * vec4(face_centroid, 1.0)).xyz;
     vec3 v = view_dir(c);
-#if defined(TEXTURED) && defined(SHADOW_MASK)
+#if defined(NOTES_TEXTURED) && defined(SHADOW_MASK)
     vec3 terms[LIGHT_COUNT], spec_terms[LIGHT_COUNT];
     v_color_front = light_terms_parts(c, n, v, terms, spec_terms);
     v_terms_front = terms;
@@ -48,7 +48,7 @@ void flat_polygon(vec3 face_normal, vec3 face_centroid) {
     v_terms_back = terms;
     v_spec_terms_back = spec_terms;
 #endif
-#elif defined(TEXTURED)
+#elif defined(NOTES_TEXTURED)
     v_color_front = light_parts(c, n, v, v_spec_front);
 #ifdef TWO_SIDED
     v_color_back = light_parts(c, -n, v, v_spec_back);

@@ -30,9 +30,11 @@ vec3 view_dir(vec3 p_view) {
 }
 
 #ifdef PBR
-// (glTF's metallic-roughness model in the notes' place: its light_term)
+// (glTF's metallic-roughness model in the notes' place: its light_term and ambient term)
 #include "pbr.glsl"
+#define MODEL_AMBIENT pbr_ambient()
 #else
+#define MODEL_AMBIENT AMBIENT_TERM
 // One light's diffuse and specular terms, k kd max(L.N, 0) Ip C (returned) and
 // k ks max(R.V, 0)^n Ip (``specular``); `kind` is a constant, so each call compiles to the
 // code of its kind alone.
@@ -79,7 +81,7 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
 #endif
 
 vec3 light_intensity(vec3 p_view, vec3 n_view, vec3 v_view) {
-    vec3 color = AMBIENT_TERM;
+    vec3 color = MODEL_AMBIENT;
     // a constant trip count over constant kinds: unrolled, each term its kind's code alone
     const int kinds[LIGHT_COUNT] = int[LIGHT_COUNT](LIGHT_KINDS);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
@@ -97,11 +99,11 @@ vec3 light_terms(vec3 p_view, vec3 n_view, vec3 v_view, out vec3 terms[LIGHT_COU
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         terms[i] = light_term(i, kinds[i], p_view, n_view, v_view);
     }
-    return AMBIENT_TERM;
+    return MODEL_AMBIENT;
 }
 #endif
 
-#if defined(TEXTURED) && !defined(PBR)
+#ifdef NOTES_TEXTURED
 // The formula in its two parts, for textured surfaces (textures.glsl): the ambient and
 // diffuse terms (returned; the diffuse map, the notes' C, multiplies them) and the
 // specular one (``specular``; the specular map multiplies it).

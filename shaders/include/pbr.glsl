@@ -18,13 +18,50 @@
 
 uniform vec4 u_pbr_base;        // base colour (linear RGB), metallic
 uniform float u_pbr_roughness;  // perceptual roughness
+#ifdef PBR_TEXTURED
+#include "textures.glsl"
+uniform vec3 u_emission;        // the emissive factor (x its map: added here, not outputs')
+vec2 g_pbr_uv = vec2(0.0);      // where the maps are read: set by the stage that lights
+#endif
 
-// The base colour at the point lit: the material's times the mesh's (surface_color.glsl).
+// The base colour at the point lit: the material's times the mesh's (surface_color.glsl)
+// times its map's.
 vec3 pbr_base_color() {
+    vec3 base = u_pbr_base.rgb;
 #ifdef VERTEX_COLORS
-    return u_pbr_base.rgb * SURFACE_C;
+    base *= SURFACE_C;
+#endif
+#ifdef PBR_TEXTURED
+    base *= texture(u_pbr_base_map, g_pbr_uv).rgb;
+#endif
+    return base;
+}
+
+float pbr_metallic() {
+#ifdef PBR_TEXTURED
+    return u_pbr_base.a * texture(u_pbr_mr_map, g_pbr_uv).b;
 #else
-    return u_pbr_base.rgb;
+    return u_pbr_base.a;
+#endif
+}
+
+float pbr_roughness() {
+#ifdef PBR_TEXTURED
+    return u_pbr_roughness * texture(u_pbr_mr_map, g_pbr_uv).g;
+#else
+    return u_pbr_roughness;
+#endif
+}
+
+// The ambient light x the base colour (x the occlusion map's, glTF's indirect light), and
+// with maps the emission (its factor x its map: without maps outputs.glsl adds the factor).
+vec3 pbr_ambient() {
+#ifdef PBR_TEXTURED
+    return AMBIENT_TERM * texture(u_pbr_base_map, g_pbr_uv).rgb *
+           texture(u_pbr_occlusion_map, g_pbr_uv).r +
+           u_emission * texture(u_pbr_emissive_map, g_pbr_uv).rgb;
+#else
+    return AMBIENT_TERM;
 #endif
 }
 
@@ -66,6 +103,6 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
         }
     }
     return k * LIGHT_SPECULAR(i) *
-           pbr_brdf_cos(n_view, l, v_view, pbr_base_color(), u_pbr_base.a, u_pbr_roughness);
+           pbr_brdf_cos(n_view, l, v_view, pbr_base_color(), pbr_metallic(), pbr_roughness());
 }
 #endif

@@ -15,7 +15,7 @@ out vec3 v_terms_front[LIGHT_COUNT];  // each light's term apart (v_color_*: the
 out vec3 v_terms_back[LIGHT_COUNT];
 #endif
 #endif
-#ifdef TEXTURED
+#ifdef NOTES_TEXTURED
 // textured: v_color_* and v_terms_* hold ambient and diffuse, these the specular terms
 #ifdef SHADOW_MASK
 out vec3 v_spec_terms_front[LIGHT_COUNT];
@@ -38,7 +38,7 @@ void gouraud_stage(vec3 position, vec3 normal) {
     vec4 p_view = u_model_view * vec4(position, 1.0);
     vec3 n = normalize(u_normal_view * normal);
     vec3 v = view_dir(p_view.xyz);
-#if defined(TEXTURED) && defined(SHADOW_MASK)
+#if defined(NOTES_TEXTURED) && defined(SHADOW_MASK)
     vec3 terms[LIGHT_COUNT], spec_terms[LIGHT_COUNT];
     v_color_front = light_terms_parts(p_view.xyz, n, v, terms, spec_terms);
     v_terms_front = terms;
@@ -48,7 +48,7 @@ void gouraud_stage(vec3 position, vec3 normal) {
     v_terms_back = terms;
     v_spec_terms_back = spec_terms;
 #endif
-#elif defined(TEXTURED)
+#elif defined(NOTES_TEXTURED)
     v_color_front = light_parts(p_view.xyz, n, v, v_spec_front);
 #ifdef TWO_SIDED
     v_color_back = light_parts(p_view.xyz, -n, v, v_spec_back);

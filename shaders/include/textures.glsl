@@ -4,7 +4,7 @@
 // a map the material lacks is a 1x1 white texture (no branch per pixel).
 #ifndef TEXTURES_GLSL
 #define TEXTURES_GLSL
-#ifdef TEXTURED
+#ifdef NOTES_TEXTURED
 uniform sampler2D u_map_diffuse;   // map_Kd: multiplies the ambient and diffuse terms
 uniform sampler2D u_map_specular;  // map_Ks: multiplies the specular term
 uniform sampler2D u_map_opacity;   // map_d: multiplies the opacity (red channel)
@@ -18,6 +18,20 @@ vec3 textured_color(vec3 ambient_diffuse, vec3 specular, vec2 uv) {
 
 float map_opacity(vec2 uv) {
     return texture(u_map_opacity, uv * u_map_st[2].xy + u_map_st[2].zw).r;
+}
+#endif
+#ifdef PBR_TEXTURED
+// A PBRMaterial's maps (glTF's packing; white where the material lacks one): the base colour
+// (sRGB, decoded by the sampler) and its alpha, roughness in G and metallic in B (linear),
+// occlusion in R (linear), the emissive colour (sRGB). pbr.glsl samples them where the
+// scheme lights: at the pixel (Phong), the vertex (Gouraud), the polygon's centre (flat).
+uniform sampler2D u_pbr_base_map;
+uniform sampler2D u_pbr_mr_map;
+uniform sampler2D u_pbr_occlusion_map;
+uniform sampler2D u_pbr_emissive_map;
+
+float pbr_map_alpha(vec2 uv) {
+    return texture(u_pbr_base_map, uv).a;
 }
 #endif
 #endif

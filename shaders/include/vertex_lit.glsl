@@ -20,6 +20,8 @@ LIT_IN vec3 v_terms_back[LIGHT_COUNT];
 #endif
 #ifdef TEXTURED
 in vec2 v_uv;
+#endif
+#ifdef NOTES_TEXTURED
 #ifdef SHADOW_MASK
 LIT_IN vec3 v_spec_terms_front[LIGHT_COUNT];
 #ifdef TWO_SIDED
@@ -58,7 +60,7 @@ void main() {
 #else
     vec3 color = v_color_front;  // back faces are culled
 #endif
-#ifdef TEXTURED
+#ifdef NOTES_TEXTURED
     // (the lit colour interpolated, its maps sampled per pixel)
 #if defined(SHADOW_MASK) && defined(TWO_SIDED)
     vec3 specular = gl_FrontFacing ? visible_sum(vec3(0.0), v_spec_terms_front)
@@ -72,6 +74,8 @@ void main() {
 #endif
     color = textured_color(color, specular, v_uv);
     g_map_opacity = map_opacity(v_uv);
+#elif defined(PBR_TEXTURED)
+    g_map_opacity = pbr_map_alpha(v_uv);  // (lit where the scheme lights: the alpha per pixel)
 #endif
 #ifdef VERTEX_COLORS
     g_map_opacity *= v_alpha;

@@ -292,10 +292,12 @@ def test_a_gltf_base_colour_texture_comes_through_trimesh(tmp_path, gl_context):
     quad.export(tmp_path / "quad.glb")
     mesh = glshade.load_mesh(tmp_path / "quad.glb")
     assert mesh.uv is not None and list(mesh.materials) == ["painted"]
-    material = mesh.materials["painted"]
-    assert np.array_equal(material.texture.pixels[..., :3], image)
-    mesh.materials = {"painted": dataclasses.replace(
-        material, illum=0, texture=material.texture.replace(filter="nearest"))}
+    painted = mesh.materials["painted"]  # (glTF's model, its base colour map)
+    assert np.array_equal(painted.base_color_texture.pixels[..., :3], image)
+    # (drawn here unlit, through the notes' model: the texel times the factor)
+    material = glshade.Material(illum=0, color=painted.base_color, diffuse=painted.base_color,
+                                texture=painted.base_color_texture.replace(filter="nearest"))
+    mesh.materials = {"painted": material}
     scene = Scene()
     scene.add(mesh)
     camera = Camera.look_at((0.5, 0.5, 2), (0.5, 0.5, 0), fov_y=30)

@@ -200,3 +200,117 @@ def test_bad_factors_are_refused_naming_them():
         PBRMaterial(roughness=-0.1)
     with pytest.raises(SceneError, match="base_color must be 3 numbers in"):
         PBRMaterial(base_color=(2, 0, 0))
+
+
+def test_a_scene_file_gives_a_mesh_glTFs_material(tmp_path):
+    from glshade import load_scene
+    from glshade.errors import SceneFormatError
+
+    (tmp_path / "gold.toml").write_text(
+        '[[mesh]]\nsource = "primitive:uv_sphere"\n'
+        'pbr = { base_color = [0.9, 0.6, 0.2], metallic = 1.0, roughness = 0.3 }\n')
+    (model,) = load_scene(tmp_path / "gold.toml").scene.models
+    assert model.material == PBRMaterial(base_color=(0.9, 0.6, 0.2), metallic=1.0,
+                                         roughness=0.3)
+    (tmp_path / "both.toml").write_text(
+        '[[mesh]]\nsource = "primitive:uv_sphere"\nks = 0.5\npbr = { metallic = 1.0 }\n')
+    with pytest.raises(SceneFormatError, match=r"both.toml:\d+: \[\[mesh\]\] 1 key 'pbr' and "
+                                               r"'ks' are two lighting models"):
+        load_scene(tmp_path / "both.toml")
+    (tmp_path / "odd.toml").write_text(
+        '[[mesh]]\nsource = "primitive:uv_sphere"\npbr = { sheen = 1.0 }\n')
+    with pytest.raises(SceneFormatError, match="unknown factor 'sheen'"):
+        load_scene(tmp_path / "odd.toml")
+
+
+def _quad_hits(vertices, faces, uv):
+    """Per pixel: the triangle hit (-1: none), the hit point and its barycentrics."""
+    o, d = CAMERA.rays((W, H))
+    o, d = o.reshape(-1, 3), d.reshape(-1, 3)
+    which = np.full(len(o), -1)
+    bary = np.zeros((len(o), 3))
+    for k, f in enumerate(faces):
+        p0, p1, p2 = vertices[f]
+        e1, e2 = p1 - p0, p2 - p0
+        pv = np.cross(d, e2)
+        det = pv @ e1
+        s = o - p0
+        u = (s * pv).sum(1) / det
+        q = np.cross(s, e1)
+        w = (d * q).sum(1) / det
+        hit = (u >= 0) & (w >= 0) & (u + w <= 1) & ((q @ e2) / det > 0)
+        which[hit] = k
+        bary[hit] = np.stack([1 - u - w, u, w], 1)[hit]
+    return which.reshape(H, W), bary.reshape(H, W, 3)
+
+
+@pytest.mark.parametrize("mode", ["phong", "gouraud", "flat"])
+def test_maps_are_read_where_the_scheme_lights(make_renderer, mode):
+    """glTF's maps (a 3x3 base colour map, a metallic-roughness map, nearest texels) are
+    read at the pixel (Phong), the vertices (Gouraud), a polygon's centre (flat), and the
+    BRDF evaluated there with them, against Appendix B here."""
+    from glshade import Texture
+
+    vertices = np.array([[-1.2, -0.9, 0.3], [1.1, -1.0, -0.2], [1.0, 1.0, -0.4],
+                         [-1.1, 0.9, 0.1]])
+    uv = np.array([[0.02, 0.03], [0.97, 0.01], [0.98, 0.99], [0.01, 0.96]])
+    faces = np.array([[0, 1, 2], [0, 2, 3]])
+    mesh = Mesh(vertices, faces, uv=uv[faces.ravel()])
+    rng = np.random.default_rng(8)
+    base_texels = rng.integers(30, 250, (3, 3, 3)).astype(np.uint8)
+    mr_texels = np.zeros((3, 3, 3), np.uint8)
+    mr_texels[..., 1] = rng.integers(60, 250, (3, 3))   # roughness (G)
+    mr_texels[..., 2] = rng.integers(0, 256, (3, 3))    # metallic (B)
+    material = PBRMaterial(base_color=(0.9, 0.8, 1.0), metallic=0.8, roughness=0.9,
+                           base_color_texture=Texture(base_texels, filter="nearest"),
+                           metallic_roughness_texture=Texture(mr_texels, filter="nearest"))
+    light = LIGHTS["directional"]
+    r = make_renderer(W, H, samples=0)
+    got = r.render_frame(scene_of(mesh, material, light), CAMERA, mode,
+                         color_dtype="f4").color[..., :3]
+
+    def decode(c):
+        c = c / 255.0
+        return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+    def at(uvs, points, normal):
+        """The model's radiance at ``points`` with the maps read at ``uvs``."""
+        i = np.clip((uvs[:, 0] * 3).astype(int), 0, 2)
+        j = 2 - np.clip((uvs[:, 1] * 3).astype(int), 0, 2)  # (row 0 is the image's top)
+        base = np.array([0.9, 0.8, 1.0]) * decode(base_texels[j, i].astype(float))
+        metallic = 0.8 * mr_texels[j, i, 2] / 255.0
+        roughness = 0.9 * mr_texels[j, i, 1] / 255.0
+        n = np.broadcast_to(normal, points.shape)
+        out = np.empty((len(points), 3))
+        for k in range(len(points)):  # (one texel's factors at a time: a handful of values)
+            out[k] = radiance(points[k:k + 1], n[k:k + 1], base[k], metallic[k],
+                              roughness[k], light)[0]
+        return out
+
+    which, bary = _quad_hits(vertices, faces, uv)
+    normal = np.cross(vertices[1] - vertices[0], vertices[2] - vertices[0])
+    normal /= np.linalg.norm(normal)
+    normal = normal if normal @ (EYE - vertices[0]) > 0 else -normal
+    seen = which >= 0
+    tri_uv = uv[faces[np.maximum(which, 0)]]
+    tri_p = vertices[faces[np.maximum(which, 0)]]
+    pixel_uv = np.einsum("hwc,hwck->hwk", bary, tri_uv)
+    if mode == "phong":
+        p = np.einsum("hwc,hwck->hwk", bary, tri_p)[seen]
+        want = at(pixel_uv[seen], p, normal)
+        texel = np.where(seen, (pixel_uv[..., 0] * 3).astype(int) * 3 +
+                         (pixel_uv[..., 1] * 3).astype(int), -1)
+        inside = inside_regions(texel)[seen]
+    elif mode == "gouraud":
+        corners = at(uv, vertices, normal)
+        want = np.einsum("hwc,hwck->hwk", bary, corners[faces[np.maximum(which, 0)]])[seen]
+        inside = inside_regions(which)[seen]
+    else:
+        centres = np.array([uv[f].mean(0) for f in faces])
+        middles = np.array([vertices[f].mean(0) for f in faces])
+        per_face = at(centres, middles, normal)
+        want = per_face[which[seen]]
+        inside = inside_regions(which)[seen]
+    diff = np.abs(got[seen] - np.clip(want, 0, 1))[inside]
+    assert inside.sum() > 500
+    assert diff.max() <= 2 / 255, (mode, diff.max() * 255)

@@ -8,10 +8,9 @@ and what was wrong.
 
 from __future__ import annotations
 
-from typing import Any
-
+import warnings
 from pathlib import Path
-
+from typing import Any
 
 from ..atomic import atomic_write
 from .._paths import file_fault
@@ -138,12 +137,13 @@ def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = Tru
     fmt = _format_of(path, format)
     if fmt == "obj" and mesh.material_groups:
         from ..scene.material import Material
+        from ..scene.pbr import PBRMaterial
         from .mtl import write_mtl
 
         library = path.with_suffix(".mtl")
         with atomic_write(library, "w") as text:
-            write_mtl({k: m for k, m in mesh.materials.items() if isinstance(m, Material)},
-                      text, library.parent)
+            write_mtl({k: m for k, m in mesh.materials.items()
+                       if isinstance(m, (Material, PBRMaterial))}, text, library.parent)
         with atomic_write(path, "wb") as f:
             obj.write(mesh, f, binary, mtllib=library.name)
         return
@@ -161,6 +161,11 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
         reason = lines[-1] if lines else type(exc).__name__
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
     parts = trimesh_parts(loaded, path.stem)
+    if fmt in ("glb", "gltf"):
+        unread = gltf_unread(path)
+        if unread:
+            warnings.warn(f"{path.name}: read and not drawn: {', '.join(unread)}",
+                          UserWarning, stacklevel=3)
     # (a glTF's COLOR_0 is linear: trimesh scales it to bytes without a curve)
     mesh = from_trimesh(parts, name=path.stem, linear_colors=fmt in ("glb", "gltf"))
     from ..scene.describe import material_from_description
@@ -170,3 +175,37 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
     mesh.materials = {name: material_from_description(d, f"{path.name}: {name}")
                       for name, d in mesh.materials.items()}
     return mesh
+
+
+def gltf_unread(path: Path) -> list[str]:
+    """What a glTF/GLB file holds that glshade does not draw -- its extensions (clearcoat,
+    transmission, volume, lights ...), skins, morph targets, animations and cameras -- each
+    named with its count, from the file's JSON (read here: trimesh drops them in silence).
+
+    Parameters
+    ----------
+    path : Path
+        The .gltf or .glb file.
+    """
+    import json
+    import struct
+
+    data = path.read_bytes()
+    try:
+        if data[:4] == b"glTF":  # (GLB: a 12-byte header, then the JSON chunk first)
+            length, kind = struct.unpack_from("<II", data, 12)
+            doc = json.loads(data[20:20 + length]) if kind == 0x4E4F534A else {}
+        else:
+            doc = json.loads(data)
+    except (ValueError, struct.error):
+        return []  # (trimesh read it: whatever it is, nothing more is said here)
+    out = [f"extension {name}" for name in doc.get("extensionsUsed", [])]
+    targets = sum(len(p.get("targets", [])) for m in doc.get("meshes", [])
+                  for p in m.get("primitives", []))
+    for count, what in ((len(doc.get("skins", [])), "skin"), (targets, "morph target"),
+                        (len(doc.get("animations", [])), "animation"),
+                        (len(doc.get("cameras", [])), "camera")):
+        if count:
+            out.append(f"{count} {what}{'s' if count > 1 else ''}")
+    return out
+

@@ -18,7 +18,15 @@ MTL                glshade
 ``-clamp on``      the map's ``wrap="clamp"`` (default: repeat)
 ``-o u v``         the map's texture-coordinate ``offset``
 ``-s u v``         the map's texture-coordinate ``scale``
+``Pr r``, ``Pm m`` the PBR extension's roughness and metallic: a block that has either is
+                   glTF's model, a :class:`~glshade.PBRMaterial` (``Kd`` its base colour,
+                   ``Ke`` its emissive, ``d`` its opacity; metallic 0 and roughness 1
+                   where not given); with ``map_Kd`` it is drawn by the notes' model,
+                   textured, and ``Pr``/``Pm`` are reported
 =================  ==============================================================
+
+The PBR extension's maps (``map_Pr``, ``map_Pm``, ``norm``, ``map_Ke``) and its other keys
+(``Ps``, ``Pc``, ``Pcr``, ``aniso``, ``anisor``) are reported with the rest.
 
 Anything else (``Ni``, ``Tf``, ``map_Ka``, ``bump``, other map options ...) is kept in the
 library's ``unused`` report, by statement and line, and does not change the picture. A
@@ -29,6 +37,7 @@ unreadable is a warning naming the line, and the material is drawn without it.
 from __future__ import annotations
 
 import warnings
+from typing import Any
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -59,7 +68,7 @@ class MaterialLibrary:
         Statements glshade does not use, ``"file:line: statement"``.
     """
 
-    materials: dict[str, Material] = field(default_factory=dict)
+    materials: dict[str, Any] = field(default_factory=dict)
     unused: list[str] = field(default_factory=list)
 
 
@@ -89,7 +98,7 @@ def read_mtl(path, filter: str | None = None, library: MaterialLibrary | None = 
     def finish():
         if current is not None:
             try:
-                library.materials[name] = Material(name=name, **current)
+                library.materials[name] = _material(name, current, library)
             except SceneError as exc:
                 raise MeshFormatError(path, f"material {name!r}: {exc}") from None
 
@@ -110,6 +119,28 @@ def read_mtl(path, filter: str | None = None, library: MaterialLibrary | None = 
         _statement(path, number, where, key, args, rest, current, library, filter)
     finish()
     return library
+
+
+def _material(name: str, current: dict, library: MaterialLibrary):
+    """The block's material: glTF's (PBRMaterial) where it gives Pr or Pm and no map, else
+    the notes' (the PBR keys reported where a map makes it the notes')."""
+    pbr = {k[4:]: v for k, v in current.items() if k.startswith("pbr ")}
+    notes = {k: v for k, v in current.items() if not k.startswith("pbr ")}
+    if not pbr:
+        return Material(name=name, **notes)
+    maps = [k for k in ("texture", "specular_texture", "opacity_texture") if k in notes]
+    if maps:
+        for key, (_, where) in pbr.items():
+            library.unused.append(f"{where}: {key} (a textured material is drawn by the "
+                                  "notes' model)")
+        return Material(name=name, **notes)
+    from ..scene.pbr import PBRMaterial
+
+    return PBRMaterial(name=name, base_color=notes.get("diffuse", (1.0, 1.0, 1.0)),
+                       metallic=pbr.get("Pm", (0.0, None))[0],
+                       roughness=pbr.get("Pr", (1.0, None))[0],
+                       emissive=notes.get("emission", (0.0, 0.0, 0.0)),
+                       opacity=notes.get("opacity", 1.0))
 
 
 def _numbers(path, number: int, key: str, args: list, counts: tuple) -> list[float]:
@@ -154,6 +185,8 @@ def _statement(path, number, where, key, args, rest, current, library, filter) -
         texture = _map(path, number, where, key, rest, library, filter)
         if texture is not None:
             current[_MAPS[key]] = texture
+    elif key in ("Pr", "Pm"):  # (the PBR extension: glTF's model, finish() decides)
+        current["pbr " + key] = (_numbers(path, number, key, args, (1,))[0], where)
     else:
         library.unused.append(f"{where}: {key}")
 
@@ -209,7 +242,7 @@ def _colour(name: str, value) -> str:
     return f"{name} {value[0]:.9g} {value[1]:.9g} {value[2]:.9g}\n"
 
 
-def write_mtl(materials: dict[str, Material], f, base: Path | None = None) -> None:
+def write_mtl(materials: dict[str, Any], f, base: Path | None = None) -> None:
     """``materials`` as MTL text into the open text file ``f`` (maps by their file paths,
     relative to ``base``, the library's folder, where they can be; a map made from an
     array has none and is left out).
@@ -227,6 +260,12 @@ def write_mtl(materials: dict[str, Material], f, base: Path | None = None) -> No
 
     for name, m in materials.items():
         f.write(f"newmtl {name}\n")
+        if m.lighting.value == "pbr":  # (glTF's model: the PBR extension's keys)
+            f.write(_colour("Kd", m.base_color) + f"Pm {m.metallic:.9g}\nPr {m.roughness:.9g}\n")
+            if any(m.emission):
+                f.write(_colour("Ke", m.emission))
+            f.write(f"d {m.opacity:.9g}\n\n")
+            continue
         f.write(_colour("Ka", m.ambient_rgb) + _colour("Kd", m.diffuse_rgb) +
                 _colour("Ks", m.specular_rgb))
         if any(m.emission):

@@ -33,7 +33,9 @@ or a table of K matrices) is K copies (``Scene.add``'s ``instances``), each colo
 ``instance_colors`` (``(K, 3)``, the same two forms) where given; ``vertex_colors = false``
 ignores the colours its mesh file holds. A ``[[light]]`` is a point light (``position``), a
 directional one (``direction``), or with ``type = "spot"`` a spot light (``position``,
-``direction``, ``inner_angle``, ``outer_angle`` in radians).
+``direction``, ``inner_angle``, ``outer_angle`` in radians). ``pbr = { base_color = [r, g,
+b], metallic = 0.5, roughness = 0.4 }`` on a ``[[mesh]]`` gives it glTF's metallic-roughness
+material (:class:`~glshade.PBRMaterial`) instead of the notes' keys.
 """
 
 from __future__ import annotations
@@ -143,7 +145,7 @@ _SCHEMA = {
              "texture": "str", "specular_texture": "str", "opacity_texture": "str",
              "texture_filter": "texture_filter", "texture_wrap": "texture_wrap",
              "vertex_colors": "bool", "label": "str", "instances": "array",
-             "instance_colors": "array"},
+             "instance_colors": "array", "pbr": "pbr"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool",
               "inner_angle": "nonneg", "outer_angle": "nonneg"},
@@ -153,7 +155,8 @@ _SCHEMA = {
                "keyframe": "keyframes", "K": "mat3", "R": "mat3", "t": "vec3"},
 }
 _TEXTURE_KEYS = ("texture", "specular_texture", "opacity_texture", "texture_filter",
-                 "texture_wrap")  # (meshes only: solids and patches have no uv)
+                 "texture_wrap",  # (meshes only: solids and patches have no uv)
+                 "pbr")  # (and glTF's model: meshes only)
 _SCHEMA["solid"] = {k: v for k, v in _SCHEMA["mesh"].items()
                     if k not in ("source", "crease", *_TEXTURE_KEYS)} | {"tree": "str"}
 # patches: source = "patches:NAME" or a .bpt file; level segments a side; tessellation
@@ -286,6 +289,9 @@ _KINDS = {
                       "'point', 'directional' or 'spot'"),
     "array": _is(lambda v: (isinstance(v, str) and bool(v)) or isinstance(v, list),
                  "a .npy file (its path) or a table of numbers"),
+    "pbr": _is(lambda v: isinstance(v, dict) and bool(v),
+               "a table of glTF's factors: { base_color = [r, g, b], metallic = m, "
+               "roughness = r, emissive = [r, g, b], opacity = a }"),
     # (the API's own rules)
     "size": _size, "samples": check_samples, "fov": check_fov,
     "mode": ShadingMode.parse, "interp": OrientationInterp.parse,
@@ -500,7 +506,7 @@ _MATERIAL_KEYS = ("color", "ka", "kd", "ks", "shininess", "emission", "reflectan
                   "opacity_texture", "vertex_colors")
 
 
-def _material(m: dict, mesh, base: Path, where) -> Material | None:
+def _material(m: dict, mesh, base: Path, where):
     """A [[mesh]]'s material: its keys (textures' paths relative to the scene file), or
     None where it gives none and the mesh has its own (an OBJ's MTL); ``texture_filter``
     and ``texture_wrap`` apply to either's textures. ``where(key)``: the key's place, for
@@ -511,12 +517,30 @@ def _material(m: dict, mesh, base: Path, where) -> Material | None:
     sampling = {"filter": look["texture_filter"]} if "texture_filter" in look else {}
     if "texture_wrap" in look:
         sampling["wrap"] = look["texture_wrap"]
-    if not any(k in m for k in _MATERIAL_KEYS) and getattr(mesh, "material_groups", None):
+    if not any(k in m for k in (*_MATERIAL_KEYS, "pbr")) and getattr(mesh, "material_groups",
+                                                                     None):
         if sampling:
             mesh.materials = {name: dataclasses.replace(
                 mat, **{k: t.replace(**sampling) for k, t in mat.textures.items()})
                 for name, mat in mesh.materials.items()}
         return None
+    if "pbr" in m:  # (glTF's model: its factors, checked by PBRMaterial itself)
+        from ..scene.pbr import PBRMaterial
+
+        notes = [k for k in _MATERIAL_KEYS if k in m and k != "vertex_colors"]
+        if notes:
+            raise SceneFormatError(f"{where('pbr')} key 'pbr' and '{notes[0]}' are two "
+                                   "lighting models' materials: give one")
+        fields_ = {"base_color", "metallic", "roughness", "emissive", "opacity"}
+        unknown = sorted(set(m["pbr"]) - fields_)
+        if unknown:
+            raise SceneFormatError(f"{where('pbr')} key 'pbr': unknown factor '{unknown[0]}'; "
+                                   f"allowed: {', '.join(sorted(fields_))}")
+        try:
+            return PBRMaterial(**m["pbr"], vertex_colors=m.get("vertex_colors", True),
+                               name=m.get("name"))
+        except (GlshadeError, TypeError, ValueError) as exc:
+            raise SceneFormatError(f"{where('pbr')} key 'pbr': {exc}") from None
     values = dict(m)
     for key in ("texture", "specular_texture", "opacity_texture"):
         if key in m:

@@ -264,12 +264,17 @@ class GpuMesh(GLResource):
                 corner_uv = corner_uv[self._order]
 
             colors = m.polygon_colors if self.colored else None
+            centre_uv = None
+            if m.uv is not None:  # (each polygon's mean uv: where flat reads glTF's maps)
+                centre_uv = np.add.reduceat(m.uv, m.face_offsets[:-1], axis=0) / \
+                    m.face_sizes[:, None]
 
             def rows(sl):
                 corners, face = tri[sl].ravel(), np.repeat(owner[sl], 3)
                 parts = [m.vertices[corners], m.face_normals[face], m.face_centroids[face]]
                 if corner_uv is not None:
                     parts.append(m.uv[corner_uv[sl].ravel()])
+                    parts.append(centre_uv[face])
                 if colors is not None:  # (uniform shading: the polygon's one colour)
                     parts.append(colors[face])
                 return np.hstack(parts).astype("f4")
@@ -407,6 +412,8 @@ class GpuMesh(GLResource):
                 buffer, ibo = self.vbo, self.ibo
             if self.textured:
                 layout.append(("in_uv", "2f"))
+                if "in_face_normal" in program:  # (flat's copies: the polygon's mean uv too)
+                    layout.append(("in_face_uv", "2f"))
             if self.colored:
                 layout.append(("in_color", "4f"))
             names = [n for n, _ in layout if n in program]

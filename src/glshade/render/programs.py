@@ -334,7 +334,9 @@ class ProgramKey:
                    variant.shadows and opaque, oit, textured and variant.mode in TEXTURED_MODES,
                    variant.forward if variant.shadows and opaque else Forward.ARRAY,
                    instanced, fetch and opaque, colored and variant.mode in TEXTURED_MODES,
-                   emissive and variant.mode in TEXTURED_MODES,
+                   # (a textured PBRMaterial's emission is its map's: pbr.glsl adds it)
+                   emissive and variant.mode in TEXTURED_MODES and not (
+                       textured and lighting is LightingModel.PBR),
                    lighting if variant.mode in TEXTURED_MODES else LightingModel.NOTES)
 
     def defines(self) -> tuple[str, ...]:
@@ -356,6 +358,8 @@ class ProgramKey:
                  ("OIT_PEEL", self.oit in (Role.PEEL, Role.PEEL_DEPTH)),
                  ("OIT_PEEL_DEPTH", self.oit is Role.PEEL_DEPTH),
                  ("TEXTURED", self.textured),
+                 ("NOTES_TEXTURED", self.textured and self.lighting is LightingModel.NOTES),
+                 ("PBR_TEXTURED", self.textured and self.lighting is LightingModel.PBR),
                  ("VERTEX_COLORS", self.colored), ("EMISSIVE", self.emissive),
                  ("PBR", self.lighting is LightingModel.PBR),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),

@@ -21,6 +21,12 @@ MAP_UNITS = {"texture": Unit.MAP_DIFFUSE, "specular_texture": Unit.MAP_SPECULAR,
              "opacity_texture": Unit.MAP_OPACITY}
 _UNIFORMS = {"texture": "u_map_diffuse", "specular_texture": "u_map_specular",
              "opacity_texture": "u_map_opacity"}
+#: a PBRMaterial's maps: unit, sampler and how the image is read (colour: sRGB decoded;
+#: data: linear, as glTF packs roughness, metallic and occlusion)
+PBR_MAPS = {"base_color_texture": (Unit.MAP_BASE, "u_pbr_base_map", "colour"),
+            "metallic_roughness_texture": (Unit.MAP_METALLIC_ROUGHNESS, "u_pbr_mr_map", "data"),
+            "occlusion_texture": (Unit.MAP_OCCLUSION, "u_pbr_occlusion_map", "data"),
+            "emissive_texture": (Unit.MAP_EMISSIVE, "u_pbr_emissive_map", "colour")}
 _SRGB8_ALPHA8 = 0x8C43
 _FILTERS = {"nearest": (moderngl.NEAREST, moderngl.NEAREST),
             "linear": (moderngl.LINEAR, moderngl.LINEAR),
@@ -50,7 +56,7 @@ class TextureCache(GLResource):
         self.white = self._keep(ctx.texture((1, 1), 4, bytes([255] * 4)))
         self.max_size = int(ctx.info.get("GL_MAX_TEXTURE_SIZE", 4096))
 
-    def get(self, texture, opacity: bool = False):
+    def get(self, texture, opacity: bool = False, data: bool = False):
         """The moderngl texture of ``texture`` (made now if need be).
 
         Parameters
@@ -59,9 +65,11 @@ class TextureCache(GLResource):
             The image.
         opacity : bool
             Its use as an opacity map (one channel).
+        data : bool
+            Its use as data (glTF's roughness, metallic and occlusion): RGBA, linear.
         """
         self._check()
-        key = (id(texture), opacity)
+        key = (id(texture), opacity, data)
         found = self._found.get(key)
         if found is not None and found[0]() is texture:
             return found[1]
@@ -76,6 +84,8 @@ class TextureCache(GLResource):
         ctx = self.context.ctx
         if opacity:
             tex = ctx.texture((w, h), 1, np.ascontiguousarray(opacity_channel(pixels)))
+        elif data:
+            tex = ctx.texture((w, h), 4, pixels.tobytes())
         else:
             tex = ctx.texture((w, h), 4, pixels.tobytes(), internal_format=_SRGB8_ALPHA8)
         tex.filter = _FILTERS[texture.filter]
@@ -111,6 +121,25 @@ class TextureCache(GLResource):
             put(prog, _UNIFORMS[name], unit)
             st += [*texture.scale, *texture.offset] if texture is not None else [1, 1, 0, 0]
         put(prog, "u_map_st", np.array(st, "f4").tobytes())
+
+    def bind_pbr(self, material, put, prog) -> None:
+        """Bind a PBRMaterial's maps (white where it has none) and point ``prog``'s samplers
+        at them.
+
+        Parameters
+        ----------
+        material : PBRMaterial
+            The surface.
+        put : callable
+            The uniform writer's ``put``.
+        prog : moderngl.Program
+            The program.
+        """
+        for name, (unit, uniform, use) in PBR_MAPS.items():
+            texture = getattr(material, name)
+            gl = self.white if texture is None else self.get(texture, data=use == "data")
+            gl.use(location=unit)
+            put(prog, uniform, unit)
 
     def _release_extra(self) -> None:
         for _, tex in self._found.values():

@@ -31,6 +31,10 @@ class Unit:
     INSTANCES = 9
     #: a material's diffuse, specular and opacity maps (shaders/include/textures.glsl)
     MAP_DIFFUSE, MAP_SPECULAR, MAP_OPACITY = 10, 11, 12
+    #: a PBRMaterial's maps (shaders/include/textures.glsl, PBR_TEXTURED): a program samples
+    #: one lighting model's maps, so glTF's take the notes' units, and one more
+    MAP_BASE, MAP_METALLIC_ROUGHNESS, MAP_OCCLUSION = MAP_DIFFUSE, MAP_SPECULAR, MAP_OPACITY
+    MAP_EMISSIVE = 15
     #: a big mesh's tables: each triangle's polygon, each polygon's normal and centroid
     #: (shaders/include/polygon_fetch.glsl)
     POLYGONS, POLYGON_PLANES = 13, 14

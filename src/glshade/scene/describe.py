@@ -42,20 +42,13 @@ def material_from_description(description, where: str):
     if alpha_mode == "MASK":
         dropped.append("alphaMode MASK (drawn opaque)")
     opacity = d["opacity"] if alpha_mode == "BLEND" else 1.0
-    base = maps.pop("base_color_texture", None)
-    if base is not None:
-        # (the maps of glTF's model are not drawn by PBRMaterial yet: its base colour map
-        # is drawn by the notes' model, which textures it)
-        dropped += [f"metallic {d['metallic']:g} and roughness {d['roughness']:g}",
-                    *sorted(maps)]
-        material: Material | PBRMaterial = Material(
-            name=d.get("name"), color=tuple(d["base_color"]), diffuse=tuple(d["base_color"]),
-            emission=tuple(d["emissive"]), opacity=opacity, texture=Texture(base))
-    else:
-        dropped += sorted(maps)
-        material = PBRMaterial(base_color=tuple(d["base_color"]), metallic=d["metallic"],
-                               roughness=d["roughness"], emissive=tuple(d["emissive"]),
-                               opacity=opacity, name=d.get("name"))
+    normal = maps.pop("normal_texture", None)
+    if normal is not None:
+        dropped.append("normal_texture")
+    material = PBRMaterial(base_color=tuple(d["base_color"]), metallic=d["metallic"],
+                           roughness=d["roughness"], emissive=tuple(d["emissive"]),
+                           opacity=opacity, name=d.get("name"),
+                           **{k: Texture(image) for k, image in maps.items()})
     if dropped:
         warnings.warn(f"{where}: not drawn: {', '.join(dropped)}", UserWarning, stacklevel=3)
     return material

@@ -6,14 +6,20 @@ Appendix B, and ``cpu/lighting.py`` its numpy twin."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from ..errors import SceneError
 from ..modes import LightingModel
 from .material import color3, nonnegative
+from .texture import Texture
 
 __all__ = ["PBRMaterial"]
+
+#: glTF's maps, the fields that hold them
+_MAPS = ("base_color_texture", "metallic_roughness_texture", "occlusion_texture",
+         "emissive_texture")
 
 
 def _unit(value, name: str) -> float:
@@ -54,6 +60,14 @@ class PBRMaterial:
         Whether the colours a mesh carries multiply ``base_color``.
     name : str or None
         Its name in its file.
+    base_color_texture, metallic_roughness_texture, occlusion_texture, emissive_texture : \
+Texture or None
+        glTF's maps (a Texture or an image path), at the mesh's texture coordinates: the
+        base colour (sRGB; multiplies ``base_color``, its alpha the opacity), roughness in
+        the green channel and metallic in the blue (linear; multiplying ``roughness`` and
+        ``metallic``), occlusion in the red (multiplying the ambient light), the emissive
+        colour (sRGB; multiplying ``emissive``). Read where the scheme lights: at every
+        pixel (Phong), at the vertices (Gouraud), once at a polygon's centre (flat).
     """
 
     base_color: tuple = (1.0, 1.0, 1.0)
@@ -63,6 +77,10 @@ class PBRMaterial:
     opacity: float = 1.0
     vertex_colors: bool = True
     name: str | None = None
+    base_color_texture: Texture | None = None
+    metallic_roughness_texture: Texture | None = None
+    occlusion_texture: Texture | None = None
+    emissive_texture: Texture | None = None
 
     #: the lighting model it is written for (the programs it is drawn with)
     lighting = LightingModel.PBR
@@ -80,6 +98,13 @@ class PBRMaterial:
         if not isinstance(self.vertex_colors, (bool, np.bool_)):
             raise SceneError(f"vertex_colors must be True or False, got {self.vertex_colors!r}")
         object.__setattr__(self, "vertex_colors", bool(self.vertex_colors))
+        for name in _MAPS:
+            value = getattr(self, name)
+            if isinstance(value, (str, Path)):
+                object.__setattr__(self, name, Texture(value))
+            elif value is not None and not isinstance(value, Texture):
+                raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
+                                 f"{type(value).__name__}")
 
     # ------------------------------------------------------------ what every pass asks
     @property
@@ -100,8 +125,8 @@ class PBRMaterial:
 
     @property
     def textures(self) -> dict:
-        """Its texture maps by name (none: factors only)."""
-        return {}
+        """Its texture maps by field name."""
+        return {name: t for name in _MAPS if (t := getattr(self, name)) is not None}
 
     @property
     def transparent(self) -> bool:

@@ -372,12 +372,14 @@ class MeshPass(GLResource, Stage):
         textured = (gpu.textured and bool(material.textures)
                     and options.mode in TEXTURED_MODES)
         colored = gpu.colored and material.vertex_colors and options.mode in TEXTURED_MODES
+        pbr = material.lighting is LightingModel.PBR
         # a big mesh draws its shared vertices in every mode that can (flat lit per
         # triangle, ids per triangle from a table): no copy of them at every corner -- but
-        # a coloured one's flat draw, whose polygon colour is the mean of its corners'
+        # a coloured one's flat draw, whose polygon colour is the mean of its corners', and
+        # a textured PBRMaterial's, whose maps are read at the polygon's centre
         variant = state.variant
         fetch = gpu.chunks is not None and role is Role.OPAQUE and (
-            (options.mode is ShadingMode.FLAT and not colored) or (
+            (options.mode is ShadingMode.FLAT and not colored and not (textured and pbr)) or (
                 options.mode not in (ShadingMode.RADIOSITY, ShadingMode.FLAT) and (
                     variant.aux or (variant.shadows and variant.forward is Forward.RAYS))))
         prog = self.program(variant, not cull, flat, role, textured, fetch=fetch,
@@ -406,7 +408,10 @@ class MeshPass(GLResource, Stage):
         if textured:
             if self._textures is None:
                 self._textures = TextureCache(self.context)
-            self._textures.bind(model.material, put, prog)
+            if pbr:
+                self._textures.bind_pbr(model.material, put, prog)
+            else:
+                self._textures.bind(model.material, put, prog)
         if options.mode is ShadingMode.RADIOSITY:
             vao = gpu.color_array(prog, model.display_colors(scene.ambient))
         else:

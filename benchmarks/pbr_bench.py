@@ -2,8 +2,10 @@
 scene -- a 100k-triangle UV sphere, 512x512, three lights (directional, point, spot) --
 in each scheme (flat, Gouraud, Phong), and against a hand-written floor: one moderngl
 program with the textbook per-fragment Phong formula drawing the same triangles (no
-culling, RGBA read back every frame). Interleaved in one process, medians. Goal: PBR in
-Phong >= 0.8x the notes' model's frames/s.
+culling, RGBA read back every frame); and textured: a 256x256 base colour map and a
+metallic-roughness map on PBRMaterial, a diffuse map on Material. Interleaved in one
+process, medians. Goals: PBR in Phong >= 0.8x the notes' model's frames/s, textured PBR
+>= 0.7x.
 
 Run: ``.venv/bin/python benchmarks/pbr_bench.py [--repeats 5] [--size 512]``.
 """
@@ -93,6 +95,14 @@ def main() -> None:
     camera = g.Camera.look_at((0.0, 0.0, 3.0), (0.0, 0.0, 0.0), fov_y=45)
     notes = scene(g.Material(color=(0.9, 0.6, 0.2), ks=0.5, shininess=40))
     pbr = scene(g.PBRMaterial(base_color=(0.9, 0.6, 0.2), metallic=0.5, roughness=0.4))
+    rng = np.random.default_rng(0)
+    image = g.Texture(rng.integers(0, 256, (256, 256, 3), dtype=np.uint8))
+    packed = g.Texture(rng.integers(0, 256, (256, 256, 3), dtype=np.uint8))
+    notes_mapped = scene(g.Material(color=(0.9, 0.6, 0.2), ks=0.5, shininess=40,
+                                    texture=image))
+    pbr_mapped = scene(g.PBRMaterial(base_color=(0.9, 0.6, 0.2), metallic=0.5, roughness=0.4,
+                                     base_color_texture=image,
+                                     metallic_roughness_texture=packed))
     rows = []
     with g.Renderer(args.size, args.size, samples=0) as r:
         print(frame_header(r, args.size, args.repeats))
@@ -100,16 +110,21 @@ def main() -> None:
         for mode in ("flat", "gouraud", "phong"):
             series = {"floor": hand,
                       "Material": lambda mode=mode: r.render(notes, camera, mode, cull=False),
-                      "PBRMaterial": lambda mode=mode: r.render(pbr, camera, mode, cull=False)}
+                      "PBRMaterial": lambda mode=mode: r.render(pbr, camera, mode, cull=False),
+                      "Material mapped": lambda mode=mode: r.render(notes_mapped, camera, mode,
+                                                                    cull=False),
+                      "PBR mapped": lambda mode=mode: r.render(pbr_mapped, camera, mode,
+                                                               cull=False)}
             for fn in series.values():
                 fn()  # (compiled and sized before the clock)
             med = interleaved(series, args.repeats)
             rows.append((mode, *(f"{med[k] * 1000:.1f}" for k in series),
                          f"{med['Material'] / med['PBRMaterial']:.2f}",
+                         f"{med['Material'] / med['PBR mapped']:.2f}",
                          f"{med['floor'] / med['PBRMaterial']:.2f}"))
     print(table(rows, ("scheme", "floor ms", "Material ms", "PBRMaterial ms",
-                       "PBR fps / notes fps", "PBR fps / floor fps")))
-    print("textured PBR: not measured (PBRMaterial's maps are not drawn yet)")
+                       "Material mapped ms", "PBR mapped ms", "PBR / notes fps",
+                       "PBR mapped / notes fps", "PBR / floor fps")))
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@
 // and each light adds f x its colour x intensity x N.L, the intensity over d^2 for point and
 // spot lights (candela), as it is for directional ones (lux); nothing from behind the
 // surface. The light's colour x intensity arrives as LIGHT_SPECULAR(i) (constants.glsl),
-// the scene's ambient light x the base colour as AMBIENT_TERM. Its numpy twin:
+// the scene's ambient light x ka x the base colour as AMBIENT_TERM (glTF has none: the
+// notes' coefficient). Its numpy twin:
 // cpu/lighting.py (pbr_radiance).
 #ifndef PBR_GLSL
 #define PBR_GLSL

@@ -23,6 +23,7 @@ EYE = np.array([0.6, 0.9, 3.6])
 CAMERA = Camera.look_at(eye=tuple(EYE), target=(0.0, 0.0, 0.0), fov_y=38.0)
 AMBIENT = np.array([0.05, 0.04, 0.03])
 BASE = np.array([0.9, 0.55, 0.3])
+KA = 0.2  # (PBRMaterial's default: the notes' ambient coefficient)
 LIGHTS = {"directional": DirectionalLight(direction=(-0.4, -0.7, -0.6), intensity=2.5,
                                           color=(1.0, 0.95, 0.9)),
           "point": PointLight(position=(1.8, 2.4, 2.2), intensity=14.0)}
@@ -53,7 +54,7 @@ def appendix_b(n, to_light, v, base, metallic, roughness):
 
 def radiance(p, n, base, metallic, roughness, light):
     """Outgoing radiance at points ``p`` with normals ``n``: the light through the BRDF
-    (lux, or candela / d^2) plus the ambient x base colour."""
+    (lux, or candela / d^2) plus ka x the ambient x base colour."""
     v = EYE - p
     v /= np.linalg.norm(v, axis=1, keepdims=True)
     ip = np.asarray(light.color) * light.intensity
@@ -65,7 +66,8 @@ def radiance(p, n, base, metallic, roughness, light):
         d2 = np.einsum("ij,ij->i", to, to)
         l = to / np.sqrt(d2)[:, None]  # noqa: E741
         k = 1 / d2
-    return AMBIENT * base + k[:, None] * ip * appendix_b(n, l, v, base, metallic, roughness)
+    return KA * AMBIENT * base + k[:, None] * ip * appendix_b(n, l, v, base, metallic,
+                                                              roughness)
 
 
 def scene_of(mesh, material, light):
@@ -178,7 +180,7 @@ def test_gouraud_and_flat_evaluate_it_where_the_notes_model_is(make_renderer, mo
 
 def test_emission_and_vertex_colours_take_their_places(make_renderer):
     """The emissive colour adds as it is; a mesh's colours multiply the base colour (here,
-    a dark light: the ambient term alone, Ia x base x C)."""
+    a dark light: the ambient term alone, ka Ia x base x C)."""
     sphere = P.uv_sphere(12, 24)
     colors = np.random.default_rng(1).uniform(0.2, 1, (sphere.n_vertices, 3))
     mesh = Mesh(sphere.vertices, sphere.faces, colors=colors)
@@ -189,7 +191,7 @@ def test_emission_and_vertex_colours_take_their_places(make_renderer):
     polygons = frame.face_id[frame.face_id >= 0]
     got = frame.color[..., :3][frame.face_id >= 0]
     means = np.array([colors[np.asarray(f)].mean(0) for f in sphere.faces])
-    want = AMBIENT * BASE * means[polygons] + (0.1, 0.2, 0.05)
+    want = KA * AMBIENT * BASE * means[polygons] + (0.1, 0.2, 0.05)
     assert np.abs(got - want).max() <= 1e-5
 
 

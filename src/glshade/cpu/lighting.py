@@ -131,7 +131,7 @@ def pbr_radiance(p: F, n: F, v: F, material, lights, ambient) -> F:
     """glTF's metallic-roughness model (pbr.glsl's twin): outgoing radiance ``(..., 3)`` at
     points ``p`` with unit normals ``n`` and unit view vectors ``v``, for a PBRMaterial --
     Appendix B's BRDF times each light's colour x intensity (over d^2 for point and spot
-    lights, times a spot's cone) x N.L, plus ``ambient x base_color``.
+    lights, times a spot's cone) x N.L, plus ``ambient x ka x base_color``.
 
     Parameters
     ----------
@@ -153,7 +153,7 @@ def pbr_radiance(p: F, n: F, v: F, material, lights, ambient) -> F:
     a2 = alpha * alpha
     f0 = 0.04 * (1 - metallic) + base * metallic
     nv = np.maximum(_dot(n, v), 1e-4)
-    color = np.broadcast_to(np.asarray(ambient) * base, p.shape).copy()
+    color = np.broadcast_to(np.asarray(ambient) * material.ka * base, p.shape).copy()
     for light in lights:
         ip = np.asarray(light.color) * light.intensity
         if isinstance(light, DirectionalLight):

@@ -531,7 +531,7 @@ def _material(m: dict, mesh, base: Path, where):
         if notes:
             raise SceneFormatError(f"{where('pbr')} key 'pbr' and '{notes[0]}' are two "
                                    "lighting models' materials: give one")
-        fields_ = {"base_color", "metallic", "roughness", "emissive", "opacity"}
+        fields_ = {"base_color", "metallic", "roughness", "emissive", "opacity", "ka"}
         unknown = sorted(set(m["pbr"]) - fields_)
         if unknown:
             raise SceneFormatError(f"{where('pbr')} key 'pbr': unknown factor '{unknown[0]}'; "

@@ -109,10 +109,11 @@ def material_uniforms(material, lights, ambient) -> list:
         ``(3,)`` the ambient intensity.
     """
     if material.lighting is LightingModel.PBR:  # (pbr.glsl: the light's colour x intensity
-        # in the specular slot, Ia x the base colour the ambient term)
+        # in the specular slot, Ia ka x the base colour the ambient term)
         ip = np.array([np.asarray(x.color) * x.intensity for x in lights], "f4")
         base = np.asarray(material.base_color, np.float64)
-        return [("u_ambient_term", tuple(float(x) for x in np.asarray(ambient) * base)),
+        return [("u_ambient_term", tuple(float(x) for x in np.asarray(ambient) *
+                                         material.ka * base)),
                 ("u_light_diffuse", np.zeros_like(ip).tobytes()),
                 ("u_light_specular", ip.tobytes()), ("u_shininess", 0.0),
                 ("u_emission", tuple(float(x) for x in material.emission)),

@@ -38,8 +38,10 @@ class PBRMaterial:
     base_color / pi``. Lights act as glTF defines: outgoing radiance = BRDF x colour x
     intensity x cos(theta), the intensity in lux for a directional light and candela / d^2
     for point and spot lights (their ``attenuation`` is the notes' model's, not used here).
-    The scene's ambient light adds ``Ia x base_color`` (as pyrender adds it), and
-    ``emissive`` adds as it is.
+    glTF's model has no ambient term; the scene's ambient light ``Ia`` adds
+    ``ka x Ia x base_color``, with the notes' coefficient ``ka`` (0.2, as for a Material, so
+    that a scene's default ambient light lights both models alike; ``ka=1`` is pyrender's
+    ``ambient_light x base colour``). ``emissive`` adds as it is.
 
     A mesh's colours (:attr:`Mesh.colors`) multiply ``base_color`` (glTF's ``COLOR_0``), and
     their alpha the opacity, unless ``vertex_colors=False``.
@@ -56,6 +58,8 @@ class PBRMaterial:
         Linear RGB radiance the surface gives off, each >= 0 (glTF's emissiveFactor).
     opacity : float
         In [0, 1] (glTF's base colour alpha); below 1 the surface is transparent.
+    ka : float
+        In [0, 1]: how much of the scene's ambient light it reflects, times its base colour.
     vertex_colors : bool
         Whether the colours a mesh carries multiply ``base_color``.
     name : str or None
@@ -75,6 +79,7 @@ Texture or None
     roughness: float = 1.0
     emissive: tuple = (0.0, 0.0, 0.0)
     opacity: float = 1.0
+    ka: float = 0.2
     vertex_colors: bool = True
     name: str | None = None
     base_color_texture: Texture | None = None
@@ -95,6 +100,7 @@ Texture or None
         object.__setattr__(self, "roughness", _unit(self.roughness, "roughness"))
         object.__setattr__(self, "emissive", color3(self.emissive, "emissive"))
         object.__setattr__(self, "opacity", _unit(self.opacity, "opacity"))
+        object.__setattr__(self, "ka", _unit(self.ka, "ka"))
         if not isinstance(self.vertex_colors, (bool, np.bool_)):
             raise SceneError(f"vertex_colors must be True or False, got {self.vertex_colors!r}")
         object.__setattr__(self, "vertex_colors", bool(self.vertex_colors))
@@ -120,8 +126,9 @@ Texture or None
 
     @property
     def ambient_rgb(self) -> tuple[float, float, float]:
-        """What the scene's ambient light is multiplied by: ``base_color``."""
-        return self.base_color
+        """What the scene's ambient light is multiplied by: ``ka x base_color``."""
+        r, g, b = (self.ka * np.asarray(self.base_color)).tolist()
+        return r, g, b
 
     @property
     def textures(self) -> dict:

@@ -316,3 +316,37 @@ def test_maps_are_read_where_the_scheme_lights(make_renderer, mode):
     diff = np.abs(got[seen] - np.clip(want, 0, 1))[inside]
     assert inside.sum() > 500
     assert diff.max() <= 2 / 255, (mode, diff.max() * 255)
+
+
+def test_compare_draws_the_schemes_in_glTFs_model_too(make_renderer):
+    """``compare(..., modes=["phong", "pbr-phong"])``: the second tile is the scene in glTF's
+    model -- the Material as PBRMaterial.like makes it (base = C, metallic 0, roughness from
+    n by alpha^2 = 2 / (n + 2)), a directional light x pi -- against Appendix B here."""
+    from glshade import compare
+
+    n = 24.0
+    color = np.array([0.7, 0.5, 0.3])
+    scene = Scene(ambient=tuple(AMBIENT), background=(0, 0, 0))
+    scene.add(P.uv_sphere(96, 192), g_material(color, n))
+    light = DirectionalLight(direction=(-0.4, -0.7, -0.6), intensity=0.8)
+    scene.add_light(light)
+    r = make_renderer(W, H, samples=0)
+    result = compare(scene, CAMERA, ["phong", "pbr-phong"], renderer=r, diff=False,
+                     size=(W, H))
+    got = result.images["pbr-phong"].astype(float) / 255
+    hit, p = sphere_hits()
+    normals = p / np.linalg.norm(p, axis=-1, keepdims=True)
+    v = EYE - p
+    v /= np.linalg.norm(v, axis=-1, keepdims=True)
+    away = hit & (np.einsum("...k,...k", normals, v) > 0.25)
+    roughness = (2 / (n + 2)) ** 0.25
+    scaled = DirectionalLight(direction=light.direction, intensity=0.8 * np.pi)
+    want = np.clip(radiance(p[away], normals[away], color, 0.0, roughness, scaled), 0, 1)
+    assert np.abs(got[away][:, :3] - want).max() <= 3 / 255
+    assert [m.mode for m in result.metrics] == ["phong", "pbr-phong"]
+
+
+def g_material(color, n):
+    from glshade import Material
+
+    return Material(color=tuple(color), shininess=n)

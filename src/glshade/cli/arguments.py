@@ -97,7 +97,7 @@ class AnimateArgs(RenderArgs, ExecutorArgs):
 class CompareArgs(RenderArgs, ExecutorArgs):
     mesh: str
     output: str
-    modes: tuple[ShadingMode, ...] = ()
+    modes: tuple[str, ...] = ()  # (shading modes, and schemes in glTF's model: pbr-phong)
     diff: bool = True
     reference: str = "auto"
     spp: int = 64

@@ -238,7 +238,12 @@ def compare(args: a.CompareArgs) -> int:
     from ..compare import compare as run
     from ..io.images import save_image
 
-    modes = [m.value for m in args.modes]
+    modes = list(args.modes)
+    gltf = [m for m in modes if m.startswith("pbr-")]
+    if gltf and (args.sweep or len(args.shadows or ()) > 1 or
+                 len(args.transparency or ()) > 1):
+        raise UsageError(f"--modes {gltf[0]} (glTF's model) is for a grid of modes, not with "
+                         "--sweep or several --shadows/--transparency methods")
     if args.sweep:
         return _sweep(args, modes)
     v.check_outputs({"the grid": args.output, "--json": args.json, "--csv": args.csv},
@@ -286,7 +291,7 @@ def _compare_methods(args: a.CompareArgs, job, option: str, values) -> int:
 
     from ..modes import ShadingMode
 
-    mode = args.modes[0] if len(args.modes) == 1 else ShadingMode.PHONG
+    mode = ShadingMode.parse(args.modes[0]) if len(args.modes) == 1 else ShadingMode.PHONG
     if mode not in SHADOWED_MODES:
         raise UsageError(f"--{option} compares its methods in a lit mode (flat, gouraud or "
                          f"phong; with several --modes, phong), not {mode.value}")

@@ -263,8 +263,10 @@ def add_compare(sub) -> None:
     p.add_argument("mesh", metavar="MESH|SCENE", help=MESH_HELP)
     p.add_argument("-o", "--output", required=True, type=v.image_output,
                    help="output image: the grid (or the plot, with --sweep)")
-    p.add_argument("--modes", type=v.modes, default="flat,gouraud,phong",
-                   help="comma-separated modes (default flat,gouraud,phong)")
+    p.add_argument("--modes", type=v.compare_modes, default="flat,gouraud,phong",
+                   help="comma-separated modes (default flat,gouraud,phong); pbr-flat, "
+                   "pbr-gouraud, pbr-phong: the scheme with the scene's materials in glTF's "
+                   "metallic-roughness model, to compare the two lighting models")
     p.add_argument("--diff", action=argparse.BooleanOptionalAction, default=True,
                    help="a row of difference heat maps under the renders, each with its "
                    "mean, max, PSNR and SSIM (default on; --no-diff: the renders alone)")

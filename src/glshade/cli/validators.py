@@ -100,6 +100,19 @@ def mode(text: str) -> ShadingMode:
     return _rule(ShadingMode.parse, text)
 
 
+def compare_modes(text: str) -> list[str]:
+    """A comma-separated list of compare's modes: shading modes, or schemes in glTF's
+    model (``pbr-phong``)."""
+    from ..compare.comparison import compare_mode
+    from ..errors import ComparisonError
+
+    names = [t.strip() for t in text.split(",") if t.strip()] or [""]
+    try:
+        return [compare_mode(t)[0] for t in names]
+    except (ComparisonError, ValueError) as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def levels(text: str) -> list[int]:
     """``a..b`` or ``a,b,c`` as a list of tessellation levels (each sweep checks its own
     range: sphere subdivisions 0 to 8, patch tessellations 1 to 512)."""

@@ -289,6 +289,70 @@ def reference_image(scene, camera, kind, renderer, size, options, spp=64):
 COMPARE_CONFIG = RenderConfig(256, 256, samples=0)
 
 
+#: compare's prefix for a scheme drawn in glTF's lighting model ("pbr-phong"): each of the
+#: scene's notes' Materials as its nearest PBRMaterial (PBRMaterial.like)
+PBR_PREFIX = "pbr-"
+
+
+def compare_mode(text) -> tuple[str, ShadingMode, bool]:
+    """One of compare's modes: ``(label, scheme, in glTF's model)`` -- a shading mode by
+    name, or a scheme prefixed ``pbr-``: the scene drawn in glTF's metallic-roughness model
+    (its notes' Materials as :meth:`PBRMaterial.like <glshade.PBRMaterial.like>` makes
+    them), so that the two lighting models are compared as the schemes are.
+
+    Parameters
+    ----------
+    text : str or ShadingMode
+        ``"phong"``, ``"pbr-phong"`` ...
+    """
+    name = text.value if isinstance(text, ShadingMode) else str(text).strip()
+    pbr = name.startswith(PBR_PREFIX)
+    mode = ShadingMode.parse(name[len(PBR_PREFIX):] if pbr else name)
+    if pbr and mode not in (ShadingMode.FLAT, ShadingMode.GOURAUD, ShadingMode.PHONG):
+        raise ComparisonError(f"{PBR_PREFIX} takes a shading scheme (flat, gouraud or phong), "
+                              f"not {mode.value}")
+    return (PBR_PREFIX + mode.value if pbr else mode.value), mode, pbr
+
+
+def in_gltfs_model(scene: Scene, camera: Camera) -> Scene:
+    """A copy of ``scene`` in glTF's lighting model: its meshes' notes' Materials their
+    nearest glTF equivalents (:meth:`PBRMaterial.like <glshade.PBRMaterial.like>`), and its
+    lights (the headlight where it has none) in glTF's units, scaled so that each gives
+    where it first meets the scene what it gives in the notes' model: glTF's diffuse lobe is
+    albedo / pi and a point or spot light's candela fall off as 1 / d^2, the notes'
+    intensity does neither -- so x pi, and x d^2 at the distance d from the light to the
+    nearest point of the scene's bounding box (its centre's, for a light inside it).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    camera : Camera
+        The camera (the headlight's place).
+    """
+    import copy
+    import dataclasses
+
+    from ..modes import LightingModel
+    from ..scene.lights import DirectionalLight
+    from ..scene.pbr import PBRMaterial
+
+    out = copy.copy(scene)
+    out.models = [dataclasses.replace(m, material=PBRMaterial.like(m.material))
+                  if m.material.lighting is LightingModel.NOTES else m for m in scene.models]
+    box = np.asarray(scene.bounds, np.float64) if scene.models else np.zeros((2, 3))
+    lights = []
+    for light in scene.lights_for(camera):
+        scale = np.pi
+        if not isinstance(light, DirectionalLight):
+            at = np.asarray(light.position, np.float64)
+            d2 = float(np.sum((at - np.clip(at, box[0], box[1])) ** 2))
+            scale *= d2 if d2 > 0 else float(np.sum((at - box.mean(0)) ** 2))
+        lights.append(dataclasses.replace(light, intensity=light.intensity * scale))
+    out.lights = lights
+    return out
+
+
 def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
             reference="auto", *, size=None, diff: bool = True, renderer=None,
             backend=None, options: DrawOptions | None = None,
@@ -317,7 +381,8 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     camera : Camera
         From where.
     modes : sequence of str
-        The shading modes measured.
+        The shading modes measured; ``"pbr-flat"``, ``"pbr-gouraud"``, ``"pbr-phong"``: the
+        scheme with the scene's Materials in glTF's model (:func:`compare_mode`).
     reference : str or ndarray
         ``"auto"``, ``"analytic"``, ``"phong-fine"``, ``"pathtrace"``, an image path or an
         ``(H, W, 3)`` array.
@@ -342,8 +407,8 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
     """
     from ..render.renderer import Renderer
 
-    modes = [ShadingMode.parse(m) for m in modes]
-    if not modes:
+    parsed = [compare_mode(m) for m in modes]
+    if not parsed:
         raise ComparisonError("compare needs at least one mode")
     config = RenderConfig.of(config, size=size, backend=backend, base=COMPARE_CONFIG)
     if config.samples:
@@ -363,9 +428,11 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
         ref, ref_mask, ref_kind, crease = reference_image(scene, camera, reference, r, size, base,
                                                      spp)
         drawn = {ShadingMode.parse(k): v for k, v in (scenes or {}).items()}
-        frames = {m: r.render_frame(drawn.get(m, scene), camera, base.replace(mode=m),
-                                    outputs=Outputs.FACE_ID, color_dtype="f4")
-                  for m in modes}
+        gltf = in_gltfs_model(scene, camera) if any(pbr for _, _, pbr in parsed) else scene
+        frames = {label: r.render_frame(gltf if pbr else drawn.get(m, scene), camera,
+                                        base.replace(mode=m), outputs=Outputs.FACE_ID,
+                                        color_dtype="f4")
+                  for label, m, pbr in parsed}
     finally:
         if own:
             r.close()
@@ -380,10 +447,10 @@ def compare(scene: Scene, camera: Camera, modes=("flat", "gouraud", "phong"),
         # the silhouette: within a pixel of where the mode's or the reference's coverage ends
         silhouette = mask & (metrics.edge_mask(covered.astype(np.int8)) |
                              metrics.edge_mask(ref_mask.astype(np.int8)))
-        images[m.value], masks[m.value], silhouettes[m.value] = img, mask, silhouette
-        errors[m.value] = np.where(mask, metrics.abs_error(img, ref), 0.0)
+        images[m], masks[m], silhouettes[m] = img, mask, silhouette
+        errors[m] = np.where(mask, metrics.abs_error(img, ref), 0.0)
         results.append(ModeMetrics(
-            mode=m.value, mean_abs=metrics.mae(img, ref, mask),
+            mode=m, mean_abs=metrics.mae(img, ref, mask),
             max_abs=metrics.max_error(img, ref, mask), rmse=metrics.rmse(img, ref, mask),
             psnr=metrics.psnr(img, ref, mask), ssim=metrics.ssim(img, ref, mask),
             mach_band=metrics.mach_band_strength(img, f.face_id, ref),

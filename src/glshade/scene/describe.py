@@ -45,10 +45,10 @@ def material_from_description(description, where: str):
     normal = maps.pop("normal_texture", None)
     if normal is not None:
         dropped.append("normal_texture")
+    textures: dict = {k: Texture(image) for k, image in maps.items()}
     material = PBRMaterial(base_color=tuple(d["base_color"]), metallic=d["metallic"],
                            roughness=d["roughness"], emissive=tuple(d["emissive"]),
-                           opacity=opacity, name=d.get("name"),
-                           **{k: Texture(image) for k, image in maps.items()})
+                           opacity=opacity, name=d.get("name"), **textures)
     if dropped:
         warnings.warn(f"{where}: not drawn: {', '.join(dropped)}", UserWarning, stacklevel=3)
     return material

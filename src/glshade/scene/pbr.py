@@ -112,6 +112,31 @@ Texture or None
                 raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
                                  f"{type(value).__name__}")
 
+    @classmethod
+    def like(cls, material) -> PBRMaterial:
+        """The nearest glTF material to a notes' :class:`~glshade.Material`, to compare the
+        two lighting models on one scene (``compare(..., modes=["phong", "pbr-phong"])``):
+        its colour C as the base colour, a dielectric (metallic 0: the notes' highlight is
+        the light's colour), roughness from the specular exponent n by ``alpha^2 = 2 / (n +
+        2)`` (the Phong-to-microfacet correspondence of Walter et al. 2007, alpha =
+        roughness^2), its ka, emission, opacity and diffuse map. A PBRMaterial is returned
+        as it is.
+
+        Parameters
+        ----------
+        material : Material or PBRMaterial
+            The material.
+        """
+        if isinstance(material, cls):
+            return material
+        alpha = float(np.sqrt(2.0 / (material.shininess + 2.0)))
+        base = np.clip(np.asarray(material.color, np.float64), 0.0, 1.0)
+        return cls(base_color=tuple(base.tolist()), metallic=0.0,
+                   roughness=float(np.sqrt(min(alpha, 1.0))), emissive=material.emission,
+                   opacity=material.opacity, ka=min(float(material.ka), 1.0),
+                   vertex_colors=material.vertex_colors, name=material.name,
+                   base_color_texture=material.texture)
+
     # ------------------------------------------------------------ what every pass asks
     @property
     def emission(self) -> tuple[float, float, float]:

@@ -36,6 +36,9 @@ out vec2 v_uv;  // (per pixel: the polygon's one lit colour times its texels)
 #ifdef PBR_TEXTURED
 in vec2 in_face_uv;  // (the mean of the polygon's corners' uv: gpu_mesh.py)
 #endif
+#ifdef PBR_NORMAL_MAP
+in vec4 in_face_tangent;  // (the polygon's tangent frame: the map bends its normal)
+#endif
 #ifdef VERTEX_COLORS
 in vec4 in_color;  // (the polygon's one colour at each of its corners: gpu_mesh.py)
 flat out float v_alpha;
@@ -56,7 +59,12 @@ void main() {
 #ifdef PBR_TEXTURED
     g_pbr_uv = in_face_uv;  // (glTF's maps read once, at the polygon's centre)
 #endif
+#ifdef PBR_NORMAL_MAP
+    flat_polygon(pbr_mapped_normal(normalize(in_face_normal), in_face_tangent, in_face_uv),
+                 in_face_centroid);
+#else
     flat_polygon(in_face_normal, in_face_centroid);
+#endif
     gl_Position = u_proj * p_view;
 }
 #endif

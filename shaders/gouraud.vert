@@ -16,6 +16,9 @@ out vec2 v_uv;
 in vec4 in_color;
 out float v_alpha;
 #endif
+#ifdef PBR_NORMAL_MAP
+in vec4 in_tangent;  // (the map bends the vertex's normal, in model space)
+#endif
 
 void main() {
     PASS_POLYGON_ID();
@@ -26,7 +29,11 @@ void main() {
 #ifdef PBR_TEXTURED
     g_pbr_uv = in_uv;  // (glTF's maps read at the vertex: where Gouraud lights)
 #endif
+#ifdef PBR_NORMAL_MAP
+    gouraud_stage(in_position, pbr_mapped_normal(normalize(in_normal), in_tangent, in_uv));
+#else
     gouraud_stage(in_position, in_normal);
+#endif
 #ifdef TEXTURED
     v_uv = in_uv;
 #endif

@@ -15,12 +15,18 @@ in vec2 v_uv;
 #ifdef VERTEX_COLORS
 in vec4 v_color;
 #endif
+#ifdef PBR_NORMAL_MAP
+in vec4 v_tangent_view;
+#endif
 #ifdef WORLD_NORMALS
 in vec3 v_normal_world;
 #endif
 
 void main() {
     vec3 n = normalize(v_normal_view);
+#ifdef PBR_NORMAL_MAP
+    n = pbr_mapped_normal(n, v_tangent_view, v_uv);  // (before a back face turns it round)
+#endif
 #ifdef WORLD_NORMALS
     vec3 n_world = normalize(v_normal_world);
 #else

@@ -19,6 +19,10 @@ out vec2 v_uv;  // (interpolated perspective-correct)
 in vec4 in_color;
 out vec4 v_color;  // (the mesh's C and alpha, interpolated: lit per pixel)
 #endif
+#ifdef PBR_NORMAL_MAP
+in vec4 in_tangent;
+out vec4 v_tangent_view;  // (the tangent frame in view space, interpolated: mapped per pixel)
+#endif
 
 void main() {
     PASS_POLYGON_ID();
@@ -28,6 +32,9 @@ void main() {
 #endif
 #ifdef VERTEX_COLORS
     v_color = in_color;
+#endif
+#ifdef PBR_NORMAL_MAP
+    v_tangent_view = vec4(mat3(u_model_view) * in_tangent.xyz, in_tangent.w);
 #endif
 #ifdef FLAT_CONSTANTS
     forward_constants();

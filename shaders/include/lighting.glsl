@@ -20,6 +20,14 @@
 #define LIGHT_VISIBLE(i) 1.0
 #endif
 
+// KHR_lights_punctual's range window, clamp(1 - (d / range)^4, 0, 1)^2; 1 where a light has
+// no range (its position's w, the reciprocal of the range, is 0).
+float range_window(float dist, float inverse_range) {
+    float x = dist * inverse_range;
+    float w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+    return w * w;
+}
+
 // Unit vector from the point towards the eye: along +z everywhere for an orthographic camera.
 vec3 view_dir(vec3 p_view) {
 #ifdef ORTHOGRAPHIC
@@ -46,9 +54,10 @@ vec3 light_term_parts(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view,
         vec3 to_light = l - p_view;
         float dist = length(to_light);
         l = to_light / max(dist, 1e-30);
-        if (kind == ATTENUATED || kind == SPOT) {
+        if (kind == ATTENUATED || kind == SPOT) {  // (a light with a range is ATTENUATED)
             vec3 att = LIGHT_ATTENUATION(i);
-            k = 1.0 / max(att.x + att.y * dist + att.z * dist * dist, 1e-30);
+            k = range_window(dist, LIGHT_POS_VIEW(i).w) /
+                max(att.x + att.y * dist + att.z * dist * dist, 1e-30);
         }
         if (kind == SPOT) {
             // KHR_lights_punctual's cone: clamp(cos(angle from the axis) scale + offset)^2

@@ -96,7 +96,7 @@ vec3 light_term(int i, int kind, vec3 p_view, vec3 n_view, vec3 v_view) {
         vec3 to_light = l - p_view;
         float d2 = max(dot(to_light, to_light), 1e-30);
         l = to_light * inversesqrt(d2);
-        k = 1.0 / d2;
+        k = range_window(sqrt(d2), LIGHT_POS_VIEW(i).w) / d2;
         if (kind == SPOT) {  // (KHR_lights_punctual's cone, as for the notes' model)
             vec4 spot = LIGHT_SPOT(i);
             float s = clamp(dot(spot.xyz, -l) + spot.w, 0.0, 1.0);

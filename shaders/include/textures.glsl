@@ -29,6 +29,18 @@ uniform sampler2D u_pbr_base_map;
 uniform sampler2D u_pbr_mr_map;
 uniform sampler2D u_pbr_occlusion_map;
 uniform sampler2D u_pbr_emissive_map;
+#ifdef PBR_NORMAL_MAP
+uniform sampler2D u_pbr_normal_map;  // tangent space, linear: 2 x texel - 1
+
+// The normal bent by the map at ``uv``: ``t`` the tangent frame (xyz towards increasing u,
+// w the handedness: the bitangent is w n x t), ``n`` the unit normal, in one space.
+vec3 pbr_mapped_normal(vec3 n, vec4 t, vec2 uv) {
+    vec3 tangent = normalize(t.xyz - n * dot(n, t.xyz));
+    vec3 bitangent = t.w * cross(n, tangent);
+    vec3 m = texture(u_pbr_normal_map, uv).xyz * 2.0 - 1.0;
+    return normalize(tangent * m.x + bitangent * m.y + n * m.z);
+}
+#endif
 
 float pbr_map_alpha(vec2 uv) {
     return texture(u_pbr_base_map, uv).a;

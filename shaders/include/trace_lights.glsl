@@ -15,6 +15,7 @@ uniform vec4 u_light_pos[LIGHTS];  // (position or direction to the light, kind:
 uniform vec3 u_light_irr[LIGHTS];
 uniform vec3 u_light_att[LIGHTS];
 uniform vec4 u_light_spot[LIGHTS];  // a spot's axis x its cone's scale, the cone's offset
+uniform float u_light_range[LIGHTS];  // 1 / a light's range (0: none)
 #endif
 
 // MIS (Veach's power heuristic): the weight of a sample drawn with density a where another
@@ -96,6 +97,10 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
             wi = to / dist;
             vec3 c = u_light_att[i];
             att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+            // (KHR_lights_punctual's range window, as lighting.glsl has it)
+            float x = dist * u_light_range[i];
+            float window = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+            att *= window * window;
             if (u_light_pos[i].w > 1.5) {  // (a spot: KHR_lights_punctual's cone)
                 float s = clamp(dot(u_light_spot[i].xyz, -wi) + u_light_spot[i].w, 0.0, 1.0);
                 att *= s * s;

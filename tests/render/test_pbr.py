@@ -350,3 +350,39 @@ def g_material(color, n):
     from glshade import Material
 
     return Material(color=tuple(color), shininess=n)
+
+
+@pytest.mark.parametrize("mode", ["phong", "flat"])
+def test_a_normal_map_bends_the_normal_in_the_uv_frame(make_renderer, mode):
+    """A square whose normal map holds one tilted normal everywhere (tangent space: x along
+    increasing u, y along increasing v): lit as a surface with that normal -- Appendix B here
+    with n = 0.48 t + 0.36 b + 0.8 N -- at every pixel (Phong), once at the centre (flat)."""
+    from glshade import Texture
+
+    tilt = np.array([0.48, 0.36, 0.8])
+    texel = np.round((tilt * 0.5 + 0.5) * 255).astype(np.uint8)
+    normal_map = Texture(np.broadcast_to(texel, (4, 4, 3)).copy(), filter="nearest")
+    vertices = np.array([[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0],
+                         [-1.0, 1.0, 0.0]])
+    uv = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    mesh = Mesh(vertices, [[0, 1, 2, 3]], uv=uv)
+    material = PBRMaterial(base_color=tuple(BASE), metallic=0.2, roughness=0.5,
+                           normal_texture=normal_map)
+    light = LIGHTS["directional"]
+    r = make_renderer(W, H, samples=0)
+    frame = r.render_frame(scene_of(mesh, material, light), CAMERA, mode, color_dtype="f4")
+    decoded = texel / 255.0 * 2 - 1  # (what the 8-bit map holds)
+    bent = decoded.astype(float)  # (the square's u runs along x, v along y, N is z)
+    bent /= np.linalg.norm(bent)
+    o, d = CAMERA.rays((W, H))
+    p = o + (-o[..., 2] / d[..., 2])[..., None] * d
+    seen = (frame.face_id == 0) & inside_regions(frame.face_id)
+    if mode == "phong":
+        points = p[seen]
+    else:
+        points = np.zeros((1, 3))  # (the square's centre)
+    n = np.broadcast_to(bent, points.shape)
+    want = radiance(points, n, BASE, 0.2, 0.5, light)
+    got = frame.color[..., :3][seen]
+    assert seen.sum() > 500
+    assert np.abs(got - np.clip(want, 0, 1)).max() <= 2 / 255

@@ -80,9 +80,14 @@ def test_attenuation_and_colour_multiply_the_cone(make_renderer):
     assert np.abs(got - np.clip(want, 0, 1)).max() <= 3e-4
 
 
-def test_a_spot_light_casts_exact_shadows(make_renderer):
+@pytest.mark.parametrize("method", ["exact", "map"])
+def test_a_spot_light_casts_shadows(make_renderer, method):
     """A small square between the spot and the floor: the pixels whose floor point cannot
-    see the light (the ray to it meets the square) are dark."""
+    see the light (the ray to it meets the square) are dark -- every one with exact
+    shadows; with a (cube) shadow map, every one more than 2 pixels from the shadow's
+    edge."""
+    from scipy import ndimage
+
     spot_at = np.array([0.0, 0.0, 3.0])
     blocker = Mesh([[-0.4, -0.4, 1.5], [0.4, -0.4, 1.5], [0.4, 0.4, 1.5], [-0.4, 0.4, 1.5]],
                    [[0, 1, 2, 3]])
@@ -92,7 +97,7 @@ def test_a_spot_light_casts_exact_shadows(make_renderer):
     scene.add_light(SpotLight(position=tuple(spot_at), direction=(0, 0, -1), inner_angle=0.6,
                               outer_angle=1.0))
     frame = make_renderer(W, H, samples=0).render_frame(scene, CAMERA, "phong",
-                                                        shadows="exact", color_dtype="f4")
+                                                        shadows=method, color_dtype="f4")
     o, d = CAMERA.rays((W, H))
     p = o + (-o[..., 2] / d[..., 2])[..., None] * d
     # where the segment floor -> light crosses z = 1.5 (inside the square: in shadow)
@@ -100,6 +105,10 @@ def test_a_spot_light_casts_exact_shadows(make_renderer):
     cross = p + k * (spot_at - p)
     shade = (np.abs(cross[..., 0]) < 0.4) & (np.abs(cross[..., 1]) < 0.4)
     floor = frame.face_id == 0
+    if method == "map":  # (the map's band: 2 pixels either side of the shadow's edge)
+        band = ndimage.binary_dilation(shade, iterations=2) & \
+            ~ndimage.binary_erosion(shade, iterations=2)
+        floor &= ~band
     clear = floor & ~shade & (closed_form(tuple(spot_at), 0.6, 1.0) > 0.05)
     assert (frame.color[..., 0][floor & shade] <= 1e-6).sum() >= 0.97 * (floor & shade).sum()
     assert (floor & shade).sum() > 50 and (frame.color[..., 0][clear] > 0.04).all()
@@ -151,3 +160,40 @@ def test_a_scene_file_spot_light_is_the_api_s(tmp_path):
     with pytest.raises(SceneFormatError, match=r"bad.toml:4: \[\[light\]\] 1: 'outer_angle' "
                                                r"is a spot light's"):
         load_scene(tmp_path / "bad.toml")
+
+
+@pytest.mark.parametrize("model", ["notes", "pbr"])
+def test_a_lights_range_is_glTFs_window(make_renderer, model):
+    """KHR_lights_punctual's range: the light times clamp(1 - (d / range)^4, 0, 1)^2, in
+    either lighting model, against the closed form along the floor."""
+    from glshade import PBRMaterial, PointLight
+
+    light_at = np.array([0.0, 0.0, 1.5])
+    scene = Scene(ambient=(0, 0, 0), background=(0, 0, 0))
+    material = WHITE if model == "notes" else PBRMaterial(base_color=(1, 1, 1), metallic=0.0,
+                                                          roughness=1.0, ka=0.0)
+    scene.add(FLOOR, material)
+    scene.add_light(PointLight(position=tuple(light_at), range=2.5))
+    got = make_renderer(W, H, samples=0).render_frame(scene, CAMERA, "phong",
+                                                      color_dtype="f4").color[..., 0]
+    o, d = CAMERA.rays((W, H))
+    p = o + (-o[..., 2] / d[..., 2])[..., None] * d
+    to = light_at - p
+    dist = np.linalg.norm(to, axis=-1)
+    cos = to[..., 2] / dist
+    window = np.clip(1 - (dist / 2.5) ** 4, 0, 1) ** 2
+    if model == "notes":
+        want = cos * window
+        assert np.abs(got - want).max() <= 2e-4
+    else:  # (a white, rough dielectric: Appendix B over the inverse square)
+        from tests.render.test_pbr import appendix_b
+
+        eye = np.asarray(CAMERA.position, np.float64)
+        v = eye - p
+        v /= np.linalg.norm(v, axis=-1, keepdims=True)
+        n = np.broadcast_to([0.0, 0.0, 1.0], p.shape).reshape(-1, 3)
+        brdf = appendix_b(n, (to / dist[..., None]).reshape(-1, 3), v.reshape(-1, 3),
+                          np.ones(3), 0.0, 1.0)[:, 0].reshape(H, W)
+        want = np.clip(brdf * window / dist ** 2, 0, 1)
+        assert np.abs(got - want).max() <= 2e-4
+    assert (window == 0).any() and (window > 0.5).any()

@@ -100,7 +100,7 @@ def light_intensity(p: F, n: F, v: F, material, lights, ambient) -> F:
             to_light = np.asarray(light.position) - p
             dist = np.linalg.norm(to_light, axis=-1)
             c0, c1, c2 = light.attenuation
-            k = 1.0 / np.maximum(c0 + c1 * dist + c2 * dist * dist, 1e-30)
+            k = light.window(dist) / np.maximum(c0 + c1 * dist + c2 * dist * dist, 1e-30)
             if hasattr(light, "spot_vector"):  # (a spot light's cone, in view space)
                 s = light.spot_vector(np.eye(4))
                 cone = np.clip(_dot(-to_light / np.maximum(dist, 1e-30)[..., None], s[:3])
@@ -163,7 +163,8 @@ def pbr_radiance(p: F, n: F, v: F, material, lights, ambient) -> F:
         else:
             to_light = np.asarray(light.position) - p
             dist = np.linalg.norm(to_light, axis=-1)
-            k = _cone(light, to_light, dist) / np.maximum(dist * dist, 1e-30)
+            k = _cone(light, to_light, dist) * light.window(dist) / np.maximum(dist * dist,
+                                                                               1e-30)
         l_vec = to_light / np.maximum(dist, 1e-30)[..., None]
         nl = _dot(n, l_vec)
         h = l_vec + v

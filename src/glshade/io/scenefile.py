@@ -33,7 +33,8 @@ or a table of K matrices) is K copies (``Scene.add``'s ``instances``), each colo
 ``instance_colors`` (``(K, 3)``, the same two forms) where given; ``vertex_colors = false``
 ignores the colours its mesh file holds. A ``[[light]]`` is a point light (``position``), a
 directional one (``direction``), or with ``type = "spot"`` a spot light (``position``,
-``direction``, ``inner_angle``, ``outer_angle`` in radians). ``pbr = { base_color = [r, g,
+``direction``, ``inner_angle``, ``outer_angle`` in radians); a point or spot light's
+``range`` is KHR_lights_punctual's (the light ends there). ``pbr = { base_color = [r, g,
 b], metallic = 0.5, roughness = 0.4 }`` on a ``[[mesh]]`` gives it glTF's metallic-roughness
 material (:class:`~glshade.PBRMaterial`) instead of the notes' keys.
 """
@@ -148,7 +149,7 @@ _SCHEMA = {
              "instance_colors": "array", "pbr": "pbr"},
     "light": {"type": "light_type", "position": "vec3", "direction": "vec3", "color": "color",
               "intensity": "nonneg", "attenuation": "vec3", "shadows": "bool",
-              "inner_angle": "nonneg", "outer_angle": "nonneg"},
+              "inner_angle": "nonneg", "outer_angle": "nonneg", "range": "positive"},
     "camera": {"eye": "vec3", "target": "vec3", "up": "vec3", "position": "vec3",
                "orientation": "quat", "fov_y": "fov", "near": "positive", "far": "positive",
                "interpolation": "interp", "position_interpolation": "pinterp",
@@ -437,15 +438,18 @@ def load_scene(path) -> SceneFile:
         if cone and kind != "spot":
             raise SceneFormatError(f"{where}: '{cone[0]}' is a spot light's (type = \"spot\"), "
                                    f"not a {kind} light's")
+        if "range" in light and kind == "directional":
+            raise SceneFormatError(f"{where}: 'range' is a point or spot light's; a "
+                                   "directional light reaches everywhere")
         try:  # (a value the light refuses -- a zero direction -- is named with its line)
             obj: PointLight | DirectionalLight | SpotLight
             if kind == "spot":
                 obj = SpotLight(**{k: light[k] for k in (
                     "position", "direction", "color", "intensity", "inner_angle",
-                    "outer_angle", "attenuation", "shadows") if k in light})
+                    "outer_angle", "attenuation", "shadows", "range") if k in light})
             elif kind == "point":
                 obj = PointLight(**{k: light[k] for k in ("position", "color", "intensity",
-                                                          "attenuation", "shadows")
+                                                          "attenuation", "shadows", "range")
                                     if k in light})
             else:
                 obj = DirectionalLight(**{k: light[k] for k in ("direction", "color",

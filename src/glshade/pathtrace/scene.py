@@ -51,9 +51,10 @@ class TraceScene:
     emitter_cdf : ndarray
         ``(K,)`` their cumulative chances, by emitted power.
     lights : ndarray
-        ``(L, 14)`` rows of kind (0 directional, 1 point, 2 spot), position or direction
+        ``(L, 15)`` rows of kind (0 directional, 1 point, 2 spot), position or direction
         to the light (3), irradiance RGB (3), attenuation (3), a spot's cone (4: its axis
-        times the cone's scale, the cone's offset; zero for the others).
+        times the cone's scale, the cone's offset; zero for the others), 1 / range (0:
+        none).
     model : ndarray
         ``(T,)`` each triangle's model.
     names : tuple
@@ -206,7 +207,7 @@ class TraceScene:
         chosen = list(scene.lights) if lights else []
         if lights and not chosen and not len(emitters) and camera is not None:
             chosen = scene.lights_for(camera)
-        light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 14)
+        light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 15)
         if len(light_rows) > MAX_LIGHTS:
             raise SceneError(f"the path tracer takes at most {MAX_LIGHTS} lights, the scene "
                              f"has {len(light_rows)}")
@@ -293,13 +294,15 @@ def _material_row(material, name: str) -> list:
 
 def _light_row(light) -> list:
     """A light's row: kind (0 directional, 1 point, 2 spot), position or direction to it,
-    irradiance, attenuation (c, l, q), and a spot's cone (its axis times the cone's scale,
-    and its offset: trace_lights.glsl; zero for the others)."""
+    irradiance, attenuation (c, l, q), a spot's cone (its axis times the cone's scale,
+    and its offset: trace_lights.glsl; zero for the others), and 1 / its range (0: none)."""
     irradiance = np.asarray(light.color, np.float64) * light.intensity
     if isinstance(light, DirectionalLight):
         d = -np.asarray(light.direction, np.float64)
-        return [0.0, *(d / np.linalg.norm(d)), *irradiance, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+        return [0.0, *(d / np.linalg.norm(d)), *irradiance, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+                0.0]
     spot = light.spot_vector(np.eye(4)).tolist() if hasattr(light, "spot_vector") else [0.0] * 4
     return [2.0 if hasattr(light, "spot_vector") else 1.0,
             *np.asarray(light.position, np.float64), *irradiance,
-            *np.asarray(light.attenuation, np.float64), *spot]
+            *np.asarray(light.attenuation, np.float64), *spot,
+            1.0 / light.range if light.range else 0.0]

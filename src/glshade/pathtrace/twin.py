@@ -216,6 +216,8 @@ def _lights_seen(ts: TraceScene, x, n, wo, m) -> np.ndarray:
             wi = to / dist[:, None]
             c = light[7:10]
             att = 1 / np.maximum(c[0] + c[1] * dist + c[2] * dist ** 2, 1e-30)
+            window = np.clip(1 - (dist * light[14]) ** 4, 0.0, 1.0)
+            att = att * window * window
             if light[0] > 1.5:  # (a spot light's cone)
                 cone = np.clip(-wi @ light[10:13] + light[13], 0.0, 1.0)
                 att = att * cone * cone

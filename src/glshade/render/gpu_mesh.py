@@ -131,11 +131,81 @@ def _layout(mesh: Mesh):
     return mesh, source, uv, color, tri, owner
 
 
+def uv_tangents(positions: np.ndarray, normals: np.ndarray, uv: np.ndarray,
+                tri: np.ndarray) -> np.ndarray:
+    """``(V, 4)`` a tangent frame a vertex for tangent-space normal maps: the direction of
+    increasing u on the surface (the triangles' uv derivatives summed at each vertex, made
+    perpendicular to its normal), and in w the handedness (+1 or -1: the bitangent is
+    w N x T, toward increasing v). A vertex whose triangles' uv are degenerate gets any
+    tangent perpendicular to its normal.
+
+    Parameters
+    ----------
+    positions, normals : ndarray
+        ``(V, 3)`` each vertex's position and unit normal.
+    uv : ndarray
+        ``(V, 2)`` each vertex's texture coordinate.
+    tri : ndarray
+        ``(T, 3)`` triangles over the vertices.
+    """
+    tangent, bitangent = _triangle_frames(positions[tri], uv[tri])
+    n_v = len(positions)
+    sums = np.zeros((2, n_v, 3))
+    for k in range(3):  # (each corner of every triangle at once)
+        for axis in range(3):
+            sums[0, :, axis] += np.bincount(tri[:, k], tangent[:, axis], n_v)
+            sums[1, :, axis] += np.bincount(tri[:, k], bitangent[:, axis], n_v)
+    return _orthonormal_frame(normals, *sums)
+
+
+def polygon_tangents(mesh: Mesh) -> np.ndarray:
+    """``(F, 4)`` each polygon's tangent frame (its triangles' uv derivatives summed, made
+    perpendicular to its Newell normal; w the handedness), for flat shading's normal map.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        A mesh with texture coordinates.
+    """
+    tri, owner = mesh.triangles
+    assert mesh.uv is not None
+    tangent, bitangent = _triangle_frames(mesh.vertices[tri], mesh.uv[mesh.corner_triangles])
+    sums = np.stack([np.stack([np.bincount(owner, f[:, axis], mesh.n_faces)
+                               for axis in range(3)], 1) for f in (tangent, bitangent)])
+    return _orthonormal_frame(mesh.face_normals, *sums)
+
+
+def _triangle_frames(p: np.ndarray, t: np.ndarray):
+    """Each triangle's dP/du and dP/dv (``(T, 3)`` each) from its corners ``p`` and uv
+    ``t``; zero where its uv are degenerate."""
+    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    d1, d2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
+    det = d1[:, 0] * d2[:, 1] - d2[:, 0] * d1[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(np.abs(det) > 1e-20, 1.0 / det, 0.0)[:, None]
+    return (e1 * d2[:, 1:2] - e2 * d1[:, 1:2]) * r, (e2 * d1[:, 0:1] - e1 * d2[:, 0:1]) * r
+
+
+def _orthonormal_frame(normals: np.ndarray, tv: np.ndarray, bv: np.ndarray) -> np.ndarray:
+    """``(N, 4)``: ``tv`` made unit and perpendicular to ``normals`` (any such direction
+    where it vanishes), and the handedness of (N, T, ``bv``)."""
+    tv = tv - normals * np.einsum("ij,ij->i", normals, tv)[:, None]
+    length = np.linalg.norm(tv, axis=1)
+    # (no uv gradient there: any direction in the tangent plane)
+    other = np.where(np.abs(normals[:, 0:1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
+    fallback = np.cross(normals, other)
+    fallback /= np.maximum(np.linalg.norm(fallback, axis=1, keepdims=True), 1e-300)
+    tv = np.where((length > 1e-20)[:, None], tv / np.maximum(length, 1e-300)[:, None],
+                  fallback)
+    hand = np.where(np.einsum("ij,ij->i", np.cross(normals, tv), bv) < 0, -1.0, 1.0)
+    return np.column_stack([tv, hand])
+
+
 def gpu_bytes(mesh: Mesh) -> int:
     """The bytes a mesh's GPU copy takes for the smooth modes' colour draws (what Phong
-    reads): float32 position and normal (and uv, and RGBA colour) a GPU vertex, three
-    uint32 indices a triangle. Flat draws and draws with polygon ids add per-corner copies
-    (36 to 60 bytes a corner, made on their first use).
+    reads): float32 position and normal (and uv with a tangent frame, and RGBA colour) a GPU
+    vertex, three uint32 indices a triangle. Flat draws and draws with polygon ids add
+    per-corner copies (36 to 84 bytes a corner, made on their first use).
 
     Parameters
     ----------
@@ -144,7 +214,8 @@ def gpu_bytes(mesh: Mesh) -> int:
     """
     drawn, source, uv, color, tri, _ = _layout(mesh)
     n = drawn.n_vertices if source is None else len(source)
-    return n * (24 + 8 * (uv is not None) + 16 * (color is not None)) + 12 * len(tri)
+    # (uv brings a tangent frame: 8 + 16 bytes)
+    return n * (24 + 24 * (uv is not None) + 16 * (color is not None)) + 12 * len(tri)
 
 
 class GpuMesh(GLResource):
@@ -188,6 +259,8 @@ class GpuMesh(GLResource):
         if source is not None:
             columns = [c[source] for c in columns]
         columns += [c for c in (uv, color) if c is not None]
+        if uv is not None:  # (a tangent frame a vertex, for normal maps: in_tangent)
+            columns.append(uv_tangents(columns[0], columns[1], uv, tri))
         #: a big mesh's spatial chunks (None: drawn whole), in the order uploaded
         self.chunks: Chunks | None = None
         self._order: np.ndarray | None = None
@@ -264,10 +337,11 @@ class GpuMesh(GLResource):
                 corner_uv = corner_uv[self._order]
 
             colors = m.polygon_colors if self.colored else None
-            centre_uv = None
+            centre_uv = face_tangent = None
             if m.uv is not None:  # (each polygon's mean uv: where flat reads glTF's maps)
                 centre_uv = np.add.reduceat(m.uv, m.face_offsets[:-1], axis=0) / \
                     m.face_sizes[:, None]
+                face_tangent = polygon_tangents(m)
 
             def rows(sl):
                 corners, face = tri[sl].ravel(), np.repeat(owner[sl], 3)
@@ -277,6 +351,8 @@ class GpuMesh(GLResource):
                     parts.append(centre_uv[face])
                 if colors is not None:  # (uniform shading: the polygon's one colour)
                     parts.append(colors[face])
+                if face_tangent is not None:
+                    parts.append(face_tangent[face])
                 return np.hstack(parts).astype("f4")
 
             ctx = self.context.ctx
@@ -416,6 +492,9 @@ class GpuMesh(GLResource):
                     layout.append(("in_face_uv", "2f"))
             if self.colored:
                 layout.append(("in_color", "4f"))
+            if self.textured:  # (a tangent frame: a vertex's, or flat's polygon's)
+                layout.append(("in_face_tangent" if "in_face_normal" in program else
+                               "in_tangent", "4f"))
             names = [n for n, _ in layout if n in program]
             fmt = " ".join(f if n in names else f"{4 * int(f[0])}x" for n, f in layout)
             content = [(buffer, fmt, *names)]

@@ -49,7 +49,8 @@ class Role(enum.Enum):
 
 def light_kind(light) -> str:
     """The GLSL kind of a light: DIRECTIONAL, POINT, ATTENUATED (a point light whose
-    intensity falls off with distance) or SPOT (a cone, with its attenuation).
+    intensity falls off with distance, or ends at its range) or SPOT (a cone, with its
+    attenuation and range).
 
     Parameters
     ----------
@@ -60,7 +61,8 @@ def light_kind(light) -> str:
         return "DIRECTIONAL"
     if hasattr(light, "spot_vector"):
         return "SPOT"
-    return "POINT" if tuple(light.attenuation) == (1.0, 0.0, 0.0) else "ATTENUATED"
+    plain = tuple(light.attenuation) == (1.0, 0.0, 0.0) and light.range is None
+    return "POINT" if plain else "ATTENUATED"
 
 
 def lighting_products(material, lights, ambient, colors=None):
@@ -269,6 +271,8 @@ class ProgramKey:
         The material gives off light of its own, added to the lit colour.
     lighting : LightingModel
         The lighting model the schemes evaluate (the material's).
+    normal_map : bool
+        A PBRMaterial's normal map is read (with its other maps).
     """
 
     mode: ShadingMode
@@ -296,13 +300,16 @@ class ProgramKey:
     emissive: bool = False
     #: the lighting model evaluated (the notes' or glTF's: pbr.glsl)
     lighting: LightingModel = LightingModel.NOTES
+    #: a PBRMaterial's tangent-space normal map bends the normal where the scheme lights
+    normal_map: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
            flat_constants: bool = False, oit: Role = Role.OPAQUE,
            textured: bool = False, instanced: bool = False,
            fetch: bool = False, colored: bool = False, emissive: bool = False,
-           lighting: LightingModel = LightingModel.NOTES) -> ProgramKey:
+           lighting: LightingModel = LightingModel.NOTES,
+           normal_map: bool = False) -> ProgramKey:
         """The key of a draw's variant for one model.
 
         Parameters
@@ -327,6 +334,8 @@ class ProgramKey:
             The material's emission is added.
         lighting : LightingModel
             The material's lighting model.
+        normal_map : bool
+            A PBRMaterial's normal map is read.
         """
         # (a transparent surface neither casts nor receives shadows: its light is unshadowed)
         opaque = oit is Role.OPAQUE
@@ -338,7 +347,9 @@ class ProgramKey:
                    # (a textured PBRMaterial's emission is its map's: pbr.glsl adds it)
                    emissive and variant.mode in TEXTURED_MODES and not (
                        textured and lighting is LightingModel.PBR),
-                   lighting if variant.mode in TEXTURED_MODES else LightingModel.NOTES)
+                   lighting if variant.mode in TEXTURED_MODES else LightingModel.NOTES,
+                   normal_map and textured and variant.mode in TEXTURED_MODES
+                   and lighting is LightingModel.PBR)
 
     def defines(self) -> tuple[str, ...]:
         forward = self.forward is not Forward.ARRAY
@@ -361,6 +372,7 @@ class ProgramKey:
                  ("TEXTURED", self.textured),
                  ("NOTES_TEXTURED", self.textured and self.lighting is LightingModel.NOTES),
                  ("PBR_TEXTURED", self.textured and self.lighting is LightingModel.PBR),
+                 ("PBR_NORMAL_MAP", self.normal_map),
                  ("VERTEX_COLORS", self.colored), ("EMISSIVE", self.emissive),
                  ("PBR", self.lighting is LightingModel.PBR),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),

@@ -26,7 +26,8 @@ _UNIFORMS = {"texture": "u_map_diffuse", "specular_texture": "u_map_specular",
 PBR_MAPS = {"base_color_texture": (Unit.MAP_BASE, "u_pbr_base_map", "colour"),
             "metallic_roughness_texture": (Unit.MAP_METALLIC_ROUGHNESS, "u_pbr_mr_map", "data"),
             "occlusion_texture": (Unit.MAP_OCCLUSION, "u_pbr_occlusion_map", "data"),
-            "emissive_texture": (Unit.MAP_EMISSIVE, "u_pbr_emissive_map", "colour")}
+            "emissive_texture": (Unit.MAP_EMISSIVE, "u_pbr_emissive_map", "colour"),
+            "normal_texture": (Unit.MAP_NORMAL, "u_pbr_normal_map", "data")}
 _SRGB8_ALPHA8 = 0x8C43
 _FILTERS = {"nearest": (moderngl.NEAREST, moderngl.NEAREST),
             "linear": (moderngl.LINEAR, moderngl.LINEAR),

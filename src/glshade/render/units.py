@@ -35,6 +35,8 @@ class Unit:
     #: one lighting model's maps, so glTF's take the notes' units, and one more
     MAP_BASE, MAP_METALLIC_ROUGHNESS, MAP_OCCLUSION = MAP_DIFFUSE, MAP_SPECULAR, MAP_OPACITY
     MAP_EMISSIVE = 15
+    #: a PBRMaterial's normal map (after the forward light maps' eight)
+    MAP_NORMAL = 27
     #: a big mesh's tables: each triangle's polygon, each polygon's normal and centroid
     #: (shaders/include/polygon_fetch.glsl)
     POLYGONS, POLYGON_PLANES = 13, 14

@@ -42,9 +42,6 @@ def material_from_description(description, where: str):
     if alpha_mode == "MASK":
         dropped.append("alphaMode MASK (drawn opaque)")
     opacity = d["opacity"] if alpha_mode == "BLEND" else 1.0
-    normal = maps.pop("normal_texture", None)
-    if normal is not None:
-        dropped.append("normal_texture")
     textures: dict = {k: Texture(image) for k, image in maps.items()}
     material = PBRMaterial(base_color=tuple(d["base_color"]), metallic=d["metallic"],
                            roughness=d["roughness"], emissive=tuple(d["emissive"]),

@@ -38,6 +38,10 @@ class PointLight:
         ``(c, l, q)``: the light divided by ``c + l d + q d^2`` at distance d.
     shadows : bool
         Whether it casts shadows where a draw casts them.
+    range : float or None
+        Where the light ends (KHR_lights_punctual's range): its light is multiplied by
+        ``clamp(1 - (d / range)^4, 0, 1)^2``, glTF's window, in either lighting model; None:
+        nowhere.
     """
 
     position: tuple = (5.0, 5.0, 5.0)
@@ -45,6 +49,7 @@ class PointLight:
     intensity: float = 1.0
     attenuation: tuple = (1.0, 0.0, 0.0)
     shadows: bool = True
+    range: float | None = None
 
     def __post_init__(self):
         p = np.asarray(self.position, dtype=np.float64)
@@ -63,9 +68,11 @@ class PointLight:
             raise SceneError("attenuation (c, l, q) must not be all zero")
         object.__setattr__(self, "attenuation", att)
         _check_shadows(self.shadows)
+        object.__setattr__(self, "range", _check_range(self.range))
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``[x, y, z, 1]``: the position in view space.
+        """``[x, y, z, 1 / range]``: the position in view space, and the reciprocal of its
+        range (0: none; lighting.glsl's window).
 
         Parameters
         ----------
@@ -73,7 +80,17 @@ class PointLight:
             ``(4, 4)`` the world-to-view matrix.
         """
         x, y, z = view[:3, :3] @ self.position + view[:3, 3]
-        return np.array([x, y, z, 1.0])
+        return np.array([x, y, z, 1.0 / self.range if self.range else 0.0])
+
+    def window(self, distance) -> np.ndarray:
+        """KHR_lights_punctual's range window at ``distance``: 1 without a range.
+
+        Parameters
+        ----------
+        distance : array_like
+            Distances from the light.
+        """
+        return _window(self.range, distance)
 
 
 @dataclass(frozen=True)
@@ -109,6 +126,17 @@ class DirectionalLight:
         _check_shadows(self.shadows)
 
     attenuation = (1.0, 0.0, 0.0)
+    range = None  # (a directional light reaches everywhere)
+
+    def window(self, distance) -> np.ndarray:
+        """1: a directional light has no range.
+
+        Parameters
+        ----------
+        distance : array_like
+            Distances (ignored).
+        """
+        return np.ones(np.shape(distance))
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[x, y, z, 0]``: the unit vector towards the light, in view space.
@@ -152,6 +180,8 @@ class SpotLight:
     attenuation : tuple
         ``(c, l, q)``: the light divided by ``c + l d + q d^2`` at distance d (the notes'
         model).
+    range : float or None
+        Where the light ends (KHR_lights_punctual's range), as for a :class:`PointLight`.
     """
 
     position: tuple = (0.0, 5.0, 0.0)
@@ -162,11 +192,12 @@ class SpotLight:
     outer_angle: float = np.pi / 4
     shadows: bool = True
     attenuation: tuple = (1.0, 0.0, 0.0)
+    range: float | None = None
 
     def __post_init__(self):
         point = PointLight(self.position, self.color, self.intensity, self.attenuation,
-                           self.shadows)  # (the same checks, the same messages)
-        for name in ("position", "color", "intensity", "attenuation"):
+                           self.shadows, self.range)  # (the same checks, the same messages)
+        for name in ("position", "color", "intensity", "attenuation", "range"):
             object.__setattr__(self, name, getattr(point, name))
         axis = DirectionalLight(self.direction).direction
         object.__setattr__(self, "direction", axis)
@@ -202,7 +233,8 @@ class SpotLight:
         return np.clip(cos * scale + offset, 0.0, 1.0) ** 2
 
     def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``[x, y, z, 1]``: the position in view space.
+        """``[x, y, z, 1 / range]``: the position in view space, and the reciprocal of its
+        range (0: none).
 
         Parameters
         ----------
@@ -210,7 +242,17 @@ class SpotLight:
             ``(4, 4)`` the world-to-view matrix.
         """
         x, y, z = view[:3, :3] @ self.position + view[:3, 3]
-        return np.array([x, y, z, 1.0])
+        return np.array([x, y, z, 1.0 / self.range if self.range else 0.0])
+
+    def window(self, distance) -> np.ndarray:
+        """KHR_lights_punctual's range window at ``distance``: 1 without a range.
+
+        Parameters
+        ----------
+        distance : array_like
+            Distances from the light.
+        """
+        return _window(self.range, distance)
 
     def spot_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[sx, sy, sz, offset]``: the axis in view space times the cone's scale, and its
@@ -224,6 +266,23 @@ class SpotLight:
         scale, offset = self.cone()
         x, y, z = (view[:3, :3] @ self.direction) * scale
         return np.array([x, y, z, offset])
+
+
+def _check_range(value) -> float | None:
+    if value is None:
+        return None
+    r = float(value) if isinstance(value, (int, float, np.floating, np.integer)) and \
+        not isinstance(value, bool) else float("nan")
+    if not (np.isfinite(r) and r > 0):
+        raise SceneError(f"a light's range must be a positive number (or None), got {value!r}")
+    return r
+
+
+def _window(range_: float | None, distance) -> np.ndarray:
+    d = np.asarray(distance, np.float64)
+    if not range_:
+        return np.ones(d.shape)
+    return np.clip(1.0 - (d / range_) ** 4, 0.0, 1.0) ** 2
 
 
 def _check_shadows(value) -> None:

@@ -19,7 +19,7 @@ __all__ = ["PBRMaterial"]
 
 #: glTF's maps, the fields that hold them
 _MAPS = ("base_color_texture", "metallic_roughness_texture", "occlusion_texture",
-         "emissive_texture")
+         "emissive_texture", "normal_texture")
 
 
 def _unit(value, name: str) -> float:
@@ -64,14 +64,16 @@ class PBRMaterial:
         Whether the colours a mesh carries multiply ``base_color``.
     name : str or None
         Its name in its file.
-    base_color_texture, metallic_roughness_texture, occlusion_texture, emissive_texture : \
-Texture or None
+    base_color_texture, metallic_roughness_texture, occlusion_texture, emissive_texture, \
+normal_texture : Texture or None
         glTF's maps (a Texture or an image path), at the mesh's texture coordinates: the
         base colour (sRGB; multiplies ``base_color``, its alpha the opacity), roughness in
         the green channel and metallic in the blue (linear; multiplying ``roughness`` and
         ``metallic``), occlusion in the red (multiplying the ambient light), the emissive
-        colour (sRGB; multiplying ``emissive``). Read where the scheme lights: at every
-        pixel (Phong), at the vertices (Gouraud), once at a polygon's centre (flat).
+        colour (sRGB; multiplying ``emissive``), and a tangent-space normal map (linear,
+        ``2 x texel - 1`` in the frame of increasing u, increasing v and the normal, the
+        tangents from the texture coordinates). Read where the scheme lights: at every pixel
+        (Phong), at the vertices (Gouraud), once at a polygon's centre (flat).
     """
 
     base_color: tuple = (1.0, 1.0, 1.0)
@@ -86,6 +88,7 @@ Texture or None
     metallic_roughness_texture: Texture | None = None
     occlusion_texture: Texture | None = None
     emissive_texture: Texture | None = None
+    normal_texture: Texture | None = None
 
     #: the lighting model it is written for (the programs it is drawn with)
     lighting = LightingModel.PBR

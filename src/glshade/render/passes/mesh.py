@@ -163,7 +163,7 @@ class MeshPass(GLResource, Stage):
     def program(self, variant: Variant, two_sided: bool, flat: bool = False,
                 role: Role = Role.OPAQUE, textured: bool = False, instanced: bool = False,
                 fetch: bool = False, colored: bool = False, emissive: bool = False,
-                lighting: LightingModel = LightingModel.NOTES):
+                lighting: LightingModel = LightingModel.NOTES, normal_map: bool = False):
         """The compiled program of a variant, with flat lighting constants if asked for and
         they fit; ``role``: an opaque surface's or a transparent one's; ``textured``: its
         material's maps sampled.
@@ -190,9 +190,11 @@ class MeshPass(GLResource, Stage):
             The material's emission is added to the lit colour.
         lighting : LightingModel
             The material's lighting model (the notes' or glTF's).
+        normal_map : bool
+            A PBRMaterial's normal map is read.
         """
         found = (variant, two_sided, flat, role, textured, instanced, fetch, colored, emissive,
-                 lighting)
+                 lighting, normal_map)
         program = self._programs.get(found)
         if program is None:
             forwarded = variant.shadows and variant.forward is not Forward.ARRAY
@@ -201,7 +203,8 @@ class MeshPass(GLResource, Stage):
                                                self.max_varyings, textured, colored)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
                                 textured=textured, instanced=instanced, fetch=fetch,
-                                colored=colored, emissive=emissive, lighting=lighting)
+                                colored=colored, emissive=emissive, lighting=lighting,
+                                normal_map=normal_map)
             program = self._programs[found] = self.shaders.program(key)
         return program
 
@@ -384,7 +387,9 @@ class MeshPass(GLResource, Stage):
                     variant.aux or (variant.shadows and variant.forward is Forward.RAYS))))
         prog = self.program(variant, not cull, flat, role, textured, fetch=fetch,
                             colored=colored, emissive=any(material.emission),
-                            lighting=material.lighting)
+                            lighting=material.lighting,
+                            normal_map=pbr and getattr(material, "normal_texture", None)
+                            is not None)
         if id(prog) not in prepared:  # the frame's uniforms, once per program used
             for name, value in state.frame_uniforms:
                 put(prog, name, value)

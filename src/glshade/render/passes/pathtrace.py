@@ -360,7 +360,9 @@ class GpuPathTracer(GLResource):
                           u_light_irr=np.ascontiguousarray(lights[:, 4:7], np.float32).tobytes(),
                           u_light_att=np.ascontiguousarray(lights[:, 7:10], np.float32).tobytes(),
                           u_light_spot=np.ascontiguousarray(lights[:, 10:14],
-                                                            np.float32).tobytes())
+                                                            np.float32).tobytes(),
+                          u_light_range=np.ascontiguousarray(lights[:, 14],
+                                                             np.float32).tobytes())
         return values
 
     def reset(self) -> None:

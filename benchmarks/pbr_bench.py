@@ -19,40 +19,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import frame_arguments, frame_header, interleaved, table  # noqa: E402
+from render_bench import TEXTBOOK_FRAG, TEXTBOOK_VERT  # noqa: E402
 
 import glshade as g  # noqa: E402
 from glshade.geometry import primitives as P  # noqa: E402
-
-FLOOR_VERT = """
-#version 330 core
-uniform mat4 u_mvp;
-in vec3 in_pos;
-in vec3 in_norm;
-out vec3 v_pos;
-out vec3 v_norm;
-void main() {
-    v_pos = in_pos;
-    v_norm = in_norm;
-    gl_Position = u_mvp * vec4(in_pos, 1.0);
-}
-"""
-FLOOR_FRAG = """
-#version 330 core
-uniform vec3 u_eye;
-uniform vec3 u_light_dir;
-in vec3 v_pos;
-in vec3 v_norm;
-out vec4 f_color;
-void main() {
-    vec3 n = normalize(v_norm);
-    vec3 v = normalize(u_eye - v_pos);
-    float ln = dot(n, u_light_dir);
-    vec3 r = 2.0 * ln * n - u_light_dir;
-    float spec = ln > 0.0 ? pow(max(dot(r, v), 0.0), 32.0) : 0.0;
-    f_color = vec4(vec3(0.1 + 0.7 * max(ln, 0.0) + 0.5 * spec), 1.0);
-}
-"""
-
 
 def scene(material) -> g.Scene:
     s = g.Scene(ambient=(0.05, 0.05, 0.05))
@@ -72,7 +42,7 @@ def floor(renderer, camera, size: int):
     normals = mesh.vertices / np.linalg.norm(mesh.vertices, axis=1, keepdims=True)
     vbo = ctx.buffer(np.hstack([mesh.vertices, normals]).astype("f4").tobytes())
     ibo = ctx.buffer(tri.astype("u4").tobytes())
-    prog = ctx.program(vertex_shader=FLOOR_VERT, fragment_shader=FLOOR_FRAG)
+    prog = ctx.program(vertex_shader=TEXTBOOK_VERT, fragment_shader=TEXTBOOK_FRAG)
     vao = ctx.vertex_array(prog, [(vbo, "3f 3f", "in_pos", "in_norm")], ibo)
     fbo = ctx.framebuffer([ctx.renderbuffer((size, size), 4)],
                           ctx.depth_renderbuffer((size, size)))
@@ -80,6 +50,7 @@ def floor(renderer, camera, size: int):
     prog["u_mvp"].write(np.ascontiguousarray(mvp.T, "f4").tobytes())
     prog["u_eye"].value = tuple(float(x) for x in camera.position)
     prog["u_light_dir"].value = tuple((np.ones(3) / np.sqrt(3)).tolist())
+    prog["u_color"].value = (0.9, 0.6, 0.2)
 
     def draw():
         fbo.use()

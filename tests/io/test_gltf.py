@@ -72,19 +72,6 @@ def test_factors_colours_maps_and_one_warning_for_what_is_not_drawn(tmp_path):
     assert not [s for s in said if "not drawn" in s and "poster" in s], said
 
 
-def test_vertex_colours_beside_a_material(tmp_path):
-    trimesh = pytest.importorskip("trimesh")
-    box = trimesh.creation.box()
-    rgba = np.random.default_rng(3).integers(0, 256, (len(box.vertices), 4), dtype=np.uint8)
-    box.visual.vertex_colors = rgba
-    box.export(tmp_path / "box.glb")
-    mesh = glshade.load_mesh(tmp_path / "box.glb")
-    assert np.abs(mesh.colors - rgba / 255.0).max() < 1e-12  # (COLOR_0 is linear)
-    scene = glshade.Scene()
-    scene.add(mesh)
-    assert scene.models[0].mesh.colors is not None
-
-
 def test_mtl_pbr_keys_make_glTFs_material_and_round_trip(tmp_path):
     (tmp_path / "a.mtl").write_text(
         "newmtl gold\nKd 0.9 0.6 0.2\nPm 1\nPr 0.3\nKe 0.1 0 0\nnorm n.png\n"

@@ -114,13 +114,11 @@ class TextureCache(GLResource):
         prog : moderngl.Program
             The program.
         """
-        st = []
-        for name, unit in MAP_UNITS.items():
-            texture = getattr(material, name)
-            gl = self.white if texture is None else self.get(texture, name == "opacity_texture")
-            gl.use(location=unit)
-            put(prog, _UNIFORMS[name], unit)
-            st += [*texture.scale, *texture.offset] if texture is not None else [1, 1, 0, 0]
+        textures = self._bind(material, {name: (unit, _UNIFORMS[name], "opacity" if
+                                                name == "opacity_texture" else "colour")
+                                         for name, unit in MAP_UNITS.items()}, put, prog)
+        st = [v for t in textures for v in ((*t.scale, *t.offset) if t is not None else
+                                             (1, 1, 0, 0))]
         put(prog, "u_map_st", np.array(st, "f4").tobytes())
 
     def bind_pbr(self, material, put, prog) -> None:
@@ -136,11 +134,20 @@ class TextureCache(GLResource):
         prog : moderngl.Program
             The program.
         """
-        for name, (unit, uniform, use) in PBR_MAPS.items():
+        self._bind(material, PBR_MAPS, put, prog)
+
+    def _bind(self, material, maps: dict, put, prog) -> list:
+        """Bind each of ``maps`` (field -> (unit, sampler, "colour", "opacity" or "data"))
+        of ``material`` (white where it has none); its Textures (None: none), in order."""
+        textures = []
+        for name, (unit, uniform, use) in maps.items():
             texture = getattr(material, name)
-            gl = self.white if texture is None else self.get(texture, data=use == "data")
+            gl = self.white if texture is None else self.get(
+                texture, opacity=use == "opacity", data=use == "data")
             gl.use(location=unit)
             put(prog, uniform, unit)
+            textures.append(texture)
+        return textures
 
     def _release_extra(self) -> None:
         for _, tex in self._found.values():

@@ -232,27 +232,9 @@ class SpotLight:
         scale, offset = self.cone()
         return np.clip(cos * scale + offset, 0.0, 1.0) ** 2
 
-    def view_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``[x, y, z, 1 / range]``: the position in view space, and the reciprocal of its
-        range (0: none).
-
-        Parameters
-        ----------
-        view : ndarray
-            ``(4, 4)`` the world-to-view matrix.
-        """
-        x, y, z = view[:3, :3] @ self.position + view[:3, 3]
-        return np.array([x, y, z, 1.0 / self.range if self.range else 0.0])
-
-    def window(self, distance) -> np.ndarray:
-        """KHR_lights_punctual's range window at ``distance``: 1 without a range.
-
-        Parameters
-        ----------
-        distance : array_like
-            Distances from the light.
-        """
-        return _window(self.range, distance)
+    # (a point light's place and range: the same view vector and window)
+    view_vector = PointLight.view_vector
+    window = PointLight.window
 
     def spot_vector(self, view: NDArray[np.float64]) -> NDArray[np.float64]:
         """``[sx, sy, sz, offset]``: the axis in view space times the cone's scale, and its

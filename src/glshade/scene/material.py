@@ -5,13 +5,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from typing import Any
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import SceneError, plain
 from ..modes import LightingModel
-from .texture import Texture
+from .texture import Texture, texture_field
 
 __all__ = ["Material", "color3", "nonnegative", "check_illum"]
 
@@ -160,12 +159,7 @@ class Material:
         object.__setattr__(self, "vertex_colors", bool(self.vertex_colors))
         check_illum(self.illum)
         for name in ("texture", "specular_texture", "opacity_texture"):
-            value = getattr(self, name)
-            if isinstance(value, (str, Path)):
-                object.__setattr__(self, name, Texture(value))
-            elif value is not None and not isinstance(value, Texture):
-                raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
-                                 f"{type(value).__name__}")
+            object.__setattr__(self, name, texture_field(getattr(self, name), name))
         object.__setattr__(self, "color", color3(self.color, "color"))
         for name in ("ka", "kd", "ks", "shininess"):
             object.__setattr__(self, name, nonnegative(getattr(self, name), name))

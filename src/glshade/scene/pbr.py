@@ -6,14 +6,13 @@ Appendix B, and ``cpu/lighting.py`` its numpy twin."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import SceneError
 from ..modes import LightingModel
 from .material import color3, nonnegative
-from .texture import Texture
+from .texture import Texture, texture_field
 
 __all__ = ["PBRMaterial"]
 
@@ -108,12 +107,7 @@ normal_texture : Texture or None
             raise SceneError(f"vertex_colors must be True or False, got {self.vertex_colors!r}")
         object.__setattr__(self, "vertex_colors", bool(self.vertex_colors))
         for name in _MAPS:
-            value = getattr(self, name)
-            if isinstance(value, (str, Path)):
-                object.__setattr__(self, name, Texture(value))
-            elif value is not None and not isinstance(value, Texture):
-                raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
-                                 f"{type(value).__name__}")
+            object.__setattr__(self, name, texture_field(getattr(self, name), name))
 
     @classmethod
     def like(cls, material) -> PBRMaterial:

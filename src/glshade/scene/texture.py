@@ -16,8 +16,8 @@ import numpy as np
 
 from ..errors import SceneError
 
-__all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear", "check_texture_filter",
-           "check_texture_wrap"]
+__all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear", "texture_field",
+           "check_texture_filter", "check_texture_wrap"]
 
 #: how a texel is chosen: the nearest texel's value, bilinear between the four nearest,
 #: or trilinear between mipmap levels (minified images without shimmer)
@@ -182,3 +182,22 @@ def _pixels(source) -> tuple[Path | None, np.ndarray]:
     if a.shape[2] == 3:
         a = np.concatenate([a, np.full(a.shape[:2] + (1,), 255, np.uint8)], axis=2)
     return path, np.ascontiguousarray(a)
+
+
+def texture_field(value, name: str):
+    """A material's map as given: a Texture, an image path made one, or None; anything else
+    a SceneError naming the field (the one rule for every material's maps).
+
+    Parameters
+    ----------
+    value : Texture, str, Path or None
+        What the field was given.
+    name : str
+        The field, for the message.
+    """
+    if isinstance(value, (str, Path)):
+        return Texture(value)
+    if value is not None and not isinstance(value, Texture):
+        raise SceneError(f"{name} must be a glshade.Texture or an image path, got "
+                         f"{type(value).__name__}")
+    return value

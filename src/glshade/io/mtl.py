@@ -18,11 +18,12 @@ MTL                glshade
 ``-clamp on``      the map's ``wrap="clamp"`` (default: repeat)
 ``-o u v``         the map's texture-coordinate ``offset``
 ``-s u v``         the map's texture-coordinate ``scale``
-``Pr r``, ``Pm m`` the PBR extension's roughness and metallic: a block that has either is
+``Pr r``           the PBR extension's roughness: a block that has it or ``Pm`` is
                    glTF's model, a :class:`~glshade.PBRMaterial` (``Kd`` its base colour,
                    ``Ke`` its emissive, ``d`` its opacity; metallic 0 and roughness 1
                    where not given); with ``map_Kd`` it is drawn by the notes' model,
                    textured, and ``Pr``/``Pm`` are reported
+``Pm m``           the PBR extension's metallic, likewise
 =================  ==============================================================
 
 The PBR extension's maps (``map_Pr``, ``map_Pm``, ``norm``, ``map_Ke``) and its other keys

@@ -119,12 +119,25 @@ def test_the_stages_run_in_order_and_pass_the_ids_on(make_renderer, monkeypatch)
                                           n_mesh + 5, n_mesh + 5]
 
 
-def shadow_scene() -> Scene:
+def shadow_scene(model: str = "notes") -> Scene:
+    """A floor and a ball over it, lit from above: in the notes' model, or in glTF's with
+    every map on the floor (a grey base colour map, a flat normal map ...)."""
     scene = Scene(ambient=(0.1, 0.1, 0.1), background=(0, 0, 0))
-    scene.add(primitives.plane(8.0), Material(color=(0.8, 0.8, 0.8), ks=0.0))
-    scene.add(primitives.icosphere(3, R), Material(color=(0.8, 0.3, 0.3)),
-              translation=(0.0, 0.0, H))
-    scene.add_light(DirectionalLight(direction=(0.0, 0.0, -1.0)))
+    if model == "notes":
+        floor, ball = Material(color=(0.8, 0.8, 0.8), ks=0.0), Material(color=(0.8, 0.3, 0.3))
+    else:
+        grey = glshade.Texture(np.full((4, 4, 3), 230, np.uint8))
+        flat = glshade.Texture(np.broadcast_to(np.array([128, 128, 255], np.uint8),
+                                               (4, 4, 3)).copy())
+        floor = glshade.PBRMaterial(base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.9,
+                                    base_color_texture=grey, metallic_roughness_texture=grey,
+                                    occlusion_texture=grey, emissive_texture=grey,
+                                    normal_texture=flat)
+        ball = glshade.PBRMaterial(base_color=(0.8, 0.3, 0.3), metallic=0.5, roughness=0.4)
+    scene.add(primitives.plane(8.0), floor)
+    scene.add(primitives.icosphere(3, R), ball, translation=(0.0, 0.0, H))
+    scene.add_light(DirectionalLight(direction=(0.0, 0.0, -1.0),
+                                     intensity=1.0 if model == "notes" else 3.0))
     return scene
 
 
@@ -148,13 +161,14 @@ def floor_truth(camera: Camera, size: int):
     return floor & (rim < 0.88 * R), floor & (rim > 1.12 * R)
 
 
+@pytest.mark.parametrize("model", ["notes", "pbr"])
 @pytest.mark.parametrize("samples", [0, 4])
 def test_every_combination_of_outputs_shadows_wireframe_transparency(make_renderer,
-                                                                      samples):
+                                                                      samples, model):
     """The fault of a rule written twice (``render_frame(shadows="exact", wireframe=True)``
     raised AttributeError on a fresh renderer and returned the previous frame's visibility
     after a shadowed one): every combination, one renderer drawing them in turn, against
-    the floor's shadow disk computed from the camera alone."""
+    the floor's shadow disk computed from the camera alone -- in either lighting model."""
     r = make_renderer(SIZE, SIZE, samples=samples)
     camera = Camera.look_at(EYE, LOOK, up=(0, 0, 1))
     shade, lit = floor_truth(camera, SIZE)
@@ -162,10 +176,11 @@ def test_every_combination_of_outputs_shadows_wireframe_transparency(make_render
     for outputs, shadows, wireframe, transparency in itertools.product(
             [Outputs.COLOR, Outputs.ALL], ["off", "exact", "map"], [False, True],
             [None, "exact", "blend"]):
-        scene = shadow_scene()
+        scene = shadow_scene(model)
         if transparency:  # (in front of the shadow: transparent surfaces cast none)
-            scene.add(primitives.plane(8.0), Material(color=(0.2, 0.4, 0.9), opacity=0.3),
-                      translation=(0.0, 0.0, 0.05))
+            glass = Material(color=(0.2, 0.4, 0.9), opacity=0.3) if model == "notes" else \
+                glshade.PBRMaterial(base_color=(0.2, 0.4, 0.9), opacity=0.3)
+            scene.add(primitives.plane(8.0), glass, translation=(0.0, 0.0, 0.05))
         case = (outputs, shadows, wireframe, transparency)
         frame = r.render_frame(scene, camera, "phong", outputs=outputs, shadows=shadows,
                                wireframe=wireframe, transparency=transparency or "exact")

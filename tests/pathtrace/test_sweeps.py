@@ -156,6 +156,24 @@ def test_the_targets_hold_every_pixel_once():
         assert np.bincount((y * tw + x).ravel(), minlength=tw * th).max() == 1
 
 
+@settings(max_examples=30, deadline=None)
+@given(w=st.integers(1, 300), h=st.integers(1, 300), side=st.sampled_from([64, 128, 256]))
+def test_the_targets_fit_the_gls_largest_side_where_the_image_can(w, h, side):
+    """Given the GL's largest framebuffer side, a row of blocks is never wider: an image
+    that fits a side-by-side square of blocks is laid out within it (a 16384x16384 trace
+    was refused for targets of 32768x8192 its size never needed), every pixel once."""
+    from glshade.render.film import film_layout, film_places
+
+    (tw, th), blocks = film_layout(w, h, max_side=side)
+    n = -(-w // 8) * -(-h // 8)
+    assert tw <= side
+    if n <= (side // 8) ** 2:  # (the blocks fit a side x side target at all)
+        assert th <= side
+    y, x = film_places(w, h, blocks)
+    assert (x < tw).all() and (y < th).all()
+    assert np.bincount((y * tw + x).ravel(), minlength=tw * th).max() == 1
+
+
 @settings(max_examples=16)
 @given(w=st.integers(1, 90), h=st.integers(1, 90), shift=st.integers(0, 6))
 @example(w=128, h=128, shift=0)

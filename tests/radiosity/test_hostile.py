@@ -52,6 +52,8 @@ def _run(tmp_path, *args):
     ("a negative seed", ["--seed", "-1"], "argument --seed: expected a whole number >= 0"),
     ("a plot into a missing folder", ["--plot", "nowhere/p.png"], "does not exist"),
     ("steps into a missing folder", ["--steps", "nowhere/s.gif"], "does not exist"),
+    # (it refused after writing the image: checked with the other outputs, by argparse)
+    ("a plot that is no image", ["--plot", "out/p.gif"], "'.gif' is not an image extension"),
 ])
 def test_hostile_arguments_are_refused_before_the_solve(tmp_path, case, extra, words):
     r, out = _run(tmp_path, BOX, *extra)
@@ -59,6 +61,22 @@ def test_hostile_arguments_are_refused_before_the_solve(tmp_path, case, extra, w
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0], r.stderr
     assert "np.float64" not in lines[0]
+    assert list(out.iterdir()) == []
+
+
+@pytest.mark.parametrize("exposure", ["1e300"])
+def test_an_exposure_past_what_shading_holds_is_named_not_an_internal_array(tmp_path,
+                                                                            exposure):
+    """``--exposure 1e300`` was refused as "vertex_colors must be ... 7.128e+297": the
+    option is named, with the brightest patch it makes and the largest exposure that
+    shows, and nothing is written."""
+    r, out = _run(tmp_path, BOX, "--exposure", exposure)
+    assert r.returncode == 2, r.stderr
+    (line,) = r.stderr.strip().splitlines()
+    assert line.startswith(f"glshade: error: exposure {float(exposure):g} makes the "
+                           "brightest patch") and "vertex_colors" not in line, line
+    largest = float(line.rsplit(" ", 1)[1])
+    assert 0 < largest < float(exposure)
     assert list(out.iterdir()) == []
 
 

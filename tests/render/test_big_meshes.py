@@ -70,9 +70,9 @@ def test_culled_chunks_never_change_a_pixel(make_renderer, big, eye, look, fov, 
     cam = cam.with_planes(scene.bounds)
     renderer = make_renderer(96, 72)
     culled = renderer.render_frame(scene, cam, mode, outputs=Outputs.ALL, frustum_cull=True)
-    skipped = renderer.meshes.culled_chunks
+    skipped = renderer.culled.chunks
     whole = renderer.render_frame(scene, cam, mode, outputs=Outputs.ALL, frustum_cull=False)
-    assert renderer.meshes.culled_chunks == 0
+    assert renderer.culled.chunks == 0
     for a, b in zip((culled.color, culled.face_id, culled.depth),
                     (whole.color, whole.face_id, whole.depth)):
         np.testing.assert_array_equal(a, b)
@@ -93,7 +93,7 @@ def test_a_close_view_skips_most_chunks(make_renderer, big):
     renderer.render_frame(scene, cam, "phong")
     n_chunks = len(renderer.meshes.gpu_mesh(scene.models[0].mesh).chunks.starts) - 1
     assert n_chunks >= 4
-    assert renderer.meshes.culled_chunks >= n_chunks // 2
+    assert renderer.culled.chunks >= n_chunks // 2
 
 
 def test_the_gpu_copy_takes_what_info_reports(make_renderer, big):
@@ -136,7 +136,7 @@ def test_a_big_cloud_is_culled_by_chunks_and_keeps_its_point_numbers(make_render
         scene.bounds)
     renderer = make_renderer(64, 48)
     culled = renderer.render_frame(scene, cam, "phong", outputs=Outputs.ALL)
-    assert renderer.points.culled_chunks > 0
+    assert renderer.culled.point_chunks > 0
     whole = renderer.render_frame(scene, cam, "phong", outputs=Outputs.ALL,
                                   frustum_cull=False)
     np.testing.assert_array_equal(culled.face_id, whole.face_id)

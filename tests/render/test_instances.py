@@ -154,7 +154,7 @@ def test_a_group_is_one_draw_call(make_renderer, monkeypatch):
     instanced = list(calls)
     calls.clear()
     r.render(b, CAMERA, "phong")
-    culled = r.meshes.culled  # (instances wholly outside the view are not drawn)
+    culled = r.culled.models  # (instances wholly outside the view are not drawn)
     assert sorted(instanced) == [1, 200 - culled]  # (the floor, then every instance)
     assert len(calls) == 201 - culled
 
@@ -246,9 +246,9 @@ def test_frustum_culling_never_drops_a_visible_pixel(azimuth, elevation, distanc
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", g.errors.RenderWarning)
         culled = r.render_frame(s, camera, "phong", outputs=g.Outputs.ALL)
-        skipped = r.meshes.culled
+        skipped = r.culled.models
         whole = r.render_frame(s, camera, "phong", outputs=g.Outputs.ALL, frustum_cull=False)
-        assert r.meshes.culled == 0
+        assert r.culled.models == 0
     for name in ("color", "face_id", "instance", "depth"):
         assert np.array_equal(getattr(culled, name), getattr(whole, name)), name
     view_proj = camera.projection_matrix(W / H) @ camera.view_matrix()
@@ -274,7 +274,7 @@ def test_culling_skips_what_lies_behind(instanced, make_renderer):
     camera = g.Camera.look_at((0, 0, 0), (1, 0, 0), fov_y=30, near=0.05, far=40.0)
     r = make_renderer(W, H)
     culled = r.render_frame(s, camera, "flat", outputs=g.Outputs.ALL)
-    assert r.meshes.culled > 40
+    assert r.culled.models > 40
     whole = r.render_frame(s, camera, "flat", outputs=g.Outputs.ALL, frustum_cull=False)
     assert np.array_equal(culled.color, whole.color)
     assert np.array_equal(culled.face_id, whole.face_id)

@@ -371,8 +371,8 @@ def add_radiosity(sub) -> None:
                       "(progressive) or N sweeps (Gauss-Seidel)")
     p.add_argument("--steps", metavar="OUT", help="also animate the solution at work, the "
                    "energy shot so far (.gif, .png, .mp4 or a folder/)")
-    p.add_argument("--plot", metavar="PNG", help="convergence plot (default: OUTPUT's name "
-                   "with -convergence.png)")
+    p.add_argument("--plot", metavar="PNG", type=v.image_output, help="convergence plot "
+                   "(default: OUTPUT's name with -convergence.png)")
     p.add_argument("--exposure", type=v.positive_float, help="scale of radiosity to display "
                    "(default: the brightest lit surface shows as white)")
     p.add_argument("--no-ambient", action="store_true", help="show only the energy shot so "

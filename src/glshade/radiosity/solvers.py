@@ -150,11 +150,22 @@ class Solution:
         """
         from ..scene import Scene
 
+        from ..errors import SceneError
+        from ..scene.material import MAX_SHADING_VALUE
+
         if exposure is None:
             exposure = self.auto_exposure(ambient)
+        colors = self.vertex_colors(exposure, ambient, crease)
+        peak = float(np.max(colors, initial=0.0))
+        if not np.isfinite(peak) or peak > MAX_SHADING_VALUE:
+            # (said of the exposure, the value given: the colours are made from it)
+            brightest = float(np.max(self.displayed(ambient), initial=0.0))
+            raise SceneError(f"exposure {exposure:g} makes the brightest patch {peak:g}; a "
+                             f"colour may be at most {MAX_SHADING_VALUE:g} (shading runs in "
+                             f"32-bit floats): give an exposure up to "
+                             f"{MAX_SHADING_VALUE / max(brightest, 1e-300):.3g}")
         s = Scene(background=background)
-        s.add(self.problem.patches.mesh(crease),
-              vertex_colors=self.vertex_colors(exposure, ambient, crease), name="radiosity")
+        s.add(self.problem.patches.mesh(crease), vertex_colors=colors, name="radiosity")
         return s
 
     def surface_means(self) -> tuple[tuple, np.ndarray]:

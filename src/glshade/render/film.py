@@ -19,8 +19,8 @@ LAYOUT_BLOCKS = 64
 MAX_BLOCK_ROWS = 1024
 
 
-def film_layout(width: int, height: int,
-                per_row: int = LAYOUT_BLOCKS) -> tuple[tuple[int, int], tuple[int, int]]:
+def film_layout(width: int, height: int, per_row: int = LAYOUT_BLOCKS,
+                max_side: int | None = None) -> tuple[tuple[int, int], tuple[int, int]]:
     """The targets' size for an image laid out in 8x8 blocks, and the shaders' ``u_blocks``.
 
     Parameters
@@ -30,6 +30,9 @@ def film_layout(width: int, height: int,
     per_row
         8x8 blocks a target row (raised where the target would pass ``MAX_BLOCK_ROWS`` rows
         of blocks; lowered to the image's blocks when it has fewer).
+    max_side
+        The GL's largest framebuffer side in pixels, where known: a row never wider (the
+        rows then pass MAX_BLOCK_ROWS rather than the target the GL's width).
 
     Returns
     -------
@@ -38,6 +41,8 @@ def film_layout(width: int, height: int,
     nbx = -(-int(width) // 8)
     n = nbx * -(-int(height) // 8)
     per_row = max(int(per_row), -(-n // MAX_BLOCK_ROWS))
+    if max_side is not None:
+        per_row = min(per_row, max(int(max_side) // 8, 1))
     per_row = min(per_row, n)
     return (8 * per_row, 8 * -(-n // per_row)), (nbx, per_row)
 

@@ -44,13 +44,34 @@ from .shaders import ShaderLibrary
 from .state import SHADOWED_MODES, DrawState, sees_through
 from .target import OffscreenTarget, check_fits
 
-__all__ = ["Renderer", "Frame", "Pick", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
+__all__ = ["Renderer", "Frame", "Pick", "Culled", "MAX_CAMERA_REACH", "SHADOWED_MODES"]
 
 
 #: how far a camera may be from the origin or its scene: its projection's depth term is
 #: about 100 times its reach, and the matrices go to the GPU as 32-bit floats (largest
 #: 3.4e38) -- a camera at 3.4e36 overflowed them (the numeric sweep found it)
 MAX_CAMERA_REACH = 1e32
+
+
+@dataclass(frozen=True)
+class Culled:
+    """What the last draw skipped as wholly outside the view (:attr:`Renderer.culled`):
+    meshes and instances, and big meshes' and point clouds' spatial chunks -- never a
+    pixel it would have drawn.
+
+    Parameters
+    ----------
+    models : int
+        Meshes (and instances of a group) wholly outside the view, not drawn.
+    chunks : int
+        Big meshes' chunks outside it (``DrawOptions.frustum_cull``).
+    point_chunks : int
+        Point clouds' chunks outside it.
+    """
+
+    models: int
+    chunks: int
+    point_chunks: int
 
 
 @dataclass(frozen=True)
@@ -422,6 +443,12 @@ class Renderer:
         """What the last draw with transparent surfaces composited and left out (a
         :class:`~glshade.render.passes.transparency.TransparencyReport`), or None."""
         return self.transparent.report if self.transparent.drawn else None
+
+    @property
+    def culled(self) -> Culled:
+        """What the last draw skipped as outside the view (:class:`Culled`)."""
+        return Culled(int(self.meshes.culled), int(self.meshes.culled_chunks),
+                      int(self.points.culled_chunks))
 
     @property
     def shadow_pass(self):

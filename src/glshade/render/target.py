@@ -15,7 +15,7 @@ from ..errors import OptionError, SettingError
 from ..modes import Outputs
 from .base import GLResource
 
-__all__ = ["OffscreenTarget", "WindowTarget", "check_fits"]
+__all__ = ["OffscreenTarget", "WindowTarget", "check_fits", "max_side"]
 
 
 #: bytes per pixel and sample of an offscreen target: colour (up to 16 as float), normal
@@ -23,8 +23,22 @@ __all__ = ["OffscreenTarget", "WindowTarget", "check_fits"]
 _BYTES_PER_SAMPLE = 44
 
 
+def max_side(context) -> int:
+    """The largest framebuffer side this GL makes, in pixels (its renderbuffers' and
+    viewports' limits).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context.
+    """
+    info = context.ctx.info
+    return min(int(info.get("GL_MAX_RENDERBUFFER_SIZE") or 16384),
+               *[int(x) for x in (info.get("GL_MAX_VIEWPORT_DIMS") or (16384, 16384))])
+
+
 def check_fits(context, width: int, height: int, samples: int = 0,
-               bytes_per_pixel: int = 0) -> None:
+               bytes_per_pixel: int = 0, image: tuple[int, int] | None = None) -> None:
     """Refuse, up front and by name, what this GL cannot make: MSAA sample counts it lacks,
     images wider than its framebuffers, and (on a software renderer, which draws in main
     memory) images larger than the machine's memory.
@@ -39,18 +53,25 @@ def check_fits(context, width: int, height: int, samples: int = 0,
         MSAA samples.
     bytes_per_pixel : int
         The memory a pixel takes (0: the renderer's targets').
+    image : (int, int) or None
+        The image asked for, where the targets are laid out otherwise (the path tracer's
+        film in blocks): the message names it and the targets it takes.
     """
     import os
 
-    info = context.ctx.info
     max_samples = context.ctx.max_samples
+    side = max_side(context)
     if samples and (samples > max_samples or samples & (samples - 1)):
         counts = ", ".join(str(2**i) for i in range(int(np.log2(max(max_samples, 1))) + 1))
         raise SettingError("samples", f"samples must be 0 (off) or one of {counts} on this "
                                       f"GL ({context.detail}), got {samples}")
-    side = min(int(info.get("GL_MAX_RENDERBUFFER_SIZE") or 16384),
-               *[int(x) for x in (info.get("GL_MAX_VIEWPORT_DIMS") or (16384, 16384))])
     if max(width, height) > side:
+        if image is not None:
+            raise SettingError("size", f"an image of {image[0]}x{image[1]} takes targets of "
+                                       f"{width}x{height} (its film laid out in blocks), "
+                                       f"larger than this GL's largest framebuffer, {side} "
+                                       f"pixels a side ({context.detail}): trace a smaller "
+                                       "size")
         raise SettingError("size", f"an image of {width}x{height} is larger than this GL's "
                                    f"largest framebuffer, {side} pixels a side "
                                    f"({context.detail})")

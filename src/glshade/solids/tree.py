@@ -649,6 +649,12 @@ class Transformed(Solid):
         if np.abs(m[:3, 3]).max() >= SIZE_RANGE:
             raise GeometryError(f"CSG translation {_plain(m[:3, 3])} is too large: keep it "
                                 f"under {SIZE_RANGE:g}")
+        # (its stretch, as sizes are held: volumes cube it, so a scale of 1e150 overflowed
+        # float64 in a volume rather than being refused here)
+        stretch = np.linalg.svd(m[:3, :3], compute_uv=False)
+        if not (stretch.max() < SIZE_RANGE and stretch.min() > 1 / SIZE_RANGE):
+            raise GeometryError(f"CSG transform scales by {_plain(stretch)}: keep its scale "
+                                f"factors between {1 / SIZE_RANGE:g} and {SIZE_RANGE:g}")
         self.child, self.matrix = child, m
         self.inverse = np.linalg.inv(self.matrix)
         self.width = child.width

@@ -123,7 +123,7 @@ class GpuPathTracer(GLResource):
                  options: TraceOptions | None = None, *, shaders: ShaderLibrary | None = None,
                  rays: np.ndarray | None = None, control: np.ndarray | None = None,
                  budget: int = BUDGET, **changes):
-        from ..target import check_fits
+        from ..target import check_fits, max_side
 
         self.width, self.height = int(width), int(height)
         #: how paths are traced (a TraceOptions)
@@ -132,9 +132,10 @@ class GpuPathTracer(GLResource):
         self.streams = self._streams(context, options.streams)
         #: the targets' size (the image in blocks, a copy a stream: glshade.render.film)
         self.target_size, self._blocks = film_layout(self.width, self.height * self.streams,
-                                                     self.LAYOUT_BLOCKS)
+                                                     self.LAYOUT_BLOCKS, max_side(context))
         # (the same budget as the renderer's: two sets of seven RGBA float targets a pixel)
-        check_fits(context, *self.target_size, bytes_per_pixel=2 * 7 * 16 + 4)
+        check_fits(context, *self.target_size, bytes_per_pixel=2 * 7 * 16 + 4,
+                   image=(self.width, self.height))
         super().__init__(context)
         context.make_current()  # (its objects are made in its own context, whatever was last)
         ctx = context.ctx

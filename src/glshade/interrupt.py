@@ -77,6 +77,9 @@ def held():
         return
     caught: list[int] = []
     signal.signal(signal.SIGINT, lambda *_: caught.append(1))
+    # (and the system calls the driver is in restart rather than fail with EINTR: a Ctrl-C
+    # landing in Mesa's compile of a compute program crashed the process, SIGSEGV)
+    signal.siginterrupt(signal.SIGINT, False)
     try:
         yield
     finally:

@@ -20,7 +20,8 @@ from .base import GLResource
 from .programs import ProgramKey
 from .units import glsl_defines
 
-__all__ = ["shader_dir", "ShaderLibrary", "assemble", "PROGRAMS", "LOOP_CAP", "LOOP_BUDGET"]
+__all__ = ["shader_dir", "ShaderLibrary", "assemble", "compile_compute", "PROGRAMS", "LOOP_CAP",
+           "LOOP_BUDGET"]
 
 #: llvmpipe stops one shader invocation after this many loop iterations (every loop of the
 #: invocation counted together), silently: what it computed so far stands as its answer
@@ -120,6 +121,23 @@ def assemble(name: str, root: Path | None = None,
     return "\n".join(expand(name, 0, root)) + "\n", files
 
 
+
+
+def compile_compute(context, source: str):
+    """A compute program of ``source``, compiled with a Ctrl-C held until the driver is
+    done (the one way every pass compiles one: an interrupt mid-compile crashed Mesa).
+
+    Parameters
+    ----------
+    context : RenderContext
+        The context.
+    source : str
+        The assembled GLSL.
+    """
+    from ..interrupt import held
+
+    with held():
+        return context.ctx.compute_shader(source)
 
 
 # Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C0000: ..."; others "ERROR: 0:12: ..."

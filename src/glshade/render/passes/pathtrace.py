@@ -20,7 +20,7 @@ from ..base import GLResource
 from ..data import NEAREST, data_texture
 from ..film import LAYOUT_BLOCKS, film_layout, film_places
 from ..programs import UniformWriter
-from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary, assemble
+from ..shaders import LOOP_BUDGET, LOOP_CAP, ShaderLibrary, assemble, compile_compute
 from ..units import Binding, Unit
 from .csg import csg_defines
 
@@ -243,7 +243,7 @@ class GpuPathTracer(GLResource):
         if found is None:
             if kernel is Kernel.COMPUTE:
                 source, _ = assemble("pathtrace.comp", defines=self._defines_used)
-                program = self._keep(self.context.ctx.compute_shader(source))
+                program = self._keep(compile_compute(self.context, source))
                 vao = None
             else:
                 program = self._keep(self._shaders.compile(

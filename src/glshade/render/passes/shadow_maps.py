@@ -361,10 +361,10 @@ class ShadowMaps(GLResource):
         if prog is None:
             defines = ("ORTHOGRAPHIC",) if ortho else ()
             if storage:
-                from ..shaders import assemble
+                from ..shaders import assemble, compile_compute
 
                 source, _ = assemble("shadow_maps.comp", defines=defines)
-                prog = self.context.ctx.compute_shader(source)
+                prog = compile_compute(self.context, source)
             else:  # (no compute shaders: a fragment program drawn over the viewport)
                 prog = self.shaders.compile("fullscreen.vert", "shadow_maps.frag",
                                             defines=defines)

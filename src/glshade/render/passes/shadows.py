@@ -270,10 +270,10 @@ class ShadowPass(GLResource, Stage):
         prog = self._programs.get(defines)
         if prog is None:
             if self.context.features.storage:
-                from ..shaders import assemble
+                from ..shaders import assemble, compile_compute
 
                 source, _ = assemble("shadow_rays.comp", defines=defines)
-                prog = self.context.ctx.compute_shader(source)
+                prog = compile_compute(self.context, source)
             else:
                 prog = self.shaders.compile(
                     "fullscreen.vert", "shadow_rays.frag",

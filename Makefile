@@ -76,6 +76,7 @@ bench: setup
 	$(PY) benchmarks/radiosity_bench.py
 	$(PY) benchmarks/shadows_bench.py
 	$(PY) benchmarks/transparency_bench.py
+	$(PY) benchmarks/pbr_bench.py
 	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
 	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)

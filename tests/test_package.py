@@ -17,7 +17,8 @@ PACKAGE = Path(glshade.__file__).parent
 #: the layers, lowest first: a module may import its own layer and those below it. Each
 #: chapter of the notes is one package (or module) at its public import path.
 LAYERS = [
-    {"_version", "atomic", "_callable", "interrupt", "_vec", "display", "errors", "modes",
+    {"_version", "atomic", "_callable", "interrupt", "_vec", "_srgb", "display", "errors",
+     "modes",
      "options", "examples", "colormaps", "_paths"},
     {"parallel"},
     {"quaternion", "masspoint"},

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .._srgb import linear_to_srgb
 from ..scene.lights import DirectionalLight
 
 __all__ = ["light_intensity", "pbr_radiance", "view_dir", "face_viewer", "encode_srgb",
@@ -190,8 +191,7 @@ def encode_srgb(c: F) -> F:
     c : ndarray
         Linear values in [0, 1].
     """
-    c = np.clip(c, 0.0, 1.0)
-    return np.where(c > 0.0031308, 1.055 * c ** (1 / 2.4) - 0.055, 12.92 * c)
+    return linear_to_srgb(c)
 
 
 def final_color(color: F, srgb: bool = False) -> F:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._srgb import linear_to_srgb, srgb_to_linear
 from ..errors import EnvironmentFailure, MeshFormatError
 from .mesh import Mesh
 
@@ -33,16 +34,6 @@ def trimesh_formats() -> tuple[str, ...]:
     return tuple(sorted(trimesh.available_formats()))
 
 
-def _srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    # (IEC 61966-2-1; the same curve as glshade.scene.texture's, kept here so that
-    # geometry does not import the scene package)
-    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-
-
-def _linear_to_srgb(c: np.ndarray) -> np.ndarray:
-    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
-
-
 def _colors_of(m, linear: bool):
     """A trimesh mesh's vertex and face colours as ``(N, 4)`` linear RGBA (None where it has
     none): trimesh holds RGBA bytes -- sRGB-encoded as its viewer shows them and PLY files
@@ -67,7 +58,7 @@ def _colors_of(m, linear: bool):
         if c.shape[1] == 3:
             c = np.hstack([c, np.ones((len(c), 1))])
         if not linear:
-            c = np.hstack([_srgb_to_linear(c[:, :3]), c[:, 3:]])
+            c = np.hstack([srgb_to_linear(c[:, :3]), c[:, 3:]])
         out.append(np.clip(c, 0.0, 1.0))
     return out[0], out[1]
 
@@ -223,7 +214,7 @@ def to_trimesh(mesh: Mesh, image=None):
         tri = corner_vertex.ravel()[mesh.corner_triangles]
 
     def srgb_bytes(c):
-        encoded = np.hstack([_linear_to_srgb(c[:, :3]), c[:, 3:]])
+        encoded = np.hstack([linear_to_srgb(c[:, :3]), c[:, 3:]])
         return np.round(np.clip(encoded, 0, 1) * 255).astype(np.uint8)
 
     kwargs = {}

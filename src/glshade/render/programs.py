@@ -164,7 +164,8 @@ FLAT_CONSTANTS_PIXELS = 128
 
 
 def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors: int,
-                       textured: bool = False, colored: bool = False) -> bool:
+                       textured: bool = False, colored: bool = False,
+                       normal_map: bool = False) -> bool:
     """Whether a Phong program's lighting constants fit the driver's varyings alongside its
     own (position, normal and, with aux outputs, the world normal): one vector for ambient
     and n, then per light its position, diffuse and specular (and attenuation).
@@ -183,12 +184,14 @@ def flat_constants_fit(mode: ShadingMode, aux: bool, lights: tuple, max_vectors:
         The program reads texture coordinates.
     colored : bool
         The program reads vertex colours.
+    normal_map : bool
+        The program interpolates a tangent frame (a PBRMaterial's normal map).
     """
     if mode is not ShadingMode.PHONG:
         return False
     per_light = 3 + ("ATTENUATED" in lights or "SPOT" in lights) + ("SPOT" in lights)
-    return (2 + bool(aux) + bool(textured) + bool(colored) + 1 + per_light * len(lights)
-            <= max_vectors)
+    own = 2 + bool(aux) + bool(textured) + bool(colored) + bool(normal_map)
+    return own + 1 + per_light * len(lights) <= max_vectors
 
 
 #: the shading modes that show a material's textures (the others show geometry)

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._srgb import srgb_to_linear
 from ..errors import SceneError
 
 __all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear", "texture_field",
@@ -24,18 +25,6 @@ __all__ = ["Texture", "FILTERS", "WRAPS", "srgb_to_linear", "texture_field",
 FILTERS = ("nearest", "linear", "mipmap")
 #: what lies outside [0, 1]: the image again, or its edge texels (MTL's -clamp on)
 WRAPS = ("repeat", "clamp")
-
-
-def srgb_to_linear(c: np.ndarray) -> np.ndarray:
-    """sRGB-encoded values in [0, 1] to linear light (IEC 61966-2-1), float64.
-
-    Parameters
-    ----------
-    c : ndarray
-        sRGB-encoded values in [0, 1], any shape.
-    """
-    c = np.asarray(c, np.float64)
-    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
 def _one_of(value: object, names: tuple, what: str) -> str:

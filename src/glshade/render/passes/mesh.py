@@ -200,7 +200,8 @@ class MeshPass(GLResource, Stage):
             forwarded = variant.shadows and variant.forward is not Forward.ARRAY
             world = (variant.aux or forwarded) and role is Role.OPAQUE
             flat = flat and flat_constants_fit(variant.mode, world, variant.lights,
-                                               self.max_varyings, textured, colored)
+                                               self.max_varyings, textured, colored,
+                                               normal_map)
             key = ProgramKey.of(variant, two_sided=two_sided, flat_constants=flat, oit=role,
                                 textured=textured, instanced=instanced, fetch=fetch,
                                 colored=colored, emissive=emissive, lighting=lighting,

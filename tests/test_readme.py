@@ -52,8 +52,8 @@ def _check_outputs(folder, stdout):
 @pytest.mark.slow
 def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
     """Build the release files as PyPI takes them (``python -m build``: the pure-Python
-    wheel and the sdist; ``twine check`` passes), install the wheel (and its dependencies,
-    with the notebook extra) into a new venv outside the repository, and there, from an
+    wheel and the sdist; ``twine check`` passes), install the wheel (its dependencies and
+    the notebook and formats extras) into a new venv outside the repository, and there, from an
     empty folder: the README's blocks, ``glshade doctor``, a render with exact shadows and
     transparency, a path trace, and the viewer headless (a hidden window under Xvfb)."""
     import shutil
@@ -84,7 +84,7 @@ def test_the_wheel_in_a_fresh_environment_runs_the_readme(tmp_path):
                 "--python", str(python)]
                if importlib.util.find_spec("uv") else
                [str(python), "-m", "pip", "install", "-q", "--disable-pip-version-check"])
-    out = subprocess.run([*install, f"{wheel}[notebook]"], capture_output=True, text=True,
+    out = subprocess.run([*install, f"{wheel}[notebook,formats]"], capture_output=True, text=True,
                          env=env, timeout=900)
     assert out.returncode == 0, out.stderr[-3000:]
     work = tmp_path / "work"

@@ -48,7 +48,7 @@ _EXPORTS = {
     # files
     "load_mesh": ("io.meshes", "load_mesh"), "save_mesh": ("io.meshes", "save_mesh"),
     "load_scene": ("io.scenefile", "load_scene"), "save_image": ("io.images", "save_image"),
-    "load_points": ("io.points", "load_points"),
+    "load_points": ("io.points", "load_points"), "load_gltf": ("io.gltf", "load_gltf"),
     # rendering (GL)
     "Renderer": ("render.renderer", "Renderer"), "Frame": ("render.renderer", "Frame"),
     "Pick": ("render.renderer", "Pick"), "View": ("scene.camera", "View"),
@@ -90,6 +90,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .geometry.lines import Polyline
     from .geometry.points import PointCloud
     from .geometry.polygon import newell_normal, polygon_area
+    from .io.gltf import load_gltf
     from .io.images import save_image
     from .io.meshes import load_mesh, save_mesh
     from .io.points import load_points

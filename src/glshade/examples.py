@@ -37,7 +37,7 @@ def _table() -> dict[str, Path]:
     root = folder()
     found = {p.stem: p for p in sorted((root / "scenes").glob("*.toml"))}
     found.update({p.name: p for p in sorted(root.iterdir())
-                  if p.suffix.lower() in (".obj", ".off", ".ply", ".stl")})
+                  if p.suffix.lower() in (".obj", ".off", ".ply", ".stl", ".glb", ".gltf")})
     return found
 
 

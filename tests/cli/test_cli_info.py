@@ -99,3 +99,18 @@ def test_a_reader_that_goes_away_ends_the_output_quietly():
     finally:
         os.close(write)
     assert (out.returncode, out.stderr) == (141, "")
+
+
+def test_info_on_a_scene_file_names_each_models_lighting_model(tmp_path):
+    (tmp_path / "two.toml").write_text(
+        '[[mesh]]\nname = "gold"\nsource = "primitive:uv_sphere"\n'
+        'pbr = { base_color = [0.9, 0.6, 0.2], metallic = 1.0, roughness = 0.3 }\n'
+        '[[mesh]]\nname = "chalk"\nsource = "primitive:cube"\nkd = 0.5\n'
+        '[[light]]\ntype = "spot"\nposition = [0, 4, 0]\ndirection = [0, -1, 0]\n')
+    out = run("info", str(tmp_path / "two.toml"))
+    assert out.returncode == 0, out.stderr
+    assert "gold" in out.stdout and "PBR base (0.9, 0.6, 0.2), metallic 1, roughness 0.3" \
+        in out.stdout
+    chalk = [line for line in out.stdout.splitlines() if line.startswith("  chalk")][-1]
+    assert "PBR" not in chalk and "(0.4, 0.4, 0.4)" in chalk  # (kd 0.5 x the colour 0.8)
+    assert "spot        at (0, 4, 0)" in out.stdout

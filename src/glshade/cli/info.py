@@ -40,14 +40,23 @@ def mesh_summary(mesh) -> dict:
     }
 
 
+def _texture_summary(t) -> dict:
+    return {"file": str(t.path) if t.path else None, "size": list(t.size),
+            "filter": t.filter, "wrap": t.wrap}
+
+
 def material_summary(material, faces: int | None = None) -> dict:
     """One material's coefficients and textures, as plain JSON-able data, with its lighting
     model (``"notes"`` or ``"pbr"``)."""
     if material.lighting.value == "pbr":
+        maps = {k.removesuffix("_texture"): getattr(material, k) for k in (
+            "base_color_texture", "metallic_roughness_texture", "normal_texture",
+            "occlusion_texture", "emissive_texture")}
         out = {"name": material.name, "model": "pbr", "base_color": list(material.base_color),
                "metallic": material.metallic, "roughness": material.roughness,
                "emissive": list(material.emissive), "opacity": material.opacity,
-               "vertex_colors": material.vertex_colors, "textures": {}}
+               "vertex_colors": material.vertex_colors,
+               "textures": {k: _texture_summary(t) for k, t in maps.items() if t is not None}}
         if faces is not None:
             out["faces"] = faces
         return out
@@ -56,9 +65,7 @@ def material_summary(material, faces: int | None = None) -> dict:
            "shininess": material.shininess, "opacity": material.opacity,
            "illum": material.illum, "emission": list(material.emission),
            "vertex_colors": material.vertex_colors,
-           "textures": {k: {"file": str(t.path) if t.path else None, "size": list(t.size),
-                            "filter": t.filter, "wrap": t.wrap}
-                        for k, t in material.textures.items()}}
+           "textures": {k: _texture_summary(t) for k, t in material.textures.items()}}
     if faces is not None:
         out["faces"] = faces
     return out
@@ -86,16 +93,18 @@ def _print_materials(materials: list[dict], notes: list[str]) -> None:
                   "drawn with the default)")
             continue
         faces = f"{m['faces']:>7,}" if "faces" in m else " " * 7
-        if m.get("model") == "pbr":  # (glTF's metallic-roughness: its factors)
-            base = ", ".join(f"{x:.3g}" for x in m["base_color"])
-            print(f"  {str(m['name'])[:18]:<18} {faces}  PBR base ({base}), metallic "
-                  f"{m['metallic']:.3g}, roughness {m['roughness']:.3g}")
-            continue
-        kd = ", ".join(f"{x:.3g}" for x in m["diffuse"])
         maps = "; ".join(f"{k} {Path(t['file']).name if t['file'] else 'an image'} "
                          f"{t['size'][0]}x{t['size'][1]} {t['filter']}"
                          for k, t in m["textures"].items()) or "-"
-        faces = f"{m['faces']:>7,}" if "faces" in m else " " * 7
+        if m.get("model") == "pbr":  # (glTF's metallic-roughness: its factors and maps)
+            base = ", ".join(f"{x:.3g}" for x in m["base_color"])
+            emits = (f", emissive ({', '.join(f'{x:.3g}' for x in m['emissive'])})"
+                     if any(m["emissive"]) else "")
+            print(f"  {str(m['name'])[:18]:<18} {faces}  PBR base ({base}), metallic "
+                  f"{m['metallic']:.3g}, roughness {m['roughness']:.3g}{emits}"
+                  f"{'; ' + maps if m['textures'] else ''}")
+            continue
+        kd = ", ".join(f"{x:.3g}" for x in m["diffuse"])
         print(f"  {str(m['name'])[:18]:<18} {faces}  ({kd}){' ' * max(0, 20 - len(kd))} "
               f"{m['shininess']:>5g}  {m['illum']:>5}  {maps}")
     if notes:
@@ -176,8 +185,6 @@ def _solid_info(args: InfoArgs, solid) -> int:
 def scene_summary(scene_file) -> dict:
     """A scene file's models (counts, closedness, world bounds), solids, lights, camera path
     and render settings, as plain JSON-able data."""
-    from ..scene import DirectionalLight
-
     sf, st = scene_file, scene_file.settings
     models = []
     for m in sf.scene.models:
@@ -188,15 +195,7 @@ def scene_summary(scene_file) -> dict:
                        "material": material_summary(m.material),
                        "bounds": {"min": corners.min(0).tolist(),
                                   "max": corners.max(0).tolist()}})
-    lights = [{"kind": "directional" if isinstance(x, DirectionalLight) else
-               "spot" if hasattr(x, "spot_vector") else "point",
-               "at": list(map(float, x.direction if isinstance(x, DirectionalLight)
-                              else x.position)),
-               "color": list(map(float, x.color)), "intensity": float(x.intensity),
-               **({"direction": list(map(float, x.direction)),
-                   "inner_angle": x.inner_angle, "outer_angle": x.outer_angle}
-                  if hasattr(x, "spot_vector") else {})}
-              for x in sf.scene.lights]
+    lights = lights_summary(sf.scene.lights)
     return {"kind": "scene", "models": models,
             "solids": [{"name": x.name, "leaves": len(x.solid.leaves())}
                        for x in sf.scene.solids],
@@ -225,19 +224,44 @@ def _scene_info(args: InfoArgs) -> int:
               f"  [{', '.join(f'{x:.4g}' for x in lo)}] .. [{', '.join(f'{x:.4g}' for x in hi)}]")
     for x in s["solids"]:
         print(f"  {str(x['name'])[:18]:<18} CSG solid, {x['leaves']} leaves")
-    textured = [dict(m["material"], name=m["name"]) for m in s["models"]
-                if m["material"]["textures"]]
-    _print_materials(textured, [])
-    print(f"lights ({len(s['lights'])}):" if s["lights"] else
-          "lights: none (a headlight at the camera)")
-    for x in s["lights"]:
+    # (each model's material, in its lighting model: the notes' or glTF's)
+    _print_materials([dict(m["material"], name=m["name"]) for m in s["models"]], [])
+    _print_lights(s["lights"])
+    return EXIT_OK
+
+
+def lights_summary(lights) -> list[dict]:
+    """Lights as plain JSON-able data: kind, position (or direction), colour, intensity,
+    a spot's cone and a range."""
+    from ..scene import DirectionalLight
+
+    return [{"kind": "directional" if isinstance(x, DirectionalLight) else
+             "spot" if hasattr(x, "spot_vector") else "point",
+             "at": list(map(float, x.direction if isinstance(x, DirectionalLight)
+                            else x.position)),
+             "color": list(map(float, x.color)), "intensity": float(x.intensity),
+             "range": getattr(x, "range", None),
+             **({"direction": list(map(float, x.direction)),
+                 "inner_angle": x.inner_angle, "outer_angle": x.outer_angle}
+                if hasattr(x, "spot_vector") else {})}
+            for x in lights]
+
+
+def _numbers(values) -> str:
+    """A vector as a reader wants it: 3 digits, a rounding error of 0 shown as 0."""
+    return ", ".join(f"{v:.3g}" for v in (0.0 if abs(v) < 1e-12 else v for v in values))
+
+
+def _print_lights(lights: list[dict]) -> None:
+    print(f"lights ({len(lights)}):" if lights else "lights: none (a headlight at the camera)")
+    for x in lights:
         where = "shining along" if x["kind"] == "directional" else "at"
-        cone = (f", pointing ({', '.join(f'{v:.3g}' for v in x['direction'])}), cone "
+        cone = (f", pointing ({_numbers(x['direction'])}), cone "
                 f"{x['inner_angle']:.3g} to {x['outer_angle']:.3g} rad"
                 if x["kind"] == "spot" else "")
-        print(f"  {x['kind']:<11} {where} ({', '.join(f'{v:.3g}' for v in x['at'])}), "
-              f"intensity {x['intensity']:g}{cone}")
-    return EXIT_OK
+        reach = f", range {x['range']:g}" if x.get("range") is not None else ""
+        print(f"  {x['kind']:<11} {where} ({_numbers(x['at'])}), "
+              f"intensity {x['intensity']:g}{cone}{reach}")
 
 
 def _patch_info(args: InfoArgs, surface) -> int:
@@ -322,7 +346,14 @@ def info(args: InfoArgs) -> int:
     args = replace(args, mesh=examples.resolve(args.mesh))  # (an example's name: its file)
     if is_scene_file(args.mesh):
         return _scene_info(args)
-    mesh = load_source(args.mesh)
+    asset = None
+    if args.mesh.lower().endswith((".gltf", ".glb")):  # (its lights and cameras too)
+        from ..io.gltf import load_gltf
+
+        asset = load_gltf(args.mesh)
+        mesh = asset.mesh
+    else:
+        mesh = load_source(args.mesh)
     if isinstance(mesh, Solid):
         return _solid_info(args, mesh)
     from ..patches import PatchSurface
@@ -338,6 +369,12 @@ def info(args: InfoArgs) -> int:
     info = mesh_summary(mesh)
     info["source"] = args.mesh
     info["topology"] = topology_summary(mesh)
+    if asset is not None:
+        info["lights"] = lights_summary(asset.lights)
+        info["cameras"] = [{"name": c.name, "projection": c.camera.projection.value,
+                            "position": c.camera.position.tolist(),
+                            "fov_y": c.camera.fov_y, "aspect": c.aspect}
+                           for c in asset.cameras]
     if args.json:
         print(json.dumps(info, indent=2))
         return EXIT_OK
@@ -383,6 +420,14 @@ def info(args: InfoArgs) -> int:
         print(f"colours: per {' and per '.join(info['colors'])} (linear RGBA; the surface "
               "colour C, times the material's)")
     _print_materials(info["materials"], info["unused_material_statements"])
+    if asset is not None:
+        _print_lights(info["lights"])
+        if info["cameras"]:
+            print(f"cameras ({len(info['cameras'])}):")
+        for c in info["cameras"]:
+            lens = (f"{c['fov_y']:.3g} degrees high" if c["projection"] == "perspective"
+                    else "parallel")
+            print(f"  {str(c['name'])[:18]:<18} at ({_numbers(c['position'])}), {lens}")
     return EXIT_OK
 
 

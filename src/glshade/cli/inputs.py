@@ -67,8 +67,11 @@ class Job:
             raise UsageError(f"{where}: {exc}") from None
 
 
-def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
-    """A one-mesh scene and its camera from the render options (render, view, compare)."""
+def build_scene(mesh, args: RenderArgs, aspect: float, asset=None) -> tuple[Scene, Camera]:
+    """A one-mesh scene and its camera from the render options (render, view, compare);
+    ``asset``: the glTF file (:class:`~glshade.io.gltf.GltfFile`) the mesh came from, whose
+    lights light it unless ``--light`` gives some, seen through its first camera unless
+    ``--eye``, ``--target`` or ``--view`` places one."""
     scene = Scene(**args.given("background"))
     given = args.given("color", "ka", "kd", "ks", "shininess", "opacity")
     # (an OBJ's own materials, unless the command line gives one)
@@ -80,10 +83,15 @@ def build_scene(mesh, args: RenderArgs, aspect: float) -> tuple[Scene, Camera]:
         eye = eye if eye is not None else (0.0, 0.0, 5.0)
         target = target if target is not None else tuple(scene.bounds.mean(0))
         camera = Camera.look_at(eye, target, **lens)  # (clip planes: from the scene)
+    elif asset is not None and asset.cameras and args.view is None:
+        camera = asset.cameras[0].camera.replace(**lens)
     else:
         camera = default_camera(scene.bounds, aspect, **lens)
-    for position in args.light:  # none: the default headlight
+    for position in args.light:  # none: the file's, else the default headlight
         scene.add_light(PointLight(position))
+    if not args.light and asset is not None:
+        for light in asset.lights:
+            scene.add_light(light)
     return scene, camera
 
 
@@ -141,7 +149,14 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
             raise UsageError("--time needs a scene file (.toml) with a camera path")
         settings, path = base, None
         size = args.size or base.size
-        mesh = load_source(spec)  # (its errors name the file and line)
+        asset = None
+        if spec.lower().endswith((".gltf", ".glb")):  # (its lights and cameras too)
+            from ..io.gltf import load_gltf
+
+            asset = load_gltf(spec)
+            mesh = asset.mesh
+        else:
+            mesh = load_source(spec)  # (its errors name the file and line)
         if args.tolerance is not None:
             from ..patches import PatchSurface, tessellate
 
@@ -149,7 +164,7 @@ def load_job(args: RenderArgs, spec: str, defaults: RenderSettings | None = None
                 raise UsageError(f"--tolerance is for patches:NAME, not {spec}")
             mesh = tessellate(mesh, tolerance=args.tolerance).mesh
         try:
-            scene, camera = build_scene(mesh, args, size[0] / size[1])
+            scene, camera = build_scene(mesh, args, size[0] / size[1], asset)
         except InputError as exc:  # a mesh the options cannot place: say which mesh
             raise UsageError(f"{spec}: {exc}") from None
     if args.texture_filter is not None:

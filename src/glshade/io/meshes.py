@@ -55,7 +55,12 @@ def load_mesh(path, format: str | None = None) -> Mesh:
         The file is missing, unreadable or malformed; the message names the path and the
         line (or byte offset) and says what was wrong.
     """
-    path = Path(path)
+    return read_mesh(Path(path), format)
+
+
+def read_mesh(path: Path, format: str | None = None, extras_taken: bool = False) -> Mesh:
+    """:func:`load_mesh`'s work; ``extras_taken``: a glTF's lights and cameras are read by
+    the caller (:func:`~glshade.io.gltf.load_gltf`), so its warning does not name them."""
     fault = file_fault(path)
     if fault is not None:
         raise MeshFormatError(path, fault.replace("not a file", "not a mesh file"))
@@ -74,7 +79,7 @@ def load_mesh(path, format: str | None = None) -> Mesh:
     if not data.strip():
         raise MeshFormatError(path, "the file is empty")
     if fmt not in _MODULES:
-        return load_with_trimesh(path, fmt)
+        return load_with_trimesh(path, fmt, extras_taken)
     mesh = _MODULES[fmt].read(path, data)
     mesh.name = mesh.name or path.stem
     return mesh
@@ -151,7 +156,7 @@ def save_mesh(mesh: Mesh, path, format: str | None = None, *, binary: bool = Tru
         _MODULES[fmt].write(mesh, f, binary)
 
 
-def load_with_trimesh(path: Path, fmt: str) -> Mesh:
+def load_with_trimesh(path: Path, fmt: str, extras_taken: bool = False) -> Mesh:
     """Read ``path`` through trimesh; any failure of its reader names the file."""
     trimesh = trimesh_module()
     try:
@@ -162,10 +167,12 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
     parts = trimesh_parts(loaded, path.stem)
     if fmt in ("glb", "gltf"):
-        unread = gltf_unread(path)
+        from .gltf import gltf_unread
+
+        unread = gltf_unread(path, extras_taken=extras_taken)
         if unread:
             warnings.warn(f"{path.name}: read and not drawn: {', '.join(unread)}",
-                          UserWarning, stacklevel=3)
+                          UserWarning, stacklevel=4)
     # (a glTF's COLOR_0 is linear: trimesh scales it to bytes without a curve)
     mesh = from_trimesh(parts, name=path.stem, linear_colors=fmt in ("glb", "gltf"))
     from ..scene.describe import material_from_description
@@ -175,37 +182,3 @@ def load_with_trimesh(path: Path, fmt: str) -> Mesh:
     mesh.materials = {name: material_from_description(d, f"{path.name}: {name}")
                       for name, d in mesh.materials.items()}
     return mesh
-
-
-def gltf_unread(path: Path) -> list[str]:
-    """What a glTF/GLB file holds that glshade does not draw -- its extensions (clearcoat,
-    transmission, volume, lights ...), skins, morph targets, animations and cameras -- each
-    named with its count, from the file's JSON (read here: trimesh drops them in silence).
-
-    Parameters
-    ----------
-    path : Path
-        The .gltf or .glb file.
-    """
-    import json
-    import struct
-
-    data = path.read_bytes()
-    try:
-        if data[:4] == b"glTF":  # (GLB: a 12-byte header, then the JSON chunk first)
-            length, kind = struct.unpack_from("<II", data, 12)
-            doc = json.loads(data[20:20 + length]) if kind == 0x4E4F534A else {}
-        else:
-            doc = json.loads(data)
-    except (ValueError, struct.error):
-        return []  # (trimesh read it: whatever it is, nothing more is said here)
-    out = [f"extension {name}" for name in doc.get("extensionsUsed", [])]
-    targets = sum(len(p.get("targets", [])) for m in doc.get("meshes", [])
-                  for p in m.get("primitives", []))
-    for count, what in ((len(doc.get("skins", [])), "skin"), (targets, "morph target"),
-                        (len(doc.get("animations", [])), "animation"),
-                        (len(doc.get("cameras", [])), "camera")):
-        if count:
-            out.append(f"{count} {what}{'s' if count > 1 else ''}")
-    return out
-

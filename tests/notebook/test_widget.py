@@ -91,3 +91,23 @@ def test_a_mode_that_does_not_exist_is_said_in_the_status_line(widget):
     send(widget, event="mode", mode="toon")  # (no exception: a kernel would only log it)
     assert widget.status.startswith("error: ") and "toon" in widget.status
     assert widget.mode == before
+
+
+def test_a_gltf_files_materials_lights_and_camera_in_the_widget(make_renderer):
+    """The widget on a glTF file as read whole (PBR maps, the file's spot light, its
+    camera): every frame is glshade's render of the view, in each scheme, and the gold
+    ball is lit (an unlit PBR scene would be the ambient term alone)."""
+    from glshade import examples, load_gltf
+
+    asset = load_gltf(examples.path("spotlit.glb"))
+    w = view(asset.scene(), asset.cameras[0].camera, size=SIZE, backend=BACKEND)
+    try:
+        r = make_renderer(*SIZE, samples=4)
+        assert np.allclose(w.view["position"], asset.cameras[0].camera.position)
+        for key, mode in (("1", "flat"), ("2", "gouraud"), ("3", "phong")):
+            send(w, event="key", key=key)
+            image = shown(w)
+            assert (image == expected(w, mode, r)).all(), mode
+            assert image[..., 0].max() > 200, mode  # (the spot's highlight on the gold)
+    finally:
+        w.close()

@@ -253,3 +253,34 @@ def test_plugin_baselines_every_failure_report_and_approve(pytester, gl_context)
     assert subprocess.run(approve + ["--all"], capture_output=True).returncode == 0
     run().assert_outcomes(passed=2)
     assert "all 4 golden image checks passed" in (results / "index.html").read_text()
+
+
+PBR_PLUGIN = """
+from glshade import PBRMaterial, Scene, SpotLight, Camera
+from glshade.geometry import primitives
+
+ROUGHNESS = 0.35
+
+def test_gold(glshade_renderer, glshade_golden):
+    s = Scene()
+    s.add(primitives.icosphere(3), PBRMaterial(base_color=(1, 0.77, 0.33), metallic=1.0,
+                                              roughness=ROUGHNESS))
+    s.add_light(SpotLight((1, 3, 3), (-1, -3, -3), intensity=40, outer_angle=0.6))
+    glshade_golden(glshade_renderer.render_frame(s, Camera.look_at([0, 0, 4], [0, 0, 0]),
+                                                 "phong"))
+"""
+
+
+@pytest.mark.once
+def test_a_pbr_golden_holds_the_materials_factors(pytester, gl_context):
+    """glTF's model through the golden check: a changed roughness (a highlight's spread)
+    is a regression, the same scene passes."""
+    backend = gl_context.backend.value
+    pytester.makepyfile(test_pbr=PBR_PLUGIN)
+    run = lambda *a: pytester.runpytest_subprocess("--glshade-backend", backend, *a)  # noqa
+    run("--glshade-add-missing").assert_outcomes(passed=1)
+    run().assert_outcomes(passed=1)
+    pytester.makepyfile(test_pbr=PBR_PLUGIN.replace("ROUGHNESS = 0.35", "ROUGHNESS = 0.45"))
+    result = run()
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*regression*"])

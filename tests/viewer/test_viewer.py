@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from glshade import Camera, Culling, Material, PointLight, RenderWarning, Scene
+from glshade import Camera, Culling, Material, Mesh, PointLight, RenderWarning, Scene
 from glshade.geometry import primitives as P
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -65,6 +65,25 @@ def clouds_scene():
                                                      np.full(40, 0.5), np.full(40, 0.8)]))
     s.add(Polyline(np.r_[ring, ring[:1]] * [1.2, 1.0, 1.2], width=4, joins="round"),
           Material(color=(0.9, 0.8, 0.2)))
+    return s
+
+
+def appearance_scene():
+    """What #71 brought: a PBR gold teapot, a vertex-coloured ball, an emissive cube, lit
+    by a spot light and a ranged point light."""
+    from glshade import PBRMaterial, SpotLight
+
+    s = Scene(background=(0.05, 0.05, 0.08))
+    s.add(P.teapot(4), PBRMaterial(base_color=(1.0, 0.77, 0.33), metallic=1.0, roughness=0.35))
+    ball = P.icosphere(3, 0.7)
+    s.add(Mesh(ball.vertices, ball.faces, colors=ball.vertices / 1.4 + 0.5),
+          PBRMaterial(roughness=0.6),
+          translation=(2.2, 0.7, 0.5))
+    s.add(P.cube(), Material(color=(0.2, 0.2, 0.2), emission=(0.6, 0.1, 0.1)),
+          translation=(-2.2, 0.5, 0.5))
+    s.add_light(SpotLight((0.0, 5.0, 2.0), (0.0, -1.0, -0.3), intensity=60.0,
+                          inner_angle=0.3, outer_angle=0.7))
+    s.add_light(PointLight((4.0, 3.0, 5.0), intensity=30.0, range=15.0))
     return s
 
 
@@ -135,6 +154,18 @@ def test_window_draws_clouds_and_lines_like_headless(viewer_factory, tmp_path):
     yellow = (shot[..., 0] > 150) & (shot[..., 1] > 130) & (shot[..., 2] < 110)
     assert yellow.mean() > 0.005  # (the polyline is there)
     assert np.abs(shot - ref).max() <= 1
+
+
+def test_window_draws_pbr_colours_emission_and_spot_lights_like_headless(viewer_factory,
+                                                                          tmp_path):
+    v = viewer_factory(appearance_scene(), CAM)
+    refs = headless(tmp_path, "flat", "gouraud", "phong", scene="appearance_scene")[0]
+    for key, ref in zip("123", refs.astype(int)):
+        v.key(key)
+        v.step()
+        shot = v.screenshot().astype(int)
+        assert (shot[..., 0] > shot[..., 2] + 40).mean() > 0.02, key  # (gold, lit)
+        assert np.abs(shot - ref).max() <= 1, key
 
 
 def test_keys_switch_modes_like_headless(viewer_factory, tmp_path):

@@ -77,6 +77,7 @@ bench: setup
 	$(PY) benchmarks/shadows_bench.py
 	$(PY) benchmarks/transparency_bench.py
 	$(PY) benchmarks/pbr_bench.py
+	$(PY) benchmarks/pyrender_units.py
 	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
 	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)

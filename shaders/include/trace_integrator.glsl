@@ -43,8 +43,7 @@ int g_model;  // the model of the vertex being made (-1: the CSG solid)
 uniform vec3 u_control[CONTROL];  // each model's control value (radiosity units)
 #endif
 
-bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks,
-                    float shin);
+bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b);
 
 // one bounce of ``p``: the next vertex, its emission (first vertex), next-event estimation
 // and the next direction; false when the path ends
@@ -73,7 +72,7 @@ bool bounce(inout Path p) {
         g_model = floatBitsToInt(e1.w);
         ng = normalize(cross(e1.xyz, e2));
     }
-    vec4 ma = fetch(u_mats + 2 * m), mb = fetch(u_mats + 2 * m + 1);
+    vec4 ma = fetch(u_mats + 3 * m), mb = fetch(u_mats + 3 * m + 1);
     if (p.bounces == 0 && dot(ng, p.d) < 0.0) {
         p.value += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
         p.flags += float(dot(mb.xyz, vec3(1.0)) > 0.0);
@@ -105,37 +104,28 @@ bool bounce(inout Path p) {
     }
 #endif
     vec3 wo = -p.d;
-    vec3 rho = ma.xyz;
-    float ks = ma.w, shin = mb.w;
+    Bsdf b = Bsdf(ma.xyz, ma.w, mb.w, 0.0, 0.0, 0.0);
+#ifdef PBR
+    vec4 mc = fetch(u_mats + 3 * m + 2);  // (glTF's model: metallic, roughness, flag)
+    b.metallic = mc.x; b.roughness = mc.y; b.pbr = mc.z;
+#endif
     bool last = u_max_depth > 0 && p.bounces + 1 >= u_max_depth;
-    p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, rho, ks, shin, last)
-                         + lights_seen(xo, n, n_geo, wo, rho, ks, shin));
+    p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, b, last)
+                         + lights_seen(xo, n, n_geo, wo, b));
     p.bounces += 1;
     if (u_max_depth > 0 && p.bounces >= u_max_depth) return false;
-    return next_direction(p, xo, n, n_geo, wo, rho, ks, shin);
+    return next_direction(p, xo, n, n_geo, wo, b);
 }
 
-// the path's next direction from xo: a lobe by albedo, then the BRDF-weighted throughput
-// and Russian roulette; false when the path ends
-bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks,
-                    float shin) {
-    float wd = (rho.x + rho.y + rho.z) / 3.0;
-    if (wd + ks <= 0.0) return false;
-    float pd = wd / (wd + ks);
-    vec3 r = reflect(p.d, n);
-    vec3 wi;
-    vec3 u = sample3(1u);  // (the lobe, then a direction in it)
-#ifdef GLOSSY
-    bool diffuse = u.x < pd;
-    wi = around(diffuse ? n : r, diffuse ? sqrt(u.y) : pow(u.y, 1.0 / (shin + 1.0)),
-                2.0 * PI * u.z);
-#else
-    wi = around(n, sqrt(u.y), 2.0 * PI * u.z);  // (every lobe diffuse)
-#endif
+// the path's next direction from xo: a lobe (by albedo; by Fresnel weight in glTF's model),
+// then the BRDF-weighted throughput and Russian roulette; false when the path ends
+bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b) {
+    vec3 wi = sample_bounce(b, n, wo, sample3(1u));
     float cx = dot(wi, n);
     if (cx <= 0.0 || dot(wi, n_geo) <= 0.0) return false;
-    float pdf = bounce_pdf(rho, ks, shin, n, wo, wi);
-    p.beta *= brdf_pi(rho, ks, shin, n, wi, wo) / PI * cx / pdf;
+    float pdf = bounce_pdf(b, n, wo, wi);
+    if (!(pdf > 0.0)) return false;
+    p.beta *= brdf_pi(b, n, wi, wo) / PI * cx / pdf;
     if (p.bounces >= 4) {  // (Russian roulette from the fourth vertex on)
         // continue with the throughput's chance (the weight then stays near 1: in a grey
         // room of reflectance rho a path goes on with probability rho), at most RR_CAP

@@ -47,15 +47,14 @@ void pick_emitter(float r, out float p, out float area, out vec3 q0, out vec3 q1
     q0 = p0.xyz;
     q1 = fetch(u_tris + 3 * ek + 1).xyz;
     q2 = fetch(u_tris + 3 * ek + 2).xyz;
-    e = fetch(u_mats + 2 * floatBitsToInt(p0.w) + 1).xyz;
+    e = fetch(u_mats + 3 * floatBitsToInt(p0.w) + 1).xyz;
 #endif
 }
 
 // next-event estimation (pi x radiance, before the throughput): one emitter triangle by
 // power, a point uniform on it, its light through the BRDF where xo sees it. MIS: weighed
 // against the bounce's chance of finding the same point (``last``: no bounce follows)
-vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin,
-                   bool last) {
+vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf bs, bool last) {
 #ifndef EMITTERS
     return vec3(0.0);  // (none: compiled away -- llvmpipe would run the code all the same)
 #endif
@@ -76,15 +75,15 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, flo
         float w = 1.0;
 #ifdef MIS
         float light_pdf = p / area * dist2 / cy;  // (solid angle)
-        w = last ? 1.0 : power_weight(light_pdf, bounce_pdf(rho, ks, shin, n, wo, wi));
+        w = last ? 1.0 : power_weight(light_pdf, bounce_pdf(bs, n, wo, wi));
 #endif
-        return brdf_pi(rho, ks, shin, n, wi, wo) / PI * e * (cx * cy / dist2) * (area / p) * w;
+        return brdf_pi(bs, n, wi, wo) / PI * e * (cx * cy / dist2) * (area / p) * w;
     }
     return vec3(0.0);
 }
 
 // the point and directional lights' contribution where xo sees them
-vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float shin) {
+vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b) {
     vec3 sum = vec3(0.0);
 #if LIGHTS > 0  // (none: no loop, whose body llvmpipe would run once, its ray's tests too)
     for (int i = 0; i < LIGHTS; ++i) {
@@ -97,6 +96,10 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
             wi = to / dist;
             vec3 c = u_light_att[i];
             att = 1.0 / max(c.x + c.y * dist + c.z * dist * dist, 1e-30);
+#ifdef PBR
+            // (glTF's model: candela, so the inverse square, as pbr.glsl lights it)
+            if (b.pbr > 0.5) att = 1.0 / max(dist * dist, 1e-30);
+#endif
             // (KHR_lights_punctual's range window, as lighting.glsl has it)
             float x = dist * u_light_range[i];
             float window = clamp(1.0 - x * x * x * x, 0.0, 1.0);
@@ -108,7 +111,7 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, vec3 rho, float ks, float
         }
         float cx = dot(n, wi);
         if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
-            sum += brdf_pi(rho, ks, shin, n, wi, wo) * u_light_irr[i] * (cx * att);
+            sum += brdf_pi(b, n, wi, wo) * u_light_irr[i] * (cx * att);
         }
     }
 #endif

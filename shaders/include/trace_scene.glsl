@@ -6,7 +6,8 @@
 //   triangles at u_tris, 3 texels each: (v0, material as int bits), (v1 - v0, model as int
 //     bits), (v2 - v0, -);
 //     the first FLAT_TRIANGLES also compiled into the program (tested without the BVH)
-//   materials at u_mats, 2 texels each: (rho_d, k_s), (E, n)
+//   materials at u_mats, 3 texels each: (rho_d or glTF's base colour, k_s), (E, n),
+//   (metallic, roughness, 1 for glTF's model else 0, -)
 //   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
 // CSG_SOLID: one CSG solid, ray cast exactly by csg.glsl (the raster pass's code) from its
 // own texture; a hit on its leaf L is "triangle" -2 - L.

@@ -45,7 +45,8 @@ class TraceScene:
     material : ndarray
         ``(T,)`` each triangle's row of ``materials``.
     materials : ndarray
-        ``(M, 8)`` rows of rho_d (RGB), k_s, n, E (RGB).
+        ``(M, 11)`` rows of rho_d (RGB; glTF's base colour), k_s, n, E (RGB, radiosity
+        units), metallic, roughness, and 1 for glTF's model (0: the notes').
     emitters : ndarray
         ``(K,)`` the emitting triangles' indices.
     emitter_cdf : ndarray
@@ -222,14 +223,23 @@ class TraceScene:
                    cdf, light_rows, model, tuple(names), shading, tuple(solids))
 
 
-def _refuse_unlit_parts(material, name: str) -> None:
-    """The path tracer traces opaque, untextured Phong surfaces: a material's opacity or
-    maps would be left out of the picture, so the trace refuses them by name -- and a
-    PBRMaterial, whose BRDF it does not sample yet."""
-    if material.lighting.value != "notes":
-        raise SceneError(f"{name}: the path tracer traces the notes' Material, not a "
-                         f"{type(material).__name__} (draw it with glshade render, or give "
-                         "it a Material)")
+def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
+    """The path tracer traces opaque surfaces of one colour each, in either lighting model
+    (the notes' Material, glTF's PBRMaterial by its factors): a material's opacity or maps,
+    or a mesh's colours, would be left out of the picture, so the trace refuses them by
+    name."""
+    if mesh is not None and material.vertex_colors and mesh.colored:
+        raise SceneError(f"{name}: its colours on geometry are not traced (the path "
+                         "tracer's surfaces have one colour): Material(vertex_colors=False) "
+                         "ignores them, or draw it with glshade render")
+    if material.lighting.value == "pbr":
+        pbr_maps = [k.removesuffix("_texture") for k in (
+            "base_color_texture", "metallic_roughness_texture", "normal_texture",
+            "occlusion_texture", "emissive_texture") if getattr(material, k) is not None]
+        if pbr_maps:
+            raise SceneError(f"{name}: its texture maps ({', '.join(pbr_maps)}) are not traced "
+                             "(the path tracer takes glTF's factors): drop them, or draw it "
+                             "with glshade render")
     if material.transparent:
         raise SceneError(f"{name}: opacity {float(material.opacity):g} is not traced (the path "
                          "tracer's surfaces are opaque): set opacity = 1, or draw it with "
@@ -259,7 +269,7 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
     for k, model in enumerate(visible):
         mesh = model.mesh
         name = model.name or f"model {k}"
-        _refuse_unlit_parts(model.material, name)
+        _refuse_unlit_parts(model.material, name, mesh)
         t, _ = mesh.triangles
         if not len(t):
             continue
@@ -279,6 +289,13 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
 
 
 def _material_row(material, name: str) -> list:
+    """A material's row of the table (TraceScene.materials): the notes' rho_d, k_s and n,
+    or glTF's base colour, metallic and roughness; the emission in radiosity units (a
+    PBRMaterial's emissive is radiance: pi times it)."""
+    if material.lighting.value == "pbr":
+        return [*np.asarray(material.base_color, np.float64), 0.0, 0.0,
+                *(np.pi * np.asarray(material.emissive, np.float64)),
+                float(material.metallic), float(material.roughness), 1.0]
     rho = np.asarray(material.rho, np.float64)
     # (the tracer's Phong lobe is grey: a coloured Ks gives its largest component)
     ks = float(max(material.specular_rgb)) if material.illum == 2 else 0.0
@@ -289,7 +306,7 @@ def _material_row(material, name: str) -> list:
     if rho.max() + ks > 1 + 1e-9:
         raise SceneError(f"{name}: rho_d + k_s = {rho.max():.4g} + {ks:.4g} > 1: the Phong "
                          "lobe would not conserve energy (lower kd, ks or the colour)")
-    return [*rho, ks, n, *np.asarray(material.emission, np.float64)]
+    return [*rho, ks, n, *np.asarray(material.emission, np.float64), 0.0, 0.0, 0.0]
 
 
 def _light_row(light) -> list:

@@ -147,6 +147,9 @@ def trace(scene, camera=None, size=(32, 32), spp: int = 16, *, seed: int = 0,
     if ts.solids:
         raise OptionError("the numpy twin traces triangles; a CSG solid is the GPU tracer's "
                           "(csg.glsl)")
+    if (ts.materials[:, 10] > 0).any():
+        raise OptionError("the numpy twin traces the notes' Material; glTF's model "
+                          "(PBRMaterial) is traced by the GPU tracer (trace_bsdf.glsl)")
     if ts.shading is not None:
         raise OptionError("the numpy twin shades with the triangles' own normals; make the "
                           "TraceScene with smooth=False")

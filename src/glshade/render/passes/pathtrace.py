@@ -584,7 +584,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
     # (what the scene has no use for is compiled away: llvmpipe runs every branch)
     defines += (f"LIGHTS {len(scene.lights)}",) + (
         ("EMITTERS",) if len(scene.emitters) else ()) + (
-        ("GLOSSY",) if (scene.materials[:, 3] > 0).any() else ())
+        ("GLOSSY",) if (scene.materials[:, 3] > 0).any() else ()) + (
+        ("PBR",) if (scene.materials[:, 10] > 0).any() else ())
     defines += ("MIS",) if options.mis else ()
     if options.coherent != (1, 1):
         defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)
@@ -651,7 +652,7 @@ def _emitter_pick(data: np.ndarray, layout: dict) -> str:
         k = int(np.float32(row[1]).view(np.int32))
         rows = data[layout["u_tris"] + 3 * k:layout["u_tris"] + 3 * k + 3]
         m = int(np.float32(rows[0, 3]).view(np.int32))
-        e = data[layout["u_mats"] + 2 * m + 1, :3]
+        e = data[layout["u_mats"] + 3 * m + 1, :3]
         sets = (f"p = {_float(chance[i])}; area = {_float(row[2])}; q0 = {_vec3(rows[0, :3])}; "
                 f"q1 = {_vec3(rows[1, :3])}; q2 = {_vec3(rows[2, :3])}; e = {_vec3(e)};")
         out.append(sets if i == 0 else f"if ({_float(cdf[i - 1])} < r) {{ {sets} }}")

@@ -1,0 +1,118 @@
+"""glTF's metallic-roughness model in the path tracer: direct light from punctual lights on
+a ball against the Appendix B BRDF in float64 (the rasterizer's oracle, written in
+tests/render/test_pbr.py, averaged over each pixel as the tracer's jittered camera rays
+average it), in radiosity units (pi x radiance); the lobes' sampling unbiased (a rough
+metal's picture with GGX's visible normals against the same with cosine sampling alone);
+and the parts it does not trace refused in one line."""
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from glshade import Mesh, PBRMaterial
+from glshade.errors import SceneError
+from glshade.geometry import primitives as P
+from glshade.pathtrace import TraceScene, trace
+from tests.render.test_pbr import BASE, CAMERA, EYE, LIGHTS, appendix_b, scene_of
+
+pytestmark = pytest.mark.gl
+
+W = H = 40
+GRID = 8  # (sub-pixel samples a side: the oracle's mean over each pixel)
+
+
+def footprint_oracle(metallic, roughness, light):
+    """pi x each pixel's mean radiance over its area (GRID x GRID points), the ball exact;
+    and the pixels whose every point sees its front well away from the silhouette."""
+    offsets = (np.arange(GRID) + 0.5) / GRID - 0.5
+    total = np.zeros((H, W, 3))
+    inside = np.ones((H, W), bool)
+    for dx in offsets:  # (a loop over the GRID^2 sub-pixel offsets, each a whole image)
+        for dy in offsets:
+            o, d = CAMERA.rays((W, H), jitter=(dx, dy))
+            b = np.einsum("...k,...k", o, d)
+            disc = b * b - (np.einsum("...k,...k", o, o) - 1)
+            t = -b - np.sqrt(np.maximum(disc, 0))
+            p = o + t[..., None] * d
+            n = p / np.linalg.norm(p, axis=-1, keepdims=True)
+            v = EYE - p
+            v /= np.linalg.norm(v, axis=-1, keepdims=True)
+            inside &= (disc > 0) & (np.einsum("...k,...k", n, v) > 0.3)
+            ip = np.asarray(light.color) * light.intensity
+            if hasattr(light, "direction"):
+                to_light = np.broadcast_to(-np.asarray(light.direction), p.shape)
+                k = np.ones(p.shape[:2])
+            else:
+                to = np.asarray(light.position) - p
+                k = 1 / np.einsum("...k,...k", to, to)
+                to_light = to * np.sqrt(k)[..., None]
+            f = appendix_b(n.reshape(-1, 3), to_light.reshape(-1, 3), v.reshape(-1, 3), BASE,
+                           metallic, roughness).reshape(H, W, 3)
+            total += np.pi * k[..., None] * ip * f
+    return total / GRID ** 2, inside
+
+
+@settings(max_examples=6, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(metallic=st.floats(0, 1), roughness=st.floats(0.2, 1),
+       light=st.sampled_from(sorted(LIGHTS)))
+def test_direct_light_is_appendix_b_within_the_reported_error(gl_context, metallic, roughness,
+                                                               light):
+    material = PBRMaterial(base_color=tuple(BASE), metallic=metallic, roughness=roughness)
+    scene = scene_of(P.uv_sphere(96, 192), material, LIGHTS[light])
+    # (the renderer's vertex normals: the ball's, not its facets')
+    traced = trace(TraceScene.from_scene(scene, smooth=True), CAMERA, (W, H), spp=64,
+                   context=gl_context)
+    want, inside = footprint_oracle(metallic, roughness, LIGHTS[light])
+    got, se = traced.image[inside], traced.se[inside]
+    # (the ball's facets move a hit by at most 1 - cos(pi / 192) of its radius)
+    slack = 2e-3 * want[inside] + 1e-4
+    z = np.abs(got - want[inside]) / (se + slack)
+    # each pixel within its error (a few of some 2,000 past 4 se by chance, none past 7),
+    # and no bias over the picture: the sums agree within the sum's error
+    assert (z > 4).mean() < 0.005 and z.max() < 7, (z.max(), metallic, roughness, light)
+    bias = np.abs((got - want[inside]).sum(0))
+    assert (bias <= 4 * np.sqrt((se ** 2).sum(0)) + slack.sum(0)).all(), (bias, metallic,
+                                                                        roughness, light)
+    assert inside.sum() > 0.25 * W * H
+
+
+def test_the_bounce_and_next_event_estimation_agree(gl_context):
+    """A rough gold ball under an emitting panel: the panel's light found by next-event
+    estimation and the bounce's GGX visible-normal samples weighed by MIS, against the
+    same picture with MIS off (the light by next-event estimation alone, every bounce's
+    hit of the panel not counted) -- two estimators of one integral: the same means within
+    their errors, which only holds where bounce_pdf is the density sample_bounce draws
+    with."""
+    from glshade import Material, Scene
+
+    scene = Scene(background=(0, 0, 0))
+    scene.add(P.uv_sphere(48, 96), PBRMaterial(base_color=(1.0, 0.77, 0.33), metallic=1.0,
+                                               roughness=0.4))
+    panel = Mesh([[-1, 2, -1], [1, 2, -1], [1, 2, 1], [-1, 2, 1]], [[0, 1, 2, 3]])
+    scene.add(panel, Material(color=(0, 0, 0), kd=0.0, ks=0.0, emission=(4.0, 4.0, 4.0)))
+    both = trace(scene, CAMERA, (24, 24), spp=256, context=gl_context, max_depth=2)
+    bounce = trace(scene, CAMERA, (24, 24), spp=256, context=gl_context, max_depth=2,
+                   mis=False)
+    ball = both.image.sum(-1) > 0
+    a, b = both.image[ball].mean(0), bounce.image[ball].mean(0)
+    sa = np.sqrt((both.se[ball] ** 2).sum(0)) / ball.sum()
+    sb = np.sqrt((bounce.se[ball] ** 2).sum(0)) / ball.sum()
+    assert (np.abs(a - b) <= 4 * np.hypot(sa, sb)).all(), (a, b, sa, sb)
+    assert a.max() > 0.05
+
+
+def test_what_it_does_not_trace_is_one_line_naming_the_model():
+    from glshade import Scene, Texture
+
+    scene = Scene()
+    mesh = P.cube()
+    painted = Mesh(mesh.vertices, mesh.faces, colors=np.full((8, 3), 0.5))
+    scene.add(painted, PBRMaterial(), name="painted")
+    with pytest.raises(SceneError, match="painted: its colours on geometry are not traced"):
+        TraceScene.from_scene(scene)
+    scene = Scene()
+    scene.add(mesh, PBRMaterial(base_color_texture=Texture(np.ones((2, 2, 3)))), name="box")
+    with pytest.raises(SceneError, match=r"box: its texture maps \(base_color\) are not"):
+        TraceScene.from_scene(scene)

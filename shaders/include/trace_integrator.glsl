@@ -35,6 +35,9 @@ uniform float u_eps;
 #include "trace_scene.glsl"
 #include "trace_sampler.glsl"
 #include "trace_bsdf.glsl"
+#ifdef ENVIRONMENT
+#include "trace_environment.glsl"
+#endif
 #include "trace_lights.glsl"
 #include "trace_camera.glsl"
 
@@ -45,12 +48,30 @@ uniform vec3 u_control[CONTROL];  // each model's control value (radiosity units
 
 bool next_direction(inout Path p, vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b);
 
+// a path that leaves the scene: the sky it meets, seen by a camera ray; found by a
+// bounce, weighed against next-event estimation's chance of drawing the same direction
+void leave(inout Path p) {
+#ifdef ENVIRONMENT
+    vec3 sky = env_radiance(p.d);
+    if (p.bounces == 0) {
+        p.value += sky;
+    } else {
+#ifdef MIS
+        p.value += p.beta * sky * power_weight(p.pdf, env_pdf(p.d));
+#endif
+    }
+#endif
+}
+
 // one bounce of ``p``: the next vertex, its emission (first vertex), next-event estimation
 // and the next direction; false when the path ends
 bool bounce(inout Path p) {
     g_vertex = p.bounces;
     Hit hit;
-    if (!intersect(p.o, p.d, 1e30, false, hit)) return false;
+    if (!intersect(p.o, p.d, 1e30, false, hit)) {
+        leave(p);
+        return false;
+    }
     float t = hit.t;
     int k = hit.k;
     if (p.bounces == 0) p.flags += 2.0;
@@ -111,7 +132,8 @@ bool bounce(inout Path p) {
 #endif
     bool last = u_max_depth > 0 && p.bounces + 1 >= u_max_depth;
     p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, b, last)
-                         + lights_seen(xo, n, n_geo, wo, b));
+                         + lights_seen(xo, n, n_geo, wo, b)
+                         + environment_seen(xo, n, n_geo, wo, b, last));
     p.bounces += 1;
     if (u_max_depth > 0 && p.bounces >= u_max_depth) return false;
     return next_direction(p, xo, n, n_geo, wo, b);

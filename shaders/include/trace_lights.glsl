@@ -117,4 +117,26 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b) {
 #endif
     return sum;
 }
+
+// next-event estimation of the sky (pi x radiance, before the throughput): a direction
+// drawn by its importance (trace_environment.glsl), its light through the BRDF where xo
+// sees out; MIS as for the emitters
+vec3 environment_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf bs, bool last) {
+#ifndef ENVIRONMENT
+    return vec3(0.0);
+#else
+    vec2 u = vec2(rand(), rand());  // (the PCG stream's: Sobol's parts are the others')
+    float pdf;
+    vec3 wi = env_sample(u, pdf);
+    float cx = dot(n, wi);
+    if (pdf > 0.0 && cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, 1e30)) {
+        float w = 1.0;
+#ifdef MIS
+        w = last ? 1.0 : power_weight(pdf, bounce_pdf(bs, n, wo, wi));
+#endif
+        return brdf_pi(bs, n, wi, wo) / PI * env_radiance(wi) * (cx / pdf) * w;
+    }
+    return vec3(0.0);
+#endif
+}
 #endif

@@ -39,6 +39,7 @@ _EXPORTS = {
     "Texture": ("scene.texture", "Texture"),
     "DirectionalLight": ("scene.lights", "DirectionalLight"), "Scene": ("scene.scene", "Scene"),
     "SpotLight": ("scene.lights", "SpotLight"), "PBRMaterial": ("scene.pbr", "PBRMaterial"),
+    "Environment": ("scene.environment", "Environment"),
     "LightingModel": ("modes", "LightingModel"),
     # drawing options
     "ShadingMode": ("modes", "ShadingMode"), "Outputs": ("modes", "Outputs"),
@@ -105,6 +106,7 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (never run)
     from .modes import LightingModel
     from .scene.lights import DirectionalLight, PointLight, SpotLight
     from .scene.pbr import PBRMaterial
+    from .scene.environment import Environment
     from .scene.material import Material
     from .scene.scene import Scene
     from .scene.texture import Texture

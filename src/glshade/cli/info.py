@@ -378,6 +378,12 @@ def info(args: InfoArgs) -> int:
     if args.json:
         print(json.dumps(info, indent=2))
         return EXIT_OK
+    _print_mesh(args, mesh, info)
+    return EXIT_OK
+
+
+def _print_mesh(args: InfoArgs, mesh, info: dict) -> None:
+    """``info``'s table of a mesh (and of a glTF file's lights and cameras)."""
     lo, hi = info["bounds"]["min"], info["bounds"]["max"]
     rows = [
         ("source", args.mesh),
@@ -420,7 +426,7 @@ def info(args: InfoArgs) -> int:
         print(f"colours: per {' and per '.join(info['colors'])} (linear RGBA; the surface "
               "colour C, times the material's)")
     _print_materials(info["materials"], info["unused_material_statements"])
-    if asset is not None:
+    if "lights" in info:  # (a glTF file's)
         _print_lights(info["lights"])
         if info["cameras"]:
             print(f"cameras ({len(info['cameras'])}):")
@@ -428,6 +434,5 @@ def info(args: InfoArgs) -> int:
             lens = (f"{c['fov_y']:.3g} degrees high" if c["projection"] == "perspective"
                     else "parallel")
             print(f"  {str(c['name'])[:18]:<18} at ({_numbers(c['position'])}), {lens}")
-    return EXIT_OK
 
 

@@ -167,7 +167,7 @@ def load_with_trimesh(path: Path, fmt: str, extras_taken: bool = False) -> Mesh:
         raise MeshFormatError(path, f"trimesh could not read it as {fmt}: {reason}") from None
     parts = trimesh_parts(loaded, path.stem)
     if fmt in ("glb", "gltf"):
-        from .gltf import gltf_unread
+        from .gltf_json import gltf_unread
 
         unread = gltf_unread(path, extras_taken=extras_taken)
         if unread:

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..geometry.bvh import NO_CHILDREN, build, packed_children
 
-__all__ = ["pack", "DATA_WIDTH"]
+__all__ = ["pack", "environment_tables", "DATA_WIDTH"]
 
 #: texels a row of the scene texture
 DATA_WIDTH = 1024
@@ -74,7 +74,8 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     emit[:len(scene.emitters), 0] = scene.emitter_cdf
     emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
     emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
-    tables = [tris, mats, emit, norms]
+    env, env_layout = environment_tables(scene.environment)
+    tables = [tris, mats, emit, norms, env]
     offsets = np.cumsum([0] + [len(t) for t in tables])
     data = _rows(np.concatenate(tables))
     layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
@@ -82,7 +83,42 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
               # (the emitters' power, as their cdf sums it: MIS's light density)
               "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
-              "u_norms": int(offsets[3]), **packed.uniforms(),
+              "u_norms": int(offsets[3]), "u_env": int(offsets[4]), **env_layout,
+              **packed.uniforms(),
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH, "compiled": len(apart),
               "hierarchy": _rows(packed.entries.reshape(-1, 4))}
     return data, layout
+
+
+def environment_tables(environment) -> tuple[np.ndarray, dict]:
+    """An :class:`~glshade.Environment` as the tracer's texels (trace_environment.glsl):
+    its ``H x W`` texels row by row, each (radiance in radiosity units -- pi x radiance --,
+    its cumulative chance within its row), then a texel a row (the rows' cumulative chance,
+    the row's chance). The chances are each texel's mean radiance times its row's solid
+    angle (``sin theta`` at the row's middle): a direction is drawn by its row, then its
+    column, then uniformly within the texel. None: no texels.
+
+    Parameters
+    ----------
+    environment : Environment or None
+        The sky.
+    """
+    if environment is None:
+        return np.zeros((0, 4), np.float32), {"u_env_w": 0, "u_env_h": 0,
+                                              "u_env_rotation": 0.0, "u_env_rows": 0}
+    radiance = np.pi * environment.radiance
+    h, w, _ = radiance.shape
+    theta = np.pi * (np.arange(h) + 0.5) / h
+    weight = radiance.mean(2) * np.sin(theta)[:, None]
+    row_sum = weight.sum(1)
+    # (a row of no light: its columns equally likely, and the row itself never chosen)
+    within = np.where(row_sum[:, None] > 0, weight / np.where(row_sum > 0, row_sum, 1)[:, None],
+                      1.0 / w)
+    texels = np.zeros((h * w + h, 4), np.float32)
+    texels[:h * w, :3] = radiance.reshape(-1, 3)
+    texels[:h * w, 3] = np.cumsum(within, 1).reshape(-1)
+    rows = row_sum / row_sum.sum()
+    texels[h * w:, 0] = np.cumsum(rows)
+    texels[h * w:, 1] = rows
+    return texels, {"u_env_w": w, "u_env_h": h, "u_env_rotation": environment.rotation,
+                    "u_env_rows": h * w}

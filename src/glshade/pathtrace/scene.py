@@ -65,6 +65,10 @@ class TraceScene:
         normals), or None (flat: the triangles' own).
     solids : tuple
         ``(solid, material row)`` pairs: CSG solids ray cast exactly (at most one).
+    environment : Environment or None
+        The sky (:class:`~glshade.Environment`): seen where rays leave the scene, sampled
+        by importance (its radiance x the rows' solid angle) as next-event estimation's
+        third kind of light.
     """
 
     triangles: np.ndarray
@@ -80,6 +84,7 @@ class TraceScene:
     shading: np.ndarray | None = None
     #: ((solid, material index),): a CSG solid ray cast exactly (at most one: union them)
     solids: tuple = ()
+    environment: object = None
 
     @property
     def n_triangles(self) -> int:
@@ -206,21 +211,25 @@ class TraceScene:
         cdf = np.cumsum(power[emitters])
         cdf = cdf / cdf[-1] if len(cdf) else cdf
         chosen = list(scene.lights) if lights else []
-        if lights and not chosen and not len(emitters) and camera is not None:
+        if lights and not chosen and not len(emitters) and camera is not None and \
+                scene.environment is None:
             chosen = scene.lights_for(camera)
         light_rows = np.array([_light_row(x) for x in chosen], np.float64).reshape(-1, 15)
         if len(light_rows) > MAX_LIGHTS:
             raise SceneError(f"the path tracer takes at most {MAX_LIGHTS} lights, the scene "
                              f"has {len(light_rows)}")
-        if not len(emitters) and not len(light_rows):
+        environment = scene.environment if lights else None
+        if environment is not None and not environment.radiance.any():
+            environment = None  # (a black sky: nothing to sample)
+        if not len(emitters) and not len(light_rows) and environment is None:
             raise SceneError("the scene has no emitter: give a material an emission (or add "
-                             "a light); nothing would be lit")
+                             "a light or an environment); nothing would be lit")
         shading = None
         if smooth and corner_normals:
             shading = np.concatenate(corner_normals)[keep]
             shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
-                   cdf, light_rows, model, tuple(names), shading, tuple(solids))
+                   cdf, light_rows, model, tuple(names), shading, tuple(solids), environment)
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:

@@ -352,10 +352,14 @@ class Scene:
         ``(3,)`` the ambient intensity Ia (linear RGB).
     background : array_like
         ``(4,)`` linear RGBA of the empty pixels.
+    environment : Environment or None
+        Light from every direction at infinity (:class:`~glshade.Environment`): the path
+        tracer's sky, sampled by importance and seen where camera rays miss; also settable
+        as ``scene.environment``.
     """
 
     def __init__(self, ambient: ArrayLike = (1.0, 1.0, 1.0),
-                 background: ArrayLike = (0.0, 0.0, 0.0, 1.0)):
+                 background: ArrayLike = (0.0, 0.0, 0.0, 1.0), environment=None):
         self.ambient = color3(ambient, "ambient")
         bg = np.asarray(background, dtype=np.float64)
         if bg.shape == (3,):
@@ -370,7 +374,22 @@ class Scene:
         self.clouds: list[CloudModel] = []
         self.lines: list[LineModel] = []
         self.lights: list = []
+        self.environment = environment
         self._next_instance = 0
+
+    @property
+    def environment(self):
+        """The scene's :class:`~glshade.Environment` (None: black beyond the scene)."""
+        return self._environment
+
+    @environment.setter
+    def environment(self, value) -> None:
+        from .environment import Environment
+
+        if value is not None and not isinstance(value, Environment):
+            raise SceneError(f"environment must be a glshade.Environment or None, got "
+                             f"{type(value).__name__}")
+        self._environment = value
 
     def __repr__(self) -> str:
         polygons = sum(m.mesh.n_faces for m in self.models)

@@ -585,7 +585,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
     defines += (f"LIGHTS {len(scene.lights)}",) + (
         ("EMITTERS",) if len(scene.emitters) else ()) + (
         ("GLOSSY",) if (scene.materials[:, 3] > 0).any() else ()) + (
-        ("PBR",) if (scene.materials[:, 10] > 0).any() else ())
+        ("PBR",) if (scene.materials[:, 10] > 0).any() else ()) + (
+        ("ENVIRONMENT",) if scene.environment is not None else ())
     defines += ("MIS",) if options.mis else ()
     if options.coherent != (1, 1):
         defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)

@@ -40,7 +40,7 @@ vec3 view_dir(vec3 p_view) {
 #ifdef PBR
 // (glTF's metallic-roughness model in the notes' place: its light_term and ambient term)
 #include "pbr.glsl"
-#define MODEL_AMBIENT pbr_ambient()
+#define MODEL_AMBIENT pbr_ambient(n_view, v_view)
 #else
 #define MODEL_AMBIENT AMBIENT_TERM
 // One light's diffuse and specular terms, k kd max(L.N, 0) Ip C (returned) and

@@ -16,6 +16,9 @@
 #ifndef PBR_GLSL
 #define PBR_GLSL
 #include "pbr_brdf.glsl"
+#ifdef ENVIRONMENT_LIGHT
+#include "environment_light.glsl"
+#endif
 
 uniform vec4 u_pbr_base;        // base colour (linear RGB), metallic
 uniform float u_pbr_roughness;  // perceptual roughness
@@ -54,15 +57,23 @@ float pbr_roughness() {
 #endif
 }
 
-// The ambient light x the base colour (x the occlusion map's, glTF's indirect light), and
-// with maps the emission (its factor x its map: without maps outputs.glsl adds the factor).
-vec3 pbr_ambient() {
+// The ambient light x the base colour and, with ENVIRONMENT_LIGHT, the sky's light
+// (environment_light.glsl) -- glTF's indirect light, both x the occlusion map's -- and with
+// maps the emission (its factor x its map: without maps outputs.glsl adds the factor).
+vec3 pbr_ambient(vec3 n_view, vec3 v_view) {
+    vec3 indirect = AMBIENT_TERM;
 #ifdef PBR_TEXTURED
-    return AMBIENT_TERM * texture(u_pbr_base_map, g_pbr_uv).rgb *
-           texture(u_pbr_occlusion_map, g_pbr_uv).r +
+    indirect *= texture(u_pbr_base_map, g_pbr_uv).rgb;
+#endif
+#ifdef ENVIRONMENT_LIGHT
+    indirect += environment_light(n_view, v_view, pbr_base_color(), pbr_metallic(),
+                                  pbr_roughness());
+#endif
+#ifdef PBR_TEXTURED
+    return indirect * texture(u_pbr_occlusion_map, g_pbr_uv).r +
            u_emission * texture(u_pbr_emissive_map, g_pbr_uv).rgb;
 #else
-    return AMBIENT_TERM;
+    return indirect;
 #endif
 }
 

@@ -10,21 +10,16 @@ uniform int u_env_rows;      // then, from u_env + u_env_rows, a texel a row: (c
 uniform int u_env_w, u_env_h;
 uniform float u_env_rotation;  // radians the map turns about +y
 
+#include "environment_map.glsl"
+
 // a world direction's place on the map, (u, v) in [0, 1)^2
 vec2 env_uv(vec3 d) {
-    float c = cos(u_env_rotation), s = sin(u_env_rotation);
-    vec3 m = vec3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);  // (turned back)
-    float u = 0.5 + atan(m.x, -m.z) / (2.0 * PI);
-    float v = acos(clamp(m.y, -1.0, 1.0)) / PI;
-    return vec2(u - floor(u), min(v, 0.9999999));
+    return env_map_uv(env_map_frame(d, u_env_rotation));
 }
 
-// the map's direction at (u, v), turned by the rotation
+// the map's direction at (u, v), in the world (turned by the rotation)
 vec3 env_direction(vec2 uv) {
-    float phi = (uv.x - 0.5) * 2.0 * PI, theta = uv.y * PI;
-    vec3 m = vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
-    float c = cos(u_env_rotation), s = sin(u_env_rotation);
-    return vec3(c * m.x + s * m.z, m.y, -s * m.x + c * m.z);
+    return env_map_frame(env_map_direction(uv), -u_env_rotation);
 }
 
 ivec2 env_texel(vec2 uv) {

@@ -17,8 +17,8 @@ from glshade.render.passes import Stage, run
 pytestmark = pytest.mark.gl
 
 PASSES = Path(glshade.__file__).parent / "render" / "passes"
-ORDER = ["ShadowPass", "MeshPass", "PatchPass", "CsgPass", "PointPass", "LinePass",
-         "TransparencyPass", "EdgePass"]
+ORDER = ["EnvironmentPass", "ShadowPass", "MeshPass", "PatchPass", "CsgPass", "PointPass",
+         "LinePass", "TransparencyPass", "EdgePass"]
 PROTOCOL = {"wanted": ["state"], "prepare": ["state"], "draw": ["state", "id_base"],
             "finish": ["state"]}
 
@@ -102,7 +102,8 @@ def test_the_stages_run_in_order_and_pass_the_ids_on(make_renderer, monkeypatch)
     top = [(n, args, out) for d, n, args, out in calls if d == 0]
     inner = [n for d, n, _, _ in calls if d == 1]
     wanted = [n.split(".")[0] for n, _, out in top if n.endswith("wanted") and out]
-    assert wanted == [n for n in ORDER if n != "PatchPass"]  # (no patch model: not wanted)
+    # (no patch model, no sky: those stages not wanted)
+    assert wanted == [n for n in ORDER if n not in ("PatchPass", "EnvironmentPass")]
     phases = [n.split(".")[1] for n, _, _ in top if not n.endswith("wanted")]
     assert phases == ["prepare"] * 7 + ["draw"] * 7 + ["finish"] * 7
     opaque = ["MeshPass", "CsgPass", "PointPass", "LinePass"]

@@ -220,6 +220,8 @@ class Variant(NamedTuple):
         The draw casts shadows.
     forward : Forward
         Where shadows are found (array, maps, rays).
+    environment : bool
+        The scene has an environment: glTF's model is lit by it too (image-based light).
     """
 
     mode: ShadingMode
@@ -231,6 +233,8 @@ class Variant(NamedTuple):
     shadows: bool = False
     #: ... found where (:class:`Forward`; ARRAY when the draw has no shadows)
     forward: Forward = Forward.ARRAY
+    #: the scene's sky lights glTF's model (environment_light.glsl)
+    environment: bool = False
 
 
 @dataclass(frozen=True)
@@ -276,6 +280,8 @@ class ProgramKey:
         The lighting model the schemes evaluate (the material's).
     normal_map : bool
         A PBRMaterial's normal map is read (with its other maps).
+    environment : bool
+        glTF's model is lit by the scene's sky too (environment_light.glsl).
     """
 
     mode: ShadingMode
@@ -305,6 +311,8 @@ class ProgramKey:
     lighting: LightingModel = LightingModel.NOTES
     #: a PBRMaterial's tangent-space normal map bends the normal where the scheme lights
     normal_map: bool = False
+    #: glTF's model lit by the scene's sky (image-based light by the split sum)
+    environment: bool = False
 
     @classmethod
     def of(cls, variant: Variant, *, two_sided: bool = True,
@@ -352,6 +360,8 @@ class ProgramKey:
                        textured and lighting is LightingModel.PBR),
                    lighting if variant.mode in TEXTURED_MODES else LightingModel.NOTES,
                    normal_map and textured and variant.mode in TEXTURED_MODES
+                   and lighting is LightingModel.PBR,
+                   variant.environment and variant.mode in TEXTURED_MODES
                    and lighting is LightingModel.PBR)
 
     def defines(self) -> tuple[str, ...]:
@@ -378,6 +388,7 @@ class ProgramKey:
                  ("PBR_NORMAL_MAP", self.normal_map),
                  ("VERTEX_COLORS", self.colored), ("EMISSIVE", self.emissive),
                  ("PBR", self.lighting is LightingModel.PBR),
+                 ("ENVIRONMENT_LIGHT", self.environment),
                  ("SHADOW_MAPS_FORWARD", self.forward is Forward.MAPS),
                  ("SHADOW_RAYS_FORWARD", self.forward is Forward.RAYS),
                  ("INSTANCED", self.instanced),

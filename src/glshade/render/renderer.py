@@ -33,6 +33,7 @@ from .diagnostics import why_blank
 from .passes import Stage, run
 from .passes.csg import CsgPass
 from .passes.edges import EdgePass
+from .passes.environment import EnvironmentPass
 from .passes.mesh import MeshPass
 from .passes.patches import PatchPass
 from .passes.lines import LinePass
@@ -315,9 +316,10 @@ class Renderer:
         self.shadows = ShadowPass(self.context, self.shaders, opaque)
         self.transparent = TransparencyPass(self.context, self.shaders, self.meshes)
         self.edges = EdgePass(self.context, self.shaders, self.meshes)
+        self.environment = EnvironmentPass(self.context, self.shaders, uniforms)
         #: a frame's pipeline, in drawing order (render/passes/__init__.py: the protocol)
-        self.stages: tuple[Stage, ...] = (self.shadows, *opaque, self.transparent,
-                                          self.edges)
+        self.stages: tuple[Stage, ...] = (self.environment, self.shadows, *opaque,
+                                          self.transparent, self.edges)
         self._uniforms = uniforms
         self._targets: dict[str, OffscreenTarget] = {}
         self._queries: dict[int, Any] = {}  # a sample-counting query per target slot

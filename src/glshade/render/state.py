@@ -144,7 +144,8 @@ class DrawState:
                 forward = Forward.RAYS
         variant = Variant(options.mode, options.outputs.auxiliary,
                           tuple(light_kind(x) for x in lights), options.srgb,
-                          camera.projection is Projection.ORTHOGRAPHIC, shadows, forward)
+                          camera.projection is Projection.ORTHOGRAPHIC, shadows, forward,
+                          scene.environment is not None)
         frame = _frame_uniforms(scene, camera, lights, view, proj, options.mode)
         return cls(scene, camera, options, view, proj, lights, variant, tuple(frame),
                    (vx, vy, vw, vh), flip_rows, target, read_visibility and shadows, clear)
@@ -221,6 +222,11 @@ def _frame_uniforms(scene, camera, lights, view, proj, mode) -> list:
     out: list[tuple[str, Any]] = [
         ("u_proj", gl_bytes(proj)), ("u_light_pos_view", pos.tobytes()),
         ("u_light_attenuation", att.tobytes()), ("u_light_spot", spot.tobytes())]
+    if scene.environment is not None:  # (view directions to the sky map's frame)
+        from ..scene.environment import map_frame
+
+        basis = map_frame(scene.environment.rotation) @ view[:3, :3].T
+        out.append(("u_env_basis", gl_bytes(basis)))
     if mode is ShadingMode.DEPTH:
         corners = box_corners(scene.bounds)
         d = -(corners @ view[:3, :3].T + view[:3, 3])[:, 2]

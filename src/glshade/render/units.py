@@ -45,6 +45,10 @@ class Unit:
     #: depth peeling's depths: the last layer's, this layer's, the opaque surfaces'
     #: (shaders/include/outputs.glsl, OIT_PEEL)
     PEEL_BEFORE, PEEL_NEAR, PEEL_OPAQUE = 24, 25, 26
+    #: a scene's sky (render/passes/environment.py): prefiltered by roughness, its
+    #: irradiance and the split-sum table, read by glTF's model (environment_light.glsl),
+    #: and the map itself, drawn as the background (background.frag)
+    ENV_SPECULAR, ENV_IRRADIANCE, ENV_SPLIT_SUM, ENV_BACKGROUND = 28, 29, 30, 31
 
     # ---- the shadow pass's compute programs (shadow_rays.comp, shadow_maps.comp)
     GBUFFER_FACE, GBUFFER_DEPTH, GBUFFER_NORMAL = 0, 1, 3

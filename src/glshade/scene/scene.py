@@ -5,6 +5,8 @@ Plain data (numpy arrays), no GL handles: the renderer keeps the GPU copies.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import dataclasses
 import warnings
 
@@ -745,14 +747,19 @@ class Scene:
         self.lights.append(light)
 
     def lights_for(self, camera) -> list:
-        """The lights a draw with ``camera`` uses (the headlight when there are none).
+        """The lights a draw with ``camera`` uses (the headlight when there are none and
+        no environment lights the scene: under a sky the headlight is dark -- a light of
+        intensity 0, so the programs keep their one light -- as the path tracer has none).
 
         Parameters
         ----------
         camera : Camera
             The camera of the draw (the headlight sits at its eye).
         """
-        return lights_for(self.lights, camera)
+        found = lights_for(self.lights, camera)
+        if not self.lights and self.environment is not None:
+            return [replace(found[0], intensity=0.0)]
+        return found
 
     @property
     def bounds(self) -> NDArray[np.float64]:

@@ -126,6 +126,16 @@ bool bounce(inout Path p) {
 #endif
     vec3 wo = -p.d;
     Bsdf b = Bsdf(ma.xyz, ma.w, mb.w, 0.0, 0.0, 0.0);
+#ifdef VERTEX_COLORS
+#ifdef CSG_SOLID
+    if (!on_solid)
+#endif
+    {   // (colours on geometry: the surface colour C across the triangle, times rho)
+        b.rho *= (1.0 - hit.uv.x - hit.uv.y) * fetch(u_cols + 3 * k).xyz +
+                 hit.uv.x * fetch(u_cols + 3 * k + 1).xyz +
+                 hit.uv.y * fetch(u_cols + 3 * k + 2).xyz;
+    }
+#endif
 #ifdef PBR
     vec4 mc = fetch(u_mats + 3 * m + 2);  // (glTF's model: metallic, roughness, flag)
     b.metallic = mc.x; b.roughness = mc.y; b.pbr = mc.z;

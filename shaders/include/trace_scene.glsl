@@ -9,6 +9,8 @@
 //   materials at u_mats, 3 texels each: (rho_d or glTF's base colour, k_s), (E, n),
 //   (metallic, roughness, 1 for glTF's model else 0, -)
 //   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
+//   VERTEX_COLORS: corner colours at u_cols, 3 texels a triangle (the surface colour C)
+//   ENVIRONMENT: the sky's texels at u_env (trace_environment.glsl)
 // CSG_SOLID: one CSG solid, ray cast exactly by csg.glsl (the raster pass's code) from its
 // own texture; a hit on its leaf L is "triangle" -2 - L.
 #ifndef TRACE_SCENE_GLSL
@@ -27,6 +29,7 @@ layout(std430, binding = BINDING_WALK_TRIANGLES) readonly buffer WalkRows { vec4
 uniform int u_tris;
 uniform int u_mats;
 uniform int u_norms;
+uniform int u_cols;
 
 vec4 fetch(int i) {
     return data_texel(u_data, i, DATA_WIDTH);

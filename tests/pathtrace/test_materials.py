@@ -103,14 +103,50 @@ def test_the_bounce_and_next_event_estimation_agree(gl_context):
     assert a.max() > 0.05
 
 
+def test_colours_on_geometry_are_the_surface_colour_across_each_triangle(gl_context):
+    """A diffuse quad of four vertex colours (and a face colour on a second one) under a
+    white sky: each pixel pi x L x kd x C, C the corners' colours interpolated across the
+    triangle the pixel centre sees (the fan 0-1-2, 0-2-3), pixels clear of the diagonal and
+    the edges (where the pixel's area mixes two)."""
+    from glshade import Camera, Environment, Material, Scene
+
+    corners = np.array([[1.0, 0.1, 0.1], [0.1, 1.0, 0.1], [0.1, 0.1, 1.0], [1.0, 1.0, 1.0]])
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                colors=corners, face_colors=[[0.9, 0.8, 0.7]])
+    scene = Scene(environment=Environment((0.6, 0.6, 0.6)))
+    scene.add(quad, Material(color=(1, 1, 1), kd=0.8, ks=0.0))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    size = 32
+    traced = trace(scene, camera, (size, size), spp=64, context=gl_context)
+    o, d = camera.rays((size, size))
+    p = o + (-o[..., 2] / d[..., 2])[..., None] * d  # (the plane z = 0)
+    x, y = p[..., 0], p[..., 1]
+    pixel = 2 * 3 * np.tan(np.radians(15)) / size  # (a pixel's side on the quad)
+    # the fan's barycentrics: triangle 0-1-2 below the diagonal y = x, 0-2-3 above
+    s_, t_ = (x + 1) / 2, (y + 1) / 2
+    lower = t_ < s_
+    c = np.where(lower[..., None],
+                 (1 - s_)[..., None] * corners[0] + (s_ - t_)[..., None] * corners[1] +
+                 t_[..., None] * corners[2],
+                 (1 - t_)[..., None] * corners[0] + (t_ - s_)[..., None] * corners[3] +
+                 s_[..., None] * corners[2])
+    want = np.pi * 0.6 * 0.8 * c * [0.9, 0.8, 0.7]
+    clear = (np.abs(x - y) > pixel) & (np.abs(x) < 1 - pixel) & (np.abs(y) < 1 - pixel)
+    assert clear.sum() > 200
+    got, se = traced.image[clear], traced.se[clear]
+    z = np.abs(got - want[clear]) / (se + 1e-6)
+    assert (z > 4).mean() < 0.01 and z.max() < 7, z.max()
+    assert (np.abs((got - want[clear]).sum(0)) <= 4 * np.sqrt((se ** 2).sum(0))).all()
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Scene, Texture
 
     scene = Scene()
     mesh = P.cube()
-    painted = Mesh(mesh.vertices, mesh.faces, colors=np.full((8, 3), 0.5))
+    painted = Mesh(mesh.vertices, mesh.faces, colors=np.full((8, 4), 0.5))
     scene.add(painted, PBRMaterial(), name="painted")
-    with pytest.raises(SceneError, match="painted: its colours on geometry are not traced"):
+    with pytest.raises(SceneError, match="painted: its colours' alpha below 1 is not traced"):
         TraceScene.from_scene(scene)
     scene = Scene()
     scene.add(mesh, PBRMaterial(base_color_texture=Texture(np.ones((2, 2, 3)))), name="box")

@@ -74,8 +74,11 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     emit[:len(scene.emitters), 0] = scene.emitter_cdf
     emit[:len(scene.emitters), 1] = _bits(where[scene.emitters])
     emit[:len(scene.emitters), 2] = scene.areas[scene.emitters]
+    cols = np.zeros((3 * n_tris if scene.colors is not None else 1, 4), np.float32)
+    if scene.colors is not None:
+        cols[:, :3] = scene.colors[order].reshape(-1, 3)
     env, env_layout = environment_tables(scene.environment)
-    tables = [tris, mats, emit, norms, env]
+    tables = [tris, mats, emit, norms, env, cols]
     offsets = np.cumsum([0] + [len(t) for t in tables])
     data = _rows(np.concatenate(tables))
     layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
@@ -84,6 +87,7 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
               "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
               "u_norms": int(offsets[3]), "u_env": int(offsets[4]), **env_layout,
+              "u_cols": int(offsets[5]),
               **packed.uniforms(),
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH, "compiled": len(apart),
               "hierarchy": _rows(packed.entries.reshape(-1, 4))}

@@ -69,6 +69,10 @@ class TraceScene:
         The sky (:class:`~glshade.Environment`): seen where rays leave the scene, sampled
         by importance (its radiance x the rows' solid angle) as next-event estimation's
         third kind of light.
+    colors : ndarray or None
+        ``(T, 3, 3)`` linear RGB at each triangle's corners: colours on geometry, the
+        surface colour C multiplying the material's reflectance (rho_d, or glTF's base
+        colour), interpolated across the triangle; None: none.
     """
 
     triangles: np.ndarray
@@ -85,6 +89,7 @@ class TraceScene:
     #: ((solid, material index),): a CSG solid ray cast exactly (at most one: union them)
     solids: tuple = ()
     environment: object = None
+    colors: np.ndarray | None = None
 
     @property
     def n_triangles(self) -> int:
@@ -180,7 +185,8 @@ class TraceScene:
                              f"{len(solid_models)}: make them one (a | b)")
         names: list = []
         rows: list = []
-        tris, corner_normals, mats, models = _world_triangles(scene, smooth, names, rows)
+        tris, corner_normals, mats, models, colors = _world_triangles(scene, smooth, names,
+                                                                      rows)
         solids = []
         for k, model in enumerate(solid_models):
             name = model.name or f"solid {k}"
@@ -224,23 +230,26 @@ class TraceScene:
         if not len(emitters) and not len(light_rows) and environment is None:
             raise SceneError("the scene has no emitter: give a material an emission (or add "
                              "a light or an environment); nothing would be lit")
+        corner_colors = np.concatenate(colors)[keep] if colors else None
         shading = None
         if smooth and corner_normals:
             shading = np.concatenate(corner_normals)[keep]
             shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
-                   cdf, light_rows, model, tuple(names), shading, tuple(solids), environment)
+                   cdf, light_rows, model, tuple(names), shading, tuple(solids), environment,
+                   corner_colors)
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
-    """The path tracer traces opaque surfaces of one colour each, in either lighting model
-    (the notes' Material, glTF's PBRMaterial by its factors): a material's opacity or maps,
-    or a mesh's colours, would be left out of the picture, so the trace refuses them by
-    name."""
-    if mesh is not None and material.vertex_colors and mesh.colored:
-        raise SceneError(f"{name}: its colours on geometry are not traced (the path "
-                         "tracer's surfaces have one colour): Material(vertex_colors=False) "
-                         "ignores them, or draw it with glshade render")
+    """The path tracer traces opaque surfaces in either lighting model (the notes'
+    Material, glTF's PBRMaterial by its factors), colours on geometry multiplying the
+    material's: a material's opacity or maps, or colours' alpha, would be left out of the
+    picture, so the trace refuses them by name."""
+    if mesh is not None and material.vertex_colors and mesh.colored and any(
+            c is not None and (c[:, 3] < 1).any() for c in (mesh.colors, mesh.face_colors)):
+        raise SceneError(f"{name}: its colours' alpha below 1 is not traced (the path "
+                         "tracer's surfaces are opaque): give the colours alpha 1, or draw it "
+                         "with glshade render")
     if material.lighting.value == "pbr":
         pbr_maps = [k.removesuffix("_texture") for k in (
             "base_color_texture", "metallic_roughness_texture", "normal_texture",
@@ -266,6 +275,7 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
     arrays; ``names`` and ``rows`` (material rows) are appended to."""
     tris: list = []
     corner_normals: list = []
+    corner_colors: list = []
     mats: list = []
     models: list = []
     visible = [m for m in scene.models if m.visible]
@@ -279,11 +289,12 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
         mesh = model.mesh
         name = model.name or f"model {k}"
         _refuse_unlit_parts(model.material, name, mesh)
-        t, _ = mesh.triangles
+        t, polygon = mesh.triangles
         if not len(t):
             continue
         v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
         tris.append(v[t])
+        corner_colors.append(_corner_colors(mesh, model.material, t, polygon))
         if smooth:
             from ..render.gpu_mesh import drawable_normals
 
@@ -294,7 +305,24 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
         models.append(np.full(len(t), len(names)))
         names.append(name)
         rows.append(_material_row(model.material, name))
-    return tris, corner_normals, mats, models
+    colors = None
+    if any(c is not None for c in corner_colors):  # (white where a mesh has none)
+        colors = [np.ones((len(x), 3, 3)) if c is None else c
+                  for x, c in zip(tris, corner_colors)]
+    return tris, corner_normals, mats, models, colors
+
+
+def _corner_colors(mesh, material, t: np.ndarray, polygon: np.ndarray) -> np.ndarray | None:
+    """``(T, 3, 3)`` the surface colour C at each triangle's corners (its vertex's colour
+    times its polygon's), or None: the mesh has none or its material ignores them."""
+    if not (mesh.colored and material.vertex_colors):
+        return None
+    c = np.ones((len(t), 3, 3))
+    if mesh.colors is not None:
+        c *= mesh.colors[t, :3]
+    if mesh.face_colors is not None:
+        c *= mesh.face_colors[polygon, None, :3]
+    return c
 
 
 def _material_row(material, name: str) -> list:

@@ -258,3 +258,33 @@ def test_workers_write_the_same_bytes(bop, tmp_path, where):
                       progress=False, jobs=2,
                       scheduler="local" if where == "cluster" else None)
     assert _tree_hash(out) == _tree_hash(bop)
+
+
+def test_a_path_traced_set_has_the_raster_sets_masks_depth_and_poses(bop, tmp_path,
+                                                                      gl_context):
+    """``images="pathtrace"``: the masks, depth and every JSON byte-identical to the
+    raster set's (they are the raster's exact buffers of the same cameras); each colour
+    image the tracer's picture of its view, encoded as 8 bits."""
+    from glshade.dataset.views import load_scene_arg
+    from glshade.pathtrace import TraceScene, trace
+
+    out = tmp_path / "traced"
+    dataset.write_bop(_scene(), out, views=4, size=SIZE, depth_scale=0.5, units="m",
+                      progress=False, context=gl_context, images="pathtrace", spp=8)
+    a, b = bop / "train" / "000000", out / "train" / "000000"
+    for sub in ("depth", "mask", "mask_visib"):
+        names = sorted(p.name for p in (a / sub).glob("*.png"))
+        assert names and names == sorted(p.name for p in (b / sub).glob("*.png"))
+        assert all((a / sub / n).read_bytes() == (b / sub / n).read_bytes() for n in names)
+    for name in ("scene_camera.json", "scene_gt.json", "scene_gt_info.json"):
+        assert (a / name).read_bytes() == (b / name).read_bytes()
+    _, cameras, _ = load_scene_arg(_scene(), 4, SIZE)
+    for k, camera in enumerate(cameras):
+        lit = TraceScene.from_scene(_scene(), camera=camera)  # (the headlight: no lights)
+        traced = trace(lit, camera, SIZE, spp=8, context=gl_context, progress=False)
+        want = np.round(np.clip(traced.image, 0, 1) * 255).astype(np.uint8)
+        assert np.array_equal(_png(b / "rgb" / f"{k:06d}.png"), want)
+        assert not np.array_equal(_png(a / "rgb" / f"{k:06d}.png"), want)  # (not the raster's)
+    r = run_glshade("dataset", "assets/scenes/spheres.toml", "-o", str(tmp_path / "x"),
+                    "--spp", "4")
+    assert r.returncode == 2 and "--spp is for --images pathtrace" in r.stderr

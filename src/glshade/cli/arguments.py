@@ -184,6 +184,9 @@ class DatasetArgs(ExecutorArgs):
     format: str = "bop"
     size: tuple[int, int] | None = None
     samples: int | None = None
+    images: str = "raster"
+    spp: int | None = None
+    until: float | None = None
     depth_scale: float = 1.0
     units: str = "m"
     backend: Backend = Backend.AUTO

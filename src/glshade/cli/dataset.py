@@ -18,12 +18,18 @@ def dataset(args: DatasetArgs) -> int:
     from .validators import check_outputs
 
     check_outputs({}, {"the data set": args.output})  # (before any work)
+    if args.images == "raster" and (args.spp is not None or args.until is not None):
+        from ..errors import UsageError
+
+        raise UsageError(f"--{'spp' if args.spp is not None else 'until'} is for --images "
+                         "pathtrace")
     context = create_context(args.backend.value, args.device)
     common: dict[str, Any] = {
         "views": args.views, "size": args.size,
         "samples": 4 if args.samples is None else args.samples,
         "progress": False if args.quiet else None, "context": context,
-        "jobs": args.jobs or 1, "scheduler": args.scheduler}
+        "jobs": args.jobs or 1, "scheduler": args.scheduler,
+        "images": args.images, "spp": args.spp, "until": args.until}
     try:
         if args.format == "bop":
             where = ds.write_bop(args.scene, args.output, depth_scale=args.depth_scale,

@@ -409,6 +409,14 @@ def add_dataset(sub) -> None:
                    "scene file's [render] size, else 640x480)")
     p.add_argument("--samples", type=v.samples, help="MSAA samples of the colour images "
                    "(default 4; masks and depth are exact either way)")
+    p.add_argument("--images", choices=("raster", "pathtrace"), default="raster",
+                   help="the colour images rasterized (default) or path traced (masks, "
+                   "depth and poses the exact raster ones of the same cameras)")
+    stop = p.add_mutually_exclusive_group()
+    stop.add_argument("--spp", type=v.count, metavar="N", help="--images pathtrace: samples "
+                      "a pixel (default 64)")
+    stop.add_argument("--until", type=v.fraction, metavar="F", help="--images pathtrace: "
+                      "trace each image until its RMS standard error is F of its mean")
     p.add_argument("--depth-scale", type=v.positive_float, default=1.0, metavar="S",
                    help="BOP: a depth pixel times S is millimetres (default 1)")
     p.add_argument("--units", choices=("m", "mm"), default="m", help="what a scene unit is "

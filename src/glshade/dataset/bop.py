@@ -174,7 +174,8 @@ class BopViews:
 def write_bop(scene, out_dir, *, views: int | None = None, size=None,
               depth_scale: float = 1.0, units: str = "m", cameras=None, samples: int = 4,
               options=None, progress=None, context=None, jobs: int = 1,
-              scheduler: str | None = None) -> Path:
+              scheduler: str | None = None, images: str = "raster", spp: int | None = None,
+              until: float | None = None) -> Path:
     """Render ``scene`` into a BOP data set in ``out_dir`` (see the module's layout):
     resumable (a view already written is skipped), atomic (a file is whole or absent), the
     same bytes on a rerun.
@@ -208,6 +209,14 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
     scheduler : str or None
         A Dask scheduler's address, or ``"local"`` (the ``distributed`` extra): the views
         shared among its workers, which write into ``out_dir`` (a folder they all see).
+    images : str
+        ``"raster"`` (the colour images drawn with ``options``) or ``"pathtrace"`` (traced:
+        :func:`glshade.pathtrace.trace`, in the tracer's radiosity units, clipped to 1 and
+        encoded as the raster images are; masks, depth and poses the exact raster ones).
+    spp : int or None
+        ``images="pathtrace"``: samples a pixel (default 64).
+    until : float or None
+        ``images="pathtrace"``: or refine each image to this relative error.
 
     Returns
     -------
@@ -227,7 +236,7 @@ def write_bop(scene, out_dir, *, views: int | None = None, size=None,
         (where / sub).mkdir(parents=True, exist_ok=True)
     (out / "models").mkdir(parents=True, exist_ok=True)
     _models(scene, out / "models", mm)
-    job = DataSetJob(scene, cameras, size, samples, options)
+    job = DataSetJob(scene, cameras, size, samples, options, images, spp, until)
 
     writer = BopViews(where, size, mm, float(depth_scale), cameras)
     records = run_views(job, where / ".views", writer, progress, context, jobs=jobs,

@@ -72,7 +72,8 @@ class CocoViews:
 
 def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=None,
                samples: int = 4, options=None, progress=None, context=None, jobs: int = 1,
-               scheduler: str | None = None) -> Path:
+               scheduler: str | None = None, images: str = "raster", spp: int | None = None,
+               until: float | None = None) -> Path:
     """Render ``scene`` into a COCO instances data set in ``out_dir``: resumable (a view
     already written is skipped), atomic, the same bytes on a rerun. Image ids count from
     1, annotation ids too, in view then instance order.
@@ -101,6 +102,14 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
         Local worker processes sharing the views (1: this process).
     scheduler : str or None
         A Dask scheduler's address, or ``"local"`` (the ``distributed`` extra).
+    images : str
+        ``"raster"`` (the colour images drawn with ``options``) or ``"pathtrace"`` (traced:
+        :func:`glshade.pathtrace.trace`, in the tracer's radiosity units, clipped to 1 and
+        encoded as the raster images are; masks, depth and poses the exact raster ones).
+    spp : int or None
+        ``images="pathtrace"``: samples a pixel (default 64).
+    until : float or None
+        ``images="pathtrace"``: or refine each image to this relative error.
 
     Returns
     -------
@@ -111,7 +120,7 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     scene, cameras, size = load_scene_arg(scene, views, size, cameras)
     out = Path(out_dir)
     (out / "images").mkdir(parents=True, exist_ok=True)
-    job = DataSetJob(scene, cameras, size, samples, options)
+    job = DataSetJob(scene, cameras, size, samples, options, images, spp, until)
 
     labels = scene.labels
     classes = {m.instance_id: labels.get(m.label, 0)
@@ -119,16 +128,16 @@ def write_coco(scene, out_dir, *, views: int | None = None, size=None, cameras=N
     writer = CocoViews(out, size, classes)
     records = run_views(job, out / ".views", writer, progress, context, jobs=jobs,
                         scheduler=scheduler)
-    images: list[dict] = []
+    entries: list[dict] = []
     annotations: list[dict] = []
     for k, record in enumerate(records):
-        images.append({"id": k + 1, **record["image"]})
+        entries.append({"id": k + 1, **record["image"]})
         for obj in record["objects"]:
             annotations.append({"id": len(annotations) + 1, "image_id": k + 1, **obj})
     categories = [{"id": cid, "name": label, "supercategory": "object"}
                   for label, cid in scene.labels.items()]
     path = out / "annotations.json"
-    write_json(path, {"images": images, "annotations": annotations,
+    write_json(path, {"images": entries, "annotations": annotations,
                       "categories": categories,
                       "info": {"description": "rendered by glshade", "version": "1.0",
                                "renderer": renderers(records)}})

@@ -33,6 +33,14 @@ class DataSetJob:
         MSAA samples of the colour images (ids, depth and masks are exact whatever).
     options : DrawOptions, ShadingMode, str or None
         How the colour images are drawn.
+    images : str
+        ``"raster"`` (the colour images drawn with ``options``) or ``"pathtrace"`` (traced
+        by :func:`glshade.pathtrace.trace`, ``spp`` samples a pixel or ``until`` a relative
+        error; the masks, depth and poses the same exact raster ones of the view).
+    spp : int or None
+        A traced image's samples a pixel.
+    until : float or None
+        Or the relative error a traced image is refined to.
     """
 
     scene: Scene
@@ -40,6 +48,17 @@ class DataSetJob:
     size: tuple[int, int]
     samples: int = 4
     options: object = None
+    images: str = "raster"
+    spp: int | None = None
+    until: float | None = None
+
+    def __post_init__(self):
+        if self.images not in ("raster", "pathtrace"):
+            raise OptionError(f"images must be 'raster' or 'pathtrace', got {self.images!r}")
+        if self.images == "raster" and (self.spp is not None or self.until is not None):
+            raise OptionError("spp and until are for images='pathtrace'")
+        if self.images == "pathtrace" and self.spp is None and self.until is None:
+            object.__setattr__(self, "spp", 64)  # (the tracer's default)
 
 
 def load_scene_arg(scene, views: int | None, size, cameras=None):
@@ -173,8 +192,35 @@ class ViewWorker:
                                      outputs=Outputs.COLOR | Outputs.DEPTH | Outputs.INSTANCE)
         for k, frame in zip(views, drawn):
             camera = job.cameras[k]
+            if job.images == "pathtrace":
+                frame = self._traced(frame, camera)
             yield k, frame, (lambda camera=camera, frame=frame: renderer.annotate(
                 job.scene, camera, job.options, view=frame))
+
+    def _traced(self, frame, camera):
+        """``frame`` with its colour traced (the job's spp or error), encoded as the
+        raster colour is (sRGB where the options say, 8 bits, the raster's alpha)."""
+        import dataclasses
+
+        import numpy as np
+
+        from ..options import DrawOptions
+        from ..pathtrace import TraceScene, trace
+
+        job = self.job
+        assert self._renderer is not None
+        # (without lights or emitters, the raster's headlight at the view's eye)
+        scene = TraceScene.from_scene(job.scene, camera=camera)
+        traced = trace(scene, camera, job.size, spp=job.spp, until=job.until,
+                       context=self._renderer.context, progress=False)
+        color = np.clip(traced.image, 0.0, 1.0)
+        if DrawOptions.of(job.options).srgb:
+            from .._srgb import linear_to_srgb
+
+            color = linear_to_srgb(color)
+        rgba = frame.color.copy()
+        rgba[..., :3] = np.round(color * 255).astype(np.uint8)
+        return dataclasses.replace(frame, color=rgba)
 
     def written(self, k: int, frame, notes) -> tuple[dict, list]:
         """The writer's ``(record, files)`` for view k, the record saying what drew it (a

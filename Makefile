@@ -79,6 +79,7 @@ bench: setup
 	$(PY) benchmarks/pbr_bench.py
 	$(PY) benchmarks/pyrender_units.py
 	$(PY) benchmarks/pathtrace_bench.py $(QUICK_TRACE)
+	$(PY) benchmarks/pathtrace_materials_bench.py
 	$(PY) benchmarks/interrupt_bench.py $(QUICK_INTERRUPT)
 	$(PY) benchmarks/dataset_bench.py $(QUICK_DATASET)
 	$(PY) benchmarks/instances_bench.py $(QUICK_INSTANCES)

@@ -40,6 +40,7 @@ uniform float u_eps;
 #endif
 #include "trace_lights.glsl"
 #include "trace_camera.glsl"
+#include "trace_surface.glsl"
 
 int g_model;  // the model of the vertex being made (-1: the CSG solid)
 #ifdef CONTROL
@@ -125,21 +126,7 @@ bool bounce(inout Path p) {
     }
 #endif
     vec3 wo = -p.d;
-    Bsdf b = Bsdf(ma.xyz, ma.w, mb.w, 0.0, 0.0, 0.0);
-#ifdef VERTEX_COLORS
-#ifdef CSG_SOLID
-    if (!on_solid)
-#endif
-    {   // (colours on geometry: the surface colour C across the triangle, times rho)
-        b.rho *= (1.0 - hit.uv.x - hit.uv.y) * fetch(u_cols + 3 * k).xyz +
-                 hit.uv.x * fetch(u_cols + 3 * k + 1).xyz +
-                 hit.uv.y * fetch(u_cols + 3 * k + 2).xyz;
-    }
-#endif
-#ifdef PBR
-    vec4 mc = fetch(u_mats + 3 * m + 2);  // (glTF's model: metallic, roughness, flag)
-    b.metallic = mc.x; b.roughness = mc.y; b.pbr = mc.z;
-#endif
+    Bsdf b = surface_bsdf(m, k, ma, mb.w, hit.uv, k >= 0);
     bool last = u_max_depth > 0 && p.bounces + 1 >= u_max_depth;
     p.value += p.beta * (emitters_seen(xo, n, n_geo, wo, b, last)
                          + lights_seen(xo, n, n_geo, wo, b)

@@ -139,6 +139,76 @@ def test_colours_on_geometry_are_the_surface_colour_across_each_triangle(gl_cont
     assert (np.abs((got - want[clear]).sum(0)) <= 4 * np.sqrt((se ** 2).sum(0))).all()
 
 
+def quad_pixels(camera, size):
+    """Each pixel centre's point (x, y) on the quad z = 0, and a pixel's side there."""
+    o, d = camera.rays((size, size))
+    p = o + (-o[..., 2] / d[..., 2])[..., None] * d
+    return p[..., 0], p[..., 1], 2 * 3 * np.tan(np.radians(15)) / size
+
+
+def test_a_textured_quad_is_its_texture_times_its_albedo(gl_context):
+    """A diffuse quad under a grey sky, its diffuse map 8 x 8 random sRGB texels (nearest):
+    each pixel clear of a texel's edge pi x L x kd x the texel, decoded to linear."""
+    from glshade import Camera, Environment, Material, Scene, Texture
+
+    rng = np.random.default_rng(5)
+    image = rng.integers(0, 256, (8, 8, 3), dtype=np.uint8)
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    scene = Scene(environment=Environment((0.6, 0.6, 0.6)))
+    scene.add(quad, Material(color=(1, 1, 1), kd=0.8, ks=0.0,
+                             texture=Texture(image, filter="nearest")))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    traced = trace(scene, camera, (40, 40), spp=64, context=gl_context)
+    x, y, pixel = quad_pixels(camera, 40)
+    u, v = (x + 1) / 2, (y + 1) / 2
+    col, row = np.floor(u * 8).astype(int), np.floor(v * 8).astype(int)
+    fx, fy = u * 8 - col, v * 8 - row
+    margin = pixel * 4  # (a pixel's side, in texels: 4 = 8 texels / 2 world units)
+    clear = ((np.abs(x) < 1 - pixel) & (np.abs(y) < 1 - pixel) & (fx > margin) &
+             (fx < 1 - margin) & (fy > margin) & (fy < 1 - margin))
+    texel = image[7 - np.clip(row, 0, 7), np.clip(col, 0, 7)] / 255.0  # (row 0: the top)
+    linear = np.where(texel <= 0.04045, texel / 12.92, ((texel + 0.055) / 1.055) ** 2.4)
+    want = np.pi * 0.6 * 0.8 * linear
+    assert clear.sum() > 150
+    got, se = traced.image[clear], traced.se[clear]
+    z = np.abs(got - want[clear]) / (se + 1e-6)
+    assert (z > 4).mean() < 0.01 and z.max() < 7, z.max()
+    assert (np.abs((got - want[clear]).sum(0)) <= 4 * np.sqrt((se ** 2).sum(0))).all()
+
+
+def test_a_metallic_roughness_map_sets_each_texels_lobe(gl_context):
+    """glTF's packing read at the hit: a quad's left half metal (B = 255) of roughness 0.5
+    (G = 128), its right half dielectric (B = 0) of roughness 1 (G = 255), under a constant
+    sky -- each half pi x L x the BRDF's directional albedo at its view, by quadrature."""
+    from glshade import Camera, Environment, Scene, Texture
+    from tests.pathtrace.test_environment import directional_albedo
+
+    packed = np.zeros((1, 2, 3), np.uint8)
+    packed[0, 0], packed[0, 1] = (0, 128, 255), (0, 255, 0)
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    base = np.array([0.9, 0.7, 0.4])
+    scene = Scene(environment=Environment((0.5, 0.5, 0.5)))
+    scene.add(quad, PBRMaterial(base_color=tuple(base), metallic=1.0, roughness=1.0,
+                                metallic_roughness_texture=Texture(packed, filter="nearest")))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    traced = trace(scene, camera, (32, 32), spp=128, context=gl_context)
+    x, y, pixel = quad_pixels(camera, 32)
+    inside = (np.abs(y) < 1 - pixel) & (np.abs(x) < 1 - pixel) & (np.abs(x) > pixel)
+    o, d = camera.rays((32, 32))
+    mu = -d[..., 2]  # (the quad's normal is +z)
+    for half, metallic, roughness in ((x < 0, 1.0, 128 / 255), (x > 0, 0.0, 1.0)):
+        where = inside & half
+        mus = np.linspace(0.9, 1.0, 9)
+        table = directional_albedo(mus, base, metallic, roughness)
+        want = np.pi * 0.5 * np.stack([np.interp(mu[where], mus, table[:, c])
+                                       for c in range(3)], -1)
+        got, se = traced.image[where], traced.se[where]
+        assert np.abs((got - want).sum(0)).max() <= 4 * np.sqrt((se ** 2).sum(0)).max() + \
+            2e-3 * want.sum(0).max(), (metallic, got.mean(0), want.mean(0))
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Scene, Texture
 
@@ -149,6 +219,6 @@ def test_what_it_does_not_trace_is_one_line_naming_the_model():
     with pytest.raises(SceneError, match="painted: its colours' alpha below 1 is not traced"):
         TraceScene.from_scene(scene)
     scene = Scene()
-    scene.add(mesh, PBRMaterial(base_color_texture=Texture(np.ones((2, 2, 3)))), name="box")
-    with pytest.raises(SceneError, match=r"box: its texture maps \(base_color\) are not"):
+    scene.add(mesh, PBRMaterial(normal_texture=Texture(np.ones((2, 2, 3)))), name="box")
+    with pytest.raises(SceneError, match=r"box: its texture maps \(normal\) are not traced"):
         TraceScene.from_scene(scene)

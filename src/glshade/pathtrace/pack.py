@@ -7,7 +7,7 @@ import numpy as np
 
 from ..geometry.bvh import NO_CHILDREN, build, packed_children
 
-__all__ = ["pack", "environment_tables", "DATA_WIDTH"]
+__all__ = ["pack", "environment_tables", "map_tables", "DATA_WIDTH"]
 
 #: texels a row of the scene texture
 DATA_WIDTH = 1024
@@ -77,8 +77,12 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     cols = np.zeros((3 * n_tris if scene.colors is not None else 1, 4), np.float32)
     if scene.colors is not None:
         cols[:, :3] = scene.colors[order].reshape(-1, 3)
+    uvs = np.zeros((3 * n_tris if scene.uvs is not None else 1, 4), np.float32)
+    if scene.uvs is not None:
+        uvs[:, :2] = scene.uvs[order].reshape(-1, 2)
+    maps, texdir, texels = map_tables(scene)
     env, env_layout = environment_tables(scene.environment)
-    tables = [tris, mats, emit, norms, env, cols]
+    tables = [tris, mats, emit, norms, env, cols, uvs, maps, texdir, texels]
     offsets = np.cumsum([0] + [len(t) for t in tables])
     data = _rows(np.concatenate(tables))
     layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
@@ -87,7 +91,8 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
               "u_emit_power": float((scene.areas[scene.emitters] * scene.materials[
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
               "u_norms": int(offsets[3]), "u_env": int(offsets[4]), **env_layout,
-              "u_cols": int(offsets[5]),
+              "u_cols": int(offsets[5]), "u_uvs": int(offsets[6]), "u_maps": int(offsets[7]),
+              "u_texdir": int(offsets[8]),
               **packed.uniforms(),
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH, "compiled": len(apart),
               "hierarchy": _rows(packed.entries.reshape(-1, 4))}
@@ -126,3 +131,28 @@ def environment_tables(environment) -> tuple[np.ndarray, dict]:
     texels[h * w:, 1] = rows
     return texels, {"u_env_w": w, "u_env_h": h, "u_env_rotation": environment.rotation,
                     "u_env_rows": h * w}
+
+
+def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The maps as the tracer's texels (trace_maps.glsl): each material's two map slots, 2
+    texels each -- (texture, wrap, -, -), (scale u, scale v, offset u, offset v); a texel a
+    texture -- (its first texel, as int bits, relative to the directory's end; width;
+    height; -); then the textures' texels, row by row, each after the last.
+
+    Parameters
+    ----------
+    scene : TraceScene
+        The scene (its ``maps`` and ``textures``).
+    """
+    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 2, 6), -1.0)
+    maps = np.zeros((4 * len(m), 4), np.float32)
+    maps[0::2, :2] = m.reshape(-1, 6)[:, :2]
+    maps[1::2] = m.reshape(-1, 6)[:, 2:]
+    sizes = [t.shape[0] * t.shape[1] for t in scene.textures]
+    firsts = np.cumsum([0] + sizes[:-1]) + len(scene.textures)
+    texdir = np.zeros((len(scene.textures), 4), np.float32)
+    for i, t in enumerate(scene.textures):  # (a row a texture, not a texel)
+        texdir[i] = [_bits([firsts[i]])[0], t.shape[1], t.shape[0], 0.0]
+    texels = (np.concatenate([t.reshape(-1, 4) for t in scene.textures]).astype(np.float32)
+              if scene.textures else np.zeros((0, 4), np.float32))
+    return maps, texdir, texels

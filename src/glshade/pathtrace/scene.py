@@ -73,6 +73,14 @@ class TraceScene:
         ``(T, 3, 3)`` linear RGB at each triangle's corners: colours on geometry, the
         surface colour C multiplying the material's reflectance (rho_d, or glTF's base
         colour), interpolated across the triangle; None: none.
+    uvs : ndarray or None
+        ``(T, 3, 2)`` texture coordinates at each triangle's corners (None: no map read).
+    textures : tuple
+        The maps' texels, ``(H, W, 4)`` float32 each (:func:`texture_texels`).
+    maps : ndarray or None
+        ``(M, 2, 6)`` each material's colour map and glTF's metallic-roughness map: index
+        into ``textures`` (-1: none), sampling (1 if clamped, else repeated, + 2 if the
+        nearest texel, else bilinear), the coordinates' scale and offset (u, v).
     """
 
     triangles: np.ndarray
@@ -90,6 +98,9 @@ class TraceScene:
     solids: tuple = ()
     environment: object = None
     colors: np.ndarray | None = None
+    uvs: np.ndarray | None = None
+    textures: tuple = ()
+    maps: np.ndarray | None = None
 
     @property
     def n_triangles(self) -> int:
@@ -185,8 +196,10 @@ class TraceScene:
                              f"{len(solid_models)}: make them one (a | b)")
         names: list = []
         rows: list = []
-        tris, corner_normals, mats, models, colors = _world_triangles(scene, smooth, names,
-                                                                      rows)
+        maps: list = []
+        textures: list = []
+        tris, corner_normals, mats, models, colors, uvs = _world_triangles(
+            scene, smooth, names, rows, maps, textures)
         solids = []
         for k, model in enumerate(solid_models):
             name = model.name or f"solid {k}"
@@ -196,6 +209,7 @@ class TraceScene:
                                  "sampled for light); give the emission to a mesh")
             solids.append((model.solid, len(rows)))
             rows.append(_material_row(model.material, name))
+            maps.append(_material_maps(model.material, None, textures))
         if not tris and not solids:
             raise SceneError("the scene has nothing to trace (no visible meshes or solids)")
         triangles = (np.concatenate(tris) if tris else np.zeros((0, 3, 3))).astype(np.float64)
@@ -231,51 +245,106 @@ class TraceScene:
             raise SceneError("the scene has no emitter: give a material an emission (or add "
                              "a light or an environment); nothing would be lit")
         corner_colors = np.concatenate(colors)[keep] if colors else None
+        corner_uvs = np.concatenate(uvs)[keep] if uvs else None
         shading = None
         if smooth and corner_normals:
             shading = np.concatenate(corner_normals)[keep]
             shading /= np.maximum(np.linalg.norm(shading, axis=2, keepdims=True), 1e-300)
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
                    cdf, light_rows, model, tuple(names), shading, tuple(solids), environment,
-                   corner_colors)
+                   corner_colors, corner_uvs,
+                   tuple(texture_texels(t, colour) for t, colour in textures),
+                   np.array(maps, np.float64).reshape(len(rows), 2, 6))
+
+
+#: the maps the tracer reads, by lighting model: a colour map (the notes' diffuse map,
+#: glTF's base colour) and glTF's metallic-roughness map; glTF's occlusion map is the
+#: rasterizer's stand-in for what the paths find themselves (left to them)
+TRACED_MAPS = {"notes": ("texture",),
+               "pbr": ("base_color_texture", "metallic_roughness_texture",
+                       "occlusion_texture")}
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
     """The path tracer traces opaque surfaces in either lighting model (the notes'
-    Material, glTF's PBRMaterial by its factors), colours on geometry multiplying the
-    material's: a material's opacity or maps, or colours' alpha, would be left out of the
-    picture, so the trace refuses them by name."""
+    Material, glTF's PBRMaterial), colours on geometry and the colour and
+    metallic-roughness maps multiplying the material's: opacity, the other maps, or
+    colours' alpha would be left out of the picture, so the trace refuses them by name (a
+    CSG solid's surface has no texture coordinates: no maps)."""
     if mesh is not None and material.vertex_colors and mesh.colored and any(
             c is not None and (c[:, 3] < 1).any() for c in (mesh.colors, mesh.face_colors)):
         raise SceneError(f"{name}: its colours' alpha below 1 is not traced (the path "
                          "tracer's surfaces are opaque): give the colours alpha 1, or draw it "
                          "with glshade render")
-    if material.lighting.value == "pbr":
-        pbr_maps = [k.removesuffix("_texture") for k in (
-            "base_color_texture", "metallic_roughness_texture", "normal_texture",
-            "occlusion_texture", "emissive_texture") if getattr(material, k) is not None]
-        if pbr_maps:
-            raise SceneError(f"{name}: its texture maps ({', '.join(pbr_maps)}) are not traced "
-                             "(the path tracer takes glTF's factors): drop them, or draw it "
-                             "with glshade render")
     if material.transparent:
         raise SceneError(f"{name}: opacity {float(material.opacity):g} is not traced (the path "
                          "tracer's surfaces are opaque): set opacity = 1, or draw it with "
                          "glshade render")
-    if material.textures:
-        maps = ", ".join(sorted(material.textures))
-        raise SceneError(f"{name}: its texture maps ({maps}) are not traced (the path "
-                         "tracer's surfaces have one colour): drop them, or draw it with "
-                         "glshade render")
+    traced = TRACED_MAPS[material.lighting.value] if mesh is not None else ()
+    untraced = sorted(k.removesuffix("_texture") for k in material.textures
+                      if k not in traced)
+    if untraced:
+        raise SceneError(f"{name}: its texture maps ({', '.join(untraced)}) are not traced "
+                         f"(the path tracer reads {_traced_names(mesh)}): drop them, or draw "
+                         "it with glshade render")
 
 
-def _world_triangles(scene, smooth: bool, names: list, rows: list):
+def _traced_names(mesh) -> str:
+    if mesh is None:
+        return "no maps on a CSG solid"
+    return "a colour map and glTF's metallic-roughness map"
+
+
+def _material_maps(material, mesh, textures: list) -> list:
+    """A material's two map slots (its colour map; glTF's metallic-roughness map), each
+    (texture index or -1, sampling: 1 if clamped + 2 if nearest, scale u, scale v, offset
+    u, offset v);
+    ``textures`` ((Texture, is a colour map) pairs, each once) is appended to. A mesh
+    without texture coordinates reads none (the Scene warned when it was added)."""
+    pbr = material.lighting.value == "pbr"
+    slots = ("base_color_texture", "metallic_roughness_texture") if pbr else ("texture", None)
+    out = []
+    for colour, slot in zip((True, False), slots):
+        texture = getattr(material, slot) if slot is not None else None
+        if texture is None or mesh is None or mesh.uv is None:
+            out.append([-1.0, 0.0, 1.0, 1.0, 0.0, 0.0])
+            continue
+        found = [i for i, (t, c) in enumerate(textures) if t is texture and c == colour]
+        if not found:
+            textures.append((texture, colour))
+        index = found[0] if found else len(textures) - 1
+        out.append([float(index), float(texture.wrap == "clamp") +
+                    2.0 * float(texture.filter == "nearest"), *texture.scale, *texture.offset])
+    return out
+
+
+def texture_texels(texture, colour: bool) -> np.ndarray:
+    """``(H, W, 4)`` float32: a texture's texels as the tracer samples them -- row 0 the
+    image's bottom (v = 0, as GL's upload has it), a colour map decoded from sRGB to linear,
+    a data map (metallic-roughness) as stored, over 255.
+
+    Parameters
+    ----------
+    texture : Texture
+        The map.
+    colour : bool
+        Whether its texels are sRGB colours.
+    """
+    texels = texture.linear() if colour else texture.pixels / 255.0
+    return np.ascontiguousarray(texels[::-1], np.float32)
+
+
+def _world_triangles(scene, smooth: bool, names: list, rows: list, maps: list,
+                     textures: list):
     """The visible meshes' (and tessellated patches') world triangles, their corner normals
-    where ``smooth``, and each triangle's material row and model number, as lists of
-    arrays; ``names`` and ``rows`` (material rows) are appended to."""
+    where ``smooth``, each triangle's material row and model number, their corner colours
+    and texture coordinates (None where no mesh has them), as lists of arrays; ``names``,
+    ``rows`` (material rows), ``maps`` (their map slots) and ``textures`` are appended
+    to."""
     tris: list = []
     corner_normals: list = []
     corner_colors: list = []
+    corner_uvs: list = []
     mats: list = []
     models: list = []
     visible = [m for m in scene.models if m.visible]
@@ -295,6 +364,9 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
         v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
         tris.append(v[t])
         corner_colors.append(_corner_colors(mesh, model.material, t, polygon))
+        slots = _material_maps(model.material, mesh, textures)
+        corner_uvs.append(mesh.uv[mesh.corner_triangles] if any(
+            slot[0] >= 0 for slot in slots) else None)
         if smooth:
             from ..render.gpu_mesh import drawable_normals
 
@@ -305,11 +377,14 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list):
         models.append(np.full(len(t), len(names)))
         names.append(name)
         rows.append(_material_row(model.material, name))
-    colors = None
+        maps.append(slots)
+    colors = uvs = None
     if any(c is not None for c in corner_colors):  # (white where a mesh has none)
         colors = [np.ones((len(x), 3, 3)) if c is None else c
                   for x, c in zip(tris, corner_colors)]
-    return tris, corner_normals, mats, models, colors
+    if any(c is not None for c in corner_uvs):
+        uvs = [np.zeros((len(x), 3, 2)) if c is None else c for x, c in zip(tris, corner_uvs)]
+    return tris, corner_normals, mats, models, colors, uvs
 
 
 def _corner_colors(mesh, material, t: np.ndarray, polygon: np.ndarray) -> np.ndarray | None:

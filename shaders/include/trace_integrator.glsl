@@ -94,6 +94,13 @@ bool bounce(inout Path p) {
         g_model = floatBitsToInt(e1.w);
         ng = normalize(cross(e1.xyz, e2));
     }
+#ifdef CUTOUTS
+    if (passes_through(m)) {  // (a thin surface: the path goes on as it was, no vertex)
+        p.o = x + p.d * u_eps;
+        if (p.bounces == 0) p.flags -= 2.0;  // (its first hit is still to come)
+        return true;
+    }
+#endif
     vec4 ma = fetch(u_mats + 3 * m), mb = fetch(u_mats + 3 * m + 1);
     if (p.bounces == 0 && dot(ng, p.d) < 0.0) {
         p.value += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)

@@ -18,6 +18,39 @@ uniform vec4 u_light_spot[LIGHTS];  // a spot's axis x its cone's scale, the con
 uniform float u_light_range[LIGHTS];  // 1 / a light's range (0: none)
 #endif
 
+// whether a path passes through material m's surface (CUTOUTS: opacity below 1 is a thin
+// surface that lets the light through with the chance 1 - opacity, what the rasterizer's
+// "over" blends)
+bool passes_through(int m) {
+    float opacity = fetch(u_mats + 3 * m + 2).w;
+    return opacity < 1.0 && rand() >= opacity;
+}
+
+// whether nothing blocks the segment from o along d for dist: with CUTOUTS each surface
+// met, nearest first, lets it through by its chance (at most CUTOUT_LAYERS of them)
+#define CUTOUT_LAYERS 16
+bool clear_path(vec3 o, vec3 d, float dist) {
+#ifdef CUTOUTS
+    Hit hit;
+    for (int i = 0; i < CUTOUT_LAYERS; ++i) {
+        ++g_iter;
+        if (!intersect(o, d, dist, false, hit)) return true;
+#ifdef CSG_SOLID
+        int m = hit.k <= -2 ? u_csg_material : floatBitsToInt(fetch(u_tris + 3 * hit.k).w);
+#else
+        int m = floatBitsToInt(fetch(u_tris + 3 * hit.k).w);
+#endif
+        if (!passes_through(m)) return false;
+        o += d * (hit.t + u_eps);
+        dist -= hit.t + u_eps;
+        if (dist <= 0.0) return true;
+    }
+    return false;
+#else
+    return visible(o, d, dist);
+#endif
+}
+
 // MIS (Veach's power heuristic): the weight of a sample drawn with density a where another
 // strategy would have drawn it with density b
 float power_weight(float a, float b) {
@@ -71,7 +104,7 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf bs, bool last) {
     vec3 wi = to / dist;
     float cx = dot(n, wi), cy = -dot(ny, wi);
     if (cx > 0.0 && cy > 0.0 && p > 0.0 && dot(n_geo, wi) > 0.0 &&
-        visible(xo, wi, dist * (1.0 - 1e-4))) {
+        clear_path(xo, wi, dist * (1.0 - 1e-4))) {
         float w = 1.0;
 #ifdef MIS
         float light_pdf = p / area * dist2 / cy;  // (solid angle)
@@ -110,7 +143,7 @@ vec3 lights_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf b) {
             }
         }
         float cx = dot(n, wi);
-        if (cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, dist)) {
+        if (cx > 0.0 && dot(n_geo, wi) > 0.0 && clear_path(xo, wi, dist)) {
             sum += brdf_pi(b, n, wi, wo) * u_light_irr[i] * (cx * att);
         }
     }
@@ -129,7 +162,7 @@ vec3 environment_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf bs, bool last) 
     float pdf;
     vec3 wi = env_sample(u, pdf);
     float cx = dot(n, wi);
-    if (pdf > 0.0 && cx > 0.0 && dot(n_geo, wi) > 0.0 && visible(xo, wi, 1e30)) {
+    if (pdf > 0.0 && cx > 0.0 && dot(n_geo, wi) > 0.0 && clear_path(xo, wi, 1e30)) {
         float w = 1.0;
 #ifdef MIS
         w = last ? 1.0 : power_weight(pdf, bounce_pdf(bs, n, wo, wi));

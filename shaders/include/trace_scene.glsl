@@ -7,7 +7,7 @@
 //     bits), (v2 - v0, -);
 //     the first FLAT_TRIANGLES also compiled into the program (tested without the BVH)
 //   materials at u_mats, 3 texels each: (rho_d or glTF's base colour, k_s), (E, n),
-//   (metallic, roughness, 1 for glTF's model else 0, -)
+//   (metallic, roughness, 1 for glTF's model else 0, opacity)
 //   SMOOTH_NORMALS: corner normals at u_norms, 3 texels a triangle (shading normals)
 //   VERTEX_COLORS: corner colours at u_cols, 3 texels a triangle (the surface colour C)
 //   ENVIRONMENT: the sky's texels at u_env (trace_environment.glsl)

@@ -209,6 +209,43 @@ def test_a_metallic_roughness_map_sets_each_texels_lobe(gl_context):
             2e-3 * want.sum(0).max(), (metallic, got.mean(0), want.mean(0))
 
 
+def test_opacity_is_a_thin_surface_passed_with_its_chance(gl_context):
+    """A quad of opacity 0.4 before a constant sky: each pixel 0.4 x its own light + 0.6 x
+    the sky's (the rasterizer's "over"); and the shadow it casts from a directional light
+    on a floor lets 0.6 of the light through -- both by the stochastic cut-out, in the
+    mean, within the reported errors."""
+    from glshade import Camera, DirectionalLight, Environment, Material, Scene
+
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]])
+    scene = Scene(environment=Environment((0.8, 0.8, 0.8)))
+    scene.add(quad, Material(color=(1, 1, 1), kd=0.5, ks=0.0, opacity=0.4))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    traced = trace(scene, camera, (32, 32), spp=128, context=gl_context)
+    x, y, pixel = quad_pixels(camera, 32)
+    inside = (np.abs(x) < 1 - pixel) & (np.abs(y) < 1 - pixel)
+    want = np.pi * 0.8 * (0.4 * 0.5 + 0.6)
+    got, se = traced.image[inside].sum(0), np.sqrt((traced.se[inside] ** 2).sum(0))
+    assert (np.abs(got - want * inside.sum()) <= 4 * se).all(), (got / inside.sum(), want)
+
+    shade = Scene()
+    floor = Mesh([[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]], [[0, 1, 2, 3]])
+    shade.add(floor, Material(color=(1, 1, 1), kd=0.5, ks=0.0))
+    cover = Mesh([[-1, 1, -1], [-1, 1, 1], [1, 1, 1], [1, 1, -1]], [[0, 1, 2, 3]])
+    shade.add(cover, Material(color=(1, 1, 1), kd=0.0, ks=0.0, opacity=0.4))
+    shade.add_light(DirectionalLight((0, -1, 0), intensity=2.0))
+    above = Camera.look_at((0, 6, 0.01), (0, 0, 0), fov_y=60.0)
+    lit = trace(shade, above, (32, 32), spp=128, context=gl_context, max_depth=1)
+    o, d = above.rays((32, 32))
+    p = o + (-o[..., 1] / d[..., 1])[..., None] * d  # (the floor y = 0)
+    under = (np.abs(p[..., 0]) < 0.8) & (np.abs(p[..., 2]) < 0.8)
+    open_ = (np.abs(p[..., 0]) > 1.3) & (np.abs(p[..., 2]) < 2.5) & (np.abs(p[..., 0]) < 2.5)
+    # (seen from above through the cover: 0.6 of the floor's light, which 0.6 reaches)
+    for where, want in ((under, 0.6 * 0.6 * 0.5 * 2.0), (open_, 0.5 * 2.0)):
+        got, se = lit.image[where].sum(0), np.sqrt((lit.se[where] ** 2).sum(0))
+        assert (np.abs(got - want * where.sum()) <= 4 * se + 1e-6 * where.sum()).all(), (
+            got / where.sum(), want)
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Scene, Texture
 

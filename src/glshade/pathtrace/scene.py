@@ -45,8 +45,8 @@ class TraceScene:
     material : ndarray
         ``(T,)`` each triangle's row of ``materials``.
     materials : ndarray
-        ``(M, 11)`` rows of rho_d (RGB; glTF's base colour), k_s, n, E (RGB, radiosity
-        units), metallic, roughness, and 1 for glTF's model (0: the notes').
+        ``(M, 12)`` rows of rho_d (RGB; glTF's base colour), k_s, n, E (RGB, radiosity
+        units), metallic, roughness, 1 for glTF's model (0: the notes'), opacity.
     emitters : ndarray
         ``(K,)`` the emitting triangles' indices.
     emitter_cdf : ndarray
@@ -266,20 +266,17 @@ TRACED_MAPS = {"notes": ("texture",),
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
-    """The path tracer traces opaque surfaces in either lighting model (the notes'
-    Material, glTF's PBRMaterial), colours on geometry and the colour and
-    metallic-roughness maps multiplying the material's: opacity, the other maps, or
-    colours' alpha would be left out of the picture, so the trace refuses them by name (a
-    CSG solid's surface has no texture coordinates: no maps)."""
+    """The path tracer traces either lighting model (the notes' Material, glTF's
+    PBRMaterial), opacity as a thin surface a path passes through with the chance 1 -
+    opacity, colours on geometry and the colour and metallic-roughness maps multiplying
+    the material's: the other maps, or colours' alpha, would be left out of the picture, so
+    the trace refuses them by name (a CSG solid's surface has no texture coordinates: no
+    maps)."""
     if mesh is not None and material.vertex_colors and mesh.colored and any(
             c is not None and (c[:, 3] < 1).any() for c in (mesh.colors, mesh.face_colors)):
         raise SceneError(f"{name}: its colours' alpha below 1 is not traced (the path "
                          "tracer's surfaces are opaque): give the colours alpha 1, or draw it "
                          "with glshade render")
-    if material.transparent:
-        raise SceneError(f"{name}: opacity {float(material.opacity):g} is not traced (the path "
-                         "tracer's surfaces are opaque): set opacity = 1, or draw it with "
-                         "glshade render")
     traced = TRACED_MAPS[material.lighting.value] if mesh is not None else ()
     untraced = sorted(k.removesuffix("_texture") for k in material.textures
                       if k not in traced)
@@ -407,7 +404,8 @@ def _material_row(material, name: str) -> list:
     if material.lighting.value == "pbr":
         return [*np.asarray(material.base_color, np.float64), 0.0, 0.0,
                 *(np.pi * np.asarray(material.emissive, np.float64)),
-                float(material.metallic), float(material.roughness), 1.0]
+                float(material.metallic), float(material.roughness), 1.0,
+                float(material.opacity)]
     rho = np.asarray(material.rho, np.float64)
     # (the tracer's Phong lobe is grey: a coloured Ks gives its largest component)
     ks = float(max(material.specular_rgb)) if material.illum == 2 else 0.0
@@ -418,7 +416,8 @@ def _material_row(material, name: str) -> list:
     if rho.max() + ks > 1 + 1e-9:
         raise SceneError(f"{name}: rho_d + k_s = {rho.max():.4g} + {ks:.4g} > 1: the Phong "
                          "lobe would not conserve energy (lower kd, ks or the colour)")
-    return [*rho, ks, n, *np.asarray(material.emission, np.float64), 0.0, 0.0, 0.0]
+    return [*rho, ks, n, *np.asarray(material.emission, np.float64), 0.0, 0.0, 0.0,
+            float(material.opacity)]
 
 
 def _light_row(light) -> list:

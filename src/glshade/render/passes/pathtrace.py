@@ -588,7 +588,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
         ("PBR",) if (scene.materials[:, 10] > 0).any() else ()) + (
         ("ENVIRONMENT",) if scene.environment is not None else ()) + (
         ("VERTEX_COLORS",) if scene.colors is not None else ()) + (
-        ("MAPS",) if scene.uvs is not None else ())
+        ("MAPS",) if scene.uvs is not None else ()) + (
+        ("CUTOUTS",) if (scene.materials[:, 11] < 1).any() else ())
     defines += ("MIS",) if options.mis else ()
     if options.coherent != (1, 1):
         defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)

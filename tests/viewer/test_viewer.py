@@ -474,6 +474,28 @@ def test_t_path_traces_and_refines_while_the_camera_rests(viewer_factory):
     assert v.tracer is None
 
 
+def test_t_traces_gltfs_materials_colours_and_the_sky(viewer_factory):
+    """The progressive view takes what the tracer takes: the appearance scene (glTF's
+    gold, a vertex-coloured ball, an emissive cube, a spot and a ranged light) under a sky,
+    shown as pathtrace.trace gives it for the same samples."""
+    from glshade import Environment, pathtrace
+
+    scene = appearance_scene()
+    scene.environment = Environment((0.3, 0.35, 0.45))
+    v = viewer_factory(scene, CAM, size=(64, 48))
+    v.key("t")
+    assert v.tracer is not None
+    for _ in range(4):
+        v.draw()
+    shown = v.target.read_color()[..., :3].astype(int)
+    smooth = pathtrace.TraceScene.from_scene(scene, smooth=True)
+    ref = pathtrace.trace(smooth, CAM, (64, 48), spp=4, samples_per_pass=1, progress=False,
+                          context=v.context)
+    want = ref.rgba8(v._trace_exposure)[..., :3].astype(int)
+    assert np.abs(shown - want).max() <= 1
+    assert (shown[..., 0] > shown[..., 2] + 30).mean() > 0.02  # (the gold is there)
+
+
 def test_t_on_a_scene_it_cannot_trace_says_why(viewer_factory, capsys):
     scene = Scene()
     scene.add(P.cube(), Material(kd=0.9, ks=0.5, color=(1, 1, 1)), name="cube")

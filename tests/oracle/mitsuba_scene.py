@@ -1,6 +1,7 @@
 """A glshade scene as Mitsuba 3 sees it (for the path tracer's third-party oracle): each
 material's triangles as an OBJ, diffuse BSDFs of rho_d, area emitters of radiance E / pi
-(glshade's emission is a radiosity), the same pinhole camera. Shares nothing with glshade's
+(glshade's emission is a radiosity), a constant sky as Mitsuba's constant emitter, the
+same pinhole camera. Shares nothing with glshade's
 tracer but the TraceScene's triangles and numbers."""
 
 from __future__ import annotations
@@ -58,4 +59,9 @@ def load(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,
             entry["emitter"] = {"type": "area",
                                 "radiance": {"type": "rgb", "value": (row[5:8] / np.pi).tolist()}}
         scene[f"material{m}"] = entry
+    sky = getattr(ts, "environment", None)
+    if sky is not None:  # (a constant sky: Mitsuba's constant emitter, radiance as given)
+        assert sky.constant, "the oracle maps a constant sky alone"
+        scene["sky"] = {"type": "constant", "radiance": {
+            "type": "rgb", "value": sky.radiance[0, 0].tolist()}}
     return mi.load_dict(scene)

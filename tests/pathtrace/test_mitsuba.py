@@ -47,3 +47,34 @@ def test_the_cornell_box_agrees_with_mitsuba(gl_context, mitsubas, accel, sample
             np.maximum(lit.reshape(4, 16, 4, 16, 1).sum((1, 3)), 1)
 
     np.testing.assert_allclose(blocks(ours.image), blocks(theirs), rtol=0.05, atol=2e-3)
+
+
+def test_a_sky_lighting_a_ball_on_a_floor_agrees_with_mitsuba(gl_context, tmp_path):
+    """Light from a constant sky (glshade's Environment, Mitsuba's constant emitter) on a
+    diffuse ball over a diffuse floor: next-event estimation of the sky, its MIS with the
+    bounce, the ball's shadow and the light between the two -- the image's mean and 4 x 4
+    block means."""
+    require("mitsuba", "Mitsuba 3 is part of the test extra")
+    from glshade import Environment, Material, Mesh, Scene
+    from glshade.geometry import primitives
+
+    scene = Scene(environment=Environment((0.6, 0.7, 0.9)))
+    scene.add(Mesh([[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]], [[0, 1, 2, 3]]),
+              Material(color=(0.8, 0.8, 0.7), kd=0.9, ks=0.0))
+    scene.add(primitives.icosphere(2), Material(color=(0.9, 0.5, 0.2), kd=0.9, ks=0.0),
+              translation=(0, 1.1, 0))
+    camera = {"eye": (0.0, 2.5, 6.0), "target": (0.0, 0.8, 0.0), "up": (0.0, 1.0, 0.0),
+              "fov_y": 40.0}
+    ts = TraceScene.from_scene(scene)
+    theirs = mitsuba_scene.render(ts, camera, 48, 256, tmp_path, seed=5)
+    from glshade import Camera
+
+    ours = trace(ts, Camera.look_at(camera["eye"], camera["target"], camera["up"],
+                                     fov_y=camera["fov_y"]), (48, 48), spp=256, seed=5,
+                 context=gl_context, progress=False)
+    assert theirs.mean() == pytest.approx(ours.image.mean(), rel=0.01)
+
+    def blocks(a):
+        return a.reshape(4, 12, 4, 12, 3).mean((1, 3))
+
+    np.testing.assert_allclose(blocks(ours.image), blocks(theirs), rtol=0.03, atol=2e-3)

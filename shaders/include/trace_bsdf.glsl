@@ -105,8 +105,13 @@ float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
         float a = pbr_alpha(b);
         vec3 h = normalize(wi + wo);
         float nv = max(dot(n, wo), 1e-4), nh = dot(n, h);
+#ifdef GGX_NORMALS
+        // (a normal h drawn by D(h) N.H gives wi with density D(h) N.H / (4 V.H))
+        float spec = nh > 0.0 ? ggx_d(nh, a) * nh / (4.0 * max(dot(wo, h), 1e-4)) : 0.0;
+#else
         // (a visible normal h gives wi with density G1(wo) D(h) / (4 N.V))
         float spec = nh > 0.0 ? ggx_g1(nv, a) * ggx_d(nh, a) / (4.0 * nv) : 0.0;
+#endif
         return ps * spec + (1.0 - ps) * max(dot(wi, n), 0.0) / PI;
     }
 #endif
@@ -127,7 +132,13 @@ vec3 sample_bounce(Bsdf b, vec3 n, vec3 wo, vec3 u) {
 #ifdef PBR
     if (b.pbr > 0.5) {
         if (u.x < pbr_specular_chance(b, n, wo)) {
+#ifdef GGX_NORMALS
+            float a = pbr_alpha(b);  // (D(h) N.H's inverse: cos^2 = (1 - u) / (1 + (a^2 - 1) u))
+            float c2 = (1.0 - u.y) / (1.0 + (a * a - 1.0) * u.y);
+            vec3 h = around(n, sqrt(c2), 2.0 * PI * u.z);
+#else
             vec3 h = ggx_visible_normal(n, wo, pbr_alpha(b), u.yz);
+#endif
             return reflect(-wo, h);
         }
         return around(n, sqrt(u.y), 2.0 * PI * u.z);

@@ -375,6 +375,10 @@ class TraceOptions:
     mis : bool
         Emission found by next-event estimation and by the bounce alike, weighed by Veach's
         power heuristic (False: next-event estimation alone after the first vertex).
+    visible_normals : bool
+        glTF's specular lobe sampled by GGX's visible normals (Heitz 2018); False: by its
+        normals' distribution D(h) cos(theta_h) (Walter et al. 2007), as Mitsuba's
+        ``sample_visible=false`` -- the same mean, more noise at grazing views.
     coherent : bool or (int, int)
         Blocks of pixels (True: ``COHERENT_TILE``, or a (width, height) in pixels, 1 to 64)
         that draw the same random numbers, so their rays run together in a SIMD step: each
@@ -409,6 +413,7 @@ class TraceOptions:
     accel: Accel = Accel.AUTO
     sampler: Sampler = Sampler.PCG
     mis: bool = True
+    visible_normals: bool = True
     coherent: tuple[int, int] = (1, 1)
     storage: bool | None = None
     kernel: Kernel = Kernel.AUTO
@@ -421,8 +426,10 @@ class TraceOptions:
         put(self, "accel", choose(Accel, self.accel, "accel"))
         put(self, "sampler", choose(Sampler, self.sampler, "sampler"))
         put(self, "kernel", choose(Kernel, self.kernel, "kernel"))
-        if not isinstance(self.mis, bool):
-            raise OptionError(f"mis must be True or False, got {self.mis!r}")
+        for name in ("mis", "visible_normals"):
+            if not isinstance(getattr(self, name), bool):
+                raise OptionError(f"{name} must be True or False, got "
+                                  f"{getattr(self, name)!r}")
         if not isinstance(self.storage, bool) and self.storage is not None:
             raise OptionError(f"storage must be True, False or None (where the GL has "
                               f"storage buffers), got {self.storage!r}")

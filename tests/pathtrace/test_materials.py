@@ -246,6 +246,29 @@ def test_opacity_is_a_thin_surface_passed_with_its_chance(gl_context):
             got / where.sum(), want)
 
 
+def test_visible_normals_and_the_normals_distribution_draw_one_mean(gl_context):
+    """A rough gold ball under a constant sky, its light found by next-event estimation
+    and by the bounce (MIS): GGX's specular lobe sampled by its visible normals and by D(h)
+    N.H give the same mean within the errors -- both densities are what bounce_pdf says
+    -- and the visible normals' pixels are less noisy (their mean standard error, measured:
+    the test asserts no more than the other's)."""
+    from glshade import Camera, Environment, Scene
+
+    scene = Scene(environment=Environment((0.7, 0.7, 0.7)))
+    scene.add(P.uv_sphere(48, 96), PBRMaterial(base_color=(1.0, 0.77, 0.33), metallic=1.0,
+                                               roughness=0.6))
+    camera = Camera.look_at((0, 0, 3.2), (0, 0, 0), fov_y=45.0)
+    both = {visible: trace(scene, camera, (32, 32), spp=128, context=gl_context,
+                           visible_normals=visible) for visible in (True, False)}
+    ball = both[True].image.sum(-1) != both[True].image[0, 0].sum()
+    means = {v: t.image[ball].mean(0) for v, t in both.items()}
+    errors = {v: np.sqrt((t.se[ball] ** 2).sum(0)) / ball.sum() for v, t in both.items()}
+    assert (np.abs(means[True] - means[False]) <= 4 * np.hypot(errors[True], errors[False])
+            ).all(), (means, errors)
+    noise = {v: t.se[ball].mean() for v, t in both.items()}
+    assert noise[True] <= noise[False], noise
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Scene, Texture
 

@@ -591,6 +591,7 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
         ("MAPS",) if scene.uvs is not None else ()) + (
         ("CUTOUTS",) if (scene.materials[:, 11] < 1).any() else ())
     defines += ("MIS",) if options.mis else ()
+    defines += ("GGX_NORMALS",) if not options.visible_normals else ()
     if options.coherent != (1, 1):
         defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)
     if controls is not None:

@@ -38,9 +38,9 @@ uniform float u_eps;
 #ifdef ENVIRONMENT
 #include "trace_environment.glsl"
 #endif
+#include "trace_surface.glsl"
 #include "trace_lights.glsl"
 #include "trace_camera.glsl"
-#include "trace_surface.glsl"
 
 int g_model;  // the model of the vertex being made (-1: the CSG solid)
 #ifdef CONTROL
@@ -102,6 +102,11 @@ bool bounce(inout Path p) {
     }
 #endif
     vec4 ma = fetch(u_mats + 3 * m), mb = fetch(u_mats + 3 * m + 1);
+    // (next-event estimation chose emitters by their factor's power: MIS weighs by it)
+    float e_mean = (mb.x + mb.y + mb.z) / 3.0;
+#ifdef MAPS
+    mb.xyz = surface_emission(m, k, mb.xyz, hit.uv, k >= 0);
+#endif
     if (p.bounces == 0 && dot(ng, p.d) < 0.0) {
         p.value += mb.xyz;  // (emission counted where a camera ray sees it; later via NEE)
         p.flags += float(dot(mb.xyz, vec3(1.0)) > 0.0);
@@ -109,7 +114,6 @@ bool bounce(inout Path p) {
 #ifdef MIS
     // later vertices: emission the bounce found, weighed against next-event estimation's
     // chance of choosing this point (none on a solid: its surfaces are not sampled)
-    float e_mean = (mb.x + mb.y + mb.z) / 3.0;
     if (p.bounces > 0 && dot(ng, p.d) < 0.0 && e_mean > 0.0) {
         float light_pdf = e_mean / u_emit_power * t * t / -dot(ng, p.d);
 #ifdef CSG_SOLID

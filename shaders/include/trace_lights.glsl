@@ -58,9 +58,10 @@ float power_weight(float a, float b) {
 }
 
 // the emitter triangle r (uniform in [0, 1)) picks by power: its chance p, its area, rows
-// (p0, e1, e2) and emission E
+// (p0, e1, e2), emission E (its material's factor: a map multiplies it where the point
+// falls) and index ek
 void pick_emitter(float r, out float p, out float area, out vec3 q0, out vec3 q1,
-                  out vec3 q2, out vec3 e) {
+                  out vec3 q2, out vec3 e, out int ek) {
 #ifdef EMITTER_PICK
     // a few emitters compiled in: each one's numbers as constants, chosen by comparisons
     // with the cumulative chances (no loop, no fetch; generated, render/passes/pathtrace.py)
@@ -75,7 +76,7 @@ void pick_emitter(float r, out float p, out float area, out vec3 q0, out vec3 q1
     vec4 em = fetch(u_emit + lo);
     p = em.x - (lo > 0 ? fetch(u_emit + lo - 1).x : 0.0);
     area = em.z;
-    int ek = floatBitsToInt(em.y);
+    ek = floatBitsToInt(em.y);
     vec4 p0 = fetch(u_tris + 3 * ek);
     q0 = p0.xyz;
     q1 = fetch(u_tris + 3 * ek + 1).xyz;
@@ -94,9 +95,13 @@ vec3 emitters_seen(vec3 xo, vec3 n, vec3 n_geo, vec3 wo, Bsdf bs, bool last) {
     vec3 u = sample3(0u);  // (the emitter, then a point on it)
     float p, area;
     vec3 q0, q1, q2, e;
-    pick_emitter(u.x, p, area, q0, q1, q2, e);
+    int ek;
+    pick_emitter(u.x, p, area, q0, q1, q2, e, ek);
     float a = u.y, b = u.z;
     if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+#ifdef MAPS
+    e = surface_emission(floatBitsToInt(fetch(u_tris + 3 * ek).w), ek, e, vec2(a, b), true);
+#endif
     vec3 y = q0 + a * q1 + b * q2;
     vec3 ny = normalize(cross(q1, q2));
     vec3 to = y - xo;

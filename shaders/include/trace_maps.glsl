@@ -1,13 +1,14 @@
 // The path tracer's texture maps (MAPS defined; pathtrace/pack.py map_tables): a hit's
 // texture coordinates across its triangle and its material's colour map (the notes'
-// diffuse map, glTF's base colour) and glTF's metallic-roughness map read there, bilinear
+// diffuse map, glTF's base colour), glTF's metallic-roughness and emissive maps read there,
+// bilinear
 // between the four nearest texels (colours decoded to linear before: as GL's sRGB
 // textures filter; a mipmapped texture's first level) or the nearest texel, wrapped or
 // clamped, as the texture says.
 #ifndef TRACE_MAPS_GLSL
 #define TRACE_MAPS_GLSL
 uniform int u_uvs;     // corner (u, v), 3 texels a triangle
-uniform int u_maps;    // a material's two slots, 2 texels each
+uniform int u_maps;    // a material's three slots, 2 texels each
 uniform int u_texdir;  // a texel a texture: (first texel from here, width, height, -)
 
 ivec2 map_wrap(ivec2 i, ivec2 size, bool clamp_) {
@@ -35,17 +36,25 @@ vec4 map_sample(int t, float how, vec4 so, vec2 uv) {
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
-// material m's maps at triangle k's point (barycentrics ``bary``), applied to ``bsdf``
+// the texture coordinates at triangle k's point ``bary``
+vec2 map_uv(int k, vec2 bary) {
+    return (1.0 - bary.x - bary.y) * fetch(u_uvs + 3 * k).xy +
+           bary.x * fetch(u_uvs + 3 * k + 1).xy + bary.y * fetch(u_uvs + 3 * k + 2).xy;
+}
+
+// material m's map in ``slot`` (0 colour, 1 metallic-roughness, 2 emissive) at triangle
+// k's point ``bary``; ``none`` where it has no map there
+vec4 map_slot(int m, int k, int slot, vec2 bary, vec4 none) {
+    vec4 s0 = fetch(u_maps + 6 * m + 2 * slot), s1 = fetch(u_maps + 6 * m + 2 * slot + 1);
+    return s0.x >= 0.0 ? map_sample(int(s0.x), s0.y, s1, map_uv(k, bary)) : none;
+}
+
+// material m's colour and metallic-roughness maps at triangle k's point, applied to
+// ``bsdf`` (glTF's packing: roughness in green, metallic in blue)
 void apply_maps(inout Bsdf bsdf, int m, int k, vec2 bary) {
-    vec2 uv = (1.0 - bary.x - bary.y) * fetch(u_uvs + 3 * k).xy +
-              bary.x * fetch(u_uvs + 3 * k + 1).xy + bary.y * fetch(u_uvs + 3 * k + 2).xy;
-    vec4 c0 = fetch(u_maps + 4 * m), c1 = fetch(u_maps + 4 * m + 1);
-    if (c0.x >= 0.0) bsdf.rho *= map_sample(int(c0.x), c0.y, c1, uv).rgb;
-    vec4 r0 = fetch(u_maps + 4 * m + 2), r1 = fetch(u_maps + 4 * m + 3);
-    if (r0.x >= 0.0) {  // (glTF's packing: roughness in green, metallic in blue)
-        vec4 mr = map_sample(int(r0.x), r0.y, r1, uv);
-        bsdf.roughness *= mr.g;
-        bsdf.metallic *= mr.b;
-    }
+    bsdf.rho *= map_slot(m, k, 0, bary, vec4(1.0)).rgb;
+    vec4 mr = map_slot(m, k, 1, bary, vec4(1.0));
+    bsdf.roughness *= mr.g;
+    bsdf.metallic *= mr.b;
 }
 #endif

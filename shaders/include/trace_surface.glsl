@@ -27,4 +27,13 @@ Bsdf surface_bsdf(int m, int k, vec4 ma, float shin, vec2 bary, bool on_mesh) {
 #endif
     return b;
 }
+
+// material m's emission ``e`` (its factor) at the point ``bary`` of triangle k: times its
+// emissive map there (MAPS), where it has one
+vec3 surface_emission(int m, int k, vec3 e, vec2 bary, bool on_mesh) {
+#ifdef MAPS
+    if (on_mesh && dot(e, vec3(1.0)) > 0.0) e *= map_slot(m, k, 2, bary, vec4(1.0)).rgb;
+#endif
+    return e;
+}
 #endif

@@ -269,6 +269,45 @@ def test_visible_normals_and_the_normals_distribution_draw_one_mean(gl_context):
     assert noise[True] <= noise[False], noise
 
 
+def test_an_emissive_map_is_seen_and_lights_as_its_texels(gl_context):
+    """A glowing tile whose emissive map is red on its left half and blue on its right:
+    seen, pi x the factor x each texel (glTF's emission is radiance); lighting a floor, the
+    point under its middle gets what a tile of the halves' mean colour gives (the halves
+    are mirror images about it) -- next-event estimation reading the map where its point
+    falls."""
+    from glshade import Camera, Material, Scene, Texture
+
+    halves = np.array([[[255, 0, 0], [0, 0, 255]]], np.uint8)
+    tile = Mesh([[-0.5, 1, -0.5], [-0.5, 1, 0.5], [0.5, 1, 0.5], [0.5, 1, -0.5]],
+                [[0, 1, 2, 3]], uv=[[0, 0], [0, 1], [1, 1], [1, 0]])
+    floor = Mesh([[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]], [[0, 1, 2, 3]])
+    flipped = Mesh(tile.vertices, [[3, 2, 1, 0]], uv=[[1, 0], [1, 1], [0, 1], [0, 0]])
+
+    def scene_of(glow):
+        scene = Scene()
+        scene.add(floor, Material(color=(1, 1, 1), kd=0.8, ks=0.0))
+        scene.add(flipped, glow)  # (facing down, onto the floor)
+        return scene
+
+    mapped = scene_of(PBRMaterial(base_color=(0, 0, 0), emissive=(0.5, 0.5, 0.5),
+                                  emissive_texture=Texture(halves, filter="nearest")))
+    mean = scene_of(PBRMaterial(base_color=(0, 0, 0), emissive=(0.25, 0.0, 0.25)))
+    below = Camera.look_at((0.0, 0.5, 0.0), (0.0, 2.0, 0.0), up=(0, 0, 1), fov_y=60.0)
+    seen = trace(mapped, below, (32, 32), spp=16, context=gl_context, max_depth=1)
+    o, d = below.rays((32, 32))
+    p = o + ((1 - o[..., 1]) / d[..., 1])[..., None] * d  # (the tile's plane y = 1)
+    u = p[..., 0] + 0.5  # (the flipped tile's u runs along +x)
+    clear = (np.abs(p[..., 0]) < 0.45) & (np.abs(p[..., 2]) < 0.45) & (np.abs(u - 0.5) > 0.05)
+    red = np.where((u < 0.5)[..., None], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    assert np.allclose(seen.image[clear], (np.pi * 0.5 * red)[clear], atol=1e-5)
+    above = Camera.look_at((0.0, 0.6, 0.01), (0.0, 0.0, 0.0), fov_y=20.0)
+    got = [trace(s, above, (8, 8), spp=512, context=gl_context, max_depth=2)
+           for s in (mapped, mean)]
+    a, b = (g.image[3:5, 3:5].mean((0, 1)) for g in got)
+    sa, sb = (np.sqrt((g.se[3:5, 3:5] ** 2).sum((0, 1))) / 4 for g in got)
+    assert a[0] > 0.01 and (np.abs(a - b) <= 4 * np.hypot(sa, sb) + 1e-6).all(), (a, b)
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Scene, Texture
 

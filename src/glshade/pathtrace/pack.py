@@ -134,7 +134,7 @@ def environment_tables(environment) -> tuple[np.ndarray, dict]:
 
 
 def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The maps as the tracer's texels (trace_maps.glsl): each material's two map slots, 2
+    """The maps as the tracer's texels (trace_maps.glsl): each material's three map slots, 2
     texels each -- (texture, wrap, -, -), (scale u, scale v, offset u, offset v); a texel a
     texture -- (its first texel, as int bits, relative to the directory's end; width;
     height; -); then the textures' texels, row by row, each after the last.
@@ -144,8 +144,8 @@ def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     scene : TraceScene
         The scene (its ``maps`` and ``textures``).
     """
-    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 2, 6), -1.0)
-    maps = np.zeros((4 * len(m), 4), np.float32)
+    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 3, 6), -1.0)
+    maps = np.zeros((6 * len(m), 4), np.float32)
     maps[0::2, :2] = m.reshape(-1, 6)[:, :2]
     maps[1::2] = m.reshape(-1, 6)[:, 2:]
     sizes = [t.shape[0] * t.shape[1] for t in scene.textures]

@@ -78,7 +78,8 @@ class TraceScene:
     textures : tuple
         The maps' texels, ``(H, W, 4)`` float32 each (:func:`texture_texels`).
     maps : ndarray or None
-        ``(M, 2, 6)`` each material's colour map and glTF's metallic-roughness map: index
+        ``(M, 3, 6)`` each material's colour map, glTF's metallic-roughness and emissive
+        maps: index
         into ``textures`` (-1: none), sampling (1 if clamped, else repeated, + 2 if the
         nearest texel, else bilinear), the coordinates' scale and offset (u, v).
     """
@@ -254,7 +255,7 @@ class TraceScene:
                    cdf, light_rows, model, tuple(names), shading, tuple(solids), environment,
                    corner_colors, corner_uvs,
                    tuple(texture_texels(t, colour) for t, colour in textures),
-                   np.array(maps, np.float64).reshape(len(rows), 2, 6))
+                   np.array(maps, np.float64).reshape(len(rows), 3, 6))
 
 
 #: the maps the tracer reads, by lighting model: a colour map (the notes' diffuse map,
@@ -262,7 +263,7 @@ class TraceScene:
 #: rasterizer's stand-in for what the paths find themselves (left to them)
 TRACED_MAPS = {"notes": ("texture",),
                "pbr": ("base_color_texture", "metallic_roughness_texture",
-                       "occlusion_texture")}
+                       "emissive_texture", "occlusion_texture")}
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
@@ -289,19 +290,21 @@ def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
 def _traced_names(mesh) -> str:
     if mesh is None:
         return "no maps on a CSG solid"
-    return "a colour map and glTF's metallic-roughness map"
+    return "a colour map and glTF's metallic-roughness and emissive maps"
 
 
 def _material_maps(material, mesh, textures: list) -> list:
-    """A material's two map slots (its colour map; glTF's metallic-roughness map), each
+    """A material's three map slots (its colour map; glTF's metallic-roughness and
+    emissive maps), each
     (texture index or -1, sampling: 1 if clamped + 2 if nearest, scale u, scale v, offset
     u, offset v);
     ``textures`` ((Texture, is a colour map) pairs, each once) is appended to. A mesh
     without texture coordinates reads none (the Scene warned when it was added)."""
     pbr = material.lighting.value == "pbr"
-    slots = ("base_color_texture", "metallic_roughness_texture") if pbr else ("texture", None)
+    slots = (("base_color_texture", "metallic_roughness_texture", "emissive_texture") if pbr
+             else ("texture", None, None))
     out = []
-    for colour, slot in zip((True, False), slots):
+    for colour, slot in zip((True, False, True), slots):
         texture = getattr(material, slot) if slot is not None else None
         if texture is None or mesh is None or mesh.uv is None:
             out.append([-1.0, 0.0, 1.0, 1.0, 0.0, 0.0])

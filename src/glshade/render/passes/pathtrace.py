@@ -646,7 +646,8 @@ def _float(value) -> str:
 
 def _emitter_pick(data: np.ndarray, layout: dict) -> str:
     """The define that compiles a few emitters' choice into the program
-    (shaders/pathtrace.frag, pick_emitter): for each, its chance, area, rows and emission
+    (shaders/pathtrace.frag, pick_emitter): for each, its chance, area, rows, emission and
+    triangle
     from the table, taken where ``r`` is past the cumulative chances before it (as the
     table's binary search picks: the first whose cumulative chance reaches r)."""
     emit = data[layout["u_emit"]:layout["u_emit"] + layout["u_n_emit"]]
@@ -659,6 +660,7 @@ def _emitter_pick(data: np.ndarray, layout: dict) -> str:
         m = int(np.float32(rows[0, 3]).view(np.int32))
         e = data[layout["u_mats"] + 3 * m + 1, :3]
         sets = (f"p = {_float(chance[i])}; area = {_float(row[2])}; q0 = {_vec3(rows[0, :3])}; "
-                f"q1 = {_vec3(rows[1, :3])}; q2 = {_vec3(rows[2, :3])}; e = {_vec3(e)};")
+                f"q1 = {_vec3(rows[1, :3])}; q2 = {_vec3(rows[2, :3])}; e = {_vec3(e)}; "
+                f"ek = {k};")
         out.append(sets if i == 0 else f"if ({_float(cdf[i - 1])} < r) {{ {sets} }}")
     return "EMITTER_PICK " + " ".join(out)

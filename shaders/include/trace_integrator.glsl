@@ -125,17 +125,7 @@ bool bounce(inout Path p) {
     vec3 n = dot(ng, p.d) < 0.0 ? ng : -ng;
     vec3 xo = x + n * u_eps;  // (offsets along the true surface)
     vec3 n_geo = n;
-#ifdef SMOOTH_NORMALS
-#ifdef CSG_SOLID
-    if (!on_solid)
-#endif
-    {
-        vec3 ns = normalize((1.0 - hit.uv.x - hit.uv.y) * fetch(u_norms + 3 * k).xyz +
-                            hit.uv.x * fetch(u_norms + 3 * k + 1).xyz +
-                            hit.uv.y * fetch(u_norms + 3 * k + 2).xyz);
-        n = dot(ns, n) < 0.0 ? -ns : ns;  // (shading normal, on the ray's side)
-    }
-#endif
+    n = shading_normal(m, k, hit.uv, n, k >= 0);
     vec3 wo = -p.d;
     Bsdf b = surface_bsdf(m, k, ma, mb.w, hit.uv, k >= 0);
     bool last = u_max_depth > 0 && p.bounces + 1 >= u_max_depth;

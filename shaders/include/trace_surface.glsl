@@ -8,6 +8,29 @@
 #include "trace_maps.glsl"
 #endif
 
+// the normal that shades triangle k's point ``bary`` (material m), ``n`` the true one on
+// the ray's side: the corners' normals interpolated (SMOOTH_NORMALS), bent by a normal
+// map (MAPS: tangent space, the tangent along increasing u, the bitangent w N x T); a CSG
+// solid's (not ``on_mesh``) is its own
+vec3 shading_normal(int m, int k, vec2 bary, vec3 n, bool on_mesh) {
+    if (!on_mesh) return n;
+#ifdef SMOOTH_NORMALS
+    vec3 ns = normalize((1.0 - bary.x - bary.y) * fetch(u_norms + 3 * k).xyz +
+                        bary.x * fetch(u_norms + 3 * k + 1).xyz +
+                        bary.y * fetch(u_norms + 3 * k + 2).xyz);
+    n = dot(ns, n) < 0.0 ? -ns : ns;  // (on the ray's side)
+#endif
+#ifdef MAPS
+    vec4 bend = map_slot(m, k, 3, bary, vec4(0.5, 0.5, 1.0, 1.0)) * 2.0 - 1.0;
+    if (bend.xy != vec2(0.0)) {
+        vec4 t = fetch(u_tangents + k);
+        vec3 tangent = normalize(t.xyz - n * dot(n, t.xyz));
+        n = normalize(tangent * bend.x + t.w * cross(n, tangent) * bend.y + n * bend.z);
+    }
+#endif
+    return n;
+}
+
 // ``ma``: the table's first texel of m (rho_d or the base colour, k_s), ``shin`` its n;
 // ``bary`` the hit's barycentrics on triangle k, a mesh's (``on_mesh``: not a CSG solid)
 Bsdf surface_bsdf(int m, int k, vec4 ma, float shin, vec2 bary, bool on_mesh) {

@@ -308,8 +308,38 @@ def test_an_emissive_map_is_seen_and_lights_as_its_texels(gl_context):
     assert a[0] > 0.01 and (np.abs(a - b) <= 4 * np.hypot(sa, sb) + 1e-6).all(), (a, b)
 
 
+def test_a_normal_map_bends_the_normal_in_the_uv_frame(gl_context):
+    """A rough white quad facing +z, u along +x and v along +y, its normal map one texel
+    (0.6, 0, 0.8) in tangent space (bytes 204, 128, 230): the shading normal (0.6, 0, 0.8)
+    in the world; lit straight down its face, each pixel pi x Appendix B's f cos at that
+    normal (a directional light: no noise but the pixel's jitter)."""
+    from glshade import Camera, DirectionalLight, Scene, Texture
+
+    texel = np.array([[[204, 128, 230]]], np.uint8)
+    bent = texel[0, 0] / 255.0 * 2 - 1
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    scene = Scene()
+    scene.add(quad, PBRMaterial(base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
+                                normal_texture=Texture(texel, filter="nearest")))
+    scene.add_light(DirectionalLight((0, 0, -1), intensity=2.0))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    traced = trace(scene, camera, (24, 24), spp=16, context=gl_context)
+    x, y, pixel = quad_pixels(camera, 24)
+    inside = (np.abs(x) < 1 - pixel) & (np.abs(y) < 1 - pixel)
+    o, d = camera.rays((24, 24))
+    n = np.broadcast_to(bent / np.linalg.norm(bent), d.shape).reshape(-1, 3)
+    light = np.broadcast_to([0.0, 0.0, 1.0], n.shape)
+    f = appendix_b(n, light, -d.reshape(-1, 3), np.full(3, 0.8), 0.0, 1.0).reshape(d.shape)
+    want = np.pi * 2.0 * f
+    flat = np.pi * 2.0 * appendix_b(np.broadcast_to([0.0, 0.0, 1.0], n.shape), light,
+                                    -d.reshape(-1, 3), np.full(3, 0.8), 0.0, 1.0)
+    assert np.abs(traced.image[inside] - want[inside]).max() < 0.02 * want[inside].max()
+    assert want[inside].mean() < 0.85 * flat.reshape(d.shape)[inside].mean()  # (it bends)
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
-    from glshade import Scene, Texture
+    from glshade import Material, Scene, Texture
 
     scene = Scene()
     mesh = P.cube()
@@ -318,6 +348,6 @@ def test_what_it_does_not_trace_is_one_line_naming_the_model():
     with pytest.raises(SceneError, match="painted: its colours' alpha below 1 is not traced"):
         TraceScene.from_scene(scene)
     scene = Scene()
-    scene.add(mesh, PBRMaterial(normal_texture=Texture(np.ones((2, 2, 3)))), name="box")
-    with pytest.raises(SceneError, match=r"box: its texture maps \(normal\) are not traced"):
+    scene.add(mesh, Material(specular_texture=Texture(np.ones((2, 2, 3)))), name="box")
+    with pytest.raises(SceneError, match=r"box: its texture maps \(specular\) are not"):
         TraceScene.from_scene(scene)

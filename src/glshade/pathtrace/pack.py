@@ -81,8 +81,11 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
     if scene.uvs is not None:
         uvs[:, :2] = scene.uvs[order].reshape(-1, 2)
     maps, texdir, texels = map_tables(scene)
+    frames = np.zeros((n_tris if scene.tangents is not None else 1, 4), np.float32)
+    if scene.tangents is not None:
+        frames[:] = scene.tangents[order]
     env, env_layout = environment_tables(scene.environment)
-    tables = [tris, mats, emit, norms, env, cols, uvs, maps, texdir, texels]
+    tables = [tris, mats, emit, norms, env, cols, uvs, maps, texdir, texels, frames]
     offsets = np.cumsum([0] + [len(t) for t in tables])
     data = _rows(np.concatenate(tables))
     layout = {"u_tris": int(offsets[0]), "u_mats": int(offsets[1]),
@@ -92,7 +95,7 @@ def pack(scene, compiled: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
                   scene.material[scene.emitters], 5:8].mean(1)).sum()),
               "u_norms": int(offsets[3]), "u_env": int(offsets[4]), **env_layout,
               "u_cols": int(offsets[5]), "u_uvs": int(offsets[6]), "u_maps": int(offsets[7]),
-              "u_texdir": int(offsets[8]),
+              "u_texdir": int(offsets[8]), "u_tangents": int(offsets[10]),
               **packed.uniforms(),
               "depth": depth, "nodes": n_nodes, "width": DATA_WIDTH, "compiled": len(apart),
               "hierarchy": _rows(packed.entries.reshape(-1, 4))}
@@ -134,7 +137,7 @@ def environment_tables(environment) -> tuple[np.ndarray, dict]:
 
 
 def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The maps as the tracer's texels (trace_maps.glsl): each material's three map slots, 2
+    """The maps as the tracer's texels (trace_maps.glsl): each material's four map slots, 2
     texels each -- (texture, wrap, -, -), (scale u, scale v, offset u, offset v); a texel a
     texture -- (its first texel, as int bits, relative to the directory's end; width;
     height; -); then the textures' texels, row by row, each after the last.
@@ -144,8 +147,8 @@ def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     scene : TraceScene
         The scene (its ``maps`` and ``textures``).
     """
-    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 3, 6), -1.0)
-    maps = np.zeros((6 * len(m), 4), np.float32)
+    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 4, 6), -1.0)
+    maps = np.zeros((8 * len(m), 4), np.float32)
     maps[0::2, :2] = m.reshape(-1, 6)[:, :2]
     maps[1::2] = m.reshape(-1, 6)[:, 2:]
     sizes = [t.shape[0] * t.shape[1] for t in scene.textures]

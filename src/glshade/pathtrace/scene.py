@@ -78,10 +78,13 @@ class TraceScene:
     textures : tuple
         The maps' texels, ``(H, W, 4)`` float32 each (:func:`texture_texels`).
     maps : ndarray or None
-        ``(M, 3, 6)`` each material's colour map, glTF's metallic-roughness and emissive
-        maps: index
+        ``(M, 4, 6)`` each material's colour map, glTF's metallic-roughness, emissive and
+        normal maps: index
         into ``textures`` (-1: none), sampling (1 if clamped, else repeated, + 2 if the
         nearest texel, else bilinear), the coordinates' scale and offset (u, v).
+    tangents : ndarray or None
+        ``(T, 4)`` each triangle's dP/du (world) and in w the handedness of (N, dP/du,
+        dP/dv): the frame a normal map bends the normal in; None: no normal map.
     """
 
     triangles: np.ndarray
@@ -102,6 +105,7 @@ class TraceScene:
     uvs: np.ndarray | None = None
     textures: tuple = ()
     maps: np.ndarray | None = None
+    tangents: np.ndarray | None = None
 
     @property
     def n_triangles(self) -> int:
@@ -199,7 +203,7 @@ class TraceScene:
         rows: list = []
         maps: list = []
         textures: list = []
-        tris, corner_normals, mats, models, colors, uvs = _world_triangles(
+        tris, corner_normals, mats, models, colors, uvs, tangents = _world_triangles(
             scene, smooth, names, rows, maps, textures)
         solids = []
         for k, model in enumerate(solid_models):
@@ -255,7 +259,8 @@ class TraceScene:
                    cdf, light_rows, model, tuple(names), shading, tuple(solids), environment,
                    corner_colors, corner_uvs,
                    tuple(texture_texels(t, colour) for t, colour in textures),
-                   np.array(maps, np.float64).reshape(len(rows), 3, 6))
+                   np.array(maps, np.float64).reshape(len(rows), 4, 6),
+                   np.concatenate(tangents)[keep] if tangents else None)
 
 
 #: the maps the tracer reads, by lighting model: a colour map (the notes' diffuse map,
@@ -263,7 +268,7 @@ class TraceScene:
 #: rasterizer's stand-in for what the paths find themselves (left to them)
 TRACED_MAPS = {"notes": ("texture",),
                "pbr": ("base_color_texture", "metallic_roughness_texture",
-                       "emissive_texture", "occlusion_texture")}
+                       "emissive_texture", "normal_texture", "occlusion_texture")}
 
 
 def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
@@ -290,21 +295,21 @@ def _refuse_unlit_parts(material, name: str, mesh=None) -> None:
 def _traced_names(mesh) -> str:
     if mesh is None:
         return "no maps on a CSG solid"
-    return "a colour map and glTF's metallic-roughness and emissive maps"
+    return "a colour map and glTF's metallic-roughness, emissive and normal maps"
 
 
 def _material_maps(material, mesh, textures: list) -> list:
-    """A material's three map slots (its colour map; glTF's metallic-roughness and
-    emissive maps), each
+    """A material's four map slots (its colour map; glTF's metallic-roughness, emissive
+    and normal maps), each
     (texture index or -1, sampling: 1 if clamped + 2 if nearest, scale u, scale v, offset
     u, offset v);
     ``textures`` ((Texture, is a colour map) pairs, each once) is appended to. A mesh
     without texture coordinates reads none (the Scene warned when it was added)."""
     pbr = material.lighting.value == "pbr"
-    slots = (("base_color_texture", "metallic_roughness_texture", "emissive_texture") if pbr
-             else ("texture", None, None))
+    slots = (("base_color_texture", "metallic_roughness_texture", "emissive_texture",
+              "normal_texture") if pbr else ("texture", None, None, None))
     out = []
-    for colour, slot in zip((True, False, True), slots):
+    for colour, slot in zip((True, False, True, False), slots):
         texture = getattr(material, slot) if slot is not None else None
         if texture is None or mesh is None or mesh.uv is None:
             out.append([-1.0, 0.0, 1.0, 1.0, 0.0, 0.0])
@@ -345,6 +350,7 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list, maps: list,
     corner_normals: list = []
     corner_colors: list = []
     corner_uvs: list = []
+    tangents: list = []
     mats: list = []
     models: list = []
     visible = [m for m in scene.models if m.visible]
@@ -367,6 +373,7 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list, maps: list,
         slots = _material_maps(model.material, mesh, textures)
         corner_uvs.append(mesh.uv[mesh.corner_triangles] if any(
             slot[0] >= 0 for slot in slots) else None)
+        tangents.append(_tangents(v[t], corner_uvs[-1]) if slots[3][0] >= 0 else None)
         if smooth:
             from ..render.gpu_mesh import drawable_normals
 
@@ -384,7 +391,25 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list, maps: list,
                   for x, c in zip(tris, corner_colors)]
     if any(c is not None for c in corner_uvs):
         uvs = [np.zeros((len(x), 3, 2)) if c is None else c for x, c in zip(tris, corner_uvs)]
-    return tris, corner_normals, mats, models, colors, uvs
+    frames = None
+    if any(c is not None for c in tangents):
+        frames = [np.zeros((len(x), 4)) if c is None else c for x, c in zip(tris, tangents)]
+    return tris, corner_normals, mats, models, colors, uvs, frames
+
+
+def _tangents(corners: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    """``(T, 4)`` each triangle's dP/du and the handedness of (N, dP/du, dP/dv), N its
+    winding's normal: the frame a tangent-space normal map bends the normal in (the
+    tracer makes dP/du perpendicular to the shading normal where it is read)."""
+    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    d1, d2 = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
+    det = d1[:, 0] * d2[:, 1] - d2[:, 0] * d1[:, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(np.abs(det) > 1e-20, 1.0 / det, 0.0)[:, None]
+    du = (e1 * d2[:, 1:2] - e2 * d1[:, 1:2]) * r
+    dv = (e2 * d1[:, 0:1] - e1 * d2[:, 0:1]) * r
+    hand = np.where(np.einsum("ij,ij->i", np.cross(np.cross(e1, e2), du), dv) < 0, -1.0, 1.0)
+    return np.concatenate([du, hand[:, None]], 1)
 
 
 def _corner_colors(mesh, material, t: np.ndarray, polygon: np.ndarray) -> np.ndarray | None:

@@ -157,3 +157,26 @@ def test_bad_environments_are_one_line():
         Environment((1.0, 1.0, 1.0), intensity=-2)
     with pytest.raises(SceneError, match="environment must be a glshade.Environment"):
         Scene(environment=(1, 1, 1))
+
+
+def test_an_hdr_file_is_read_as_linear_rgb(tmp_path):
+    """A Radiance .hdr written by OpenCV (BGR; RGBE: 8-bit mantissas, one exponent)
+    reads back as the RGB radiance it holds, within RGBE's rounding; a .npy as it is; a bad path is one
+    line."""
+    from glshade.errors import InputError
+
+    cv2 = pytest.importorskip("cv2")
+    rng = np.random.default_rng(2)
+    image = (rng.random((8, 16, 3)) * 5).astype(np.float32)
+    cv2.imwrite(str(tmp_path / "sky.hdr"), image[..., ::-1])
+    sky = Environment.from_file(tmp_path / "sky.hdr", intensity=2.0)
+    assert sky.image.shape == (8, 16, 3) and sky.intensity == 2.0
+    # (RGBE: the three channels share the exponent of the largest)
+    assert (np.abs(sky.image - image) <= image.max(-1, keepdims=True) * 2 / 256).all()
+    np.save(tmp_path / "sky.npy", image)
+    assert np.array_equal(Environment.from_file(tmp_path / "sky.npy").image, image)
+    with pytest.raises(InputError, match="no such environment image"):
+        Environment.from_file(tmp_path / "none.hdr")
+    (tmp_path / "sky.png").write_bytes(b"")
+    with pytest.raises(InputError, match=r"sky.png: an environment image is .hdr, .exr or"):
+        Environment.from_file(tmp_path / "sky.png")

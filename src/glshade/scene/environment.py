@@ -76,6 +76,41 @@ class Environment:
         object.__setattr__(self, "rotation", rotation)
         object.__setattr__(self, "constant", constant)
 
+    @classmethod
+    def from_file(cls, path, intensity: float = 1.0, rotation: float = 0.0) -> Environment:
+        """An environment from an equirectangular image file: ``.npy`` (an ``(H, W, 3)``
+        array of linear radiance), or Radiance ``.hdr`` and OpenEXR ``.exr`` through OpenCV
+        (``pip install opencv-python-headless``; its channels are BGR, turned to RGB here).
+
+        Parameters
+        ----------
+        path : str or Path
+            The image.
+        intensity : float
+            A factor on it, >= 0.
+        rotation : float
+            Radians the map turns about +y.
+        """
+        from pathlib import Path
+
+        from ..errors import InputError
+
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(f"{path}: no such environment image")
+        suffix = path.suffix.lower()
+        if suffix == ".npy":
+            image = np.load(path, allow_pickle=False)
+        elif suffix in (".hdr", ".exr"):
+            image = _read_hdr(path)
+        else:
+            raise InputError(f"{path}: an environment image is .hdr, .exr or .npy, got "
+                             f"{suffix or 'no extension'}")
+        try:
+            return cls(image, intensity, rotation)
+        except SceneError as exc:
+            raise InputError(f"{path}: {exc}") from None
+
     @property
     def radiance(self) -> NDArray[np.float64]:
         """``(H, W, 3)`` the map's radiance, intensity applied."""
@@ -88,6 +123,25 @@ class Environment:
                 else f"{w}x{h} image")
         return (f"Environment({what}, intensity={self.intensity:g}"
                 f"{f', rotation={self.rotation:g}' if self.rotation else ''})")
+
+
+def _read_hdr(path) -> np.ndarray:
+    """A Radiance or OpenEXR image as ``(H, W, 3)`` float linear RGB, through OpenCV (the
+    maintained reader of both; OpenEXR switched on for it by its environment variable)."""
+    import os
+
+    from ..errors import InputError
+
+    os.environ.setdefault("OPENCV_IO_ENABLE_OPENEXR", "1")
+    try:
+        import cv2
+    except ImportError:
+        raise InputError(f"{path}: reading .hdr and .exr needs OpenCV (pip install "
+                         "opencv-python-headless), or give the image as an array") from None
+    image = cv2.imread(str(path), cv2.IMREAD_UNCHANGED | cv2.IMREAD_ANYDEPTH)
+    if image is None or image.ndim != 3 or image.shape[2] < 3:
+        raise InputError(f"{path}: OpenCV could not read it as an RGB image")
+    return np.ascontiguousarray(image[..., 2::-1], np.float64)
 
 
 # ---------------------------------------------------------------- image-based lighting

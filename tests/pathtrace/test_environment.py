@@ -161,8 +161,8 @@ def test_bad_environments_are_one_line():
 
 def test_an_hdr_file_is_read_as_linear_rgb(tmp_path):
     """A Radiance .hdr written by OpenCV (BGR; RGBE: 8-bit mantissas, one exponent)
-    reads back as the RGB radiance it holds, within RGBE's rounding; a .npy as it is; a bad path is one
-    line."""
+    reads back as the RGB radiance it holds, within RGBE's rounding; a .npy as it is; a
+    bad path or kind is one line."""
     from glshade.errors import InputError
 
     cv2 = pytest.importorskip("cv2")

@@ -26,7 +26,7 @@ from pathlib import Path
 from .errors import OutputWriteError
 
 __all__ = ["atomic_write", "publish", "writing", "temporary", "part", "held_interrupts",
-           "remove_stale", "HOST"]
+           "remove_stale", "is_whole", "HOST"]
 
 HOST = re.sub(r"[^A-Za-z0-9_-]", "_", socket.gethostname()) or "host"
 _PART = re.compile(r"^\.(?P<name>.+)\.(?P<host>[A-Za-z0-9_-]+)-(?P<pid>\d+)\.[^.]+\.part"
@@ -269,3 +269,34 @@ def atomic_write(path, mode: str = "wb", **text):
         with open(tmp, mode, **text) as f:
             yield f
         publish(tmp, path)
+
+
+#: the chunk a PNG ends with (its length 0, its type, its CRC)
+_PNG_END = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+
+
+def is_whole(path) -> bool:
+    """Whether an output file is there and whole: a PNG ends with its IEND chunk, a .npz's
+    zip directory (at its end) is there; another kind exists. What this package writes is
+    whole or absent (atomic); this finds one torn since -- a copy cut short, a disk that
+    filled, a hand -- so that a resumed run makes it again rather than keep it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    """
+    import zipfile
+
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+        if path.suffix.lower() == ".png":
+            with open(path, "rb") as f:
+                f.seek(max(size - len(_PNG_END), 0))
+                return size > len(_PNG_END) and f.read() == _PNG_END
+        if path.suffix.lower() == ".npz":
+            return zipfile.is_zipfile(path)
+        return path.is_file()
+    except OSError:
+        return False

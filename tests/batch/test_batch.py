@@ -365,3 +365,27 @@ def test_a_scheduler_that_never_answers_is_given_up_on_in_one_line(tmp_path, das
         os.kill(sched.pid, signal.SIGCONT)
         sched.kill()
         sched.wait(timeout=30)
+
+
+@pytest.mark.parametrize("fault", ["deleted", "truncated", "npz_truncated"])
+def test_a_rerun_makes_again_what_is_gone_or_torn(tmp_path, fault):
+    """A rerun keeps the outputs that are whole and makes again one deleted or cut short
+    since (a PNG without its end, an .npz without its directory): the folder is then what
+    a fresh run writes."""
+    src = make_collection(tmp_path / "in", extra=0)
+    args = [str(src), "--size", "64x48", "--modes", "phong", "--outputs", "color,depth",
+            "--backend", BACKEND, "-q"]
+    assert glshade("batch", *args, "-o", str(tmp_path / "fresh")).returncode in (0, 2)
+    out = tmp_path / "out"
+    assert glshade("batch", *args, "-o", str(out)).returncode in (0, 2)
+    expected = tree(tmp_path / "fresh")
+    pngs = sorted(out.rglob("*.png"))
+    victim = pngs[0] if fault != "npz_truncated" else sorted(out.rglob("*.npz"))[0]
+    if fault == "deleted":
+        victim.unlink()
+    else:
+        victim.write_bytes(victim.read_bytes()[:-20])
+    assert glshade("batch", *args, "-o", str(out)).returncode in (0, 2)
+    rows = {m["input"]: m["status"] for m in manifest(out)}
+    assert sum(s == "ok" for s in rows.values()) == 1  # (the one input whose output was torn)
+    assert tree(out) == expected

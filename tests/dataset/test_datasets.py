@@ -288,3 +288,40 @@ def test_a_path_traced_set_has_the_raster_sets_masks_depth_and_poses(bop, tmp_pa
     r = run_glshade("dataset", "assets/scenes/spheres.toml", "-o", str(tmp_path / "x"),
                     "--spp", "4")
     assert r.returncode == 2 and "--spp is for --images pathtrace" in r.stderr
+
+
+@pytest.mark.parametrize("fmt", ["bop", "coco"])
+@pytest.mark.parametrize("fault", ["deleted", "truncated", "record_only"])
+def test_a_resume_remakes_the_views_whose_files_are_gone_or_torn(tmp_path, gl_context, fmt,
+                                                                 fault):
+    """A resumed run checks the files themselves, not its records alone: a view whose
+    image or depth was deleted, cut short, or whose record outlived every file, is drawn
+    again -- and the set is then byte for byte the one a fresh run writes."""
+    def write(out):
+        if fmt == "bop":
+            dataset.write_bop(_scene(), out, views=3, size=SIZE, units="m", progress=False,
+                              context=gl_context)
+        else:
+            dataset.write_coco(_scene(), out, views=3, size=SIZE, progress=False,
+                               context=gl_context)
+
+    fresh, hurt = tmp_path / "fresh", tmp_path / "hurt"
+    write(fresh)
+    write(hurt)
+    folder = hurt / "train" / "000000" if fmt == "bop" else hurt
+    images = sorted((folder / ("rgb" if fmt == "bop" else "images")).glob("*.png"))
+    victim = images[1]
+    if fault == "deleted":
+        victim.unlink()
+        if fmt == "bop":
+            (folder / "depth" / victim.name).unlink()
+    elif fault == "truncated":
+        victim.write_bytes(victim.read_bytes()[:40])
+    else:  # (every file of every view gone, the records kept)
+        for image in images:
+            image.unlink()
+    stamps = {p: p.stat().st_mtime_ns for p in images if p.exists() and p != victim}
+    write(hurt)
+    assert _tree_hash(hurt) == _tree_hash(fresh)
+    if fault != "record_only":  # (the whole views were kept as they were)
+        assert all(p.stat().st_mtime_ns == t for p, t in stamps.items())

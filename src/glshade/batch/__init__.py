@@ -1,6 +1,6 @@
 """Batch rendering of mesh collections: every mesh file under the inputs to images (and
 depth, normal and id arrays), in local worker processes or on a Dask cluster; resumable
-(outputs that exist are kept) and accounted for in ``manifest.csv``::
+(outputs that exist whole are kept) and accounted for in ``manifest.csv``::
 
     from glshade.batch import batch, BatchSpec
     result = batch(["meshes/"], "thumbs/", BatchSpec(modes=("flat", "phong"), views=4),

@@ -35,7 +35,10 @@ class Task:
         return self.images + self.arrays
 
     def done(self) -> bool:
-        return all(os.path.exists(p) for p in self.outputs)
+        """Whether every output is there and whole (a torn one is made again)."""
+        from ..atomic import is_whole
+
+        return all(is_whole(p) for p in self.outputs)
 
     def fault(self) -> str | None:
         """Why this task's outputs cannot be written where planned, or None: a name longer

@@ -14,7 +14,8 @@ from ..errors import InputError, OptionError
 from ..modes import Outputs
 from ..scene import Scene
 
-__all__ = ["DataSetJob", "ViewWorker", "run_views", "load_scene_arg", "write_json"]
+__all__ = ["DataSetJob", "ViewWorker", "run_views", "view_done", "load_scene_arg",
+           "write_json"]
 
 
 @dataclass(frozen=True)
@@ -130,11 +131,49 @@ def renderers(records: list) -> str:
     return "; ".join(sorted({str(r.get("renderer", "unknown")) for r in records}))
 
 
+#: a view record's list of the files it wrote, each with its size in bytes
+FILES_KEY = "files_written"
+
+
 def _finish(records_dir: Path, k: int, record: dict, files: list) -> None:
-    """Write a view's files, then its record (last: a view with a record is whole)."""
+    """Write a view's files, then its record (last), which lists each file with its size:
+    a view is done when its record is there and every file it lists is whole
+    (:func:`view_done`)."""
+    import os
+
+    written = {}
     for fn, *args in files:
         fn(*args)
-    write_json(records_dir / f"{k:06d}.json", record)
+        for path in (a for a in args if isinstance(a, Path)):
+            written[os.path.relpath(path, records_dir)] = path.stat().st_size
+    write_json(records_dir / f"{k:06d}.json", {**record, FILES_KEY: written})
+
+
+def view_done(records_dir: Path, k: int) -> bool:
+    """Whether view k need not be drawn again: its record is there, and each file it lists
+    exists with the size it was written with (a file deleted or torn since -- cut short by
+    a crash, a full disk, a copy -- makes the view be drawn again).
+
+    Parameters
+    ----------
+    records_dir : Path
+        Where the views' records are.
+    k : int
+        The view.
+    """
+    path = records_dir / f"{k:06d}.json"
+    try:
+        record = json.loads(path.read_text(encoding="utf-8"))
+        files = record[FILES_KEY]
+    except (OSError, ValueError, KeyError, TypeError):  # (none, torn, or from before)
+        return False
+    for name, size in files.items():
+        try:
+            if (records_dir / name).stat().st_size != size:
+                return False
+        except OSError:
+            return False
+    return True
 
 
 class ViewWorker:
@@ -266,7 +305,8 @@ def run_views(job: DataSetJob, records_dir: Path, writer, progress=None, context
     job : DataSetJob
         The scene, cameras, size, samples and options.
     records_dir : Path
-        Where each view's record is kept (``{k:06d}.json``): a view with one is done.
+        Where each view's record is kept (``{k:06d}.json``, with its files' sizes): a view
+        whose record is there and whose files are whole is done (:func:`view_done`).
     writer : callable
         ``(k, frame, notes) -> (record, files)``, picklable for workers.
     progress : bool, tqdm-like or None
@@ -285,7 +325,7 @@ def run_views(job: DataSetJob, records_dir: Path, writer, progress=None, context
     from ..parallel.progress import as_progress
 
     records_dir.mkdir(parents=True, exist_ok=True)
-    todo = [k for k in range(len(job.cameras)) if not (records_dir / f"{k:06d}.json").exists()]
+    todo = [k for k in range(len(job.cameras)) if not view_done(records_dir, k)]
     bar, owned = as_progress(progress, len(job.cameras), "views")
     try:
         if bar is not None and len(todo) < len(job.cameras):

@@ -325,3 +325,28 @@ def test_a_resume_remakes_the_views_whose_files_are_gone_or_torn(tmp_path, gl_co
     assert _tree_hash(hurt) == _tree_hash(fresh)
     if fault != "record_only":  # (the whole views were kept as they were)
         assert all(p.stat().st_mtime_ns == t for p, t in stamps.items())
+
+
+def test_models_carry_normals_and_an_info_bops_evaluation_reads(bop):
+    """Each model PLY has vertex normals (BOP's format asks for them; trimesh reads them
+    back unit length, on the outside), and models_info.json gives each model's diameter --
+    against scipy's pairwise distances over trimesh's convex hull -- and its box, in mm."""
+    from scipy.spatial.distance import pdist
+
+    info = json.loads((bop / "models" / "models_info.json").read_text())
+    plys = sorted((bop / "models").glob("obj_*.ply"))
+    assert sorted(int(k) for k in info) == [int(p.stem[4:]) for p in plys]
+    header = plys[0].read_bytes()[:400].decode("latin-1")
+    assert all(f"property double {c}" in header for c in ("nx", "ny", "nz"))
+    for path in plys:
+        mesh = trimesh.load(path, process=False)
+        n = np.asarray(mesh.vertex_normals)
+        assert np.allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-6)
+        outward = np.einsum("ij,ij->i", n, mesh.vertices - mesh.vertices.mean(0))
+        assert (outward > 0).mean() > 0.9
+        entry = info[path.stem[4:].lstrip("0") or "0"]
+        hull = mesh.convex_hull.vertices
+        assert entry["diameter"] == pytest.approx(pdist(hull).max(), rel=1e-12)
+        lo, hi = mesh.vertices.min(0), mesh.vertices.max(0)
+        assert [entry[f"min_{a}"] for a in "xyz"] == pytest.approx(lo.tolist())
+        assert [entry[f"size_{a}"] for a in "xyz"] == pytest.approx((hi - lo).tolist())

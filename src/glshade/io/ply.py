@@ -428,7 +428,9 @@ def _ascii_vertex_table(path, body: bytes, elements, count: int, props, first_li
 
 
 def write(mesh: Mesh, f, binary: bool) -> None:
-    """Write ``mesh`` as PLY to the open file ``f``, binary little-endian or ASCII.
+    """Write ``mesh`` as PLY to the open file ``f``, binary little-endian or ASCII, with its
+    file normals (``nx ny nz``) and vertex colours (``red green blue [alpha]``, uchar sRGB)
+    where it has them.
 
     Parameters
     ----------
@@ -440,18 +442,26 @@ def write(mesh: Mesh, f, binary: bool) -> None:
         Binary little-endian (else ASCII).
     """
     fmt = "binary_little_endian" if binary else "ascii"
-    f.write((f"ply\nformat {fmt} 1.0\ncomment glshade\nelement vertex {mesh.n_vertices}\n"
-             "property double x\nproperty double y\nproperty double z\n"
-             f"element face {mesh.n_faces}\nproperty list uchar int vertex_indices\n"
-             "end_header\n").encode())
     if int(mesh.face_sizes.max(initial=0)) > 255:
         raise GeometryError("PLY stores polygon sizes as uchar: faces of more than 255 "
                             "vertices cannot be written")
+    table = _vertex_table(mesh)
+    props = "".join(f"property {'double' if kind == '<f8' else 'uchar'} {name}\n"
+                    for name, (kind, _) in table.dtype.fields.items())
+    f.write((f"ply\nformat {fmt} 1.0\ncomment glshade\nelement vertex {mesh.n_vertices}\n"
+             f"{props}element face {mesh.n_faces}\nproperty list uchar int vertex_indices\n"
+             "end_header\n").encode())
     if not binary:
-        write_vertices(f, mesh.vertices, "")
+        if len(table.dtype) == 3:
+            write_vertices(f, mesh.vertices, "")
+        else:  # (normals and colours: each column as its type writes)
+            columns = " ".join("%.17g" if kind == "<f8" else "%d"
+                               for kind, _ in table.dtype.fields.values())
+            cells = np.stack([table[name].astype(object) for name in table.dtype.names], 1)
+            f.write(((columns + "\n") * len(table) % tuple(cells.ravel())).encode())
         write_faces(f, mesh, "", 0, with_count=True)
         return
-    f.write(mesh.vertices.astype("<f8").tobytes())
+    f.write(table.tobytes())
     sizes = mesh.face_sizes
     face_byte = mesh.face_offsets[:-1] * 4 + np.arange(mesh.n_faces)
     buf = np.zeros(mesh.n_faces + 4 * len(mesh.face_indices), np.uint8)
@@ -461,3 +471,31 @@ def write(mesh: Mesh, f, binary: bool) -> None:
     buf[corner_byte[:, None] + np.arange(4)] = (
         mesh.face_indices.astype("<i4").view(np.uint8).reshape(-1, 4))
     f.write(buf.tobytes())
+
+
+def _vertex_table(mesh: Mesh) -> np.ndarray:
+    """The vertex element as written: x y z (double), then the file's normals nx ny nz
+    (double) where the mesh has them, then its colours red green blue [alpha] (uchar,
+    sRGB-encoded: what the reader decodes) where it has them."""
+    from .._srgb import linear_to_srgb
+
+    fields = [(c, "<f8") for c in ("x", "y", "z")]
+    normals = mesh.normals_from_file
+    if normals is not None:
+        fields += [(c, "<f8") for c in ("nx", "ny", "nz")]
+    colors = mesh.colors
+    channels = ("red", "green", "blue") + (
+        ("alpha",) if colors is not None and (colors[:, 3] < 1).any() else ())
+    if colors is not None:
+        fields += [(c, "u1") for c in channels]
+    table = np.empty(mesh.n_vertices, np.dtype(fields))
+    for i, c in enumerate("xyz"):
+        table[c] = mesh.vertices[:, i]
+    if normals is not None:
+        for i, c in enumerate(("nx", "ny", "nz")):
+            table[c] = normals[:, i]
+    if colors is not None:
+        encoded = np.concatenate([linear_to_srgb(colors[:, :3]), colors[:, 3:]], 1)
+        for i, c in enumerate(channels):
+            table[c] = np.round(np.clip(encoded[:, i], 0, 1) * 255)
+    return table

@@ -445,19 +445,18 @@ def write(mesh: Mesh, f, binary: bool) -> None:
     if int(mesh.face_sizes.max(initial=0)) > 255:
         raise GeometryError("PLY stores polygon sizes as uchar: faces of more than 255 "
                             "vertices cannot be written")
-    table = _vertex_table(mesh)
+    table, fields = _vertex_table(mesh)
     props = "".join(f"property {'double' if kind == '<f8' else 'uchar'} {name}\n"
-                    for name, (kind, _) in table.dtype.fields.items())
+                    for name, kind in fields)
     f.write((f"ply\nformat {fmt} 1.0\ncomment glshade\nelement vertex {mesh.n_vertices}\n"
              f"{props}element face {mesh.n_faces}\nproperty list uchar int vertex_indices\n"
              "end_header\n").encode())
     if not binary:
-        if len(table.dtype) == 3:
+        if len(fields) == 3:
             write_vertices(f, mesh.vertices, "")
         else:  # (normals and colours: each column as its type writes)
-            columns = " ".join("%.17g" if kind == "<f8" else "%d"
-                               for kind, _ in table.dtype.fields.values())
-            cells = np.stack([table[name].astype(object) for name in table.dtype.names], 1)
+            columns = " ".join("%.17g" if kind == "<f8" else "%d" for _, kind in fields)
+            cells = np.stack([table[name].astype(object) for name, _ in fields], 1)
             f.write(((columns + "\n") * len(table) % tuple(cells.ravel())).encode())
         write_faces(f, mesh, "", 0, with_count=True)
         return
@@ -473,10 +472,11 @@ def write(mesh: Mesh, f, binary: bool) -> None:
     f.write(buf.tobytes())
 
 
-def _vertex_table(mesh: Mesh) -> np.ndarray:
+def _vertex_table(mesh: Mesh) -> tuple[np.ndarray, list[tuple[str, str]]]:
     """The vertex element as written: x y z (double), then the file's normals nx ny nz
     (double) where the mesh has them, then its colours red green blue [alpha] (uchar,
-    sRGB-encoded: what the reader decodes) where it has them."""
+    sRGB-encoded: what the reader decodes) where it has them; and its fields, (name,
+    numpy type) in order."""
     from .._srgb import linear_to_srgb
 
     fields = [(c, "<f8") for c in ("x", "y", "z")]
@@ -498,4 +498,4 @@ def _vertex_table(mesh: Mesh) -> np.ndarray:
         encoded = np.concatenate([linear_to_srgb(colors[:, :3]), colors[:, 3:]], 1)
         for i, c in enumerate(channels):
             table[c] = np.round(np.clip(encoded[:, i], 0, 1) * 255)
-    return table
+    return table, fields

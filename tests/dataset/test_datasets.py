@@ -350,3 +350,28 @@ def test_models_carry_normals_and_an_info_bops_evaluation_reads(bop):
         lo, hi = mesh.vertices.min(0), mesh.vertices.max(0)
         assert [entry[f"min_{a}"] for a in "xyz"] == pytest.approx(lo.tolist())
         assert [entry[f"size_{a}"] for a in "xyz"] == pytest.approx((hi - lo).tolist())
+
+
+def test_an_object_cut_by_the_border_counts_its_whole_projection(make_renderer):
+    """BOP's visib_fract divides by the whole silhouette, in the image or not: a ball
+    mostly outside the view -- px_count_all against an exact ray cast over an image three
+    times as wide and high around the view's, visib_fract the in-image share of it."""
+    scene = Scene()
+    scene.add(P.uv_sphere(96, 192), label="ball", translation=(1.35, 0.0, 0.0))
+    camera = Camera.look_at((0.0, 0.0, 4.0), (0.0, 0.0, 0.0), fov_y=30.0)
+    w, h = SIZE
+    note, = make_renderer(w, h, samples=0).annotate(scene, camera)
+    K, R, t = camera.to_opencv((w, h))
+    K = K.copy()
+    K[0, 2] += w
+    K[1, 2] += h
+    o, d = Camera.from_opencv(K, R, t, (3 * w, 3 * h)).rays((3 * w, 3 * h))
+    c = o - np.array([1.35, 0.0, 0.0])
+    b = np.einsum("...k,...k", c, d)
+    hit = b * b - (np.einsum("...k,...k", c, c) - 1) > 0
+    inside = hit[h:2 * h, w:2 * w]
+    # (the uv sphere's facets lie inside the ball: a few edge pixels less)
+    assert note.px_count_all == pytest.approx(hit.sum(), rel=0.01)
+    assert note.px_count_visib == pytest.approx(inside.sum(), rel=0.03)
+    assert note.visib_fract == pytest.approx(inside.sum() / hit.sum(), rel=0.03)
+    assert note.visib_fract < 0.5 and note.bbox_obj[0] + note.bbox_obj[2] > w

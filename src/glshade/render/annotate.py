@@ -40,12 +40,16 @@ class Annotation:
     mask_visib : ndarray
         ``(H, W)`` bool: the pixels it owns in the view.
     px_count_all, px_count_valid, px_count_visib : int
-        The full mask's pixels, those of them with a depth, the visible mask's.
+        The full mask's pixels -- over the object's whole projection where it leaves the
+        image, as BOP's toolkit counts them (drawn into an image three times as wide and
+        high around the view's) --, the in-image full mask's pixels with a depth, the
+        visible mask's.
     visib_fract : float
         ``px_count_visib / px_count_all`` (0 where the object covers no pixel).
     bbox_obj, bbox_visib : (int, int, int, int)
-        The masks' boxes ``(x, y, w, h)`` in whole pixels, inclusive; ``(-1, -1, -1, -1)``
-        for an empty mask (BOP's).
+        The masks' boxes ``(x, y, w, h)`` in whole pixels, inclusive (``bbox_obj`` over the
+        whole projection: it may leave the image); ``(-1, -1, -1, -1)`` for an empty mask
+        (BOP's).
     """
 
     instance_id: int
@@ -218,8 +222,43 @@ def _shifted(box: tuple[int, int, int, int], window) -> tuple[int, int, int, int
                                    box[2], box[3])
 
 
+def crossing(models: dict, camera, size) -> list:
+    """The instances whose screen box leaves the image (or is unbounded: a corner behind
+    the eye): their whole projection is counted apart (``px_count_all``, as BOP's toolkit
+    counts it).
+
+    Parameters
+    ----------
+    models : dict
+        :func:`objects`' instances.
+    camera : Camera
+        The view.
+    size : (int, int)
+        The image's width and height.
+    """
+    w, h = size
+    boxes = _screen_boxes(models, camera, size)
+    # (the boxes are a pixel wider each way: a box flush with the image's edge is inside)
+    return [k for k, b in sorted(boxes.items())
+            if b is None or b[0] < -1 or b[1] < -1 or b[2] > w + 1 or b[3] > h + 1]
+
+
+def shifted_box(box: tuple[int, int, int, int], dx: int, dy: int) -> tuple[int, int, int, int]:
+    """``(x, y, w, h)`` moved by (dx, dy) (an empty box stays as it is).
+
+    Parameters
+    ----------
+    box : tuple
+        ``(x, y, w, h)``.
+    dx, dy : int
+        The move, pixels.
+    """
+    x, y, bw, bh = box
+    return (x + dx, y + dy, bw, bh) if bw > 0 and bh > 0 else box
+
+
 def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray,
-            full: dict) -> list[Annotation]:
+            full: dict, whole: dict | None = None) -> list[Annotation]:
     """The annotations of a view, in instance order, from its instance mask and each
     object's full mask (objects with an empty full mask are out of view: none).
 
@@ -238,6 +277,11 @@ def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray
     full : dict
         Each instance's full (amodal) mask as ``(window, mask)``: its window
         (:func:`plan`) and the ``bool`` mask within it.
+    whole : dict or None
+        For an instance whose projection leaves the image: its pixels over the whole
+        projection and their box (``(count, (x, y, w, h))``, the box in the image's
+        pixels): ``px_count_all``, ``visib_fract`` and ``bbox_obj`` as BOP's toolkit
+        counts them.
     """
     labels = scene.labels
     seen = np.bincount(instance.ravel(), minlength=max(models, default=0) + 1)
@@ -255,9 +299,12 @@ def records(scene, camera, models: dict, instance: np.ndarray, depth: np.ndarray
             n_visib = int(visib.sum())
         rotation, translation = model_pose(parts[0], camera)
         label = parts[0].label
+        box_all = _shifted(bbox(crop), window)
+        if whole and key in whole:  # (its whole projection: BOP's count)
+            n_all, box_all = max(whole[key][0], n_all), whole[key][1]
         out.append(Annotation(
             key, label, labels.get(label, 0), rotation, translation,
             _placed(window, crop, instance.shape), _placed(window, visib, instance.shape),
             n_all, int((crop & np.isfinite(depth[window])).sum()), n_visib, n_visib / n_all,
-            _shifted(bbox(crop), window), _shifted(bbox(visib), window)))
+            box_all, _shifted(bbox(visib), window)))
     return out

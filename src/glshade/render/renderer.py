@@ -360,19 +360,20 @@ class Renderer:
 
     # ------------------------------------------------------------------ caches
     def _target(self, color_dtype: str, samples: int | None = None,
-                slot: int = 0) -> OffscreenTarget:
+                slot: int = 0, size: tuple[int, int] | None = None) -> OffscreenTarget:
         """The offscreen target of this colour type and sample count; ``slot`` > 0: one of
         the targets :meth:`render_many` draws frames ahead into (kept apart from slot 0,
-        which every other read uses, so a pending frame survives a call between yields)."""
+        which every other read uses, so a pending frame survives a call between yields);
+        ``size``: another than the renderer's (an annotation's whole projection)."""
         self._check()
         self.context.make_current()
         samples = self.samples if samples is None else samples
-        key = f"{color_dtype}/{samples}/{slot}"
+        w, h = size or (self.width, self.height)
+        key = f"{color_dtype}/{samples}/{slot}" + (f"/{w}x{h}" if size else "")
         t = self._targets.get(key)
         if t is None:
             try:
-                t = OffscreenTarget(self.context, self.width, self.height, samples,
-                                    color_dtype)
+                t = OffscreenTarget(self.context, w, h, samples, color_dtype)
             except GlshadeError:
                 raise
             except Exception as exc:  # the driver's refusal (out of memory, incomplete)
@@ -687,9 +688,14 @@ class Renderer:
         options : DrawOptions, ShadingMode, str or None
             How (what changes ids: culling, wireframe, transparency).
         """
+        return self._ids(scene, camera, options)
+
+    def _ids(self, scene: Scene, camera: Camera, options=None,
+             size: tuple[int, int] | None = None) -> np.ndarray:
+        """:meth:`render_ids`, into a target of ``size`` (None: the renderer's)."""
         options = DrawOptions.of(options).replace(outputs=Outputs.COLOR | Outputs.FACE_ID)
         with held():
-            target = self._target("f1", samples=0)
+            target = self._target("f1", samples=0, size=size)
             self.draw(target, scene, camera, _id_pass(options, scene))
             return target.read_face_id()
 
@@ -737,10 +743,44 @@ class Renderer:
                 ids = self.render_ids(scene, camera, options)
                 full.update({k: (window[k], instances[ids[window[k]] + 1] == k)
                              for k in batch})
+            whole = self._whole_projections(scene, camera, options, models, full,
+                                            annotate.crossing(models, camera, size))
         finally:
             for m, was in zip(every, shown):
                 m.visible = was
-        return annotate.records(scene, camera, models, view.instance, view.depth, full)
+        return annotate.records(scene, camera, models, view.instance, view.depth, full,
+                                whole)
+
+    def _whole_projections(self, scene, camera, options, models, full, crossing) -> dict:
+        """For each object of ``crossing`` (whose screen box leaves the image) that is in
+        view: its pixels over its whole projection and their box, as BOP's toolkit counts
+        them -- the object drawn alone into an image three times as wide and high with the
+        view's in its middle (the same pixels, the principal point moved by W and H).
+        Perspective cameras only (an orthographic view keeps its in-image count)."""
+        from ..modes import Projection
+        from . import annotate
+
+        if camera.projection is not Projection.PERSPECTIVE:
+            return {}
+        w, h = self.width, self.height
+        K, R, t = camera.to_opencv((w, h))
+        K = K.copy()
+        K[0, 2] += w
+        K[1, 2] += h
+        # (the view's clip planes, fitted to the whole scene: the bounds of what is shown
+        # now would cut the object)
+        wide = Camera.from_opencv(K, R, t, (3 * w, 3 * h), near=camera.near, far=camera.far)
+        instances, _ = scene.id_tables()
+        out = {}
+        for k in crossing:
+            if k not in full or not full[k][1].any():
+                continue
+            members = {id(m) for m in models[k]}
+            for m in scene.every_model:
+                m.visible = id(m) in members
+            mask = instances[self._ids(scene, wide, options, size=(3 * w, 3 * h)) + 1] == k
+            out[k] = (int(mask.sum()), annotate.shifted_box(annotate.bbox(mask), -w, -h))
+        return out
 
     def render_depth(self, scene: Scene, camera: Camera, **changes) -> np.ndarray:
         """``(H, W) float32``: distance along the view axis, ``inf`` where nothing was drawn.

@@ -79,3 +79,32 @@ def test_info_on_a_degenerate_mesh_is_facts_or_one_line(tmp_path, kind):
         assert done.stderr.count("\n") == 1 and str(mesh) in done.stderr
     else:
         assert "faces" in done.stdout or "polygons" in done.stdout, done.stdout
+
+
+@pytest.mark.parametrize("command", ["info", "render", "hidden", "compare", "pathtrace",
+                                     "radiosity", "animate", "batch"])
+@pytest.mark.parametrize("kind", ["mesh", "cloud", "empty"])
+def test_every_command_on_a_mesh_a_cloud_and_an_empty_file(tmp_path, command, kind):
+    """Each command that takes a model draws a point cloud or refuses it in one line naming
+    the file -- never a traceback, never a half-empty table -- and an empty file is one
+    line too."""
+    source = tmp_path / "in" / f"{kind}.obj"
+    source.parent.mkdir()
+    source.write_text({"mesh": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+                       "cloud": "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n",
+                       "empty": ""}[kind])
+    out = tmp_path / ("out" if command == "batch" else "x.png")
+    args = {"info": [str(source)], "batch": [str(source.parent), "-o", str(out), "-q"],
+            "animate": [str(source), "-o", str(tmp_path / "x.gif"), "--frames", "2",
+                        "--size", "32x24"]}.get(
+        command, [str(source), "-o", str(out), "--size", "32x24"])
+    if command == "pathtrace":
+        args += ["--spp", "1"]
+    r = glshade(command, *args, timeout=300)
+    assert "Traceback" not in r.stderr, r.stderr
+    if r.returncode != 0:
+        lines = [x for x in r.stderr.strip().splitlines() if not x.startswith("glshade: warn")]
+        assert r.returncode == 2 and len(lines) == 1, r.stderr
+        assert source.name in lines[0] or command == "batch", r.stderr
+    if command == "hidden" and kind == "cloud":
+        assert r.returncode == 2 and "not polygons" in r.stderr

@@ -207,7 +207,9 @@ class BatchWorker:
                 write_npz(next(arrays), {name: getattr(frame, name) for name in
                                          ("depth", "normal", "face_id")
                                          if getattr(frame, name) is not None})
-        return model.mesh.n_faces  # (patches: their tessellation's polygons)
+        # (patches: their tessellation's polygons; a point cloud or polylines: none)
+        mesh = getattr(model, "mesh", None)
+        return mesh.n_faces if mesh is not None else 0
 
     def close(self):
         self.renderer.close()

@@ -26,6 +26,11 @@ def hidden(args: HiddenArgs) -> int:
         raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
     args = replace(args, size=args.size or (256, 256))
     job = load_job(args, args.mesh)
+    if not job.scene.models and (job.scene.clouds or job.scene.lines):
+        # (the lab's algorithms sort, clip and scan polygons: points and lines have none)
+        kind = "a point cloud" if job.scene.clouds else "polylines"
+        raise UsageError(f"{args.mesh} is {kind}, not polygons: the hidden-surface "
+                         "algorithms need polygons (glshade render draws it)")
     if job.scene.solids:  # the algorithms are for polygons: so is the GPU's reference here
         import copy
         import warnings

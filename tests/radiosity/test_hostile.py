@@ -70,7 +70,7 @@ def test_an_exposure_past_what_shading_holds_is_named_not_an_internal_array(tmp_
     """``--exposure 1e300`` was refused as "vertex_colors must be ... 7.128e+297": the
     option is named, with the brightest patch it makes and the largest exposure that
     shows, and nothing is written."""
-    r, out = _run(tmp_path, BOX, "--exposure", exposure)
+    r, out = _run(tmp_path, BOX, "--exposure", exposure, "--patch-size", "250")
     assert r.returncode == 2, r.stderr
     (line,) = r.stderr.strip().splitlines()
     assert line.startswith(f"glshade: error: exposure {float(exposure):g} makes the "

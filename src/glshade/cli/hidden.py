@@ -10,6 +10,15 @@ from .inputs import load_job
 
 __all__ = ["hidden"]
 
+def _polygons_only(scene, spec: str) -> None:
+    """The lab's algorithms sort, clip and scan polygons: a point cloud or polylines alone
+    is refused in one line naming the file."""
+    if not scene.models and (scene.clouds or scene.lines):
+        kind = "a point cloud" if scene.clouds else "polylines"
+        raise UsageError(f"{spec} is {kind}, not polygons: the hidden-surface algorithms "
+                         "need polygons (glshade render draws it)")
+
+
 def hidden(args: HiddenArgs) -> int:
     """``glshade hidden``: the hidden-surface lab on a mesh or scene."""
     import numpy as np
@@ -26,11 +35,7 @@ def hidden(args: HiddenArgs) -> int:
         raise UsageError("--steps needs an animation file (.gif, .png or .mp4)")
     args = replace(args, size=args.size or (256, 256))
     job = load_job(args, args.mesh)
-    if not job.scene.models and (job.scene.clouds or job.scene.lines):
-        # (the lab's algorithms sort, clip and scan polygons: points and lines have none)
-        kind = "a point cloud" if job.scene.clouds else "polylines"
-        raise UsageError(f"{args.mesh} is {kind}, not polygons: the hidden-surface "
-                         "algorithms need polygons (glshade render draws it)")
+    _polygons_only(job.scene, args.mesh)
     if job.scene.solids:  # the algorithms are for polygons: so is the GPU's reference here
         import copy
         import warnings

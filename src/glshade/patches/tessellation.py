@@ -107,7 +107,10 @@ def flatness_levels(patches: PatchSet, tolerance) -> np.ndarray:
     scale = 1.0 / wmin
     nu = np.ceil(np.sqrt((muu + muv) * scale / (4 * tol)))
     nv = np.ceil(np.sqrt((mvv + muv) * scale / (4 * tol)))
-    return np.clip(np.stack([nu, nv], 1), 1, None).astype(np.int64)
+    # (past MAX_LEVEL + 1 it is past what is allowed, by however much: a tolerance of
+    # 1e-300 asks for 1e150, which an int64 cannot hold)
+    return np.clip(np.nan_to_num(np.stack([nu, nv], 1), nan=MAX_LEVEL + 1.0), 1,
+                   MAX_LEVEL + 1).astype(np.int64)
 
 
 def _world_tolerance(patches: PatchSet, pixels: float, camera, height: int) -> np.ndarray:
@@ -185,8 +188,9 @@ def tessellate(model, level: int | None = None, *, tolerance: float | None = Non
         levels = flatness_levels(patches, _world_tolerance(patches, float(pixels), camera,
                                                             height))
     if (levels > MAX_LEVEL).any():
-        raise GeometryError(f"the tolerance asks for {int(levels.max()):,} samples a patch "
-                            f"side, more than the {MAX_LEVEL} allowed: use a larger one")
+        asked = f"{tolerance:g} " if tolerance is not None else ""
+        raise GeometryError(f"the tolerance {asked}asks for more samples a patch side than "
+                            f"the {MAX_LEVEL} allowed: use a larger one")
     levels = _balance(levels, surface)
     if int(2 * (levels[:, 0] * levels[:, 1]).sum()) > MAX_TRIANGLES:
         raise GeometryError(f"the tessellation would make more than {MAX_TRIANGLES:,} "

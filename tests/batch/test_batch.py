@@ -389,3 +389,22 @@ def test_a_rerun_makes_again_what_is_gone_or_torn(tmp_path, fault):
     rows = {m["input"]: m["status"] for m in manifest(out)}
     assert sum(s == "ok" for s in rows.values()) == 1  # (the one input whose output was torn)
     assert tree(out) == expected
+
+
+def test_a_scheduler_address_where_nothing_listens_is_said_at_once(tmp_path):
+    """Nothing listening at the address (a port just freed): one line within seconds,
+    status 1 -- Dask's Client would retry the refused connection for its whole timeout."""
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    src = make_collection(tmp_path / "in")
+    start = time.time()
+    r = glshade("batch", str(src), "-o", str(tmp_path / "out"), "--scheduler",
+                f"tcp://127.0.0.1:{port}")
+    assert time.time() - start < 10
+    assert r.returncode == 1, r.stderr
+    (line,) = r.stderr.strip().splitlines()
+    assert line.startswith(f"glshade: error: no Dask scheduler answers at tcp://127.0.0.1:{port}")
+    assert not (tmp_path / "out").exists()

@@ -94,11 +94,36 @@ def _deadline() -> float:
     return value
 
 
+def _listening(scheduler: str, seconds: float) -> None:
+    """A TCP scheduler's port refused or unreachable is said at once (Dask's Client retries
+    a refused connection until its timeout: 20 s for an address where nothing listens);
+    other protocols are left to the Client."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if not scheduler.startswith("tcp://"):
+        return
+    try:
+        place = urlsplit(scheduler)
+        host, port = place.hostname, place.port
+    except ValueError:
+        return  # (the Client says what is wrong with the address)
+    if host is None or port is None:
+        return
+    try:
+        socket.create_connection((host, port), timeout=seconds).close()
+    except OSError as exc:
+        reason = exc.strerror or str(exc) or type(exc).__name__
+        raise ClusterError(f"no Dask scheduler answers at {scheduler}: {reason} (is it "
+                           "running, and is the address its own?)") from None
+
+
 def _client_within(distributed, scheduler: str, seconds: float):
     """A Client of ``scheduler`` that has answered (its workers listed) within ``seconds``:
     Client(timeout=) does not bound a scheduler that accepts the connection and never
     answers (stopped, wedged), so the handshake runs in a thread of its own, abandoned at
     the deadline with one line that says so."""
+    _listening(scheduler, min(seconds, 5.0))
     box: dict = {}
 
     def handshake():
@@ -249,6 +274,7 @@ class DaskExecutor(Executor):
         super().__init__(factory, args)
         self.scheduler, self.workers = scheduler, workers
         _import_distributed()  # a missing extra fails before any work
+        _listening(scheduler, 5.0)  # ... and an address where nothing listens
 
     def map(self, items):
         """``worker(item)`` for each item, in order, as tasks on the cluster.

@@ -197,3 +197,15 @@ def test_the_command_says_a_capped_monte_carlo_solution_did_not_converge(tmp_pat
     assert len(lines) == 1 and "did not converge: 16 of 16 particles were still going " \
         "after 1,000 surfaces" in lines[0], r.stderr
     assert out.exists()  # (how far it got)
+
+
+def test_a_patch_size_past_the_scene_is_warned_of(tmp_path):
+    """--patch-size 1e9 made every polygon one patch, lit evenly, without a word: the
+    picture is made, with one warning naming the size and the scene's diagonal."""
+    r, out = _run(tmp_path, BOX, "--patch-size", "1e9", "--method", "monte-carlo",
+                  "--particles", "20000")
+    assert r.returncode == 0, r.stderr
+    warned = [x for x in r.stderr.splitlines() if x.startswith("glshade: warning:")]
+    assert len(warned) == 1 and "a patch size of 1e+09 is more than the scene's whole " \
+        "diagonal" in warned[0], r.stderr
+    assert (out / "r.png").exists()

@@ -183,6 +183,13 @@ class PatchScene:
             raise InputError(f"patch size must be a positive number, got {patch_size!r}")
         b = scene.bounds
         diagonal = float(np.linalg.norm(b[1] - b[0])) or 1.0
+        if patch_size >= diagonal:  # (every polygon one patch: its light one number)
+            import warnings
+
+            warnings.warn(f"a patch size of {patch_size:g} is more than the scene's whole "
+                          f"diagonal ({diagonal:.4g}): each polygon is one patch, lit "
+                          "evenly (a patch size of a 24th of it, the default, shows the "
+                          "light's gradients)", UserWarning, stacklevel=2)
         cleaned = [without_zero_area(m.mesh.transformed(m.transform), m.name or
                                       f"mesh {i + 1}", diagonal) for i, m in models]
         meshes = [mesh for mesh, _ in cleaned]

@@ -157,6 +157,15 @@ def _check_patch_numbers(p: np.ndarray, w: np.ndarray) -> None:
         raise GeometryError(f"patch {k}: a control point coordinate of "
                             f"{float(np.abs(p[k]).max()):g} is over the limit of "
                             f"{MAX_COORDINATE:g}")
+    # (a patch whose control points differ by less than this: its normals' and areas'
+    # products underflow -- 1e-320 apart they are subnormal -- so its triangles would all
+    # be flat; one of no extent at all is a point, dropped where it is tessellated)
+    span = np.ptp(p.reshape(len(p), -1, 3), axis=1).max(1)
+    tiny = (span > 0) & (span < 1 / MAX_COORDINATE)
+    if tiny.any():
+        k = first(tiny)
+        raise GeometryError(f"patch {k}: its control points span {float(span[k]):g}, under "
+                            f"the least extent of {1 / MAX_COORDINATE:g} (scale it up)")
 
 
 @dataclass(frozen=True)

@@ -81,8 +81,13 @@ class PatchSurface:
         return facts_html(repr(self), facts, picture(self))  # (a scene tessellates it)
 
     def _key(self, pts: np.ndarray) -> np.ndarray:
+        """Points (x, y, z[, w]) rounded to whole steps of MATCH times the patches' size
+        (a weight, a pure number, to steps of MATCH: divided by a tiny patch's size it
+        would pass int64's range)."""
         scale = float(np.ptp(self.patches.points.reshape(-1, 3), 0).max()) or 1.0
-        return np.round(pts / (MATCH * scale)).astype(np.int64)
+        steps = np.full(pts.shape[-1], MATCH * scale)
+        steps[3:] = MATCH
+        return np.round(pts / steps).astype(np.int64)
 
     @cached_property
     def edges(self) -> Edges:

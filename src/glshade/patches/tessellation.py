@@ -105,8 +105,9 @@ def flatness_levels(patches: PatchSet, tolerance) -> np.ndarray:
     muv = m * n * most(h[:, 1:, 1:] - h[:, 1:, :-1] - h[:, :-1, 1:] + h[:, :-1, :-1])
     wmin = patches.weights.reshape(len(h), -1).min(1)
     scale = 1.0 / wmin
-    nu = np.ceil(np.sqrt((muu + muv) * scale / (4 * tol)))
-    nv = np.ceil(np.sqrt((mvv + muv) * scale / (4 * tol)))
+    with np.errstate(over="ignore"):  # (a tolerance of 1e-308: inf, past the cap below)
+        nu = np.ceil(np.sqrt((muu + muv) * scale / (4 * tol)))
+        nv = np.ceil(np.sqrt((mvv + muv) * scale / (4 * tol)))
     # (past MAX_LEVEL + 1 it is past what is allowed, by however much: a tolerance of
     # 1e-300 asks for 1e150, which an int64 cannot hold)
     return np.clip(np.nan_to_num(np.stack([nu, nv], 1), nan=MAX_LEVEL + 1.0), 1,

@@ -95,7 +95,7 @@ bool bounce(inout Path p) {
         ng = normalize(cross(e1.xyz, e2));
     }
 #ifdef CUTOUTS
-    if (passes_through(m)) {  // (a thin surface: the path goes on as it was, no vertex)
+    if (passes_through(m, k, hit.uv)) {  // (a thin surface: the path goes on as it was, no vertex)
         p.o = x + p.d * u_eps;
         if (p.bounces == 0) p.flags -= 2.0;  // (its first hit is still to come)
         return true;

@@ -21,8 +21,11 @@ uniform float u_light_range[LIGHTS];  // 1 / a light's range (0: none)
 // whether a path passes through material m's surface (CUTOUTS: opacity below 1 is a thin
 // surface that lets the light through with the chance 1 - opacity, what the rasterizer's
 // "over" blends)
-bool passes_through(int m) {
+bool passes_through(int m, int k, vec2 bary) {
     float opacity = fetch(u_mats + 3 * m + 2).w;
+#ifdef MAPS
+    if (k >= 0) opacity *= map_slot(m, k, 4, bary, vec4(1.0)).a;  // (its opacity map)
+#endif
     return opacity < 1.0 && rand() >= opacity;
 }
 
@@ -40,7 +43,7 @@ bool clear_path(vec3 o, vec3 d, float dist) {
 #else
         int m = floatBitsToInt(fetch(u_tris + 3 * hit.k).w);
 #endif
-        if (!passes_through(m)) return false;
+        if (!passes_through(m, hit.k, hit.uv)) return false;
         o += d * (hit.t + u_eps);
         dist -= hit.t + u_eps;
         if (dist <= 0.0) return true;

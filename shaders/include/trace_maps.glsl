@@ -8,7 +8,7 @@
 #ifndef TRACE_MAPS_GLSL
 #define TRACE_MAPS_GLSL
 uniform int u_uvs;     // corner (u, v), 3 texels a triangle
-uniform int u_maps;    // a material's four slots, 2 texels each
+uniform int u_maps;    // a material's five slots, 2 texels each
 uniform int u_tangents;  // a texel a triangle: dP/du (world), the handedness
 uniform int u_texdir;  // a texel a texture: (first texel from here, width, height, -)
 
@@ -43,10 +43,10 @@ vec2 map_uv(int k, vec2 bary) {
            bary.x * fetch(u_uvs + 3 * k + 1).xy + bary.y * fetch(u_uvs + 3 * k + 2).xy;
 }
 
-// material m's map in ``slot`` (0 colour, 1 metallic-roughness, 2 emissive, 3 normal) at
-// triangle k's point ``bary``; ``none`` where it has no map there
+// material m's map in ``slot`` (0 colour, 1 metallic-roughness, 2 emissive, 3 normal, 4
+// opacity: its alpha) at triangle k's point ``bary``; ``none`` where it has no map there
 vec4 map_slot(int m, int k, int slot, vec2 bary, vec4 none) {
-    vec4 s0 = fetch(u_maps + 8 * m + 2 * slot), s1 = fetch(u_maps + 8 * m + 2 * slot + 1);
+    vec4 s0 = fetch(u_maps + 10 * m + 2 * slot), s1 = fetch(u_maps + 10 * m + 2 * slot + 1);
     return s0.x >= 0.0 ? map_sample(int(s0.x), s0.y, s1, map_uv(k, bary)) : none;
 }
 

@@ -338,6 +338,29 @@ def test_a_normal_map_bends_the_normal_in_the_uv_frame(gl_context):
     assert want[inside].mean() < 0.85 * flat.reshape(d.shape)[inside].mean()  # (it bends)
 
 
+def test_an_opacity_map_is_the_chance_of_each_texel(gl_context):
+    """The notes' opacity map (one channel: 51 on the left, 255 on the right), before a
+    constant sky: each half 0.2 or 1 of its own light and the rest the sky's, in the mean."""
+    from glshade import Camera, Environment, Material, Scene, Texture
+
+    halves = np.array([[51, 255]], np.uint8)
+    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    scene = Scene(environment=Environment((0.8, 0.8, 0.8)))
+    scene.add(quad, Material(color=(1, 1, 1), kd=0.5, ks=0.0,
+                             opacity_texture=Texture(halves, filter="nearest")))
+    camera = Camera.look_at((0, 0, 3), (0, 0, 0), fov_y=30.0)
+    traced = trace(scene, camera, (32, 32), spp=128, context=gl_context)
+    x, y, pixel = quad_pixels(camera, 32)
+    inside = (np.abs(y) < 1 - pixel) & (np.abs(x) < 1 - pixel) & (np.abs(x) > pixel)
+    for half, alpha in ((x < 0, 0.2), (x > 0, 1.0)):
+        where = inside & half
+        want = np.pi * 0.8 * (alpha * 0.5 + (1 - alpha))
+        got, se = traced.image[where].sum(0), np.sqrt((traced.se[where] ** 2).sum(0))
+        assert (np.abs(got - want * where.sum()) <= 4 * se + 1e-6 * where.sum()).all(), (
+            alpha, got / where.sum(), want)
+
+
 def test_what_it_does_not_trace_is_one_line_naming_the_model():
     from glshade import Material, Scene, Texture
 

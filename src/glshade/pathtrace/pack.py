@@ -137,7 +137,7 @@ def environment_tables(environment) -> tuple[np.ndarray, dict]:
 
 
 def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The maps as the tracer's texels (trace_maps.glsl): each material's four map slots, 2
+    """The maps as the tracer's texels (trace_maps.glsl): each material's five map slots, 2
     texels each -- (texture, wrap, -, -), (scale u, scale v, offset u, offset v); a texel a
     texture -- (its first texel, as int bits, relative to the directory's end; width;
     height; -); then the textures' texels, row by row, each after the last.
@@ -147,8 +147,8 @@ def map_tables(scene) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     scene : TraceScene
         The scene (its ``maps`` and ``textures``).
     """
-    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 4, 6), -1.0)
-    maps = np.zeros((8 * len(m), 4), np.float32)
+    m = scene.maps if scene.maps is not None else np.full((len(scene.materials), 5, 6), -1.0)
+    maps = np.zeros((10 * len(m), 4), np.float32)
     maps[0::2, :2] = m.reshape(-1, 6)[:, :2]
     maps[1::2] = m.reshape(-1, 6)[:, 2:]
     sizes = [t.shape[0] * t.shape[1] for t in scene.textures]

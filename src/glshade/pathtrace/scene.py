@@ -78,8 +78,8 @@ class TraceScene:
     textures : tuple
         The maps' texels, ``(H, W, 4)`` float32 each (:func:`texture_texels`).
     maps : ndarray or None
-        ``(M, 4, 6)`` each material's colour map, glTF's metallic-roughness, emissive and
-        normal maps: index
+        ``(M, 5, 6)`` each material's colour map, glTF's metallic-roughness, emissive and
+        normal maps and its opacity map: index
         into ``textures`` (-1: none), sampling (1 if clamped, else repeated, + 2 if the
         nearest texel, else bilinear), the coordinates' scale and offset (u, v).
     tangents : ndarray or None
@@ -258,15 +258,15 @@ class TraceScene:
         return cls(triangles, cross / length[:, None], areas, material, materials, emitters,
                    cdf, light_rows, model, tuple(names), shading, tuple(solids), environment,
                    corner_colors, corner_uvs,
-                   tuple(texture_texels(t, colour) for t, colour in textures),
-                   np.array(maps, np.float64).reshape(len(rows), 4, 6),
+                   tuple(texture_texels(t, kind) for t, kind in textures),
+                   np.array(maps, np.float64).reshape(len(rows), 5, 6),
                    np.concatenate(tangents)[keep] if tangents else None)
 
 
 #: the maps the tracer reads, by lighting model: a colour map (the notes' diffuse map,
 #: glTF's base colour) and glTF's metallic-roughness map; glTF's occlusion map is the
 #: rasterizer's stand-in for what the paths find themselves (left to them)
-TRACED_MAPS = {"notes": ("texture",),
+TRACED_MAPS = {"notes": ("texture", "opacity_texture"),
                "pbr": ("base_color_texture", "metallic_roughness_texture",
                        "emissive_texture", "normal_texture", "occlusion_texture")}
 
@@ -299,43 +299,59 @@ def _traced_names(mesh) -> str:
 
 
 def _material_maps(material, mesh, textures: list) -> list:
-    """A material's four map slots (its colour map; glTF's metallic-roughness, emissive
-    and normal maps), each
+    """A material's five map slots (its colour map; glTF's metallic-roughness, emissive
+    and normal maps; its opacity map), each
     (texture index or -1, sampling: 1 if clamped + 2 if nearest, scale u, scale v, offset
     u, offset v);
-    ``textures`` ((Texture, is a colour map) pairs, each once) is appended to. A mesh
+    ``textures`` ((Texture, "colour", "data" or "opacity") pairs, each once) is appended
+    to. A mesh
     without texture coordinates reads none (the Scene warned when it was added)."""
     pbr = material.lighting.value == "pbr"
+    # (the opacity slot: the notes' opacity map; glTF's base colour's alpha where the
+    # material is drawn see-through, as the rasterizer's SURFACE_OPACITY takes it)
+    see_through = "base_color_texture" if material.opacity < 1 else None
     slots = (("base_color_texture", "metallic_roughness_texture", "emissive_texture",
-              "normal_texture") if pbr else ("texture", None, None, None))
+              "normal_texture", see_through) if pbr else
+             ("texture", None, None, None, "opacity_texture"))
     out = []
-    for colour, slot in zip((True, False, True, False), slots):
+    for kind, slot in zip(("colour", "data", "colour", "data", "opacity"), slots):
         texture = getattr(material, slot) if slot is not None else None
         if texture is None or mesh is None or mesh.uv is None:
             out.append([-1.0, 0.0, 1.0, 1.0, 0.0, 0.0])
             continue
-        found = [i for i, (t, c) in enumerate(textures) if t is texture and c == colour]
+        if kind == "opacity" and pbr:
+            kind = "colour"  # (the base colour's own texels: their alpha as stored)
+        found = [i for i, (t, c) in enumerate(textures) if t is texture and c == kind]
         if not found:
-            textures.append((texture, colour))
+            textures.append((texture, kind))
         index = found[0] if found else len(textures) - 1
         out.append([float(index), float(texture.wrap == "clamp") +
                     2.0 * float(texture.filter == "nearest"), *texture.scale, *texture.offset])
     return out
 
 
-def texture_texels(texture, colour: bool) -> np.ndarray:
+def texture_texels(texture, kind: str) -> np.ndarray:
     """``(H, W, 4)`` float32: a texture's texels as the tracer samples them -- row 0 the
-    image's bottom (v = 0, as GL's upload has it), a colour map decoded from sRGB to linear,
-    a data map (metallic-roughness) as stored, over 255.
+    image's bottom (v = 0, as GL's upload has it), a colour map decoded from sRGB to linear
+    (alpha as stored), a data map (metallic-roughness, normal) as stored, an opacity map its
+    opacity channel (alpha where it has one, else red, as the rasterizer reads it) in all
+    four, each over 255.
 
     Parameters
     ----------
     texture : Texture
         The map.
-    colour : bool
-        Whether its texels are sRGB colours.
+    kind : str
+        ``"colour"``, ``"data"`` or ``"opacity"``.
     """
-    texels = texture.linear() if colour else texture.pixels / 255.0
+    if kind == "colour":
+        texels = texture.linear()
+    elif kind == "opacity":
+        from ..render.textures import opacity_channel
+
+        texels = np.repeat(opacity_channel(texture.pixels)[..., None] / 255.0, 4, -1)
+    else:
+        texels = texture.pixels / 255.0
     return np.ascontiguousarray(texels[::-1], np.float32)
 
 

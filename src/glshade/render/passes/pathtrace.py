@@ -589,7 +589,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
         ("ENVIRONMENT",) if scene.environment is not None else ()) + (
         ("VERTEX_COLORS",) if scene.colors is not None else ()) + (
         ("MAPS",) if scene.uvs is not None else ()) + (
-        ("CUTOUTS",) if (scene.materials[:, 11] < 1).any() else ())
+        ("CUTOUTS",) if (scene.materials[:, 11] < 1).any() or (
+            scene.maps is not None and (scene.maps[:, 4, 0] >= 0).any()) else ())
     defines += ("MIS",) if options.mis else ()
     defines += ("GGX_NORMALS",) if not options.visible_normals else ()
     if options.coherent != (1, 1):

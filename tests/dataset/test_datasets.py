@@ -375,3 +375,24 @@ def test_an_object_cut_by_the_border_counts_its_whole_projection(make_renderer):
     assert note.px_count_visib == pytest.approx(inside.sum(), rel=0.03)
     assert note.visib_fract == pytest.approx(inside.sum() / hit.sum(), rel=0.03)
     assert note.visib_fract < 0.5 and note.bbox_obj[0] + note.bbox_obj[2] > w
+
+
+def test_a_lit_scenes_traced_views_share_one_traced_scene(tmp_path, gl_context):
+    """With a light the traced scene does not depend on the view: made once, every view's
+    image is still the tracer's picture of that view."""
+    from glshade import PointLight
+    from glshade.dataset.views import load_scene_arg
+    from glshade.pathtrace import trace
+
+    def lit():
+        scene = _scene()
+        scene.add_light(PointLight((2.0, 3.0, 4.0), intensity=1.5))
+        return scene
+
+    out = dataset.write_bop(lit(), tmp_path / "lit", views=3, size=SIZE, units="m",
+                            progress=False, context=gl_context, images="pathtrace", spp=4)
+    _, cameras, _ = load_scene_arg(lit(), 3, SIZE)
+    for k, camera in enumerate(cameras):
+        traced = trace(lit(), camera, SIZE, spp=4, context=gl_context, progress=False)
+        want = np.round(np.clip(traced.image, 0, 1) * 255).astype(np.uint8)
+        assert np.array_equal(_png(out / "rgb" / f"{k:06d}.png"), want)

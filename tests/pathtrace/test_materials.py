@@ -139,6 +139,12 @@ def test_colours_on_geometry_are_the_surface_colour_across_each_triangle(gl_cont
     assert (np.abs((got - want[clear]).sum(0)) <= 4 * np.sqrt((se ** 2).sum(0))).all()
 
 
+def uv_quad():
+    """The square z = 0 from -1 to 1 facing +z, u along +x and v along +y."""
+    return Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
+                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+
+
 def quad_pixels(camera, size):
     """Each pixel centre's point (x, y) on the quad z = 0, and a pixel's side there."""
     o, d = camera.rays((size, size))
@@ -153,8 +159,7 @@ def test_a_textured_quad_is_its_texture_times_its_albedo(gl_context):
 
     rng = np.random.default_rng(5)
     image = rng.integers(0, 256, (8, 8, 3), dtype=np.uint8)
-    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
-                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    quad = uv_quad()
     scene = Scene(environment=Environment((0.6, 0.6, 0.6)))
     scene.add(quad, Material(color=(1, 1, 1), kd=0.8, ks=0.0,
                              texture=Texture(image, filter="nearest")))
@@ -186,8 +191,7 @@ def test_a_metallic_roughness_map_sets_each_texels_lobe(gl_context):
 
     packed = np.zeros((1, 2, 3), np.uint8)
     packed[0, 0], packed[0, 1] = (0, 128, 255), (0, 255, 0)
-    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
-                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    quad = uv_quad()
     base = np.array([0.9, 0.7, 0.4])
     scene = Scene(environment=Environment((0.5, 0.5, 0.5)))
     scene.add(quad, PBRMaterial(base_color=tuple(base), metallic=1.0, roughness=1.0,
@@ -317,8 +321,7 @@ def test_a_normal_map_bends_the_normal_in_the_uv_frame(gl_context):
 
     texel = np.array([[[204, 128, 230]]], np.uint8)
     bent = texel[0, 0] / 255.0 * 2 - 1
-    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
-                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    quad = uv_quad()
     scene = Scene()
     scene.add(quad, PBRMaterial(base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
                                 normal_texture=Texture(texel, filter="nearest")))
@@ -344,8 +347,7 @@ def test_an_opacity_map_is_the_chance_of_each_texel(gl_context):
     from glshade import Camera, Environment, Material, Scene, Texture
 
     halves = np.array([[51, 255]], np.uint8)
-    quad = Mesh([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], [[0, 1, 2, 3]],
-                uv=[[0, 0], [1, 0], [1, 1], [0, 1]])
+    quad = uv_quad()
     scene = Scene(environment=Environment((0.8, 0.8, 0.8)))
     scene.add(quad, Material(color=(1, 1, 1), kd=0.5, ks=0.0,
                              opacity_texture=Texture(halves, filter="nearest")))

@@ -199,6 +199,7 @@ class ViewWorker:
         self.job, self.writer, self.records_dir = job, writer, records_dir
         self.context = context
         self._renderer: Renderer | None = None
+        self._trace_scene = None  # (images="pathtrace": the scene as traced, made once)
 
     def frame(self, k: int):
         """View k drawn, ``(frame, notes)``: ``notes()`` its annotations, drawn if asked.
@@ -248,8 +249,13 @@ class ViewWorker:
 
         job = self.job
         assert self._renderer is not None
-        # (without lights or emitters, the raster's headlight at the view's eye)
-        scene = TraceScene.from_scene(job.scene, camera=camera)
+        scene = self._trace_scene
+        if scene is None:
+            # (without lights, emitters or a sky, the raster's headlight at the view's
+            # eye: made again for each view; else made once, its hierarchy with it)
+            scene = TraceScene.from_scene(job.scene, camera=camera)
+            if job.scene.lights or job.scene.environment is not None or len(scene.emitters):
+                self._trace_scene = scene
         traced = trace(scene, camera, job.size, spp=job.spp, until=job.until,
                        context=self._renderer.context, progress=False)
         color = np.clip(traced.image, 0.0, 1.0)

@@ -380,12 +380,12 @@ def _world_triangles(scene, smooth: bool, names: list, rows: list, maps: list,
         mesh = model.mesh
         name = model.name or f"model {k}"
         _refuse_unlit_parts(model.material, name, mesh)
-        t, polygon = mesh.triangles
+        t, _ = mesh.triangles
         if not len(t):
             continue
         v = mesh.vertices @ model.transform[:3, :3].T + model.transform[:3, 3]
         tris.append(v[t])
-        corner_colors.append(_corner_colors(mesh, model.material, t, polygon))
+        corner_colors.append(_corner_colors(mesh, model.material, mesh.corner_triangles))
         slots = _material_maps(model.material, mesh, textures)
         corner_uvs.append(mesh.uv[mesh.corner_triangles] if any(
             slot[0] >= 0 for slot in slots) else None)
@@ -417,28 +417,21 @@ def _tangents(corners: np.ndarray, uv: np.ndarray) -> np.ndarray:
     """``(T, 4)`` each triangle's dP/du and the handedness of (N, dP/du, dP/dv), N its
     winding's normal: the frame a tangent-space normal map bends the normal in (the
     tracer makes dP/du perpendicular to the shading normal where it is read)."""
-    e1, e2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
-    d1, d2 = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
-    det = d1[:, 0] * d2[:, 1] - d2[:, 0] * d1[:, 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r = np.where(np.abs(det) > 1e-20, 1.0 / det, 0.0)[:, None]
-    du = (e1 * d2[:, 1:2] - e2 * d1[:, 1:2]) * r
-    dv = (e2 * d1[:, 0:1] - e1 * d2[:, 0:1]) * r
-    hand = np.where(np.einsum("ij,ij->i", np.cross(np.cross(e1, e2), du), dv) < 0, -1.0, 1.0)
+    from ..render.gpu_mesh import triangle_frames
+
+    du, dv = triangle_frames(corners, uv)
+    n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    hand = np.where(np.einsum("ij,ij->i", np.cross(n, du), dv) < 0, -1.0, 1.0)
     return np.concatenate([du, hand[:, None]], 1)
 
 
-def _corner_colors(mesh, material, t: np.ndarray, polygon: np.ndarray) -> np.ndarray | None:
-    """``(T, 3, 3)`` the surface colour C at each triangle's corners (its vertex's colour
-    times its polygon's), or None: the mesh has none or its material ignores them."""
+def _corner_colors(mesh, material, corners: np.ndarray) -> np.ndarray | None:
+    """``(T, 3, 3)`` the surface colour C at each triangle's corners (the mesh's corner
+    colours: its vertex's times its polygon's), or None: the mesh has none or its material
+    ignores them."""
     if not (mesh.colored and material.vertex_colors):
         return None
-    c = np.ones((len(t), 3, 3))
-    if mesh.colors is not None:
-        c *= mesh.colors[t, :3]
-    if mesh.face_colors is not None:
-        c *= mesh.face_colors[polygon, None, :3]
-    return c
+    return mesh.corner_colors[corners, :3]
 
 
 def _material_row(material, name: str) -> list:

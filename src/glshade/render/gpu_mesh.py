@@ -148,7 +148,7 @@ def uv_tangents(positions: np.ndarray, normals: np.ndarray, uv: np.ndarray,
     tri : ndarray
         ``(T, 3)`` triangles over the vertices.
     """
-    tangent, bitangent = _triangle_frames(positions[tri], uv[tri])
+    tangent, bitangent = triangle_frames(positions[tri], uv[tri])
     n_v = len(positions)
     sums = np.zeros((2, n_v, 3))
     for k in range(3):  # (each corner of every triangle at once)
@@ -169,15 +169,24 @@ def polygon_tangents(mesh: Mesh) -> np.ndarray:
     """
     tri, owner = mesh.triangles
     assert mesh.uv is not None
-    tangent, bitangent = _triangle_frames(mesh.vertices[tri], mesh.uv[mesh.corner_triangles])
+    tangent, bitangent = triangle_frames(mesh.vertices[tri], mesh.uv[mesh.corner_triangles])
     sums = np.stack([np.stack([np.bincount(owner, f[:, axis], mesh.n_faces)
                                for axis in range(3)], 1) for f in (tangent, bitangent)])
     return _orthonormal_frame(mesh.face_normals, *sums)
 
 
-def _triangle_frames(p: np.ndarray, t: np.ndarray):
+def triangle_frames(p: np.ndarray, t: np.ndarray):
     """Each triangle's dP/du and dP/dv (``(T, 3)`` each) from its corners ``p`` and uv
-    ``t``; zero where its uv are degenerate."""
+    ``t``; zero where its uv are degenerate (the rasterizer's tangents and the path
+    tracer's are made from these).
+
+    Parameters
+    ----------
+    p : ndarray
+        ``(T, 3, 3)`` the triangles' corners.
+    t : ndarray
+        ``(T, 3, 2)`` their texture coordinates.
+    """
     e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
     d1, d2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
     det = d1[:, 0] * d2[:, 1] - d2[:, 0] * d1[:, 1]

@@ -119,11 +119,18 @@ def test_compare_against_the_path_tracer(tmp_path):
 @pytest.mark.slow
 def test_radiosity_and_phong_against_the_path_tracer_with_per_surface_numbers(tmp_path):
     """compare --modes radiosity,phong --reference pathtrace on the Cornell box: the
-    radiosity solution (drawn at exposure 1: radiosities) is far closer to the path tracer
-    than Phong's local model, and per surface the two solutions agree within 10%."""
+    radiosity solution (drawn at exposure 1: radiosities; patches of 60, a 16th of the box's
+    diagonal) is far closer to the path tracer than Phong's local model, and per surface the
+    two solutions agree within 10%; --patch-size without the radiosity mode is refused."""
+    r = glshade("compare", "cornell-box", "-o", str(tmp_path / "grid.png"), "--reference",
+                "pathtrace", "--modes", "phong", "--patch-size", "60", "--backend", BACKEND)
+    assert r.returncode == 2 and r.stderr.strip() == (
+        "glshade: error: --patch-size is the radiosity mode's: add radiosity to --modes"), \
+        r.stderr
+    assert not (tmp_path / "grid.png").exists()
     r = glshade("compare", "cornell-box", "-o", str(tmp_path / "grid.png"), "--reference",
                 "pathtrace", "--modes", "radiosity,phong", "--spp", "16", "--size", "64x64",
-                "--backend", BACKEND, timeout=300)
+                "--patch-size", "60", "--backend", BACKEND, timeout=300)
     assert r.returncode == 0, r.stderr
     rows = {line.split()[0]: line.split() for line in r.stdout.splitlines() if line.strip()}
     assert float(rows["radiosity"][1]) < 0.5 * float(rows["phong"][1])

@@ -107,6 +107,7 @@ class CompareArgs(RenderArgs, ExecutorArgs):
     csv: str | None = None
     sweep: bool = False
     levels: tuple[int, ...] | None = None  # (None: the sweep's own default)
+    patch_size: float | None = None  # (the radiosity mode's patches)
 
 
 @dataclass(frozen=True, kw_only=True)

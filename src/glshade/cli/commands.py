@@ -244,6 +244,8 @@ def compare(args: a.CompareArgs) -> int:
                  len(args.transparency or ()) > 1):
         raise UsageError(f"--modes {gltf[0]} (glTF's model) is for a grid of modes, not with "
                          "--sweep or several --shadows/--transparency methods")
+    if args.patch_size is not None and "radiosity" not in modes:
+        raise UsageError("--patch-size is the radiosity mode's: add radiosity to --modes")
     if args.sweep:
         return _sweep(args, modes)
     v.check_outputs({"the grid": args.output, "--json": args.json, "--csv": args.csv},
@@ -314,7 +316,7 @@ def _radiosity_for_compare(args: a.CompareArgs, job):
     from ..radiosity import solve
 
     try:
-        solution = solve(job.scene, backend=args.backend, progress=False)
+        solution = solve(job.scene, args.patch_size, backend=args.backend, progress=False)
     except InputError as exc:
         raise UsageError(f"{args.mesh}: the radiosity mode needs a solution: {exc}") from None
     scene = solution.scene(exposure=1.0, background=job.scene.background)

@@ -276,6 +276,9 @@ def add_compare(sub) -> None:
                    "energy-conserving Phong lobe; --spp), or an image file (default auto)")
     p.add_argument("--spp", type=v.count, default=64, metavar="N", help="samples a pixel of "
                    "--reference pathtrace (default 64)")
+    p.add_argument("--patch-size", type=v.positive_float, metavar="S", help="the radiosity "
+                   "mode's patches, about S a side (scene units; default: a 24th of the "
+                   "diagonal)")
     p.add_argument("--scale", type=v.positive_float, help="the heat maps' top, in 8-bit "
                    "units (default: the 99th percentile of the errors off the silhouette)")
     p.add_argument("--save-tiles", metavar="DIR", help="also write each mode's image, the "

@@ -189,17 +189,32 @@ def light_trace(problem, particles: int = 200_000, batches: int = 16, seed: int 
                       means.std(0, ddof=1) / np.sqrt(batches), n_batch * batches, cut)
 
 
+_GATHERED = 32  # a polygon of more patches finds a hit's patch on its own (_patch_of)
+
+
 def _patch_of(x, polygon, table, counts, centers):
     """The patch of each hit point: the nearest patch centre among its polygon's patches
-    (row ``polygon`` of ``table``, ``counts`` long), the hits of polygons with as many
-    patches at once (a loop over the few patch counts, not over polygons)."""
+    (row ``polygon`` of ``table``, ``counts`` long). The hits of polygons with as many
+    patches, up to ``_GATHERED``, at once (a loop over the few patch counts, not over
+    polygons); a polygon of more patches on its own, its distances one matrix product
+    (such polygons are at most patches / ``_GATHERED``: a Cornell box's floor is 800)."""
     out = np.empty(len(x), np.int64)
     n = counts[polygon]
-    for k in np.unique(n):
+    small = n <= _GATHERED
+    for k in np.unique(n[small]):
         sel = np.flatnonzero(n == k)
         cand = table[polygon[sel], :k]
         gap = centers[cand] - x[sel, None]
         out[sel] = cand[np.arange(len(sel)), np.argmin(np.einsum("nkd,nkd->nk", gap, gap), 1)]
+    big = np.flatnonzero(~small)
+    order = big[np.argsort(polygon[big], kind="stable")]
+    ids, starts = np.unique(polygon[order], return_index=True)
+    for poly, sel in zip(ids.tolist(), np.split(order, starts[1:])):
+        cand = table[poly, :counts[poly]]
+        c = centers[cand]
+        # |x - c|^2 = |x|^2 - 2 x.c + |c|^2: the nearest maximises x.c - |c|^2 / 2
+        score = x[sel] @ c.T - 0.5 * np.einsum("kd,kd->k", c, c)
+        out[sel] = cand[np.argmax(score, 1)]
     return out
 
 

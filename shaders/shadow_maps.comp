@@ -27,5 +27,5 @@ void main() {
     vec3 n = normalize(texelFetch(u_normals, px, 0).xyz * 2.0 - 1.0);
     // (the bias wants the surface's slope against the light: the polygon's own plane)
     n = gbuffer_plane_normal(id.xy, p, face_id, n);
-    imageStore(u_visibility, ivec3(px, u_layer), vec4(map_visibility(0, p, n)));
+    imageStore(u_visibility, ivec3(px, u_layer), vec4(map_visibility(0, p, n, to_eye)));
 }

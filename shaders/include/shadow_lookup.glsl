@@ -10,7 +10,8 @@
 // across and 2 down), chosen by the major axis of the direction from the light.
 // The bias is the texel's footprint on the surface: one texel's width (at the point's
 // distance) times (1 + PCF_RADIUS) times the slope tan(theta) of the surface against the
-// light, capped, plus one texel: enough that a lit plane never shades itself, and no more.
+// light, capped at 8, plus one texel; past the cap the point moves off its plane (a normal
+// offset) by what the cap left: enough that a lit plane never shades itself, and no more.
 // A cube map's PCF texels that fall off the point's face are read from the face that holds
 // them (cube_visibility).
 #ifndef SHADOW_LOOKUP_GLSL
@@ -84,13 +85,28 @@ float cube_visibility(int i, vec3 p, float tan_t) {
     return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 }
 
-float map_visibility(int i, vec3 p, vec3 n) {
+float map_visibility(int i, vec3 p, vec3 n, vec3 to_eye) {
     vec4 light = u_map_light[i];
     if (light.w > 1.5) return 1.0;  // (a light that casts no shadows)
     vec3 to_light = light.w > 0.5 ? normalize(light.xyz - p) : light.xyz;
-    float cos_t = clamp(abs(dot(n, to_light)), 0.05, 1.0);
+    n = dot(n, to_eye) < 0.0 ? -n : n;         // (the side the point was seen from)
+    float facing = dot(n, to_light);
+    float cos_t = clamp(abs(facing), 0.05, 1.0);
     float tan_t = sqrt(1.0 - cos_t * cos_t) / cos_t;
-    if (u_map_shape[i].x == 6) return cube_visibility(i, p, tan_t);
+    // Past the depth bias's slope cap (tan 8: a surface within 7 degrees of edge-on to the
+    // light) the rest of the slope is met by moving the point off its plane, out on the
+    // side it was seen from, where a light it faces is: a texel's width times (1 +
+    // PCF_RADIUS) times sin - 8 cos, which keeps the plane's own texels behind it at any
+    // angle (it shaded itself in bands) and moves the point at most (1 + PCF_RADIUS)
+    // texels (within a shadow's stated band). A light behind the surface lights none of it.
+    bool cube = u_map_shape[i].x == 6;
+    vec3 a = abs(p - light.xyz);
+    float texel_width = 2.0 * (cube ? max(a.x, max(a.y, a.z)) : u_ortho[i].x)
+                        / float(u_map_shape[i].y);
+    float sin_t = sqrt(max(1.0 - facing * facing, 0.0));
+    p += n * texel_width * (1.0 + float(PCF_RADIUS)) * max(sin_t - 8.0 * facing, 0.0) *
+         float(facing > 0.0);
+    if (cube) return cube_visibility(i, p, tan_t);
     int size = u_map_shape[i].y;
     vec4 q = u_face_view[6 * i] * vec4(p, 1.0);
     float dist = -q.z;                          // along the light's view axis

@@ -21,7 +21,7 @@ void shadow_prepare(vec3 p_view, vec3 n_world) {
     vec3 plane = cross(dFdx(p), dFdy(p));
     vec3 n = dot(plane, plane) > 0.0 ? normalize(plane) : normalize(n_world);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
-        g_visible[i] = map_visibility(i, p, n);
+        g_visible[i] = map_visibility(i, p, n, u_camera_to_world[3].xyz - p);
     }
 }
 #define SHADOW_PREPARE(p_view, n_world) shadow_prepare(p_view, n_world)

@@ -330,6 +330,36 @@ class Mesh:
         return _readonly(self.corner_face[self.edge_groups.sides])
 
     @cached_property
+    def edge_side_triangles(self) -> NDArray[np.int64]:
+        """``(E, 2)`` the triangle of :attr:`triangles` beside each edge on either side (of
+        :attr:`edge_faces`: the one of that face's triangles that holds the edge), -1 where
+        the triangulation left it out (a degenerate polygon). A polygon that is not planar
+        is drawn as its triangles: next to an edge the surface drawn is that triangle's
+        plane, not the polygon's mean (Newell) plane."""
+        tri, owner = self.triangles
+        sides = self.edge_groups.sides                      # (E, 2) corners
+        span = np.int64(self.n_vertices)
+        # the directed edges of the triangles and of each side's corner, keyed by (polygon,
+        # from * V + to) (one product of the three would pass int64 on a big mesh): sorted
+        # together, a side's match is the last triangle edge at or before it (the
+        # triangulation keeps each polygon's winding)
+        he = self.half_edges[sides.ravel()]
+        face = np.concatenate([np.repeat(owner, 3), self.corner_face[sides.ravel()]])
+        edge = np.concatenate([tri.ravel() * span + tri[:, [1, 2, 0]].ravel(),
+                               he[:, 0] * span + he[:, 1]])
+        asked = np.arange(len(face)) >= 3 * len(tri)
+        order = np.lexsort((asked, edge, face))
+        last = np.maximum.accumulate(np.where(asked[order], -1, np.arange(len(order))))
+        where = np.empty(len(order), np.int64)
+        where[order] = np.arange(len(order))
+        j = last[where[asked]]                 # (each side's last triangle edge, sorted)
+        k = order[np.maximum(j, 0)]
+        s_face, s_edge = face[asked], edge[asked]
+        match = (j >= 0) & (face[k] == s_face) & (edge[k] == s_edge)
+        out = np.where(match, k // 3, -1)
+        return _readonly(out.reshape(-1, 2))
+
+    @cached_property
     def edge_groups(self) -> EdgeGroups:
         """The half-edges grouped by undirected edge (see :mod:`glshade.geometry.edges`)."""
         he = self.half_edges

@@ -442,8 +442,9 @@ class GpuMesh(GLResource):
     def edge_array(self, program):
         """The VAO of the mesh's polygon edges (each polygon's boundary, never its
         triangulation's diagonals) as lines, for ``edges.vert``; made on first use. Each
-        end carries the unit normals of the edge's two faces (``Mesh.edge_faces``): the
-        planes through the edge that ``edges.frag`` recognises in the depth buffer.
+        end carries the unit normals of the edge's two sides -- the planes of the triangles
+        drawn beside it (``Mesh.edge_side_triangles``; a polygon that is not planar is not
+        its Newell plane there) -- which ``edges.frag`` recognises in the depth buffer.
 
         Parameters
         ----------
@@ -459,7 +460,7 @@ class GpuMesh(GLResource):
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
             ctx = self.context.ctx
             ends = m.vertices[m.edges]                                  # (E, 2, 3)
-            planes = m.face_normals[m.edge_faces].reshape(-1, 1, 6)     # (E, 1, 6)
+            planes = _edge_side_normals(m).reshape(-1, 1, 6)            # (E, 1, 6)
             data = np.concatenate([ends, np.broadcast_to(planes, (len(ends), 2, 6))], -1)
             vbo = self._keep(ctx.buffer(data.astype("f4").tobytes()))
             names = [n for n in ("in_position", "in_normal_a", "in_normal_b") if n in program]
@@ -585,3 +586,16 @@ def _table(ctx, values: np.ndarray, components: int, dtype: str):
     texture = ctx.texture((POLYGON_ROW_WIDTH, height), components, data.tobytes(), dtype=dtype)
     texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
     return texture
+
+
+def _edge_side_normals(mesh) -> np.ndarray:
+    """``(E, 2, 3)`` unit normals of the triangles beside each edge (its faces' where the
+    triangulation left a side out or its triangle has no area)."""
+    tri, _ = mesh.triangles
+    side = mesh.edge_side_triangles
+    corners = mesh.vertices[tri[side.clip(min=0)]]                  # (E, 2, 3, 3)
+    n = np.cross(corners[..., 1, :] - corners[..., 0, :], corners[..., 2, :] - corners[..., 0, :])
+    length = np.linalg.norm(n, axis=-1, keepdims=True)
+    n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+    drawn = (side >= 0)[..., None] & (length > 0)
+    return np.where(drawn, n, mesh.face_normals[mesh.edge_faces])

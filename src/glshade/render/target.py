@@ -263,6 +263,7 @@ class WindowTarget:
     """
 
     rows_top_down = False  # a window shows GL's first row at the bottom
+    samples = 0  # (single-sampled: its depth at a pixel is the pixel centre's)
 
     def __init__(self, context, width: int, height: int):
         self.context = context

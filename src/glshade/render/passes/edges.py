@@ -109,6 +109,7 @@ class EdgePass(GLResource, Stage):
         put(prog, "u_viewport_size", (float(w), float(h)))
         put(prog, "u_edge_width", float(edge_width(w, h)))
         put(prog, "u_hide", int(hide))
+        put(prog, "u_centre_depth", int(not state.target.samples))
         put(prog, "u_scene_depth", Unit.EDGE_DEPTH)
         ctx.disable(moderngl.CULL_FACE)
         ctx.disable(moderngl.DEPTH_TEST)  # (seen or not is edges.frag's judgement)

@@ -396,3 +396,33 @@ def test_a_lit_scenes_traced_views_share_one_traced_scene(tmp_path, gl_context):
         traced = trace(lit(), camera, SIZE, spp=4, context=gl_context, progress=False)
         want = np.round(np.clip(traced.image, 0, 1) * 255).astype(np.uint8)
         assert np.array_equal(_png(out / "rgb" / f"{k:06d}.png"), want)
+
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=25, deadline=None)
+@given(shape=st.sampled_from(["sphere", "blob", "segment", "flat", "one point", "two"]),
+       n=st.integers(2, 3000), seed=st.integers(0, 2 ** 16), scale=st.sampled_from(
+           [1e-6, 1.0, 250.0, 1e6]))
+def test_a_models_diameter_is_its_farthest_pair(shape, n, seed, scale):
+    """BOP's diameter (models_info.json) against scipy's every pairwise distance, over
+    the shapes that defeat a bound from the centre -- points on a sphere, where every
+    point is as far out -- and the degenerate ones: a segment, a plane, one point repeated,
+    two points; at sizes from a micron to a thousand kilometres."""
+    from scipy.spatial.distance import pdist
+
+    rng = np.random.default_rng(seed)
+    p = rng.normal(size=(n, 3))
+    if shape == "sphere":
+        p /= np.linalg.norm(p, axis=1, keepdims=True)
+    elif shape == "segment":
+        p = rng.uniform(size=(n, 1)) * [[1.0, 2.0, -0.5]]
+    elif shape == "flat":
+        p[:, 2] = 0.0
+    elif shape == "one point":
+        p = np.broadcast_to(p[:1], (n, 3))
+    elif shape == "two":
+        p = p[np.r_[0, 1, rng.integers(0, 2, n - 2)]]
+    p = p * scale + 3 * scale
+    assert dataset.bop.diameter(p) == pytest.approx(pdist(p).max(), rel=1e-12, abs=0)

@@ -785,7 +785,7 @@ def test_an_older_gl_casts_shadows_or_is_told_what_to_use(gl_context, tier):
 
 
 @pytest.mark.once  # (the lookup is one GLSL file: the backend tier runs the band tests)
-@settings(max_examples=20, deadline=None)
+@settings(max_examples=12, deadline=None)
 @example(kind="cube", elevation=72.9, azimuth=318.8, reach=4.64, eye_elevation=22.2,
          eye_azimuth=276.7, distance=4.85)  # (the smooth normal's bias: a row of 27 px)
 @example(kind="cube", elevation=12.2, azimuth=100.0, reach=1.98, eye_elevation=29.8,

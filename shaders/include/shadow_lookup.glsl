@@ -20,6 +20,7 @@
 #define SHADOW_LIGHTS 1
 #endif
 #define PCF_RADIUS 1
+#define SLOPE_CAP 8.0  // the bias's largest slope tan(theta); past it the point moves off
 
 uniform sampler2D u_maps[SHADOW_LIGHTS];          // each light's depths in [0, 1]
 uniform vec4 u_map_light[SHADOW_LIGHTS];          // point (xyz, 1), TO it (xyz, 0); w 2: none
@@ -63,7 +64,7 @@ float cube_visibility(int i, vec3 p, float tan_t) {
     vec2 at = (q.xy / dist * 0.5 + 0.5) * float(size) - 0.5;
     ivec2 base = ivec2(floor(at + 0.5));
     float texel = 2.0 * dist / float(size);      // a texel's width at the point, world
-    float bias = texel * (1.0 + float(PCF_RADIUS)) * min(tan_t, 8.0) + texel;
+    float bias = texel * (1.0 + float(PCF_RADIUS)) * min(tan_t, SLOPE_CAP) + texel;
     mat3 from_face = transpose(mat3(u_face_view[6 * i + f]));
     float lit = 0.0;
     for (int j = -PCF_RADIUS; j <= PCF_RADIUS; ++j) {
@@ -104,15 +105,14 @@ float map_visibility(int i, vec3 p, vec3 n, vec3 to_eye) {
     float texel_width = 2.0 * (cube ? max(a.x, max(a.y, a.z)) : u_ortho[i].x)
                         / float(u_map_shape[i].y);
     float sin_t = sqrt(max(1.0 - facing * facing, 0.0));
-    p += n * texel_width * (1.0 + float(PCF_RADIUS)) * max(sin_t - 8.0 * facing, 0.0) *
+    p += n * texel_width * (1.0 + float(PCF_RADIUS)) * max(sin_t - SLOPE_CAP * facing, 0.0) *
          float(facing > 0.0);
     if (cube) return cube_visibility(i, p, tan_t);
     int size = u_map_shape[i].y;
     vec4 q = u_face_view[6 * i] * vec4(p, 1.0);
     float dist = -q.z;                          // along the light's view axis
     vec2 uv = q.xy / u_ortho[i].xy * 0.5 + 0.5;
-    float texel = 2.0 * u_ortho[i].x / float(size);  // a texel's width, world
-    float bias = texel * (1.0 + float(PCF_RADIUS)) * min(tan_t, 8.0) + texel;
+    float bias = texel_width * (1.0 + float(PCF_RADIUS)) * min(tan_t, SLOPE_CAP) + texel_width;
     vec2 at = uv * float(size) - 0.5;
     ivec2 base = ivec2(floor(at + 0.5));
     float lit = 0.0;

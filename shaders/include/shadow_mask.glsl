@@ -5,13 +5,24 @@
 #ifndef SHADOW_MASK_GLSL
 #define SHADOW_MASK_GLSL
 #ifdef SHADOW_MASK
+#if defined(SHADOW_MAPS_FORWARD) || defined(SHADOW_RAYS_FORWARD)
+uniform mat4 u_camera_to_world;
+#define HAS_CAMERA_TO_WORLD
+// The direction from world point p towards the eye: the view's backward axis everywhere
+// for an orthographic camera.
+vec3 towards_eye(vec3 p) {
+#ifdef ORTHOGRAPHIC
+    return u_camera_to_world[2].xyz;
+#else
+    return u_camera_to_world[3].xyz - p;
+#endif
+}
+#endif
 #ifdef SHADOW_MAPS_FORWARD
 // Without a visibility array: the fragment looks each light's shadow map up itself, once,
 // at its own surface point (SHADOW_PREPARE, called by the program's main before lighting).
 #define SHADOW_LIGHTS LIGHT_COUNT
 #include "shadow_lookup.glsl"
-uniform mat4 u_camera_to_world;
-#define HAS_CAMERA_TO_WORLD
 float g_visible[LIGHT_COUNT];
 
 void shadow_prepare(vec3 p_view, vec3 n_world) {
@@ -21,7 +32,7 @@ void shadow_prepare(vec3 p_view, vec3 n_world) {
     vec3 plane = cross(dFdx(p), dFdy(p));
     vec3 n = dot(plane, plane) > 0.0 ? normalize(plane) : normalize(n_world);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
-        g_visible[i] = map_visibility(i, p, n, u_camera_to_world[3].xyz - p);
+        g_visible[i] = map_visibility(i, p, n, towards_eye(p));
     }
 }
 #define SHADOW_PREPARE(p_view, n_world) shadow_prepare(p_view, n_world)
@@ -34,8 +45,6 @@ void shadow_prepare(vec3 p_view, vec3 n_world) {
 // storage-buffer write, which would otherwise keep the test late).
 layout(early_fragment_tests) in;
 #include "shadow_trace.glsl"
-uniform mat4 u_camera_to_world;
-#define HAS_CAMERA_TO_WORLD
 #ifdef SHADOW_OWN_POLYGON
 // (the includer says which of the scene's polygons its surface is: a point is none)
 #elif defined(PATCH_IDS)
@@ -62,11 +71,7 @@ float g_visible[LIGHT_COUNT];
 
 void shadow_prepare(vec3 p_view, vec3 n_world) {
     vec3 p = (u_camera_to_world * vec4(p_view, 1.0)).xyz;
-#ifdef ORTHOGRAPHIC
-    vec3 to_eye = u_camera_to_world[2].xyz;
-#else
-    vec3 to_eye = u_camera_to_world[3].xyz - p;
-#endif
+    vec3 to_eye = towards_eye(p);
     vec3 n = normalize(n_world);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
         int seen = light_seen(p, -p_view.z, u_shadow_lights[i], SHADOW_OWN_POLYGON, n, to_eye);

@@ -40,3 +40,23 @@ def test_mesh_edges_and_euler_of_a_torus():
     torus = P.torus(1.0, 0.3, 12, 8)
     assert torus.n_edges == 2 * 12 * 8  # a quad torus: E = 2F
     assert torus.n_vertices - torus.n_edges + torus.n_faces == 0
+
+
+def test_each_edge_sides_triangle_holds_the_edge_in_its_face():
+    """``Mesh.edge_side_triangles`` against a plain search: for each edge and side, the
+    triangle of that side's face whose corners hold both of the edge's ends (-1 where the
+    face drew none) -- on meshes of triangles, quads, non-planar quads (the teapot's
+    patches), a pentagon (a fan of three) and a collinear triangle."""
+    pentagon = Mesh(np.c_[np.cos(np.arange(5) * 1.2566), np.sin(np.arange(5) * 1.2566),
+                          np.zeros(5)], [[0, 1, 2, 3, 4]])
+    degenerate = Mesh(np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0.0]]),
+                      [[0, 1, 2], [0, 1, 3]])
+    for mesh in (P.icosphere(1), P.cube(), P.teapot(2), P.torus(1.0, 0.3, 8, 5), pentagon,
+                 degenerate):
+        tri, owner = mesh.triangles
+        got = mesh.edge_side_triangles
+        for e, (lo, hi) in enumerate(mesh.edges.tolist()):
+            for side, face in enumerate(mesh.edge_faces[e].tolist()):
+                holding = [t for t in range(len(tri)) if owner[t] == face
+                           and {lo, hi} <= set(tri[t].tolist())]
+                assert got[e, side] == (holding[0] if holding else -1), (e, side, holding)

@@ -67,6 +67,30 @@ def closing_factory(build):
         obj.close()
 
 
+@pytest.fixture
+def spawn():
+    """``subprocess.Popen`` for a test that signals or kills what it starts: each process
+    leads its own group, and the group is killed when the test ends, however it ends -- a
+    test that fails before its process exits (a long trace, an animation's workers) would
+    leave it running and take a core from every test after it."""
+    import signal
+
+    started = []
+
+    def start(*args, **kwargs):
+        kwargs.setdefault("start_new_session", True)
+        started.append(subprocess.Popen(*args, **kwargs))
+        return started[-1]
+
+    yield start
+    for proc in started:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):  # (the group has ended)
+            pass
+        proc.wait()
+
+
 @pytest.fixture(scope="session")
 def gl_context():
     from glshade.render.context import create_context

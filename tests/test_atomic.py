@@ -36,13 +36,13 @@ def test_the_next_writer_removes_a_dead_writers_temporary(tmp_path):
 
 
 @pytest.mark.gl
-def test_sigkill_mid_animation_then_rerun_leaves_no_temporary(tmp_path):
+def test_sigkill_mid_animation_then_rerun_leaves_no_temporary(tmp_path, spawn):
     """A folder of frames is written under a temporary name; SIGKILL leaves it, the next
     run of the same output removes it."""
     out = tmp_path / "frames"
     cmd = [sys.executable, "-m", "glshade", "animate", "assets/scenes/teapot-orbit.toml",
            "-o", f"{out}/", "--size", "64x48", "--jobs", "1", "--backend", BACKEND, "-q"]
-    proc = subprocess.Popen([*cmd, "--frames", "5000"], cwd=ROOT)
+    proc = spawn([*cmd, "--frames", "5000"], cwd=ROOT)
     deadline = time.time() + 60
     while not any(p.is_dir() and any(p.iterdir()) for p in tmp_path.iterdir()):
         assert proc.poll() is None and time.time() < deadline

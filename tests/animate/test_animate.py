@@ -207,9 +207,9 @@ def test_malformed_scene_files_exit_2_with_one_line(tmp_path, name):
     assert not (tmp_path / "out.gif").exists()
 
 
-def test_interrupt_leaves_no_partial_output(tmp_path):
+def test_interrupt_leaves_no_partial_output(tmp_path, spawn):
     out = tmp_path / "long.gif"
-    proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+    proc = spawn([sys.executable, "-m", "glshade", "animate",
                              "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
                              "20000", "--size", "128x96", "--jobs", "2", "--backend", BACKEND],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -223,10 +223,10 @@ def test_interrupt_leaves_no_partial_output(tmp_path):
 
 
 @pytest.mark.parametrize("delay", [0.2, 0.6, 2.0])
-def test_ctrl_c_on_the_whole_process_group_at_any_moment(tmp_path, delay):
+def test_ctrl_c_on_the_whole_process_group_at_any_moment(tmp_path, delay, spawn):
     """A terminal's Ctrl-C reaches the workers too, even while they are starting."""
     out = tmp_path / "long.gif"
-    proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+    proc = spawn([sys.executable, "-m", "glshade", "animate",
                              "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
                              "20000", "--size", "64x48", "--jobs", "2", "--backend", BACKEND],
                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
@@ -422,12 +422,12 @@ def test_an_odd_sized_mp4_is_refused_before_any_frame(tmp_path):
     assert ok.returncode == 0, ok.stderr
 
 
-def test_ctrl_c_while_writing_an_mp4_ends_promptly(tmp_path):
+def test_ctrl_c_while_writing_an_mp4_ends_promptly(tmp_path, spawn):
     """Interrupting an MP4 in the making ends the run (status 130, one line, no file) and
     never waits on the encoder: ffmpeg is killed, not asked to finish."""
     out = tmp_path / "long.mp4"
     for delay in (0.8, 1.6):
-        proc = subprocess.Popen([sys.executable, "-m", "glshade", "animate",
+        proc = spawn([sys.executable, "-m", "glshade", "animate",
                                  "assets/scenes/teapot-orbit.toml", "-o", str(out), "--frames",
                                  "5000", "--size", "64x48", "--backend", BACKEND], cwd=ROOT,
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

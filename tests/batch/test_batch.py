@@ -196,9 +196,9 @@ def test_without_the_extra_scheduler_says_how_to_install(tmp_path):
     assert "pip install 'glshade[distributed]'" in r.stderr and "Traceback" not in r.stderr
 
 
-def _start(args, **kwargs):
-    return subprocess.Popen([sys.executable, "-m", "glshade", "batch", *args], cwd=ROOT,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kwargs)
+def _start(spawn, args, **kwargs):
+    return spawn([sys.executable, "-m", "glshade", "batch", *args], cwd=ROOT,
+                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kwargs)
 
 
 def _wait_for_outputs(folder: Path, n: int, proc, timeout=120):
@@ -210,7 +210,7 @@ def _wait_for_outputs(folder: Path, n: int, proc, timeout=120):
 
 
 @pytest.mark.once
-def test_interrupted_run_resumes_with_only_the_missing_outputs(tmp_path):
+def test_interrupted_run_resumes_with_only_the_missing_outputs(tmp_path, spawn):
     src = make_collection(tmp_path / "in", extra=12)
     args = [str(src), "--size", "160x120", "--views", "2", "--modes", "flat,phong",
             "--backend", BACKEND]
@@ -219,7 +219,7 @@ def test_interrupted_run_resumes_with_only_the_missing_outputs(tmp_path):
     expected = tree(tmp_path / "full")
 
     out = tmp_path / "out"
-    proc = _start([*args, "-o", str(out), "--jobs", "2"])
+    proc = _start(spawn, [*args, "-o", str(out), "--jobs", "2"])
     _wait_for_outputs(out, 12, proc)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
@@ -279,7 +279,7 @@ def test_the_same_bytes_on_a_dask_cluster(tmp_path, dask_cluster):
 
 
 @pytest.mark.once
-def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
+def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster, spawn):
     src = make_collection(tmp_path / "in", extra=16)
     args = [str(src), "--size", "200x150", "--views", "3", "--backend", BACKEND, "-q"]
     reference = glshade("batch", *args, "-o", str(tmp_path / "ref"), "--jobs", "2")
@@ -291,7 +291,7 @@ def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
     out = tmp_path / "out"
     with Client(dask_cluster.address, timeout="30s") as client:
         [address] = [a for a, pid in client.run(os.getpid).items() if pid == victim.pid]
-        proc = _start([*args, "-o", str(out), "--scheduler", dask_cluster.address])
+        proc = _start(spawn, [*args, "-o", str(out), "--scheduler", dask_cluster.address])
         deadline = time.time() + 120
         while not client.processing().get(address):  # kill it while it works on a mesh
             assert proc.poll() is None and time.time() < deadline, proc.communicate()
@@ -307,13 +307,14 @@ def test_a_worker_killed_mid_run_loses_nothing(tmp_path, dask_cluster):
 
 @pytest.mark.once
 def test_ctrl_c_on_a_cluster_waits_for_running_tasks_and_accounts_for_them(tmp_path,
-                                                                          dask_cluster):
+                                                                          dask_cluster,
+                                                                          spawn):
     """After Ctrl-C the tasks a worker already runs cannot be stopped: glshade waits for
     them before writing the manifest (and says so), so no output appears after it exits
     and every input whose outputs exist is 'ok' in the manifest."""
     src = make_collection(tmp_path / "in", extra=14)
     out = tmp_path / "out"
-    proc = _start([str(src), "-o", str(out), "--size", "320x240", "--views", "3", "--modes",
+    proc = _start(spawn, [str(src), "-o", str(out), "--size", "320x240", "--views", "3", "--modes",
                    "flat,phong", "--scheduler", dask_cluster.address, "--backend", BACKEND])
     _wait_for_outputs(out, 6, proc)
     proc.send_signal(signal.SIGINT)

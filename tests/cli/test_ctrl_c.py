@@ -30,11 +30,11 @@ DELAYS = [0.05, 0.15, 0.3, 0.45, 0.6, 0.8, 1.1, 1.5]
 
 @pytest.mark.parametrize("delay", DELAYS)
 @pytest.mark.parametrize("command", list(COMMANDS))
-def test_ctrl_c_at_any_moment_ends_well(command, delay, tmp_path):
+def test_ctrl_c_at_any_moment_ends_well(command, delay, tmp_path, spawn):
     out = tmp_path / "out.png"
-    proc = subprocess.Popen([sys.executable, "-m", "glshade", *COMMANDS[command], "-o",
-                             str(out), "--backend", BACKEND], cwd=ROOT, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = spawn([sys.executable, "-m", "glshade", *COMMANDS[command], "-o", str(out),
+                  "--backend", BACKEND], cwd=ROOT, text=True, stdout=subprocess.PIPE,
+                 stderr=subprocess.PIPE)
     time.sleep(delay)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)

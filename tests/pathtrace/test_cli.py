@@ -91,12 +91,11 @@ def test_an_energy_making_material_is_one_line_naming_the_scene(tmp_path):
 
 
 @pytest.mark.once
-def test_ctrl_c_keeps_the_image_so_far(tmp_path):
+def test_ctrl_c_keeps_the_image_so_far(tmp_path, spawn):
     out = tmp_path / "long.png"
-    proc = subprocess.Popen([sys.executable, "-m", "glshade", "pathtrace", "cornell-box", "-o",
-                             str(out), "--spp", "1000000", "--size", "64x64", "--backend",
-                             BACKEND, "-q"], cwd=ROOT, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = spawn([sys.executable, "-m", "glshade", "pathtrace", "cornell-box", "-o", str(out),
+                  "--spp", "1000000", "--size", "64x64", "--backend", BACKEND, "-q"], cwd=ROOT,
+                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(6)
     assert proc.poll() is None, proc.stderr.read()
     proc.send_signal(signal.SIGINT)

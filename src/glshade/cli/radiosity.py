@@ -80,7 +80,8 @@ def radiosity(args: RadiosityArgs) -> int:
 
     w, h = job.size
     with create_context(args.backend) as ctx, \
-            FormFactors(problem, args.hemicube, seed=args.seed, context=ctx) as ff, \
+            FormFactors(problem, args.hemicube, seed=args.seed, context=ctx,
+                        progress=False if quiet else None) as ff, \
             Renderer(config=job.config(args.backend), context=ctx) as renderer, \
             Progress(None, enabled=None if not quiet else False,
                      unit="shots" if args.method == "progressive" else "rows") as bar:

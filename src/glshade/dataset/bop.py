@@ -27,6 +27,7 @@ import numpy as np
 
 from .._version import __version__
 from ..errors import OptionError, plain
+from ..geometry.cells import group
 from ..io.images import save_gray, save_image
 from .views import DataSetJob, load_scene_arg, renderers, run_views, write_json
 
@@ -128,11 +129,12 @@ def _models(scene, folder: Path, mm: float) -> None:
 def diameter(points: np.ndarray) -> float:
     """The largest distance between two of ``points`` ``(N, 3)``, exact: a lower bound from
     the points extreme along 26 directions; then the points grouped by the cells of a grid
-    over their box, and only the pairs of cells that could hold a longer pair (the distance
-    of their centres plus their radii exceeds the bound) compared point by point, by a
-    matrix product for each cell against its partners. Points on a sphere are the worst
-    case (every nearly opposite pair is nearly the longest): 40,000 took 8 s compared all
-    against all, 0.6 s so; 200,000 take 9 s, a million-point blob 2 s.
+    over their box (:func:`glshade.geometry.cells.group`), and only the pairs of cells that
+    could hold a longer pair (the distance of their centres plus their radii exceeds the
+    bound) compared point by point, by a matrix product for each cell against its partners.
+    Points on a sphere are the worst case (every nearly opposite pair is nearly the
+    longest): 40,000 took 8 s compared all against all, 0.4 s so; 200,000 take 9 to 12 s,
+    a million-point blob 2 s.
 
     Parameters
     ----------
@@ -146,31 +148,17 @@ def diameter(points: np.ndarray) -> float:
                      if (x, y, z) != (0, 0, 0)], np.float64)
     ends = p[np.unique(np.argmax(p @ dirs.T, axis=0))]
     best = float(np.max(np.linalg.norm(ends[:, None] - ends[None], axis=-1)))
-    lo, hi = p.min(0), p.max(0)
-    p = p - (lo + hi) / 2
-    # cells of about 32 points by the box's volume (at most 32 a side), each with a centre
-    # and a radius
-    side = min(max(int(np.ceil((len(p) / 32) ** (1 / 3))), 1), 32)
-    cell_of = np.clip(((p + (hi - lo) / 2) / np.maximum(hi - lo, 1e-300) * side).astype(
-        np.int64), 0, side - 1)
-    key = (cell_of[:, 0] * side + cell_of[:, 1]) * side + cell_of[:, 2]
-    order = np.argsort(key, kind="stable")
-    p, key = p[order], key[order]
-    _, starts, counts = np.unique(key, return_index=True, return_counts=True)
-    centres = np.add.reduceat(p, starts, axis=0) / counts[:, None]
-    radii = np.maximum.reduceat(np.linalg.norm(p - np.repeat(centres, counts, 0), axis=1),
-                                starts)
+    p = p - (p.min(0) + p.max(0)) / 2
+    cells = group(p, max_side=32)  # (cells many times over: each against every other)
+    centres, radii = cells.centres, cells.radii
     norms = (p ** 2).sum(1)
-    for a in range(len(starts)):
+    for a in range(len(centres)):
         # (cells from a on: each pair once; a hair under the bound: its own rounding)
         reach = np.linalg.norm(centres[a:] - centres[a], axis=1) + radii[a:] + radii[a]
         partners = a + np.flatnonzero(reach >= best * (1 - 1e-12))
         if not len(partners):
             continue
-        sizes = counts[partners]
-        cols = np.repeat(starts[partners] - np.concatenate([[0], np.cumsum(sizes)[:-1]]),
-                         sizes) + np.arange(sizes.sum())
-        rows = slice(starts[a], starts[a] + counts[a])
+        cols, rows = cells.members(partners), cells.members(np.array([a]))
         d2 = norms[rows, None] + norms[None, cols] - 2 * (p[rows] @ p[cols].T)
         best = max(best, float(np.sqrt(max(d2.max(), 0.0))))
     return best

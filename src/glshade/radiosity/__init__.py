@@ -119,7 +119,8 @@ def _solve(problem, chosen, until, max_shots, hemicube, quadrature, seed, contex
         solution.se = mc.se
         solution.converged = mc.converged  # (False: particles stopped at MAX_BOUNCES)
         return solution
-    with FormFactors(problem, hemicube, quadrature, seed, context, backend) as ff:
+    with FormFactors(problem, hemicube, quadrature, seed, context, backend,
+                     progress=False if progress is None else None) as ff:
         if chosen is Method.PROGRESSIVE:
             return progressive(ff, until, max_shots, progress, on_shot)
         return gauss_seidel(ff, progress=progress)

@@ -25,6 +25,10 @@ alone were off by up to 85% (a 0.05-high square over an emitter 40 times its siz
 bound of an ``m``-point Gauss rule on a factor whose width is ``g`` over a shooter ``D``
 across is about ``rho^(-2m)``, ``rho = (g + sqrt(D^2/4 + g^2)) / (D / 2)``. A shooter with
 covered points keeps its hemicube values (its open part is not known finely enough).
+
+Both the nearest receiver (for ``s``) and the near receivers are sought only among the
+patches whose grid cells could hold them (:mod:`glshade.geometry.cells`): a 20,480-patch
+sphere under a light set up in 1.3 s where comparing every pair took 81 s.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ import numpy as np
 from ..errors import InputError, OptionError
 from ..modes import Backend
 from ..options import HEMICUBE_RESOLUTION
+from ..geometry.cells import near_blocks
 from .contour import clip_to_plane, point_polygon_factors
 from .problem import PatchScene
 
@@ -43,6 +48,8 @@ __all__ = ["FormFactors", "quadrature_counts", "near_pairs", "delta_form_factors
            "HEMICUBE_RESOLUTION"]
 
 MAX_QUADRATURE = 8
+#: the set-up shows its progress (where output is watched) for more patches than this
+SETUP_PROGRESS = 20_000
 
 
 FACTOR = 1.5
@@ -97,7 +104,7 @@ def polygons(p) -> np.ndarray:
     return p.vertices[c]
 
 
-def near_pairs(problem: PatchScene, counts: np.ndarray
+def near_pairs(problem: PatchScene, counts: np.ndarray, progress=None
                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The receivers too near each shooter for its ``counts`` (P,) quadrature points (see
     the module's docstring): (first (P+1,), receiver (N,), points a side (N,)), the
@@ -110,6 +117,8 @@ def near_pairs(problem: PatchScene, counts: np.ndarray
         The patches.
     counts : ndarray
         ``(P,)`` quadrature points a side of each shooter.
+    progress : object with ``update`` or None
+        Told of each shooter done.
     """
     p = problem.patches
     c, n = p.centers, p.normals
@@ -117,25 +126,28 @@ def near_pairs(problem: PatchScene, counts: np.ndarray
     corners = polygons(p)
     spacing = extent / counts
     rows, cols, widths = [], [], []
-    step = max(1, 2_000_000 // max(p.n_patches, 1))
-    for a in range(0, p.n_patches, step):  # (chunks of rows: memory, not speed)
-        b = min(a + step, p.n_patches)
-        gap = np.linalg.norm(c[None, :] - c[a:b, None], axis=2) - radius[a:b, None] - radius
-        # heights of every receiver's corners above each shooter's plane: (rows, P, 4)
-        height = np.einsum("jkd,id->ijk", corners, n[a:b]) - \
-            np.einsum("id,id->i", c[a:b], n[a:b])[:, None, None]
-        tol = 1e-9 * extent[a:b, None]
+    # (a near pair's gap is under NEAR spacings: its centres are within that and both radii)
+    for si, rj in near_blocks(c, NEAR * spacing + radius, radius):
+        gap = np.linalg.norm(c[None, rj] - c[si, None], axis=2) - radius[si, None] - \
+            radius[rj]
+        # heights of every receiver's corners above each shooter's plane: (rows, cols, 4)
+        height = np.einsum("jkd,id->ijk", corners[rj], n[si]) - \
+            np.einsum("id,id->i", c[si], n[si])[:, None, None]
+        tol = 1e-9 * extent[si, None]
         above = height.max(axis=2) > tol
         low = height.min(axis=2)
         width = np.maximum(gap, low)
-        near = above & (width < NEAR * spacing[a:b, None])
+        near = above & (width < NEAR * spacing[si, None]) & (si[:, None] != rj[None, :])
         width[low <= tol] = -1.0  # (touching the shooter's plane: marked for the rule below)
-        near[np.arange(b - a), np.arange(a, b)] = False
         i, j = np.nonzero(near)
-        rows.append(i + a)
-        cols.append(j)
+        rows.append(si[i])
+        cols.append(rj[j])
         widths.append(width[i, j])
+        if progress:
+            progress.update(len(si))
     i, j, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(widths)
+    by = np.lexsort((j, i))
+    i, j, w = i[by], j[by], w[by]
     d = extent[i]
     m = np.ceil(NEAR * d / np.maximum(w, d / MAX_NEAR_POINTS))
     m = np.where(w < 0, TOUCHING_POINTS, m)
@@ -145,7 +157,8 @@ def near_pairs(problem: PatchScene, counts: np.ndarray
     return first, j, m
 
 
-def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray:
+def quadrature_counts(problem: PatchScene, factor: float = FACTOR, progress=None
+                      ) -> np.ndarray:
     """Quadrature points a side for each shooter: ``ceil(factor D / d)`` in [1,
     MAX_QUADRATURE], D the patch's diameter, d the distance to the nearest patch centre not
     in its plane (a long thin patch needs points along its length, whatever its area).
@@ -156,19 +169,23 @@ def quadrature_counts(problem: PatchScene, factor: float = FACTOR) -> np.ndarray
         The patches.
     factor : float
         Points a side per (patch size / distance to the nearest receiver).
+    progress : object with ``update`` or None
+        Told of each patch done.
     """
     p = problem.patches
     c, n = p.centers, p.normals
+    extent = _extents(p)[0]
     nearest = np.full(p.n_patches, np.inf)
-    step = max(1, 4_000_000 // max(p.n_patches, 1))
-    for a in range(0, p.n_patches, step):  # (chunks of rows: memory, not speed)
-        d = c[None, :, :] - c[a:a + step, None, :]
+    # (a receiver further than factor D gives one point a side: only nearer ones are sought)
+    for rows, cols in near_blocks(c, factor * extent, np.zeros(p.n_patches)):
+        d = c[None, cols, :] - c[rows, None, :]
         dist = np.linalg.norm(d, axis=2)
-        off_plane = np.abs(np.einsum("ijk,ik->ij", d, n[a:a + step]))
+        off_plane = np.abs(np.einsum("ijk,ik->ij", d, n[rows]))
         coplanar = (off_plane <= 1e-6 * (dist + 1e-300)) | (dist == 0)
         dist[coplanar] = np.inf
-        nearest[a:a + step] = dist.min(axis=1)
-    extent = _extents(p)[0]
+        nearest[rows] = dist.min(axis=1)
+        if progress:
+            progress.update(len(rows))
     s = np.ceil(factor * extent / nearest)
     return np.clip(np.nan_to_num(s, nan=1.0, posinf=1.0), 1, MAX_QUADRATURE).astype(np.int64)
 
@@ -196,29 +213,31 @@ class FormFactors:
         The backend of a context made here.
     cache_mb : float
         The rows kept in memory, in MiB.
+    progress : bool, object with ``update``, or None
+        The set-up's progress (each patch's quadrature and near receivers, found among the
+        patches near it: seconds for tens of thousands): None a bar where output is watched
+        for more than ``SETUP_PROGRESS`` patches, True always, False never.
     """
 
     def __init__(self, problem: PatchScene, resolution: int = HEMICUBE_RESOLUTION,
                  quadrature: int | str = "auto",
                  seed: int = 0, context=None, backend: Backend | str = "auto",
-                 cache_mb: float = 512):
+                 cache_mb: float = 512, progress=None):
+        from ..parallel.progress import as_progress
         from ..render.context import create_context
         from ..render.passes.hemicube import Hemicube
 
         self.problem = problem
         p = problem.patches
-        if quadrature == "auto":
-            self.quadrature = quadrature_counts(problem)
-        else:
-            if isinstance(quadrature, str) or int(quadrature) != quadrature or quadrature < 1:
-                raise OptionError(f"quadrature must be 'auto' or a whole number >= 1, got "
-                                  f"{quadrature!r}")
-            self.quadrature = np.full(p.n_patches, int(quadrature))
-        points, owner, weight = p.sample_points(self.quadrature)
-        self._points, self._weights = points, weight
-        self._first = np.searchsorted(owner, np.arange(p.n_patches + 1))
-        self._near = near_pairs(problem, self.quadrature)
-        self._polygons = polygons(p)
+        if progress is None and p.n_patches <= SETUP_PROGRESS:
+            progress = False
+        bar, owned = as_progress(progress, 2 * p.n_patches if quadrature == "auto"
+                                 else p.n_patches, "patches set up")
+        try:
+            self._set_up(problem, quadrature, bar)
+        finally:
+            if owned:
+                bar.close()
         self.near_corrected = 0
         self._rng = np.random.default_rng(seed)
         self._owns = context is None
@@ -232,6 +251,22 @@ class FormFactors:
         self._cache: OrderedDict[int, np.ndarray] = OrderedDict()
         self._cache_rows = max(1, int(cache_mb * 2**20 // (8 * max(p.n_patches, 1))))
         self.hemicubes_drawn = 0
+
+    def _set_up(self, problem: PatchScene, quadrature, bar) -> None:
+        """Each shooter's quadrature points and near receivers."""
+        p = problem.patches
+        if quadrature == "auto":
+            self.quadrature = quadrature_counts(problem, progress=bar)
+        else:
+            if isinstance(quadrature, str) or int(quadrature) != quadrature or quadrature < 1:
+                raise OptionError(f"quadrature must be 'auto' or a whole number >= 1, got "
+                                  f"{quadrature!r}")
+            self.quadrature = np.full(p.n_patches, int(quadrature))
+        points, owner, weight = p.sample_points(self.quadrature)
+        self._points, self._weights = points, weight
+        self._first = np.searchsorted(owner, np.arange(p.n_patches + 1))
+        self._near = near_pairs(problem, self.quadrature, progress=bar)
+        self._polygons = polygons(p)
 
     @property
     def resolution(self) -> int:

@@ -33,7 +33,11 @@ demo: setup-demo
 # cores: 54 s and 58 s against 72 s and 88 s with 4). The viewer's tests share one display.
 XDIST := -n auto --maxprocesses 4 --dist worksteal --durations=15
 XDIST_DRAWING := -n auto --dist worksteal --durations=15
-BACKEND_TIER := -m "gl and backend and not slow and not once" --ignore=tests/viewer
+# (the backend tests' own files, tests/conftest.py's BACKEND_PATHS: collecting the whole
+# suite to deselect nine tenths of it cost each worker 8 s)
+BACKEND_TESTS := tests/render tests/pathtrace/test_pathtrace.py \
+	tests/patches/test_gpu_tessellation.py
+BACKEND_TIER := -m "gl and backend and not slow and not once" $(BACKEND_TESTS)
 test: setup
 	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
 	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST_DRAWING) $(BACKEND_TIER)

@@ -1,7 +1,8 @@
 """The path tracer's materials at speed: paths a second on the Cornell box as the notes
 draw it (diffuse, one colour a wall) against the same box holding glTF's materials -- a
 gold GGX ball (metallic 1, roughness 0.35), a red-lacquer one (metallic 0, roughness 0.2),
-the floor painted with colours on geometry -- under a sky seen through the open front
+a textured floor (a checkered base-colour map and a metallic-roughness map: polished and
+rough checks) -- under a sky seen through the open front
 (an equirectangular map, sampled by importance), interleaved rounds in one process,
 medians; and the same triangles diffuse, which tells the materials' cost from the balls'
 triangles'. The goal: the materials' box at 0.6x the diffuse box's paths a second or
@@ -11,8 +12,8 @@ Mitsuba 3 renders the same triangles beside them (``scalar_rgb``, and ``llvm_ad_
 where an LLVM >= 16 is installed), glTF's materials mapped approximately -- a metal as its
 ``roughconductor``, a dielectric as its ``roughplastic`` (their Fresnel exact, not
 Schlick's; their Smith term separable): the same work for speed, not the same picture (the
-tests compare the tracer with closed forms, quadrature and Mitsuba's diffuse model), the
-floor's colours not carried over.
+tests compare the tracer with closed forms, quadrature and Mitsuba), the floor's maps not
+carried over.
 
 Run: ``.venv/bin/python benchmarks/pathtrace_materials_bench.py [--size 128] [--spp 16]
 [--rounds 3]``.
@@ -40,7 +41,7 @@ from glshade.render.context import create_context  # noqa: E402
 
 
 def materials_box(gltf: bool = True):
-    """The Cornell box with two balls: glTF's materials, colours on its floor and a sky
+    """The Cornell box with two balls: glTF's materials, a textured floor and a sky
     (``gltf``), or the same triangles diffuse, as the notes draw them."""
     box, camera = cornell_scene()
     plain = glshade.Material(color=(0.75, 0.75, 0.75), kd=0.9, ks=0.0)
@@ -54,8 +55,18 @@ def materials_box(gltf: bool = True):
         return box, camera
     floor = next(m for m in box.models if m.name == "floor")
     v = floor.mesh.vertices
-    colors = 0.5 + 0.5 * np.cos(v[:, [0, 2, 0]] / 90.0)  # (a colour a corner)
-    floor.mesh = glshade.Mesh(v, floor.mesh.faces, colors=colors)
+    # (a textured glTF floor: a checkered base colour, 64 x 64 texels, and a
+    # metallic-roughness map whose checks alternate polished and rough)
+    uv = (v[:, [0, 2]] - v[:, [0, 2]].min(0)) / np.ptp(v[:, [0, 2]], axis=0)
+    checks = (np.add.outer(np.arange(64) // 8, np.arange(64) // 8) % 2).astype(bool)
+    base = np.where(checks[..., None], (230, 225, 215), (60, 90, 150)).astype(np.uint8)
+    mr = np.zeros((64, 64, 3), np.uint8)
+    mr[..., 1] = np.where(checks, 60, 200)  # (glTF's roughness in green, metallic in blue)
+    floor.mesh = glshade.Mesh(v, floor.mesh.faces, uv=uv)
+    floor.material = glshade.PBRMaterial(
+        base_color=(1.0, 1.0, 1.0), metallic=1.0, roughness=1.0,
+        base_color_texture=glshade.Texture(base),
+        metallic_roughness_texture=glshade.Texture(mr))
     sky = np.zeros((64, 128, 3))
     sky[:32], sky[32:] = (0.6, 0.7, 0.9), (0.15, 0.12, 0.1)
     sky[8:14, 40:52] = (20.0, 18.0, 15.0)  # (a sun)
@@ -76,7 +87,7 @@ def main() -> None:
     size = (args.size, args.size)
     tracers = {"cornell box, diffuse": PathTracer(diffuse, size, context=ctx),
                "+ two balls (8,192 tris), diffuse": PathTracer(balls, size, context=ctx),
-               "+ two balls, glTF materials, colours, sky": PathTracer(painted, size,
+               "+ two balls, glTF materials, textured floor, sky": PathTracer(painted, size,
                                                                       context=ctx)}
     times: dict[str, list[float]] = {name: [] for name in tracers}
     for tracer in tracers.values():  # (a warm-up: programs compiled, kernels chosen)

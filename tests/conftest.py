@@ -142,8 +142,9 @@ ONCE_FOLDERS = ("tests/batch/", "tests/animate/", "tests/testing/", "tests/cli/"
 #: the tests of what a GL context's backend can change -- its version, extensions, sample
 #: counts, framebuffers, compute and tessellation stages: every pass of the renderer and
 #: the path tracer's and tessellation's programs, each against its oracle. The OSMesa pass
-#: runs these (marked ``backend``); the chapters that draw through them (hidden surfaces,
-#: radiosity, compare, notebooks ...) prove their own numbers once, on EGL.
+#: and the 4.1 tier run these (marked ``backend``; the Makefile's BACKEND_TESTS lists the
+#: same files); the chapters that draw through them (hidden surfaces, radiosity, compare,
+#: notebooks ...) prove their own numbers once, on EGL.
 BACKEND_PATHS = ("tests/render/", "tests/pathtrace/test_pathtrace.py",
                  "tests/patches/test_gpu_tessellation.py")
 

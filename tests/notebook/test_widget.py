@@ -111,3 +111,43 @@ def test_a_gltf_files_materials_lights_and_camera_in_the_widget(make_renderer):
             assert image[..., 0].max() > 200, mode  # (the spot's highlight on the gold)
     finally:
         w.close()
+
+
+def _until(w, text, timeout=120):
+    import time
+
+    deadline = time.time() + timeout
+    while text not in w.status:
+        assert time.time() < deadline, w.status
+        time.sleep(0.05)
+
+
+def test_t_path_traces_gltfs_materials_in_the_widget_and_rests_at_its_samples():
+    """Key t in the widget: the picture refines a sample a pixel a frame up to
+    trace_samples, then rests -- what pathtrace.trace gives the same view for as many
+    samples (glTF's gold ball, its spot light and a sky), at the exposure of the view's
+    first sample; a gesture starts it over from the new view; a mode key ends it."""
+    from glshade import Environment, examples, load_gltf, pathtrace
+
+    scene = load_gltf(examples.path("spotlit.glb")).scene()
+    scene.environment = Environment((0.2, 0.25, 0.3))
+    camera = Camera.look_at((0.0, 1.5, 4.0), (0.0, 0.3, 0.0), fov_y=40.0)
+    w = view(scene, camera, size=SIZE, backend=BACKEND, trace_samples=6)
+    try:
+        send(w, event="key", key="t")
+        _until(w, "path tracing, 6 samples a pixel (done")
+        smooth = pathtrace.TraceScene.from_scene(scene, smooth=True)
+        first = pathtrace.trace(smooth, camera, SIZE, spp=1, progress=False, backend=BACKEND)
+        ref = pathtrace.trace(smooth, camera, SIZE, spp=6, samples_per_pass=1, progress=False,
+                              backend=BACKEND)
+        want = ref.rgba8(first.auto_exposure())[..., :3].astype(int)
+        got = shown(w).astype(int)
+        assert np.abs(got - want).max() <= 1
+        assert (got[..., 0] > got[..., 2] + 30).mean() > 0.02  # (the gold is there)
+        send(w, event="wheel", dy=1.0)
+        assert w.status.startswith("path tracing") and camera_from_view(w.view) != camera
+        _until(w, "6 samples a pixel (done")  # (the new view, refined again)
+        send(w, event="key", key="3")
+        assert not w.status.startswith("path tracing") and w.tracer is None
+    finally:
+        w.close()

@@ -33,7 +33,7 @@ CELLS = [
     "from glshade.notebook import view\n"
     "scene = glshade.Scene()\n"
     "scene.add(primitives.torus(), glshade.Material(color=(0.8, 0.5, 0.3), ks=0.4))\n"
-    f"w = view(scene, size={SIZE}, pick=True)\n"
+    f"w = view(scene, size={SIZE}, pick=True, trace_samples=4)\n"
     "w",
 ]
 
@@ -232,3 +232,8 @@ def test_the_widget_in_a_browser_shows_glshades_pixels_after_each_gesture(lab, b
     half = SIZE[0] // 2
     assert (pixels[:, :half] == left[:, :half]).all()
     assert (pixels[:, half:] == right[:, half:]).all()
+
+    # the trace button: the path tracer's picture, refined to trace_samples, then resting
+    browser.find_element("css selector", ".glshade-trace").click()
+    wait_for(browser, "document.querySelector('.glshade-status').textContent"
+                      ".includes('path tracing, 4 samples a pixel (done')", timeout=120)

@@ -84,3 +84,27 @@ def _bsdf(row) -> dict:
                 "int_ior": 1.5, "diffuse_reflectance": {"type": "rgb",
                                                          "value": row[:3].tolist()}}
     return {"type": "diffuse", "reflectance": {"type": "rgb", "value": row[:3].tolist()}}
+
+
+def render_ball(bsdf: dict, sky: float, camera: dict, size: int, spp: int, seed: int = 0
+                ) -> np.ndarray:
+    """Mitsuba's own unit sphere (its analytic shape) of ``bsdf`` (a Mitsuba BSDF dict) at
+    the origin under a constant sky of radiance ``sky``: ``scalar_rgb``, ``(size, size,
+    3)`` in radiosity units (pi x its radiance)."""
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": 64},
+             "sensor": {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
+                        "to_world": mi.ScalarTransform4f().look_at(
+                            origin=list(camera["eye"]), target=list(camera["target"]),
+                            up=list(camera["up"])),
+                        "film": {"type": "hdrfilm", "width": size, "height": size,
+                                 "rfilter": {"type": "box"}},
+                        "sampler": {"type": "independent", "sample_count": spp,
+                                    "seed": seed}},
+             "ball": {"type": "sphere", "center": [0.0, 0.0, 0.0], "radius": 1.0,
+                      "bsdf": bsdf},
+             "sky": {"type": "constant", "radiance": {"type": "rgb",
+                                                      "value": [sky, sky, sky]}}}
+    return picture(mi.load_dict(scene))

@@ -25,9 +25,20 @@ BLOCK = 2_000_000
 
 @dataclass(frozen=True)
 class Cells:
-    """``points`` grouped by cells: ``order`` (N,) their indices cell by cell, cell k's at
-    ``order[starts[k]:starts[k] + counts[k]]``; ``centres`` (C, 3) the mean of each cell's
-    points and ``radii`` (C,) their largest distance from it."""
+    """Points grouped by cells (made by :func:`group`).
+
+    Parameters
+    ----------
+    order : ndarray
+        ``(N,)`` the points' indices, cell after cell: cell k's are
+        ``order[starts[k]:starts[k] + counts[k]]``.
+    starts, counts : ndarray
+        ``(C,)`` each cell's first place in ``order`` and its number of points.
+    centres : ndarray
+        ``(C, 3)`` the mean of each cell's points.
+    radii : ndarray
+        ``(C,)`` the largest distance of a cell's points from its centre.
+    """
 
     order: np.ndarray
     starts: np.ndarray

@@ -2,8 +2,11 @@
 glshade's own headless renderer and whose browser side shows the frames on a canvas and
 sends the gestures back -- the same controls as the window (:mod:`glshade.viewer.controls`):
 drag to turn (arcball), right- or shift-drag to pan, the wheel to dolly, keys 1-5 for the
-modes, ``v`` the named views, ``o`` orthographic, ``r`` reset; buttons for the modes, a split
-compare of two modes, and a click to pick (``pick=True``). No display is needed, so it works
+modes, ``v`` the named views, ``o`` orthographic, ``r`` reset, ``t`` path tracing (the
+picture refines a sample a pixel a frame while the camera rests, up to ``trace_samples``:
+glTF's materials, textures, emitters, spot lights and the sky, as ``glshade pathtrace``
+traces them); buttons for the modes, a split compare of two modes, and a click to pick
+(``pick=True``). No display is needed, so it works
 on a remote kernel; the picture is the one ``glshade render`` makes of the same view.
 
 Needs the ``notebook`` extra (``pip install 'glshade[notebook]'``: anywidget).
@@ -19,7 +22,7 @@ import numpy as np
 from ..errors import UsageError
 from ..modes import ShadingMode
 from ..scene import Camera, Scene
-from ..viewer.controls import Controls
+from ..viewer.controls import MODE_KEYS, Controls
 
 __all__ = ["NotebookViewer", "view", "camera_from_view", "view_of"]
 
@@ -67,15 +70,24 @@ class _Behaviour(_Widget):
 
     def __init__(self, scene: Scene, camera: Camera | None = None, *,
                  size=(480, 360), mode="phong", compare: str = "", samples: int = 4,
-                 pick: bool = False, backend=None, **kwargs):
+                 pick: bool = False, backend=None, trace_samples: int = 256, **kwargs):
         from concurrent.futures import ThreadPoolExecutor
 
+        from ..errors import OptionError
         from ..render.renderer import Renderer
 
         w, h = int(size[0]), int(size[1])
+        if int(trace_samples) != trace_samples or trace_samples < 1:
+            raise OptionError(f"trace_samples must be a whole number >= 1, got "
+                              f"{trace_samples!r}")
         super().__init__(width=w, height=h, **kwargs)
         self.controls = _Controls(self, scene, camera, (w, h), mode, pick=pick)
         self.split = _mode_name(compare) if compare else ""
+        self.trace_samples = int(trace_samples)
+        #: the path tracer while tracing is on (made, used and closed on the GL thread)
+        self.tracer: Any = None
+        self._trace_exposure: float | None = None
+        self._stepping = False
         # A GL context belongs to one thread, and a kernel answers widget messages on
         # another than the one that runs cells: every GL call goes to a thread of its own.
         self._gl = ThreadPoolExecutor(1, thread_name_prefix="glshade-notebook-gl")
@@ -104,29 +116,108 @@ class _Behaviour(_Widget):
 
     def image(self) -> np.ndarray:
         """The frame now shown ``(H, W, 3) uint8``: the mode, and right of the middle
-        the compared mode when there is one."""
+        the compared mode when there is one -- or, while tracing, the traced picture so
+        far."""
+        return self._on_gl(self._image)
+
+    def _image(self) -> np.ndarray:  # (on the GL thread)
+        if self.tracer is not None:
+            return self._traced()
         r, c = self.renderer, self.controls
-        left = self._on_gl(r.render, c.scene, c.camera, c.options)[..., :3]
+        left = r.render(c.scene, c.camera, c.options)[..., :3]
         if not self.split:
             return left
-        right = self._on_gl(r.render, c.scene, c.camera,
-                            c.options.replace(mode=self.split))[..., :3]
+        right = r.render(c.scene, c.camera, c.options.replace(mode=self.split))[..., :3]
         out = left.copy()
         out[:, self.width // 2:] = right[:, self.width // 2:]
         return out
 
     def refresh(self) -> None:
-        """Render the current view and send it to the browser."""
+        """Render the current view and send it to the browser (both on the GL thread, as
+        the tracing's frames are: one thread sends every frame)."""
+        self._on_gl(lambda: self._show(self._image()))
+        if self.tracer is not None:  # (a new view refines from here)
+            self._gl.submit(self._kick)
+
+    def _show(self, image: np.ndarray) -> None:
+        """A frame and what it shows, to the browser in one message."""
         from ..display import png_bytes
 
-        png = png_bytes(self.image())
+        png = png_bytes(image)
         c = self.controls
-        with self.hold_sync():  # (one message: the frame and what it shows)
+        tracer = self.tracer
+        with self.hold_sync():
             self.mode = c.options.mode.value
             self.view = view_of(c.camera)
             self.png = png
-            self.status = c.messages[-1] if c.messages else ""
+            self.status = (f"path tracing, {tracer.samples:,} samples a pixel"
+                           + (" (done: t or a mode key ends it)"
+                              if tracer.samples >= self.trace_samples else "")
+                           if tracer is not None else c.messages[-1] if c.messages else "")
             self.revision += 1
+
+    def trace(self, on: bool = True) -> None:
+        """Path tracing on (the window's ``t``): the picture starts over at each new view
+        and refines, one sample a pixel a frame, while the camera rests, up to
+        ``trace_samples``; off: the mode's picture again. A scene the tracer cannot take
+        is said in the status line.
+
+        Parameters
+        ----------
+        on : bool
+            Trace (True) or stop (False).
+        """
+        from ..errors import GlshadeError
+
+        if not on:
+            self._on_gl(self._stop_tracing)
+            self.refresh()
+            return
+        if self.tracer is None:
+            try:
+                self._on_gl(self._start_tracing)
+            except GlshadeError as exc:  # (a scene it cannot trace: no light at all ...)
+                self.controls._say(f"cannot path-trace this scene: {exc}")
+        self.refresh()
+
+    def _start_tracing(self) -> None:  # (on the GL thread)
+        from ..pathtrace import PathTracer
+
+        c = self.controls
+        self.tracer = PathTracer(c.scene, (self.width, self.height),
+                                 context=self.renderer.context, camera=c.camera, smooth=True)
+        self._trace_exposure = None
+
+    def _stop_tracing(self) -> None:  # (on the GL thread)
+        if self.tracer is not None:
+            self.tracer.close()
+            self.tracer = None
+
+    def _traced(self) -> np.ndarray:  # (on the GL thread)
+        """The traced picture for the view now shown (a new view: its first sample)."""
+        c = self.controls
+        if self.tracer.camera != c.camera and self.tracer.add(c.camera, 1) or \
+                self._trace_exposure is None:
+            self._trace_exposure = self.tracer.result().auto_exposure()
+        return self.tracer.result().rgba8(self._trace_exposure,
+                                          bool(c.options.srgb))[..., :3]
+
+    def _kick(self) -> None:  # (on the GL thread)
+        if not self._stepping:
+            self._stepping = True
+            self._step()
+
+    def _step(self) -> None:  # (on the GL thread: a sample a pixel, a frame, the next)
+        tracer = self.tracer
+        if tracer is None or tracer.samples >= self.trace_samples and \
+                tracer.camera == self.controls.camera:
+            self._stepping = False
+            return
+        if tracer.add(self.controls.camera, 1) or self._trace_exposure is None:
+            self._trace_exposure = tracer.result().auto_exposure()
+        self._show(tracer.result().rgba8(self._trace_exposure,
+                                         bool(self.controls.options.srgb))[..., :3])
+        self._gl.submit(self._step)
 
     def pick(self, x: float, y: float):
         """What pixel (x, y) of the view shows (:meth:`Renderer.pick`), kept in
@@ -178,8 +269,14 @@ class _Behaviour(_Widget):
         elif event == "wheel":
             c.scroll(float(content.get("dy", 0)))
         elif event == "key":
-            c.key(str(content.get("key", "")))
+            key = str(content.get("key", ""))
+            if key == "t":
+                return self.trace(self.tracer is None)
+            if key in MODE_KEYS and self.tracer is not None:
+                self._on_gl(self._stop_tracing)
+            c.key(key)
         elif event == "mode":
+            self._on_gl(self._stop_tracing)
             c.options = c.options.replace(mode=_mode_name(content["mode"]))
         elif event == "compare":
             self.split = _mode_name(content["mode"]) if content.get("mode") else ""
@@ -190,6 +287,7 @@ class _Behaviour(_Widget):
     def close(self) -> None:
         """Close the widget and release its renderer (on its GL thread)."""
         if getattr(self, "renderer", None) is not None:
+            self._on_gl(self._stop_tracing)
             self._on_gl(self.renderer.close)
             self._gl.shutdown()
             self.renderer = None
@@ -225,6 +323,8 @@ def _widget_class():
             Report the polygon under a click.
         backend : str or None
             The renderer's backend (auto, egl, osmesa).
+        trace_samples : int
+            Samples a pixel at which path tracing (key ``t``, :meth:`trace`) rests.
         **kwargs
             The widget's traits.
         """

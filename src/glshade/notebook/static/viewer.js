@@ -1,6 +1,7 @@
 // glshade's notebook viewer: the kernel renders (headless, glshade's own renderer) and sends
 // PNG frames; this draws them on a canvas, pixel for pixel, and sends the gestures back:
-// drag (arcball, right or shift: pan), wheel (dolly), keys (1-6 modes, v views, o, r, ...),
+// drag (arcball, right or shift: pan), wheel (dolly), keys (1-6 modes, v views, o, r, t
+// path tracing, ...),
 // click (pick, when picking is on). Moves are sent one per frame received (flow control).
 function render({ model, el }) {
   const root = document.createElement("div");
@@ -31,6 +32,11 @@ function render({ model, el }) {
   reset.textContent = "reset";
   reset.addEventListener("click", () => model.send({ event: "key", key: "r" }));
   bar.appendChild(reset);
+  const trace = document.createElement("button");  // path tracing on and off (key t)
+  trace.textContent = "trace";
+  trace.className = "glshade-trace";
+  trace.addEventListener("click", () => model.send({ event: "key", key: "t" }));
+  bar.appendChild(trace);
 
   const stage = document.createElement("div");
   stage.className = "glshade-stage";

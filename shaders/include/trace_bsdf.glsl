@@ -99,6 +99,9 @@ vec3 brdf_pi(Bsdf b, vec3 n, vec3 wi, vec3 wo) {
 // the density (solid angle) with which a bounce at normal n, leaving along wo, samples wi
 // (the lobe chosen as sample_bounce chooses it)
 float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
+#ifdef LOBE_UNIFORM
+    return dot(wi, n) > 0.0 ? 0.5 / PI : 0.0;  // (uniform over the hemisphere: 1 / 2 pi)
+#endif
 #ifdef PBR
     if (b.pbr > 0.5) {
         float ps = pbr_specular_chance(b, n, wo);
@@ -129,6 +132,9 @@ float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
 // a bounce's direction from u in [0, 1)^3 (the lobe, then a direction in it); zero where
 // the surface reflects nothing
 vec3 sample_bounce(Bsdf b, vec3 n, vec3 wo, vec3 u) {
+#ifdef LOBE_UNIFORM
+    return around(n, u.y, 2.0 * PI * u.z);  // (cos theta uniform: uniform in solid angle)
+#endif
 #ifdef PBR
     if (b.pbr > 0.5) {
         if (u.x < pbr_specular_chance(b, n, wo)) {

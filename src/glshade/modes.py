@@ -11,8 +11,8 @@ from .errors import OptionError
 
 __all__ = ["ShadingMode", "LightingModel", "Outputs", "Culling", "Shadows", "Transparency",
            "Projection",
-           "Backend", "Sampler", "Accel", "Kernel", "Tessellation", "PointStyle", "LineUnits",
-           "LineCaps", "LineJoins",
+           "Backend", "Sampler", "LobeSampling", "Accel", "Kernel", "Tessellation",
+           "PointStyle", "LineUnits", "LineCaps", "LineJoins",
            "HEADLESS_BACKENDS", "parse_enum", "choose"]
 
 
@@ -260,6 +260,15 @@ class Sampler(str, enum.Enum):
 
     PCG = "pcg"      # independent: a PCG stream per pixel and sample
     SOBOL = "sobol"  # Owen-scrambled Sobol points at the first three vertices
+
+
+class LobeSampling(str, enum.Enum):
+    """How a path tracer draws a bounce's direction (equal to its value as a string): the
+    same mean every way, the noise not."""
+
+    VISIBLE_NORMALS = "visible-normals"  # glTF's specular lobe by GGX's visible normals
+    NORMALS = "normals"                  # ... by its normals' distribution D(h) N.H
+    UNIFORM = "uniform"                  # every material: uniform over the hemisphere
 
 
 class Kernel(str, enum.Enum):

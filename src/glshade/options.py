@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 
 from .errors import OptionError
-from .modes import (Accel, Backend, Culling, Kernel, Outputs, Sampler, ShadingMode, Shadows,
-                    Transparency, choose)
+from .modes import (Accel, Backend, Culling, Kernel, LobeSampling, Outputs, Sampler,
+                    ShadingMode, Shadows, Transparency, choose)
 
 __all__ = ["DrawOptions", "RenderConfig", "TraceOptions", "MAX_PATH_DEPTH", "MAX_STREAMS",
            "COHERENT_TILE", "DEFAULT_SIZE", "MAX_SIZE", "MSAA_COUNTS", "check_whole", "check_size",
@@ -375,10 +375,14 @@ class TraceOptions:
     mis : bool
         Emission found by next-event estimation and by the bounce alike, weighed by Veach's
         power heuristic (False: next-event estimation alone after the first vertex).
-    visible_normals : bool
-        glTF's specular lobe sampled by GGX's visible normals (Heitz 2018); False: by its
-        normals' distribution D(h) cos(theta_h) (Walter et al. 2007), as Mitsuba's
-        ``sample_visible=false`` -- the same mean, more noise at grazing views.
+    lobe_sampling : LobeSampling or str
+        How a bounce's direction is drawn: ``"visible-normals"`` (glTF's specular lobe by
+        GGX's visible normals, Heitz 2018; the diffuse lobe by the cosine; the lobe by its
+        Fresnel weight), ``"normals"`` (the specular lobe by its normals' distribution
+        D(h) cos(theta_h), Walter et al. 2007, as Mitsuba's ``sample_visible=false``) or
+        ``"uniform"`` (every material uniformly over the hemisphere: no importance at all,
+        the baseline the others are measured against) -- the same mean every way, the
+        noise not.
     coherent : bool or (int, int)
         Blocks of pixels (True: ``COHERENT_TILE``, or a (width, height) in pixels, 1 to 64)
         that draw the same random numbers, so their rays run together in a SIMD step: each
@@ -413,7 +417,7 @@ class TraceOptions:
     accel: Accel = Accel.AUTO
     sampler: Sampler = Sampler.PCG
     mis: bool = True
-    visible_normals: bool = True
+    lobe_sampling: LobeSampling = LobeSampling.VISIBLE_NORMALS
     coherent: tuple[int, int] = (1, 1)
     storage: bool | None = None
     kernel: Kernel = Kernel.AUTO
@@ -426,7 +430,8 @@ class TraceOptions:
         put(self, "accel", choose(Accel, self.accel, "accel"))
         put(self, "sampler", choose(Sampler, self.sampler, "sampler"))
         put(self, "kernel", choose(Kernel, self.kernel, "kernel"))
-        for name in ("mis", "visible_normals"):
+        put(self, "lobe_sampling", choose(LobeSampling, self.lobe_sampling, "lobe_sampling"))
+        for name in ("mis",):
             if not isinstance(getattr(self, name), bool):
                 raise OptionError(f"{name} must be True or False, got "
                                   f"{getattr(self, name)!r}")

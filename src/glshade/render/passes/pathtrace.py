@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ...errors import EnvironmentFailure, OptionError
-from ...modes import Accel, Kernel, Sampler
+from ...modes import Accel, Kernel, LobeSampling, Sampler
 from ...options import MAX_STREAMS, TraceOptions
 from ...geometry.transforms import ray_uniforms
 from ...solids.encoding import ROW, tree_data
@@ -592,7 +592,8 @@ def program_defines(scene, data: np.ndarray, layout: dict, accel: Accel,
         ("CUTOUTS",) if (scene.materials[:, 11] < 1).any() or (
             scene.maps is not None and (scene.maps[:, 4, 0] >= 0).any()) else ())
     defines += ("MIS",) if options.mis else ()
-    defines += ("GGX_NORMALS",) if not options.visible_normals else ()
+    defines += {LobeSampling.VISIBLE_NORMALS: (), LobeSampling.NORMALS: ("GGX_NORMALS",),
+                LobeSampling.UNIFORM: ("LOBE_UNIFORM",)}[options.lobe_sampling]
     if options.coherent != (1, 1):
         defines += ("COHERENT_TILE uvec2({}u, {}u)".format(*options.coherent),)
     if controls is not None:

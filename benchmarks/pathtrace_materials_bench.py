@@ -24,6 +24,7 @@ from __future__ import annotations
 import argparse
 import statistics
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -88,36 +89,47 @@ def main() -> None:
     tracers = {"cornell box, diffuse": PathTracer(diffuse, size, context=ctx),
                "+ two balls (8,192 tris), diffuse": PathTracer(balls, size, context=ctx),
                "+ two balls, glTF materials, textured floor, sky": PathTracer(painted, size,
-                                                                      context=ctx)}
-    times: dict[str, list[float]] = {name: [] for name in tracers}
-    for tracer in tracers.values():  # (a warm-up: programs compiled, kernels chosen)
-        tracer.reset()
-        tracer.add(camera, 1)
-    for _ in range(args.rounds):
-        for name, tracer in tracers.items():
+                                                                             context=ctx)}
+
+    def traced(tracer):
+        def run():
             tracer.reset()
-            start = time.perf_counter()
             tracer.add(camera, args.spp)
             tracer.result()
-            times[name].append(time.perf_counter() - start)
+        return run
+
+    runs = {name: traced(tracer) for name, tracer in tracers.items()}
+    with tempfile.TemporaryDirectory() as folder:
+        runs.update(mitsuba_runs(painted, args, folder))
+        for run in runs.values():  # (a warm-up: programs compiled, kernels chosen)
+            run()
+        times: dict[str, list[float]] = {name: [] for name in runs}
+        for _ in range(args.rounds):  # (interleaved: each round runs every renderer once)
+            for name, run in runs.items():
+                start = time.perf_counter()
+                run()
+                times[name].append(time.perf_counter() - start)
     paths = args.size * args.size * args.spp
     rates = {name: paths / statistics.median(ts) for name, ts in times.items()}
     base, same = rates["cornell box, diffuse"], rates["+ two balls (8,192 tris), diffuse"]
-    rows = [(name, f"{rate / 1e6:.3f}", f"{rate / base:.2f}x", f"{rate / same:.2f}x")
+    ours = rates["+ two balls, glTF materials, textured floor, sky"]
+    rows = [(name, f"{rate / 1e6:.3f}", f"{rate / base:.2f}x", f"{rate / same:.2f}x",
+             f"{ours / rate:.2f}x" if name.startswith("Mitsuba") else "")
             for name, rate in rates.items()]
     print(f"{ctx.detail}, {args.size}x{args.size}, {args.spp} spp, medians of "
           f"{args.rounds} interleaved rounds")
     print(table(rows, ("scene", "Mpaths/s", "vs the diffuse box",
-                       "vs the same triangles diffuse")))
+                       "vs the same triangles diffuse", "glshade's materials box vs it")))
+    if not any(name.startswith("Mitsuba") for name in rates):
+        print("Mitsuba 3 not installed (pip install mitsuba): no Mitsuba rows")
     for tracer in tracers.values():
         tracer.close()
     ctx.release()
-    mitsuba_rows(painted, args)
 
 
-def mitsuba_rows(scene, args) -> None:
-    """Mitsuba's paths a second on the materials' box, each usable variant, the same
-    rounds (its scene loaded and rendered once first, as glshade's tracers were made)."""
+def mitsuba_runs(scene, args, folder) -> dict:
+    """A run of Mitsuba on the materials' box for each usable variant (each loaded once
+    here, as glshade's tracers were made; its variant set again before each render)."""
     from pathtrace_bench import mitsuba_variants
 
     from glshade.pathtrace import TraceScene
@@ -126,27 +138,21 @@ def mitsuba_rows(scene, args) -> None:
 
     variants = mitsuba_variants()
     if not variants:
-        print("Mitsuba 3 not installed (pip install mitsuba): no Mitsuba rows")
-        return
-    import tempfile
-
+        return {}
     import mitsuba as mi
 
     ts = TraceScene.from_scene(scene)
-    rows = []
-    with tempfile.TemporaryDirectory() as folder:
-        for variant in variants:
+    runs = {}
+    for variant in variants:
+        mi.set_variant(variant)
+        loaded = mitsuba_scene.load(ts, CORNELL_CAMERA, args.size, args.spp, folder)
+
+        def run(variant=variant, loaded=loaded):
             mi.set_variant(variant)
-            loaded = mitsuba_scene.load(ts, CORNELL_CAMERA, args.size, args.spp, folder)
-            mitsuba_scene.picture(loaded)  # (a warm-up: its kernels compiled)
-            times = []
-            for _ in range(args.rounds):
-                start = time.perf_counter()
-                mitsuba_scene.picture(loaded)
-                times.append(time.perf_counter() - start)
-            rate = args.size * args.size * args.spp / statistics.median(times)
-            rows.append((f"Mitsuba 3 {variant}, the materials' box", f"{rate / 1e6:.3f}"))
-    print(table(rows, ("scene", "Mpaths/s")))
+            mitsuba_scene.picture(loaded)
+
+        runs[f"Mitsuba 3 {variant}, the materials' box"] = run
+    return runs
 
 
 if __name__ == "__main__":

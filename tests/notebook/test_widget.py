@@ -151,3 +151,24 @@ def test_t_path_traces_gltfs_materials_in_the_widget_and_rests_at_its_samples():
         assert not w.status.startswith("path tracing") and w.tracer is None
     finally:
         w.close()
+
+
+def test_t_on_a_scene_the_tracer_cannot_take_says_why_in_the_status_line():
+    """kd + ks past 1 (light from nothing): the tracer refuses it, and the widget says so
+    in its status line and keeps drawing the mode."""
+    from glshade import Material
+    from glshade.geometry import primitives as P
+
+    scene = Scene()
+    scene.add(P.cube(), Material(kd=0.9, ks=0.5, color=(1, 1, 1)), name="cube")
+    w = view(scene, size=SIZE, backend=BACKEND)
+    try:
+        send(w, event="key", key="t")
+        assert w.tracer is None and w.status.startswith("cannot path-trace this scene")
+        assert "rho_d + k_s" in w.status
+    finally:
+        w.close()
+    from glshade.errors import OptionError
+
+    with pytest.raises(OptionError, match="trace_samples must be a whole number >= 1, got 0"):
+        view(scene, size=SIZE, backend=BACKEND, trace_samples=0)

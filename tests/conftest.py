@@ -35,6 +35,21 @@ BACKEND = os.environ.get("GLSHADE_TEST_BACKEND", "egl")
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def _interrupts_as_from_a_terminal() -> None:
+    """The Ctrl-C tests send SIGINT to glshade (in this process and in the commands they
+    start): a suite started in the background (a shell's ``make test &``, nohup) inherits
+    SIGINT ignored, Python then installs no handler, every process it starts ignores it
+    too, and those tests fail for the shell's reason, not glshade's. Each test process
+    takes SIGINT as a terminal would give it (its children then start with the default)."""
+    import signal
+
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+_interrupts_as_from_a_terminal()
+
+
 def glshade(*args, timeout=120, **kwargs):
     """Run the command line tool in a subprocess from the repository root."""
     return subprocess.run([sys.executable, "-m", "glshade", *args], capture_output=True,

@@ -412,17 +412,7 @@ def test_a_models_diameter_is_its_farthest_pair(shape, n, seed, scale):
     two points; at sizes from a micron to a thousand kilometres."""
     from scipy.spatial.distance import pdist
 
-    rng = np.random.default_rng(seed)
-    p = rng.normal(size=(n, 3))
-    if shape == "sphere":
-        p /= np.linalg.norm(p, axis=1, keepdims=True)
-    elif shape == "segment":
-        p = rng.uniform(size=(n, 1)) * [[1.0, 2.0, -0.5]]
-    elif shape == "flat":
-        p[:, 2] = 0.0
-    elif shape == "one point":
-        p = np.broadcast_to(p[:1], (n, 3))
-    elif shape == "two":
-        p = p[np.r_[0, 1, rng.integers(0, 2, n - 2)]]
-    p = p * scale + 3 * scale
+    from tests.geometry.test_cells import points_of
+
+    p = points_of(shape, n, np.random.default_rng(seed), scale)
     assert dataset.bop.diameter(p) == pytest.approx(pdist(p).max(), rel=1e-12, abs=0)

@@ -9,7 +9,9 @@ from hypothesis import given, settings, strategies as st
 from glshade.geometry.cells import group, near_blocks
 
 
-def _points(shape: str, n: int, rng, scale: float) -> np.ndarray:
+def points_of(shape: str, n: int, rng, scale: float) -> np.ndarray:
+    """``n`` points of a shape a grid finds hard (and BOP's diameter a bound from the
+    centre), ``scale`` across, off the origin by 3 ``scale``."""
     p = rng.normal(size=(n, 3))
     if shape == "sphere":  # (a surface: its box's volume counts on far more cells)
         p /= np.linalg.norm(p, axis=1, keepdims=True)
@@ -19,6 +21,8 @@ def _points(shape: str, n: int, rng, scale: float) -> np.ndarray:
         p[:, 2] = 0.0
     elif shape == "one point":
         p = np.broadcast_to(p[:1], (n, 3))
+    elif shape == "two":
+        p = p[np.r_[0, 1, rng.integers(0, 2, n - 2)]] if n > 1 else p
     elif shape == "far apart":  # (a cluster and a lone point far from it: a stretched box)
         p[0] = 1e4
     return p * scale + 3 * scale
@@ -33,7 +37,7 @@ def test_near_blocks_hold_every_near_pair(shape, n, seed, scale, reach):
     from scipy.spatial.distance import cdist
 
     rng = np.random.default_rng(seed)
-    p = _points(shape, n, rng, scale)
+    p = points_of(shape, n, rng, scale)
     a = rng.uniform(0, 0.05, n) * scale
     b = rng.uniform(0, 0.05, n) * scale
     if reach == "spread":
@@ -57,7 +61,7 @@ def test_near_blocks_hold_every_near_pair(shape, n, seed, scale, reach):
 @pytest.mark.parametrize("shape", ["sphere", "blob", "flat", "one point"])
 def test_cells_hold_their_points_within_their_radii(shape):
     rng = np.random.default_rng(1)
-    p = _points(shape, 5000, rng, 1.0)
+    p = points_of(shape, 5000, rng, 1.0)
     cells = group(p)
     assert np.array_equal(np.sort(cells.order), np.arange(len(p)))
     owner = np.repeat(np.arange(len(cells.starts)), cells.counts)

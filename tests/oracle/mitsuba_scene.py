@@ -35,14 +35,7 @@ def load(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,
     import mitsuba as mi
 
     scene = {"type": "scene", "integrator": {"type": "path", "max_depth": 64},
-             "sensor": {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
-                        "to_world": mi.ScalarTransform4f().look_at(
-                            origin=list(camera["eye"]), target=list(camera["target"]),
-                            up=list(camera["up"])),
-                        "film": {"type": "hdrfilm", "width": size, "height": size,
-                                 "rfilter": {"type": "box"}},
-                        "sampler": {"type": sampler, "sample_count": spp,
-                                    "seed": seed}}}
+             "sensor": _sensor(camera, size, spp, seed, sampler)}
     ts = trace_scene
     for m, row in enumerate(ts.materials):
         tri = ts.triangles[ts.material == m]
@@ -67,6 +60,20 @@ def load(trace_scene, camera: dict, size: int, spp: int, folder, seed: int = 0,
         scene["sky"] = {"type": "envmap",
                         "bitmap": mi.Bitmap(np.ascontiguousarray(sky.radiance, np.float32))}
     return mi.load_dict(scene)
+
+
+def _sensor(camera: dict, size: int, spp: int, seed: int, sampler: str) -> dict:
+    """glshade's pinhole camera as Mitsuba's perspective sensor: a square box-filtered
+    film of ``size`` pixels a side, ``spp`` samples of ``sampler`` each."""
+    import mitsuba as mi
+
+    return {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
+            "to_world": mi.ScalarTransform4f().look_at(
+                origin=list(camera["eye"]), target=list(camera["target"]),
+                up=list(camera["up"])),
+            "film": {"type": "hdrfilm", "width": size, "height": size,
+                     "rfilter": {"type": "box"}},
+            "sampler": {"type": sampler, "sample_count": spp, "seed": seed}}
 
 
 def _bsdf(row) -> dict:
@@ -95,14 +102,7 @@ def render_ball(bsdf: dict, sky: float, camera: dict, size: int, spp: int, seed:
 
     mi.set_variant("scalar_rgb")
     scene = {"type": "scene", "integrator": {"type": "path", "max_depth": 64},
-             "sensor": {"type": "perspective", "fov": float(camera["fov_y"]), "fov_axis": "y",
-                        "to_world": mi.ScalarTransform4f().look_at(
-                            origin=list(camera["eye"]), target=list(camera["target"]),
-                            up=list(camera["up"])),
-                        "film": {"type": "hdrfilm", "width": size, "height": size,
-                                 "rfilter": {"type": "box"}},
-                        "sampler": {"type": "independent", "sample_count": spp,
-                                    "seed": seed}},
+             "sensor": _sensor(camera, size, spp, seed, "independent"),
              "ball": {"type": "sphere", "center": [0.0, 0.0, 0.0], "radius": 1.0,
                       "bsdf": bsdf},
              "sky": {"type": "constant", "radiance": {"type": "rgb",

@@ -71,7 +71,9 @@ def test_the_cornell_box_compiles_its_one_light_in_and_no_point_lights():
     ("max_depth", 2_000_000, "max_depth must be at most 1,000,000"),
     ("storage", "on", "storage must be True, False or None"),
     ("seed", 1, "TraceOptions has no seed: its fields are accel, coherent, kernel, "
-               "max_depth"),
+               "lobe_sampling, max_depth"),
+    ("lobe_sampling", "cosine", "lobe_sampling must be 'visible-normals', 'normals' or "
+                                "'uniform', got 'cosine'"),
 ])
 def test_a_bad_option_is_refused_when_the_value_is_made(field, value, words):
     with pytest.raises(OptionError) as raised:

@@ -20,10 +20,13 @@ demo: setup-demo
 
 # Everything on EGL; then the tests of what a backend or a GL's version can change (marked
 # backend: the renderer's passes, the tracer's and tessellation's programs, each against its
-# oracle -- tests/conftest.py says which) again on OSMesa (one backend per process), and
-# on what a Mac has: the platform's own context (GLX under Xvfb, as CGL is on macOS and WGL
-# on Windows) held to 4.1 core without the later extensions (scripts/mac-gl41.sh), where
-# the passes take their 4.1 paths; the slow ones and those whose point does not depend on
+# oracle -- tests/conftest.py says which) on what a Mac has: the platform's own context
+# (GLX under Xvfb, as CGL is on macOS and WGL on Windows) held to 4.1 core without the later
+# extensions (scripts/mac-gl41.sh), where the passes take their 4.1 paths; and on OSMesa
+# (one backend per process), which is the same Mesa driver as EGL made another way, the
+# tests that run every pass's and program's code once (the renderer, the pipeline's
+# combinations of outputs, the programs, the context, the tracer, tessellation), not every
+# sweep over their parameters (43 s -> 16 s); the slow ones and those whose point does not depend on
 # the backend (marked once) run once, on EGL -- among them the 4.1 paths against their 4.3
 # twins (tests/render/test_gl_tiers.py) and 3.3 core (tests/cli/test_gl33.py); then the
 # viewer in a real window under Xvfb.
@@ -37,12 +40,17 @@ XDIST_DRAWING := -n auto --dist worksteal --durations=15
 # suite to deselect nine tenths of it cost each worker 8 s)
 BACKEND_TESTS := tests/render tests/pathtrace/test_pathtrace.py \
 	tests/patches/test_gpu_tessellation.py
-BACKEND_TIER := -m "gl and backend and not slow and not once" $(BACKEND_TESTS)
+BACKEND_MARKS := -m "gl and backend and not slow and not once"
+OSMESA_TESTS := tests/render/test_renderer.py tests/render/test_pipeline.py \
+	tests/render/test_programs.py tests/render/test_shaders_and_context.py \
+	tests/pathtrace/test_pathtrace.py tests/patches/test_gpu_tessellation.py
 test: setup
 	$(PY) -m pytest -q $(XDIST) --ignore=tests/viewer
-	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST_DRAWING) $(BACKEND_TIER)
 	GLSHADE_TEST_BACKEND=native GLSHADE_TEST_TIER=4.1 scripts/with-display.sh \
-		scripts/mac-gl41.sh $(PY) -m pytest -q $(XDIST_DRAWING) $(BACKEND_TIER)
+		scripts/mac-gl41.sh $(PY) -m pytest -q $(XDIST_DRAWING) $(BACKEND_MARKS) \
+		$(BACKEND_TESTS)
+	GLSHADE_TEST_BACKEND=osmesa $(PY) -m pytest -q $(XDIST_DRAWING) $(BACKEND_MARKS) \
+		$(OSMESA_TESTS)
 	scripts/with-display.sh $(PY) -m pytest -q tests/viewer
 
 lint: setup

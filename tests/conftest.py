@@ -3,8 +3,9 @@
 Where no context can be made the GL tests skip with the collected error text on a
 developer's machine, but FAIL when ``CI`` or ``GLSHADE_REQUIRE_GL`` is set, so CI can never
 go green by skipping the renderer. ``GLSHADE_TEST_BACKEND`` picks the backend (the README's
-test command runs the GL tests with egl, then the backend tier with osmesa, and with native
-held to 4.1 core as a Mac's is -- ``GLSHADE_TEST_TIER=4.1`` says the context must be one).
+test command runs the GL tests with egl, then the backend tier with native held to 4.1
+core as a Mac's is -- ``GLSHADE_TEST_TIER=4.1`` says the context must be one -- and the
+tests of every pass's code with osmesa: the Makefile says which).
 """
 
 import os
@@ -156,10 +157,11 @@ def make_renderer(gl_context):
 ONCE_FOLDERS = ("tests/batch/", "tests/animate/", "tests/testing/", "tests/cli/")
 #: the tests of what a GL context's backend can change -- its version, extensions, sample
 #: counts, framebuffers, compute and tessellation stages: every pass of the renderer and
-#: the path tracer's and tessellation's programs, each against its oracle. The OSMesa pass
-#: and the 4.1 tier run these (marked ``backend``; the Makefile's BACKEND_TESTS lists the
-#: same files); the chapters that draw through them (hidden surfaces, radiosity, compare,
-#: notebooks ...) prove their own numbers once, on EGL.
+#: the path tracer's and tessellation's programs, each against its oracle. The 4.1 tier
+#: runs these (marked ``backend``; the Makefile's BACKEND_TESTS lists the same files), the
+#: OSMesa pass those of them that run every pass's code once (its OSMESA_TESTS); the
+#: chapters that draw through them (hidden surfaces, radiosity, compare, notebooks ...)
+#: prove their own numbers once, on EGL.
 BACKEND_PATHS = ("tests/render/", "tests/pathtrace/test_pathtrace.py",
                  "tests/patches/test_gpu_tessellation.py")
 

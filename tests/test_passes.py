@@ -1,6 +1,6 @@
-"""``make test``'s backend passes (OSMesa, the 4.1 tier) collect only the backend tests'
+"""``make test``'s backend passes (the 4.1 tier, OSMesa) collect only the backend tests'
 own files: the Makefile's list must be tests/conftest.py's, or a backend test added
-elsewhere would run on EGL alone, silently."""
+elsewhere would run on EGL alone, silently; OSMesa's files are among them."""
 
 import re
 
@@ -12,3 +12,6 @@ def test_the_backend_passes_collect_every_backend_test():
     listed = re.search(r"^BACKEND_TESTS := (.*)$", make, re.M).group(1).split()
     assert sorted(p.rstrip("/") for p in listed) == sorted(p.rstrip("/") for p in BACKEND_PATHS)
     assert "$(BACKEND_TESTS)" in make
+    osmesa = re.search(r"^OSMESA_TESTS := (.*)$", make, re.M).group(1).split()
+    assert all(any(f.startswith(p) for p in BACKEND_PATHS) for f in osmesa), osmesa
+    assert all((ROOT / f).is_file() for f in osmesa) and "$(OSMESA_TESTS)" in make

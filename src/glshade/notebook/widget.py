@@ -196,11 +196,15 @@ class _Behaviour(_Widget):
     def _traced(self) -> np.ndarray:  # (on the GL thread)
         """The traced picture for the view now shown (a new view: its first sample)."""
         c = self.controls
-        if self.tracer.camera != c.camera and self.tracer.add(c.camera, 1) or \
-                self._trace_exposure is None:
-            self._trace_exposure = self.tracer.result().auto_exposure()
-        return self.tracer.result().rgba8(self._trace_exposure,
-                                          bool(c.options.srgb))[..., :3]
+        restarted = self.tracer.camera != c.camera and self.tracer.add(c.camera, 1)
+        return self._picture(restarted)
+
+    def _picture(self, restarted: bool) -> np.ndarray:  # (on the GL thread)
+        """The traced picture so far, at the exposure of its view's first sample."""
+        traced = self.tracer.result()
+        if restarted or self._trace_exposure is None:
+            self._trace_exposure = traced.auto_exposure()
+        return traced.rgba8(self._trace_exposure, bool(self.controls.options.srgb))[..., :3]
 
     def _kick(self) -> None:  # (on the GL thread)
         if not self._stepping:
@@ -213,10 +217,7 @@ class _Behaviour(_Widget):
                 tracer.camera == self.controls.camera:
             self._stepping = False
             return
-        if tracer.add(self.controls.camera, 1) or self._trace_exposure is None:
-            self._trace_exposure = tracer.result().auto_exposure()
-        self._show(tracer.result().rgba8(self._trace_exposure,
-                                         bool(self.controls.options.srgb))[..., :3])
+        self._show(self._picture(tracer.add(self.controls.camera, 1)))
         self._gl.submit(self._step)
 
     def pick(self, x: float, y: float):

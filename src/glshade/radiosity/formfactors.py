@@ -38,9 +38,9 @@ from collections import OrderedDict
 import numpy as np
 
 from ..errors import InputError, OptionError
+from ..geometry.cells import near_blocks
 from ..modes import Backend
 from ..options import HEMICUBE_RESOLUTION
-from ..geometry.cells import near_blocks
 from .contour import clip_to_plane, point_polygon_factors
 from .problem import PatchScene
 

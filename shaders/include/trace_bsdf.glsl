@@ -101,7 +101,7 @@ vec3 brdf_pi(Bsdf b, vec3 n, vec3 wi, vec3 wo) {
 float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
 #ifdef LOBE_UNIFORM
     return dot(wi, n) > 0.0 ? 0.5 / PI : 0.0;  // (uniform over the hemisphere: 1 / 2 pi)
-#endif
+#else
 #ifdef PBR
     if (b.pbr > 0.5) {
         float ps = pbr_specular_chance(b, n, wo);
@@ -127,6 +127,7 @@ float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
     float ca = max(dot(wi, reflect(-wo, n)), 0.0);
     return pd * max(dot(wi, n), 0.0) / PI + (1.0 - pd) * (b.shin + 1.0) / (2.0 * PI) *
            pow(ca, b.shin);
+#endif
 }
 
 // a bounce's direction from u in [0, 1)^3 (the lobe, then a direction in it); zero where
@@ -134,7 +135,7 @@ float bounce_pdf(Bsdf b, vec3 n, vec3 wo, vec3 wi) {
 vec3 sample_bounce(Bsdf b, vec3 n, vec3 wo, vec3 u) {
 #ifdef LOBE_UNIFORM
     return around(n, u.y, 2.0 * PI * u.z);  // (cos theta uniform: uniform in solid angle)
-#endif
+#else
 #ifdef PBR
     if (b.pbr > 0.5) {
         if (u.x < pbr_specular_chance(b, n, wo)) {
@@ -159,6 +160,7 @@ vec3 sample_bounce(Bsdf b, vec3 n, vec3 wo, vec3 u) {
                   diffuse ? sqrt(u.y) : pow(u.y, 1.0 / (b.shin + 1.0)), 2.0 * PI * u.z);
 #else
     return around(n, sqrt(u.y), 2.0 * PI * u.z);  // (every lobe diffuse)
+#endif
 #endif
 }
 #endif

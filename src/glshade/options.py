@@ -431,10 +431,8 @@ class TraceOptions:
         put(self, "sampler", choose(Sampler, self.sampler, "sampler"))
         put(self, "kernel", choose(Kernel, self.kernel, "kernel"))
         put(self, "lobe_sampling", choose(LobeSampling, self.lobe_sampling, "lobe_sampling"))
-        for name in ("mis",):
-            if not isinstance(getattr(self, name), bool):
-                raise OptionError(f"{name} must be True or False, got "
-                                  f"{getattr(self, name)!r}")
+        if not isinstance(self.mis, bool):
+            raise OptionError(f"mis must be True or False, got {self.mis!r}")
         if not isinstance(self.storage, bool) and self.storage is not None:
             raise OptionError(f"storage must be True, False or None (where the GL has "
                               f"storage buffers), got {self.storage!r}")

@@ -60,3 +60,26 @@ def test_each_edge_sides_triangle_holds_the_edge_in_its_face():
                 holding = [t for t in range(len(tri)) if owner[t] == face
                            and {lo, hi} <= set(tri[t].tolist())]
                 assert got[e, side] == (holding[0] if holding else -1), (e, side, holding)
+
+
+def test_each_edge_sides_normal_is_the_plane_drawn_beside_it():
+    """``Mesh.edge_side_normals``: on planar polygons the faces' Newell normals; on the
+    teapot's non-planar quads a unit normal perpendicular to the edge and to the far corner
+    of the triangle drawn beside it, on the face's side (its dot with the face's normal
+    positive)."""
+    for mesh in (P.cube(), P.icosphere(1), P.torus(1.0, 0.3, 8, 5)):
+        np.testing.assert_allclose(mesh.edge_side_normals,
+                                   mesh.face_normals[mesh.edge_faces], atol=1e-9)
+    teapot = P.teapot(2)
+    tri, _ = teapot.triangles
+    n = teapot.edge_side_normals
+    v = teapot.vertices
+    lo, hi = v[teapot.edges[:, 0]], v[teapot.edges[:, 1]]
+    side = teapot.edge_side_triangles
+    drawn = side >= 0
+    far = v[tri[side.clip(min=0)]].mean(axis=2) - lo[:, None]     # (E, 2, 3)
+    np.testing.assert_allclose(np.linalg.norm(n, axis=-1), 1.0, atol=1e-9)
+    assert np.abs(np.einsum("esk,ek->es", n, hi - lo))[drawn].max() < 1e-9
+    assert np.abs(np.einsum("esk,esk->es", n, far))[drawn].max() < 1e-9
+    assert (np.einsum("esk,esk->es", n, teapot.face_normals[teapot.edge_faces])[drawn] > 0).all()
+    assert not np.allclose(n, teapot.face_normals[teapot.edge_faces])  # (not planar)

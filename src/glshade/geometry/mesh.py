@@ -360,6 +360,22 @@ class Mesh:
         return _readonly(out.reshape(-1, 2))
 
     @cached_property
+    def edge_side_normals(self) -> NDArray[np.float64]:
+        """``(E, 2, 3)`` the unit normal of the triangle beside each edge on either side
+        (:attr:`edge_side_triangles`): the plane drawn there, which the edge overlay
+        recognises in the depth buffer -- the face's own normal where the triangulation
+        left that side out or its triangle has no area."""
+        tri, _ = self.triangles
+        side = self.edge_side_triangles
+        corners = self.vertices[tri[side.clip(min=0)]]                  # (E, 2, 3, 3)
+        n = np.cross(corners[..., 1, :] - corners[..., 0, :],
+                     corners[..., 2, :] - corners[..., 0, :])
+        length = np.linalg.norm(n, axis=-1, keepdims=True)
+        n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+        drawn = (side >= 0)[..., None] & (length > 0)
+        return _readonly(np.where(drawn, n, self.face_normals[self.edge_faces]))
+
+    @cached_property
     def edge_groups(self) -> EdgeGroups:
         """The half-edges grouped by undirected edge (see :mod:`glshade.geometry.edges`)."""
         he = self.half_edges

@@ -229,6 +229,10 @@ class FormFactors:
 
         self.problem = problem
         p = problem.patches
+        if quadrature != "auto" and (isinstance(quadrature, str) or
+                                     int(quadrature) != quadrature or quadrature < 1):
+            raise OptionError(f"quadrature must be 'auto' or a whole number >= 1, got "
+                              f"{quadrature!r}")
         if progress is None and p.n_patches <= SETUP_PROGRESS:
             progress = False
         bar, owned = as_progress(progress, 2 * p.n_patches if quadrature == "auto"
@@ -257,10 +261,7 @@ class FormFactors:
         p = problem.patches
         if quadrature == "auto":
             self.quadrature = quadrature_counts(problem, progress=bar)
-        else:
-            if isinstance(quadrature, str) or int(quadrature) != quadrature or quadrature < 1:
-                raise OptionError(f"quadrature must be 'auto' or a whole number >= 1, got "
-                                  f"{quadrature!r}")
+        else:  # (a whole number: checked before the bar)
             self.quadrature = np.full(p.n_patches, int(quadrature))
         points, owner, weight = p.sample_points(self.quadrature)
         self._points, self._weights = points, weight

@@ -460,7 +460,7 @@ class GpuMesh(GLResource):
                 raise GlshadeError("the mesh of this GpuMesh no longer exists")
             ctx = self.context.ctx
             ends = m.vertices[m.edges]                                  # (E, 2, 3)
-            planes = _edge_side_normals(m).reshape(-1, 1, 6)            # (E, 1, 6)
+            planes = m.edge_side_normals.reshape(-1, 1, 6)              # (E, 1, 6)
             data = np.concatenate([ends, np.broadcast_to(planes, (len(ends), 2, 6))], -1)
             vbo = self._keep(ctx.buffer(data.astype("f4").tobytes()))
             names = [n for n in ("in_position", "in_normal_a", "in_normal_b") if n in program]
@@ -587,15 +587,3 @@ def _table(ctx, values: np.ndarray, components: int, dtype: str):
     texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
     return texture
 
-
-def _edge_side_normals(mesh) -> np.ndarray:
-    """``(E, 2, 3)`` unit normals of the triangles beside each edge (its faces' where the
-    triangulation left a side out or its triangle has no area)."""
-    tri, _ = mesh.triangles
-    side = mesh.edge_side_triangles
-    corners = mesh.vertices[tri[side.clip(min=0)]]                  # (E, 2, 3, 3)
-    n = np.cross(corners[..., 1, :] - corners[..., 0, :], corners[..., 2, :] - corners[..., 0, :])
-    length = np.linalg.norm(n, axis=-1, keepdims=True)
-    n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
-    drawn = (side >= 0)[..., None] & (length > 0)
-    return np.where(drawn, n, mesh.face_normals[mesh.edge_faces])
